@@ -1,0 +1,14 @@
+//! Numerics shared by every technique: error-free products, a stable cross product,
+//! `atan` forms for arguments of known sign, orthonormal frames and `f32` bit helpers.
+
+mod atan;
+mod bits;
+mod frame;
+mod products;
+
+pub use atan::{atan2_upper_half_plane, atan_fast_nonneg};
+pub use bits::{copy_sign, is_sign_negative, sign_mask, with_sign_of_product};
+pub use frame::{Frame, orthonormal_basis};
+pub use products::{
+    HAS_HARDWARE_FMA, cross_precise, difference_of_products, dot_precise, fma, two_product,
+};

@@ -1,0 +1,16 @@
+//! Polygonal lights (Peters 2021, "BRDF Importance Sampling for Polygonal Lights", and
+//! its supplemental document).
+//!
+//! Polygons are convex, given by their vertices relative to the shading point in the
+//! local frame (z = normal), in either winding, with 3 to [`MAX_POLYGON_VERTICES`]
+//! vertices.
+//!
+//! [`MAX_POLYGON_VERTICES`]: crate::MAX_POLYGON_VERTICES
+
+pub mod baselines;
+pub mod clip;
+mod clip_generated;
+pub mod solid_angle;
+
+pub use clip::clip_to_upper_hemisphere;
+pub use solid_angle::SolidAnglePolygon;

@@ -1,0 +1,26 @@
+//! STUB
+use crate::Sample;
+use glam::Vec3;
+
+/// STUB
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct SolidAnglePolygon {
+    vertices: [Vec3; 8],
+    solid_angle: f32,
+}
+
+impl SolidAnglePolygon {
+    /// STUB
+    pub const EMPTY: Self = Self { vertices: [Vec3::ZERO; 8], solid_angle: 0.0 };
+    /// STUB
+    pub fn new(vertices: &[Vec3]) -> Option<Self> { let _ = vertices; None }
+    /// STUB
+    pub fn sample(&self, u: [f32; 2]) -> Sample { let _ = (u, self.vertices); Sample::NONE }
+    /// STUB
+    pub fn pdf(&self, dir: Vec3) -> f32 { let _ = dir; 0.0 }
+    /// STUB
+    pub fn invert(&self, dir: Vec3) -> Option<[f32; 2]> { let _ = dir; None }
+    /// STUB
+    pub fn solid_angle(&self) -> f32 { self.solid_angle }
+}

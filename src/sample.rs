@@ -1,0 +1,24 @@
+//! The result of drawing one sample.
+
+use glam::Vec3;
+
+/// A sampled direction and its density with respect to solid angle (per steradian).
+///
+/// `pdf == 0` means that no sample could be drawn; `dir` is then still finite (it is
+/// `(0, 0, 1)`), so that a caller that forgets to check never sees NaN.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// Unit direction in the local frame.
+    pub dir: Vec3,
+    /// Density per steradian; 0 when there is no sample.
+    pub pdf: f32,
+}
+
+impl Sample {
+    /// The "no sample" value: a finite direction and `pdf == 0`.
+    pub const NONE: Sample = Sample {
+        dir: Vec3::Z,
+        pdf: 0.0,
+    };
+}

@@ -1,0 +1,7 @@
+//! Shared code of sphera's std tools: paths of the repository.
+use std::path::PathBuf;
+
+/// The repository root (the directory holding the core's Cargo.toml).
+pub fn repository_root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).parent().expect("tools/ has a parent").to_path_buf()
+}
