@@ -13,6 +13,10 @@
 //! steradian; random numbers lie in `[0, 1)`; `pdf == 0` means "no sample".
 #![cfg_attr(not(any(test, feature = "std")), no_std)]
 #![deny(unsafe_op_in_unsafe_fn)]
+// Bad input must never produce NaN, so comparisons are written to be false for NaN on
+// purpose (`!(x > 0.0)` rejects NaN, `x.max(0.0).min(1.0)` maps NaN to 0 where `clamp`
+// would propagate it).
+#![allow(clippy::neg_cmp_op_on_partial_ord, clippy::manual_clamp)]
 
 pub mod ffi;
 pub mod math;

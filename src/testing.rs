@@ -49,3 +49,420 @@ impl Rng {
         }
     }
 }
+
+/// f64 vectors for reference computations, written independently of the f32 core.
+pub type D3 = [f64; 3];
+
+pub fn d3(v: Vec3) -> D3 {
+    [v.x as f64, v.y as f64, v.z as f64]
+}
+pub fn sub(a: D3, b: D3) -> D3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+pub fn add(a: D3, b: D3) -> D3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+pub fn scale(a: D3, s: f64) -> D3 {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+pub fn dot(a: D3, b: D3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+pub fn cross(a: D3, b: D3) -> D3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+pub fn norm(a: D3) -> f64 {
+    dot(a, a).sqrt()
+}
+pub fn normalize(a: D3) -> D3 {
+    scale(a, 1.0 / norm(a))
+}
+
+/// Solid angle of the planar triangle `a, b, c` (positions relative to the viewpoint)
+/// by van Oosterom and Strackee (1983), in f64, with the determinant taken over edge
+/// vectors so that tiny triangles keep their relative precision.
+pub fn solid_angle_triangle_f64(a: D3, b: D3, c: D3) -> f64 {
+    let det = dot(a, cross(sub(b, a), sub(c, a))).abs();
+    let (la, lb, lc) = (norm(a), norm(b), norm(c));
+    let denominator = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
+    2.0 * det.atan2(denominator)
+}
+
+/// Solid angle of a convex planar polygon (fan of triangles), f64.
+pub fn solid_angle_polygon_f64(vertices: &[D3]) -> f64 {
+    (1..vertices.len() - 1)
+        .map(|i| solid_angle_triangle_f64(vertices[0], vertices[i], vertices[i + 1]))
+        .sum()
+}
+
+/// A convex planar polygon split into small planar triangles: each fan triangle of the
+/// polygon is cut into `n²` triangles on a barycentric grid. Directions are located in
+/// a cell by intersecting their ray with the polygon's plane (f64).
+pub struct PolygonCells {
+    pub cells: Vec<[D3; 3]>,
+    vertices: Vec<D3>,
+    n: usize,
+    plane_normal: D3,
+    plane_offset: f64,
+}
+
+impl PolygonCells {
+    pub fn new(vertices: &[D3], n: usize) -> PolygonCells {
+        let mut plane_normal = [0.0; 3];
+        for i in 1..vertices.len() - 1 {
+            plane_normal = add(
+                plane_normal,
+                cross(
+                    sub(vertices[i], vertices[0]),
+                    sub(vertices[i + 1], vertices[0]),
+                ),
+            );
+        }
+        let plane_normal = normalize(plane_normal);
+        let plane_offset = dot(plane_normal, vertices[0]);
+        let mut cells = Vec::new();
+        for t in 0..vertices.len() - 2 {
+            let (a, b, c) = (vertices[0], vertices[t + 1], vertices[t + 2]);
+            let point = |i: usize, j: usize| {
+                add(
+                    a,
+                    add(
+                        scale(sub(b, a), i as f64 / n as f64),
+                        scale(sub(c, a), j as f64 / n as f64),
+                    ),
+                )
+            };
+            for i in 0..n {
+                for j in 0..n - i {
+                    cells.push([point(i, j), point(i + 1, j), point(i, j + 1)]);
+                    if i + j + 2 <= n {
+                        cells.push([point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)]);
+                    }
+                }
+            }
+        }
+        PolygonCells {
+            cells,
+            vertices: vertices.to_vec(),
+            n,
+            plane_normal,
+            plane_offset,
+        }
+    }
+
+    /// The cell hit by the ray along `dir`, or None when the ray misses the polygon.
+    pub fn locate(&self, dir: D3) -> Option<usize> {
+        let denominator = dot(self.plane_normal, dir);
+        let t = self.plane_offset / denominator;
+        if !(t > 0.0) || !t.is_finite() {
+            return None;
+        }
+        let q = scale(dir, t);
+        let mut base = 0;
+        let per_triangle = self.n * self.n;
+        for tri in 0..self.vertices.len() - 2 {
+            let (a, b, c) = (
+                self.vertices[0],
+                self.vertices[tri + 1],
+                self.vertices[tri + 2],
+            );
+            let total = dot(cross(sub(b, a), sub(c, a)), self.plane_normal);
+            let beta = dot(cross(sub(q, a), sub(c, a)), self.plane_normal) / total;
+            let gamma = dot(cross(sub(b, a), sub(q, a)), self.plane_normal) / total;
+            if beta >= 0.0 && gamma >= 0.0 && beta + gamma <= 1.0 {
+                let n = self.n as f64;
+                let i = ((beta * n).floor() as usize).min(self.n - 1);
+                let j = ((gamma * n).floor() as usize).min(self.n - 1 - i);
+                let upper =
+                    (beta * n - i as f64) + (gamma * n - j as f64) > 1.0 && i + j + 2 <= self.n;
+                // Index of cell (i, j): cells of rows before i, then 2 per j.
+                let mut index = 0;
+                for row in 0..i {
+                    index += 2 * (self.n - row) - 1;
+                }
+                index += 2 * j + upper as usize;
+                return Some(base + index);
+            }
+            base += per_triangle;
+        }
+        None
+    }
+}
+
+/// Regularised upper incomplete gamma function Q(a, x), for chi-square p-values.
+pub fn gamma_q(a: f64, x: f64) -> f64 {
+    if x <= 0.0 {
+        return 1.0;
+    }
+    let ln_gamma_a = ln_gamma(a);
+    if x < a + 1.0 {
+        // Series for P(a, x).
+        let mut term = 1.0 / a;
+        let mut sum = term;
+        let mut ap = a;
+        for _ in 0..10_000 {
+            ap += 1.0;
+            term *= x / ap;
+            sum += term;
+            if term.abs() < sum.abs() * 1e-15 {
+                break;
+            }
+        }
+        1.0 - sum * (-x + a * x.ln() - ln_gamma_a).exp()
+    } else {
+        // Continued fraction for Q(a, x) (modified Lentz).
+        let tiny = 1e-300;
+        let mut b = x + 1.0 - a;
+        let mut c = 1.0 / tiny;
+        let mut d = 1.0 / b;
+        let mut h = d;
+        for i in 1..10_000 {
+            let an = -(i as f64) * (i as f64 - a);
+            b += 2.0;
+            d = an * d + b;
+            if d.abs() < tiny {
+                d = tiny;
+            }
+            c = b + an / c;
+            if c.abs() < tiny {
+                c = tiny;
+            }
+            d = 1.0 / d;
+            let delta = d * c;
+            h *= delta;
+            if (delta - 1.0).abs() < 1e-15 {
+                break;
+            }
+        }
+        (-x + a * x.ln() - ln_gamma_a).exp() * h
+    }
+}
+
+/// ln Γ(x) for x > 0 by the Lanczos approximation (g = 7, n = 9).
+pub fn ln_gamma(x: f64) -> f64 {
+    const C: [f64; 9] = [
+        0.999_999_999_999_809_9,
+        676.520_368_121_885_1,
+        -1_259.139_216_722_402_8,
+        771.323_428_777_653_1,
+        -176.615_029_162_140_6,
+        12.507_343_278_686_905,
+        -0.138_571_095_265_720_12,
+        9.984_369_578_019_572e-6,
+        1.505_632_735_149_311_6e-7,
+    ];
+    if x < 0.5 {
+        let pi = core::f64::consts::PI;
+        return (pi / (pi * x).sin()).ln() - ln_gamma(1.0 - x);
+    }
+    let x = x - 1.0;
+    let mut sum = C[0];
+    for (i, &c) in C.iter().enumerate().skip(1) {
+        sum += c / (x + i as f64);
+    }
+    let t = x + 7.5;
+    0.5 * (2.0 * core::f64::consts::PI).ln() + (x + 0.5) * t.ln() - t + sum.ln()
+}
+
+/// Pearson's chi-square test of observed counts against exact cell probabilities.
+/// Cells whose expected count is below 5 are pooled. Returns (statistic, dof, p-value).
+pub fn chi_square(observed: &[u64], probabilities: &[f64]) -> (f64, usize, f64) {
+    let total: u64 = observed.iter().sum();
+    let mut statistic = 0.0;
+    let mut bins = 0usize;
+    let (mut pooled_observed, mut pooled_expected) = (0.0, 0.0);
+    for (&o, &p) in observed.iter().zip(probabilities) {
+        let e = p * total as f64;
+        if e < 5.0 {
+            pooled_observed += o as f64;
+            pooled_expected += e;
+        } else {
+            statistic += (o as f64 - e).powi(2) / e;
+            bins += 1;
+        }
+    }
+    if pooled_expected >= 5.0 {
+        statistic += (pooled_observed - pooled_expected).powi(2) / pooled_expected;
+        bins += 1;
+    } else if pooled_observed > pooled_expected + 5.0 {
+        // Many samples where almost none are expected: fail loudly.
+        statistic += f64::INFINITY;
+    }
+    let dof = bins.saturating_sub(1).max(1);
+    (statistic, dof, gamma_q(dof as f64 / 2.0, statistic / 2.0))
+}
+
+/// The significance level of every chi-square test in the crate. With a few dozen
+/// tests, 1e-4 keeps the chance of any false alarm per run below a percent while a
+/// wrong distribution at these sample counts gives p-values far below it.
+pub const CHI_SQUARE_ALPHA: f64 = 1e-4;
+
+/// Running mean and variance (Welford), for estimator tests.
+#[derive(Default)]
+pub struct Estimate {
+    count: u64,
+    mean: f64,
+    m2: f64,
+}
+
+impl Estimate {
+    pub fn add(&mut self, x: f64) {
+        self.count += 1;
+        let delta = x - self.mean;
+        self.mean += delta / self.count as f64;
+        self.m2 += delta * (x - self.mean);
+    }
+    pub fn variance(&self) -> f64 {
+        self.m2 / (self.count.max(2) - 1) as f64
+    }
+    pub fn standard_error(&self) -> f64 {
+        (self.variance() / self.count as f64).sqrt()
+    }
+    /// Asserts that the mean agrees with `reference` within `sigmas` standard errors
+    /// plus a relative tolerance for f32 rounding.
+    pub fn assert_mean_is(&self, reference: f64, sigmas: f64, relative: f64, what: &str) {
+        let allowed = sigmas * self.standard_error() + relative * reference.abs();
+        assert!(
+            (self.mean - reference).abs() <= allowed,
+            "{what}: mean {} vs reference {} (standard error {}, allowed {})",
+            self.mean,
+            reference,
+            self.standard_error(),
+            allowed
+        );
+    }
+}
+
+/// What a statistical run of a polygon sampler found.
+#[derive(Debug)]
+pub struct SamplerReport {
+    /// Chi-square p-value of the sample counts per cell against the cell weights.
+    pub p_value: f64,
+    /// Samples whose f64 ray misses the polygon.
+    pub outside: u64,
+    /// Largest angle (radians) by which a sample lies outside the polygon: rounding a
+    /// direction to f32 moves it by up to ~6e-8, so samples right at an edge may end up
+    /// outside by about that much, but never by more.
+    pub worst_outside_angle: f64,
+    /// Samples with a non-finite direction or pdf, or pdf <= 0.
+    pub non_finite: u64,
+    /// Largest relative difference between a sample's pdf and `pdf(sample.dir)`.
+    pub worst_pdf_mismatch: f64,
+    pub samples: u64,
+}
+
+/// Draws `samples` samples with `sample`, locates each in the cells of the polygon
+/// (`subdivisions²` cells per fan triangle), and tests the counts against the cells'
+/// exact probabilities `weight(cell) / Σ weight` with a chi-square test. Also counts
+/// samples outside the polygon, non-finite samples, and compares the sample's pdf with
+/// `pdf(dir)`.
+pub fn run_polygon_sampler(
+    vertices: &[Vec3],
+    subdivisions: usize,
+    samples: u64,
+    seed: u64,
+    weight: impl Fn(&[D3; 3]) -> f64,
+    sample: impl Fn([f32; 2]) -> crate::Sample,
+    pdf: impl Fn(Vec3) -> f32,
+) -> SamplerReport {
+    let polygon: Vec<D3> = vertices.iter().map(|&v| d3(v)).collect();
+    let cells = PolygonCells::new(&polygon, subdivisions);
+    let weights: Vec<f64> = cells.cells.iter().map(&weight).collect();
+    let total: f64 = weights.iter().sum();
+    let probabilities: Vec<f64> = weights.iter().map(|w| w / total).collect();
+    let mut counts = vec![0u64; cells.cells.len()];
+    let mut rng = Rng::new(seed);
+    let n = polygon.len();
+    let centroid = polygon.iter().fold([0.0; 3], |a, &b| add(a, b));
+    let inward: Vec<D3> = (0..n)
+        .map(|i| normalize(cross(polygon[i], sub(polygon[(i + 1) % n], polygon[i]))))
+        .map(|e| {
+            if dot(e, centroid) < 0.0 {
+                scale(e, -1.0)
+            } else {
+                e
+            }
+        })
+        .collect();
+    let mut worst_outside_angle = 0.0f64;
+    let (mut outside, mut non_finite, mut worst) = (0, 0, 0.0f64);
+    for _ in 0..samples {
+        let s = sample([rng.uniform_f32(), rng.uniform_f32()]);
+        if !s.dir.is_finite() || !s.pdf.is_finite() || s.pdf <= 0.0 {
+            non_finite += 1;
+            continue;
+        }
+        match cells.locate(d3(s.dir)) {
+            Some(cell) => counts[cell] += 1,
+            None => {
+                outside += 1;
+                let d = normalize(d3(s.dir));
+                for e in &inward {
+                    worst_outside_angle = worst_outside_angle.max(-dot(*e, d));
+                }
+            }
+        }
+        let p = pdf(s.dir) as f64;
+        worst = worst.max((p - s.pdf as f64).abs() / s.pdf as f64);
+    }
+    let (_, _, p_value) = chi_square(&counts, &probabilities);
+    SamplerReport {
+        p_value,
+        outside,
+        worst_outside_angle,
+        non_finite,
+        worst_pdf_mismatch: worst,
+        samples,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chi_square_p_values_match_known_quantiles() {
+        // 95% quantiles of chi-square: dof 1 -> 3.841, dof 10 -> 18.307.
+        assert!((gamma_q(0.5, 3.841_458_8 / 2.0) - 0.05).abs() < 1e-6);
+        assert!((gamma_q(5.0, 18.307_038 / 2.0) - 0.05).abs() < 1e-6);
+        assert!((ln_gamma(5.0) - 24f64.ln()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn polygon_cells_cover_the_polygon_and_their_solid_angles_sum_up() {
+        let quad = [
+            [-1.0, -1.0, 1.0],
+            [1.0, -1.0, 1.0],
+            [1.0, 1.0, 1.0],
+            [-1.0, 1.0, 1.0],
+        ];
+        let cells = PolygonCells::new(&quad, 7);
+        let total: f64 = cells
+            .cells
+            .iter()
+            .map(|c| solid_angle_triangle_f64(c[0], c[1], c[2]))
+            .sum();
+        assert!((total - 2.0 * core::f64::consts::PI / 3.0).abs() < 1e-12);
+        let mut rng = Rng::new(9);
+        for _ in 0..10_000 {
+            let (x, y) = (2.0 * rng.uniform() - 1.0, 2.0 * rng.uniform() - 1.0);
+            let cell = cells.locate([x, y, 1.0]).expect("inside");
+            let c = cells.cells[cell];
+            // The point must be inside the located cell.
+            let p = [x, y, 1.0];
+            let n = [0.0, 0.0, 1.0];
+            for k in 0..3 {
+                let e = sub(c[(k + 1) % 3], c[k]);
+                let s = dot(cross(e, sub(p, c[k])), n)
+                    * dot(cross(sub(c[1], c[0]), sub(c[2], c[0])), n);
+                assert!(s >= -1e-12, "point {p:?} not in cell {c:?}");
+            }
+        }
+        assert!(cells.locate([3.0, 0.0, 1.0]).is_none());
+        assert!(cells.locate([0.0, 0.0, -1.0]).is_none());
+    }
+}

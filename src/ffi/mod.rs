@@ -1,1 +1,57 @@
-//! The C ABI: thin wrappers over the safe core, one file per family, no logic.
+//! The C ABI: thin wrappers over the safe core, one file per family, no logic beyond
+//! the null-pointer and count contract that C callers rely on.
+//!
+//! Every exported function is `extern "C"` with an unmangled `sphera_` name; the header
+//! `include/sphera.h` is generated from these declarations by cbindgen
+//! (`cargo run -p sphera-tools --bin generate_header`). The contract shared by all
+//! functions:
+//!
+//! - a null pointer never crashes: getters return 0, `prepare` returns `false`;
+//! - a `prepare` (or `sphera_frame_from_normal`) that returns `false` still writes a
+//!   well-defined value into `*out` (the `EMPTY` polygon, the identity frame);
+//! - random numbers are passed through unchanged (the core clamps them to `[0, 1)`);
+//! - no Rust panic crosses the boundary (the core does not panic, and the static
+//!   library's panic handler aborts).
+
+// The order of these modules matters to cbindgen (and each stands alone so that rustfmt
+// keeps it): cbindgen emits a struct where a function first uses it, and it cannot see
+// that the core's structs hold glam's `Vec3` (shown as `SpheraVec3`). The first
+// function, `sphera_polygon_clip`, uses `SpheraVec3` before any function uses such a
+// struct, so the header defines `SpheraVec3` first. The C ABI tests compile the header,
+// which catches a wrong order.
+mod types;
+
+mod polygon;
+
+mod frame;
+
+pub use frame::*;
+pub use polygon::*;
+pub use types::*;
+
+/// The precompiled `core` of hosted targets is built with unwinding, and its object
+/// file refers to `rust_eh_personality` (a `DW.ref.rust_eh_personality` data word), even
+/// though this library is built with `panic = "abort"` and never unwinds. Rust's `std`
+/// defines that symbol; a `no_std` static library has nothing that does, so a C program
+/// linking `libsphera.a -lm` would fail with "undefined reference to
+/// `rust_eh_personality`" (the crate types `staticlib` + `rlib` also keep Cargo from
+/// running LTO, which could otherwise drop the reference). This definition satisfies
+/// the linker. It is never called: nothing in the library unwinds, and an unwinder that
+/// still reached a Rust frame gets a fatal error code back and terminates.
+/// `tools/tests/c_abi.rs` checks that the archive leaves no such symbol undefined.
+#[cfg(all(
+    not(test),
+    not(feature = "std"),
+    panic = "abort",
+    not(target_os = "none")
+))]
+mod personality {
+    /// `_URC_FATAL_PHASE1_ERROR` of the Itanium C++ ABI's unwinder.
+    const FATAL_ERROR: i32 = 3;
+
+    /// cbindgen:ignore
+    #[unsafe(no_mangle)]
+    extern "C" fn rust_eh_personality() -> i32 {
+        FATAL_ERROR
+    }
+}

@@ -30,6 +30,7 @@ pub fn atan2_upper_half_plane(y: f32, x: f32) -> f32 {
 /// Range reduction `atan(x) = π/2 - atan(1/x)` for `x > 1`, then an odd minimax-style
 /// polynomial in `t = min(x, 1/x)` on `[0, 1]`.
 #[inline(always)]
+#[allow(clippy::excessive_precision)] // the coefficients as fitted
 pub fn atan_fast_nonneg(x: f32) -> f32 {
     let invert = x > 1.0;
     let t = if invert { 1.0 / x } else { x };
@@ -58,7 +59,10 @@ mod tests {
             let got = atan2_upper_half_plane(y, x) as f64;
             worst = worst.max((got - exact).abs() / exact.abs().max(1e-30));
         }
-        assert!(worst < 4.0 * f32::EPSILON as f64, "worst relative error {worst}");
+        assert!(
+            worst < 4.0 * f32::EPSILON as f64,
+            "worst relative error {worst}"
+        );
     }
 
     #[test]

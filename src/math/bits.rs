@@ -40,13 +40,28 @@ mod tests {
 
     #[test]
     fn sign_helpers_agree_with_arithmetic() {
-        let values = [0.0f32, -0.0, 1.0, -1.0, 1e-40, -1e-40, 3.0e38, -3.0e38, f32::INFINITY, f32::NEG_INFINITY];
+        let values = [
+            0.0f32,
+            -0.0,
+            1.0,
+            -1.0,
+            1e-40,
+            -1e-40,
+            3.0e38,
+            -3.0e38,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+        ];
         for &a in &values {
             assert_eq!(is_sign_negative(a), a.is_sign_negative());
             for &b in &values {
                 assert_eq!(copy_sign(a, b).to_bits(), a.copysign(b).to_bits());
                 for &x in &values[..4] {
-                    let expected = if a.is_sign_negative() != b.is_sign_negative() { -x } else { x };
+                    let expected = if a.is_sign_negative() != b.is_sign_negative() {
+                        -x
+                    } else {
+                        x
+                    };
                     assert_eq!(with_sign_of_product(x, a, b).to_bits(), expected.to_bits());
                 }
             }

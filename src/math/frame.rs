@@ -43,13 +43,21 @@ impl Frame {
             return None;
         }
         let (tangent, bitangent) = orthonormal_basis(normal);
-        Some(Frame { tangent, bitangent, normal })
+        Some(Frame {
+            tangent,
+            bitangent,
+            normal,
+        })
     }
 
     /// Expresses a world-space vector in this frame.
     #[inline(always)]
     pub fn to_local(&self, v: Vec3) -> Vec3 {
-        Vec3::new(v.dot(self.tangent), v.dot(self.bitangent), v.dot(self.normal))
+        Vec3::new(
+            v.dot(self.tangent),
+            v.dot(self.bitangent),
+            v.dot(self.normal),
+        )
     }
 
     /// Expresses a local vector in world space.
@@ -68,14 +76,32 @@ mod tests {
     fn basis_is_orthonormal_and_right_handed_to_f64_accuracy() {
         let mut rng = Rng::new(21);
         let mut worst = 0.0f64;
-        let mut normals: [Vec3; 6] = [Vec3::Z, -Vec3::Z, Vec3::X, Vec3::Y, Vec3::new(0.0, 0.0, -0.0), Vec3::new(1e-8, 0.0, -1.0).normalize()];
+        let mut normals: [Vec3; 6] = [
+            Vec3::Z,
+            -Vec3::Z,
+            Vec3::X,
+            Vec3::Y,
+            Vec3::new(0.0, 0.0, -0.0),
+            Vec3::new(1e-8, 0.0, -1.0).normalize(),
+        ];
         normals[4] = Vec3::new(0.6, 0.8, -0.0);
         let mut check = |n: Vec3| {
             let (t, b) = orthonormal_basis(n);
             let [t, b, n] = [t, b, n].map(|v| [v.x as f64, v.y as f64, v.z as f64]);
             let dot = |a: [f64; 3], c: [f64; 3]| a[0] * c[0] + a[1] * c[1] + a[2] * c[2];
-            let cross = [t[1] * b[2] - t[2] * b[1], t[2] * b[0] - t[0] * b[2], t[0] * b[1] - t[1] * b[0]];
-            for e in [dot(t, t) - 1.0, dot(b, b) - 1.0, dot(t, b), dot(t, n), dot(b, n), dot(cross, n) - 1.0] {
+            let cross = [
+                t[1] * b[2] - t[2] * b[1],
+                t[2] * b[0] - t[0] * b[2],
+                t[0] * b[1] - t[1] * b[0],
+            ];
+            for e in [
+                dot(t, t) - 1.0,
+                dot(b, b) - 1.0,
+                dot(t, b),
+                dot(t, n),
+                dot(b, n),
+                dot(cross, n) - 1.0,
+            ] {
                 worst = worst.max(e.abs());
             }
         };

@@ -6,7 +6,7 @@ mod bits;
 mod frame;
 mod products;
 
-pub use atan::{atan2_upper_half_plane, atan_fast_nonneg};
+pub use atan::{atan_fast_nonneg, atan2_upper_half_plane};
 pub use bits::{copy_sign, is_sign_negative, sign_mask, with_sign_of_product};
 pub use frame::{Frame, orthonormal_basis};
 pub use products::{

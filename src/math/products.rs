@@ -214,7 +214,8 @@ mod tests {
             let exact = a.x as f64 * b.x as f64 + a.y as f64 * b.y as f64 + a.z as f64 * b.z as f64;
             let got = dot_precise(a, b) as f64;
             // Dot2's bound: eps |a.b| + (n eps)^2 sum |a_i b_i| (Ogita, Rump, Oishi 2005).
-            let magnitude = (a.x * b.x).abs() as f64 + (a.y * b.y).abs() as f64 + (a.z * b.z).abs() as f64;
+            let magnitude =
+                (a.x * b.x).abs() as f64 + (a.y * b.y).abs() as f64 + (a.z * b.z).abs() as f64;
             let eps = f32::EPSILON as f64;
             assert!((got - exact).abs() <= eps * exact.abs() + 9.0 * eps * eps * magnitude);
         }

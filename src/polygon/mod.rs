@@ -9,6 +9,7 @@
 
 pub mod baselines;
 pub mod clip;
+#[rustfmt::skip]
 mod clip_generated;
 pub mod solid_angle;
 

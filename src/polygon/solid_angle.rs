@@ -1,26 +1,407 @@
-//! STUB
-use crate::Sample;
-use glam::Vec3;
+//! Solid angle sampling of convex polygons (Peters 2021, supplement C, Algorithm 5).
+//!
+//! A polygon is split into a fan of triangles around its first vertex. A fan triangle
+//! is chosen in proportion to its solid angle, and Algorithm 5 samples it: the first
+//! random number picks a sub-triangle of the wanted solid angle by rotating a new edge
+//! around the fan apex, the second one picks a point along that edge, uniformly in
+//! solid angle. The density is `1 / Ω` everywhere inside the polygon.
+//!
+//! Precision. van Oosterom and Strackee's formula gives each fan triangle's solid angle
+//! as `Ω = 2 atan2(G0, G1 + G2)`, and `G0 = |det(v0, v1, v2)|` of the unit vertex
+//! directions loses all precision for tiny triangles when it is expanded naively. The
+//! supplement reflects the vertices with one Householder reflection that maps the apex
+//! onto the x axis, which leaves a 2×2 determinant. Here the reflection is applied to
+//! the edge vectors `p_i - p_apex` of the *unnormalised* input positions, which are
+//! exact up to one rounding even when the vertices are 1e5 units away and the polygon
+//! is 1e-5 across (see [`SolidAnglePolygon::new`]). The per-sample step avoids the
+//! cancellation in `1 - s'²` of Algorithm 5 by the identity
+//! `(1 - s²) / (1 - s'²) = ξ1 (1 + s) / (1 + s')`.
+//!
+//! Hard cases, each a named test below: solid angles from 1e-10 sr to nearly 2π, slivers,
+//! a shading point in the polygon's plane, vertices 1e5 away, `u = 0` and `u = 1 - ulp`,
+//! both windings, duplicate vertices (as clipping can produce), 3 to 8 vertices.
 
-/// STUB
+use crate::Sample;
+use crate::math::{atan2_upper_half_plane, difference_of_products, dot_precise};
+use crate::{MAX_POLYGON_VERTICES, Vec3};
+
+/// The most fan triangles a polygon has.
+const MAX_TRIANGLES: usize = MAX_POLYGON_VERTICES - 2;
+
+/// The largest `f32` below one: uniform random numbers are clamped to `[0, ONE_MINUS_ULP]`.
+const ONE_MINUS_ULP: f32 = 1.0 - f32::EPSILON / 2.0;
+
+/// A convex polygon prepared for solid angle sampling: everything Algorithm 5 computes
+/// once per polygon.
 #[repr(C)]
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolidAnglePolygon {
-    vertices: [Vec3; 8],
+    /// Unit directions towards the vertices. `vertices[0]` is the fan apex, which
+    /// Algorithm 5 calls `v1`; fan triangle `k` is `(vertices[k + 1], apex,
+    /// vertices[k + 2])`, Algorithm 5's `(v0, v1, v2)`.
+    vertices: [Vec3; MAX_POLYGON_VERTICES],
+    /// Edge plane normals `± p_i × p_(i+1)` (not normalised), oriented so that directions
+    /// inside the polygon have non-negative dot products with all of them.
+    edge_normals: [Vec3; MAX_POLYGON_VERTICES],
+    /// `G0 = |det(v0, v1, v2)|` per fan triangle.
+    g0: [f32; MAX_TRIANGLES],
+    /// `G1 + G2 = 1 + v0·v1 + v0·v2 + v1·v2` per fan triangle (see [`denominator`]).
+    g1_plus_g2: [f32; MAX_TRIANGLES],
+    /// `G2 = 1 + v0·v1 = |v0 + v1|² / 2` per fan triangle.
+    g2: [f32; MAX_TRIANGLES],
+    /// `v0 + v2` per fan triangle, accurate even when `v0 ≈ -v2`.
+    outer_sum: [Vec3; MAX_TRIANGLES],
+    /// Solid angle of the fan triangles before triangle `k`.
+    start: [f32; MAX_TRIANGLES],
+    /// Total solid angle Ω in steradians (0 when empty).
     solid_angle: f32,
+    /// `1 / Ω` (0 when empty).
+    density: f32,
+    /// +1 when the polygon winds counter-clockwise seen from the shading point, -1
+    /// otherwise: the sign that orients the edge and diagonal normals inwards.
+    orientation: f32,
+    /// Number of vertices (0 when empty).
+    vertex_count: u32,
+    /// Fan triangles that can be selected: up to the last one with non-zero solid angle.
+    selectable_triangles: u32,
+}
+
+impl Default for SolidAnglePolygon {
+    fn default() -> Self {
+        Self::EMPTY
+    }
+}
+
+/// Rescales positions by a power of two so that the largest coordinate lies in
+/// `[1, 2)`. Returns `None` when all coordinates are zero or any is not finite.
+///
+/// Bit trick: for a normal `f32` `m` with biased exponent `E` (bits 23..=30), `2^(127-E)`
+/// has biased exponent `254 - E`, so `f32::from_bits((254 - E) << 23)` is exactly
+/// `2^-(E-127)` and `m` times it lies in `[1, 2)`. Multiplying by a power of two is exact
+/// while the result stays normal, so the polygon's shape is unchanged. For subnormal `m`
+/// (`E = 0`) the factor is `2^127`, still exact; `E` is at most 254 for finite values
+/// and the factor's exponent is kept at least 1 (a normal number).
+fn rescale(vertices: &[Vec3], out: &mut [Vec3; MAX_POLYGON_VERTICES]) -> Option<()> {
+    let mut largest = 0.0f32;
+    for v in vertices {
+        largest = largest.max(v.abs().max_element());
+        if !v.is_finite() {
+            return None;
+        }
+    }
+    if largest == 0.0 {
+        return None;
+    }
+    let biased_exponent = (largest.to_bits() >> 23) & 0xFF;
+    let factor = f32::from_bits(254u32.saturating_sub(biased_exponent).max(1) << 23);
+    for (o, v) in out.iter_mut().zip(vertices) {
+        *o = *v * factor;
+    }
+    Some(())
+}
+
+/// The Householder reflection `H = I - 2 h hᵀ` that maps the unit vector `apex` onto
+/// `σ e0` (supplement C): `σ = -1` if `apex.x > 0`, else `1`, and
+/// `h = (apex - σ e0) / sqrt(2 (|apex.x| + 1))`. Choosing `σ` against the sign of
+/// `apex.x` avoids cancellation in `apex.x - σ`.
+#[derive(Clone, Copy)]
+struct Householder {
+    h: Vec3,
+    sigma: f32,
+}
+
+impl Householder {
+    fn new(apex: Vec3) -> Householder {
+        let sigma = if apex.x > 0.0 { -1.0 } else { 1.0 };
+        let scale = 1.0 / libm::sqrtf(2.0 * (apex.x.abs() + 1.0));
+        let h = Vec3::new(apex.x - sigma, apex.y, apex.z) * scale;
+        Householder { h, sigma }
+    }
+
+    /// The y and z components of `H d`; the x component is not needed.
+    #[inline(always)]
+    fn reflect_yz(&self, d: Vec3) -> [f32; 2] {
+        let twice_projection = 2.0 * self.h.dot(d);
+        [
+            d.y - self.h.y * twice_projection,
+            d.z - self.h.z * twice_projection,
+        ]
+    }
+
+    /// `det(b - a, apex, c - a) / |apex|`-style determinant from reflected edge vectors:
+    /// for `x = (H(b - a))_yz` and `y = (H(c - a))_yz` with `a` parallel to the apex,
+    /// `det(b, a, c) = |a| σ (x_y y_z - x_z y_y)` (the reflection has determinant -1 and
+    /// maps the apex onto `σ e0`, so one column of the reflected matrix is `σ e0` and
+    /// expanding along it leaves the 2×2 determinant).
+    #[inline(always)]
+    fn determinant(&self, x: [f32; 2], y: [f32; 2]) -> f32 {
+        self.sigma * difference_of_products(x[0], y[1], x[1], y[0])
+    }
+}
+
+/// `p/|p| + q/|q|` to full relative precision, also when `p` and `q` point in nearly
+/// opposite directions and the naive sum of two rounded unit vectors would carry an
+/// absolute error of an ulp of 1:
+/// `p/|p| + q/|q| = (p + q)/|q| + p (|q| - |p|) / (|p| |q|)`, with
+/// `|q| - |p| = (q - p)·(q + p) / (|p| + |q|)`. `p + q` is exact when the vectors nearly
+/// cancel (Sterbenz), and the dot product is compensated.
+#[inline(always)]
+fn unit_vector_sum(p: Vec3, q: Vec3, length_p: f32, length_q: f32) -> Vec3 {
+    let sum = p + q;
+    let length_difference = dot_precise(q - p, sum) / (length_p + length_q);
+    sum / length_q + p * (length_difference / (length_p * length_q))
+}
+
+/// `G1 + G2 = 1 + v0·v1 + v0·v2 + v1·v2`, the denominator of van Oosterom and Strackee's
+/// formula, from the pair sums `s_ij = v_i + v_j`. It equals `|s_ij|²/2 + v_k·s_ij` for
+/// each pair; the pair with the shortest sum (the most nearly antipodal vertices) gives
+/// a form without cancellation. Near-flat triangles of almost π steradians, where the
+/// naive sum of dot products loses everything, have exactly one such pair.
+#[inline(always)]
+fn denominator(v0: Vec3, v1: Vec3, v2: Vec3, s01: Vec3, s02: Vec3, s12: Vec3) -> f32 {
+    let (l01, l02, l12) = (
+        s01.length_squared(),
+        s02.length_squared(),
+        s12.length_squared(),
+    );
+    if l02 <= l01 && l02 <= l12 {
+        0.5 * l02 + v1.dot(s02)
+    } else if l12 <= l01 {
+        0.5 * l12 + v0.dot(s12)
+    } else {
+        0.5 * l01 + v2.dot(s01)
+    }
 }
 
 impl SolidAnglePolygon {
-    /// STUB
-    pub const EMPTY: Self = Self { vertices: [Vec3::ZERO; 8], solid_angle: 0.0 };
-    /// STUB
-    pub fn new(vertices: &[Vec3]) -> Option<Self> { let _ = vertices; None }
-    /// STUB
-    pub fn sample(&self, u: [f32; 2]) -> Sample { let _ = (u, self.vertices); Sample::NONE }
-    /// STUB
-    pub fn pdf(&self, dir: Vec3) -> f32 { let _ = dir; 0.0 }
-    /// STUB
-    pub fn invert(&self, dir: Vec3) -> Option<[f32; 2]> { let _ = dir; None }
-    /// STUB
-    pub fn solid_angle(&self) -> f32 { self.solid_angle }
+    /// The state of a polygon that could not be prepared: samples have `pdf == 0`,
+    /// `pdf()` is 0 and the solid angle is 0.
+    pub const EMPTY: Self = Self {
+        vertices: [Vec3::Z; MAX_POLYGON_VERTICES],
+        edge_normals: [Vec3::ZERO; MAX_POLYGON_VERTICES],
+        g0: [0.0; MAX_TRIANGLES],
+        g1_plus_g2: [0.0; MAX_TRIANGLES],
+        g2: [0.0; MAX_TRIANGLES],
+        outer_sum: [Vec3::ZERO; MAX_TRIANGLES],
+        start: [0.0; MAX_TRIANGLES],
+        solid_angle: 0.0,
+        density: 0.0,
+        orientation: 1.0,
+        vertex_count: 0,
+        selectable_triangles: 0,
+    };
+
+    /// Prepares the convex polygon with the given vertices (positions relative to the
+    /// shading point, not normalised, either winding, 3 to 8 of them).
+    ///
+    /// Returns `None` for fewer than 3 or more than 8 vertices, non-finite coordinates,
+    /// a vertex at the shading point, and a zero (or non-representable) solid angle, for
+    /// example when the shading point lies in the polygon's plane. A non-convex polygon
+    /// gives a finite but meaningless result.
+    pub fn new(vertices: &[Vec3]) -> Option<SolidAnglePolygon> {
+        let count = vertices.len();
+        if !(3..=MAX_POLYGON_VERTICES).contains(&count) {
+            return None;
+        }
+        let mut positions = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+        rescale(vertices, &mut positions)?;
+        let mut polygon = Self::EMPTY;
+        let mut lengths = [0.0f32; MAX_POLYGON_VERTICES];
+        for i in 0..count {
+            lengths[i] = positions[i].length();
+            if !(lengths[i] > 0.0) {
+                return None;
+            }
+            polygon.vertices[i] = positions[i] / lengths[i];
+        }
+        let apex = polygon.vertices[0];
+        let reflection = Householder::new(apex);
+        // Reflected edge vectors from the apex: exact differences of the inputs up to one
+        // rounding each, so tiny and distant polygons keep their relative precision.
+        let mut reflected = [[0.0f32; 2]; MAX_POLYGON_VERTICES];
+        for i in 1..count {
+            reflected[i] = reflection.reflect_yz(positions[i] - positions[0]);
+        }
+        let triangles = count - 2;
+        let mut signed_sum = 0.0f32;
+        let mut total = 0.0f32;
+        for k in 0..triangles {
+            let (b, c) = (k + 1, k + 2);
+            // G0 = det(v0, v1, v2) = det(p_b, p_a, p_c) / (|p_a| |p_b| |p_c|).
+            let signed_g0 =
+                reflection.determinant(reflected[b], reflected[c]) / (lengths[b] * lengths[c]);
+            signed_sum += signed_g0;
+            let (v0, v1, v2) = (polygon.vertices[b], apex, polygon.vertices[c]);
+            let unit_sum = |i: usize, j: usize| {
+                unit_vector_sum(positions[i], positions[j], lengths[i], lengths[j])
+            };
+            let (s01, s02, s12) = (unit_sum(b, 0), unit_sum(b, c), unit_sum(0, c));
+            let g0 = signed_g0.abs();
+            let g2 = 0.5 * s01.length_squared();
+            let g1_plus_g2 = denominator(v0, v1, v2, s01, s02, s12);
+            polygon.g0[k] = g0;
+            polygon.g1_plus_g2[k] = g1_plus_g2;
+            polygon.g2[k] = g2;
+            polygon.outer_sum[k] = s02;
+            polygon.start[k] = total;
+            // Algorithm 5: A = 2 atan2(G0, G2 + G1), with G0 >= 0.
+            let triangle_solid_angle = 2.0 * atan2_upper_half_plane(g0, g1_plus_g2);
+            if triangle_solid_angle > 0.0 {
+                polygon.selectable_triangles = (k + 1) as u32;
+            }
+            total += triangle_solid_angle;
+        }
+        let density = 1.0 / total;
+        if !(total > 0.0) || !density.is_finite() || !total.is_finite() {
+            return None;
+        }
+        // det(p_b, p_a, p_c) = -det(p_a, p_b, p_c): a positive sum means the polygon
+        // winds clockwise as seen from the shading point.
+        let orientation = if signed_sum > 0.0 { -1.0 } else { 1.0 };
+        for i in 0..count {
+            let next = if i + 1 == count { 0 } else { i + 1 };
+            // p_i × p_next = p_i × (p_next - p_i): the edge vector is exact up to one
+            // rounding and nearly orthogonal to p_i, so no cancellation occurs.
+            polygon.edge_normals[i] =
+                positions[i].cross(positions[next] - positions[i]) * orientation;
+        }
+        polygon.solid_angle = total;
+        polygon.density = density;
+        polygon.orientation = orientation;
+        polygon.vertex_count = count as u32;
+        Some(polygon)
+    }
+
+    /// Total solid angle Ω of the polygon in steradians (0 when empty).
+    #[inline]
+    pub fn solid_angle(&self) -> f32 {
+        self.solid_angle
+    }
+
+    /// Draws a direction uniformly in solid angle inside the polygon (Algorithm 5 with
+    /// fan selection). `u` is clamped to `[0, 1 - ulp]`; NaN counts as 0. The returned
+    /// pdf is `1 / Ω`, or 0 (with a finite direction) for an empty polygon.
+    #[inline]
+    pub fn sample(&self, u: [f32; 2]) -> Sample {
+        if self.selectable_triangles == 0 {
+            return Sample::NONE;
+        }
+        let u0 = u[0].max(0.0).min(ONE_MINUS_ULP);
+        let u1 = u[1].max(0.0).min(ONE_MINUS_ULP);
+        let target = u0 * self.solid_angle;
+        // Fan triangle k: the number of triangles (among all but the last selectable)
+        // that end at or before the target. `<=` skips triangles of zero solid angle.
+        let mut k = 0usize;
+        for j in 1..MAX_TRIANGLES {
+            k += (j < self.selectable_triangles as usize && self.start[j] <= target) as usize;
+        }
+        let local = (target - self.start[k]).max(0.0);
+        let (v0, v1) = (self.vertices[k + 1], self.vertices[0]);
+        let (g0, g1_plus_g2, g2) = (self.g0[k], self.g1_plus_g2[k], self.g2[k]);
+        // Algorithm 5's r = (G0 cos(A/2) - G1 sin(A/2)) v0 + G2 sin(A/2) v2 bisects the
+        // arc from v0 to the new vertex v2', the reflection of -v0 about r. Rewritten as
+        // r = (G0 cos(A/2) - (G1 + G2) sin(A/2)) v0 + G2 sin(A/2) (v0 + v2), all of whose
+        // factors are known to full relative precision, it stays accurate when v0 and v2
+        // are nearly antipodal (a shading point just above a large polygon), where
+        // G0 and G1 + G2 are both tiny and G1 alone would be off by an ulp of 1.
+        let (sin_half, cos_half) = libm::sincosf(0.5 * local);
+        let r = v0 * (g0 * cos_half - g1_plus_g2 * sin_half) + self.outer_sum[k] * (g2 * sin_half);
+        let new_vertex = r * (2.0 * v0.dot(r) / r.length_squared()) - v0;
+        // Uniform in solid angle along the arc from the apex v1 to v2': the cosine to
+        // the apex is s = (1 - ξ1) + ξ1 s'. With a = 1 - s' = |v1 - v2'|²/2 and
+        // b = 1 + s' = |v1 + v2'|²/2, each accurate where the other cancels (tiny
+        // triangles; v2' nearly opposite the apex), 1 + s = b + (1 - ξ1) a and the
+        // tangent coefficient t' = sqrt((1 - s²) / (1 - s'²)) equals
+        // sqrt(ξ1 (1 + s) / b) because 1 - s = ξ1 a: no cancellation anywhere.
+        let a = 0.5 * (v1 - new_vertex).length_squared();
+        let b = 0.5 * (v1 + new_vertex).length_squared();
+        let one_plus_s = b + (1.0 - u1) * a;
+        let s = 1.0 - u1 * a;
+        let s_new = b - 1.0;
+        let t = libm::sqrtf(u1 * one_plus_s / b.max(f32::MIN_POSITIVE));
+        let dir = v1 * (s - t * s_new) + new_vertex * t;
+        if !dir.is_finite() {
+            return Sample::NONE;
+        }
+        Sample {
+            dir,
+            pdf: self.density,
+        }
+    }
+
+    /// `1 / Ω` for a direction inside the polygon (or on its boundary), 0 outside. `dir`
+    /// need not be normalised; a zero or non-finite `dir` gives 0.
+    #[inline]
+    pub fn pdf(&self, dir: Vec3) -> f32 {
+        if self.contains(dir) {
+            self.density
+        } else {
+            0.0
+        }
+    }
+
+    /// Whether the ray along `dir` passes through the polygon (boundary included).
+    #[inline]
+    pub fn contains(&self, dir: Vec3) -> bool {
+        let mut inside = self.vertex_count > 0 && dir.length_squared() > 0.0;
+        for i in 0..MAX_POLYGON_VERTICES {
+            // Unused slots hold zero normals, whose dot product 0 passes.
+            inside &= self.edge_normals[i].dot(dir) >= 0.0;
+        }
+        inside
+    }
+
+    /// The random numbers `u` for which [`sample`](Self::sample) returns `dir` (up to
+    /// rounding), or `None` when `dir` is outside the polygon or the polygon is empty.
+    pub fn invert(&self, dir: Vec3) -> Option<[f32; 2]> {
+        if !self.contains(dir) || self.selectable_triangles == 0 {
+            return None;
+        }
+        let w = dir.normalize();
+        let apex = self.vertices[0];
+        let count = self.vertex_count as usize;
+        // Diagonal j runs from the apex to vertex j; w is on the inner side of diagonal
+        // k + 1 and the outer side of diagonal k + 2 when it lies in fan triangle k.
+        let orientation = self.orientation;
+        let mut k = 0usize;
+        for j in 2..count - 1 {
+            k += (orientation * w.dot(apex.cross(self.vertices[j])) > 0.0) as usize;
+        }
+        let k = k.min(self.selectable_triangles as usize - 1);
+        let (v0, v1, v2) = (self.vertices[k + 1], apex, self.vertices[k + 2]);
+        // v2' is where the great circle through the apex and w meets the edge v0 v2.
+        let mut new_vertex = crate::math::cross_precise(v1, w)
+            .cross(crate::math::cross_precise(v0, v2))
+            .normalize_or_zero();
+        if new_vertex.dot(v0 + v2) < 0.0 {
+            new_vertex = -new_vertex;
+        }
+        if new_vertex == Vec3::ZERO {
+            // w is the apex itself (or the great circles coincide): ξ1 = 0.
+            return Some([(self.start[k] / self.solid_angle).min(ONE_MINUS_ULP), 0.0]);
+        }
+        // Solid angle of the sub-triangle (v0, v1, v2') by the same Householder form.
+        let reflection = Householder::new(v1);
+        let x = reflection.reflect_yz(v0 - v1);
+        let y = reflection.reflect_yz(new_vertex - v1);
+        let g0 = reflection.determinant(x, y).abs();
+        let g1 = v0.dot(new_vertex) + v1.dot(new_vertex);
+        let g2 = self.g2[k];
+        let local = 2.0 * atan2_upper_half_plane(g0, g2 + g1);
+        let u0 = (self.start[k] + local) / self.solid_angle;
+        // 1 - s = ξ1 (1 - s'), with 1 - a·b = |a - b|² / 2 for unit vectors.
+        let u1 = (v1 - w).length_squared() / (v1 - new_vertex).length_squared();
+        let clamp = |x: f32| {
+            if x.is_finite() {
+                x.max(0.0).min(ONE_MINUS_ULP)
+            } else {
+                0.0
+            }
+        };
+        Some([clamp(u0), clamp(u1)])
+    }
 }
+
+#[cfg(test)]
+#[path = "solid_angle_tests.rs"]
+mod tests;

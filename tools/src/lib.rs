@@ -3,5 +3,11 @@ use std::path::PathBuf;
 
 /// The repository root (the directory holding the core's Cargo.toml).
 pub fn repository_root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).parent().expect("tools/ has a parent").to_path_buf()
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("tools/ has a parent")
+        .to_path_buf()
 }
+pub mod clipping_generator;
+pub mod header;
+pub mod reference;

@@ -1,0 +1,73 @@
+//! Local shading frames and CPU capabilities.
+
+use super::types::SpheraVec3;
+use crate::Vec3;
+use crate::math::{Frame, HAS_HARDWARE_FMA};
+
+/// The frame whose axes are the world axes; written by a failing
+/// `sphera_frame_from_normal`.
+const IDENTITY: Frame = Frame {
+    tangent: Vec3::X,
+    bitangent: Vec3::Y,
+    normal: Vec3::Z,
+};
+
+/// Builds the orthonormal shading frame (tangent, bitangent, normal) around a unit
+/// `normal`.
+///
+/// Returns `false` when `out` is null, or when `normal` is not finite or not of unit
+/// length (|n|² outside 1 ± 1e-3); in the second case `*out` is set to the identity
+/// frame (tangent = x axis, bitangent = y axis, normal = z axis).
+///
+/// # Safety
+///
+/// `out` must be null or point to writable memory for one `SpheraFrame`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_frame_from_normal(out: *mut Frame, normal: SpheraVec3) -> bool {
+    if out.is_null() {
+        return false;
+    }
+    let frame = Frame::from_normal(normal.into());
+    // SAFETY: `out` is non-null and the caller guarantees it is writable.
+    unsafe { out.write(frame.unwrap_or(IDENTITY)) };
+    frame.is_some()
+}
+
+/// Expresses the world-space vector `v` in `frame` (x = tangent, y = bitangent,
+/// z = normal). A null `frame` acts as the identity frame: `v` is returned unchanged.
+///
+/// # Safety
+///
+/// `frame` must be null or point to a `SpheraFrame` (e.g. one written by
+/// `sphera_frame_from_normal`).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_frame_to_local(frame: *const Frame, v: SpheraVec3) -> SpheraVec3 {
+    // SAFETY: the caller guarantees that a non-null `frame` points to a valid frame.
+    match unsafe { frame.as_ref() } {
+        Some(frame) => frame.to_local(v.into()).into(),
+        None => v,
+    }
+}
+
+/// Expresses the local vector `v` (x = tangent, y = bitangent, z = normal) in world
+/// space. A null `frame` acts as the identity frame: `v` is returned unchanged.
+///
+/// # Safety
+///
+/// `frame` must be null or point to a `SpheraFrame` (e.g. one written by
+/// `sphera_frame_from_normal`).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_frame_to_world(frame: *const Frame, v: SpheraVec3) -> SpheraVec3 {
+    // SAFETY: the caller guarantees that a non-null `frame` points to a valid frame.
+    match unsafe { frame.as_ref() } {
+        Some(frame) => frame.to_world(v.into()).into(),
+        None => v,
+    }
+}
+
+/// Whether the library was compiled to use hardware fused multiply-add instructions
+/// (otherwise the error-free products are emulated, which is slower but as accurate).
+#[unsafe(no_mangle)]
+pub extern "C" fn sphera_has_hardware_fma() -> bool {
+    HAS_HARDWARE_FMA
+}

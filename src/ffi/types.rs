@@ -1,0 +1,97 @@
+//! Plain data shared by every family of the C ABI.
+
+use crate::{Sample, Vec3};
+
+/// The most vertices a polygon may have, in the C ABI: the length of the array that
+/// `sphera_polygon_clip` works on and the largest `count` that a `prepare` accepts.
+pub const SPHERA_MAX_POLYGON_VERTICES: u32 = 8;
+
+const _: () = assert!(SPHERA_MAX_POLYGON_VERTICES as usize == crate::MAX_POLYGON_VERTICES);
+
+/// A 3D vector of `float`s (a point or a direction in the local shading frame, whose z
+/// axis is the surface normal).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpheraVec3 {
+    /// First tangent coordinate.
+    pub x: f32,
+    /// Second tangent coordinate.
+    pub y: f32,
+    /// Coordinate along the normal.
+    pub z: f32,
+}
+
+// The header shows the core's `Vec3` (inside the prepared structs and `SpheraSample`)
+// under the name `SpheraVec3`, so both must have the same layout.
+const _: () = {
+    assert!(core::mem::size_of::<SpheraVec3>() == core::mem::size_of::<Vec3>());
+    assert!(core::mem::align_of::<SpheraVec3>() == core::mem::align_of::<Vec3>());
+    assert!(core::mem::offset_of!(SpheraVec3, x) == core::mem::offset_of!(Vec3, x));
+    assert!(core::mem::offset_of!(SpheraVec3, y) == core::mem::offset_of!(Vec3, y));
+    assert!(core::mem::offset_of!(SpheraVec3, z) == core::mem::offset_of!(Vec3, z));
+};
+
+impl From<SpheraVec3> for Vec3 {
+    #[inline(always)]
+    fn from(v: SpheraVec3) -> Vec3 {
+        Vec3::new(v.x, v.y, v.z)
+    }
+}
+
+impl From<Vec3> for SpheraVec3 {
+    #[inline(always)]
+    fn from(v: Vec3) -> SpheraVec3 {
+        SpheraVec3 {
+            x: v.x,
+            y: v.y,
+            z: v.z,
+        }
+    }
+}
+
+/// A sampled direction and its density per steradian, as the C ABI returns it.
+///
+/// `pdf == 0` means that no sample could be drawn; `dir` is then still finite (it is
+/// `(0, 0, 1)`), so that a caller that forgets to check never sees NaN.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpheraSample {
+    /// Unit direction in the local frame.
+    pub dir: SpheraVec3,
+    /// Density per steradian; 0 when there is no sample.
+    pub pdf: f32,
+}
+
+impl From<Sample> for SpheraSample {
+    #[inline(always)]
+    fn from(sample: Sample) -> SpheraSample {
+        SpheraSample {
+            dir: sample.dir.into(),
+            pdf: sample.pdf,
+        }
+    }
+}
+
+/// Copies `count` vertices from C memory into a fixed array, or `None` when `vertices`
+/// is null or `count` lies outside `3..=SPHERA_MAX_POLYGON_VERTICES`.
+///
+/// # Safety
+///
+/// When non-null and `count` is in range, `vertices` must point to `count` readable,
+/// initialised `SpheraVec3`s.
+#[inline(always)]
+pub(crate) unsafe fn read_polygon(
+    vertices: *const SpheraVec3,
+    count: u32,
+) -> Option<([Vec3; crate::MAX_POLYGON_VERTICES], usize)> {
+    let count = count as usize;
+    if vertices.is_null() || !(3..=crate::MAX_POLYGON_VERTICES).contains(&count) {
+        return None;
+    }
+    let mut local = [Vec3::ZERO; crate::MAX_POLYGON_VERTICES];
+    for (i, slot) in local.iter_mut().enumerate().take(count) {
+        // SAFETY: the caller guarantees `count` readable elements and `i < count`.
+        *slot = unsafe { vertices.add(i).read() }.into();
+    }
+    Some((local, count))
+}

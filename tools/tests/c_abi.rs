@@ -1,0 +1,383 @@
+//! The C ABI tested from C: builds the real static library (`libsphera.a`, without the
+//! `std` feature), compiles every `ffi-tests/*.c` against `include/sphera.h` as strict
+//! C99, links it with nothing but `libsphera.a -lm`, runs it, and checks that the header
+//! also compiles as C++11 and describes the same struct layouts as the Rust code.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+
+use sphera_tools::repository_root;
+
+/// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
+const C_TESTS: [&str; 4] = [
+    "test_polygon_clip",
+    "test_solid_angle_polygon",
+    "test_baselines",
+    "test_frame",
+];
+
+const C_FLAGS: [&str; 5] = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"];
+
+/// The host's target triple, from the constants of `std` (the tests run on the host).
+fn host_triple() -> String {
+    use std::env::consts::{ARCH, OS};
+    match OS {
+        "linux" => format!("{ARCH}-unknown-linux-gnu"),
+        "macos" => format!("{ARCH}-apple-darwin"),
+        "windows" => format!("{ARCH}-pc-windows-msvc"),
+        other => format!("{ARCH}-unknown-{other}"),
+    }
+}
+
+/// The C (or C++) compiler that the `cc` crate picks for the host, as a command.
+fn compiler(cpp: bool) -> Command {
+    let triple = host_triple();
+    cc::Build::new()
+        .cpp(cpp)
+        .target(&triple)
+        .host(&triple)
+        .opt_level(2)
+        .debug(false)
+        .cargo_metadata(false)
+        .get_compiler()
+        .to_command()
+}
+
+/// A scratch directory for the compiled programs.
+fn output_dir() -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("c-abi");
+    std::fs::create_dir_all(&dir).expect("create the scratch directory");
+    dir
+}
+
+/// Runs a command, returning its combined output, or a message with that output when
+/// it cannot start or exits with a failure.
+fn run(command: &mut Command) -> Result<String, String> {
+    // The command without its environment (the `cc` crate clears and sets it).
+    let description = std::iter::once(command.get_program())
+        .chain(command.get_args())
+        .map(|part| part.to_string_lossy())
+        .collect::<Vec<_>>()
+        .join(" ");
+    let output = command
+        .output()
+        .map_err(|error| format!("cannot run {description}: {error}"))?;
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+    if output.status.success() {
+        Ok(text)
+    } else {
+        Err(format!(
+            "{description} failed with {}:\n{text}",
+            output.status
+        ))
+    }
+}
+
+/// Builds `libsphera.a` once per test process with a nested
+/// `cargo build --release -p sphera --lib`. Its own target directory keeps it off the
+/// outer build's lock and builds the core alone, so the `std` feature that the tools
+/// turn on is not unified into it.
+fn static_library() -> &'static Path {
+    static LIBRARY: OnceLock<Result<PathBuf, String>> = OnceLock::new();
+    let result = LIBRARY.get_or_init(|| {
+        let root = repository_root();
+        let target_dir = root.join("target").join("c-abi");
+        run(Command::new(env!("CARGO"))
+            .args(["build", "--release", "-p", "sphera", "--lib"])
+            .current_dir(&root)
+            .env("CARGO_TARGET_DIR", &target_dir)
+            .env_remove("CARGO_BUILD_TARGET"))?;
+        let library = target_dir.join("release").join("libsphera.a");
+        if library.is_file() {
+            Ok(library)
+        } else {
+            Err(format!(
+                "the nested build did not produce {}",
+                library.display()
+            ))
+        }
+    });
+    match result {
+        Ok(path) => path,
+        Err(message) => panic!("building the static library failed: {message}"),
+    }
+}
+
+/// Compiles `ffi-tests/<name>.c` as strict C99, links it with `libsphera.a -lm` only,
+/// runs it and asserts that it exits with status 0.
+fn run_c_test(name: &str) {
+    let root = repository_root();
+    let library = static_library();
+    let source = root.join("ffi-tests").join(format!("{name}.c"));
+    let program = output_dir().join(name);
+    let compiled = run(compiler(false)
+        .args(C_FLAGS)
+        .arg("-I")
+        .arg(root.join("include"))
+        .arg(&source)
+        .arg(library)
+        .arg("-lm")
+        .arg("-o")
+        .arg(&program));
+    if let Err(message) = compiled {
+        panic!("{name}.c does not compile and link:\n{message}");
+    }
+    match run(&mut Command::new(&program)) {
+        Ok(output) => println!("{name}:\n{output}"),
+        Err(message) => panic!("{name} failed:\n{message}"),
+    }
+}
+
+#[test]
+fn test_polygon_clip() {
+    run_c_test("test_polygon_clip");
+}
+
+#[test]
+fn test_solid_angle_polygon() {
+    run_c_test("test_solid_angle_polygon");
+}
+
+#[test]
+fn test_baselines() {
+    run_c_test("test_baselines");
+}
+
+#[test]
+fn test_frame() {
+    run_c_test("test_frame");
+}
+
+#[test]
+fn every_c_test_file_has_a_test() {
+    let mut found: Vec<String> = std::fs::read_dir(repository_root().join("ffi-tests"))
+        .expect("read ffi-tests/")
+        .filter_map(|entry| {
+            let path = entry.expect("read ffi-tests/").path();
+            let is_c = path.extension().is_some_and(|extension| extension == "c");
+            is_c.then(|| path.file_stem().unwrap().to_string_lossy().into_owned())
+        })
+        .collect();
+    found.sort();
+    let mut known: Vec<String> = C_TESTS.iter().map(|name| name.to_string()).collect();
+    known.sort();
+    assert_eq!(
+        found, known,
+        "add a #[test] and a C_TESTS entry in tools/tests/c_abi.rs for each ffi-tests/*.c"
+    );
+}
+
+/// Linking succeeds only when the symbols that the programs reach are defined; this
+/// checks the whole archive, so that no member leaves an unwinding or Rust runtime
+/// symbol to the C linker. (`readelf` rather than `nm`: the members embed LLVM bitcode,
+/// which a system `nm` may try, and fail, to read through its LTO plugin.)
+#[test]
+fn static_library_has_no_unwinding_or_rust_runtime_symbols() {
+    let library = static_library();
+    let listing = match run(Command::new("readelf").arg("-sW").arg(library)) {
+        Ok(listing) => listing,
+        Err(message) => {
+            println!("readelf is not available ({message}); linking the C tests is the check");
+            return;
+        }
+    };
+    let mut defined = std::collections::BTreeSet::new();
+    let mut undefined = std::collections::BTreeSet::new();
+    for line in listing.lines() {
+        // Num: Value Size Type Bind Vis Ndx Name
+        let fields: Vec<&str> = line.split_whitespace().collect();
+        if fields.len() < 8 || !fields[0].ends_with(':') || fields[4] == "LOCAL" {
+            continue;
+        }
+        let (section, symbol) = (fields[6], fields[7]);
+        if section == "UND" {
+            undefined.insert(symbol.to_string());
+        } else {
+            defined.insert(symbol.to_string());
+        }
+    }
+    let external: Vec<&String> = undefined.difference(&defined).collect();
+    println!("symbols libsphera.a leaves to the C linker: {external:?}");
+    let forbidden: Vec<&&String> = external
+        .iter()
+        .filter(|symbol| {
+            let symbol = symbol.trim_start_matches('_');
+            symbol.contains("rust_eh_personality")
+                || symbol.starts_with("Unwind")
+                || symbol.starts_with("rust")
+                || symbol.starts_with("ZN")
+                || symbol.starts_with('R')
+        })
+        .collect();
+    assert!(
+        forbidden.is_empty(),
+        "libsphera.a needs Rust runtime or unwinding symbols: {forbidden:?}"
+    );
+    let header = std::fs::read_to_string(repository_root().join("include").join("sphera.h"))
+        .expect("read include/sphera.h");
+    let declared: Vec<&str> = header
+        .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .filter(|word| word.starts_with("sphera_") && header.contains(&format!("{word}(")))
+        .collect();
+    assert!(
+        declared.len() >= 18,
+        "too few functions found in the header: {declared:?}"
+    );
+    for function in declared {
+        assert!(
+            defined.contains(function),
+            "libsphera.a does not define {function}"
+        );
+    }
+}
+
+/// The header compiles as C++11 and a C++ program links against the library.
+#[test]
+fn header_compiles_and_links_as_cpp11() {
+    let root = repository_root();
+    let library = static_library();
+    let dir = output_dir();
+    let source = dir.join("header_as_cpp.cpp");
+    let program = dir.join("header_as_cpp");
+    std::fs::write(
+        &source,
+        r#"#include "sphera.h"
+#include <cstdio>
+
+int main() {
+    SpheraVec3 quad[SPHERA_MAX_POLYGON_VERTICES] = {
+        {-1.0f, -1.0f, 1.0f}, {1.0f, -1.0f, 1.0f}, {1.0f, 1.0f, 1.0f}, {-1.0f, 1.0f, 1.0f}};
+    SpheraSolidAnglePolygon polygon;
+    sphera_solid_angle_polygon_prepare(&polygon, quad, 4);
+    SpheraSample sample = sphera_solid_angle_polygon_sample(nullptr, 0.5f, 0.5f);
+    SpheraFrame frame;
+    bool ok = sphera_frame_from_normal(&frame, SpheraVec3{0.0f, 0.0f, 1.0f});
+    std::printf("C++: pdf %g, frame %d, fma %d\n", sample.pdf, ok ? 1 : 0,
+                sphera_has_hardware_fma() ? 1 : 0);
+    return sample.pdf == 0.0f && sample.dir.z == 1.0f && ok ? 0 : 1;
+}
+"#,
+    )
+    .expect("write the C++ program");
+    let compiled = run(compiler(true)
+        .args(["-std=c++11", "-Wall", "-Wextra", "-Werror", "-pedantic"])
+        .arg("-I")
+        .arg(root.join("include"))
+        .arg(&source)
+        .arg(library)
+        .arg("-lm")
+        .arg("-o")
+        .arg(&program));
+    if let Err(message) = compiled {
+        panic!("the header does not compile or link as C++11:\n{message}");
+    }
+    match run(&mut Command::new(&program)) {
+        Ok(output) => println!("{output}"),
+        Err(message) => panic!("the C++ program failed:\n{message}"),
+    }
+}
+
+/// The header's structs have the sizes, alignments and public field offsets of the
+/// Rust types behind them.
+#[test]
+fn struct_layouts_match_rust() {
+    use std::mem::{align_of, offset_of, size_of};
+
+    use sphera::ffi::{SpheraSample, SpheraVec3};
+    use sphera::math::Frame;
+    use sphera::polygon::SolidAnglePolygon;
+    use sphera::polygon::baselines::{ArvoPolygon, TurkPolygon};
+
+    let expected: Vec<(&str, usize)> = vec![
+        ("sizeof(SpheraVec3)", size_of::<SpheraVec3>()),
+        ("alignof(SpheraVec3)", align_of::<SpheraVec3>()),
+        ("sizeof(SpheraSample)", size_of::<SpheraSample>()),
+        ("alignof(SpheraSample)", align_of::<SpheraSample>()),
+        ("offsetof(SpheraSample, pdf)", offset_of!(SpheraSample, pdf)),
+        ("sizeof(SpheraFrame)", size_of::<Frame>()),
+        ("alignof(SpheraFrame)", align_of::<Frame>()),
+        (
+            "offsetof(SpheraFrame, bitangent)",
+            offset_of!(Frame, bitangent),
+        ),
+        ("offsetof(SpheraFrame, normal)", offset_of!(Frame, normal)),
+        (
+            "sizeof(SpheraSolidAnglePolygon)",
+            size_of::<SolidAnglePolygon>(),
+        ),
+        (
+            "alignof(SpheraSolidAnglePolygon)",
+            align_of::<SolidAnglePolygon>(),
+        ),
+        ("sizeof(SpheraTurkPolygon)", size_of::<TurkPolygon>()),
+        ("alignof(SpheraTurkPolygon)", align_of::<TurkPolygon>()),
+        ("sizeof(SpheraArvoPolygon)", size_of::<ArvoPolygon>()),
+        ("alignof(SpheraArvoPolygon)", align_of::<ArvoPolygon>()),
+    ];
+    let mut source =
+        String::from("#include <stddef.h>\n#include <stdio.h>\n#include \"sphera.h\"\n");
+    for name in [
+        "SpheraVec3",
+        "SpheraSample",
+        "SpheraFrame",
+        "SpheraSolidAnglePolygon",
+        "SpheraTurkPolygon",
+        "SpheraArvoPolygon",
+    ] {
+        source += &format!("struct align_{name} {{ char c; {name} t; }};\n");
+    }
+    source += "int main(void) {\n";
+    for (expression, _) in &expected {
+        let c_expression = match expression.strip_prefix("alignof(") {
+            Some(rest) => format!("offsetof(struct align_{}, t)", rest.trim_end_matches(')')),
+            None => expression.to_string(),
+        };
+        source +=
+            &format!("  printf(\"%s %lu\\n\", \"{expression}\", (unsigned long){c_expression});\n");
+    }
+    source += "  return 0;\n}\n";
+
+    let root = repository_root();
+    let dir = output_dir();
+    let source_path = dir.join("layout.c");
+    let program = dir.join("layout");
+    std::fs::write(&source_path, source).expect("write the layout program");
+    if let Err(message) = run(compiler(false)
+        .args(C_FLAGS)
+        .arg("-I")
+        .arg(root.join("include"))
+        .arg(&source_path)
+        .arg("-o")
+        .arg(&program))
+    {
+        panic!("the layout program does not compile:\n{message}");
+    }
+    let output = run(&mut Command::new(&program)).unwrap_or_else(|message| panic!("{message}"));
+    let mut mismatches = Vec::new();
+    for ((expression, rust), line) in expected.iter().zip(output.lines()) {
+        let c: usize = line
+            .rsplit(' ')
+            .next()
+            .and_then(|value| value.parse().ok())
+            .expect("a number");
+        println!("{expression}: C {c}, Rust {rust}");
+        if c != *rust {
+            mismatches.push(format!("{expression}: C {c}, Rust {rust}"));
+        }
+    }
+    assert_eq!(
+        output.lines().count(),
+        expected.len(),
+        "unexpected output:\n{output}"
+    );
+    assert!(
+        mismatches.is_empty(),
+        "include/sphera.h disagrees with the Rust layout (regenerate it with \
+         `cargo run -p sphera-tools --bin generate_header`): {mismatches:?}"
+    );
+}
