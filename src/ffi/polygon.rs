@@ -66,8 +66,9 @@ pub unsafe extern "C" fn sphera_polygon_clip(vertices: *mut SpheraVec3, count: u
 }
 
 /// Prepares the solid angle sampler (Peters 2021) for the convex polygon
-/// `vertices[0..count]`, which must lie in the upper hemisphere (clip it first with
-/// `sphera_polygon_clip`).
+/// `vertices[0..count]`: positions relative to the shading point, not normalised, in
+/// either winding. The polygon need not be clipped; clip it first with
+/// `sphera_polygon_clip` to sample only the part above the horizon.
 ///
 /// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
 /// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
