@@ -22,3 +22,13 @@ impl Sample {
         pdf: 0.0,
     };
 }
+
+/// The largest `f32` below one.
+pub(crate) const ONE_MINUS_ULP: f32 = 1.0 - f32::EPSILON / 2.0;
+
+/// A random number clamped into `[0, 1 - ulp]`, the domain of every sampler; NaN
+/// becomes 0.
+#[inline(always)]
+pub(crate) fn clamp_random(u: f32) -> f32 {
+    if u >= 0.0 { u.min(ONE_MINUS_ULP) } else { 0.0 }
+}

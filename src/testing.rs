@@ -337,6 +337,55 @@ impl Estimate {
     }
 }
 
+/// A convex polygon with `n` vertices on a circle (irregularly spaced) around `center`
+/// in the plane with normal `normal`, in f32, optionally reversed.
+pub fn circle_polygon(n: usize, center: D3, normal: D3, radius: f64, reversed: bool) -> Vec<Vec3> {
+    let normal = normalize(normal);
+    let helper = if normal[0].abs() < 0.9 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let e1 = normalize(cross(normal, helper));
+    let e2 = cross(normal, e1);
+    let mut vertices: Vec<Vec3> = (0..n)
+        .map(|k| {
+            let k = k as f64;
+            let angle = 2.0 * core::f64::consts::PI * (k + 0.35 * (2.3 * k + 1.0).sin()) / n as f64;
+            let p = add(
+                center,
+                add(
+                    scale(e1, radius * angle.cos()),
+                    scale(e2, radius * angle.sin()),
+                ),
+            );
+            Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32)
+        })
+        .collect();
+    if reversed {
+        vertices.reverse();
+    }
+    vertices
+}
+
+/// Projected solid angle (the cosine integral) of a polygon by Lambert's formula, in
+/// f64: σ/2 Σ angle(v_i, v_(i+1)) (n̂_i · z) with n̂_i = normalize(v_i × v_(i+1)) and σ
+/// the orientation of the polygon seen from the origin.
+pub fn projected_solid_angle_polygon_f64(vertices: &[Vec3]) -> f64 {
+    let v: Vec<D3> = vertices.iter().map(|&p| normalize(d3(p))).collect();
+    let p: Vec<D3> = vertices.iter().map(|&p| d3(p)).collect();
+    let sigma = dot(p[0], cross(sub(p[1], p[0]), sub(p[2], p[0]))).signum();
+    let mut sum = 0.0;
+    for i in 0..v.len() {
+        let j = (i + 1) % v.len();
+        // The edge plane's normal from the exact positions (no cancellation).
+        let c = cross(p[i], sub(p[j], p[i]));
+        let angle = norm(cross(v[i], v[j])).atan2(dot(v[i], v[j]));
+        sum += angle * normalize(c)[2];
+    }
+    0.5 * sigma * sum
+}
+
 /// What a statistical run of a polygon sampler found.
 #[derive(Debug)]
 pub struct SamplerReport {

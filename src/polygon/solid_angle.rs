@@ -23,13 +23,11 @@
 
 use crate::Sample;
 use crate::math::{atan2_upper_half_plane, difference_of_products, dot_precise};
+use crate::sample::{ONE_MINUS_ULP, clamp_random};
 use crate::{MAX_POLYGON_VERTICES, Vec3};
 
 /// The most fan triangles a polygon has.
 const MAX_TRIANGLES: usize = MAX_POLYGON_VERTICES - 2;
-
-/// The largest `f32` below one: uniform random numbers are clamped to `[0, ONE_MINUS_ULP]`.
-const ONE_MINUS_ULP: f32 = 1.0 - f32::EPSILON / 2.0;
 
 /// A convex polygon prepared for solid angle sampling: everything Algorithm 5 computes
 /// once per polygon.
@@ -286,8 +284,7 @@ impl SolidAnglePolygon {
         if self.selectable_triangles == 0 {
             return Sample::NONE;
         }
-        let u0 = u[0].max(0.0).min(ONE_MINUS_ULP);
-        let u1 = u[1].max(0.0).min(ONE_MINUS_ULP);
+        let (u0, u1) = (clamp_random(u[0]), clamp_random(u[1]));
         let target = u0 * self.solid_angle;
         // Fan triangle k: the number of triangles (among all but the last selectable)
         // that end at or before the target. `<=` skips triangles of zero solid angle.

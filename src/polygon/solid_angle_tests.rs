@@ -124,20 +124,6 @@ fn samples_follow_the_uniform_density_on_polygons_of_3_to_8_vertices_in_both_win
     }
 }
 
-/// Projected solid angle of a polygon by Lambert's formula, in f64.
-fn lambert_projected_solid_angle(v: &[Vec3]) -> f64 {
-    let n = v.len();
-    let p: Vec<D3> = v.iter().map(|&x| d3(x)).collect();
-    let mut sum = 0.0;
-    for i in 0..n {
-        let (a, b) = (p[i], p[(i + 1) % n]);
-        let normal = normalize(cross(a, sub(b, a)));
-        let angle = norm(cross(a, b)).atan2(dot(a, b));
-        sum += angle * normal[2];
-    }
-    (0.5 * sum).abs()
-}
-
 #[test]
 fn near_hemisphere_quads_just_above_the_shading_point() {
     // Quads centred over the shading point, and offset so that a fan diagonal passes
@@ -182,7 +168,7 @@ fn near_hemisphere_quads_just_above_the_shading_point() {
                 );
                 estimate.add(s.dir.z as f64 / s.pdf as f64);
             }
-            estimate.assert_mean_is(lambert_projected_solid_angle(&v), 5.0, 1e-5, &what);
+            estimate.assert_mean_is(projected_solid_angle_polygon_f64(&v), 5.0, 1e-5, &what);
         }
     }
 }
@@ -368,14 +354,7 @@ fn projected_solid_angle_estimator_matches_lamberts_formula() {
             0.7,
             0.5,
         );
-        let p: Vec<D3> = v.iter().map(|&x| normalize(d3(x))).collect();
-        let mut lambert = 0.0;
-        for i in 0..n {
-            let (a, b) = (p[i], p[(i + 1) % n]);
-            let normal = normalize(cross(a, b));
-            lambert += dot(a, b).clamp(-1.0, 1.0).acos() * normal[2];
-        }
-        let reference = (0.5 * lambert).abs();
+        let reference = projected_solid_angle_polygon_f64(&v).abs();
         let polygon = SolidAnglePolygon::new(&v).unwrap();
         let mut estimate = Estimate::default();
         for _ in 0..200_000 {

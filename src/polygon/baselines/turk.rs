@@ -14,9 +14,6 @@ use glam::Vec3;
 
 const MAX_FAN_TRIANGLES: usize = MAX_POLYGON_VERTICES - 2;
 
-/// The largest `f32` below 1.
-const ONE_MINUS_ULP: f32 = 1.0 - f32::EPSILON / 2.0;
-
 /// Slack of the inside test of [`TurkPolygon::pdf`] relative to the scale of the terms
 /// of each edge test (about 16 ulps), so that a direction sampled on an edge counts as
 /// inside despite the rounding of its computation.
@@ -43,12 +40,6 @@ pub struct TurkPolygon {
     area: f32,
     inv_area: f32,
     count: u32,
-}
-
-/// `u` clamped into `[0, 1 - ulp]`; NaN becomes 0.
-#[inline]
-fn clamp_unit(u: f32) -> f32 {
-    if u >= 0.0 { u.min(ONE_MINUS_ULP) } else { 0.0 }
 }
 
 impl TurkPolygon {
@@ -144,7 +135,10 @@ impl TurkPolygon {
         if count < 3 {
             return Sample::NONE;
         }
-        let (u0, u1) = (clamp_unit(u[0]), clamp_unit(u[1]));
+        let (u0, u1) = (
+            crate::sample::clamp_random(u[0]),
+            crate::sample::clamp_random(u[1]),
+        );
         // Choose a fan triangle by area, then reuse u0 within it.
         let triangles = count - 2;
         let mut i = 0;
@@ -214,41 +208,9 @@ mod tests {
     use super::*;
     use crate::testing::*;
 
-    /// A convex polygon with `n` vertices on a circle (irregularly spaced) around
-    /// `center` in the plane with normal `normal`, in f32, optionally reversed.
-    fn polygon(n: usize, center: D3, normal: D3, radius: f64, reversed: bool) -> Vec<Vec3> {
-        let normal = normalize(normal);
-        let helper = if normal[0].abs() < 0.9 {
-            [1.0, 0.0, 0.0]
-        } else {
-            [0.0, 1.0, 0.0]
-        };
-        let e1 = normalize(cross(normal, helper));
-        let e2 = cross(normal, e1);
-        let mut vertices: Vec<Vec3> = (0..n)
-            .map(|k| {
-                let k = k as f64;
-                let angle =
-                    2.0 * core::f64::consts::PI * (k + 0.35 * (2.3 * k + 1.0).sin()) / n as f64;
-                let p = add(
-                    center,
-                    add(
-                        scale(e1, radius * angle.cos()),
-                        scale(e2, radius * angle.sin()),
-                    ),
-                );
-                Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32)
-            })
-            .collect();
-        if reversed {
-            vertices.reverse();
-        }
-        vertices
-    }
-
     /// Facing the shading point, tilted.
     fn moderate(n: usize, reversed: bool) -> Vec<Vec3> {
-        polygon(n, [0.4, -0.3, 1.5], [-0.1, 0.2, -1.5], 0.8, reversed)
+        circle_polygon(n, [0.4, -0.3, 1.5], [-0.1, 0.2, -1.5], 0.8, reversed)
     }
 
     /// The plane nearly contains the direction to the polygon's centre (cos ≈ 0.03).
@@ -256,7 +218,7 @@ mod tests {
         let center = [0.8, 0.3, 1.0];
         let c = normalize(center);
         let perpendicular = normalize(cross(c, [0.0, 0.0, 1.0]));
-        polygon(n, center, add(perpendicular, scale(c, 0.03)), 0.5, reversed)
+        circle_polygon(n, center, add(perpendicular, scale(c, 0.03)), 0.5, reversed)
     }
 
     fn planar_area(cell: &[D3; 3]) -> f64 {
@@ -315,20 +277,6 @@ mod tests {
     }
 
     /// ∫ cos θ dω over the polygon by Lambert's formula, f64:
-    /// σ/2 Σ angle(v_i, v_{i+1}) (n̂_i · z) with n̂_i = normalize(v_i × v_{i+1}) and σ the
-    /// orientation of the polygon seen from the origin.
-    fn projected_solid_angle_f64(vertices: &[Vec3]) -> f64 {
-        let v: Vec<D3> = vertices.iter().map(|&p| normalize(d3(p))).collect();
-        let sigma = dot(v[0], cross(sub(v[1], v[0]), sub(v[2], v[0]))).signum();
-        let mut sum = 0.0;
-        for i in 0..v.len() {
-            let (a, b) = (v[i], v[(i + 1) % v.len()]);
-            let c = cross(a, b);
-            let angle = norm(c).atan2(dot(a, b));
-            sum += angle * normalize(c)[2];
-        }
-        0.5 * sigma * sum
-    }
 
     #[test]
     fn turk_lambert_reference_matches_cell_integration() {
@@ -344,7 +292,7 @@ mod tests {
                     solid_angle_triangle_f64(c[0], c[1], c[2]) * centroid[2]
                 })
                 .sum();
-            let lambert = projected_solid_angle_f64(&vertices);
+            let lambert = projected_solid_angle_polygon_f64(&vertices);
             assert!(
                 (midpoint - lambert).abs() < 1e-5 * lambert.abs(),
                 "{midpoint} vs {lambert}"
@@ -371,7 +319,7 @@ mod tests {
                     assert!(s.pdf > 0.0);
                     estimate.add(s.dir.z as f64 / s.pdf as f64);
                 }
-                let reference = projected_solid_angle_f64(&vertices);
+                let reference = projected_solid_angle_polygon_f64(&vertices);
                 estimate.assert_mean_is(
                     reference,
                     5.0,
@@ -475,7 +423,16 @@ mod tests {
 
     #[test]
     fn turk_extreme_random_numbers_give_finite_samples() {
-        let edge = [0.0, 0.5, ONE_MINUS_ULP, 1.0, -0.0, f32::NAN, 2.0, -1.0];
+        let edge = [
+            0.0,
+            0.5,
+            crate::sample::ONE_MINUS_ULP,
+            1.0,
+            -0.0,
+            f32::NAN,
+            2.0,
+            -1.0,
+        ];
         for n in [3, 4, 5, 8] {
             for vertices in [
                 moderate(n, false),
