@@ -386,6 +386,44 @@ pub fn projected_solid_angle_polygon_f64(vertices: &[Vec3]) -> f64 {
     0.5 * sigma * sum
 }
 
+/// Polygons every sampler's `new` must reject, built around a valid `triangle`: each
+/// coordinate in turn replaced by NaN or ±inf, all vertices equal (also all at the
+/// origin), collinear vertices, and polygons whose plane passes through the shading
+/// point (z = 0, and x + y + z = 0).
+pub fn invalid_polygons(triangle: &[Vec3]) -> Vec<Vec<Vec3>> {
+    let mut out = Vec::new();
+    for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+        for vertex in 0..3 {
+            for axis in 0..3 {
+                let mut t = triangle.to_vec();
+                t[vertex][axis] = bad;
+                out.push(t);
+            }
+        }
+    }
+    let p = Vec3::new(0.3, -0.2, 1.0);
+    out.push(vec![p; 3]);
+    out.push(vec![p; 4]);
+    out.push(vec![Vec3::ZERO; 4]);
+    out.push(vec![
+        Vec3::new(0.0, 0.0, 1.0),
+        Vec3::new(1.0, 1.0, 1.0),
+        Vec3::new(2.0, 2.0, 1.0),
+    ]);
+    out.push(vec![
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(0.0, 1.0, 0.0),
+        Vec3::new(-1.0, -0.5, 0.0),
+    ]);
+    out.push(vec![
+        Vec3::new(1.0, -1.0, 0.0),
+        Vec3::new(0.0, 1.0, -1.0),
+        Vec3::new(-1.0, 0.0, 1.0),
+        Vec3::new(-0.5, -0.5, 1.0),
+    ]);
+    out
+}
+
 /// What a statistical run of a polygon sampler found.
 #[derive(Debug)]
 pub struct SamplerReport {

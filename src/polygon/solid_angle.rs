@@ -250,7 +250,11 @@ impl SolidAnglePolygon {
             total += triangle_solid_angle;
         }
         let density = 1.0 / total;
-        if !(total > 0.0) || !density.is_finite() || !total.is_finite() {
+        // All determinants zero: the shading point lies in the polygon's plane. If it
+        // also lies inside the polygon, van Oosterom and Strackee's formula gives 2π
+        // (atan2(0, negative)) for a polygon that is seen edge-on: reject it.
+        let edge_on = polygon.g0[..triangles].iter().all(|&g0| g0 == 0.0);
+        if edge_on || !(total > 0.0) || !density.is_finite() || !total.is_finite() {
             return None;
         }
         // det(p_b, p_a, p_c) = -det(p_a, p_b, p_c): a positive sum means the polygon

@@ -288,6 +288,9 @@ fn bad_input_is_rejected() {
         Vec3::new(0.0, 1.0, 1.0),
     ];
     assert!(SolidAnglePolygon::new(&ok).is_some());
+    for bad in invalid_polygons(&ok) {
+        assert!(SolidAnglePolygon::new(&bad).is_none(), "{bad:?}");
+    }
     assert!(SolidAnglePolygon::new(&ok[..2]).is_none());
     assert!(SolidAnglePolygon::new(&[]).is_none());
     assert!(SolidAnglePolygon::new(&[ok[0]; 9]).is_none());
