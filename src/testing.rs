@@ -386,12 +386,25 @@ pub fn projected_solid_angle_polygon_f64(vertices: &[Vec3]) -> f64 {
     0.5 * sigma * sum
 }
 
-/// Polygons every sampler's `new` must reject, built around a valid `triangle`: each
-/// coordinate in turn replaced by NaN or ±inf, all vertices equal (also all at the
-/// origin), collinear vertices, and polygons whose plane passes through the shading
-/// point (z = 0, and x + y + z = 0).
+/// The plane x + y + z = 0 through the shading point; moved by (0.1, 0.2, 0.3) it is a
+/// valid polygon.
+const TILTED_THROUGH_ORIGIN: [Vec3; 4] = [
+    Vec3::new(1.0, -1.0, 0.0),
+    Vec3::new(0.0, 1.0, -1.0),
+    Vec3::new(-1.0, 0.0, 1.0),
+    Vec3::new(-0.5, -0.5, 1.0),
+];
+
+/// Polygons every sampler's `new` must reject, built around a valid `triangle`: 0, 1,
+/// 2 and 9 vertices, each coordinate in turn replaced by NaN or ±inf, all vertices
+/// equal (also all at the origin), collinear vertices, and polygons whose plane passes
+/// through the shading point (z = 0, and x + y + z = 0).
 pub fn invalid_polygons(triangle: &[Vec3]) -> Vec<Vec<Vec3>> {
     let mut out = Vec::new();
+    let nine = circle_polygon(9, [0.2, -0.1, 1.5], [0.1, 0.1, -1.0], 0.5, false);
+    for count in [0, 1, 2, 9] {
+        out.push(nine[..count].to_vec());
+    }
     for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
         for vertex in 0..3 {
             for axis in 0..3 {
@@ -415,13 +428,20 @@ pub fn invalid_polygons(triangle: &[Vec3]) -> Vec<Vec<Vec3>> {
         Vec3::new(0.0, 1.0, 0.0),
         Vec3::new(-1.0, -0.5, 0.0),
     ]);
-    out.push(vec![
-        Vec3::new(1.0, -1.0, 0.0),
-        Vec3::new(0.0, 1.0, -1.0),
-        Vec3::new(-1.0, 0.0, 1.0),
-        Vec3::new(-0.5, -0.5, 1.0),
-    ]);
+    out.push(TILTED_THROUGH_ORIGIN.to_vec());
     out
+}
+
+/// Valid polygons next to the invalid ones: 8 vertices, and the plane through the
+/// shading point of [`invalid_polygons`] moved off it.
+pub fn valid_edge_case_polygons() -> Vec<Vec<Vec3>> {
+    vec![
+        circle_polygon(8, [0.2, -0.1, 1.5], [0.1, 0.1, -1.0], 0.5, false),
+        TILTED_THROUGH_ORIGIN
+            .iter()
+            .map(|&v| v + Vec3::new(0.1, 0.2, 0.3))
+            .collect(),
+    ]
 }
 
 /// What a statistical run of a polygon sampler found.

@@ -1,6 +1,6 @@
 //! Local shading frames and CPU capabilities.
 
-use super::types::SpheraVec3;
+use super::types::{SpheraVec3, with_ref};
 use crate::Vec3;
 use crate::math::{Frame, HAS_HARDWARE_FMA};
 
@@ -43,10 +43,7 @@ pub unsafe extern "C" fn sphera_frame_from_normal(out: *mut Frame, normal: Spher
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_frame_to_local(frame: *const Frame, v: SpheraVec3) -> SpheraVec3 {
     // SAFETY: the caller guarantees that a non-null `frame` points to a valid frame.
-    match unsafe { frame.as_ref() } {
-        Some(frame) => frame.to_local(v.into()).into(),
-        None => v,
-    }
+    unsafe { with_ref(frame, v, |frame| frame.to_local(v.into()).into()) }
 }
 
 /// Expresses the local vector `v` (x = tangent, y = bitangent, z = normal) in world
@@ -59,10 +56,7 @@ pub unsafe extern "C" fn sphera_frame_to_local(frame: *const Frame, v: SpheraVec
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_frame_to_world(frame: *const Frame, v: SpheraVec3) -> SpheraVec3 {
     // SAFETY: the caller guarantees that a non-null `frame` points to a valid frame.
-    match unsafe { frame.as_ref() } {
-        Some(frame) => frame.to_world(v.into()).into(),
-        None => v,
-    }
+    unsafe { with_ref(frame, v, |frame| frame.to_world(v.into()).into()) }
 }
 
 /// Whether the library was compiled to use hardware fused multiply-add instructions

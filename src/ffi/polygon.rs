@@ -4,7 +4,7 @@
 //! Vertices are given relative to the shading point in the local frame (z = normal),
 //! convex, in either winding, 3 to `SPHERA_MAX_POLYGON_VERTICES` of them.
 
-use super::types::{SpheraSample, SpheraVec3, read_polygon};
+use super::types::{SpheraSample, SpheraVec3, read_polygon, with_ref};
 use crate::polygon::SolidAnglePolygon;
 use crate::polygon::baselines::{ArvoPolygon, TurkPolygon};
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
@@ -116,9 +116,10 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_sample(
     u1: f32,
 ) -> SpheraSample {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    match unsafe { polygon.as_ref() } {
-        Some(polygon) => polygon.sample([u0, u1]).into(),
-        None => Sample::NONE.into(),
+    unsafe {
+        with_ref(polygon, Sample::NONE.into(), |polygon| {
+            polygon.sample([u0, u1]).into()
+        })
     }
 }
 
@@ -137,10 +138,7 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_pdf(
     dir: SpheraVec3,
 ) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    match unsafe { polygon.as_ref() } {
-        Some(polygon) => polygon.pdf(dir.into()),
-        None => 0.0,
-    }
+    unsafe { with_ref(polygon, 0.0, |polygon| polygon.pdf(dir.into())) }
 }
 
 /// The solid angle (in steradians) that the polygon subtends.
@@ -156,10 +154,7 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_solid_angle(
     polygon: *const SolidAnglePolygon,
 ) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    match unsafe { polygon.as_ref() } {
-        Some(polygon) => polygon.solid_angle(),
-        None => 0.0,
-    }
+    unsafe { with_ref(polygon, 0.0, |polygon| polygon.solid_angle()) }
 }
 
 /// Inverts `sphera_solid_angle_polygon_sample`: finds the random numbers `*u0`, `*u1`
@@ -241,9 +236,10 @@ pub unsafe extern "C" fn sphera_turk_polygon_sample(
     u1: f32,
 ) -> SpheraSample {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    match unsafe { polygon.as_ref() } {
-        Some(polygon) => polygon.sample([u0, u1]).into(),
-        None => Sample::NONE.into(),
+    unsafe {
+        with_ref(polygon, Sample::NONE.into(), |polygon| {
+            polygon.sample([u0, u1]).into()
+        })
     }
 }
 
@@ -262,10 +258,7 @@ pub unsafe extern "C" fn sphera_turk_polygon_pdf(
     dir: SpheraVec3,
 ) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    match unsafe { polygon.as_ref() } {
-        Some(polygon) => polygon.pdf(dir.into()),
-        None => 0.0,
-    }
+    unsafe { with_ref(polygon, 0.0, |polygon| polygon.pdf(dir.into())) }
 }
 
 /// The area of the polygon (in squared units of the vertex coordinates).
@@ -279,10 +272,7 @@ pub unsafe extern "C" fn sphera_turk_polygon_pdf(
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_turk_polygon_area(polygon: *const TurkPolygon) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    match unsafe { polygon.as_ref() } {
-        Some(polygon) => polygon.area(),
-        None => 0.0,
-    }
+    unsafe { with_ref(polygon, 0.0, |polygon| polygon.area()) }
 }
 
 /// Prepares Arvo's 1995 baseline for the convex polygon `vertices[0..count]`: uniform
@@ -326,9 +316,10 @@ pub unsafe extern "C" fn sphera_arvo_polygon_sample(
     u1: f32,
 ) -> SpheraSample {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    match unsafe { polygon.as_ref() } {
-        Some(polygon) => polygon.sample([u0, u1]).into(),
-        None => Sample::NONE.into(),
+    unsafe {
+        with_ref(polygon, Sample::NONE.into(), |polygon| {
+            polygon.sample([u0, u1]).into()
+        })
     }
 }
 
@@ -347,10 +338,7 @@ pub unsafe extern "C" fn sphera_arvo_polygon_pdf(
     dir: SpheraVec3,
 ) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    match unsafe { polygon.as_ref() } {
-        Some(polygon) => polygon.pdf(dir.into()),
-        None => 0.0,
-    }
+    unsafe { with_ref(polygon, 0.0, |polygon| polygon.pdf(dir.into())) }
 }
 
 /// The solid angle (in steradians) that the polygon subtends, as Arvo's method computes
@@ -365,8 +353,5 @@ pub unsafe extern "C" fn sphera_arvo_polygon_pdf(
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_arvo_polygon_solid_angle(polygon: *const ArvoPolygon) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    match unsafe { polygon.as_ref() } {
-        Some(polygon) => polygon.solid_angle(),
-        None => 0.0,
-    }
+    unsafe { with_ref(polygon, 0.0, |polygon| polygon.solid_angle()) }
 }

@@ -72,6 +72,21 @@ impl From<Sample> for SpheraSample {
     }
 }
 
+/// `f` applied to the value behind `pointer`, or `default` when `pointer` is null: the
+/// null-pointer contract of every getter and sampler of the C ABI.
+///
+/// # Safety
+///
+/// `pointer` must be null or point to a valid, initialised `T`.
+#[inline(always)]
+pub(crate) unsafe fn with_ref<T, R>(pointer: *const T, default: R, f: impl FnOnce(&T) -> R) -> R {
+    // SAFETY: forwarded from the caller.
+    match unsafe { pointer.as_ref() } {
+        Some(value) => f(value),
+        None => default,
+    }
+}
+
 /// Copies `count` vertices from C memory into a fixed array, or `None` when `vertices`
 /// is null or `count` lies outside `3..=SPHERA_MAX_POLYGON_VERTICES`.
 ///

@@ -291,6 +291,9 @@ fn bad_input_is_rejected() {
     for bad in invalid_polygons(&ok) {
         assert!(SolidAnglePolygon::new(&bad).is_none(), "{bad:?}");
     }
+    for good in valid_edge_case_polygons() {
+        assert!(SolidAnglePolygon::new(&good).is_some(), "{good:?}");
+    }
     assert!(SolidAnglePolygon::new(&ok[..2]).is_none());
     assert!(SolidAnglePolygon::new(&[]).is_none());
     assert!(SolidAnglePolygon::new(&[ok[0]; 9]).is_none());

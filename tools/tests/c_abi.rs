@@ -108,29 +108,42 @@ fn static_library() -> &'static Path {
     }
 }
 
+/// Compiles `source` with the given language flags against `include/`, links it with
+/// `libsphera.a -lm` only, runs it and panics (naming `what`) unless every step
+/// succeeds; prints the program's output.
+fn build_and_run(source: &Path, program: &Path, cpp: bool, flags: &[&str], what: &str) {
+    let root = repository_root();
+    let compiled = run(compiler(cpp)
+        .args(flags)
+        .arg("-I")
+        .arg(root.join("include"))
+        .arg(source)
+        .arg(static_library())
+        .arg("-lm")
+        .arg("-o")
+        .arg(program));
+    if let Err(message) = compiled {
+        panic!("{what} does not compile and link:\n{message}");
+    }
+    match run(&mut Command::new(program)) {
+        Ok(output) => println!("{what}:\n{output}"),
+        Err(message) => panic!("{what} failed:\n{message}"),
+    }
+}
+
 /// Compiles `ffi-tests/<name>.c` as strict C99, links it with `libsphera.a -lm` only,
 /// runs it and asserts that it exits with status 0.
 fn run_c_test(name: &str) {
-    let root = repository_root();
-    let library = static_library();
-    let source = root.join("ffi-tests").join(format!("{name}.c"));
-    let program = output_dir().join(name);
-    let compiled = run(compiler(false)
-        .args(C_FLAGS)
-        .arg("-I")
-        .arg(root.join("include"))
-        .arg(&source)
-        .arg(library)
-        .arg("-lm")
-        .arg("-o")
-        .arg(&program));
-    if let Err(message) = compiled {
-        panic!("{name}.c does not compile and link:\n{message}");
-    }
-    match run(&mut Command::new(&program)) {
-        Ok(output) => println!("{name}:\n{output}"),
-        Err(message) => panic!("{name} failed:\n{message}"),
-    }
+    let source = repository_root()
+        .join("ffi-tests")
+        .join(format!("{name}.c"));
+    build_and_run(
+        &source,
+        &output_dir().join(name),
+        false,
+        &C_FLAGS,
+        &format!("{name}.c"),
+    );
 }
 
 #[test]
@@ -239,8 +252,6 @@ fn static_library_has_no_unwinding_or_rust_runtime_symbols() {
 /// The header compiles as C++11 and a C++ program links against the library.
 #[test]
 fn header_compiles_and_links_as_cpp11() {
-    let root = repository_root();
-    let library = static_library();
     let dir = output_dir();
     let source = dir.join("header_as_cpp.cpp");
     let program = dir.join("header_as_cpp");
@@ -264,22 +275,13 @@ int main() {
 "#,
     )
     .expect("write the C++ program");
-    let compiled = run(compiler(true)
-        .args(["-std=c++11", "-Wall", "-Wextra", "-Werror", "-pedantic"])
-        .arg("-I")
-        .arg(root.join("include"))
-        .arg(&source)
-        .arg(library)
-        .arg("-lm")
-        .arg("-o")
-        .arg(&program));
-    if let Err(message) = compiled {
-        panic!("the header does not compile or link as C++11:\n{message}");
-    }
-    match run(&mut Command::new(&program)) {
-        Ok(output) => println!("{output}"),
-        Err(message) => panic!("the C++ program failed:\n{message}"),
-    }
+    build_and_run(
+        &source,
+        &program,
+        true,
+        &["-std=c++11", "-Wall", "-Wextra", "-Werror", "-pedantic"],
+        "the header as C++11",
+    );
 }
 
 /// The header's structs have the sizes, alignments and public field offsets of the
