@@ -372,15 +372,21 @@ pub fn circle_polygon(n: usize, center: D3, normal: D3, radius: f64, reversed: b
 /// f64: σ/2 Σ angle(v_i, v_(i+1)) (n̂_i · z) with n̂_i = normalize(v_i × v_(i+1)) and σ
 /// the orientation of the polygon seen from the origin.
 pub fn projected_solid_angle_polygon_f64(vertices: &[Vec3]) -> f64 {
-    let v: Vec<D3> = vertices.iter().map(|&p| normalize(d3(p))).collect();
     let p: Vec<D3> = vertices.iter().map(|&p| d3(p)).collect();
+    projected_solid_angle_d3(&p)
+}
+
+/// [`projected_solid_angle_polygon_f64`] of f64 positions.
+pub fn projected_solid_angle_d3(p: &[D3]) -> f64 {
     let sigma = dot(p[0], cross(sub(p[1], p[0]), sub(p[2], p[0]))).signum();
     let mut sum = 0.0;
-    for i in 0..v.len() {
-        let j = (i + 1) % v.len();
+    for i in 0..p.len() {
+        let j = (i + 1) % p.len();
         // The edge plane's normal from the exact positions (no cancellation).
         let c = cross(p[i], sub(p[j], p[i]));
-        let angle = norm(cross(v[i], v[j])).atan2(dot(v[i], v[j]));
+        // The angle from the positions, so that tiny polygons (where Lambert's terms
+        // cancel by a factor of up to 1e7) keep f64 precision: |p_i × p_j| = |c|.
+        let angle = norm(c).atan2(dot(p[i], p[j]));
         sum += angle * normalize(c)[2];
     }
     0.5 * sigma * sum
@@ -442,6 +448,47 @@ pub fn valid_edge_case_polygons() -> Vec<Vec<Vec3>> {
             .map(|&v| v + Vec3::new(0.1, 0.2, 0.3))
             .collect(),
     ]
+}
+
+/// A convex polygon with `n` vertices on an ellipse (semi-axes `radius` and
+/// `radius * aspect`) centred at `center`, in the plane with the given normal, at
+/// random sorted angles (with a minimum gap so that no three vertices are collinear).
+pub fn ellipse_polygon(
+    rng: &mut Rng,
+    n: usize,
+    center: Vec3,
+    normal: Vec3,
+    radius: f32,
+    aspect: f32,
+) -> Vec<Vec3> {
+    let (t, b) = crate::math::orthonormal_basis(normal.normalize());
+    let mut angles: Vec<f64> = Vec::new();
+    'retry: loop {
+        angles.clear();
+        for _ in 0..n {
+            angles.push(rng.uniform() * core::f64::consts::TAU);
+        }
+        angles.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        for i in 0..n {
+            let gap = if i + 1 < n {
+                angles[i + 1] - angles[i]
+            } else {
+                angles[0] + core::f64::consts::TAU - angles[i]
+            };
+            if gap < 0.3 / n as f64 {
+                continue 'retry;
+            }
+        }
+        break;
+    }
+    angles
+        .iter()
+        .map(|&a| center + t * (radius * a.cos() as f32) + b * (radius * aspect * a.sin() as f32))
+        .collect()
+}
+
+pub fn reversed(v: &[Vec3]) -> Vec<Vec3> {
+    v.iter().rev().copied().collect()
 }
 
 /// What a statistical run of a polygon sampler found.

@@ -9,9 +9,13 @@
 
 pub mod baselines;
 pub mod clip;
+mod ellipse;
 #[rustfmt::skip]
 mod clip_generated;
+pub mod projected;
+pub mod small_projected;
 pub mod solid_angle;
 
 pub use clip::clip_to_upper_hemisphere;
+pub use projected::ProjectedSolidAnglePolygon;
 pub use solid_angle::SolidAnglePolygon;

@@ -27,7 +27,7 @@ use crate::sample::{ONE_MINUS_ULP, clamp_random};
 use crate::{MAX_POLYGON_VERTICES, Vec3};
 
 /// The most fan triangles a polygon has.
-const MAX_TRIANGLES: usize = MAX_POLYGON_VERTICES - 2;
+pub(crate) const MAX_TRIANGLES: usize = MAX_POLYGON_VERTICES - 2;
 
 /// A convex polygon prepared for solid angle sampling: everything Algorithm 5 computes
 /// once per polygon.
@@ -37,31 +37,31 @@ pub struct SolidAnglePolygon {
     /// Unit directions towards the vertices. `vertices[0]` is the fan apex, which
     /// Algorithm 5 calls `v1`; fan triangle `k` is `(vertices[k + 1], apex,
     /// vertices[k + 2])`, Algorithm 5's `(v0, v1, v2)`.
-    vertices: [Vec3; MAX_POLYGON_VERTICES],
+    pub(crate) vertices: [Vec3; MAX_POLYGON_VERTICES],
     /// Edge plane normals `± p_i × p_(i+1)` (not normalised), oriented so that directions
     /// inside the polygon have non-negative dot products with all of them.
     edge_normals: [Vec3; MAX_POLYGON_VERTICES],
     /// `G0 = |det(v0, v1, v2)|` per fan triangle.
-    g0: [f32; MAX_TRIANGLES],
+    pub(crate) g0: [f32; MAX_TRIANGLES],
     /// `G1 + G2 = 1 + v0·v1 + v0·v2 + v1·v2` per fan triangle (see [`denominator`]).
-    g1_plus_g2: [f32; MAX_TRIANGLES],
+    pub(crate) g1_plus_g2: [f32; MAX_TRIANGLES],
     /// `G2 = 1 + v0·v1 = |v0 + v1|² / 2` per fan triangle.
     g2: [f32; MAX_TRIANGLES],
     /// `v0 + v2` per fan triangle, accurate even when `v0 ≈ -v2`.
     outer_sum: [Vec3; MAX_TRIANGLES],
     /// Solid angle of the fan triangles before triangle `k`.
-    start: [f32; MAX_TRIANGLES],
+    pub(crate) start: [f32; MAX_TRIANGLES],
     /// Total solid angle Ω in steradians (0 when empty).
-    solid_angle: f32,
+    pub(crate) solid_angle: f32,
     /// `1 / Ω` (0 when empty).
     density: f32,
     /// +1 when the polygon winds counter-clockwise seen from the shading point, -1
     /// otherwise: the sign that orients the edge and diagonal normals inwards.
     orientation: f32,
     /// Number of vertices (0 when empty).
-    vertex_count: u32,
+    pub(crate) vertex_count: u32,
     /// Fan triangles that can be selected: up to the last one with non-zero solid angle.
-    selectable_triangles: u32,
+    pub(crate) selectable_triangles: u32,
 }
 
 impl Default for SolidAnglePolygon {
@@ -79,7 +79,7 @@ impl Default for SolidAnglePolygon {
 /// while the result stays normal, so the polygon's shape is unchanged. For subnormal `m`
 /// (`E = 0`) the factor is `2^127`, still exact; `E` is at most 254 for finite values
 /// and the factor's exponent is kept at least 1 (a normal number).
-fn rescale(vertices: &[Vec3], out: &mut [Vec3; MAX_POLYGON_VERTICES]) -> Option<()> {
+pub(crate) fn rescale(vertices: &[Vec3], out: &mut [Vec3; MAX_POLYGON_VERTICES]) -> Option<()> {
     let mut largest = 0.0f32;
     for v in vertices {
         largest = largest.max(v.abs().max_element());
@@ -297,6 +297,19 @@ impl SolidAnglePolygon {
             k += (j < self.selectable_triangles as usize && self.start[j] <= target) as usize;
         }
         let local = (target - self.start[k]).max(0.0);
+        self.sample_in_triangle(k, local, u1)
+    }
+
+    /// Algorithm 5 in fan triangle `k`: the direction at solid angle `local` from the
+    /// triangle's first edge and at `u1` along the new edge, with pdf `1 / Ω`.
+    #[inline(always)]
+    pub(crate) fn triangle_solid_angle(&self, k: usize) -> f32 {
+        2.0 * atan2_upper_half_plane(self.g0[k], self.g1_plus_g2[k])
+    }
+
+    /// Algorithm 5 in fan triangle `k`: see [`sample`](Self::sample).
+    #[inline(always)]
+    pub(crate) fn sample_in_triangle(&self, k: usize, local: f32, u1: f32) -> Sample {
         let (v0, v1) = (self.vertices[k + 1], self.vertices[0]);
         let (g0, g1_plus_g2, g2) = (self.g0[k], self.g1_plus_g2[k], self.g2[k]);
         // Algorithm 5's r = (G0 cos(A/2) - G1 sin(A/2)) v0 + G2 sin(A/2) v2 bisects the
@@ -355,6 +368,22 @@ impl SolidAnglePolygon {
     /// The random numbers `u` for which [`sample`](Self::sample) returns `dir` (up to
     /// rounding), or `None` when `dir` is outside the polygon or the polygon is empty.
     pub fn invert(&self, dir: Vec3) -> Option<[f32; 2]> {
+        let (k, local, u1) = self.invert_in_triangle(dir)?;
+        let u0 = (self.start[k] + local) / self.solid_angle;
+        let clamp = |x: f32| {
+            if x.is_finite() {
+                x.max(0.0).min(ONE_MINUS_ULP)
+            } else {
+                0.0
+            }
+        };
+        Some([clamp(u0), clamp(u1)])
+    }
+
+    /// The fan triangle `k`, the solid angle `local` from its first edge and the `u1` at
+    /// which [`sample_in_triangle`](Self::sample_in_triangle) returns `dir` (up to
+    /// rounding), or `None` when `dir` is outside the polygon or the polygon is empty.
+    pub(crate) fn invert_in_triangle(&self, dir: Vec3) -> Option<(usize, f32, f32)> {
         if !self.contains(dir) || self.selectable_triangles == 0 {
             return None;
         }
@@ -379,7 +408,7 @@ impl SolidAnglePolygon {
         }
         if new_vertex == Vec3::ZERO {
             // w is the apex itself (or the great circles coincide): ξ1 = 0.
-            return Some([(self.start[k] / self.solid_angle).min(ONE_MINUS_ULP), 0.0]);
+            return Some((k, 0.0, 0.0));
         }
         // Solid angle of the sub-triangle (v0, v1, v2') by the same Householder form.
         let reflection = Householder::new(v1);
@@ -389,17 +418,14 @@ impl SolidAnglePolygon {
         let g1 = v0.dot(new_vertex) + v1.dot(new_vertex);
         let g2 = self.g2[k];
         let local = 2.0 * atan2_upper_half_plane(g0, g2 + g1);
-        let u0 = (self.start[k] + local) / self.solid_angle;
         // 1 - s = ξ1 (1 - s'), with 1 - a·b = |a - b|² / 2 for unit vectors.
         let u1 = (v1 - w).length_squared() / (v1 - new_vertex).length_squared();
-        let clamp = |x: f32| {
-            if x.is_finite() {
-                x.max(0.0).min(ONE_MINUS_ULP)
-            } else {
-                0.0
-            }
+        let u1 = if u1.is_finite() {
+            u1.max(0.0).min(ONE_MINUS_ULP)
+        } else {
+            0.0
         };
-        Some([clamp(u0), clamp(u1)])
+        Some((k, local, u1))
     }
 }
 

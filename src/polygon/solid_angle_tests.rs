@@ -3,47 +3,6 @@
 use super::*;
 use crate::testing::*;
 
-/// A convex polygon with `n` vertices on an ellipse (semi-axes `radius` and
-/// `radius * aspect`) centred at `center`, in the plane with the given normal, at
-/// random sorted angles (with a minimum gap so that no three vertices are collinear).
-fn ellipse_polygon(
-    rng: &mut Rng,
-    n: usize,
-    center: Vec3,
-    normal: Vec3,
-    radius: f32,
-    aspect: f32,
-) -> Vec<Vec3> {
-    let (t, b) = crate::math::orthonormal_basis(normal.normalize());
-    let mut angles: Vec<f64> = Vec::new();
-    'retry: loop {
-        angles.clear();
-        for _ in 0..n {
-            angles.push(rng.uniform() * core::f64::consts::TAU);
-        }
-        angles.sort_by(|a, b| a.partial_cmp(b).unwrap());
-        for i in 0..n {
-            let gap = if i + 1 < n {
-                angles[i + 1] - angles[i]
-            } else {
-                angles[0] + core::f64::consts::TAU - angles[i]
-            };
-            if gap < 0.3 / n as f64 {
-                continue 'retry;
-            }
-        }
-        break;
-    }
-    angles
-        .iter()
-        .map(|&a| center + t * (radius * a.cos() as f32) + b * (radius * aspect * a.sin() as f32))
-        .collect()
-}
-
-fn reversed(v: &[Vec3]) -> Vec<Vec3> {
-    v.iter().rev().copied().collect()
-}
-
 fn cell_solid_angle(c: &[D3; 3]) -> f64 {
     solid_angle_triangle_f64(c[0], c[1], c[2])
 }

@@ -1,0 +1,578 @@
+//! Tests of projected solid angle sampling: distribution (chi-square against exact cell
+//! projected solid angles by Lambert's formula in f64), the projected solid angle,
+//! estimators, containment, pdf consistency, agreement with an f64 inversion of the
+//! azimuthal CDF, and the hard cases.
+use super::*;
+use crate::polygon::SolidAnglePolygon;
+use crate::testing::*;
+
+/// The part of the f64 polygon `p` on the non-negative side of the plane through the
+/// origin with normal `n` (Sutherland–Hodgman).
+fn clip_d3(p: &[D3], n: D3) -> Vec<D3> {
+    let mut out = Vec::new();
+    for i in 0..p.len() {
+        let (a, b) = (p[i], p[(i + 1) % p.len()]);
+        let (da, db) = (dot(a, n), dot(b, n));
+        if da >= 0.0 {
+            out.push(a);
+        }
+        if (da >= 0.0) != (db >= 0.0) {
+            let t = da / (da - db);
+            out.push(add(a, scale(sub(b, a), t)));
+        }
+    }
+    out
+}
+
+fn to_d3(v: &[Vec3]) -> Vec<D3> {
+    v.iter().map(|&x| d3(x)).collect()
+}
+
+/// Projected solid angle of the polygon's part above the horizon, in f64.
+fn reference_projected_solid_angle(v: &[Vec3]) -> f64 {
+    let clipped = clip_d3(&to_d3(v), [0.0, 0.0, 1.0]);
+    if clipped.len() < 3 {
+        return 0.0;
+    }
+    projected_solid_angle_d3(&clipped)
+}
+
+/// The factor by which the decentral case amplifies rounding errors: the sum of the
+/// outer sector areas over Φ (1 in the central case and for small polygons).
+fn condition(p: &ProjectedSolidAnglePolygon) -> f64 {
+    if p.central != 0 || p.is_small != 0 {
+        return 1.0;
+    }
+    let mut outer = 0.0f64;
+    for j in 0..p.selectable_sectors as usize {
+        outer += ellipse_area_in_sector(p.outer[j], p.sector_begin[j], p.sector_end[j]) as f64;
+    }
+    outer / p.projected_solid_angle() as f64
+}
+
+/// The relative error bound of the projected solid angle: a floor of 1e-5 (thin ellipses
+/// of edges whose great circles pass near the zenith amplify the rounding of `u·s`) plus
+/// a few roundings amplified by the condition in the decentral case, or the relative O(s⁴) of the small-polygon
+/// sampler's Gauss rule (for the chord s from the first vertex).
+fn error_bound(p: &ProjectedSolidAnglePolygon, v: &[Vec3]) -> f64 {
+    if p.is_small != 0 {
+        // The small-polygon sampler integrates over the fan of solid angle sampling, so
+        // it is as accurate as that (slivers lose precision there too).
+        let c = clipped(v);
+        let first = c[0].normalize();
+        let s2 = c
+            .iter()
+            .map(|q| (q.normalize() - first).length_squared())
+            .fold(0.0f32, f32::max);
+        let omega = solid_angle_polygon_f64(&to_d3(&c));
+        let mut fan_error = 0.0f64;
+        for order in [c.clone(), reversed(&c)] {
+            let fan = SolidAnglePolygon::new(&order).unwrap();
+            fan_error = fan_error.max((fan.solid_angle() as f64 - omega).abs() / omega);
+        }
+        return 2e-6 + 1e-3 * (s2 as f64).powi(2) + 2.0 * fan_error;
+    }
+    1e-5 + 4e-7 * condition(p)
+}
+
+fn cell_projected_solid_angle(c: &[D3; 3]) -> f64 {
+    projected_solid_angle_d3(c).abs()
+}
+
+/// The polygon clipped to the upper hemisphere in f32 (what the sampler samples), for the
+/// cells of the chi-square test.
+fn clipped(v: &[Vec3]) -> Vec<Vec3> {
+    let mut p = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+    p[..v.len()].copy_from_slice(v);
+    let n = clip_to_upper_hemisphere(&mut p, v.len());
+    p[..n].to_vec()
+}
+
+/// Runs the chi-square test, containment and pdf consistency checks on one polygon.
+fn assert_cosine_distributed(vertices: &[Vec3], samples: u64, seed: u64, what: &str) {
+    let polygon = ProjectedSolidAnglePolygon::new(vertices)
+        .unwrap_or_else(|| panic!("{what}: prepare failed"));
+    let reference = reference_projected_solid_angle(vertices);
+    let relative = (polygon.projected_solid_angle() as f64 - reference).abs() / reference;
+    assert!(
+        relative < error_bound(&polygon, vertices),
+        "{what}: projected solid angle {} vs f64 {reference}",
+        polygon.projected_solid_angle()
+    );
+    let report = run_polygon_sampler(
+        &clipped(vertices),
+        8,
+        samples,
+        seed,
+        cell_projected_solid_angle,
+        |u| polygon.sample(u),
+        |d| polygon.pdf(d),
+    );
+    assert!(
+        report.p_value > CHI_SQUARE_ALPHA,
+        "{what}: chi-square p = {}",
+        report.p_value
+    );
+    assert_eq!(report.non_finite, 0, "{what}");
+    assert!(
+        report.outside as f64 <= 1e-3 * samples as f64 && report.worst_outside_angle < 1e-6,
+        "{what}: {report:?}"
+    );
+    // Samples that round onto the outside of an edge have pdf(dir) = 0.
+    let mut mismatches = 0;
+    let mut rng = Rng::new(seed ^ 0x55);
+    for _ in 0..10_000 {
+        let s = polygon.sample([rng.uniform_f32(), rng.uniform_f32()]);
+        let expected = s.dir.z / polygon.projected_solid_angle();
+        assert!((s.pdf - expected).abs() <= 1e-5 * expected, "{what}");
+        let p = polygon.pdf(s.dir);
+        if (p - s.pdf).abs() > 1e-4 * s.pdf {
+            mismatches += 1;
+        }
+    }
+    assert!(mismatches <= 10, "{what}: {mismatches} pdf mismatches");
+}
+
+fn random_polygon(rng: &mut Rng, n: usize, radius: f32) -> Vec<Vec3> {
+    let center = rng.unit_vector_f32();
+    let center = Vec3::new(center.x, center.y, center.z.abs() + 0.05) * 2.0;
+    let normal = rng.unit_vector_f32();
+    let aspect = 0.3 + 0.7 * rng.uniform_f32();
+    ellipse_polygon(rng, n, center, normal, radius, aspect)
+}
+
+#[test]
+fn samples_follow_the_cosine_on_central_and_decentral_polygons_of_3_to_8_vertices() {
+    let mut rng = Rng::new(21);
+    let (mut central, mut decentral) = (0, 0);
+    for n in 3..=8 {
+        for trial in 0..6 {
+            // Polygons around the zenith (central) and beside it (decentral).
+            let vertices = if trial % 2 == 0 {
+                let c = Vec3::new(
+                    0.3 * rng.uniform_f32() - 0.15,
+                    0.3 * rng.uniform_f32() - 0.15,
+                    1.0,
+                );
+                ellipse_polygon(&mut rng, n, c, Vec3::new(0.1, -0.2, 1.0), 0.8, 0.7)
+            } else {
+                random_polygon(&mut rng, n, 0.9)
+            };
+            let vertices = if trial % 3 == 0 {
+                reversed(&vertices)
+            } else {
+                vertices
+            };
+            let Some(polygon) = ProjectedSolidAnglePolygon::new(&vertices) else {
+                continue;
+            };
+            if polygon.central != 0 {
+                central += 1;
+            } else {
+                decentral += 1;
+            }
+            assert_cosine_distributed(&vertices, 60_000, 100 + trial, &format!("n {n} #{trial}"));
+        }
+    }
+    assert!(central >= 12 && decentral >= 12, "{central} {decentral}");
+}
+
+#[test]
+fn projected_solid_angle_matches_lamberts_formula_on_random_polygons() {
+    let mut rng = Rng::new(4);
+    let mut worst = 0.0f64;
+    for _ in 0..3000 {
+        let n = 3 + rng.below(6) as usize;
+        let radius = rng.log_uniform(-2.0, 0.5) as f32;
+        let v = random_polygon(&mut rng, n, radius);
+        let reference = reference_projected_solid_angle(&v);
+        match ProjectedSolidAnglePolygon::new(&v) {
+            Some(p) => {
+                let e = (p.projected_solid_angle() as f64 - reference).abs() / reference;
+                // Relative to the bound 2e-6 + 2.4e-7 × condition (a few roundings of
+                // the sector areas, amplified by the cancellation between them).
+                worst = worst.max(e / error_bound(&p, &v));
+            }
+            // 8 vertices that cross the horizon would need 9 after clipping.
+            None => assert!(
+                reference < 1e-6 || (n == 8 && v.iter().any(|p| p.z < 0.0)),
+                "rejected {v:?} with Φ {reference}"
+            ),
+        }
+    }
+    assert!(worst < 1.0, "worst relative error {worst} of the bound");
+}
+
+/// The f64 azimuth at which the projected solid angle of the polygon on the clockwise
+/// side reaches `target`, by bisection over planes through the z axis; `from` and `to`
+/// bracket the polygon's azimuths (counter-clockwise).
+fn azimuth_of_area(p: &[D3], from: f64, to: f64, target: f64) -> f64 {
+    let (mut lo, mut hi) = (from, to);
+    for _ in 0..80 {
+        let mid = 0.5 * (lo + hi);
+        // Keep the part clockwise of azimuth `mid` (det(e_mid, ω_xy) <= 0).
+        let n = [mid.sin(), -mid.cos(), 0.0];
+        let part = clip_d3(p, n);
+        let area = if part.len() >= 3 {
+            projected_solid_angle_d3(&part).abs()
+        } else {
+            0.0
+        };
+        if area < target { lo = mid } else { hi = mid }
+    }
+    0.5 * (lo + hi)
+}
+
+#[test]
+fn sampled_azimuths_match_an_f64_inversion_of_the_azimuthal_cdf() {
+    let mut rng = Rng::new(77);
+    let mut worst = 0.0f64;
+    let mut tested = 0;
+    for _ in 0..300 {
+        let n = 3 + rng.below(6) as usize;
+        let radius = 0.2 + rng.uniform_f32();
+        let v = random_polygon(&mut rng, n, radius);
+        let Some(polygon) = ProjectedSolidAnglePolygon::new(&v) else {
+            continue;
+        };
+        if polygon.central != 0 || polygon.is_small != 0 {
+            continue;
+        }
+        let tolerance = 1e-4 + 1e-6 * condition(&polygon);
+        let p = clip_d3(&to_d3(&v), [0.0, 0.0, 1.0]);
+        // Azimuth bracket: the vertices' azimuths relative to the first one.
+        let base = p[0][1].atan2(p[0][0]);
+        let relative = |q: &D3| {
+            let a = q[1].atan2(q[0]) - base;
+            (a + core::f64::consts::PI).rem_euclid(core::f64::consts::TAU) - core::f64::consts::PI
+        };
+        let lo = p.iter().map(relative).fold(f64::MAX, f64::min) + base;
+        let hi = p.iter().map(relative).fold(f64::MIN, f64::max) + base;
+        let total = projected_solid_angle_d3(&p).abs();
+        for _ in 0..20 {
+            let u = [rng.uniform_f32(), rng.uniform_f32()];
+            let s = polygon.sample(u);
+            let expected = azimuth_of_area(&p, lo, hi, u[0] as f64 * total);
+            let got = (s.dir.y as f64).atan2(s.dir.x as f64);
+            let mut e = (got - expected).abs();
+            e = e.min(core::f64::consts::TAU - e);
+            // Relative to the angular width of the polygon, and to the tolerance that
+            // the cancellation between the ellipse areas allows.
+            worst = worst.max(e / (hi - lo) / tolerance);
+            tested += 1;
+        }
+    }
+    assert!(tested > 1000);
+    assert!(worst < 1.0, "worst azimuth error {worst} of the tolerance");
+}
+
+#[test]
+fn solid_angle_estimator_with_projected_samples_is_unbiased() {
+    // E[1 / pdf] = Ω: a test that uses the density's shape, not only its normalisation.
+    let mut rng = Rng::new(5);
+    for k in 0..6 {
+        let v = random_polygon(&mut rng, 3 + k, 0.8);
+        let Some(polygon) = ProjectedSolidAnglePolygon::new(&v) else {
+            continue;
+        };
+        let reference = solid_angle_polygon_f64(&clip_d3(&to_d3(&v), [0.0, 0.0, 1.0]));
+        let mut estimate = Estimate::default();
+        for _ in 0..200_000 {
+            let s = polygon.sample([rng.uniform_f32(), rng.uniform_f32()]);
+            estimate.add(1.0 / s.pdf as f64);
+        }
+        estimate.assert_mean_is(reference, 5.0, 1e-4, "solid angle by projected samples");
+    }
+}
+
+#[test]
+fn diffuse_estimator_has_zero_variance() {
+    let mut rng = Rng::new(6);
+    for k in 0..20 {
+        let v = random_polygon(&mut rng, 3 + k % 6, 1.0);
+        let Some(polygon) = ProjectedSolidAnglePolygon::new(&v) else {
+            continue;
+        };
+        let phi = polygon.projected_solid_angle();
+        for _ in 0..1000 {
+            let s = polygon.sample([rng.uniform_f32(), rng.uniform_f32()]);
+            let estimate = s.dir.z / s.pdf;
+            assert!((estimate - phi).abs() <= 1e-5 * phi, "{estimate} vs {phi}");
+        }
+    }
+}
+
+/// A.2, Fig. A.1a: an edge passes through the zenith (the zenith lies on the boundary):
+/// the central case with a 180° sector of zero area.
+#[test]
+fn an_edge_through_the_zenith_gives_the_central_case_with_an_empty_sector() {
+    let v = [
+        Vec3::new(-0.5, 0.0, 1.0),
+        Vec3::new(0.5, 0.0, 1.0),
+        Vec3::new(0.6, 0.8, 1.0),
+        Vec3::new(-0.4, 0.7, 1.0),
+    ];
+    for vertices in [v.to_vec(), reversed(&v)] {
+        let polygon = ProjectedSolidAnglePolygon::new(&vertices).expect("valid");
+        assert_eq!(polygon.central, 1);
+        assert!(polygon.sector_area.contains(&0.0));
+        assert_cosine_distributed(&vertices, 60_000, 1, "edge through the zenith");
+    }
+}
+
+/// A.2, Fig. A.1b: one or two edges whose great circles (not the edges) pass through the
+/// zenith: the decentral case with empty sectors at the polygon's ends.
+#[test]
+fn edges_on_great_circles_through_the_zenith_give_empty_end_sectors() {
+    let one = [
+        Vec3::new(0.2, 0.0, 1.0),
+        Vec3::new(0.8, 0.0, 1.0),
+        Vec3::new(0.9, 0.5, 1.0),
+        Vec3::new(0.3, 0.6, 1.0),
+    ];
+    let two = [
+        Vec3::new(0.2, 0.0, 1.0),
+        Vec3::new(0.8, 0.0, 1.0),
+        Vec3::new(0.8, 0.8, 1.0),
+        Vec3::new(0.2, 0.2, 1.0),
+    ];
+    for (v, degenerate) in [(&one[..], 1), (&two[..], 2)] {
+        for vertices in [v.to_vec(), reversed(v)] {
+            let polygon = ProjectedSolidAnglePolygon::new(&vertices).expect("valid");
+            assert_eq!(polygon.central, 0);
+            let marked = polygon.outer[..3]
+                .iter()
+                .filter(|u| is_degenerate(**u))
+                .count();
+            assert!(marked >= 1, "{degenerate}: {polygon:?}");
+            assert_cosine_distributed(&vertices, 60_000, 2, "great circle through the zenith");
+        }
+    }
+}
+
+#[test]
+fn a_vertex_at_the_zenith_is_sampled_correctly() {
+    let v = [
+        Vec3::new(0.0, 0.0, 1.0),
+        Vec3::new(0.7, 0.1, 1.0),
+        Vec3::new(0.6, 0.7, 1.0),
+        Vec3::new(-0.1, 0.8, 1.0),
+    ];
+    for vertices in [v.to_vec(), reversed(&v)] {
+        assert_cosine_distributed(&vertices, 60_000, 3, "vertex at the zenith");
+    }
+}
+
+#[test]
+fn shading_point_in_the_polygon_plane_gives_no_polygon() {
+    // Planes through the shading point: all ellipses degenerate, or zero orientation.
+    let vertical = [
+        Vec3::new(1.0, 0.0, 0.1),
+        Vec3::new(2.0, 0.0, 0.1),
+        Vec3::new(2.0, 0.0, 1.0),
+        Vec3::new(1.0, 0.0, 1.0),
+    ];
+    let tilted = [
+        Vec3::new(1.0, 1.0, 1.0),
+        Vec3::new(2.0, 2.0, 2.0),
+        Vec3::new(1.0, 2.0, 1.5),
+    ];
+    for v in [&vertical[..], &tilted[..]] {
+        assert_eq!(ProjectedSolidAnglePolygon::new(v), None);
+        let empty = ProjectedSolidAnglePolygon::EMPTY;
+        assert_eq!(empty.sample([0.5, 0.5]).pdf, 0.0);
+        assert!(empty.sample([0.5, 0.5]).dir.is_finite());
+        assert_eq!(empty.pdf(Vec3::Z), 0.0);
+    }
+}
+
+#[test]
+fn polygons_touching_and_crossing_the_horizon() {
+    let touching = [
+        Vec3::new(1.0, -0.5, 0.0),
+        Vec3::new(1.0, 0.5, 0.0),
+        Vec3::new(0.8, 0.4, 0.6),
+        Vec3::new(0.8, -0.4, 0.6),
+    ];
+    let crossing = [
+        Vec3::new(0.5, -1.0, -0.5),
+        Vec3::new(0.5, 1.0, -0.5),
+        Vec3::new(0.4, 1.0, 0.9),
+        Vec3::new(0.4, -1.0, 0.9),
+    ];
+    let crossing_central = [
+        Vec3::new(-2.0, -2.0, 1.3),
+        Vec3::new(2.0, -2.0, -0.3),
+        Vec3::new(2.0, 2.0, -0.3),
+        Vec3::new(-2.0, 2.0, 1.3),
+    ];
+    for v in [&touching[..], &crossing[..], &crossing_central[..]] {
+        for vertices in [v.to_vec(), reversed(v)] {
+            assert_cosine_distributed(&vertices, 60_000, 4, "horizon");
+            let polygon = ProjectedSolidAnglePolygon::new(&vertices).unwrap();
+            assert_eq!(polygon.pdf(Vec3::new(1.0, 0.0, -0.1)), 0.0);
+        }
+    }
+    // Entirely below the horizon, and 8 vertices that would need a 9th after clipping.
+    let below: Vec<Vec3> = crossing.iter().map(|v| Vec3::new(v.x, v.y, -1.0)).collect();
+    assert_eq!(ProjectedSolidAnglePolygon::new(&below), None);
+    let eight = circle_polygon(8, [0.0, 0.0, 0.1], [0.3, 0.0, 1.0], 1.0, false);
+    assert!(eight.iter().any(|v| v.z < 0.0) && eight.iter().any(|v| v.z > 0.0));
+    assert_eq!(ProjectedSolidAnglePolygon::new(&eight), None);
+}
+
+#[test]
+fn near_hemisphere_polygons() {
+    // A huge square just above the shading point: almost the whole hemisphere, Φ → π.
+    for h in [1e-1f32, 1e-2, 1e-3] {
+        let v = [
+            Vec3::new(-1.0, -1.0, h),
+            Vec3::new(1.0, -1.0, h),
+            Vec3::new(1.0, 1.0, h),
+            Vec3::new(-1.0, 1.0, h),
+        ];
+        assert_cosine_distributed(&v, 60_000, 5, &format!("hemisphere h {h}"));
+    }
+}
+
+#[test]
+fn extreme_random_numbers_give_valid_samples() {
+    let mut rng = Rng::new(9);
+    let ulp = 1.0 - crate::sample::ONE_MINUS_ULP;
+    let extremes = [
+        0.0,
+        1e-5,
+        0.5,
+        1.0 - 1e-5,
+        1.0 - ulp,
+        1.0,
+        f32::NAN,
+        -1.0,
+        2.0,
+    ];
+    for k in 0..40 {
+        let v = random_polygon(&mut rng, 3 + k % 6, 0.7);
+        let Some(polygon) = ProjectedSolidAnglePolygon::new(&v) else {
+            continue;
+        };
+        for &a in &extremes {
+            for &b in &extremes {
+                for s in [polygon.sample([a, b]), polygon.sample_fast([a, b])] {
+                    // pdf 0 only for a sample exactly on the horizon (cos θ = 0).
+                    assert!(s.dir.is_finite() && s.pdf.is_finite(), "{a} {b}");
+                    assert!(s.pdf > 0.0 || s.dir.z == 0.0, "{a} {b}: {s:?}");
+                    assert!((s.dir.length() - 1.0).abs() < 1e-5);
+                    // Inside up to rounding: the pdf test accepts points on the boundary.
+                    let d = s.dir;
+                    let inside_or_on_edge = polygon.contains(d)
+                        || polygon
+                            .edge_normals
+                            .iter()
+                            .all(|n| n.dot(d) >= -1e-5 * n.length());
+                    assert!(inside_or_on_edge, "{a} {b}: {d:?}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn bad_input_is_rejected() {
+    let triangle = [
+        Vec3::new(0.1, 0.2, 1.0),
+        Vec3::new(0.5, 0.1, 1.2),
+        Vec3::new(0.2, 0.6, 0.9),
+    ];
+    for v in invalid_polygons(&triangle) {
+        assert_eq!(ProjectedSolidAnglePolygon::new(&v), None, "{v:?}");
+        assert_eq!(
+            ProjectedSolidAnglePolygon::new_fast_biased(&v),
+            None,
+            "{v:?}"
+        );
+    }
+    for v in valid_edge_case_polygons() {
+        let polygon = ProjectedSolidAnglePolygon::new(&v).expect("valid");
+        assert!(polygon.projected_solid_angle() > 0.0);
+    }
+    let polygon = ProjectedSolidAnglePolygon::new(&triangle).unwrap();
+    for d in [
+        Vec3::ZERO,
+        Vec3::splat(f32::NAN),
+        Vec3::new(f32::INFINITY, 0.0, 1.0),
+        -Vec3::Z,
+    ] {
+        assert_eq!(polygon.pdf(d), 0.0);
+    }
+}
+
+#[test]
+fn biased_variant_stays_close_to_the_exact_distribution() {
+    let mut rng = Rng::new(10);
+    let mut worst = 0.0f32;
+    for k in 0..200 {
+        let v = random_polygon(&mut rng, 3 + k % 6, 0.7);
+        let (Some(exact), Some(fast)) = (
+            ProjectedSolidAnglePolygon::new(&v),
+            ProjectedSolidAnglePolygon::new_fast_biased(&v),
+        ) else {
+            continue;
+        };
+        let relative = (fast.projected_solid_angle() / exact.projected_solid_angle() - 1.0).abs();
+        // 1.4e-4 per sector area, amplified by the cancellation in the decentral case.
+        assert!(relative as f64 <= 1.5e-4 * condition(&exact), "{relative}");
+        for _ in 0..50 {
+            let u = [rng.uniform_f32(), rng.uniform_f32()];
+            let (a, b) = (exact.sample(u), fast.sample_fast(u));
+            worst = worst.max(a.dir.angle_between(b.dir));
+        }
+    }
+    // The initial guess of Proposition 3 is within a few hundredths of a radian.
+    assert!(worst < 5e-2, "{worst}");
+}
+
+#[test]
+fn tiny_polygons_keep_their_accuracy() {
+    let mut rng = Rng::new(12);
+    for exponent in [-5, -6, -8, -10] {
+        let radius = 10f32.powf(exponent as f32 / 2.0);
+        let mut errors = Vec::new();
+        for k in 0..30 {
+            let v = random_polygon(&mut rng, 3 + k % 6, radius);
+            let reference = reference_projected_solid_angle(&v);
+            let polygon = ProjectedSolidAnglePolygon::new(&v).expect("tiny but valid");
+            assert_eq!(polygon.is_small, 1);
+            let e = (polygon.projected_solid_angle() as f64 - reference).abs() / reference;
+            assert!(
+                e < error_bound(&polygon, &v),
+                "1e{exponent}: relative error {e} bound {} {v:?}",
+                error_bound(&polygon, &v)
+            );
+            errors.push(e);
+        }
+        errors.sort_by(f64::total_cmp);
+        assert!(
+            errors[errors.len() / 2] < 1e-6,
+            "1e{exponent}: median {}",
+            errors[errors.len() / 2]
+        );
+        let polygon =
+            ProjectedSolidAnglePolygon::new(&random_polygon(&mut rng, 5, radius)).unwrap();
+        let mut outside = 0;
+        for _ in 0..10_000 {
+            let s = polygon.sample([rng.uniform_f32(), rng.uniform_f32()]);
+            assert!(s.dir.is_finite() && s.pdf > 0.0);
+            let pdf = polygon.pdf(s.dir);
+            outside += (pdf == 0.0) as u32;
+            assert!(pdf == 0.0 || (pdf - s.pdf).abs() <= 1e-3 * s.pdf);
+            // The pdf deviates from cos θ / Φ by at most 0.2 s².
+            let ideal = s.dir.z / polygon.projected_solid_angle();
+            assert!(
+                (s.pdf - ideal).abs() <= 1e-4 * ideal,
+                "{} vs {ideal}",
+                s.pdf
+            );
+        }
+        assert!(outside < 500, "1e{exponent}: {outside}");
+    }
+}
