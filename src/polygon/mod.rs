@@ -11,7 +11,9 @@ pub mod baselines;
 pub mod clip;
 #[rustfmt::skip]
 mod clip_generated;
+pub mod clipped_solid_angle;
 pub mod solid_angle;
 
 pub use clip::clip_to_upper_hemisphere;
+pub use clipped_solid_angle::ClippedSolidAnglePolygon;
 pub use solid_angle::SolidAnglePolygon;

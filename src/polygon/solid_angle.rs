@@ -79,7 +79,7 @@ impl Default for SolidAnglePolygon {
 /// while the result stays normal, so the polygon's shape is unchanged. For subnormal `m`
 /// (`E = 0`) the factor is `2^127`, still exact; `E` is at most 254 for finite values
 /// and the factor's exponent is kept at least 1 (a normal number).
-fn rescale(vertices: &[Vec3], out: &mut [Vec3; MAX_POLYGON_VERTICES]) -> Option<()> {
+pub(crate) fn rescale(vertices: &[Vec3], out: &mut [Vec3; MAX_POLYGON_VERTICES]) -> Option<()> {
     let mut largest = 0.0f32;
     for v in vertices {
         largest = largest.max(v.abs().max_element());
