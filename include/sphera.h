@@ -215,6 +215,68 @@ typedef struct SpheraFrame {
   SpheraVec3 normal;
 } SpheraFrame;
 
+/**
+ * Solid angle sampling warped by a bilinear density fitted to the cosine at the four
+ * corners of the primary square (Hart et al. 2020), an approximation of cosine-weighted
+ * sampling whose pdf is exact for the samples it draws. Directions at or below the
+ * horizon get "no sample" and pdf 0.
+ */
+typedef struct SpheraHartBilinearPolygon {
+  /**
+   * The solid angle sampler that the warp composes with.
+   */
+  struct SpheraSolidAnglePolygon solid_angle;
+  /**
+   * The warp density at the corners `(0, 0), (1, 0), (0, 1), (1, 1)` of the primary
+   * square `(u'_0, u'_1)`, normalised to mean 1 so that their bilinear interpolation
+   * is the density on the square.
+   */
+  float corners[4];
+  /**
+   * `1 / Ω` (0 when empty).
+   */
+  float inv_solid_angle;
+} SpheraHartBilinearPolygon;
+
+/**
+ * Solid angle sampling warped by a biquadratic density fitted to the cosine at 3×3
+ * points of the primary square (Hart et al. 2020), made non-negative by clamping its
+ * Bernstein control points: an approximation of cosine-weighted sampling whose pdf is
+ * exact for the samples it draws. Directions at or below the horizon get "no sample"
+ * and pdf 0.
+ */
+typedef struct SpheraHartBiquadraticPolygon {
+  /**
+   * The solid angle sampler that the warp composes with.
+   */
+  struct SpheraSolidAnglePolygon solid_angle;
+  /**
+   * Bernstein control points `c[i + 3 j]` (`i` along `u'_0`, `j` along `u'_1`), all
+   * non-negative, normalised to mean 1 so that `Σ c_ij B_i(x) B_j(y)` is the density
+   * on the square.
+   */
+  float controls[9];
+  /**
+   * Control points of the marginal density of `u'_0`: `Σ_j c[i + 3 j] / 3`.
+   */
+  float marginal[3];
+  /**
+   * `1 / Ω` (0 when empty).
+   */
+  float inv_solid_angle;
+} SpheraHartBiquadraticPolygon;
+
+/**
+ * A convex polygon clipped to the upper hemisphere and prepared for solid angle
+ * sampling.
+ */
+typedef struct SpheraClippedSolidAnglePolygon {
+  /**
+   * The solid angle sampler of the clipped polygon.
+   */
+  struct SpheraSolidAnglePolygon clipped;
+} SpheraClippedSolidAnglePolygon;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -488,6 +550,194 @@ struct SpheraVec3 sphera_frame_to_world(const struct SpheraFrame *frame, struct 
  * (otherwise the error-free products are emulated, which is slower but as accurate).
  */
 bool sphera_has_hardware_fma(void);
+
+/**
+ * Prepares the bilinear warp of Hart et al. 2020 for the convex polygon
+ * `vertices[0..count]` (positions relative to the shading point, not normalised, either
+ * winding): solid angle sampling whose primary square is warped by the bilinear
+ * density through the cosine at the directions of its four corners. It approximates
+ * cosine-weighted sampling (the pdf is exact for the samples drawn, but not
+ * proportional to the cosine). The polygon is not clipped: samples that land below the
+ * horizon are returned as "no sample" (pdf 0), and when the cosine is 0 at all four
+ * corners the warp is uniform (plain solid angle sampling).
+ *
+ * Returns `false` when `out` is null, when `vertices` is null, when `count` lies
+ * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
+ * when the polygon subtends no solid angle. Unless `out` is null, a `false` return
+ * writes the empty polygon into `*out`: its samples have pdf 0 and its `pdf` is 0,
+ * whatever `*out` held before.
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one `SpheraHartBilinearPolygon`;
+ * `vertices` must be null or point to `count` readable `SpheraVec3`s.
+ */
+bool sphera_hart_bilinear_polygon_prepare(struct SpheraHartBilinearPolygon *out,
+                                          const struct SpheraVec3 *vertices,
+                                          uint32_t count);
+
+/**
+ * Draws a direction with the bilinear warp from the random numbers `u0`, `u1` in
+ * [0, 1) (values outside are clamped by the library). The pdf is the warp's density
+ * divided by the solid angle, per steradian.
+ *
+ * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
+ * and when the direction lies at or below the horizon (z <= 0). `dir` is always a
+ * finite unit vector.
+ *
+ * # Safety
+ *
+ * `polygon` must be null or point to a `SpheraHartBilinearPolygon` written by
+ * `sphera_hart_bilinear_polygon_prepare`.
+ */
+struct SpheraSample sphera_hart_bilinear_polygon_sample(const struct SpheraHartBilinearPolygon *polygon,
+                                                        float u0,
+                                                        float u1);
+
+/**
+ * The density per steradian with which `sphera_hart_bilinear_polygon_sample` produces
+ * the direction `dir` (need not be normalised); 0 outside the polygon and at or below
+ * the horizon (z <= 0).
+ *
+ * Returns 0 when `polygon` is null or empty.
+ *
+ * # Safety
+ *
+ * `polygon` must be null or point to a `SpheraHartBilinearPolygon` written by
+ * `sphera_hart_bilinear_polygon_prepare`.
+ */
+float sphera_hart_bilinear_polygon_pdf(const struct SpheraHartBilinearPolygon *polygon,
+                                       struct SpheraVec3 dir);
+
+/**
+ * Prepares the biquadratic warp of Hart et al. 2020 for the convex polygon
+ * `vertices[0..count]` (positions relative to the shading point, not normalised, either
+ * winding): solid angle sampling whose primary square is warped by the biquadratic
+ * density through the cosine at the directions of its 3×3 grid points {0, 1/2, 1}²,
+ * written in Bernstein form with negative control points clamped to 0 so that it is
+ * non-negative. It approximates cosine-weighted sampling (the pdf is exact for the
+ * samples drawn, but not proportional to the cosine). The polygon is not clipped:
+ * samples that land below the horizon are returned as "no sample" (pdf 0), and when the
+ * cosine is 0 at all grid points the warp is uniform (plain solid angle sampling).
+ *
+ * Returns `false` when `out` is null, when `vertices` is null, when `count` lies
+ * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
+ * when the polygon subtends no solid angle. Unless `out` is null, a `false` return
+ * writes the empty polygon into `*out`: its samples have pdf 0 and its `pdf` is 0,
+ * whatever `*out` held before.
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one
+ * `SpheraHartBiquadraticPolygon`; `vertices` must be null or point to `count` readable
+ * `SpheraVec3`s.
+ */
+bool sphera_hart_biquadratic_polygon_prepare(struct SpheraHartBiquadraticPolygon *out,
+                                             const struct SpheraVec3 *vertices,
+                                             uint32_t count);
+
+/**
+ * Draws a direction with the biquadratic warp from the random numbers `u0`, `u1` in
+ * [0, 1) (values outside are clamped by the library). The pdf is the warp's density
+ * divided by the solid angle, per steradian.
+ *
+ * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
+ * and when the direction lies at or below the horizon (z <= 0). `dir` is always a
+ * finite unit vector.
+ *
+ * # Safety
+ *
+ * `polygon` must be null or point to a `SpheraHartBiquadraticPolygon` written by
+ * `sphera_hart_biquadratic_polygon_prepare`.
+ */
+struct SpheraSample sphera_hart_biquadratic_polygon_sample(const struct SpheraHartBiquadraticPolygon *polygon,
+                                                           float u0,
+                                                           float u1);
+
+/**
+ * The density per steradian with which `sphera_hart_biquadratic_polygon_sample`
+ * produces the direction `dir` (need not be normalised); 0 outside the polygon and at
+ * or below the horizon (z <= 0).
+ *
+ * Returns 0 when `polygon` is null or empty.
+ *
+ * # Safety
+ *
+ * `polygon` must be null or point to a `SpheraHartBiquadraticPolygon` written by
+ * `sphera_hart_biquadratic_polygon_prepare`.
+ */
+float sphera_hart_biquadratic_polygon_pdf(const struct SpheraHartBiquadraticPolygon *polygon,
+                                          struct SpheraVec3 dir);
+
+/**
+ * Prepares clipped solid angle sampling for the convex polygon `vertices[0..count]`
+ * (positions relative to the shading point, not normalised, either winding): the
+ * polygon is clipped to the upper hemisphere (z >= 0) and the part above the horizon
+ * is sampled uniformly in solid angle.
+ *
+ * Returns `false` when `out` is null, when `vertices` is null, when `count` lies
+ * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite,
+ * when nothing of the polygon lies above the horizon, when a polygon of
+ * `SPHERA_MAX_POLYGON_VERTICES` vertices needs clipping (the result could have one
+ * vertex more than the limit), or when the clipped polygon subtends no solid angle.
+ * Unless `out` is null, a `false` return writes the empty polygon into `*out`: its
+ * samples have pdf 0, its `pdf` is 0 and its solid angle is 0, whatever `*out` held
+ * before.
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one
+ * `SpheraClippedSolidAnglePolygon`; `vertices` must be null or point to `count`
+ * readable `SpheraVec3`s.
+ */
+bool sphera_clipped_solid_angle_polygon_prepare(struct SpheraClippedSolidAnglePolygon *out,
+                                                const struct SpheraVec3 *vertices,
+                                                uint32_t count);
+
+/**
+ * Draws a direction uniformly distributed in the solid angle of the part of `polygon`
+ * above the horizon from the random numbers `u0`, `u1` in [0, 1) (values outside are
+ * clamped by the library). The pdf of the sample is 1 / (clipped solid angle) per
+ * steradian, and the direction has z >= 0.
+ *
+ * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty.
+ * `dir` is always a finite unit vector.
+ *
+ * # Safety
+ *
+ * `polygon` must be null or point to a `SpheraClippedSolidAnglePolygon` written by
+ * `sphera_clipped_solid_angle_polygon_prepare`.
+ */
+struct SpheraSample sphera_clipped_solid_angle_polygon_sample(const struct SpheraClippedSolidAnglePolygon *polygon,
+                                                              float u0,
+                                                              float u1);
+
+/**
+ * The density per steradian with which `sphera_clipped_solid_angle_polygon_sample`
+ * produces the unit direction `dir`: 1 / (clipped solid angle) inside the part of the
+ * polygon above the horizon, 0 elsewhere.
+ *
+ * Returns 0 when `polygon` is null or empty.
+ *
+ * # Safety
+ *
+ * `polygon` must be null or point to a `SpheraClippedSolidAnglePolygon` written by
+ * `sphera_clipped_solid_angle_polygon_prepare`.
+ */
+float sphera_clipped_solid_angle_polygon_pdf(const struct SpheraClippedSolidAnglePolygon *polygon,
+                                             struct SpheraVec3 dir);
+
+/**
+ * The solid angle (in steradians) of the part of the polygon above the horizon.
+ *
+ * Returns 0 when `polygon` is null or empty.
+ *
+ * # Safety
+ *
+ * `polygon` must be null or point to a `SpheraClippedSolidAnglePolygon` written by
+ * `sphera_clipped_solid_angle_polygon_prepare`.
+ */
+float sphera_clipped_solid_angle_polygon_solid_angle(const struct SpheraClippedSolidAnglePolygon *polygon);
 
 #ifdef __cplusplus
 }  // extern "C"

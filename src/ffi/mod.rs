@@ -25,9 +25,12 @@ mod polygon;
 
 mod frame;
 
+mod warps;
+
 pub use frame::*;
 pub use polygon::*;
 pub use types::*;
+pub use warps::*;
 
 /// The precompiled `core` of hosted targets is built with unwinding, and its object
 /// file refers to `rust_eh_personality` (a `DW.ref.rust_eh_personality` data word), even

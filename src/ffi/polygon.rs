@@ -16,7 +16,7 @@ use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 /// As for the `prepare` functions: `out` null or writable, `vertices` null or pointing
 /// to `count` readable vertices.
 #[inline(always)]
-unsafe fn prepare<T: Copy>(
+pub(super) unsafe fn prepare<T: Copy>(
     out: *mut T,
     vertices: *const SpheraVec3,
     count: u32,

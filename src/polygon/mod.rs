@@ -12,10 +12,12 @@ pub mod clip;
 mod ellipse;
 #[rustfmt::skip]
 mod clip_generated;
+pub mod clipped_solid_angle;
 pub mod projected;
 pub mod small_projected;
 pub mod solid_angle;
 
 pub use clip::clip_to_upper_hemisphere;
+pub use clipped_solid_angle::ClippedSolidAnglePolygon;
 pub use projected::ProjectedSolidAnglePolygon;
 pub use solid_angle::SolidAnglePolygon;

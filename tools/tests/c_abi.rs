@@ -10,11 +10,12 @@ use std::sync::OnceLock;
 use sphera_tools::repository_root;
 
 /// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
-const C_TESTS: [&str; 4] = [
+const C_TESTS: [&str; 5] = [
     "test_polygon_clip",
     "test_solid_angle_polygon",
     "test_baselines",
     "test_frame",
+    "test_warps",
 ];
 
 const C_FLAGS: [&str; 5] = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"];
@@ -167,6 +168,11 @@ fn test_frame() {
 }
 
 #[test]
+fn test_warps() {
+    run_c_test("test_warps");
+}
+
+#[test]
 fn every_c_test_file_has_a_test() {
     let mut found: Vec<String> = std::fs::read_dir(repository_root().join("ffi-tests"))
         .expect("read ffi-tests/")
@@ -292,8 +298,10 @@ fn struct_layouts_match_rust() {
 
     use sphera::ffi::{SpheraSample, SpheraVec3};
     use sphera::math::Frame;
-    use sphera::polygon::SolidAnglePolygon;
-    use sphera::polygon::baselines::{ArvoPolygon, TurkPolygon};
+    use sphera::polygon::baselines::{
+        ArvoPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
+    };
+    use sphera::polygon::{ClippedSolidAnglePolygon, SolidAnglePolygon};
 
     let expected: Vec<(&str, usize)> = vec![
         ("sizeof(SpheraVec3)", size_of::<SpheraVec3>()),
@@ -320,6 +328,30 @@ fn struct_layouts_match_rust() {
         ("alignof(SpheraTurkPolygon)", align_of::<TurkPolygon>()),
         ("sizeof(SpheraArvoPolygon)", size_of::<ArvoPolygon>()),
         ("alignof(SpheraArvoPolygon)", align_of::<ArvoPolygon>()),
+        (
+            "sizeof(SpheraHartBilinearPolygon)",
+            size_of::<HartBilinearPolygon>(),
+        ),
+        (
+            "alignof(SpheraHartBilinearPolygon)",
+            align_of::<HartBilinearPolygon>(),
+        ),
+        (
+            "sizeof(SpheraHartBiquadraticPolygon)",
+            size_of::<HartBiquadraticPolygon>(),
+        ),
+        (
+            "alignof(SpheraHartBiquadraticPolygon)",
+            align_of::<HartBiquadraticPolygon>(),
+        ),
+        (
+            "sizeof(SpheraClippedSolidAnglePolygon)",
+            size_of::<ClippedSolidAnglePolygon>(),
+        ),
+        (
+            "alignof(SpheraClippedSolidAnglePolygon)",
+            align_of::<ClippedSolidAnglePolygon>(),
+        ),
     ];
     let mut source =
         String::from("#include <stddef.h>\n#include <stdio.h>\n#include \"sphera.h\"\n");
@@ -330,6 +362,9 @@ fn struct_layouts_match_rust() {
         "SpheraSolidAnglePolygon",
         "SpheraTurkPolygon",
         "SpheraArvoPolygon",
+        "SpheraHartBilinearPolygon",
+        "SpheraHartBiquadraticPolygon",
+        "SpheraClippedSolidAnglePolygon",
     ] {
         source += &format!("struct align_{name} {{ char c; {name} t; }};\n");
     }
