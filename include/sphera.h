@@ -277,6 +277,98 @@ typedef struct SpheraClippedSolidAnglePolygon {
   struct SpheraSolidAnglePolygon clipped;
 } SpheraClippedSolidAnglePolygon;
 
+/**
+ * A small convex polygon prepared for cosine-weighted sampling by warped solid angle
+ * sampling.
+ */
+typedef struct SpheraSmallPolygonCosineSampler {
+  struct SpheraSolidAnglePolygon fan;
+  /**
+   * `Ω_k z̄_k` per fan triangle.
+   */
+  float weight[(SPHERA_MAX_POLYGON_VERTICES - 2)];
+  /**
+   * Sum of the weights of the triangles before each triangle.
+   */
+  float weight_start[(SPHERA_MAX_POLYGON_VERTICES - 2)];
+  /**
+   * `Φ = ∫ ω_z dω` by Gauss quadrature (relative error `O(s⁴)`; 0 when empty).
+   */
+  float projected_solid_angle;
+  /**
+   * `Φ̃ = Σ Ω_k z̄_k`, the normalisation of `ℓ` (0 when empty).
+   */
+  float linear_integral;
+  /**
+   * `1 / Φ̃` (0 when empty).
+   */
+  float density;
+  /**
+   * Triangles up to the last one with non-zero weight (0 when empty).
+   */
+  uint32_t selectable_triangles;
+} SpheraSmallPolygonCosineSampler;
+
+/**
+ * A convex polygon prepared for projected solid angle sampling: the first part of
+ * Algorithm 4 (ellipses paired with sectors, sector areas).
+ */
+typedef struct SpheraProjectedSolidAnglePolygon {
+  /**
+   * Unit direction of the clockwise boundary `s0` of each sector.
+   */
+  float sector_begin[SPHERA_MAX_POLYGON_VERTICES][2];
+  /**
+   * Unit direction of the counter-clockwise boundary `s1` of each sector.
+   */
+  float sector_end[SPHERA_MAX_POLYGON_VERTICES][2];
+  /**
+   * The inner ellipse of each sector (unused in the central case).
+   */
+  float inner[SPHERA_MAX_POLYGON_VERTICES][2];
+  /**
+   * The outer ellipse of each sector.
+   */
+  float outer[SPHERA_MAX_POLYGON_VERTICES][2];
+  /**
+   * Projected solid angle (area in the disk) of each sector.
+   */
+  float sector_area[SPHERA_MAX_POLYGON_VERTICES];
+  /**
+   * Projected solid angle of the sectors before each sector.
+   */
+  float sector_start[SPHERA_MAX_POLYGON_VERTICES];
+  /**
+   * Inward edge plane normals of the clipped polygon, for the inside test of
+   * [`pdf`](Self::pdf) (zero in unused slots).
+   */
+  SpheraVec3 edge_normals[SPHERA_MAX_POLYGON_VERTICES];
+  /**
+   * Total projected solid angle `Φ = ∫ cos θ dω` (0 when empty).
+   */
+  float projected_solid_angle;
+  /**
+   * `1 / Φ` (0 when empty).
+   */
+  float density;
+  /**
+   * Sectors up to the last one with non-zero area (0 when empty).
+   */
+  uint32_t selectable_sectors;
+  /**
+   * 1 when the zenith lies inside the polygon (the central case), else 0.
+   */
+  uint32_t central;
+  /**
+   * 1 when the polygon is smaller than [`SMALL_EXTENT`] and `small` samples it.
+   */
+  uint32_t is_small;
+  /**
+   * The exact alternative for small polygons (empty otherwise).
+   */
+  struct SpheraSmallPolygonCosineSampler small;
+} SpheraProjectedSolidAnglePolygon;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -738,6 +830,110 @@ float sphera_clipped_solid_angle_polygon_pdf(const struct SpheraClippedSolidAngl
  * `sphera_clipped_solid_angle_polygon_prepare`.
  */
 float sphera_clipped_solid_angle_polygon_solid_angle(const struct SpheraClippedSolidAnglePolygon *polygon);
+
+/**
+ * Prepares projected solid angle sampling (Peters 2021) for the convex polygon
+ * `vertices[0..count]`: positions relative to the shading point in the local frame
+ * (z = normal), not normalised, in either winding. The part below the horizon is
+ * clipped away. Polygons smaller than 1e-2 rad across, and nearly edge-on slivers,
+ * are sampled by warped solid angle sampling instead (exact for its own pdf, which
+ * deviates from cos θ / Φ by less than 1e-4 relative).
+ *
+ * Returns `false` when `out` is null, when `vertices` is null, when `count` lies
+ * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite,
+ * when `count` is `SPHERA_MAX_POLYGON_VERTICES` and the polygon crosses the horizon (a
+ * 9th vertex would be needed), when nothing of the polygon lies above the horizon, and
+ * when its projected solid angle is zero (for example when the shading point lies in
+ * the polygon's plane). Unless `out` is null, a `false` return writes the empty polygon
+ * into `*out`: its samples have pdf 0, its `pdf` is 0 and its projected solid angle is
+ * 0, whatever `*out` held before.
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one
+ * `SpheraProjectedSolidAnglePolygon`; `vertices` must be null or point to `count`
+ * readable `SpheraVec3`s.
+ */
+bool sphera_projected_polygon_prepare(struct SpheraProjectedSolidAnglePolygon *out,
+                                      const struct SpheraVec3 *vertices,
+                                      uint32_t count);
+
+/**
+ * `sphera_projected_polygon_prepare` for the biased variant: the sector areas use a
+ * fast `atan` (relative error below 1.4e-4 per sector, amplified where inner and outer
+ * sector areas nearly cancel), so the projected solid angle and with it every pdf is
+ * off by about that much. **Biased.** Same contract as
+ * `sphera_projected_polygon_prepare`. Use with `sphera_projected_polygon_sample_fast`.
+ *
+ * # Safety
+ *
+ * As for `sphera_projected_polygon_prepare`.
+ */
+bool sphera_projected_polygon_prepare_fast(struct SpheraProjectedSolidAnglePolygon *out,
+                                           const struct SpheraVec3 *vertices,
+                                           uint32_t count);
+
+/**
+ * Draws a direction with density cos θ / Φ inside the polygon from the random numbers
+ * `u0`, `u1` in [0, 1) (values outside, and NaN, are clamped by the library). The pdf
+ * is per steradian: `dir.z / Φ` (for polygons handled by the small-polygon sampler,
+ * within 1e-4 relative of it).
+ *
+ * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty. A
+ * direction exactly on the horizon (possible only for polygons that touch it) has
+ * pdf 0. `dir` is always a finite unit vector.
+ *
+ * # Safety
+ *
+ * `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
+ * `sphera_projected_polygon_prepare` or `sphera_projected_polygon_prepare_fast`.
+ */
+struct SpheraSample sphera_projected_polygon_sample(const struct SpheraProjectedSolidAnglePolygon *polygon,
+                                                    float u0,
+                                                    float u1);
+
+/**
+ * The biased variant of `sphera_projected_polygon_sample`: no refinement iterations
+ * (the azimuth is the closed-form initial guess of Peters' Proposition 3, within a few
+ * hundredths of a radian of the exact one). **Biased**: the returned pdf is that of the
+ * exact distribution, `dir.z / Φ`, not the density with which this function actually
+ * places its samples; the bias is the distance between the two. Same contract as
+ * `sphera_projected_polygon_sample`.
+ *
+ * # Safety
+ *
+ * As for `sphera_projected_polygon_sample`.
+ */
+struct SpheraSample sphera_projected_polygon_sample_fast(const struct SpheraProjectedSolidAnglePolygon *polygon,
+                                                         float u0,
+                                                         float u1);
+
+/**
+ * The density per steradian with which `sphera_projected_polygon_sample` produces the
+ * direction `dir` (need not be normalised): `dir.z / Φ` inside the polygon, 0 outside
+ * it, at or below the horizon, and for a zero or non-finite `dir`.
+ *
+ * Returns 0 when `polygon` is null or empty.
+ *
+ * # Safety
+ *
+ * `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
+ * a `sphera_projected_polygon_prepare*` function.
+ */
+float sphera_projected_polygon_pdf(const struct SpheraProjectedSolidAnglePolygon *polygon,
+                                   struct SpheraVec3 dir);
+
+/**
+ * The projected solid angle Φ = ∫ cos θ dω of the polygon's part above the horizon, in
+ * steradians (the irradiance from a unit-radiance polygon). Returns 0 when `polygon`
+ * is null or empty.
+ *
+ * # Safety
+ *
+ * `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
+ * a `sphera_projected_polygon_prepare*` function.
+ */
+float sphera_projected_polygon_projected_solid_angle(const struct SpheraProjectedSolidAnglePolygon *polygon);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -27,8 +27,11 @@ mod frame;
 
 mod warps;
 
+mod projected;
+
 pub use frame::*;
 pub use polygon::*;
+pub use projected::*;
 pub use types::*;
 pub use warps::*;
 

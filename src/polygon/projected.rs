@@ -47,13 +47,13 @@ const ITERATION_MARGIN: f32 = 1e-5;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ProjectedSolidAnglePolygon {
     /// Unit direction of the clockwise boundary `s0` of each sector.
-    sector_begin: [Vec2; MAX_POLYGON_VERTICES],
+    sector_begin: [[f32; 2]; MAX_POLYGON_VERTICES],
     /// Unit direction of the counter-clockwise boundary `s1` of each sector.
-    sector_end: [Vec2; MAX_POLYGON_VERTICES],
+    sector_end: [[f32; 2]; MAX_POLYGON_VERTICES],
     /// The inner ellipse of each sector (unused in the central case).
-    inner: [Vec2; MAX_POLYGON_VERTICES],
+    inner: [[f32; 2]; MAX_POLYGON_VERTICES],
     /// The outer ellipse of each sector.
-    outer: [Vec2; MAX_POLYGON_VERTICES],
+    outer: [[f32; 2]; MAX_POLYGON_VERTICES],
     /// Projected solid angle (area in the disk) of each sector.
     sector_area: [f32; MAX_POLYGON_VERTICES],
     /// Projected solid angle of the sectors before each sector.

@@ -10,8 +10,9 @@ use std::sync::OnceLock;
 use sphera_tools::repository_root;
 
 /// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
-const C_TESTS: [&str; 5] = [
+const C_TESTS: [&str; 6] = [
     "test_polygon_clip",
+    "test_projected_polygon",
     "test_solid_angle_polygon",
     "test_baselines",
     "test_frame",
@@ -168,6 +169,11 @@ fn test_frame() {
 }
 
 #[test]
+fn test_projected_polygon() {
+    run_c_test("test_projected_polygon");
+}
+
+#[test]
 fn test_warps() {
     run_c_test("test_warps");
 }
@@ -301,7 +307,9 @@ fn struct_layouts_match_rust() {
     use sphera::polygon::baselines::{
         ArvoPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
     };
-    use sphera::polygon::{ClippedSolidAnglePolygon, SolidAnglePolygon};
+    use sphera::polygon::{
+        ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
+    };
 
     let expected: Vec<(&str, usize)> = vec![
         ("sizeof(SpheraVec3)", size_of::<SpheraVec3>()),
@@ -352,6 +360,14 @@ fn struct_layouts_match_rust() {
             "alignof(SpheraClippedSolidAnglePolygon)",
             align_of::<ClippedSolidAnglePolygon>(),
         ),
+        (
+            "sizeof(SpheraProjectedSolidAnglePolygon)",
+            size_of::<ProjectedSolidAnglePolygon>(),
+        ),
+        (
+            "alignof(SpheraProjectedSolidAnglePolygon)",
+            align_of::<ProjectedSolidAnglePolygon>(),
+        ),
     ];
     let mut source =
         String::from("#include <stddef.h>\n#include <stdio.h>\n#include \"sphera.h\"\n");
@@ -365,6 +381,7 @@ fn struct_layouts_match_rust() {
         "SpheraHartBilinearPolygon",
         "SpheraHartBiquadraticPolygon",
         "SpheraClippedSolidAnglePolygon",
+        "SpheraProjectedSolidAnglePolygon",
     ] {
         source += &format!("struct align_{name} {{ char c; {name} t; }};\n");
     }

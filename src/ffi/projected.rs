@@ -1,0 +1,163 @@
+//! Projected solid angle sampling of polygons (Peters 2021, Algorithms 1–4): directions
+//! distributed in proportion to cos θ inside a polygonal light.
+//!
+//! Vertices are given relative to the shading point in the local frame (z = normal),
+//! convex, in either winding, 3 to `SPHERA_MAX_POLYGON_VERTICES` of them. The part
+//! below the horizon is clipped away internally.
+
+use super::polygon::prepare;
+use super::types::{SpheraSample, SpheraVec3, with_ref};
+use crate::Sample;
+use crate::polygon::ProjectedSolidAnglePolygon;
+
+/// Prepares projected solid angle sampling (Peters 2021) for the convex polygon
+/// `vertices[0..count]`: positions relative to the shading point in the local frame
+/// (z = normal), not normalised, in either winding. The part below the horizon is
+/// clipped away. Polygons smaller than 1e-2 rad across, and nearly edge-on slivers,
+/// are sampled by warped solid angle sampling instead (exact for its own pdf, which
+/// deviates from cos θ / Φ by less than 1e-4 relative).
+///
+/// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
+/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite,
+/// when `count` is `SPHERA_MAX_POLYGON_VERTICES` and the polygon crosses the horizon (a
+/// 9th vertex would be needed), when nothing of the polygon lies above the horizon, and
+/// when its projected solid angle is zero (for example when the shading point lies in
+/// the polygon's plane). Unless `out` is null, a `false` return writes the empty polygon
+/// into `*out`: its samples have pdf 0, its `pdf` is 0 and its projected solid angle is
+/// 0, whatever `*out` held before.
+///
+/// # Safety
+///
+/// `out` must be null or point to writable memory for one
+/// `SpheraProjectedSolidAnglePolygon`; `vertices` must be null or point to `count`
+/// readable `SpheraVec3`s.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_projected_polygon_prepare(
+    out: *mut ProjectedSolidAnglePolygon,
+    vertices: *const SpheraVec3,
+    count: u32,
+) -> bool {
+    // SAFETY: forwarded from the caller.
+    unsafe {
+        prepare(
+            out,
+            vertices,
+            count,
+            ProjectedSolidAnglePolygon::new,
+            ProjectedSolidAnglePolygon::EMPTY,
+        )
+    }
+}
+
+/// `sphera_projected_polygon_prepare` for the biased variant: the sector areas use a
+/// fast `atan` (relative error below 1.4e-4 per sector, amplified where inner and outer
+/// sector areas nearly cancel), so the projected solid angle and with it every pdf is
+/// off by about that much. **Biased.** Same contract as
+/// `sphera_projected_polygon_prepare`. Use with `sphera_projected_polygon_sample_fast`.
+///
+/// # Safety
+///
+/// As for `sphera_projected_polygon_prepare`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_projected_polygon_prepare_fast(
+    out: *mut ProjectedSolidAnglePolygon,
+    vertices: *const SpheraVec3,
+    count: u32,
+) -> bool {
+    // SAFETY: forwarded from the caller.
+    unsafe {
+        prepare(
+            out,
+            vertices,
+            count,
+            ProjectedSolidAnglePolygon::new_fast_biased,
+            ProjectedSolidAnglePolygon::EMPTY,
+        )
+    }
+}
+
+/// Draws a direction with density cos θ / Φ inside the polygon from the random numbers
+/// `u0`, `u1` in [0, 1) (values outside, and NaN, are clamped by the library). The pdf
+/// is per steradian: `dir.z / Φ` (for polygons handled by the small-polygon sampler,
+/// within 1e-4 relative of it).
+///
+/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty. A
+/// direction exactly on the horizon (possible only for polygons that touch it) has
+/// pdf 0. `dir` is always a finite unit vector.
+///
+/// # Safety
+///
+/// `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
+/// `sphera_projected_polygon_prepare` or `sphera_projected_polygon_prepare_fast`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_projected_polygon_sample(
+    polygon: *const ProjectedSolidAnglePolygon,
+    u0: f32,
+    u1: f32,
+) -> SpheraSample {
+    // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
+    unsafe {
+        with_ref(polygon, Sample::NONE.into(), |polygon| {
+            polygon.sample([u0, u1]).into()
+        })
+    }
+}
+
+/// The biased variant of `sphera_projected_polygon_sample`: no refinement iterations
+/// (the azimuth is the closed-form initial guess of Peters' Proposition 3, within a few
+/// hundredths of a radian of the exact one). **Biased**: the returned pdf is that of the
+/// exact distribution, `dir.z / Φ`, not the density with which this function actually
+/// places its samples; the bias is the distance between the two. Same contract as
+/// `sphera_projected_polygon_sample`.
+///
+/// # Safety
+///
+/// As for `sphera_projected_polygon_sample`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_projected_polygon_sample_fast(
+    polygon: *const ProjectedSolidAnglePolygon,
+    u0: f32,
+    u1: f32,
+) -> SpheraSample {
+    // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
+    unsafe {
+        with_ref(polygon, Sample::NONE.into(), |polygon| {
+            polygon.sample_fast([u0, u1]).into()
+        })
+    }
+}
+
+/// The density per steradian with which `sphera_projected_polygon_sample` produces the
+/// direction `dir` (need not be normalised): `dir.z / Φ` inside the polygon, 0 outside
+/// it, at or below the horizon, and for a zero or non-finite `dir`.
+///
+/// Returns 0 when `polygon` is null or empty.
+///
+/// # Safety
+///
+/// `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
+/// a `sphera_projected_polygon_prepare*` function.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_projected_polygon_pdf(
+    polygon: *const ProjectedSolidAnglePolygon,
+    dir: SpheraVec3,
+) -> f32 {
+    // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
+    unsafe { with_ref(polygon, 0.0, |polygon| polygon.pdf(dir.into())) }
+}
+
+/// The projected solid angle Φ = ∫ cos θ dω of the polygon's part above the horizon, in
+/// steradians (the irradiance from a unit-radiance polygon). Returns 0 when `polygon`
+/// is null or empty.
+///
+/// # Safety
+///
+/// `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
+/// a `sphera_projected_polygon_prepare*` function.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_projected_polygon_projected_solid_angle(
+    polygon: *const ProjectedSolidAnglePolygon,
+) -> f32 {
+    // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
+    unsafe { with_ref(polygon, 0.0, |polygon| polygon.projected_solid_angle()) }
+}
