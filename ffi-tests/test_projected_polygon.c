@@ -1,4 +1,5 @@
-/* C ABI tests of projected solid angle sampling (sphera_projected_polygon_*). */
+/* C ABI tests of projected solid angle sampling (sphera_projected_polygon_*) and of
+ * Arvo's method (sphera_arvo_projected_polygon_*). */
 #include <string.h>
 
 #include "check.h"
@@ -106,6 +107,35 @@ static void check_polygon(const char *name, const SpheraVec3 *v, int n, const Sp
   }
 }
 
+/* Arvo's method: the same distribution and Φ as ours. */
+static void check_arvo(const char *name, const SpheraVec3 *v, int n, const SpheraVec3 *above, int n_above) {
+  SpheraArvoProjectedPolygon arvo;
+  double exact = projected_solid_angle(above, n_above), phi;
+  float u[U_COUNT];
+  int i, j, bad = 0;
+  printf("arvo: %s\n", name);
+  fill_u_values(u);
+  CHECK(sphera_arvo_projected_polygon_prepare(&arvo, v, (uint32_t)n));
+  phi = sphera_arvo_projected_polygon_projected_solid_angle(&arvo);
+  CHECK_REL(phi, exact, 1e-4);
+  for (i = 0; i < U_COUNT; i++) {
+    for (j = 0; j < U_COUNT; j++) {
+      SpheraSample s = sphera_arvo_projected_polygon_sample(&arvo, u[i], u[j]);
+      if (!vec3_is_finite(s.dir) || !(fabs(s.pdf - s.dir.z / phi) <= 1e-4 * s.dir.z / phi) ||
+          !ray_hits_polygon(above, n_above, s.dir, 1e-5, NULL))
+        bad++;
+      if (u_is_interior(i) && u_is_interior(j) &&
+          !(fabs(sphera_arvo_projected_polygon_pdf(&arvo, s.dir) - s.pdf) <= 1e-4 * s.pdf))
+        bad++;
+    }
+  }
+  CHECK(bad == 0);
+  CHECK(!sphera_arvo_projected_polygon_prepare(&arvo, BELOW, 3));
+  CHECK(sphera_arvo_projected_polygon_sample(&arvo, 0.5f, 0.5f).pdf == 0.0f);
+  CHECK(sphera_arvo_projected_polygon_pdf(&arvo, vec3(0.0f, 0.0f, 1.0f)) == 0.0f);
+  CHECK(sphera_arvo_projected_polygon_projected_solid_angle(&arvo) == 0.0f);
+}
+
 static void check_rejected(const char *name, const SpheraVec3 *v, uint32_t n) {
   SpheraProjectedSolidAnglePolygon polygon;
   printf("rejected: %s\n", name);
@@ -132,6 +162,13 @@ int main(void) {
   check_polygon("edge on a great circle through the zenith", ZENITH_EDGE, 4, ZENITH_EDGE, 4, 1e-5);
   /* f32 directions are 6e-8 apart: 1e-2 of this triangle's edges. */
   check_polygon("tiny triangle", TINY, 3, TINY, 3, 1e-2);
+  check_arvo("quad around the zenith", QUAD, 4, QUAD, 4);
+  check_arvo("heptagon", HEPTAGON, 7, HEPTAGON, 7);
+  check_arvo("wall crossing the horizon", CROSSING, 4, CROSSING_CLIPPED, 4);
+  CHECK(!sphera_arvo_projected_polygon_prepare(NULL, QUAD, 4));
+  CHECK(sphera_arvo_projected_polygon_sample(NULL, 0.5f, 0.5f).pdf == 0.0f);
+  CHECK(sphera_arvo_projected_polygon_pdf(NULL, vec3(0.0f, 0.0f, 1.0f)) == 0.0f);
+  CHECK(sphera_arvo_projected_polygon_projected_solid_angle(NULL) == 0.0f);
   check_rejected("below the horizon", BELOW, 3);
   check_rejected("shading point in the plane", IN_PLANE, 4);
   check_rejected("8 vertices crossing the horizon", EIGHT_CROSSING, 8);

@@ -369,6 +369,17 @@ typedef struct SpheraProjectedSolidAnglePolygon {
   struct SpheraSmallPolygonCosineSampler small;
 } SpheraProjectedSolidAnglePolygon;
 
+/**
+ * A convex polygon prepared for Arvo's projected solid angle sampling.
+ */
+typedef struct SpheraArvoProjectedPolygon {
+  struct SpheraProjectedSolidAnglePolygon sectors;
+  /**
+   * The angle of each sector in radians.
+   */
+  float sector_angle[SPHERA_MAX_POLYGON_VERTICES];
+} SpheraArvoProjectedPolygon;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -934,6 +945,58 @@ float sphera_projected_polygon_pdf(const struct SpheraProjectedSolidAnglePolygon
  * a `sphera_projected_polygon_prepare*` function.
  */
 float sphera_projected_polygon_projected_solid_angle(const struct SpheraProjectedSolidAnglePolygon *polygon);
+
+/**
+ * Prepares Arvo's projected solid angle sampling (the baseline of Peters 2021: the same
+ * sectors, with the azimuth found by Newton's method on the sector's area function) for
+ * the convex polygon `vertices[0..count]`. Same input and contract as
+ * `sphera_projected_polygon_prepare`, without the small-polygon alternative.
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one `SpheraArvoProjectedPolygon`;
+ * `vertices` must be null or point to `count` readable `SpheraVec3`s.
+ */
+bool sphera_arvo_projected_polygon_prepare(struct SpheraArvoProjectedPolygon *out,
+                                           const struct SpheraVec3 *vertices,
+                                           uint32_t count);
+
+/**
+ * Draws a direction with density cos θ / Φ by Arvo's method from `u0`, `u1` in [0, 1)
+ * (clamped by the library); the pdf is `dir.z / Φ`. Returns
+ * `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or empty. `dir` is always a
+ * finite unit vector.
+ *
+ * # Safety
+ *
+ * `polygon` must be null or point to a `SpheraArvoProjectedPolygon` written by
+ * `sphera_arvo_projected_polygon_prepare`.
+ */
+struct SpheraSample sphera_arvo_projected_polygon_sample(const struct SpheraArvoProjectedPolygon *polygon,
+                                                         float u0,
+                                                         float u1);
+
+/**
+ * `dir.z / Φ` inside the polygon and above the horizon, 0 otherwise (and 0 when
+ * `polygon` is null or empty, or `dir` is zero or not finite).
+ *
+ * # Safety
+ *
+ * `polygon` must be null or point to a `SpheraArvoProjectedPolygon` written by
+ * `sphera_arvo_projected_polygon_prepare`.
+ */
+float sphera_arvo_projected_polygon_pdf(const struct SpheraArvoProjectedPolygon *polygon,
+                                        struct SpheraVec3 dir);
+
+/**
+ * The projected solid angle Φ in steradians (0 when `polygon` is null or empty).
+ *
+ * # Safety
+ *
+ * `polygon` must be null or point to a `SpheraArvoProjectedPolygon` written by
+ * `sphera_arvo_projected_polygon_prepare`.
+ */
+float sphera_arvo_projected_polygon_projected_solid_angle(const struct SpheraArvoProjectedPolygon *polygon);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -47,28 +47,28 @@ const ITERATION_MARGIN: f32 = 1e-5;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ProjectedSolidAnglePolygon {
     /// Unit direction of the clockwise boundary `s0` of each sector.
-    sector_begin: [[f32; 2]; MAX_POLYGON_VERTICES],
+    pub(crate) sector_begin: [[f32; 2]; MAX_POLYGON_VERTICES],
     /// Unit direction of the counter-clockwise boundary `s1` of each sector.
-    sector_end: [[f32; 2]; MAX_POLYGON_VERTICES],
+    pub(crate) sector_end: [[f32; 2]; MAX_POLYGON_VERTICES],
     /// The inner ellipse of each sector (unused in the central case).
-    inner: [[f32; 2]; MAX_POLYGON_VERTICES],
+    pub(crate) inner: [[f32; 2]; MAX_POLYGON_VERTICES],
     /// The outer ellipse of each sector.
-    outer: [[f32; 2]; MAX_POLYGON_VERTICES],
+    pub(crate) outer: [[f32; 2]; MAX_POLYGON_VERTICES],
     /// Projected solid angle (area in the disk) of each sector.
-    sector_area: [f32; MAX_POLYGON_VERTICES],
+    pub(crate) sector_area: [f32; MAX_POLYGON_VERTICES],
     /// Projected solid angle of the sectors before each sector.
-    sector_start: [f32; MAX_POLYGON_VERTICES],
+    pub(crate) sector_start: [f32; MAX_POLYGON_VERTICES],
     /// Inward edge plane normals of the clipped polygon, for the inside test of
     /// [`pdf`](Self::pdf) (zero in unused slots).
     edge_normals: [Vec3; MAX_POLYGON_VERTICES],
     /// Total projected solid angle `Φ = ∫ cos θ dω` (0 when empty).
-    projected_solid_angle: f32,
+    pub(crate) projected_solid_angle: f32,
     /// `1 / Φ` (0 when empty).
-    density: f32,
+    pub(crate) density: f32,
     /// Sectors up to the last one with non-zero area (0 when empty).
-    selectable_sectors: u32,
+    pub(crate) selectable_sectors: u32,
     /// 1 when the zenith lies inside the polygon (the central case), else 0.
-    central: u32,
+    pub(crate) central: u32,
     /// 1 when the polygon is smaller than [`SMALL_EXTENT`] and `small` samples it.
     is_small: u32,
     /// The exact alternative for small polygons (empty otherwise).
@@ -116,7 +116,7 @@ impl ProjectedSolidAnglePolygon {
     /// horizon, and a zero projected solid angle (for example when the shading point lies
     /// in the polygon's plane).
     pub fn new(vertices: &[Vec3]) -> Option<Self> {
-        Self::prepare(vertices, AreaPrecision::Exact)
+        Self::prepare(vertices, AreaPrecision::Exact, true)
     }
 
     /// [`new`](Self::new) with a fast `atan` for the sector areas (relative error below
@@ -124,10 +124,16 @@ impl ProjectedSolidAnglePolygon {
     /// **Biased**: the projected solid angle, and with it the pdf, is off by up to 1.4e-4
     /// relative.
     pub fn new_fast_biased(vertices: &[Vec3]) -> Option<Self> {
-        Self::prepare(vertices, AreaPrecision::Fast)
+        Self::prepare(vertices, AreaPrecision::Fast, true)
     }
 
-    fn prepare(vertices: &[Vec3], precision: AreaPrecision) -> Option<Self> {
+    /// The sectors of Algorithm 4 without the switch to the small-polygon sampler, for
+    /// the baseline of Arvo that shares them.
+    pub(crate) fn new_sectors_only(vertices: &[Vec3]) -> Option<Self> {
+        Self::prepare(vertices, AreaPrecision::Exact, false)
+    }
+
+    fn prepare(vertices: &[Vec3], precision: AreaPrecision, allow_small: bool) -> Option<Self> {
         let count = vertices.len();
         if !(3..=MAX_POLYGON_VERTICES).contains(&count) {
             return None;
@@ -172,7 +178,7 @@ impl ProjectedSolidAnglePolygon {
             polygon.small = small;
             Some(polygon)
         };
-        if extent2 < SMALL_EXTENT * SMALL_EXTENT {
+        if allow_small && extent2 < SMALL_EXTENT * SMALL_EXTENT {
             return switch_to_small(Self::EMPTY);
         }
         // Algorithm 1 per edge; edge j runs from vertex j to vertex j + 1.
@@ -278,7 +284,7 @@ impl ProjectedSolidAnglePolygon {
         // 3e-7 × outer_sum / Φ. The small-polygon sampler deviates from the cosine by
         // 0.2 extent² (and is exact for its own pdf); switch when that is smaller, as long
         // as it stays within the 1e-4 that the pdf contract allows.
-        if 3e-7 * outer_sum > 0.2 * extent2 * total && extent2 < SLIVER_EXTENT2 {
+        if allow_small && 3e-7 * outer_sum > 0.2 * extent2 * total && extent2 < SLIVER_EXTENT2 {
             return switch_to_small(polygon);
         }
         polygon.projected_solid_angle = total;
@@ -532,6 +538,15 @@ fn sample_sector_between_ellipses(
         w = towards(solve_homogeneous_quadratic(txx, txy_plus_tyx, tyy), sh);
     }
     // Uniform in area along the ray: r² uniform between the two ellipses.
+    point_between_ellipses(w, xi1, ui, uo)
+}
+
+/// The point along the direction `w` at relative radius² `xi1` between the inner
+/// ellipse `ui` and the outer ellipse `uo` (uniform in area along the ray), and its
+/// `ω_z² = 1 - |p|²`, computed as `(1 - ξ1) (u_i·w)² / wᵀC_iw + ξ1 (u_o·w)² / wᵀC_ow`
+/// without the cancellation of `1 - |p|²` near the rim of the disk.
+#[inline(always)]
+pub(crate) fn point_between_ellipses(w: Vec2, xi1: f32, ui: Vec2, uo: Vec2) -> (Vec2, f32) {
     let length2 = dot2(w, w);
     let (uiw, uow) = (dot2(ui, w), dot2(uo, w));
     let (qi, qo) = (length2 + uiw * uiw, length2 + uow * uow);

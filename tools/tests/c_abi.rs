@@ -305,7 +305,7 @@ fn struct_layouts_match_rust() {
     use sphera::ffi::{SpheraSample, SpheraVec3};
     use sphera::math::Frame;
     use sphera::polygon::baselines::{
-        ArvoPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
+        ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
     };
     use sphera::polygon::{
         ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
@@ -368,6 +368,14 @@ fn struct_layouts_match_rust() {
             "alignof(SpheraProjectedSolidAnglePolygon)",
             align_of::<ProjectedSolidAnglePolygon>(),
         ),
+        (
+            "sizeof(SpheraArvoProjectedPolygon)",
+            size_of::<ArvoProjectedPolygon>(),
+        ),
+        (
+            "alignof(SpheraArvoProjectedPolygon)",
+            align_of::<ArvoProjectedPolygon>(),
+        ),
     ];
     let mut source =
         String::from("#include <stddef.h>\n#include <stdio.h>\n#include \"sphera.h\"\n");
@@ -382,6 +390,7 @@ fn struct_layouts_match_rust() {
         "SpheraHartBiquadraticPolygon",
         "SpheraClippedSolidAnglePolygon",
         "SpheraProjectedSolidAnglePolygon",
+        "SpheraArvoProjectedPolygon",
     ] {
         source += &format!("struct align_{name} {{ char c; {name} t; }};\n");
     }

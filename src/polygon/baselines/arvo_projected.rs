@@ -1,0 +1,229 @@
+//! Arvo's projected solid angle sampling of polygons, the baseline of Peters 2021 (Table
+//! A.2, "Proj., Arvo"): the same sectors and areas as
+//! [`ProjectedSolidAnglePolygon`](crate::polygon::ProjectedSolidAnglePolygon), but the
+//! azimuth within a sector comes from inverting its area function `F(φ)` numerically, as
+//! Arvo (2001) does, instead of Peters' homogeneous quadratics.
+//!
+//! Within a sector of angle `h` starting at `s0`, the area up to azimuth `φ` is
+//! `F(φ) = A_o(φ) - A_i(φ)` (the ellipse sector areas of Equation (1); `A_i = 0` in the
+//! central case) with derivative `F'(φ) = (r_o(φ)² - r_i(φ)²) / 2`, where
+//! `r_l(φ)² = 1 / (eᵀ C_l e)` for the unit direction `e` at `φ`. The initial guess is the
+//! cubic Hermite interpolant of the inverse function `φ(A)` through its end points with
+//! slopes `1 / F'` (clamped to keep it monotonic); Newton steps on `F(φ) = A`, clamped to
+//! the sector `[0, h]`, refine it until the step is below `1e-7 h` (at most
+//! [`NEWTON_STEPS`]). Each step costs a `sin`/`cos` pair and two `atan`s, which is what
+//! makes this baseline slower than Peters' method. The radial step and the pdf
+//! (`ω_z / Φ` inside the polygon) are the same as in the unbiased sampler.
+
+use super::super::ellipse::{
+    add2, det2, dot2, ellipse_area_in_sector, quadratic_form, rotate, scale2,
+};
+use super::super::projected::{ProjectedSolidAnglePolygon, point_between_ellipses};
+use crate::sample::clamp_random;
+use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
+
+/// The most Newton steps per sample.
+pub const NEWTON_STEPS: u32 = 8;
+
+/// A convex polygon prepared for Arvo's projected solid angle sampling.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArvoProjectedPolygon {
+    sectors: ProjectedSolidAnglePolygon,
+    /// The angle of each sector in radians.
+    sector_angle: [f32; MAX_POLYGON_VERTICES],
+}
+
+impl Default for ArvoProjectedPolygon {
+    fn default() -> Self {
+        Self::EMPTY
+    }
+}
+
+impl ArvoProjectedPolygon {
+    /// The state of a polygon that could not be prepared: samples have `pdf == 0`.
+    pub const EMPTY: Self = Self {
+        sectors: ProjectedSolidAnglePolygon::EMPTY,
+        sector_angle: [0.0; MAX_POLYGON_VERTICES],
+    };
+
+    /// Prepares the polygon (same input and rejections as
+    /// [`ProjectedSolidAnglePolygon::new`], but without the small-polygon alternative).
+    pub fn new(vertices: &[Vec3]) -> Option<Self> {
+        let sectors = ProjectedSolidAnglePolygon::new_sectors_only(vertices)?;
+        let mut polygon = Self::EMPTY;
+        for j in 0..sectors.selectable_sectors as usize {
+            let (s0, s1) = (sectors.sector_begin[j], sectors.sector_end[j]);
+            polygon.sector_angle[j] =
+                crate::math::atan2_upper_half_plane(det2(s0, s1).max(0.0), dot2(s0, s1));
+        }
+        polygon.sectors = sectors;
+        Some(polygon)
+    }
+
+    /// The projected solid angle `Φ` in steradians (0 when empty).
+    #[inline]
+    pub fn projected_solid_angle(&self) -> f32 {
+        self.sectors.projected_solid_angle
+    }
+
+    /// Draws a direction with density `ω_z / Φ`; `u` is clamped to `[0, 1 - ulp]`.
+    pub fn sample(&self, u: [f32; 2]) -> Sample {
+        let sectors = &self.sectors;
+        if sectors.selectable_sectors == 0 {
+            return Sample::NONE;
+        }
+        let (u0, u1) = (clamp_random(u[0]), clamp_random(u[1]));
+        let target = u0 * sectors.projected_solid_angle;
+        let mut k = 0usize;
+        for j in 1..MAX_POLYGON_VERTICES {
+            k += (j < sectors.selectable_sectors as usize && sectors.sector_start[j] <= target)
+                as usize;
+        }
+        let area = sectors.sector_area[k];
+        let local = (target - sectors.sector_start[k]).clamp(0.0, area);
+        let central = sectors.central != 0;
+        let (s0, ui, uo) = (sectors.sector_begin[k], sectors.inner[k], sectors.outer[k]);
+        let h = self.sector_angle[k];
+        let direction = |phi: f32| {
+            let (sin, cos) = libm::sincosf(phi);
+            add2(scale2(s0, cos), scale2(rotate(s0), sin))
+        };
+        // F'(φ) = (r_o² - r_i²) / 2 at the unit direction e.
+        let slope = |e: [f32; 2]| {
+            let inner = if central {
+                0.0
+            } else {
+                1.0 / quadratic_form(ui, e, e)
+            };
+            0.5 * (1.0 / quadratic_form(uo, e, e) - inner)
+        };
+        let area_to = |e: [f32; 2]| {
+            let inner = if central {
+                0.0
+            } else {
+                ellipse_area_in_sector(ui, s0, e)
+            };
+            ellipse_area_in_sector(uo, s0, e) - inner
+        };
+        // Cubic Hermite guess for the inverse function, slopes in units of the fraction t.
+        let t = local / area;
+        let limit = 3.0 * h;
+        let m0 = (area / slope(s0)).clamp(0.0, limit);
+        let m1 = (area / slope(sectors.sector_end[k])).clamp(0.0, limit);
+        let (t2, t3) = (t * t, t * t * t);
+        let guess = (t3 - 2.0 * t2 + t) * m0 + (3.0 * t2 - 2.0 * t3) * h + (t3 - t2) * m1;
+        let mut phi = if guess.is_finite() {
+            guess.clamp(0.0, h)
+        } else {
+            t * h
+        };
+        for _ in 0..NEWTON_STEPS {
+            let e = direction(phi);
+            let step = (area_to(e) - local) / slope(e);
+            if !step.is_finite() {
+                break;
+            }
+            phi = (phi - step).clamp(0.0, h);
+            if step.abs() <= 1e-7 * h {
+                break;
+            }
+        }
+        let e = direction(phi);
+        let (point, z2) = if central {
+            let q = quadratic_form(uo, e, e);
+            let ue = dot2(uo, e);
+            let z2 = ((1.0 - u1) * dot2(e, e) + ue * ue) / q;
+            (scale2(e, libm::sqrtf(u1 / q)), z2)
+        } else {
+            point_between_ellipses(e, u1, ui, uo)
+        };
+        let dir = Vec3::new(point[0], point[1], libm::sqrtf(z2.max(0.0)));
+        if !dir.is_finite() {
+            return Sample::NONE;
+        }
+        Sample {
+            dir,
+            pdf: dir.z * sectors.density,
+        }
+    }
+
+    /// `ω_z / Φ` inside the polygon and above the horizon, 0 otherwise.
+    #[inline]
+    pub fn pdf(&self, dir: Vec3) -> f32 {
+        self.sectors.pdf(dir)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing::*;
+
+    fn cell_weight(c: &[D3; 3]) -> f64 {
+        projected_solid_angle_d3(c).abs()
+    }
+
+    #[test]
+    fn samples_follow_the_cosine_on_central_and_decentral_polygons() {
+        let mut rng = Rng::new(31);
+        let mut cases = [0, 0];
+        for n in 3..=8 {
+            for central in [true, false] {
+                let center = if central {
+                    Vec3::new(0.1, -0.05, 1.0)
+                } else {
+                    Vec3::new(1.5, 0.3, 1.0)
+                };
+                let v = ellipse_polygon(&mut rng, n, center, Vec3::new(0.2, 0.1, 1.0), 0.7, 0.6);
+                let polygon = ArvoProjectedPolygon::new(&v).expect("valid");
+                cases[(polygon.sectors.central != 0) as usize] += 1;
+                let reference = projected_solid_angle_polygon_f64(&v);
+                let e = (polygon.projected_solid_angle() as f64 - reference).abs() / reference;
+                assert!(e < 1e-4, "{e}");
+                let report = run_polygon_sampler(
+                    &v,
+                    8,
+                    60_000,
+                    n as u64,
+                    cell_weight,
+                    |u| polygon.sample(u),
+                    |d| polygon.pdf(d),
+                );
+                assert!(
+                    report.p_value > CHI_SQUARE_ALPHA,
+                    "{n} {central}: {report:?}"
+                );
+                assert_eq!(report.non_finite, 0);
+                assert!(
+                    report.outside <= 60 && report.worst_outside_angle < 1e-6,
+                    "{report:?}"
+                );
+                assert!(
+                    report.worst_pdf_mismatch < 1e-4 || report.outside > 0,
+                    "{report:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn bad_input_is_rejected_and_extreme_random_numbers_are_safe() {
+        let triangle = [
+            Vec3::new(0.1, 0.2, 1.0),
+            Vec3::new(0.5, 0.1, 1.2),
+            Vec3::new(0.2, 0.6, 0.9),
+        ];
+        for v in invalid_polygons(&triangle) {
+            assert_eq!(ArvoProjectedPolygon::new(&v), None, "{v:?}");
+        }
+        assert_eq!(ArvoProjectedPolygon::EMPTY.sample([0.5, 0.5]).pdf, 0.0);
+        let polygon = ArvoProjectedPolygon::new(&triangle).unwrap();
+        for a in [0.0, 1e-5, 0.5, 1.0, f32::NAN, -1.0] {
+            for b in [0.0, 1e-5, 0.5, 1.0, f32::NAN, 2.0] {
+                let s = polygon.sample([a, b]);
+                assert!(s.dir.is_finite() && s.pdf.is_finite() && s.pdf > 0.0);
+            }
+        }
+    }
+}
