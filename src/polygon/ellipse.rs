@@ -85,16 +85,10 @@ pub(crate) fn is_degenerate(u: Vec2) -> bool {
 }
 
 /// `aᵀ C b = a · b + (u · a)(u · b)`.
+#[cfg(test)]
 #[inline(always)]
 pub(crate) fn quadratic_form(u: Vec2, a: Vec2, b: Vec2) -> f32 {
     dot2(a, b) + dot2(u, a) * dot2(u, b)
-}
-
-/// `C a = a + u (u · a)`.
-#[inline(always)]
-pub(crate) fn apply(u: Vec2, a: Vec2) -> Vec2 {
-    let t = dot2(u, a);
-    [a[0] + u[0] * t, a[1] + u[1] * t]
 }
 
 /// Algorithm 1 (`ellipse_from_edge`): the ellipse of the great circle through the edge
@@ -150,28 +144,44 @@ pub(crate) fn solve_homogeneous_quadratic(xx: f32, xy_plus_yx: f32, yy: f32) -> 
 /// non-negative ratio suffices (clamped at 0 against rounding). The cosine-like argument
 /// is divided by `√|C|` instead of multiplying the other. Degenerate ellipses give 0
 /// (rule 2), as do zero vectors.
+///
+/// This form computes `det(s0, s1)`, `s0 · s1` and `u · s0`, `u · s1` from the rounded
+/// inputs; [`ellipse_area`] takes them from the caller, who may know them to full
+/// precision.
+#[cfg(test)]
 #[inline(always)]
 pub(crate) fn ellipse_area_in_sector(u: Vec2, s0: Vec2, s1: Vec2) -> f32 {
-    if is_degenerate(u) {
-        return 0.0;
-    }
-    let root_determinant = libm::sqrtf(1.0 + dot2(u, u));
-    let y = det2(s0, s1).max(0.0);
-    let x = quadratic_form(u, s0, s1) / root_determinant;
-    atan2_upper_half_plane(y, x) * (0.5 / root_determinant)
+    ellipse_area(u, det2(s0, s1), dot2(s0, s1), dot2(u, s0), dot2(u, s1))
 }
 
-/// [`ellipse_area_in_sector`] with the fast `atan` of the biased variant: absolute error
-/// below `1.2e-5 / (2 √|C|)` and relative error below `1.4e-4` (the polynomial's leading
-/// coefficient is 0.999866).
+/// [`ellipse_area_in_sector`] from `det = det(s0, s1)`, `dot = s0 · s1` and the dot
+/// products `t0 = u · s0`, `t1 = u · s1`, so that `s0ᵀ C s1 = dot + t0 t1`. For an ellipse
+/// with large `u` (a great circle passing near the zenith) `u · s` cancels badly when
+/// computed from the rounded `u`; [`ProjectedSolidAnglePolygon`] computes it from the
+/// vertex positions instead.
+///
+/// [`ProjectedSolidAnglePolygon`]: super::ProjectedSolidAnglePolygon
 #[inline(always)]
-pub(crate) fn ellipse_area_in_sector_fast(u: Vec2, s0: Vec2, s1: Vec2) -> f32 {
+pub(crate) fn ellipse_area(u: Vec2, det: f32, dot: f32, t0: f32, t1: f32) -> f32 {
     if is_degenerate(u) {
         return 0.0;
     }
     let root_determinant = libm::sqrtf(1.0 + dot2(u, u));
-    let y = det2(s0, s1).max(0.0);
-    let x = quadratic_form(u, s0, s1) / root_determinant;
+    let x = (dot + t0 * t1) / root_determinant;
+    atan2_upper_half_plane(det.max(0.0), x) * (0.5 / root_determinant)
+}
+
+/// [`ellipse_area`] with the fast `atan` of the biased variant: absolute error below
+/// `1.2e-5 / (2 √|C|)` and relative error below `1.4e-4` (the polynomial's leading
+/// coefficient is 0.999866).
+#[inline(always)]
+pub(crate) fn ellipse_area_fast(u: Vec2, det: f32, dot: f32, t0: f32, t1: f32) -> f32 {
+    if is_degenerate(u) {
+        return 0.0;
+    }
+    let root_determinant = libm::sqrtf(1.0 + dot2(u, u));
+    let y = det.max(0.0);
+    let x = (dot + t0 * t1) / root_determinant;
     let angle = if x > 0.0 {
         atan_fast_nonneg(y / x)
     } else {
@@ -219,7 +229,8 @@ mod tests {
             let from = (s0[1] as f64).atan2(s0[0] as f64);
             let to = from + (det2(s0, s1) as f64).atan2(dot2(s0, s1) as f64);
             let got = ellipse_area_in_sector(u, s0, s1) as f64;
-            let fast = ellipse_area_in_sector_fast(u, s0, s1) as f64;
+            let fast =
+                ellipse_area_fast(u, det2(s0, s1), dot2(s0, s1), dot2(u, s0), dot2(u, s1)) as f64;
             let exact = area_by_quadrature([u[0] as f64, u[1] as f64], from, to);
             assert!(
                 (got - exact).abs() <= 2e-6 * exact + 1e-9,

@@ -24,13 +24,12 @@
 
 use super::clip::clip_to_upper_hemisphere;
 use super::ellipse::{
-    DEGENERATE, Vec2, add2, apply, det2, dot2, ellipse_area_in_sector, ellipse_area_in_sector_fast,
-    ellipse_from_edge, is_degenerate, is_inner, quadratic_form, rotate, scale2,
-    solve_homogeneous_quadratic, unit_direction,
+    DEGENERATE, Vec2, add2, det2, dot2, ellipse_area, ellipse_area_fast, ellipse_from_edge,
+    is_degenerate, is_inner, rotate, scale2, solve_homogeneous_quadratic, unit_direction,
 };
 use super::small_projected::{SLIVER_EXTENT2, SMALL_EXTENT, SmallPolygonCosineSampler};
 use super::solid_angle::rescale;
-use crate::math::copy_sign;
+use crate::math::{copy_sign, cross_precise, difference_of_products, dot_precise};
 use crate::sample::clamp_random;
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 
@@ -54,6 +53,13 @@ pub struct ProjectedSolidAnglePolygon {
     pub(crate) inner: [[f32; 2]; MAX_POLYGON_VERTICES],
     /// The outer ellipse of each sector.
     pub(crate) outer: [[f32; 2]; MAX_POLYGON_VERTICES],
+    /// `det(s0, s1)` of each sector, from the vertex positions (exact to a few ulp even
+    /// for thin sectors, unlike the determinant of the rounded unit directions).
+    pub(crate) sector_det: [f32; MAX_POLYGON_VERTICES],
+    /// `(u_i · s0, u_i · s1)` of each sector, computed from the vertex positions.
+    pub(crate) inner_dots: [[f32; 2]; MAX_POLYGON_VERTICES],
+    /// `(u_o · s0, u_o · s1)` of each sector, computed from the vertex positions.
+    pub(crate) outer_dots: [[f32; 2]; MAX_POLYGON_VERTICES],
     /// Projected solid angle (area in the disk) of each sector.
     pub(crate) sector_area: [f32; MAX_POLYGON_VERTICES],
     /// Projected solid angle of the sectors before each sector.
@@ -96,6 +102,9 @@ impl ProjectedSolidAnglePolygon {
         sector_end: [[0.0; 2]; MAX_POLYGON_VERTICES],
         inner: [[0.0; 2]; MAX_POLYGON_VERTICES],
         outer: [[0.0; 2]; MAX_POLYGON_VERTICES],
+        sector_det: [0.0; MAX_POLYGON_VERTICES],
+        inner_dots: [[0.0; 2]; MAX_POLYGON_VERTICES],
+        outer_dots: [[0.0; 2]; MAX_POLYGON_VERTICES],
         sector_area: [0.0; MAX_POLYGON_VERTICES],
         sector_start: [0.0; MAX_POLYGON_VERTICES],
         edge_normals: [Vec3::ZERO; MAX_POLYGON_VERTICES],
@@ -182,52 +191,70 @@ impl ProjectedSolidAnglePolygon {
             return switch_to_small(Self::EMPTY);
         }
         // Algorithm 1 per edge; edge j runs from vertex j to vertex j + 1.
+        let next = |j: usize| if j + 1 == count { 0 } else { j + 1 };
         let mut edge = [DEGENERATE; MAX_POLYGON_VERTICES];
         let mut direction = [[0.0f32; 2]; MAX_POLYGON_VERTICES];
+        let mut xy_length = [0.0f32; MAX_POLYGON_VERTICES];
         for j in 0..count {
-            let next = if j + 1 == count { 0 } else { j + 1 };
-            let (u, normal) = ellipse_from_edge(positions[j], positions[next]);
+            let (u, normal) = ellipse_from_edge(positions[j], positions[next(j)]);
             edge[j] = u;
             polygon.edge_normals[j] = normal;
             direction[j] = unit_direction(positions[j]);
+            xy_length[j] = dot2(direction[j], [positions[j].x, positions[j].y]);
         }
+        // `u_e · s_c` for the ellipse of edge e and the direction of vertex c, from the
+        // positions. With u = σ n_xy / n_z (n = p_a × p_b, σ the sign that marks inner
+        // ellipses), u · s_c = σ (n_xy · p_c,xy) / (n_z |p_c,xy|) and
+        // n_xy · p_c,xy = det(p_a, p_b, p_c) - n_z p_c,z. The determinant vanishes for the
+        // edge's own vertices and is otherwise computed from edge vectors. Computed from
+        // the rounded u instead, the dot product loses all precision when |u| is large
+        // and s nearly orthogonal to it (a great circle passing near the zenith).
+        let edge_dot = |e: usize, c: usize| -> f32 {
+            let u = edge[e];
+            if is_degenerate(u) || !(xy_length[c] > 0.0) {
+                return 0.0;
+            }
+            let (a, b) = (e, next(e));
+            let n = polygon.edge_normals[e];
+            let p = positions[c];
+            let triple = if c == a || c == b {
+                0.0
+            } else {
+                let pa = positions[a];
+                dot_precise(cross_precise(positions[b] - pa, p - pa), pa)
+            };
+            let normal_dot = difference_of_products(triple, 1.0, n.z, p.z);
+            let sigma = copy_sign(1.0, n.x);
+            let t = sigma * normal_dot / (n.z * xy_length[c]);
+            if t.is_finite() { t } else { 0.0 }
+        };
+        // det(s_a, s_b) from the positions.
+        let sector_det = |a: usize, b: usize| {
+            let (pa, pb) = (positions[a], positions[b]);
+            difference_of_products(pa.x, pb.y, pa.y, pb.x) / (xy_length[a] * xy_length[b])
+        };
+        let area = |u: Vec2, det: f32, dot: f32, t: [f32; 2]| match precision {
+            AreaPrecision::Exact => ellipse_area(u, det, dot, t[0], t[1]),
+            AreaPrecision::Fast => ellipse_area_fast(u, det, dot, t[0], t[1]),
+        };
         // Algorithm 4, first part: each vertex is associated with the ellipse that leaves
         // it counter-clockwise: its own edge if that edge is outer, else the previous edge.
         // The inner ellipse of the first sector is the inner edge that ends at the
         // clockwise end of the polygon.
-        let mut vertex_ellipse = [DEGENERATE; MAX_POLYGON_VERTICES];
-        let mut first_inner = [1.0f32, 0.0];
+        let mut vertex_edge = [0usize; MAX_POLYGON_VERTICES];
+        let mut first_inner = None;
         for j in 0..count {
             let previous = if j == 0 { count - 1 } else { j - 1 };
-            vertex_ellipse[j] = if is_inner(edge[j]) {
-                edge[previous]
-            } else {
-                edge[j]
-            };
+            vertex_edge[j] = if is_inner(edge[j]) { previous } else { j };
             if is_inner(edge[previous]) && !is_inner(edge[j]) {
-                first_inner = edge[previous];
+                first_inner = Some(previous);
             }
         }
-        let area = |u: Vec2, s0: Vec2, s1: Vec2| match precision {
-            AreaPrecision::Exact => ellipse_area_in_sector(u, s0, s1),
-            AreaPrecision::Fast => ellipse_area_in_sector_fast(u, s0, s1),
-        };
         let sectors;
         // Σ of the outer sector areas: Φ is their difference with the inner ones, and
         // their ratio is the factor by which rounding errors are amplified.
         let mut outer_sum = 0.0f32;
-        if !is_inner(first_inner) {
-            // Central case: sector j reaches from the origin to the ellipse of edge j.
-            polygon.central = 1;
-            sectors = count;
-            for j in 0..count {
-                let next = if j + 1 == count { 0 } else { j + 1 };
-                polygon.sector_begin[j] = direction[j];
-                polygon.sector_end[j] = direction[next];
-                polygon.outer[j] = vertex_ellipse[j];
-                polygon.sector_area[j] = area(vertex_ellipse[j], direction[j], direction[next]);
-            }
-        } else {
+        if let Some(first_inner) = first_inner {
             // Decentral case: sort the vertices by azimuth. Vertex a comes before b when
             // det(p_a,xy, p_b,xy) > 0, computed from the clipped positions (not the rounded
             // unit directions) so that a degenerate edge's two vertices compare exactly
@@ -237,34 +264,55 @@ impl ProjectedSolidAnglePolygon {
                 let p = positions[k as usize];
                 [p.x, p.y]
             };
+            let degenerate = |k: u8| is_degenerate(edge[vertex_edge[k as usize]]);
             let less = |a: &u8, b: &u8| {
                 let d = det2(xy(*a), xy(*b));
-                d > 0.0
-                    || (d == 0.0
-                        && is_degenerate(vertex_ellipse[*a as usize])
-                        && !is_degenerate(vertex_ellipse[*b as usize]))
+                d > 0.0 || (d == 0.0 && degenerate(*a) && !degenerate(*b))
             };
             sort_bitonic(&mut order, count, less);
             sectors = count - 1;
             let mut inner = first_inner;
-            let mut outer = DEGENERATE;
+            let mut outer = 0usize;
             for j in 0..sectors {
                 let (a, b) = (order[j] as usize, order[j + 1] as usize);
-                let u = vertex_ellipse[a];
-                if j > 0 && is_inner(u) {
-                    inner = u;
+                let e = vertex_edge[a];
+                if j > 0 && is_inner(edge[e]) {
+                    inner = e;
                 }
-                if j == 0 || !is_inner(u) {
-                    outer = u;
+                if j == 0 || !is_inner(edge[e]) {
+                    outer = e;
                 }
+                let (det, dot) = (sector_det(a, b), dot2(direction[a], direction[b]));
+                let inner_dots = [edge_dot(inner, a), edge_dot(inner, b)];
+                let outer_dots = [edge_dot(outer, a), edge_dot(outer, b)];
                 polygon.sector_begin[j] = direction[a];
                 polygon.sector_end[j] = direction[b];
-                polygon.inner[j] = inner;
-                polygon.outer[j] = outer;
-                let outer_area = area(outer, direction[a], direction[b]);
+                polygon.sector_det[j] = det;
+                polygon.inner[j] = edge[inner];
+                polygon.outer[j] = edge[outer];
+                polygon.inner_dots[j] = inner_dots;
+                polygon.outer_dots[j] = outer_dots;
+                let outer_area = area(edge[outer], det, dot, outer_dots);
                 outer_sum += outer_area;
                 polygon.sector_area[j] =
-                    (outer_area - area(inner, direction[a], direction[b])).max(0.0);
+                    (outer_area - area(edge[inner], det, dot, inner_dots)).max(0.0);
+            }
+        } else {
+            // Central case: sector j reaches from the origin to the ellipse of edge j,
+            // which passes through both of the sector's vertices.
+            polygon.central = 1;
+            sectors = count;
+            #[allow(clippy::needless_range_loop)] // j indexes several arrays and vertices
+            for j in 0..count {
+                let (a, b) = (j, next(j));
+                let (det, dot) = (sector_det(a, b), dot2(direction[a], direction[b]));
+                let outer_dots = [edge_dot(j, a), edge_dot(j, b)];
+                polygon.sector_begin[j] = direction[a];
+                polygon.sector_end[j] = direction[b];
+                polygon.sector_det[j] = det;
+                polygon.outer[j] = edge[j];
+                polygon.outer_dots[j] = outer_dots;
+                polygon.sector_area[j] = area(edge[j], det, dot, outer_dots);
             }
         }
         let mut total = 0.0f32;
@@ -336,7 +384,13 @@ impl ProjectedSolidAnglePolygon {
         let sector_area = self.sector_area[k];
         let local = (target - self.sector_start[k]).max(0.0).min(sector_area);
         let (point, z2) = if self.central != 0 {
-            sample_sector_of_ellipse(local, u1, self.outer[k], self.sector_begin[k])
+            sample_sector_of_ellipse(
+                local,
+                u1,
+                self.outer[k],
+                self.sector_begin[k],
+                self.outer_dots[k][0],
+            )
         } else {
             let fraction = local / sector_area;
             let iterations = if (ITERATION_MARGIN..=1.0 - ITERATION_MARGIN).contains(&fraction) {
@@ -344,16 +398,7 @@ impl ProjectedSolidAnglePolygon {
             } else {
                 0
             };
-            sample_sector_between_ellipses(
-                local,
-                fraction,
-                u1,
-                self.inner[k],
-                self.outer[k],
-                self.sector_begin[k],
-                self.sector_end[k],
-                iterations,
-            )
+            sample_sector_between_ellipses(local, fraction, u1, &self.sector(k), iterations)
         };
         let dir = Vec3::new(point[0], point[1], libm::sqrtf(z2.max(0.0)));
         if !dir.is_finite() {
@@ -362,6 +407,20 @@ impl ProjectedSolidAnglePolygon {
         Sample {
             dir,
             pdf: dir.z * self.density,
+        }
+    }
+
+    /// Sector `k` with its accurate products.
+    #[inline(always)]
+    pub(crate) fn sector(&self, k: usize) -> Sector {
+        Sector {
+            s0: self.sector_begin[k],
+            s1: self.sector_end[k],
+            det: self.sector_det[k],
+            ui: self.inner[k],
+            uo: self.outer[k],
+            inner_dots: self.inner_dots[k],
+            outer_dots: self.outer_dots[k],
         }
     }
 
@@ -394,8 +453,8 @@ impl ProjectedSolidAnglePolygon {
 }
 
 /// The central case of Algorithm 4: a point uniformly distributed in the part of the
-/// ellipse `u` within the sector that starts at `s0`, at area `area` from `s0`
-/// counter-clockwise, and at relative radius² `xi1` (supplement A.7).
+/// ellipse `u` within the sector that starts at `s0` (with `t0 = u · s0`), at area
+/// `area` from `s0` counter-clockwise, and at relative radius² `xi1` (supplement A.7).
 ///
 /// In the coordinates `Lᵀ p` (with `C = L Lᵀ`) the ellipse is the unit circle, the area
 /// `A` is the angle `2 √|C| A`, and rotating `Lᵀ s0` by it and mapping back gives
@@ -404,17 +463,19 @@ impl ProjectedSolidAnglePolygon {
 /// the ellipse is `w / √(wᵀ C w)`; uniform area along the ray puts it at `√ξ1` of that.
 ///
 /// Returns the point and `ω_z² = 1 - |p|²`, computed as `((1 - ξ1)|w|² + (u·w)²) / wᵀCw`
-/// without the cancellation of `1 - |p|²` near the rim of the disk (the horizon).
+/// without the cancellation of `1 - |p|²` near the rim of the disk (the horizon). Here
+/// `u · w = cos · √|C| t0 + sin · det(s0, u)` (as `u · R u = 0`), from the accurate `t0`.
 #[inline(always)]
-fn sample_sector_of_ellipse(area: f32, xi1: f32, u: Vec2, s0: Vec2) -> (Vec2, f32) {
+fn sample_sector_of_ellipse(area: f32, xi1: f32, u: Vec2, s0: Vec2, t0: f32) -> (Vec2, f32) {
     let root_determinant = libm::sqrtf(1.0 + dot2(u, u));
     let (sin, cos) = libm::sincosf(2.0 * root_determinant * area);
+    let c_s0 = add2(s0, scale2(u, t0));
     let w = add2(
         scale2(s0, cos * root_determinant),
-        scale2(rotate(apply(u, s0)), sin),
+        scale2(rotate(c_s0), sin),
     );
+    let uw = cos * root_determinant * t0 + sin * det2(s0, u);
     let length2 = dot2(w, w);
-    let uw = dot2(u, w);
     let norm = (length2 + uw * uw).max(f32::MIN_POSITIVE);
     let z2 = ((1.0 - xi1) * length2 + uw * uw) / norm;
     (scale2(w, libm::sqrtf(xi1 / norm)), z2)
@@ -447,17 +508,59 @@ fn towards(w: Vec2, h: Vec2) -> Vec2 {
     scale2(w, sign)
 }
 
-/// `1 / √(sᵀ C s)`: the factor `λ` that puts `λ s` on the ellipse.
+/// A sector between two ellipses with the quantities that [`ProjectedSolidAnglePolygon`]
+/// computes from the vertex positions: `det(s0, s1)` and the dot products of each
+/// ellipse's `u` with the boundaries. Dot products with any `w = α s0 + β s1` follow by
+/// linearity, `u · w = α (u · s0) + β (u · s1)`, without the cancellation of `u · w` for
+/// large `u`.
+#[derive(Clone, Copy)]
+pub(crate) struct Sector {
+    pub s0: Vec2,
+    pub s1: Vec2,
+    pub det: f32,
+    pub ui: Vec2,
+    pub uo: Vec2,
+    pub inner_dots: [f32; 2],
+    pub outer_dots: [f32; 2],
+}
+
+impl Sector {
+    /// `(u_i · w, u_o · w)` for `w` in (or near) the sector.
+    #[inline(always)]
+    pub fn dots(&self, w: Vec2) -> (f32, f32) {
+        // w = α s0 + β s1 with α = det(w, s1) / det(s0, s1), β = det(s0, w) / det(s0, s1);
+        // the basis determinant is that of the rounded boundary vectors themselves.
+        let basis = det2(self.s0, self.s1);
+        let (alpha, beta) = (det2(w, self.s1) / basis, det2(self.s0, w) / basis);
+        let i = alpha * self.inner_dots[0] + beta * self.inner_dots[1];
+        let o = alpha * self.outer_dots[0] + beta * self.outer_dots[1];
+        if i.is_finite() && o.is_finite() {
+            (i, o)
+        } else {
+            (dot2(self.ui, w), dot2(self.uo, w))
+        }
+    }
+
+    /// The area between the two ellipses from `s0` to `w`.
+    #[inline(always)]
+    pub fn area_to(&self, w: Vec2) -> f32 {
+        let (det, dot) = (det2(self.s0, w), dot2(self.s0, w));
+        let (i, o) = self.dots(w);
+        ellipse_area(self.uo, det, dot, self.outer_dots[0], o)
+            - ellipse_area(self.ui, det, dot, self.inner_dots[0], i)
+    }
+}
+
+/// `1 / √(|s|² + t²)` with `t = u · s`: the factor `λ` that puts `λ s` on the ellipse.
 #[inline(always)]
-fn ellipse_radius(u: Vec2, s: Vec2) -> f32 {
-    1.0 / libm::sqrtf(quadratic_form(u, s, s))
+fn ellipse_radius(length2: f32, t: f32) -> f32 {
+    1.0 / libm::sqrtf(length2 + t * t)
 }
 
 /// Algorithm 3 (`sample_sector_between_ellipses`): a point uniformly distributed in the
-/// region between the inner ellipse `ui` and the outer ellipse `uo` within the sector
-/// from the unit vector `s0` counter-clockwise to `s1`, at area `area` from `s0` (a
-/// fraction `fraction` of the sector's area), at relative radius² `xi1` between the two
-/// ellipses.
+/// region between the inner ellipse and the outer ellipse of `sector`, at area `area`
+/// from `s0` (a fraction `fraction` of the sector's area), at relative radius² `xi1`
+/// between the two ellipses.
 ///
 /// Initialisation (supplement A.4): the sector is halved by `s_h = s0 + s1`, and each half
 /// is approximated by the quad whose corners lie on the two ellipses at the sector's
@@ -466,52 +569,65 @@ fn ellipse_radius(u: Vec2, s: Vec2) -> f32 {
 /// root of the homogeneous quadratic `wᵀ Q w = 0`, which Algorithm 2 picks correctly
 /// (Proposition 3). Then `iterations` steps of the iteration of supplement A.3 replace
 /// the quad's edges by the tangents of the ellipses at the current direction; the error
-/// shrinks cubically (Proposition 6).
+/// shrinks cubically (Proposition 6). All products `u · v` come from [`Sector::dots`].
 ///
-/// Returns the point and `ω_z² = 1 - |p|²`, computed as
-/// `(1 - ξ1) (u_i·w)² / wᵀC_iw + ξ1 (u_o·w)² / wᵀC_ow` without the cancellation of
-/// `1 - |p|²` near the rim of the disk (the horizon).
-#[allow(clippy::too_many_arguments)]
+/// Returns the point and `ω_z²` (see [`point_between_ellipses`]).
 #[inline(always)]
 fn sample_sector_between_ellipses(
     area: f32,
     fraction: f32,
     xi1: f32,
-    ui: Vec2,
-    uo: Vec2,
-    s0: Vec2,
-    s1: Vec2,
+    sector: &Sector,
     iterations: u32,
 ) -> (Vec2, f32) {
+    let Sector {
+        s0,
+        s1,
+        ui,
+        uo,
+        inner_dots: ti,
+        outer_dots: to,
+        ..
+    } = *sector;
     let sh = add2(s0, s1);
+    let sh2 = dot2(sh, sh);
+    let (ti_h, to_h) = (ti[0] + ti[1], to[0] + to[1]);
     let (li0, lih, li1) = (
-        ellipse_radius(ui, s0),
-        ellipse_radius(ui, sh),
-        ellipse_radius(ui, s1),
+        ellipse_radius(1.0, ti[0]),
+        ellipse_radius(sh2, ti_h),
+        ellipse_radius(1.0, ti[1]),
     );
     let (lo0, loh, lo1) = (
-        ellipse_radius(uo, s0),
-        ellipse_radius(uo, sh),
-        ellipse_radius(uo, s1),
+        ellipse_radius(1.0, to[0]),
+        ellipse_radius(sh2, to_h),
+        ellipse_radius(1.0, to[1]),
     );
     // Twice the quad areas over |det(s0, s1)| (= |det(s_h, s_k)| for both halves).
     let quad0 = lo0 * loh - li0 * lih;
     let quad1 = loh * lo1 - lih * li1;
     // Measured from s0 for the first quad (counter-clockwise, positive) and from s1 for
     // the second (clockwise, negative); the quad's own boundary s_k is the reference.
+    // (The supplement's listing scales by "|(s_h, s_1)|", which is garbled in the text:
+    // it must be the absolute value, as the signs of the two cases show.)
     let split = fraction * (quad0 + quad1) - quad0;
     let first = split <= 0.0;
-    let (sk, lik, lok, quad_area) = if first {
-        (s0, li0, lo0, split + quad0)
+    let (sk, lik, lok, tik, tok, quad_area) = if first {
+        (s0, li0, lo0, ti[0], to[0], split + quad0)
     } else {
-        (s1, li1, lo1, split - quad1)
+        (s1, li1, lo1, ti[1], to[1], split - quad1)
     };
-    let quad_area = 0.5 * quad_area * det2(s0, s1).abs();
-    // Quad edges: normals r_l = C_l (λ_l,h s_h + λ_l,k s_k) and offsets D_l = λ_l,h r_l·s_h.
-    let ri = apply(ui, add2(scale2(sh, lih), scale2(sk, lik)));
-    let ro = apply(uo, add2(scale2(sh, loh), scale2(sk, lok)));
-    let di = lih * dot2(ri, sh);
-    let d_o = loh * dot2(ro, sh);
+    let quad_area = 0.5 * quad_area * sector.det.abs();
+    // Quad edges: normals r_l = C_l a_l with a_l = λ_l,h s_h + λ_l,k s_k, and offsets
+    // D_l = λ_l,h r_l·s_h = λ_l,h (a_l·s_h + (u_l·a_l)(u_l·s_h)).
+    let (ai, ao) = (
+        add2(scale2(sh, lih), scale2(sk, lik)),
+        add2(scale2(sh, loh), scale2(sk, lok)),
+    );
+    let (uai, uao) = (lih * ti_h + lik * tik, loh * to_h + lok * tok);
+    let ri = add2(ai, scale2(ui, uai));
+    let ro = add2(ao, scale2(uo, uao));
+    let di = lih * (dot2(ai, sh) + uai * ti_h);
+    let d_o = loh * (dot2(ao, sh) + uao * to_h);
     // The area between the two edges from s_k to w is
     // ½ (λ_o,k D_o / (r_o·w) - λ_i,k D_i / (r_i·w)) det(s_k, w); setting it to the wanted
     // area and multiplying by (r_o·w)(r_i·w) gives wᵀ Q w = 0 with
@@ -526,9 +642,10 @@ fn sample_sector_between_ellipses(
     for _ in 0..iterations {
         w = normalize_magnitude(w);
         // Residual A_δ = A - (area between the ellipses from s0 to w).
-        let residual = area - ellipse_area_in_sector(uo, s0, w) + ellipse_area_in_sector(ui, s0, w);
+        let residual = area - sector.area_to(w);
         // T = R w (C_i w - C_o w)ᵀ - 2 A_δ (C_i w)(C_o w)ᵀ (supplement A.3).
-        let (wi, wo) = (apply(ui, w), apply(uo, w));
+        let (uiw, uow) = sector.dots(w);
+        let (wi, wo) = (add2(w, scale2(ui, uiw)), add2(w, scale2(uo, uow)));
         let rw = rotate(w);
         let d = [wi[0] - wo[0], wi[1] - wo[1]];
         let twice = 2.0 * residual;
@@ -537,18 +654,17 @@ fn sample_sector_between_ellipses(
         let tyy = rw[1] * d[1] - twice * wi[1] * wo[1];
         w = towards(solve_homogeneous_quadratic(txx, txy_plus_tyx, tyy), sh);
     }
-    // Uniform in area along the ray: r² uniform between the two ellipses.
-    point_between_ellipses(w, xi1, ui, uo)
+    let (uiw, uow) = sector.dots(w);
+    point_between_ellipses(w, xi1, uiw, uow)
 }
 
-/// The point along the direction `w` at relative radius² `xi1` between the inner
-/// ellipse `ui` and the outer ellipse `uo` (uniform in area along the ray), and its
-/// `ω_z² = 1 - |p|²`, computed as `(1 - ξ1) (u_i·w)² / wᵀC_iw + ξ1 (u_o·w)² / wᵀC_ow`
+/// The point along the direction `w` at relative radius² `xi1` between the inner and
+/// the outer ellipse (uniform in area along the ray), given `u_i · w` and `u_o · w`, and
+/// its `ω_z² = 1 - |p|²`, computed as `(1 - ξ1) (u_i·w)² / wᵀC_iw + ξ1 (u_o·w)² / wᵀC_ow`
 /// without the cancellation of `1 - |p|²` near the rim of the disk.
 #[inline(always)]
-pub(crate) fn point_between_ellipses(w: Vec2, xi1: f32, ui: Vec2, uo: Vec2) -> (Vec2, f32) {
+pub(crate) fn point_between_ellipses(w: Vec2, xi1: f32, uiw: f32, uow: f32) -> (Vec2, f32) {
     let length2 = dot2(w, w);
-    let (uiw, uow) = (dot2(ui, w), dot2(uo, w));
     let (qi, qo) = (length2 + uiw * uiw, length2 + uow * uow);
     let radius2 = (1.0 - xi1) / qi + xi1 / qo;
     let z2 = (1.0 - xi1) * (uiw * uiw / qi) + xi1 * (uow * uow / qo);

@@ -15,9 +15,7 @@
 //! makes this baseline slower than Peters' method. The radial step and the pdf
 //! (`ω_z / Φ` inside the polygon) are the same as in the unbiased sampler.
 
-use super::super::ellipse::{
-    add2, det2, dot2, ellipse_area_in_sector, quadratic_form, rotate, scale2,
-};
+use super::super::ellipse::{add2, det2, dot2, ellipse_area, rotate, scale2};
 use super::super::projected::{ProjectedSolidAnglePolygon, point_between_ellipses};
 use crate::sample::clamp_random;
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
@@ -83,34 +81,32 @@ impl ArvoProjectedPolygon {
         let area = sectors.sector_area[k];
         let local = (target - sectors.sector_start[k]).clamp(0.0, area);
         let central = sectors.central != 0;
-        let (s0, ui, uo) = (sectors.sector_begin[k], sectors.inner[k], sectors.outer[k]);
+        let sector = sectors.sector(k);
+        let s0 = sector.s0;
         let h = self.sector_angle[k];
         let direction = |phi: f32| {
             let (sin, cos) = libm::sincosf(phi);
             add2(scale2(s0, cos), scale2(rotate(s0), sin))
         };
-        // F'(φ) = (r_o² - r_i²) / 2 at the unit direction e.
+        // F'(φ) = (r_o² - r_i²) / 2 at the unit direction e, with r_l² = 1 / (1 + (u_l·e)²).
         let slope = |e: [f32; 2]| {
-            let inner = if central {
-                0.0
-            } else {
-                1.0 / quadratic_form(ui, e, e)
-            };
-            0.5 * (1.0 / quadratic_form(uo, e, e) - inner)
+            let (i, o) = sector.dots(e);
+            let inner = if central { 0.0 } else { 1.0 / (1.0 + i * i) };
+            0.5 * (1.0 / (1.0 + o * o) - inner)
         };
         let area_to = |e: [f32; 2]| {
-            let inner = if central {
-                0.0
+            if central {
+                let (_, o) = sector.dots(e);
+                ellipse_area(sector.uo, det2(s0, e), dot2(s0, e), sector.outer_dots[0], o)
             } else {
-                ellipse_area_in_sector(ui, s0, e)
-            };
-            ellipse_area_in_sector(uo, s0, e) - inner
+                sector.area_to(e)
+            }
         };
         // Cubic Hermite guess for the inverse function, slopes in units of the fraction t.
         let t = local / area;
         let limit = 3.0 * h;
         let m0 = (area / slope(s0)).clamp(0.0, limit);
-        let m1 = (area / slope(sectors.sector_end[k])).clamp(0.0, limit);
+        let m1 = (area / slope(sector.s1)).clamp(0.0, limit);
         let (t2, t3) = (t * t, t * t * t);
         let guess = (t3 - 2.0 * t2 + t) * m0 + (3.0 * t2 - 2.0 * t3) * h + (t3 - t2) * m1;
         let mut phi = if guess.is_finite() {
@@ -130,13 +126,13 @@ impl ArvoProjectedPolygon {
             }
         }
         let e = direction(phi);
+        let (i, o) = sector.dots(e);
         let (point, z2) = if central {
-            let q = quadratic_form(uo, e, e);
-            let ue = dot2(uo, e);
-            let z2 = ((1.0 - u1) * dot2(e, e) + ue * ue) / q;
+            let q = 1.0 + o * o;
+            let z2 = ((1.0 - u1) + o * o) / q;
             (scale2(e, libm::sqrtf(u1 / q)), z2)
         } else {
-            point_between_ellipses(e, u1, ui, uo)
+            point_between_ellipses(e, u1, i, o)
         };
         let dir = Vec3::new(point[0], point[1], libm::sqrtf(z2.max(0.0)));
         if !dir.is_finite() {
