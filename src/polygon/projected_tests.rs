@@ -576,3 +576,44 @@ fn tiny_polygons_keep_their_accuracy() {
         assert!(outside < 500, "1e{exponent}: {outside}");
     }
 }
+
+#[test]
+fn random_and_degenerate_input_never_gives_nan_or_panics() {
+    let mut rng = Rng::new(99);
+    let mut prepared = 0;
+    for trial in 0..20_000 {
+        let n = 3 + rng.below(6) as usize;
+        // Random (mostly non-convex) vertices over many scales, some snapped to
+        // great circles through the zenith, the horizon or the zenith itself.
+        let scale = rng.log_uniform(-20.0, 20.0) as f32;
+        let mut v: Vec<Vec3> = (0..n).map(|_| rng.unit_vector_f32() * scale).collect();
+        match trial % 5 {
+            0 => v[1] = Vec3::new(v[0].x * 2.0, v[0].y * 2.0, v[1].z),
+            1 => v[0].z = 0.0,
+            2 => v[0] = Vec3::new(0.0, 0.0, scale),
+            3 => v[1] = v[0] + Vec3::splat(scale * 1e-7),
+            _ => {}
+        }
+        for polygon in [
+            ProjectedSolidAnglePolygon::new(&v),
+            ProjectedSolidAnglePolygon::new_fast_biased(&v),
+        ]
+        .into_iter()
+        .flatten()
+        {
+            prepared += 1;
+            assert!(polygon.projected_solid_angle().is_finite());
+            for _ in 0..4 {
+                let u = [rng.uniform_f32(), rng.uniform_f32()];
+                for s in [polygon.sample(u), polygon.sample_fast(u)] {
+                    assert!(
+                        s.dir.is_finite() && s.pdf.is_finite() && s.pdf >= 0.0,
+                        "{v:?}"
+                    );
+                    assert!(polygon.pdf(s.dir).is_finite());
+                }
+            }
+        }
+    }
+    assert!(prepared > 1000);
+}
