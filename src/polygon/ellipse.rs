@@ -17,7 +17,7 @@
 //! as outer, and every area within it is zero (rule 2).
 
 use crate::Vec3;
-use crate::math::{atan_fast_nonneg, atan2_upper_half_plane, difference_of_products};
+use crate::math::{atan2_upper_half_plane, difference_of_products};
 use crate::math::{cross_precise, is_sign_negative};
 
 /// A vector in the plane of the unit disk.
@@ -173,12 +173,15 @@ pub(crate) fn ellipse_area(u: Vec2, det: f32, dot: f32, t0: f32, t1: f32) -> f32
 
 /// [`ellipse_area`] with the fast `atan` of the biased variant: absolute error below
 /// `1.2e-5 / (2 √|C|)` and relative error below `1.4e-4` (the polynomial's leading
-/// coefficient is 0.999866).
+/// coefficient is 0.999866). (Tests only: the sampler's fast areas are in
+/// `EllipseSector::area_between`.)
+#[cfg(test)]
 #[inline(always)]
 pub(crate) fn ellipse_area_fast(u: Vec2, det: f32, dot: f32, t0: f32, t1: f32) -> f32 {
     if is_degenerate(u) {
         return 0.0;
     }
+    use crate::math::atan_fast_nonneg;
     let root_determinant = libm::sqrtf(1.0 + dot2(u, u));
     let y = det.max(0.0);
     let x = (dot + t0 * t1) / root_determinant;

@@ -10,6 +10,7 @@
 pub mod baselines;
 pub mod clip;
 mod ellipse;
+mod ellipse_sector;
 #[rustfmt::skip]
 mod clip_generated;
 pub mod clipped_solid_angle;

@@ -45,8 +45,9 @@ fn condition(p: &ProjectedSolidAnglePolygon) -> f64 {
     }
     let mut outer = 0.0f64;
     for j in 0..p.selectable_sectors as usize {
-        let (s0, s1, t) = (p.sector_begin[j], p.sector_end[j], p.outer_dots[j]);
-        outer += ellipse_area(p.outer[j], p.sector_det[j], dot2(s0, s1), t[0], t[1]) as f64;
+        let sector = &p.sectors[j];
+        let (s0, s1, t) = (sector.s0, sector.s1, sector.outer_dots);
+        outer += ellipse_area(sector.outer, sector.det, dot2(s0, s1), t[0], t[1]) as f64;
     }
     outer / p.projected_solid_angle() as f64
 }
@@ -340,9 +341,9 @@ fn edges_on_great_circles_through_the_zenith_give_empty_end_sectors() {
         for vertices in [v.to_vec(), reversed(v)] {
             let polygon = ProjectedSolidAnglePolygon::new(&vertices).expect("valid");
             assert_eq!(polygon.central, 0);
-            let marked = polygon.outer[..3]
+            let marked = polygon.sectors[..3]
                 .iter()
-                .filter(|u| is_degenerate(**u))
+                .filter(|s| is_degenerate(s.outer))
                 .count();
             assert!(marked >= 1, "{degenerate}: {polygon:?}");
             assert_cosine_distributed(&vertices, 60_000, 2, "great circle through the zenith");

@@ -36,7 +36,7 @@
 //! Run with `cargo bench -p sphera-tools --bench report`; add
 //! `RUSTFLAGS="-C target-cpu=native"` to measure with FMA and AVX2.
 use sphera::polygon::baselines::{
-    ArvoPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
+    ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
 };
 use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon};
 use sphera::{Sample, Vec3};
@@ -213,6 +213,11 @@ technique!(
     "projected (ours)",
     projected_solid_angle: Projected
 );
+technique!(
+    ArvoProjectedPolygon,
+    "Arvo projected",
+    projected_solid_angle: Projected
+);
 
 /// The biased variant of projected solid angle sampling: fast `atan` in `prepare`, no
 /// refinement iterations per sample.
@@ -357,6 +362,7 @@ fn speed_table() {
         speed_of::<HartBiquadraticPolygon>(),
         speed_of::<ProjectedSolidAnglePolygon>(),
         speed_of::<BiasedProjected>(),
+        speed_of::<ArvoProjectedPolygon>(),
     ];
     println!(
         "| polygons | technique | prepare + 1 sample | ×Turk | ×solid angle | per sample | ×Turk | ×solid angle |"
@@ -802,6 +808,7 @@ fn variance_table() {
         variance_of::<HartBiquadraticPolygon>(),
         variance_of::<ProjectedSolidAnglePolygon>(),
         variance_of::<BiasedProjected>(),
+        variance_of::<ArvoProjectedPolygon>(),
     ];
     let mut rng = Rng(16);
     let configurations: Vec<(Vec<Vec3>, f64)> = (0..VARIANCE_CONFIGURATIONS)

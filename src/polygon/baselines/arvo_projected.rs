@@ -15,8 +15,9 @@
 //! makes this baseline slower than Peters' method. The radial step and the pdf
 //! (`ω_z / Φ` inside the polygon) are the same as in the unbiased sampler.
 
-use super::super::ellipse::{add2, det2, dot2, ellipse_area, rotate, scale2};
-use super::super::projected::{ProjectedSolidAnglePolygon, point_between_ellipses};
+use super::super::ellipse::{add2, det2, dot2, rotate, scale2};
+use super::super::ellipse_sector::{AreaPrecision, point_between_ellipses};
+use super::super::projected::ProjectedSolidAnglePolygon;
 use crate::sample::clamp_random;
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 
@@ -51,7 +52,7 @@ impl ArvoProjectedPolygon {
         let sectors = ProjectedSolidAnglePolygon::new_sectors_only(vertices)?;
         let mut polygon = Self::EMPTY;
         for j in 0..sectors.selectable_sectors as usize {
-            let (s0, s1) = (sectors.sector_begin[j], sectors.sector_end[j]);
+            let (s0, s1) = (sectors.sectors[j].s0, sectors.sectors[j].s1);
             polygon.sector_angle[j] =
                 crate::math::atan2_upper_half_plane(det2(s0, s1).max(0.0), dot2(s0, s1));
         }
@@ -81,7 +82,7 @@ impl ArvoProjectedPolygon {
         let area = sectors.sector_area[k];
         let local = (target - sectors.sector_start[k]).clamp(0.0, area);
         let central = sectors.central != 0;
-        let sector = sectors.sector(k);
+        let sector = &sectors.sectors[k];
         let s0 = sector.s0;
         let h = self.sector_angle[k];
         let direction = |phi: f32| {
@@ -95,11 +96,12 @@ impl ArvoProjectedPolygon {
             0.5 * (1.0 / (1.0 + o * o) - inner)
         };
         let area_to = |e: [f32; 2]| {
+            let (i, o) = sector.dots(e);
+            let (det, dot) = (det2(s0, e), dot2(s0, e));
             if central {
-                let (_, o) = sector.dots(e);
-                ellipse_area(sector.uo, det2(s0, e), dot2(s0, e), sector.outer_dots[0], o)
+                sector.outer_area(det, dot, o, AreaPrecision::Exact)
             } else {
-                sector.area_to(e)
+                sector.area_between(det, dot, i, o, AreaPrecision::Exact)
             }
         };
         // Cubic Hermite guess for the inverse function, slopes in units of the fraction t.
@@ -132,7 +134,7 @@ impl ArvoProjectedPolygon {
             let z2 = ((1.0 - u1) + o * o) / q;
             (scale2(e, libm::sqrtf(u1 / q)), z2)
         } else {
-            point_between_ellipses(e, u1, i, o)
+            point_between_ellipses(e, u1, dot2(e, e), i, o)
         };
         let dir = Vec3::new(point[0], point[1], libm::sqrtf(z2.max(0.0)));
         if !dir.is_finite() {

@@ -1,0 +1,467 @@
+//! One sector of a projected polygon (Peters 2021, supplement A.3–A.7): the region
+//! between an inner and an outer ellipse (or, in the central case, inside one ellipse)
+//! between two azimuths, with everything the per-sample code needs precomputed, and the
+//! per-sample code itself (the central closed form and Algorithm 3).
+//!
+//! Precision. Where `u` is large (a great circle passing near the zenith, a thin
+//! ellipse), `u · w` cancels badly when computed from the rounded `u`. The polygon
+//! computes `u · s0` and `u · s1` from the vertex positions, and any `w` in the sector is
+//! `w = α s0 + β s1`, so `u · w = α (u · s0) + β (u · s1)` follows without cancellation.
+//! The area between the two ellipses is computed as one difference of angles (see
+//! [`EllipseSector::area_to`]), which stays accurate when both ellipses are close to the
+//! unit circle (polygons near the horizon).
+
+use super::ellipse::{
+    Vec2, add2, det2, dot2, is_degenerate, rotate, scale2, solve_homogeneous_quadratic,
+};
+use crate::math::{atan_fast_nonneg, atan2_upper_half_plane, copy_sign};
+
+/// A sector between two ellipses, prepared for sampling.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EllipseSector {
+    /// Unit direction of the clockwise boundary.
+    pub(crate) s0: [f32; 2],
+    /// Unit direction of the counter-clockwise boundary.
+    pub(crate) s1: [f32; 2],
+    /// `det(s0, s1)` from the vertex positions.
+    pub(crate) det: f32,
+    /// `1 / det(s0, s1)` of the rounded `s0`, `s1` (the basis for `α`, `β`).
+    pub(crate) inverse_basis: f32,
+    /// The inner ellipse (unused in the central case).
+    pub(crate) inner: [f32; 2],
+    /// The outer ellipse.
+    pub(crate) outer: [f32; 2],
+    /// `(u_i · s0, u_i · s1)` from the vertex positions.
+    pub(crate) inner_dots: [f32; 2],
+    /// `(u_o · s0, u_o · s1)` from the vertex positions.
+    pub(crate) outer_dots: [f32; 2],
+    /// `√|C_i| = √(1 + |u_i|²)`.
+    pub(crate) inner_root_det: f32,
+    /// `√|C_o| = √(1 + |u_o|²)`.
+    pub(crate) outer_root_det: f32,
+    /// `k_o - k_i = -(|u_i|² - |u_o|²) / (k_o + k_i)`, with `k_l = √|C_l|`.
+    pub(crate) root_det_difference: f32,
+    /// `1/k_o - 1/k_i = (|u_i|² - |u_o|²) / ((k_i + k_o) k_i k_o)`.
+    pub(crate) inverse_root_det_difference: f32,
+    /// `λ_i` at `s0`, `s_h = s0 + s1` and `s1`: `λ s` lies on the inner ellipse.
+    pub(crate) inner_radius: [f32; 3],
+    /// `λ_o` at `s0`, `s_h` and `s1`.
+    pub(crate) outer_radius: [f32; 3],
+    /// `s0 · s1`.
+    pub(crate) cosine: f32,
+    /// 1 when `|u| > 1` for one of the ellipses: the area between them then uses the
+    /// direct form (see [`area_between`](Self::area_between)).
+    pub(crate) direct_form: u32,
+}
+
+/// Which `atan` the areas use.
+#[derive(Clone, Copy, PartialEq)]
+pub(crate) enum AreaPrecision {
+    Exact,
+    Fast,
+}
+
+/// `atan2(y, x)` in `(-π, π]` from one `atan` (see [`atan2_upper_half_plane`]).
+#[inline(always)]
+fn atan2_signed(y: f32, x: f32, precision: AreaPrecision) -> f32 {
+    copy_sign(atan2_positive(y.abs(), x, precision), y)
+}
+
+/// `atan2(y, x)` for `y >= 0`.
+#[inline(always)]
+fn atan2_positive(y: f32, x: f32, precision: AreaPrecision) -> f32 {
+    match precision {
+        AreaPrecision::Exact => atan2_upper_half_plane(y, x),
+        AreaPrecision::Fast => {
+            let angle = if x > 0.0 {
+                atan_fast_nonneg(y / x)
+            } else {
+                core::f32::consts::FRAC_PI_2 + atan_fast_nonneg(-x / y)
+            };
+            angle.max(0.0)
+        }
+    }
+}
+
+/// `1 / √(|s|² + t²)` with `t = u · s`: the factor `λ` that puts `λ s` on the ellipse.
+#[inline(always)]
+fn ellipse_radius(length2: f32, t: f32) -> f32 {
+    1.0 / libm::sqrtf(length2 + t * t)
+}
+
+impl EllipseSector {
+    pub const EMPTY: Self = Self {
+        s0: [0.0; 2],
+        s1: [0.0; 2],
+        det: 0.0,
+        inverse_basis: 0.0,
+        inner: [0.0; 2],
+        outer: [0.0; 2],
+        inner_dots: [0.0; 2],
+        outer_dots: [0.0; 2],
+        inner_root_det: 1.0,
+        outer_root_det: 1.0,
+        root_det_difference: 0.0,
+        inverse_root_det_difference: 0.0,
+        inner_radius: [0.0; 3],
+        outer_radius: [0.0; 3],
+        cosine: 1.0,
+        direct_form: 0,
+    };
+
+    /// The sector from `s0` to `s1` (unit vectors) with accurate `det = det(s0, s1)`
+    /// between the ellipses `inner` and `outer` with their accurate dot products with
+    /// `s0` and `s1`. For the central case pass `inner = [0, 0]` (the unit circle's `u`)
+    /// and zero dots; it is not used.
+    pub(crate) fn new(
+        s0: Vec2,
+        s1: Vec2,
+        det: f32,
+        inner: Vec2,
+        inner_dots: [f32; 2],
+        outer: Vec2,
+        outer_dots: [f32; 2],
+    ) -> Self {
+        let (ui2, uo2) = (dot2(inner, inner), dot2(outer, outer));
+        let sh = add2(s0, s1);
+        let sh2 = dot2(sh, sh);
+        let radii = |t: [f32; 2]| {
+            [
+                ellipse_radius(1.0, t[0]),
+                ellipse_radius(sh2, t[0] + t[1]),
+                ellipse_radius(1.0, t[1]),
+            ]
+        };
+        let inverse_basis = 1.0 / det2(s0, s1);
+        let (ki, ko) = (libm::sqrtf(1.0 + ui2), libm::sqrtf(1.0 + uo2));
+        let finite = |x: f32| if x.is_finite() { x } else { 0.0 };
+        Self {
+            s0,
+            s1,
+            det,
+            inverse_basis: if inverse_basis.is_finite() {
+                inverse_basis
+            } else {
+                0.0
+            },
+            inner,
+            outer,
+            inner_dots,
+            outer_dots,
+            inner_root_det: ki,
+            outer_root_det: ko,
+            root_det_difference: finite(-(ui2 - uo2) / (ki + ko)),
+            inverse_root_det_difference: finite((ui2 - uo2) / ((ki + ko) * ki * ko)),
+            inner_radius: radii(inner_dots),
+            outer_radius: radii(outer_dots),
+            cosine: dot2(s0, s1),
+            direct_form: (ui2 > 1.0 || uo2 > 1.0) as u32,
+        }
+    }
+
+    /// The coordinates `(α, β)` of `w = α s0 + β s1`. Plain determinants suffice: any
+    /// `(α, β)` is a valid direction, and everything the samplers compute from it
+    /// ([`Coordinates`]) is consistent with it.
+    #[inline(always)]
+    pub(crate) fn coordinates(&self, w: Vec2) -> Coordinates {
+        let (s0, s1) = (self.s0, self.s1);
+        let alpha = (w[0] * s1[1] - w[1] * s1[0]) * self.inverse_basis;
+        let beta = (s0[0] * w[1] - s0[1] * w[0]) * self.inverse_basis;
+        Coordinates::new(self, alpha, beta)
+    }
+
+    /// `(u_i · w, u_o · w)` for `w` in (or near) the sector.
+    #[inline(always)]
+    pub(crate) fn dots(&self, w: Vec2) -> (f32, f32) {
+        let c = self.coordinates(w);
+        (c.inner_dot, c.outer_dot)
+    }
+
+    /// The area of the outer ellipse from `s0` to a direction with `det(s0, w) = det`,
+    /// `s0 · w = dot` and `u_o · w = to` (the central case).
+    #[inline(always)]
+    pub(crate) fn outer_area(&self, det: f32, dot: f32, to: f32, precision: AreaPrecision) -> f32 {
+        if is_degenerate(self.outer) {
+            return 0.0;
+        }
+        let k = self.outer_root_det;
+        let x = (dot + self.outer_dots[0] * to) / k;
+        atan2_positive(det.max(0.0), x, precision) * (0.5 / k)
+    }
+
+    /// The area between the two ellipses from `s0` to a direction `w` with
+    /// `det(s0, w) = det`, `s0 · w = dot`, `u_i · w = ti` and `u_o · w = to`.
+    ///
+    /// With `θ_l = atan2(k_l det, x_l)`, `x_l = dot + (u_l · s0)(u_l · w)` and
+    /// `k_l = √|C_l|`, the ellipse areas are `θ_l / (2 k_l)` (Equation (1)), and
+    ///
+    /// `A_o - A_i = ½ ((θ_o - θ_i) / k_o + θ_i (1/k_o - 1/k_i))`,
+    ///
+    /// where `θ_o - θ_i = arg(z_o z̄_i)` for `z_l = x_l + i k_l det`:
+    /// `Re = x_o x_i + k_o k_i det²`, `Im = det (k_o x_i - k_i x_o)` with
+    /// `k_o x_i - k_i x_o = (k_o - k_i) dot + k_o t_i0 t_i - k_i t_o0 t_o` and
+    /// `k_o - k_i = -(|u_i|² - |u_o|²) / (k_o + k_i)`, and
+    /// `1/k_o - 1/k_i = (|u_i|² - |u_o|²) / ((k_i + k_o) k_i k_o)`. For ellipses close to
+    /// the unit circle (a polygon near the horizon) both terms are of the order of `|u|²`
+    /// and computed without the cancellation of subtracting two areas of order one. Two
+    /// `atan`s, like the direct form `θ_o / (2 k_o) - θ_i / (2 k_i)`, which is used instead
+    /// when one of the ellipses is far from the unit circle (`|u| > 1`): there the two
+    /// terms of the difference form can cancel.
+    #[inline(always)]
+    pub(crate) fn area_between(
+        &self,
+        det: f32,
+        dot: f32,
+        ti: f32,
+        to: f32,
+        precision: AreaPrecision,
+    ) -> f32 {
+        let det = det.max(0.0);
+        if self.direct_form != 0 || is_degenerate(self.outer) || is_degenerate(self.inner) {
+            // The direct form: better when the ellipses differ much (then the two terms
+            // of the difference form cancel instead).
+            let area = |u: Vec2, k: f32, t0: f32, t: f32| {
+                if is_degenerate(u) {
+                    0.0
+                } else {
+                    atan2_positive(k * det, dot + t0 * t, precision) * (0.5 / k)
+                }
+            };
+            return area(self.outer, self.outer_root_det, self.outer_dots[0], to)
+                - area(self.inner, self.inner_root_det, self.inner_dots[0], ti);
+        }
+        let (ki, ko) = (self.inner_root_det, self.outer_root_det);
+        let (ti_ti0, to_to0) = (self.inner_dots[0] * ti, self.outer_dots[0] * to);
+        let (xi, xo) = (dot + ti_ti0, dot + to_to0);
+        let cross = self.root_det_difference * dot + ko * ti_ti0 - ki * to_to0;
+        let re = xo * xi + ko * ki * det * det;
+        let im = det * cross;
+        let difference = atan2_signed(im, re, precision);
+        let theta_i = atan2_positive(ki * det, xi, precision);
+        0.5 * (difference / ko + theta_i * self.inverse_root_det_difference)
+    }
+
+    /// The whole sector's area (between the ellipses, or inside the outer one in the
+    /// central case).
+    pub(crate) fn area(&self, central: bool, precision: AreaPrecision) -> f32 {
+        let dot = dot2(self.s0, self.s1);
+        if central {
+            self.outer_area(self.det, dot, self.outer_dots[1], precision)
+        } else {
+            self.area_between(
+                self.det,
+                dot,
+                self.inner_dots[1],
+                self.outer_dots[1],
+                precision,
+            )
+        }
+    }
+
+    /// The central case of Algorithm 4: a point uniformly distributed in the part of the
+    /// outer ellipse within the sector, at area `area` from `s0` counter-clockwise, and
+    /// at relative radius² `xi1` (supplement A.7).
+    ///
+    /// In the coordinates `Lᵀ p` (with `C = L Lᵀ`) the ellipse is the unit circle, the
+    /// area `A` is the angle `2 √|C| A`, and rotating `Lᵀ s0` by it and mapping back gives
+    /// `w = cos(2 √|C| A) √|C| s0 + sin(2 √|C| A) R C s0` up to a positive factor (using
+    /// `L⁻ᵀ R Lᵀ = |L| C⁻¹ R` and `C⁻¹ R = R C / |C|` for symmetric 2×2 `C`). The point
+    /// on the ellipse is `w / √(wᵀ C w)`; uniform area along the ray puts it at `√ξ1` of
+    /// that.
+    ///
+    /// Returns the point and `ω_z² = 1 - |p|²`, computed as
+    /// `((1 - ξ1)|w|² + (u·w)²) / wᵀCw` without the cancellation of `1 - |p|²` near the
+    /// rim of the disk (the horizon). Here `u · w = cos · √|C| t0 + sin · det(s0, u)` (as
+    /// `u · R u = 0`), from the accurate `t0 = u · s0`.
+    #[inline(always)]
+    pub(crate) fn sample_central(&self, area: f32, xi1: f32) -> (Vec2, f32) {
+        let (u, s0, t0) = (self.outer, self.s0, self.outer_dots[0]);
+        let k = self.outer_root_det;
+        let (sin, cos) = libm::sincosf(2.0 * k * area);
+        let c_s0 = add2(s0, scale2(u, t0));
+        let w = add2(scale2(s0, cos * k), scale2(rotate(c_s0), sin));
+        let uw = cos * k * t0 + sin * det2(s0, u);
+        let length2 = dot2(w, w);
+        let norm = (length2 + uw * uw).max(f32::MIN_POSITIVE);
+        let z2 = ((1.0 - xi1) * length2 + uw * uw) / norm;
+        (scale2(w, libm::sqrtf(xi1 / norm)), z2)
+    }
+
+    /// Algorithm 3 (`sample_sector_between_ellipses`): a point uniformly distributed in
+    /// the region between the two ellipses, at area `area` from `s0` (a fraction
+    /// `fraction` of the sector's area), at relative radius² `xi1` between the ellipses.
+    ///
+    /// Initialisation (supplement A.4): the sector is halved by `s_h = s0 + s1`, and each
+    /// half is approximated by the quad whose corners lie on the two ellipses at the
+    /// half's boundaries. A quad is chosen by `fraction`, and the direction `w` where the
+    /// area between the quad's two edges (lines `r_l · q = D_l`) reaches the wanted share
+    /// is the root of the homogeneous quadratic `wᵀ Q w = 0`, which Algorithm 2 picks
+    /// correctly (Proposition 3). Then `iterations` steps of the iteration of supplement
+    /// A.3 replace the quad's edges by the tangents of the ellipses at the current
+    /// direction; the error shrinks cubically (Proposition 6).
+    ///
+    /// Returns the point and `ω_z²` (see [`point_between_ellipses`]).
+    #[inline(always)]
+    pub(crate) fn sample_between(
+        &self,
+        area: f32,
+        fraction: f32,
+        xi1: f32,
+        iterations: u32,
+    ) -> (Vec2, f32) {
+        let (s0, s1, ui, uo) = (self.s0, self.s1, self.inner, self.outer);
+        let (ti, to) = (self.inner_dots, self.outer_dots);
+        let sh = add2(s0, s1);
+        let [li0, lih, li1] = self.inner_radius;
+        let [lo0, loh, lo1] = self.outer_radius;
+        // Twice the quad areas over |det(s0, s1)| (= |det(s_h, s_k)| for both halves).
+        let quad0 = lo0 * loh - li0 * lih;
+        let quad1 = loh * lo1 - lih * li1;
+        // Measured from s0 for the first quad (counter-clockwise, positive) and from s1
+        // for the second (clockwise, negative); the quad's own boundary s_k is the
+        // reference. (The supplement's listing scales by "|(s_h, s_1)|", garbled in the
+        // text: it must be the absolute value, as the signs of the two cases show.)
+        let split = fraction * (quad0 + quad1) - quad0;
+        let first = split <= 0.0;
+        let (sk, lik, lok, tik, tok, quad_area) = if first {
+            (s0, li0, lo0, ti[0], to[0], split + quad0)
+        } else {
+            (s1, li1, lo1, ti[1], to[1], split - quad1)
+        };
+        let quad_area = 0.5 * quad_area * self.det.abs();
+        // Quad edges: normals r_l = C_l a_l with a_l = λ_l,h s_h + λ_l,k s_k, and offsets
+        // D_l = λ_l,h r_l·s_h = λ_l,h (a_l·s_h + (u_l·a_l)(u_l·s_h)).
+        let (ti_h, to_h) = (ti[0] + ti[1], to[0] + to[1]);
+        let (ai, ao) = (
+            add2(scale2(sh, lih), scale2(sk, lik)),
+            add2(scale2(sh, loh), scale2(sk, lok)),
+        );
+        let (uai, uao) = (lih * ti_h + lik * tik, loh * to_h + lok * tok);
+        let ri = add2(ai, scale2(ui, uai));
+        let ro = add2(ao, scale2(uo, uao));
+        let di = lih * (dot2(ai, sh) + uai * ti_h);
+        let d_o = loh * (dot2(ao, sh) + uao * to_h);
+        // The area between the two edges from s_k to w is
+        // ½ (λ_o,k D_o / (r_o·w) - λ_i,k D_i / (r_i·w)) det(s_k, w); setting it to the
+        // wanted area and multiplying by (r_o·w)(r_i·w) gives wᵀ Q w = 0 with
+        // Q = (R s_k) cᵀ - 2 A_q r_o r_iᵀ, c = λ_o,k D_o r_i - λ_i,k D_i r_o.
+        let a = rotate(sk);
+        let c = add2(scale2(ri, lok * d_o), scale2(ro, -lik * di));
+        let twice = 2.0 * quad_area;
+        let qxx = a[0] * c[0] - twice * ro[0] * ri[0];
+        let qxy_plus_qyx = a[0] * c[1] + a[1] * c[0] - twice * (ro[0] * ri[1] + ro[1] * ri[0]);
+        let qyy = a[1] * c[1] - twice * ro[1] * ri[1];
+        let w = towards(solve_homogeneous_quadratic(qxx, qxy_plus_qyx, qyy), sh);
+        let mut c = self.coordinates(normalize_magnitude(w));
+        for _ in 0..iterations {
+            // Residual A_δ = A - (area between the ellipses from s0 to w).
+            let residual = area
+                - self.area_between(
+                    c.det,
+                    c.dot,
+                    c.inner_dot,
+                    c.outer_dot,
+                    AreaPrecision::Exact,
+                );
+            // T = R w (C_i w - C_o w)ᵀ - 2 A_δ (C_i w)(C_o w)ᵀ (supplement A.3).
+            let w = c.w;
+            let (wi, wo) = (
+                add2(w, scale2(ui, c.inner_dot)),
+                add2(w, scale2(uo, c.outer_dot)),
+            );
+            let rw = rotate(w);
+            let d = [wi[0] - wo[0], wi[1] - wo[1]];
+            let twice = 2.0 * residual;
+            let txx = rw[0] * d[0] - twice * wi[0] * wo[0];
+            let txy_plus_tyx =
+                rw[0] * d[1] + rw[1] * d[0] - twice * (wi[0] * wo[1] + wi[1] * wo[0]);
+            let tyy = rw[1] * d[1] - twice * wi[1] * wo[1];
+            let next = towards(solve_homogeneous_quadratic(txx, txy_plus_tyx, tyy), sh);
+            c = self.coordinates(normalize_magnitude(next));
+        }
+        point_between_ellipses(c.w, xi1, c.length2, c.inner_dot, c.outer_dot)
+    }
+}
+
+/// `w / (|w_x| + |w_y|)` up to a factor in `[2, 8)`, without a division (supplement A.7):
+/// the iteration only needs the direction of `w`, but its magnitude must stay away from
+/// overflow and underflow.
+///
+/// Bit trick: `x ^ 0x7F80_0000` flips the 8 exponent bits of `x`. For a normal `f32`
+/// with biased exponent `E ∈ [1, 254]`, `x = 2^(E-127) (1 + f)`, the result has biased
+/// exponent `255 - E ∈ [1, 254]`, also normal and finite, with the same significand, so
+/// the product is `2^(E-127) 2^(128-E) (1 + f)² = 2 (1 + f)² ∈ [2, 8)`. It is applied only
+/// when `|w_x| + |w_y|` is normal (not zero, subnormal, infinite or NaN), where that
+/// argument holds; otherwise `w` is left as it is.
+#[inline(always)]
+fn normalize_magnitude(w: Vec2) -> Vec2 {
+    let sum = w[0].abs() + w[1].abs();
+    if sum.is_normal() {
+        scale2(w, f32::from_bits(sum.to_bits() ^ 0x7F80_0000))
+    } else {
+        w
+    }
+}
+
+/// `w` or `-w`, whichever points into the half-plane of the sector's bisector `h`.
+#[inline(always)]
+fn towards(w: Vec2, h: Vec2) -> Vec2 {
+    let sign = copy_sign(1.0, dot2(w, h));
+    scale2(w, sign)
+}
+
+/// The point along the direction `w` at relative radius² `xi1` between the inner and
+/// the outer ellipse (uniform in area along the ray), given `|w|²`, `u_i · w` and `u_o · w`, and
+/// its `ω_z² = 1 - |p|²`, computed as `(1 - ξ1) (u_i·w)² / wᵀC_iw + ξ1 (u_o·w)² / wᵀC_ow`
+/// without the cancellation of `1 - |p|²` near the rim of the disk.
+#[inline(always)]
+pub(crate) fn point_between_ellipses(
+    w: Vec2,
+    xi1: f32,
+    length2: f32,
+    uiw: f32,
+    uow: f32,
+) -> (Vec2, f32) {
+    let (qi, qo) = (length2 + uiw * uiw, length2 + uow * uow);
+    let radius2 = (1.0 - xi1) / qi + xi1 / qo;
+    let z2 = (1.0 - xi1) * (uiw * uiw / qi) + xi1 * (uow * uow / qo);
+    let scale = libm::sqrtf(radius2);
+    if scale.is_finite() && z2.is_finite() {
+        (scale2(w, scale), z2)
+    } else {
+        ([0.0, 0.0], 1.0)
+    }
+}
+
+/// A direction `w = α s0 + β s1` in a sector's coordinates, with every quantity the
+/// samplers need computed from `(α, β)` and the sector's accurate constants, so that they
+/// all describe the same direction: `det(s0, w) = β det(s0, s1)`,
+/// `s0 · w = α + β (s0 · s1)`, `u · w = α (u · s0) + β (u · s1)` and
+/// `|w|² = α² + β² + 2αβ (s0 · s1)`. Computed from the rounded `u`, `u · w` would lose
+/// all precision for a thin ellipse (large `u`) and `w` nearly orthogonal to `u`.
+#[derive(Clone, Copy)]
+pub(crate) struct Coordinates {
+    pub w: Vec2,
+    pub det: f32,
+    pub dot: f32,
+    pub length2: f32,
+    pub inner_dot: f32,
+    pub outer_dot: f32,
+}
+
+impl Coordinates {
+    #[inline(always)]
+    fn new(sector: &EllipseSector, alpha: f32, beta: f32) -> Self {
+        let (s0, s1, cosine) = (sector.s0, sector.s1, sector.cosine);
+        let (ti, to) = (sector.inner_dots, sector.outer_dots);
+        Self {
+            w: add2(scale2(s0, alpha), scale2(s1, beta)),
+            det: beta * sector.det,
+            dot: alpha + beta * cosine,
+            length2: alpha * alpha + beta * beta + 2.0 * alpha * beta * cosine,
+            inner_dot: alpha * ti[0] + beta * ti[1],
+            outer_dot: alpha * to[0] + beta * to[1],
+        }
+    }
+}
