@@ -44,10 +44,19 @@ pub struct EllipseSector {
     pub(crate) root_det_difference: f32,
     /// `1/k_o - 1/k_i = (|u_i|² - |u_o|²) / ((k_i + k_o) k_i k_o)`.
     pub(crate) inverse_root_det_difference: f32,
-    /// `λ_i` at `s0`, `s_h = s0 + s1` and `s1`: `λ s` lies on the inner ellipse.
-    pub(crate) inner_radius: [f32; 3],
-    /// `λ_o` at `s0`, `s_h` and `s1`.
-    pub(crate) outer_radius: [f32; 3],
+    /// The directions `b_0 = s0, b_1, b_2, b_3, b_4 = s1` (unit vectors at equal angles)
+    /// that bound the quads of the initial guess.
+    pub(crate) quarters: [[f32; 2]; 5],
+    /// `det(b_j, b_j+1)` of the rounded quarter directions (equal for all four quads).
+    pub(crate) quarter_det: f32,
+    /// `u_i · b_j` for `j = 0..=4`.
+    pub(crate) inner_quarter_dots: [f32; 5],
+    /// `u_o · b_j` for `j = 0..=4`.
+    pub(crate) outer_quarter_dots: [f32; 5],
+    /// `λ_i` at `b_j`: `λ b_j` lies on the inner ellipse.
+    pub(crate) inner_radius: [f32; 5],
+    /// `λ_o` at `b_j`.
+    pub(crate) outer_radius: [f32; 5],
     /// `s0 · s1`.
     pub(crate) cosine: f32,
     /// 1 when `|u| > 1` for one of the ellipses: the area between them then uses the
@@ -104,16 +113,45 @@ impl EllipseSector {
         outer_root_det: 1.0,
         root_det_difference: 0.0,
         inverse_root_det_difference: 0.0,
-        inner_radius: [0.0; 3],
-        outer_radius: [0.0; 3],
+        quarters: [[0.0; 2]; 5],
+        quarter_det: 0.0,
+        inner_quarter_dots: [0.0; 5],
+        outer_quarter_dots: [0.0; 5],
+        inner_radius: [0.0; 5],
+        outer_radius: [0.0; 5],
         cosine: 1.0,
         direct_form: 0,
     };
 
+    /// A sector of the central case: from `s0` to `s1` (unit vectors, accurate
+    /// `det = det(s0, s1)`) inside the ellipse `outer` with its accurate dot products
+    /// with `s0` and `s1`. Only what the closed-form sampling needs is computed.
+    pub(crate) fn new_central(
+        s0: Vec2,
+        s1: Vec2,
+        det: f32,
+        outer: Vec2,
+        outer_dots: [f32; 2],
+    ) -> Self {
+        Self {
+            s0,
+            s1,
+            det,
+            outer,
+            outer_dots,
+            outer_root_det: libm::sqrtf(1.0 + dot2(outer, outer)),
+            cosine: dot2(s0, s1),
+            inverse_basis: {
+                let inverse = 1.0 / det2(s0, s1);
+                if inverse.is_finite() { inverse } else { 0.0 }
+            },
+            ..Self::EMPTY
+        }
+    }
+
     /// The sector from `s0` to `s1` (unit vectors) with accurate `det = det(s0, s1)`
     /// between the ellipses `inner` and `outer` with their accurate dot products with
-    /// `s0` and `s1`. For the central case pass `inner = [0, 0]` (the unit circle's `u`)
-    /// and zero dots; it is not used.
+    /// `s0` and `s1`.
     pub(crate) fn new(
         s0: Vec2,
         s1: Vec2,
@@ -124,27 +162,39 @@ impl EllipseSector {
         outer_dots: [f32; 2],
     ) -> Self {
         let (ui2, uo2) = (dot2(inner, inner), dot2(outer, outer));
-        let sh = add2(s0, s1);
-        let sh2 = dot2(sh, sh);
-        let radii = |t: [f32; 2]| {
-            [
-                ellipse_radius(1.0, t[0]),
-                ellipse_radius(sh2, t[0] + t[1]),
-                ellipse_radius(1.0, t[1]),
-            ]
-        };
+        // Quarter directions by repeated bisection: b2 ∝ s0 + s1, b1 ∝ s0 + b2,
+        // b3 ∝ b2 + s1 (sectors span less than π, so the sums do not vanish).
+        let unit = |v: Vec2| scale2(v, 1.0 / libm::sqrtf(dot2(v, v)));
+        let b2 = unit(add2(s0, s1));
+        let (b1, b3) = (unit(add2(s0, b2)), unit(add2(b2, s1)));
+        let boundaries = [s0, b1, b2, b3, s1];
         let inverse_basis = 1.0 / det2(s0, s1);
+        let inverse_basis = if inverse_basis.is_finite() {
+            inverse_basis
+        } else {
+            0.0
+        };
+        // u · b_j by linearity from the accurate u · s0, u · s1 (b = α s0 + β s1).
+        let quarter_dots = |t: [f32; 2]| {
+            let mut dots = [t[0], 0.0, 0.0, 0.0, t[1]];
+            for j in 1..4 {
+                let b = boundaries[j];
+                let alpha = (b[0] * s1[1] - b[1] * s1[0]) * inverse_basis;
+                let beta = (s0[0] * b[1] - s0[1] * b[0]) * inverse_basis;
+                dots[j] = alpha * t[0] + beta * t[1];
+            }
+            dots
+        };
+        let (inner_quarter_dots, outer_quarter_dots) =
+            (quarter_dots(inner_dots), quarter_dots(outer_dots));
+        let radii = |t: [f32; 5]| t.map(|t| ellipse_radius(1.0, t));
         let (ki, ko) = (libm::sqrtf(1.0 + ui2), libm::sqrtf(1.0 + uo2));
         let finite = |x: f32| if x.is_finite() { x } else { 0.0 };
         Self {
             s0,
             s1,
             det,
-            inverse_basis: if inverse_basis.is_finite() {
-                inverse_basis
-            } else {
-                0.0
-            },
+            inverse_basis,
             inner,
             outer,
             inner_dots,
@@ -153,8 +203,12 @@ impl EllipseSector {
             outer_root_det: ko,
             root_det_difference: finite(-(ui2 - uo2) / (ki + ko)),
             inverse_root_det_difference: finite((ui2 - uo2) / ((ki + ko) * ki * ko)),
-            inner_radius: radii(inner_dots),
-            outer_radius: radii(outer_dots),
+            quarters: boundaries,
+            quarter_det: det2(s0, b1),
+            inner_quarter_dots,
+            outer_quarter_dots,
+            inner_radius: radii(inner_quarter_dots),
+            outer_radius: radii(outer_quarter_dots),
             cosine: dot2(s0, s1),
             direct_form: (ui2 > 1.0 || uo2 > 1.0) as u32,
         }
@@ -292,12 +346,16 @@ impl EllipseSector {
     /// the region between the two ellipses, at area `area` from `s0` (a fraction
     /// `fraction` of the sector's area), at relative radius² `xi1` between the ellipses.
     ///
-    /// Initialisation (supplement A.4): the sector is halved by `s_h = s0 + s1`, and each
-    /// half is approximated by the quad whose corners lie on the two ellipses at the
-    /// half's boundaries. A quad is chosen by `fraction`, and the direction `w` where the
-    /// area between the quad's two edges (lines `r_l · q = D_l`) reaches the wanted share
-    /// is the root of the homogeneous quadratic `wᵀ Q w = 0`, which Algorithm 2 picks
-    /// correctly (Proposition 3). Then `iterations` steps of the iteration of supplement
+    /// Initialisation (supplement A.4): the supplement halves the sector by
+    /// `s_h = s0 + s1` and approximates each half by the quad whose corners lie on the two
+    /// ellipses at the half's boundaries. Here the sector is cut into four quads at equal
+    /// angles (precomputed), which makes the initial guess about four times as accurate,
+    /// so that one refinement iteration reaches what two reach from two quads (see
+    /// [`REFINEMENT_ITERATIONS`](super::projected::REFINEMENT_ITERATIONS)). A quad is
+    /// chosen by `fraction`, and the direction `w` where the area between the quad's two
+    /// edges (lines `r_l · q = D_l`) reaches the wanted share is the root of the
+    /// homogeneous quadratic `wᵀ Q w = 0`, which Algorithm 2 picks correctly
+    /// (Proposition 3, whose proof needs quads of at most 90°). Then `iterations` steps of the iteration of supplement
     /// A.3 replace the quad's edges by the tangents of the ellipses at the current
     /// direction; the error shrinks cubically (Proposition 6).
     ///
@@ -310,29 +368,44 @@ impl EllipseSector {
         xi1: f32,
         iterations: u32,
     ) -> (Vec2, f32) {
-        let (s0, s1, ui, uo) = (self.s0, self.s1, self.inner, self.outer);
-        let (ti, to) = (self.inner_dots, self.outer_dots);
-        let sh = add2(s0, s1);
-        let [li0, lih, li1] = self.inner_radius;
-        let [lo0, loh, lo1] = self.outer_radius;
-        // Twice the quad areas over |det(s0, s1)| (= |det(s_h, s_k)| for both halves).
-        let quad0 = lo0 * loh - li0 * lih;
-        let quad1 = loh * lo1 - lih * li1;
-        // Measured from s0 for the first quad (counter-clockwise, positive) and from s1
-        // for the second (clockwise, negative); the quad's own boundary s_k is the
-        // reference. (The supplement's listing scales by "|(s_h, s_1)|", garbled in the
-        // text: it must be the absolute value, as the signs of the two cases show.)
-        let split = fraction * (quad0 + quad1) - quad0;
-        let first = split <= 0.0;
-        let (sk, lik, lok, tik, tok, quad_area) = if first {
-            (s0, li0, lo0, ti[0], to[0], split + quad0)
-        } else {
-            (s1, li1, lo1, ti[1], to[1], split - quad1)
-        };
-        let quad_area = 0.5 * quad_area * self.det.abs();
+        let (ui, uo) = (self.inner, self.outer);
+        // References, not copies: copying the arrays to the stack and reading them back
+        // shifted by one element defeats store-to-load forwarding.
+        let (li, lo) = (&self.inner_radius, &self.outer_radius);
+        let (ti, to) = (&self.inner_quarter_dots, &self.outer_quarter_dots);
+        // Twice the quad areas over det(b_j, b_j+1), the same for all four quads.
+        let quads = [
+            lo[0] * lo[1] - li[0] * li[1],
+            lo[1] * lo[2] - li[1] * li[2],
+            lo[2] * lo[3] - li[2] * li[3],
+            lo[3] * lo[4] - li[3] * li[4],
+        ];
+        let ends = [
+            quads[0],
+            quads[0] + quads[1],
+            quads[0] + quads[1] + quads[2],
+        ];
+        let total = ends[2] + quads[3];
+        // Quad j (between b_j and b_j+1) by the fraction, without branches: the number of
+        // quads that end before the target.
+        let target = fraction * total;
+        let j =
+            (target > ends[0]) as usize + (target > ends[1]) as usize + (target > ends[2]) as usize;
+        let start = [0.0, ends[0], ends[1], ends[2]][j];
+        let x = (target - start).clamp(0.0, quads[j].max(0.0));
+        // As in the supplement, the area is measured from the quad's boundary towards the
+        // sector's end that it is nearest to (s0 for the first two quads,
+        // counter-clockwise and positive; s1 for the last two, clockwise and negative), so
+        // that the sector's ends, where the two ellipses may meet, are never the far side.
+        let second_half = j >= 2;
+        let k = j + second_half as usize;
+        let h = j + 1 - second_half as usize;
+        let quad_area = 0.5 * self.quarter_det * if second_half { x - quads[j] } else { x };
+        let (sk, sh) = (self.quarters[k], self.quarters[h]);
+        let (lik, lok, tik, tok) = (li[k], lo[k], ti[k], to[k]);
+        let (lih, loh, ti_h, to_h) = (li[h], lo[h], ti[h], to[h]);
         // Quad edges: normals r_l = C_l a_l with a_l = λ_l,h s_h + λ_l,k s_k, and offsets
         // D_l = λ_l,h r_l·s_h = λ_l,h (a_l·s_h + (u_l·a_l)(u_l·s_h)).
-        let (ti_h, to_h) = (ti[0] + ti[1], to[0] + to[1]);
         let (ai, ao) = (
             add2(scale2(sh, lih), scale2(sk, lik)),
             add2(scale2(sh, loh), scale2(sk, lok)),
@@ -342,28 +415,22 @@ impl EllipseSector {
         let ro = add2(ao, scale2(uo, uao));
         let di = lih * (dot2(ai, sh) + uai * ti_h);
         let d_o = loh * (dot2(ao, sh) + uao * to_h);
-        // The area between the two edges from s_k to w is
-        // ½ (λ_o,k D_o / (r_o·w) - λ_i,k D_i / (r_i·w)) det(s_k, w); setting it to the
-        // wanted area and multiplying by (r_o·w)(r_i·w) gives wᵀ Q w = 0 with
-        // Q = (R s_k) cᵀ - 2 A_q r_o r_iᵀ, c = λ_o,k D_o r_i - λ_i,k D_i r_o.
         let a = rotate(sk);
         let c = add2(scale2(ri, lok * d_o), scale2(ro, -lik * di));
         let twice = 2.0 * quad_area;
         let qxx = a[0] * c[0] - twice * ro[0] * ri[0];
         let qxy_plus_qyx = a[0] * c[1] + a[1] * c[0] - twice * (ro[0] * ri[1] + ro[1] * ri[0]);
         let qyy = a[1] * c[1] - twice * ro[1] * ri[1];
-        let w = towards(solve_homogeneous_quadratic(qxx, qxy_plus_qyx, qyy), sh);
+        let bisector = self.quarters[2];
+        let w = towards(
+            solve_homogeneous_quadratic(qxx, qxy_plus_qyx, qyy),
+            bisector,
+        );
         let mut c = self.coordinates(normalize_magnitude(w));
         for _ in 0..iterations {
             // Residual A_δ = A - (area between the ellipses from s0 to w).
             let residual = area
-                - self.area_between(
-                    c.det,
-                    c.dot,
-                    c.inner_dot,
-                    c.outer_dot,
-                    AreaPrecision::Exact,
-                );
+                - self.area_between(c.det, c.dot, c.inner_dot, c.outer_dot, AreaPrecision::Exact);
             // T = R w (C_i w - C_o w)ᵀ - 2 A_δ (C_i w)(C_o w)ᵀ (supplement A.3).
             let w = c.w;
             let (wi, wo) = (
@@ -377,7 +444,10 @@ impl EllipseSector {
             let txy_plus_tyx =
                 rw[0] * d[1] + rw[1] * d[0] - twice * (wi[0] * wo[1] + wi[1] * wo[0]);
             let tyy = rw[1] * d[1] - twice * wi[1] * wo[1];
-            let next = towards(solve_homogeneous_quadratic(txx, txy_plus_tyx, tyy), sh);
+            let next = towards(
+                solve_homogeneous_quadratic(txx, txy_plus_tyx, tyy),
+                bisector,
+            );
             c = self.coordinates(normalize_magnitude(next));
         }
         point_between_ellipses(c.w, xi1, c.length2, c.inner_dot, c.outer_dot)

@@ -30,12 +30,17 @@ use super::ellipse::{
 use super::ellipse_sector::{AreaPrecision, EllipseSector};
 use super::small_projected::{SLIVER_EXTENT2, SMALL_EXTENT, SmallPolygonCosineSampler};
 use super::solid_angle::rescale;
-use crate::math::{copy_sign, cross_precise, difference_of_products, dot_precise};
+use crate::math::{copy_sign, difference_of_products};
 use crate::sample::clamp_random;
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 
-/// Refinement iterations of the unbiased sampler (Algorithm 3: two suffice for `f32`).
-pub const REFINEMENT_ITERATIONS: u32 = 2;
+/// Refinement iterations of the unbiased sampler. Algorithm 3 takes two from an initial
+/// guess by two quads; here the initial guess comes from four quads (about four times
+/// as accurate), and one iteration gives the same accuracy at the 99th percentile (see
+/// the report's error table: forward error 2.4e-6 rad after one, 1.5e-6 after two) for
+/// 60% of the cost. [`sample_with_iterations`](ProjectedSolidAnglePolygon::sample_with_iterations)
+/// takes any count.
+pub const REFINEMENT_ITERATIONS: u32 = 1;
 
 /// Iterations are skipped for `ξ0` this close to 0 or 1, where the two tangent lines of
 /// the iteration may meet near the solution (supplement A.3).
@@ -195,8 +200,10 @@ impl ProjectedSolidAnglePolygon {
             let triple = if c == a || c == b {
                 0.0
             } else {
+                // Edge vectors are exact differences up to one rounding each, so the plain
+                // products are accurate unless the polygon is degenerate.
                 let pa = positions[a];
-                dot_precise(cross_precise(positions[b] - pa, p - pa), pa)
+                (positions[b] - pa).cross(p - pa).dot(pa)
             };
             let normal_dot = difference_of_products(triple, 1.0, n.z, p.z);
             let sigma = copy_sign(1.0, n.x);
@@ -280,12 +287,10 @@ impl ProjectedSolidAnglePolygon {
             #[allow(clippy::needless_range_loop)] // j indexes several arrays and vertices
             for j in 0..count {
                 let (a, b) = (j, next(j));
-                let sector = EllipseSector::new(
+                let sector = EllipseSector::new_central(
                     direction[a],
                     direction[b],
                     sector_det(a, b),
-                    [0.0, 0.0],
-                    [0.0, 0.0],
                     edge[j],
                     [edge_dot(j, a), edge_dot(j, b)],
                 );

@@ -7,7 +7,9 @@ fn main() {
     let mut polygons = Vec::new();
     let mut seed = 1u64;
     let mut next = || {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         ((seed >> 40) as f32) / (1u64 << 24) as f32
     };
     while polygons.len() < 256 {
@@ -27,7 +29,11 @@ fn main() {
     for round in 0..4000 {
         for p in &polygons {
             let u = [next(), next()];
-            let s = if mode == "fast" { p.sample_fast(u) } else { p.sample(u) };
+            let s = if mode == "fast" {
+                p.sample_fast(u)
+            } else {
+                p.sample(u)
+            };
             sum += s.pdf + round as f32 * 0.0;
         }
     }
