@@ -153,10 +153,14 @@ impl ProjectedSolidAnglePolygon {
         // between them (differences of sector areas of order 1) lose about 6e-8 / s of
         // relative precision for an angular size s. Below SMALL_EXTENT the warped solid
         // angle sampler, whose only approximation is of relative order s², takes over.
-        let first = positions[0] / positions[0].length();
+        // The extent: the largest sin² of the angle between the first vertex and another
+        // (no square roots; a vertex in the opposite half-space counts as far away).
+        let first = positions[0];
+        let first2 = first.length_squared();
         let mut extent2 = 0.0f32;
         for p in &positions[1..count] {
-            extent2 = extent2.max((*p / p.length() - first).length_squared());
+            let sin2 = p.cross(first).length_squared() / (p.length_squared() * first2);
+            extent2 = extent2.max(if p.dot(first) > 0.0 { sin2 } else { 1.0 });
         }
         let switch_to_small = |mut polygon: Self| {
             let small = SmallPolygonCosineSampler::new(&positions[..count])?;
@@ -205,7 +209,9 @@ impl ProjectedSolidAnglePolygon {
                 let pa = positions[a];
                 (positions[b] - pa).cross(p - pa).dot(pa)
             };
-            let normal_dot = difference_of_products(triple, 1.0, n.z, p.z);
+            // Plain: where the two terms cancel, t is small and only its absolute error
+            // (an ulp of p_z / |p_xy|) matters.
+            let normal_dot = triple - n.z * p.z;
             let sigma = copy_sign(1.0, n.x);
             let t = sigma * normal_dot / (n.z * xy_length[c]);
             if t.is_finite() { t } else { 0.0 }

@@ -29,7 +29,8 @@
 use super::solid_angle::{MAX_TRIANGLES, SolidAnglePolygon};
 use crate::{Sample, Vec3};
 
-/// The angular extent (largest chord from the first vertex, in radians) below which
+/// The angular extent (sine of the largest angle between the first vertex and another)
+/// below which
 /// [`ProjectedSolidAnglePolygon`] uses this sampler: 1e-2 rad, polygons up to about 1e-4
 /// sr. There the ellipse construction's areas lose about `3e-7 × condition` of relative
 /// precision (the condition, outer area over Φ, grows like `1/s`: 100 to 500 at this
