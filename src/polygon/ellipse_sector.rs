@@ -62,6 +62,11 @@ pub struct EllipseSector {
     /// 1 when `|u| > 1` for one of the ellipses: the area between them then uses the
     /// direct form (see [`area_between`](Self::area_between)).
     pub(crate) direct_form: u32,
+    /// Refinement iterations that the unbiased sampler adds in this sector: 1 where the
+    /// sector is ill-conditioned (its outer ellipse's area exceeds 200 times the area
+    /// between the ellipses), where rounding makes the first iteration's result less
+    /// reliable; 0 elsewhere.
+    pub(crate) extra_iterations: u32,
 }
 
 /// Which `atan` the areas use.
@@ -121,6 +126,7 @@ impl EllipseSector {
         outer_radius: [0.0; 5],
         cosine: 1.0,
         direct_form: 0,
+        extra_iterations: 0,
     };
 
     /// A sector of the central case: from `s0` to `s1` (unit vectors, accurate
@@ -211,6 +217,7 @@ impl EllipseSector {
             outer_radius: radii(outer_quarter_dots),
             cosine: dot2(s0, s1),
             direct_form: (ui2 > 1.0 || uo2 > 1.0) as u32,
+            extra_iterations: 0,
         }
     }
 

@@ -38,7 +38,9 @@ use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 /// guess by two quads; here the initial guess comes from four quads (about four times
 /// as accurate), and one iteration gives the same accuracy at the 99th percentile (see
 /// the report's error table: forward error 2.4e-6 rad after one, 1.5e-6 after two) for
-/// 60% of the cost. [`sample_with_iterations`](ProjectedSolidAnglePolygon::sample_with_iterations)
+/// 60% of the cost. Sectors whose outer ellipse's area exceeds 200 times the sector's
+/// area (ill-conditioned, near the polygon's azimuthal ends or the horizon) get a second
+/// iteration. [`sample_with_iterations`](ProjectedSolidAnglePolygon::sample_with_iterations)
 /// takes any count.
 pub const REFINEMENT_ITERATIONS: u32 = 1;
 
@@ -266,7 +268,7 @@ impl ProjectedSolidAnglePolygon {
                 if j == 0 || !is_inner(edge[e]) {
                     outer = e;
                 }
-                let sector = EllipseSector::new(
+                let mut sector = EllipseSector::new(
                     direction[a],
                     direction[b],
                     sector_det(a, b),
@@ -275,14 +277,16 @@ impl ProjectedSolidAnglePolygon {
                     edge[outer],
                     [edge_dot(outer, a), edge_dot(outer, b)],
                 );
-                outer_sum += ellipse_area(
+                let outer_area = ellipse_area(
                     sector.outer,
                     sector.det,
                     dot2(sector.s0, sector.s1),
                     sector.outer_dots[0],
                     sector.outer_dots[1],
                 );
+                outer_sum += outer_area;
                 polygon.sector_area[j] = sector.area(false, precision).max(0.0);
+                sector.extra_iterations = (outer_area > 200.0 * polygon.sector_area[j]) as u32;
                 polygon.sectors[j] = sector;
             }
         } else {
@@ -341,7 +345,7 @@ impl ProjectedSolidAnglePolygon {
     /// (with a finite direction) for an empty polygon.
     #[inline]
     pub fn sample(&self, u: [f32; 2]) -> Sample {
-        self.sample_with_iterations(u, REFINEMENT_ITERATIONS)
+        self.sample_impl(u, REFINEMENT_ITERATIONS, true)
     }
 
     /// The biased variant: no refinement iterations in the decentral case, so the azimuth
@@ -350,12 +354,19 @@ impl ProjectedSolidAnglePolygon {
     /// density with which this function actually places its samples.
     #[inline]
     pub fn sample_fast(&self, u: [f32; 2]) -> Sample {
-        self.sample_with_iterations(u, 0)
+        self.sample_impl(u, 0, false)
     }
 
     /// [`sample`](Self::sample) with the given number of refinement iterations in the
     /// decentral case (0 is [`sample_fast`](Self::sample_fast)).
     pub fn sample_with_iterations(&self, u: [f32; 2], iterations: u32) -> Sample {
+        self.sample_impl(u, iterations, false)
+    }
+
+    /// The sampler, with the ill-conditioned sectors' extra iteration when
+    /// `extra_iterations` is set.
+    #[inline(always)]
+    fn sample_impl(&self, u: [f32; 2], iterations: u32, extra_iterations: bool) -> Sample {
         if self.selectable_sectors == 0 {
             return Sample::NONE;
         }
@@ -378,7 +389,7 @@ impl ProjectedSolidAnglePolygon {
         } else {
             let fraction = local / sector_area;
             let iterations = if (ITERATION_MARGIN..=1.0 - ITERATION_MARGIN).contains(&fraction) {
-                iterations
+                iterations + extra_iterations as u32 * sector.extra_iterations
             } else {
                 0
             };

@@ -415,7 +415,7 @@ fn iteration_error_table() {
         "## Projected solid angle sampling: error per refinement iteration count (decentral polygons)\n"
     );
     println!(
-        "{ITERATION_POLYGONS} random decentral polygons (3 to 7 vertices, some crossing the horizon, angular extent > 0.02 rad so that the ellipse path is used) × {ITERATION_SAMPLES} samples. Forward error: |azimuth of the sample − azimuth of the f64 solution| in rad, the f64 solution found by bisection on the f64 projected solid angle (Lambert's formula) of the clipped polygon cut at the azimuth, for the target u0 × Φ_f64. Backward error: |Φ_f64 up to the sample's azimuth − target| in sr, and over Φ_f64. Iteration 2 is `sample`; the last row is the biased variant (`new_fast_biased` + `sample_fast`: no iterations and sector areas by a fast `atan`).\n"
+        "{ITERATION_POLYGONS} random decentral polygons (3 to 7 vertices, some crossing the horizon, angular extent > 0.02 rad so that the ellipse path is used) × {ITERATION_SAMPLES} samples. Forward error: |azimuth of the sample − azimuth of the f64 solution| in rad, the f64 solution found by bisection on the f64 projected solid angle (Lambert's formula) of the clipped polygon cut at the azimuth, for the target u0 × Φ_f64. Backward error: |Φ_f64 up to the sample's azimuth − target| in sr, and over Φ_f64. Rows 0 to 3 use `sample_with_iterations` (initial guess from four quads, then that many iterations); `sample` uses one iteration, two in ill-conditioned sectors (outer ellipse area over 200 times the sector's area), shown in the row `sample`; the last row is the biased variant (`new_fast_biased` + `sample_fast`: no iterations and sector areas by a fast `atan`).\n"
     );
     let mut rng = Rng(2021);
     let mut polygons = Vec::new();
@@ -456,9 +456,9 @@ fn iteration_error_table() {
             polygons.push((clipped, polygon, fast));
         }
     }
-    // Per iteration count 0 to 3 and for the biased variant: forward, backward
+    // Per iteration count 0 to 3, for `sample` and for the biased variant: forward, backward
     // absolute, backward relative.
-    let mut errors: [[Vec<f64>; 3]; 5] = Default::default();
+    let mut errors: [[Vec<f64>; 3]; 6] = Default::default();
     for (clipped, polygon, fast) in &polygons {
         let total = reference::projected_solid_angle(clipped);
         let (lo, hi) = reference::azimuth_range(clipped);
@@ -469,6 +469,7 @@ fn iteration_error_table() {
             for (iterations, e) in errors.iter_mut().enumerate() {
                 let s = match iterations {
                     0..=3 => polygon.sample_with_iterations(u, iterations as u32),
+                    4 => polygon.sample(u),
                     _ => fast.sample_fast(u),
                 };
                 let got = (s.dir.y as f64).atan2(s.dir.x as f64);
@@ -494,6 +495,7 @@ fn iteration_error_table() {
     for (iterations, e) in errors.iter_mut().enumerate() {
         let mut row = match iterations {
             0..=3 => format!("| {iterations} "),
+            4 => "| `sample` (1, or 2 where ill-conditioned) ".to_string(),
             _ => "| 0, fast `atan` (the biased variant) ".to_string(),
         };
         for column in e.iter_mut() {
