@@ -278,6 +278,101 @@ typedef struct SpheraClippedSolidAnglePolygon {
 } SpheraClippedSolidAnglePolygon;
 
 /**
+ * A sector between two ellipses, prepared for sampling.
+ */
+typedef struct SpheraEllipseSector {
+  /**
+   * Unit direction of the clockwise boundary.
+   */
+  float s0[2];
+  /**
+   * Unit direction of the counter-clockwise boundary.
+   */
+  float s1[2];
+  /**
+   * `det(s0, s1)` from the vertex positions.
+   */
+  float det;
+  /**
+   * `1 / det(s0, s1)` of the rounded `s0`, `s1` (the basis for `α`, `β`).
+   */
+  float inverse_basis;
+  /**
+   * The inner ellipse (unused in the central case).
+   */
+  float inner[2];
+  /**
+   * The outer ellipse.
+   */
+  float outer[2];
+  /**
+   * `(u_i · s0, u_i · s1)` from the vertex positions.
+   */
+  float inner_dots[2];
+  /**
+   * `(u_o · s0, u_o · s1)` from the vertex positions.
+   */
+  float outer_dots[2];
+  /**
+   * `√|C_i| = √(1 + |u_i|²)`.
+   */
+  float inner_root_det;
+  /**
+   * `√|C_o| = √(1 + |u_o|²)`.
+   */
+  float outer_root_det;
+  /**
+   * `k_o - k_i = -(|u_i|² - |u_o|²) / (k_o + k_i)`, with `k_l = √|C_l|`.
+   */
+  float root_det_difference;
+  /**
+   * `1/k_o - 1/k_i = (|u_i|² - |u_o|²) / ((k_i + k_o) k_i k_o)`.
+   */
+  float inverse_root_det_difference;
+  /**
+   * The directions `b_0 = s0, b_1, b_2, b_3, b_4 = s1` (unit vectors at equal angles)
+   * that bound the quads of the initial guess.
+   */
+  float quarters[5][2];
+  /**
+   * `det(b_j, b_j+1)` of the rounded quarter directions (equal for all four quads).
+   */
+  float quarter_det;
+  /**
+   * `u_i · b_j` for `j = 0..=4`.
+   */
+  float inner_quarter_dots[5];
+  /**
+   * `u_o · b_j` for `j = 0..=4`.
+   */
+  float outer_quarter_dots[5];
+  /**
+   * `λ_i` at `b_j`: `λ b_j` lies on the inner ellipse.
+   */
+  float inner_radius[5];
+  /**
+   * `λ_o` at `b_j`.
+   */
+  float outer_radius[5];
+  /**
+   * `s0 · s1`.
+   */
+  float cosine;
+  /**
+   * 1 when `|u| > 1` for one of the ellipses: the area between them then uses the
+   * direct form (see [`area_between`](Self::area_between)).
+   */
+  uint32_t direct_form;
+  /**
+   * Refinement iterations that the unbiased sampler adds in this sector: 1 where the
+   * sector is ill-conditioned (its outer ellipse's area exceeds 200 times the area
+   * between the ellipses), where rounding makes the first iteration's result less
+   * reliable; 0 elsewhere.
+   */
+  uint32_t extra_iterations;
+} SpheraEllipseSector;
+
+/**
  * A small convex polygon prepared for cosine-weighted sampling by warped solid angle
  * sampling.
  */
@@ -315,21 +410,9 @@ typedef struct SpheraSmallPolygonCosineSampler {
  */
 typedef struct SpheraProjectedSolidAnglePolygon {
   /**
-   * Unit direction of the clockwise boundary `s0` of each sector.
+   * The sectors, in counter-clockwise order.
    */
-  float sector_begin[SPHERA_MAX_POLYGON_VERTICES][2];
-  /**
-   * Unit direction of the counter-clockwise boundary `s1` of each sector.
-   */
-  float sector_end[SPHERA_MAX_POLYGON_VERTICES][2];
-  /**
-   * The inner ellipse of each sector (unused in the central case).
-   */
-  float inner[SPHERA_MAX_POLYGON_VERTICES][2];
-  /**
-   * The outer ellipse of each sector.
-   */
-  float outer[SPHERA_MAX_POLYGON_VERTICES][2];
+  struct SpheraEllipseSector sectors[SPHERA_MAX_POLYGON_VERTICES];
   /**
    * Projected solid angle (area in the disk) of each sector.
    */
