@@ -155,12 +155,7 @@ impl SmallPolygonCosineSampler {
         };
         let zf = (1.0 - a) * zb + a * zc;
         let t = invert_cubic_cdf(u1, za, zf);
-        let end = if k + 1 < self.fan.vertex_count as usize - 2 {
-            self.fan.start[k + 1]
-        } else {
-            self.fan.solid_angle
-        };
-        let triangle_solid_angle = end - self.fan.start[k];
+        let triangle_solid_angle = self.fan.triangle_solid_angle(k);
         let sample = self
             .fan
             .sample_in_triangle(k, a * triangle_solid_angle, t * t);
@@ -181,12 +176,7 @@ impl SmallPolygonCosineSampler {
         let Some((k, local, u1)) = self.fan.invert_in_triangle(dir) else {
             return 0.0;
         };
-        let end = if k + 1 < self.fan.vertex_count as usize - 2 {
-            self.fan.start[k + 1]
-        } else {
-            self.fan.solid_angle
-        };
-        let triangle_solid_angle = end - self.fan.start[k];
+        let triangle_solid_angle = self.fan.triangle_solid_angle(k);
         let a = if triangle_solid_angle > 0.0 {
             (local / triangle_solid_angle).clamp(0.0, 1.0)
         } else {

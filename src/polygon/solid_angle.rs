@@ -300,14 +300,16 @@ impl SolidAnglePolygon {
         self.sample_in_triangle(k, local, u1)
     }
 
-    /// Algorithm 5 in fan triangle `k`: the direction at solid angle `local` from the
-    /// triangle's first edge and at `u1` along the new edge, with pdf `1 / Ω`.
+    /// The solid angle of fan triangle `k`, `2 atan2(G0, G1 + G2)`, computed anew (the
+    /// difference of the running sums `start` loses the precision of a small triangle
+    /// next to large ones).
     #[inline(always)]
     pub(crate) fn triangle_solid_angle(&self, k: usize) -> f32 {
         2.0 * atan2_upper_half_plane(self.g0[k], self.g1_plus_g2[k])
     }
 
-    /// Algorithm 5 in fan triangle `k`: see [`sample`](Self::sample).
+    /// Algorithm 5 in fan triangle `k`: the direction at solid angle `local` from the
+    /// triangle's first edge and at `u1` along the new edge, with pdf `1 / Ω`.
     #[inline(always)]
     pub(crate) fn sample_in_triangle(&self, k: usize, local: f32, u1: f32) -> Sample {
         let (v0, v1) = (self.vertices[k + 1], self.vertices[0]);
