@@ -12,6 +12,9 @@ pub mod clip;
 #[rustfmt::skip]
 mod clip_generated;
 pub mod solid_angle;
+mod sorting_networks;
+#[rustfmt::skip]
+mod sorting_networks_generated;
 
 pub use clip::clip_to_upper_hemisphere;
 pub use solid_angle::SolidAnglePolygon;
