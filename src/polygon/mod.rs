@@ -17,6 +17,9 @@ pub mod clipped_solid_angle;
 pub mod projected;
 pub mod small_projected;
 pub mod solid_angle;
+mod sorting_networks;
+#[rustfmt::skip]
+mod sorting_networks_generated;
 
 pub use clip::clip_to_upper_hemisphere;
 pub use clipped_solid_angle::ClippedSolidAnglePolygon;

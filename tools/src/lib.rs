@@ -11,3 +11,4 @@ pub fn repository_root() -> PathBuf {
 pub mod clipping_generator;
 pub mod header;
 pub mod reference;
+pub mod sorting_network_generator;
