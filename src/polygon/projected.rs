@@ -30,6 +30,7 @@ use super::ellipse::{
 use super::ellipse_sector::{AreaPrecision, EllipseSector};
 use super::small_projected::{SLIVER_EXTENT2, SMALL_EXTENT, SmallPolygonCosineSampler};
 use super::solid_angle::rescale;
+use super::sorting_networks::sort_bitonic;
 use crate::math::{copy_sign, difference_of_products};
 use crate::sample::clamp_random;
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
@@ -430,21 +431,6 @@ impl ProjectedSolidAnglePolygon {
             inside &= n.dot(dir) >= 0.0;
         }
         inside
-    }
-}
-
-/// Sorts the first `count` entries of the bitonic sequence `items` (temporary: a
-/// general odd-even transposition network until the optimal bitonic networks land).
-fn sort_bitonic(items: &mut [u8; 8], count: usize, less: impl Fn(&u8, &u8) -> bool) {
-    for round in 0..count {
-        let mut i = round % 2;
-        while i + 1 < count {
-            let (a, b) = (items[i], items[i + 1]);
-            let swap = less(&b, &a);
-            items[i] = if swap { b } else { a };
-            items[i + 1] = if swap { a } else { b };
-            i += 2;
-        }
     }
 }
 

@@ -28,8 +28,9 @@
 //! bitonic sequences with ties iff it sorts those of distinct values, so ties cost no
 //! extra comparator.
 
-#[allow(unused_imports)] // Used by the tests until the sampler sorts with it.
-pub(crate) use super::sorting_networks_generated::{BITONIC_NETWORKS, sort_bitonic};
+#[cfg(test)]
+pub(crate) use super::sorting_networks_generated::BITONIC_NETWORKS;
+pub(crate) use super::sorting_networks_generated::sort_bitonic;
 
 #[cfg(test)]
 mod tests {

@@ -567,7 +567,7 @@ pub fn render(networks: &[OptimalNetwork]) -> String {
             out,
             "/// The comparators `(i, j)` of the network for bitonic sequences of {} elements\n\
              /// ({} comparison{}, depth {}): swap entries `i < j` if entry `j` is less.\n\
-             #[allow(dead_code)] // Used by the tests until the sampler sorts with it.\n\
+             #[allow(dead_code)] // The tables are read by the tests; the sampler runs sort_bitonic.\n\
              pub(crate) const BITONIC_NETWORK_{}: [(u8, u8); {}] = [{}];\n",
             net.elements,
             net.comparators.len(),
@@ -581,7 +581,7 @@ pub fn render(networks: &[OptimalNetwork]) -> String {
     }
     out.push_str(
         "/// The networks indexed by element count (none for 0 and 1 elements).\n\
-         #[allow(dead_code)] // Used by the tests until the sampler sorts with it.\n\
+         #[allow(dead_code)] // The tables are read by the tests; the sampler runs sort_bitonic.\n\
          pub(crate) const BITONIC_NETWORKS: [&[(u8, u8)]; 9] = [\n\
          \x20   &[],\n\
          \x20   &[],\n",
@@ -596,7 +596,6 @@ pub fn render(networks: &[OptimalNetwork]) -> String {
          /// strict order) in place: the network for `count` as straight-line\n\
          /// compare-exchanges, which swap two entries only if the later one is less. A\n\
          /// `count` of 0, 1 or more than 8 does nothing. Entries past `count` are untouched.\n\
-         #[allow(dead_code)] // Used by the tests until the sampler sorts with it.\n\
          #[inline]\n\
          pub(crate) fn sort_bitonic<T: Copy>(items: &mut [T; 8], count: usize, less: impl Fn(&T, &T) -> bool) {\n\
          \x20   match count {\n",
