@@ -1,0 +1,34 @@
+//! Profiling harness: prepares central polygons in a loop (`perf record`).
+use sphera::Vec3;
+use sphera::polygon::ProjectedSolidAnglePolygon;
+use std::hint::black_box;
+
+fn main() {
+    let mut seed = 1u64;
+    let mut next = || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((seed >> 40) as f32) / (1u64 << 24) as f32
+    };
+    let polygons: Vec<Vec<Vec3>> = (0..256)
+        .map(|_| {
+            let c = Vec3::new(0.2 * next() - 0.1, 0.2 * next() - 0.1, 1.0);
+            (0..4)
+                .map(|i| {
+                    let a = i as f32 * 1.57 + 0.3 * next();
+                    c + Vec3::new(0.5 * a.cos(), 0.5 * a.sin(), 0.1 * a.sin())
+                })
+                .collect()
+        })
+        .collect();
+    let mut sum = 0.0f32;
+    for _ in 0..4000 {
+        for v in &polygons {
+            if let Some(p) = ProjectedSolidAnglePolygon::new(black_box(v)) {
+                sum += p.projected_solid_angle();
+            }
+        }
+    }
+    println!("{}", black_box(sum));
+}
