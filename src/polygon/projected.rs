@@ -269,7 +269,7 @@ impl ProjectedSolidAnglePolygon {
                 if j == 0 || !is_inner(edge[e]) {
                     outer = e;
                 }
-                let mut sector = EllipseSector::new(
+                polygon.sectors[j] = EllipseSector::new(
                     direction[a],
                     direction[b],
                     sector_det(a, b),
@@ -278,6 +278,7 @@ impl ProjectedSolidAnglePolygon {
                     edge[outer],
                     [edge_dot(outer, a), edge_dot(outer, b)],
                 );
+                let sector = &mut polygon.sectors[j];
                 let outer_area = ellipse_area(
                     sector.outer,
                     sector.det,
@@ -286,9 +287,9 @@ impl ProjectedSolidAnglePolygon {
                     sector.outer_dots[1],
                 );
                 outer_sum += outer_area;
-                polygon.sector_area[j] = sector.area(false, precision).max(0.0);
-                sector.extra_iterations = (outer_area > 200.0 * polygon.sector_area[j]) as u32;
-                polygon.sectors[j] = sector;
+                let area = sector.area(false, precision).max(0.0);
+                sector.extra_iterations = (outer_area > 200.0 * area) as u32;
+                polygon.sector_area[j] = area;
             }
         } else {
             // Central case: sector j reaches from the origin to the ellipse of edge j,
@@ -298,15 +299,16 @@ impl ProjectedSolidAnglePolygon {
             #[allow(clippy::needless_range_loop)] // j indexes several arrays and vertices
             for j in 0..count {
                 let (a, b) = (j, next(j));
-                let sector = EllipseSector::new_central(
+                // Built in place: building it on the stack and copying it whole after
+                // using it stalls store-to-load forwarding.
+                polygon.sectors[j] = EllipseSector::new_central(
                     direction[a],
                     direction[b],
                     sector_det(a, b),
                     edge[j],
                     [edge_dot(j, a), edge_dot(j, b)],
                 );
-                polygon.sector_area[j] = sector.area(true, precision).max(0.0);
-                polygon.sectors[j] = sector;
+                polygon.sector_area[j] = polygon.sectors[j].area(true, precision).max(0.0);
             }
         }
         let mut total = 0.0f32;
