@@ -32,3 +32,20 @@ pub(crate) const ONE_MINUS_ULP: f32 = 1.0 - f32::EPSILON / 2.0;
 pub(crate) fn clamp_random(u: f32) -> f32 {
     if u >= 0.0 { u.min(ONE_MINUS_ULP) } else { 0.0 }
 }
+
+/// The piece that a target value falls into, for pieces laid end to end with start
+/// values `starts` (non-decreasing): the number of pieces among `1..selectable` that
+/// start at or before `target`. Branch-free; `<=` skips pieces of zero size, and the
+/// result is at most `selectable - 1` (0 when `selectable` is 0).
+#[inline(always)]
+pub(crate) fn select_piece<const N: usize>(
+    starts: &[f32; N],
+    selectable: u32,
+    target: f32,
+) -> usize {
+    let mut k = 0usize;
+    for (j, start) in starts.iter().enumerate().skip(1) {
+        k += (j < selectable as usize && *start <= target) as usize;
+    }
+    k
+}

@@ -32,7 +32,7 @@ use super::small_projected::{SLIVER_EXTENT2, SMALL_EXTENT, SmallPolygonCosineSam
 use super::solid_angle::rescale;
 use super::sorting_networks::sort_bitonic;
 use crate::math::{copy_sign, difference_of_products};
-use crate::sample::clamp_random;
+use crate::sample::{clamp_random, select_piece};
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 
 /// Refinement iterations of the unbiased sampler. Algorithm 3 takes two from an initial
@@ -380,10 +380,7 @@ impl ProjectedSolidAnglePolygon {
         let target = u0 * self.projected_solid_angle;
         // The sector: the number of sectors (among all but the last selectable) that start
         // at or before the target. `<=` skips sectors of zero area.
-        let mut k = 0usize;
-        for j in 1..MAX_POLYGON_VERTICES {
-            k += (j < self.selectable_sectors as usize && self.sector_start[j] <= target) as usize;
-        }
+        let k = select_piece(&self.sector_start, self.selectable_sectors, target);
         let sector_area = self.sector_area[k];
         let local = (target - self.sector_start[k]).max(0.0).min(sector_area);
         let sector = &self.sectors[k];

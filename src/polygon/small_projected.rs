@@ -27,6 +27,7 @@
 //! computed separately by a Gauss rule over each triangle, to relative `O(s⁴)`.
 
 use super::solid_angle::{MAX_TRIANGLES, SolidAnglePolygon};
+use crate::sample::select_piece;
 use crate::{Sample, Vec3};
 
 /// The angular extent (sine of the largest angle between the first vertex and another)
@@ -135,11 +136,7 @@ impl SmallPolygonCosineSampler {
             return Sample::NONE;
         }
         let target = u0 * self.linear_integral;
-        let mut k = 0usize;
-        for j in 1..MAX_TRIANGLES {
-            k +=
-                (j < self.selectable_triangles as usize && self.weight_start[j] <= target) as usize;
-        }
+        let k = select_piece(&self.weight_start, self.selectable_triangles, target);
         let xi = ((target - self.weight_start[k]) / self.weight[k]).clamp(0.0, 1.0);
         let (za, zb, zc) = self.cosines(k);
         // The linear marginal in a (pbrt's stable form of the quadratic's root).

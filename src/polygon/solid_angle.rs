@@ -23,7 +23,7 @@
 
 use crate::Sample;
 use crate::math::{atan2_upper_half_plane, difference_of_products, dot_precise};
-use crate::sample::{ONE_MINUS_ULP, clamp_random};
+use crate::sample::{ONE_MINUS_ULP, clamp_random, select_piece};
 use crate::{MAX_POLYGON_VERTICES, Vec3};
 
 /// The most fan triangles a polygon has.
@@ -292,10 +292,7 @@ impl SolidAnglePolygon {
         let target = u0 * self.solid_angle;
         // Fan triangle k: the number of triangles (among all but the last selectable)
         // that end at or before the target. `<=` skips triangles of zero solid angle.
-        let mut k = 0usize;
-        for j in 1..MAX_TRIANGLES {
-            k += (j < self.selectable_triangles as usize && self.start[j] <= target) as usize;
-        }
+        let k = select_piece(&self.start, self.selectable_triangles, target);
         let local = (target - self.start[k]).max(0.0);
         self.sample_in_triangle(k, local, u1)
     }

@@ -18,7 +18,7 @@
 use super::super::ellipse::{add2, det2, dot2, rotate, scale2};
 use super::super::ellipse_sector::{AreaPrecision, point_between_ellipses};
 use super::super::projected::ProjectedSolidAnglePolygon;
-use crate::sample::clamp_random;
+use crate::sample::{clamp_random, select_piece};
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 
 /// The most Newton steps per sample.
@@ -74,11 +74,7 @@ impl ArvoProjectedPolygon {
         }
         let (u0, u1) = (clamp_random(u[0]), clamp_random(u[1]));
         let target = u0 * sectors.projected_solid_angle;
-        let mut k = 0usize;
-        for j in 1..MAX_POLYGON_VERTICES {
-            k += (j < sectors.selectable_sectors as usize && sectors.sector_start[j] <= target)
-                as usize;
-        }
+        let k = select_piece(&sectors.sector_start, sectors.selectable_sectors, target);
         let area = sectors.sector_area[k];
         let local = (target - sectors.sector_start[k]).clamp(0.0, area);
         let central = sectors.central != 0;
