@@ -44,8 +44,9 @@ pub(crate) fn select_piece<const N: usize>(
     target: f32,
 ) -> usize {
     let mut k = 0usize;
-    for (j, start) in starts.iter().enumerate().skip(1) {
-        k += (j < selectable as usize && *start <= target) as usize;
+    #[allow(clippy::needless_range_loop)] // an index loop that the compiler unrolls
+    for j in 1..N {
+        k += (j < selectable as usize && starts[j] <= target) as usize;
     }
     k
 }
