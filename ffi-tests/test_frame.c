@@ -93,6 +93,18 @@ int main(void) {
 #endif
   }
 
+  /* ---- version: "MAJOR.MINOR.PATCH", static and NUL-terminated ---- */
+  {
+    const char *version = sphera_version();
+    unsigned major, minor, patch;
+    int consumed = 0;
+    CHECK(version != NULL);
+    printf("sphera_version() = %s\n", version ? version : "(null)");
+    CHECK(version && sscanf(version, "%u.%u.%u%n", &major, &minor, &patch, &consumed) == 3);
+    CHECK(version && version[consumed] == '\0');
+    CHECK(sphera_version() == version);
+  }
+
   CHECK(SPHERA_MAX_POLYGON_VERTICES == 8);
   return check_summary();
 }

@@ -738,6 +738,13 @@ struct SpheraVec3 sphera_frame_to_world(const struct SpheraFrame *frame, struct 
 bool sphera_has_hardware_fma(void);
 
 /**
+ * The library's version as a NUL-terminated string, e.g. `"0.1.0"` (the `version` of
+ * its `Cargo.toml`). The pointer is to static storage: never free it. Renderers put it
+ * in cache keys of images computed with the library.
+ */
+const char *sphera_version(void);
+
+/**
  * Prepares the bilinear warp of Hart et al. 2020 for the convex polygon
  * `vertices[0..count]` (positions relative to the shading point, not normalised, either
  * winding): solid angle sampling whose primary square is warped by the bilinear

@@ -1,4 +1,4 @@
-//! Local shading frames and CPU capabilities.
+//! Local shading frames, CPU capabilities and the library version.
 
 use super::types::{SpheraVec3, with_ref};
 use crate::Vec3;
@@ -64,4 +64,14 @@ pub unsafe extern "C" fn sphera_frame_to_world(frame: *const Frame, v: SpheraVec
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_has_hardware_fma() -> bool {
     HAS_HARDWARE_FMA
+}
+
+/// The library's version as a NUL-terminated string, e.g. `"0.1.0"` (the `version` of
+/// its `Cargo.toml`). The pointer is to static storage: never free it. Renderers put it
+/// in cache keys of images computed with the library.
+#[unsafe(no_mangle)]
+pub extern "C" fn sphera_version() -> *const core::ffi::c_char {
+    // `concat!` appends the terminating NUL at compile time, so the bytes form a
+    // valid C string with no interior NUL (a version string has none).
+    concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast()
 }

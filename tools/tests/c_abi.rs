@@ -19,6 +19,14 @@ const C_TESTS: [&str; 6] = [
     "test_warps",
 ];
 
+/// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
+/// besides `libsphera.a`; they need `libembree-dev` and `libpng-dev` installed
+/// (`c-examples/install-deps.sh`).
+const TRACER_TESTS: [&str; 1] = ["test_tracer_end_to_end"];
+
+/// The tracer's sources that the tracer tests link (all but its `main.c`).
+const TRACER_SOURCES: [&str; 4] = ["scenes.c", "techniques.c", "render.c", "image.c"];
+
 const C_FLAGS: [&str; 5] = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"];
 
 /// The host's target triple, from the constants of `std` (the tests run on the host).
@@ -178,6 +186,45 @@ fn test_warps() {
     run_c_test("test_warps");
 }
 
+/// Compiles `ffi-tests/<name>.c` with the tracer's sources, links `libsphera.a`, Embree
+/// 3, libpng and pthreads, runs it and asserts that it exits with status 0.
+fn run_tracer_test(name: &str) {
+    let root = repository_root();
+    let program = output_dir().join(name);
+    let mut command = compiler(false);
+    command
+        .args(C_FLAGS)
+        .arg("-I")
+        .arg(root.join("include"))
+        .arg("-I")
+        .arg(root.join("c-examples").join("src"))
+        .arg("-I")
+        .arg(root.join("ffi-tests"))
+        .arg(root.join("ffi-tests").join(format!("{name}.c")));
+    for source in TRACER_SOURCES {
+        command.arg(root.join("c-examples").join("src").join(source));
+    }
+    command
+        .arg(static_library())
+        .args(["-lembree3", "-lpng", "-lpthread", "-lm", "-o"])
+        .arg(&program);
+    if let Err(message) = run(&mut command) {
+        panic!(
+            "{name}.c does not compile and link (Embree 3 and libpng must be installed: \
+             bash c-examples/install-deps.sh):\n{message}"
+        );
+    }
+    match run(&mut Command::new(&program)) {
+        Ok(output) => println!("{name}.c:\n{output}"),
+        Err(message) => panic!("{name}.c failed:\n{message}"),
+    }
+}
+
+#[test]
+fn test_tracer_end_to_end() {
+    run_tracer_test("test_tracer_end_to_end");
+}
+
 #[test]
 fn every_c_test_file_has_a_test() {
     let mut found: Vec<String> = std::fs::read_dir(repository_root().join("ffi-tests"))
@@ -189,11 +236,15 @@ fn every_c_test_file_has_a_test() {
         })
         .collect();
     found.sort();
-    let mut known: Vec<String> = C_TESTS.iter().map(|name| name.to_string()).collect();
+    let mut known: Vec<String> = C_TESTS
+        .iter()
+        .chain(TRACER_TESTS.iter())
+        .map(|name| name.to_string())
+        .collect();
     known.sort();
     assert_eq!(
         found, known,
-        "add a #[test] and a C_TESTS entry in tools/tests/c_abi.rs for each ffi-tests/*.c"
+        "add a #[test] and a C_TESTS (or TRACER_TESTS) entry in tools/tests/c_abi.rs for each ffi-tests/*.c"
     );
 }
 

@@ -1,0 +1,473 @@
+/* Rendering: camera rays once into a G-buffer, then passes of light sampling with
+ * shadow rays, in parallel over tiles with pthreads. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#if defined(__SSE__) || defined(__x86_64__)
+#include <pmmintrin.h>
+#include <xmmintrin.h>
+#define HAVE_SSE_CONTROL 1
+#endif
+
+#include "techniques.h"
+#include "tracer.h"
+
+#define TILE 16
+#define PI_F 3.14159265358979f
+
+/* What a camera ray found, computed once per pixel. */
+typedef struct Hit {
+    float3 position;     /* on the surface */
+    float3 origin;       /* shadow ray origin: the position pushed off the surface */
+    SpheraFrame frame;   /* z = geometric normal, turned towards the camera */
+    float3 wo;           /* direction to the camera, local frame */
+    float3 emission;     /* radiance emitted towards the camera (lights only) */
+    uint32_t material;
+    bool reflects;       /* false: nothing or a light was hit */
+} Hit;
+
+/* ---- random numbers ---------------------------------------------------------------- */
+
+typedef struct Rng {
+    uint64_t state;
+} Rng;
+
+/* SplitMix64 (Steele et al. 2014): a fresh, well-mixed stream per pixel and pass. */
+static uint64_t splitmix64(uint64_t *state) {
+    uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+/* A float in [0, 1): the top 24 bits of a 64-bit draw times 2^-24, exact in f32. */
+static float rng_float(Rng *rng) {
+    return (float)(splitmix64(&rng->state) >> 40) * 0x1p-24f;
+}
+
+/* ---- BRDF ------------------------------------------------------------------------- */
+
+/* Smith's Lambda for GGX: (sqrt(1 + alpha^2 tan^2 theta) - 1) / 2. */
+static float ggx_lambda(float cos_theta, float alpha2) {
+    float cos2 = cos_theta * cos_theta;
+    float tan2 = (1.0f - cos2) / cos2;
+    return 0.5f * (sqrtf(1.0f + alpha2 * tan2) - 1.0f);
+}
+
+/* The GGX layer's f(wo, wi) in the local frame (both above the surface), with the
+ * height-correlated Smith term G2 = 1 / (1 + Lambda(wo) + Lambda(wi)) and Schlick's
+ * Fresnel F0 + (1 - F0)(1 - wo.h)^5; 0 for Lambert-only materials. */
+static float3 brdf_specular(const Material *m, float3 wo, float3 wi) {
+    if (!(m->alpha > 0.0f && wo.z > 0.0f)) return f3(0, 0, 0);
+    float3 h = f3_normalize(f3_add(wo, wi));
+    float alpha2 = m->alpha * m->alpha;
+    float d_denominator = h.z * h.z * (alpha2 - 1.0f) + 1.0f;
+    float d = alpha2 / (PI_F * d_denominator * d_denominator);
+    float g2 = 1.0f / (1.0f + ggx_lambda(wo.z, alpha2) + ggx_lambda(wi.z, alpha2));
+    float c = 1.0f - f3_dot(wo, h);
+    c = c < 0.0f ? 0.0f : c;
+    float c5 = c * c * c * c * c;
+    float3 fresnel = f3(m->specular.x + (1.0f - m->specular.x) * c5,
+                        m->specular.y + (1.0f - m->specular.y) * c5,
+                        m->specular.z + (1.0f - m->specular.z) * c5);
+    return f3_scale(fresnel, d * g2 / (4.0f * wo.z * wi.z));
+}
+
+/* The Lambert part, albedo / pi. */
+static float3 brdf_diffuse(const Material *m) { return f3_scale(m->diffuse, 1.0f / PI_F); }
+
+/* ---- light sampling ----------------------------------------------------------------- */
+
+static float3 frame_to_world(const SpheraFrame *f, SpheraVec3 v) {
+    return f3(f->tangent.x * v.x + f->bitangent.x * v.y + f->normal.x * v.z,
+              f->tangent.y * v.x + f->bitangent.y * v.y + f->normal.y * v.z,
+              f->tangent.z * v.x + f->bitangent.z * v.y + f->normal.z * v.z);
+}
+
+static SpheraVec3 frame_to_local(const SpheraFrame *f, float3 v) {
+    SpheraVec3 r = {f->tangent.x * v.x + f->tangent.y * v.y + f->tangent.z * v.z,
+                    f->bitangent.x * v.x + f->bitangent.y * v.y + f->bitangent.z * v.z,
+                    f->normal.x * v.x + f->normal.y * v.y + f->normal.z * v.z};
+    return r;
+}
+
+/* True when nothing blocks the way from the hit towards `light` along the world
+ * direction `dir`. The ray ends just before the light's plane, so that the light's own
+ * triangles do not count. */
+static bool unoccluded(const Scene *scene, struct RTCIntersectContext *context, const Hit *hit,
+                       const Light *light, float3 dir) {
+    float along = f3_dot(light->normal, dir);
+    float t = f3_dot(light->normal, f3_sub(light->vertices[0], hit->origin)) / along;
+    if (!(t > 0.0f) || !(t < INFINITY)) return false; /* parallel or behind: no hit */
+    float tfar = t * (1.0f - 1e-5f) - scene->ray_epsilon;
+    if (tfar <= 0.0f) return true;
+    struct RTCRay ray;
+    ray.org_x = hit->origin.x;
+    ray.org_y = hit->origin.y;
+    ray.org_z = hit->origin.z;
+    ray.dir_x = dir.x;
+    ray.dir_y = dir.y;
+    ray.dir_z = dir.z;
+    ray.tnear = 0.0f;
+    ray.tfar = tfar;
+    ray.time = 0.0f;
+    ray.mask = (unsigned)-1;
+    ray.id = 0;
+    ray.flags = 0;
+    rtcOccluded1(scene->rtc, context, &ray);
+    return ray.tfar >= 0.0f; /* Embree sets tfar to -inf on a hit */
+}
+
+/* L * cos * visibility for the local direction `wi` towards `light` (0 below the
+ * horizon or when occluded); the caller multiplies by the BRDF. */
+static float3 light_cosine(const Scene *scene, struct RTCIntersectContext *context,
+                           const Hit *hit, const Light *light, SpheraVec3 wi) {
+    if (!(wi.z > 0.0f)) return f3(0, 0, 0);
+    float3 dir = frame_to_world(&hit->frame, wi);
+    if (!unoccluded(scene, context, hit, light, dir)) return f3(0, 0, 0);
+    return f3_scale(light->radiance, wi.z);
+}
+
+static float3 to_float3(SpheraVec3 v) { return f3(v.x, v.y, v.z); }
+
+/* The reference estimator for one light sample: one projected solid angle sample `a`
+ * and one solid angle sample `b`. The Lambert term is estimated from `a` alone
+ * (projected sampling is proportional to it, so unoccluded it has zero variance); the
+ * GGX term from both, weighted by the balance heuristic f / (p_projected +
+ * p_solid_angle). Both parts are unbiased, and so is their sum. */
+static float3 reference_estimate(const Scene *scene, struct RTCIntersectContext *context,
+                                 const Hit *hit, const Light *light,
+                                 const PreparedLight *prepared, SpheraSample a, SpheraSample b) {
+    const Material *m = &scene->materials[hit->material];
+    bool glossy = m->alpha > 0.0f;
+    float3 sum = f3(0, 0, 0);
+    if (a.pdf > 0.0f) {
+        float3 radiance = light_cosine(scene, context, hit, light, a.dir);
+        sum = f3_scale(f3_mul(radiance, brdf_diffuse(m)), 1.0f / a.pdf);
+        if (glossy) {
+            float p = a.pdf + sphera_solid_angle_polygon_pdf(&prepared->reference_solid_angle, a.dir);
+            float3 f = brdf_specular(m, hit->wo, to_float3(a.dir));
+            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), 1.0f / p));
+        }
+    }
+    if (glossy && b.pdf > 0.0f) {
+        float p = b.pdf + sphera_projected_polygon_pdf(&prepared->u.projected, b.dir);
+        float3 radiance = light_cosine(scene, context, hit, light, b.dir);
+        float3 f = brdf_specular(m, hit->wo, to_float3(b.dir));
+        sum = f3_add(sum, f3_scale(f3_mul(radiance, f), 1.0f / p));
+    }
+    return sum;
+}
+
+/* The estimate of the radiance reflected at `hit` from all lights, with `k` samples
+ * per light. */
+static float3 shade(const Scene *scene, struct RTCIntersectContext *context, const Hit *hit,
+                    Technique technique, uint32_t k, Rng *rng, uint64_t *samples) {
+    const Material *m = &scene->materials[hit->material];
+    float3 sum = f3(0, 0, 0);
+    for (uint32_t l = 0; l < scene->light_count; ++l) {
+        const Light *light = &scene->lights[l];
+        /* One-sided lights: nothing reaches points behind the light's plane. */
+        if (!(f3_dot(light->normal, f3_sub(hit->position, light->vertices[0])) > 0.0f)) continue;
+        SpheraVec3 local[SPHERA_MAX_POLYGON_VERTICES];
+        for (uint32_t i = 0; i < light->count; ++i)
+            local[i] = frame_to_local(&hit->frame, f3_sub(light->vertices[i], hit->position));
+        PreparedLight prepared;
+        if (!technique_prepare(technique, &prepared, local, light->count)) continue;
+        float3 light_sum = f3(0, 0, 0);
+        for (uint32_t s = 0; s < k; ++s) {
+            float u0 = rng_float(rng), u1 = rng_float(rng);
+            if (technique == TECHNIQUE_REFERENCE) {
+                SpheraSample a = sphera_projected_polygon_sample(&prepared.u.projected, u0, u1);
+                float v0 = rng_float(rng), v1 = rng_float(rng);
+                SpheraSample b =
+                    sphera_solid_angle_polygon_sample(&prepared.reference_solid_angle, v0, v1);
+                *samples += 2;
+                light_sum = f3_add(light_sum,
+                                   reference_estimate(scene, context, hit, light, &prepared, a, b));
+            } else {
+                SpheraSample sample = technique_sample(technique, &prepared, u0, u1);
+                *samples += 1;
+                if (!(sample.pdf > 0.0f)) continue;
+                float3 radiance = light_cosine(scene, context, hit, light, sample.dir);
+                float3 f = f3_add(brdf_diffuse(m), brdf_specular(m, hit->wo, to_float3(sample.dir)));
+                light_sum = f3_add(light_sum, f3_scale(f3_mul(radiance, f), 1.0f / sample.pdf));
+            }
+        }
+        sum = f3_add(sum, f3_scale(light_sum, 1.0f / (float)k));
+    }
+    return sum;
+}
+
+/* ---- camera rays ------------------------------------------------------------------ */
+
+static void trace_camera_rays(const Scene *scene, uint32_t width, uint32_t height, Hit *hits) {
+    struct RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    const Camera *camera = &scene->camera;
+    for (uint32_t y = 0; y < height; ++y) {
+        for (uint32_t x = 0; x < width; ++x) {
+            Hit *hit = &hits[y * width + x];
+            memset(hit, 0, sizeof *hit);
+            float sx = 2.0f * ((float)x + 0.5f) / (float)width - 1.0f;
+            float sy = 1.0f - 2.0f * ((float)y + 0.5f) / (float)height;
+            float3 dir = f3_normalize(f3_add(
+                camera->forward, f3_add(f3_scale(camera->right, sx), f3_scale(camera->up, sy))));
+            struct RTCRayHit rh;
+            rh.ray.org_x = camera->position.x;
+            rh.ray.org_y = camera->position.y;
+            rh.ray.org_z = camera->position.z;
+            rh.ray.dir_x = dir.x;
+            rh.ray.dir_y = dir.y;
+            rh.ray.dir_z = dir.z;
+            rh.ray.tnear = 0.0f;
+            rh.ray.tfar = INFINITY;
+            rh.ray.time = 0.0f;
+            rh.ray.mask = (unsigned)-1;
+            rh.ray.id = 0;
+            rh.ray.flags = 0;
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(scene->rtc, &context, &rh);
+            if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+            uint32_t triangle = rh.hit.primID;
+            float3 normal = scene->triangle_normal[triangle];
+            int32_t light = scene->triangle_light[triangle];
+            if (light >= 0) {
+                const Light *l = &scene->lights[light];
+                if (f3_dot(l->normal, dir) < 0.0f) hit->emission = l->radiance;
+                continue;
+            }
+            if (f3_dot(normal, dir) > 0.0f) normal = f3_scale(normal, -1.0f);
+            SpheraVec3 n = {normal.x, normal.y, normal.z};
+            if (!sphera_frame_from_normal(&hit->frame, n)) continue;
+            hit->position = f3_add(camera->position, f3_scale(dir, rh.ray.tfar));
+            hit->origin = f3_add(hit->position, f3_scale(normal, scene->ray_epsilon));
+            SpheraVec3 wo = frame_to_local(&hit->frame, f3_scale(dir, -1.0f));
+            hit->wo = f3(wo.x, wo.y, wo.z);
+            hit->material = scene->triangle_material[triangle];
+            hit->reflects = true;
+        }
+    }
+}
+
+/* ---- passes over tiles ------------------------------------------------------------- */
+
+typedef struct PassShared {
+    const Scene *scene;
+    const RenderSettings *settings;
+    const Hit *hits;
+    double *sum, *sum_squares; /* per pixel and channel */
+    uint32_t pass;
+    uint32_t tiles_x, tile_count;
+    uint32_t next_tile; /* taken with an atomic add */
+} PassShared;
+
+typedef struct Worker {
+    PassShared *shared;
+    uint64_t samples;
+} Worker;
+
+static void enable_flush_to_zero(void) {
+#ifdef HAVE_SSE_CONTROL
+    /* Embree asks for flush-to-zero and denormals-are-zero in every rendering thread. */
+    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+#endif
+}
+
+static void *render_tiles(void *argument) {
+    Worker *worker = argument;
+    PassShared *shared = worker->shared;
+    const RenderSettings *settings = shared->settings;
+    const uint32_t width = settings->width, height = settings->height;
+    enable_flush_to_zero();
+    struct RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    uint64_t samples = 0; /* counted locally: no false sharing between workers */
+    for (;;) {
+        uint32_t tile = __atomic_fetch_add(&shared->next_tile, 1, __ATOMIC_RELAXED);
+        if (tile >= shared->tile_count) break;
+        uint32_t x0 = (tile % shared->tiles_x) * TILE, y0 = (tile / shared->tiles_x) * TILE;
+        for (uint32_t y = y0; y < y0 + TILE && y < height; ++y) {
+            for (uint32_t x = x0; x < x0 + TILE && x < width; ++x) {
+                uint32_t pixel = y * width + x;
+                const Hit *hit = &shared->hits[pixel];
+                float3 value = hit->emission;
+                if (hit->reflects) {
+                    Rng rng = {settings->seed * 0x632BE59BD9B4E019ull +
+                               ((uint64_t)shared->pass << 32) + pixel};
+                    splitmix64(&rng.state);
+                    value = f3_add(value, shade(shared->scene, &context, hit, settings->technique,
+                                                settings->light_samples, &rng, &samples));
+                }
+                double v[3] = {value.x, value.y, value.z};
+                for (int c = 0; c < 3; ++c) {
+                    shared->sum[3 * pixel + c] += v[c];
+                    shared->sum_squares[3 * pixel + c] += v[c] * v[c];
+                }
+            }
+        }
+    }
+    worker->samples += samples;
+    return NULL;
+}
+
+static double now_ms(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return 1e3 * (double)t.tv_sec + 1e-6 * (double)t.tv_nsec;
+}
+
+static uint32_t core_count(void) {
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    uint32_t n = 0;
+    char line[256];
+    if (f) {
+        while (fgets(line, sizeof line, f))
+            if (strncmp(line, "processor", 9) == 0) ++n;
+        fclose(f);
+    }
+    return n ? n : 1;
+}
+
+void image_error(const float *image, const float *reference, uint32_t width, uint32_t height,
+                 double *rmse, double *relmse) {
+    double squared = 0.0, relative = 0.0;
+    size_t n = (size_t)width * height * 3;
+    for (size_t i = 0; i < n; ++i) {
+        double d = (double)image[i] - (double)reference[i];
+        squared += d * d;
+        relative += d * d / ((double)reference[i] * reference[i] + 0.01);
+    }
+    *rmse = sqrt(squared / (double)n);
+    *relmse = relative / (double)n;
+}
+
+static void mean_image(const double *sum, uint32_t passes, size_t n, float *out) {
+    for (size_t i = 0; i < n; ++i) out[i] = (float)(sum[i] / passes);
+}
+
+bool render(const Scene *scene, const RenderSettings *settings, RenderResult *result) {
+    memset(result, 0, sizeof *result);
+    const uint32_t width = settings->width, height = settings->height;
+    const size_t pixels = (size_t)width * height;
+    Hit *hits = malloc(sizeof(Hit) * pixels);
+    double *sum = calloc(pixels * 3, sizeof(double));
+    double *sum_squares = calloc(pixels * 3, sizeof(double));
+    float *image = malloc(sizeof(float) * pixels * 3);
+    float *variance = calloc(pixels * 3, sizeof(float));
+    uint32_t threads = settings->threads ? settings->threads : core_count();
+    pthread_t *ids = malloc(sizeof(pthread_t) * threads);
+    Worker *workers = calloc(threads, sizeof(Worker));
+    if (!hits || !sum || !sum_squares || !image || !variance || !ids || !workers) {
+        fprintf(stderr, "sphera-trace: out of memory\n");
+        goto fail;
+    }
+    enable_flush_to_zero();
+    trace_camera_rays(scene, width, height, hits);
+
+    PassShared shared = {0};
+    shared.scene = scene;
+    shared.settings = settings;
+    shared.hits = hits;
+    shared.sum = sum;
+    shared.sum_squares = sum_squares;
+    shared.tiles_x = (width + TILE - 1) / TILE;
+    shared.tile_count = shared.tiles_x * ((height + TILE - 1) / TILE);
+    for (uint32_t t = 0; t < threads; ++t) workers[t].shared = &shared;
+
+    const uint32_t max_passes =
+        settings->time_budget_ms > 0.0 ? UINT32_MAX : (settings->passes ? settings->passes : 1);
+    double elapsed = 0.0, last_progress = now_ms();
+    uint32_t pass = 0, next_checkpoint = 1;
+    while (pass < max_passes) {
+        double start = now_ms();
+        shared.pass = pass;
+        shared.next_tile = 0;
+        uint32_t started = 1;
+        for (; started < threads; ++started)
+            if (pthread_create(&ids[started], NULL, render_tiles, &workers[started]) != 0) break;
+        render_tiles(&workers[0]);
+        for (uint32_t t = 1; t < started; ++t) pthread_join(ids[t], NULL);
+        double end = now_ms();
+        elapsed += end - start;
+        ++pass;
+        bool done = pass == max_passes ||
+                    (settings->time_budget_ms > 0.0 && elapsed >= settings->time_budget_ms);
+        if (settings->reference && settings->on_checkpoint && (pass == next_checkpoint || done)) {
+            double rmse, relmse;
+            mean_image(sum, pass, pixels * 3, image);
+            image_error(image, settings->reference, width, height, &rmse, &relmse);
+            settings->on_checkpoint(settings->checkpoint_context, pass, elapsed, rmse, relmse);
+            while (next_checkpoint <= pass) next_checkpoint *= 2;
+        }
+        if (settings->progress && (end - last_progress > 500.0 || done)) {
+            if (settings->time_budget_ms > 0.0)
+                fprintf(stderr, "\r%s/%s: pass %u, %.0f of %.0f ms   ", scene->name,
+                        technique_info[settings->technique].name, pass, elapsed,
+                        settings->time_budget_ms);
+            else
+                fprintf(stderr, "\r%s/%s: pass %u of %u, %.0f ms   ", scene->name,
+                        technique_info[settings->technique].name, pass, max_passes, elapsed);
+            if (done) fputc('\n', stderr);
+            last_progress = end;
+        }
+        if (done) break;
+    }
+
+    mean_image(sum, pass, pixels * 3, image);
+    double channel_variance[3] = {0, 0, 0}, total_variance = 0.0;
+    for (size_t i = 0; i < pixels * 3; ++i) {
+        double mean = sum[i] / pass;
+        double v = 0.0;
+        if (pass > 1) {
+            /* unbiased sample variance of the pass values, divided by the pass count */
+            v = (sum_squares[i] - pass * mean * mean) / ((double)pass * (pass - 1));
+            if (v < 0.0) v = 0.0;
+        }
+        variance[i] = (float)v;
+        channel_variance[i % 3] += v;
+        total_variance += v;
+        result->mean[i % 3] += mean;
+    }
+    for (int c = 0; c < 3; ++c) {
+        result->mean[c] /= (double)pixels;
+        result->mean_stderr[c] = sqrt(channel_variance[c]) / (double)pixels;
+    }
+    result->variance_of_mean = total_variance / (double)(pixels * 3);
+    if (settings->reference)
+        image_error(image, settings->reference, width, height, &result->rmse, &result->relmse);
+    result->passes = pass;
+    result->time_ms = elapsed;
+    for (uint32_t t = 0; t < threads; ++t) result->samples += workers[t].samples;
+    result->image = image;
+    result->variance = variance;
+    free(hits);
+    free(sum);
+    free(sum_squares);
+    free(ids);
+    free(workers);
+    return true;
+
+fail:
+    free(hits);
+    free(sum);
+    free(sum_squares);
+    free(image);
+    free(variance);
+    free(ids);
+    free(workers);
+    return false;
+}
+
+void render_result_free(RenderResult *result) {
+    free(result->image);
+    free(result->variance);
+    result->image = result->variance = NULL;
+}

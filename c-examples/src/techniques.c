@@ -1,0 +1,82 @@
+/* The light-sampling techniques of libsphera behind one switch: prepare a polygon given
+ * in the local shading frame, then draw samples from it. */
+#include <string.h>
+
+#include "techniques.h"
+
+const TechniqueInfo technique_info[TECHNIQUE_COUNT] = {
+    {"area", false, "Turk 1990: uniform on the polygon's area, pdf converted to solid angle"},
+    {"arvo", false, "Arvo 1995: solid angle sampling of triangles, polygon as a fan"},
+    {"solid_angle", false, "Peters 2021 (Algorithm 5): solid angle sampling of triangle fans"},
+    {"clipped_solid_angle", false, "solid angle sampling of the polygon clipped to the horizon"},
+    {"hart_bilinear", false, "Hart et al. 2020: solid angle sampling warped by a bilinear cosine fit"},
+    {"hart_biquadratic", false,
+     "Hart et al. 2020: solid angle sampling warped by a biquadratic cosine fit"},
+    {"arvo_projected", false,
+     "projected solid angle sampling by Newton steps on Arvo's sector areas (baseline)"},
+    {"projected", false, "Peters 2021 (Algorithm 4): projected solid angle sampling"},
+    {"projected_fast", true,
+     "projected solid angle sampling with approximate sector areas and no refinement (biased)"},
+    {"reference", false,
+     "projected sampling for the Lambert term; for GGX, one projected and one solid angle sample, balance heuristic (reference images)"},
+};
+
+int technique_from_name(const char *name) {
+    for (int t = 0; t < TECHNIQUE_COUNT; ++t)
+        if (strcmp(technique_info[t].name, name) == 0) return t;
+    return -1;
+}
+
+bool technique_prepare(Technique technique, PreparedLight *out, const SpheraVec3 *vertices,
+                       uint32_t count) {
+    switch (technique) {
+    case TECHNIQUE_AREA: return sphera_turk_polygon_prepare(&out->u.area, vertices, count);
+    case TECHNIQUE_ARVO: return sphera_arvo_polygon_prepare(&out->u.arvo, vertices, count);
+    case TECHNIQUE_SOLID_ANGLE:
+        return sphera_solid_angle_polygon_prepare(&out->u.solid_angle, vertices, count);
+    case TECHNIQUE_CLIPPED_SOLID_ANGLE:
+        return sphera_clipped_solid_angle_polygon_prepare(&out->u.clipped, vertices, count);
+    case TECHNIQUE_HART_BILINEAR:
+        return sphera_hart_bilinear_polygon_prepare(&out->u.bilinear, vertices, count);
+    case TECHNIQUE_HART_BIQUADRATIC:
+        return sphera_hart_biquadratic_polygon_prepare(&out->u.biquadratic, vertices, count);
+    case TECHNIQUE_ARVO_PROJECTED:
+        return sphera_arvo_projected_polygon_prepare(&out->u.arvo_projected, vertices, count);
+    case TECHNIQUE_PROJECTED:
+        return sphera_projected_polygon_prepare(&out->u.projected, vertices, count);
+    case TECHNIQUE_PROJECTED_FAST:
+        return sphera_projected_polygon_prepare_fast(&out->u.projected, vertices, count);
+    case TECHNIQUE_REFERENCE: {
+        /* Either technique alone can draw the samples; the reference needs one of them. */
+        bool projected = sphera_projected_polygon_prepare(&out->u.projected, vertices, count);
+        bool solid_angle =
+            sphera_solid_angle_polygon_prepare(&out->reference_solid_angle, vertices, count);
+        return projected || solid_angle;
+    }
+    case TECHNIQUE_COUNT: break;
+    }
+    return false;
+}
+
+SpheraSample technique_sample(Technique technique, const PreparedLight *p, float u0, float u1) {
+    switch (technique) {
+    case TECHNIQUE_AREA: return sphera_turk_polygon_sample(&p->u.area, u0, u1);
+    case TECHNIQUE_ARVO: return sphera_arvo_polygon_sample(&p->u.arvo, u0, u1);
+    case TECHNIQUE_SOLID_ANGLE: return sphera_solid_angle_polygon_sample(&p->u.solid_angle, u0, u1);
+    case TECHNIQUE_CLIPPED_SOLID_ANGLE:
+        return sphera_clipped_solid_angle_polygon_sample(&p->u.clipped, u0, u1);
+    case TECHNIQUE_HART_BILINEAR:
+        return sphera_hart_bilinear_polygon_sample(&p->u.bilinear, u0, u1);
+    case TECHNIQUE_HART_BIQUADRATIC:
+        return sphera_hart_biquadratic_polygon_sample(&p->u.biquadratic, u0, u1);
+    case TECHNIQUE_ARVO_PROJECTED:
+        return sphera_arvo_projected_polygon_sample(&p->u.arvo_projected, u0, u1);
+    case TECHNIQUE_PROJECTED:
+    case TECHNIQUE_REFERENCE: return sphera_projected_polygon_sample(&p->u.projected, u0, u1);
+    case TECHNIQUE_PROJECTED_FAST:
+        return sphera_projected_polygon_sample_fast(&p->u.projected, u0, u1);
+    case TECHNIQUE_COUNT: break;
+    }
+    SpheraSample none = {{0, 0, 0}, 0};
+    return none;
+}
