@@ -228,7 +228,7 @@ def cell(key, value):
     if value is None:
         return "-"
     if key == "speedup":
-        return f"{value:.2f}x"
+        return f"{value:.2f}x" if value < 1000 else f"{value:.3g}x"
     if key in ("ms_frame", "ns_sample"):
         return f"{value:.3g}" if value < 100 else f"{value:.0f}"
     return "inf" if value == math.inf else f"{value:.3g}"

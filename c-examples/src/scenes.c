@@ -12,7 +12,7 @@
 const SceneInfo scene_info[] = {
     {"cornell", "the Cornell box (mm), its quad light under the ceiling"},
     {"polygons", "a room lit by a triangle, quad, pentagon, hexagon and heptagon, some tilted, "
-                 "some crossing the horizon of the walls or the floor; glossy GGX floor"},
+                 "some crossing the horizon of the walls or the floor; GGX floor (alpha 0.3)"},
     {"hard", "a tiny distant light, a huge light just above the floor, a light edge-on to a wall"},
     {"floor", "one unoccluded quad light over a white Lambert floor (the zero-variance test)"},
 };
@@ -172,7 +172,7 @@ static bool build_cornell(Builder *b, float aspect) {
 static bool build_polygons(Builder *b, float aspect) {
     Scene *s = b->scene;
     add_material(s, f3(0, 0, 0), f3(0, 0, 0), 0);
-    uint32_t floor = add_material(s, f3(0.30f, 0.30f, 0.32f), f3(0.5f, 0.5f, 0.5f), 0.12f);
+    uint32_t floor = add_material(s, f3(0.40f, 0.40f, 0.42f), f3(0.2f, 0.2f, 0.2f), 0.3f);
     uint32_t wall = add_material(s, f3(0.70f, 0.68f, 0.62f), f3(0, 0, 0), 0);
     uint32_t blue = add_material(s, f3(0.20f, 0.30f, 0.60f), f3(0, 0, 0), 0);
     uint32_t orange = add_material(s, f3(0.70f, 0.40f, 0.15f), f3(0, 0, 0), 0);
