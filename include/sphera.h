@@ -29,6 +29,17 @@
 #define SPHERA_MAX_POLYGON_VERTICES 8
 
 /**
+ * The smallest GGX `α` (= roughness²) that `sphera_ggx_brdf_prepare` keeps; smaller
+ * values are raised to it (see the Rust documentation of `brdf::ggx::MIN_ALPHA`).
+ */
+#define SPHERA_GGX_MIN_ALPHA 1e-4
+
+/**
+ * The visibility estimate `v` that Peters 2021 uses for clamped optimal MIS.
+ */
+#define SPHERA_MIS_DEFAULT_VISIBILITY 0.5
+
+/**
  * A 3D vector of `float`s (a point or a direction in the local shading frame, whose z
  * axis is the surface normal).
  */
@@ -462,6 +473,23 @@ typedef struct SpheraArvoProjectedPolygon {
    */
   float sector_angle[SPHERA_MAX_POLYGON_VERTICES];
 } SpheraArvoProjectedPolygon;
+
+/**
+ * The GGX microfacet BRDF: the Trowbridge–Reitz normal distribution with
+ * `α = roughness²`, height-correlated Smith masking-shadowing, and Schlick's Fresnel
+ * with the reflectance `F0` at normal incidence per RGB channel.
+ */
+typedef struct SpheraGgxBrdf {
+  /**
+   * `α = roughness²`, from the smallest `α` (`MIN_ALPHA`, `SPHERA_GGX_MIN_ALPHA` in
+   * C) to 1.
+   */
+  float alpha;
+  /**
+   * Schlick's `F0` per channel, in `[0, 1]`.
+   */
+  SpheraVec3 f0;
+} SpheraGgxBrdf;
 
 #ifdef __cplusplus
 extern "C" {
@@ -1087,6 +1115,180 @@ float sphera_arvo_projected_polygon_pdf(const struct SpheraArvoProjectedPolygon 
  * `sphera_arvo_projected_polygon_prepare`.
  */
 float sphera_arvo_projected_polygon_projected_solid_angle(const struct SpheraArvoProjectedPolygon *polygon);
+
+/**
+ * Prepares the GGX microfacet BRDF (Trowbridge–Reitz distribution, height-correlated
+ * Smith masking-shadowing, Schlick Fresnel) with perceptual roughness `roughness`
+ * (`α = roughness²`) and Fresnel reflectance `f0` at normal incidence per RGB channel.
+ *
+ * `roughness` is clamped to [0, 1] and `α` to the range from `SPHERA_GGX_MIN_ALPHA`
+ * to 1; each channel of `f0` is clamped to [0, 1]. Returns `false` when `out` is null,
+ * and when `roughness` or a channel of `f0` is NaN or infinite; the latter still
+ * writes a usable BRDF into `*out` (a NaN roughness counts as the smoothest,
+ * `α = SPHERA_GGX_MIN_ALPHA`; NaN channels of `f0` count as 0; infinities are
+ * clamped).
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one `SpheraGgxBrdf`.
+ */
+bool sphera_ggx_brdf_prepare(struct SpheraGgxBrdf *out, float roughness, struct SpheraVec3 f0);
+
+/**
+ * The GGX BRDF `f(wo, wi) = F D G2 / (4 cos θo cos θi)` per RGB channel, without the
+ * cosine `cos θi`. Symmetric in `wo` and `wi`.
+ *
+ * Returns (0, 0, 0) when `brdf` is null, when either direction lies at or below the
+ * horizon (z <= 0), is zero or is not finite. Never returns NaN or infinities.
+ *
+ * # Safety
+ *
+ * `brdf` must be null or point to a `SpheraGgxBrdf` written by
+ * `sphera_ggx_brdf_prepare`.
+ */
+struct SpheraVec3 sphera_ggx_eval(const struct SpheraGgxBrdf *brdf,
+                                  struct SpheraVec3 wo,
+                                  struct SpheraVec3 wi);
+
+/**
+ * `D G2 / (4 cos θo cos θi)`: `sphera_ggx_eval` with Fresnel F = 1 (a scalar).
+ *
+ * Returns 0 in the cases where `sphera_ggx_eval` returns (0, 0, 0).
+ *
+ * # Safety
+ *
+ * `brdf` must be null or point to a `SpheraGgxBrdf` written by
+ * `sphera_ggx_brdf_prepare`.
+ */
+float sphera_ggx_eval_without_fresnel(const struct SpheraGgxBrdf *brdf,
+                                      struct SpheraVec3 wo,
+                                      struct SpheraVec3 wi);
+
+/**
+ * Draws `wi` by sampling the GGX distribution of normals visible from `wo` (Heitz
+ * 2018) and reflecting `wo` on the sampled normal, from the random numbers `u0`, `u1`
+ * in [0, 1) (values outside are clamped by the library, NaN counts as 0). The pdf is
+ * `G1(wo) D(h) / (4 cos θo)` per steradian and equals `sphera_ggx_pdf(brdf, wo, dir)`.
+ *
+ * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `brdf` is null, when `wo`
+ * lies at or below the horizon, is zero or is not finite, and when the reflected
+ * direction lies at or below the horizon. The last case happens with positive
+ * probability (about half the draws for roughness 1 at normal incidence): the pdf
+ * then integrates to less than 1 over the upper hemisphere. Count such a draw as a
+ * sample that contributes 0; do not renormalise the pdf.
+ *
+ * # Safety
+ *
+ * `brdf` must be null or point to a `SpheraGgxBrdf` written by
+ * `sphera_ggx_brdf_prepare`.
+ */
+struct SpheraSample sphera_ggx_sample(const struct SpheraGgxBrdf *brdf,
+                                      struct SpheraVec3 wo,
+                                      float u0,
+                                      float u1);
+
+/**
+ * The density per steradian with which `sphera_ggx_sample` draws `wi` given `wo`:
+ * `G1(wo) D(h) / (4 cos θo)` with `h` the half vector of `wo` and `wi`.
+ *
+ * Returns 0 when `brdf` is null, and when either direction lies at or below the
+ * horizon, is zero or is not finite.
+ *
+ * # Safety
+ *
+ * `brdf` must be null or point to a `SpheraGgxBrdf` written by
+ * `sphera_ggx_brdf_prepare`.
+ */
+float sphera_ggx_pdf(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo, struct SpheraVec3 wi);
+
+/**
+ * The Lambertian BRDF `albedo / π` per RGB channel (each channel of `albedo` clamped
+ * to [0, 1], NaN to 0), without the cosine `cos θi`.
+ *
+ * Returns (0, 0, 0) when either direction lies at or below the horizon (z <= 0), is
+ * zero or is not finite.
+ */
+struct SpheraVec3 sphera_lambert_eval(struct SpheraVec3 albedo,
+                                      struct SpheraVec3 wo,
+                                      struct SpheraVec3 wi);
+
+/**
+ * Draws a direction with density `cos θ / π` (cosine-weighted, by the concentric disk
+ * mapping) from the random numbers `u0`, `u1` in [0, 1) (values outside are clamped by
+ * the library, NaN counts as 0). Every draw lies strictly above the horizon and its
+ * pdf equals `sphera_lambert_pdf(dir)`.
+ */
+struct SpheraSample sphera_lambert_sample(float u0, float u1);
+
+/**
+ * The density `max(0, cos θ) / π` per steradian with which `sphera_lambert_sample`
+ * draws `wi`. Returns 0 when `wi` is zero or not finite.
+ */
+float sphera_lambert_pdf(struct SpheraVec3 wi);
+
+/**
+ * The balance heuristic `p_this / (p_this + p_other)`. The weights of the two
+ * techniques sum to one wherever either pdf is positive.
+ */
+float sphera_mis_balance(float p_this, float p_other);
+
+/**
+ * The power heuristic with exponent 2, `p_this² / (p_this² + p_other²)`, computed
+ * without overflow. The weights sum to one wherever either pdf is positive.
+ */
+float sphera_mis_power(float p_this, float p_other);
+
+/**
+ * The weighted balance heuristic of Peters 2021,
+ * `c_this p_this / (c_this p_this + c_other p_other)`, where `c_this`, `c_other` >= 0
+ * are the techniques' unoccluded contributions. Falls back to the balance heuristic
+ * where `c_this p_this + c_other p_other = 0`. The weights sum to one wherever either
+ * pdf is positive.
+ */
+float sphera_mis_weighted_balance(float p_this, float c_this, float p_other, float c_other);
+
+/**
+ * The contribution of a sample under optimal MIS as specialised by Peters 2021
+ * (supplement B.1): `v c_this + (f - v (c_this p_this + c_other p_other)) /
+ * (p_this + p_other)`, where `f` is the integrand at the sample and `v` in [0, 1] an
+ * estimate of the visibility. This is already divided by the pdf: add the
+ * contributions of one sample of each technique. It can be negative and is non-zero
+ * where `f = 0`; the sum is unbiased for any `v`. A draw that failed (pdf 0)
+ * contributes 0: do not call this for it.
+ */
+float sphera_mis_optimal_contribution(float f,
+                                      float p_this,
+                                      float c_this,
+                                      float p_other,
+                                      float c_other,
+                                      float v);
+
+/**
+ * The contribution of a sample under clamped optimal MIS (Peters 2021, supplement
+ * B.3): `f (v c_this / (c_this p_this + c_other p_other) + (1 - v) / (p_this +
+ * p_other))`, already divided by the pdf; `v` = `SPHERA_MIS_DEFAULT_VISIBILITY` in
+ * the paper. Equals `f * sphera_mis_clamped_optimal_weight(...) / p_this`. Unbiased
+ * for any `v`.
+ */
+float sphera_mis_clamped_optimal_contribution(float f,
+                                              float p_this,
+                                              float c_this,
+                                              float p_other,
+                                              float c_other,
+                                              float v);
+
+/**
+ * The weight of clamped optimal MIS, `p_this (v c_this / (c_this p_this + c_other
+ * p_other) + (1 - v) / (p_this + p_other))`: `v` times the weighted balance heuristic
+ * plus `1 - v` times the balance heuristic. `v = 0` gives the balance heuristic,
+ * `v = 1` the weighted balance heuristic. The weights sum to one wherever either pdf
+ * is positive.
+ */
+float sphera_mis_clamped_optimal_weight(float p_this,
+                                        float c_this,
+                                        float p_other,
+                                        float c_other,
+                                        float v);
 
 #ifdef __cplusplus
 }  // extern "C"

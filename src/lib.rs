@@ -18,8 +18,10 @@
 // would propagate it).
 #![allow(clippy::neg_cmp_op_on_partial_ord, clippy::manual_clamp)]
 
+pub mod brdf;
 pub mod ffi;
 pub mod math;
+pub mod mis;
 pub mod polygon;
 mod sample;
 

@@ -29,6 +29,9 @@ mod warps;
 
 mod projected;
 
+mod brdf;
+
+pub use brdf::*;
 pub use frame::*;
 pub use polygon::*;
 pub use projected::*;

@@ -10,13 +10,15 @@ use std::sync::OnceLock;
 use sphera_tools::repository_root;
 
 /// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
-const C_TESTS: [&str; 6] = [
+const C_TESTS: [&str; 8] = [
     "test_polygon_clip",
     "test_projected_polygon",
     "test_solid_angle_polygon",
     "test_baselines",
     "test_frame",
     "test_warps",
+    "test_ggx",
+    "test_mis",
 ];
 
 /// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
@@ -186,6 +188,16 @@ fn test_warps() {
     run_c_test("test_warps");
 }
 
+#[test]
+fn test_ggx() {
+    run_c_test("test_ggx");
+}
+
+#[test]
+fn test_mis() {
+    run_c_test("test_mis");
+}
+
 /// Compiles `ffi-tests/<name>.c` with the tracer's sources, links `libsphera.a`, Embree
 /// 3, libpng and pthreads, runs it and asserts that it exits with status 0.
 fn run_tracer_test(name: &str) {
@@ -353,6 +365,7 @@ int main() {
 fn struct_layouts_match_rust() {
     use std::mem::{align_of, offset_of, size_of};
 
+    use sphera::brdf::GgxBrdf;
     use sphera::ffi::{SpheraSample, SpheraVec3};
     use sphera::math::Frame;
     use sphera::polygon::baselines::{
@@ -427,6 +440,8 @@ fn struct_layouts_match_rust() {
             "alignof(SpheraArvoProjectedPolygon)",
             align_of::<ArvoProjectedPolygon>(),
         ),
+        ("sizeof(SpheraGgxBrdf)", size_of::<GgxBrdf>()),
+        ("alignof(SpheraGgxBrdf)", align_of::<GgxBrdf>()),
     ];
     let mut source =
         String::from("#include <stddef.h>\n#include <stdio.h>\n#include \"sphera.h\"\n");
@@ -442,6 +457,7 @@ fn struct_layouts_match_rust() {
         "SpheraClippedSolidAnglePolygon",
         "SpheraProjectedSolidAnglePolygon",
         "SpheraArvoProjectedPolygon",
+        "SpheraGgxBrdf",
     ] {
         source += &format!("struct align_{name} {{ char c; {name} t; }};\n");
     }

@@ -1,0 +1,72 @@
+//! BRDFs of the shading point: the GGX microfacet BRDF with visible-normal sampling
+//! (Heitz 2018) and the Lambertian BRDF with cosine-weighted sampling.
+//!
+//! Conventions, shared with the light samplers: directions live in the local shading
+//! frame whose z axis is the surface normal; `wo` points away from the surface towards
+//! the viewer, `wi` towards the light; both need not be normalised (they are, up to a
+//! tolerance, by convention, and are normalised otherwise); densities are per steradian
+//! of `wi`; random numbers lie in `[0, 1)` and are clamped into it; `Sample::NONE`
+//! (pdf 0) means "no sample". A zero or non-finite direction evaluates to 0, has pdf 0
+//! and gives no sample: no function returns NaN or an infinity.
+//!
+//! BRDF values `f` are per steradian and do not include the cosine `cos θi`.
+
+pub mod ggx;
+pub mod lambert;
+
+pub use ggx::GgxBrdf;
+pub use lambert::Lambert;
+
+use crate::Vec3;
+
+/// How far `|v|²` may lie from 1 for `v` to be taken as a unit vector unchanged. A
+/// direction normalised in `f32` has `|v|²` within a few ulp (~4e-7) of 1; taking
+/// such a vector as it is (instead of normalising it again) makes [`unit`] idempotent,
+/// so that a sampler's returned direction evaluates to bit-identical densities when it
+/// is passed back to `pdf`.
+const UNIT_TOLERANCE: f32 = 1e-6;
+
+/// `v / |v|`, or `None` when `v` is zero or not finite. A vector whose squared length
+/// lies within [`UNIT_TOLERANCE`] of 1 is returned unchanged. Others are first divided
+/// by their largest absolute coordinate, so that neither `|v|²` overflows for huge
+/// vectors nor underflows for tiny (even subnormal) ones.
+#[inline(always)]
+pub(crate) fn unit(v: Vec3) -> Option<Vec3> {
+    if (v.length_squared() - 1.0).abs() <= UNIT_TOLERANCE {
+        // NaN fails the comparison above; an infinity gives |v|² = inf.
+        return Some(v);
+    }
+    if !v.is_finite() {
+        return None;
+    }
+    let largest = v.x.abs().max(v.y.abs()).max(v.z.abs());
+    if !(largest > 0.0) {
+        return None;
+    }
+    let scaled = v / largest;
+    Some(scaled / scaled.length())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unit_normalises_rejects_and_is_idempotent() {
+        assert_eq!(unit(Vec3::ZERO), None);
+        assert_eq!(unit(Vec3::new(f32::NAN, 0.0, 1.0)), None);
+        assert_eq!(unit(Vec3::new(0.0, f32::INFINITY, 1.0)), None);
+        assert_eq!(unit(Vec3::new(0.0, 0.0, f32::NEG_INFINITY)), None);
+        for v in [
+            Vec3::new(3.0, -4.0, 12.0),
+            Vec3::new(1e30, 2e30, -2e30),
+            Vec3::new(1e-40, 0.0, 1e-40),
+            Vec3::new(f32::MAX, f32::MAX, f32::MAX),
+        ] {
+            let u = unit(v).unwrap();
+            assert!((u.length() - 1.0).abs() < 1e-6, "{v} -> {u}");
+            assert!(u.dot(v) > 0.0);
+            assert_eq!(unit(u), Some(u), "not idempotent for {v}");
+        }
+    }
+}
