@@ -17,6 +17,11 @@ of area sampling is the speed-up: how many times sooner the technique reaches th
 error. A check (always in --quick mode) compares the image mean of every unbiased
 technique with the reference's, within 5 standard errors.
 
+A scene given as `name@K` renders with K light samples per light per pass (the
+many-samples mode: one prepare per light and pixel, then K samples), against the
+reference of `name`; the default list has `polygons@8` beside `polygons`, so that the
+cost of prepare is visible.
+
 Output: OUT/index.html (tables, RMSE plots as SVG, images), OUT/report.md, and the
 tables on stdout. Techniques run one after another, never in parallel, for fair timing.
 """
@@ -35,7 +40,19 @@ import subprocess
 import sys
 import time
 
-SCENES = ("cornell", "polygons", "hard")
+SCENES = ("cornell", "polygons", "polygons@8", "hard", "glossy")  # name@K: K samples per light
+# The techniques that combine two samples by MIS (BRDF or LTC sampling with projected
+# solid angle sampling) matter on glossy surfaces: they run on the `glossy` scene, with
+# the light samplers they are built from; the other scenes compare the light samplers.
+MIS_TECHNIQUES = ("brdf_balance", "brdf_power", "ltc_weighted", "ltc_clamped", "ltc_optimal")
+GLOSSY_TECHNIQUES = ("area", "solid_angle", "projected") + MIS_TECHNIQUES
+
+
+def techniques_for(scene, techs):
+    """The (name, biased) pairs of `techs` that the report runs on `scene` (a spec)."""
+    if scene.partition("@")[0] == "glossy":
+        return [t for t in techs if t[0] in GLOSSY_TECHNIQUES]
+    return [t for t in techs if t[0] not in MIS_TECHNIQUES]
 FULL = {"width": 256, "height": 192, "ref_spp": 1024, "spp": 16, "budget_ms": 1500.0}
 QUICK = {"width": 64, "height": 48, "ref_spp": 128, "spp": 4, "budget_ms": 150.0}
 REF_SEED = 1          # seed of reference renders
@@ -182,19 +199,33 @@ def reference(tracer, key_base, scene, s, out, common):
     return ref
 
 
+def file_name(spec):
+    """A scene spec (`name` or `name@K`) as part of a file name."""
+    return spec.replace("@", "-k")
+
+
 def read_curve(path):
     """(time_ms, rmse) pairs of a curve CSV."""
     with open(path, newline="") as f:
         return [(float(r["time_ms"]), float(r["rmse"])) for r in csv.DictReader(f)]
 
 
-def render_scene(tracer, key_base, scene, techs, s, out, common):
-    """Reference, equal-sample and equal-time runs of one scene; returns its results."""
+def render_scene(tracer, key_base, spec, techs, s, out, common):
+    """Reference, equal-sample and equal-time runs of one scene; returns its results.
+
+    `spec` is a scene name, or `name@K` for K light samples per light per pass (the
+    many-samples mode: one prepare, K samples), which shares the reference of `name`."""
+    scene, _, k = spec.partition("@")
     ref = reference(tracer, key_base, scene, s, out, common)
     base = ["--scene", scene, "--seed", RUN_SEED, "--reference", ref["pfm"]] + common
+    if k:
+        base += ["--light-samples", k]
+    if spec != scene:
+        shutil.copyfile(os.path.join(out, f"{scene}-reference.png"),
+                        os.path.join(out, f"{file_name(spec)}-reference.png"))
     rows = []
     for tech, biased in techs:
-        stem = os.path.join(out, f"{scene}-{tech}")
+        stem = os.path.join(out, f"{file_name(spec)}-{tech}")
         eq = run_json(tracer, base + ["--technique", tech, "--spp", s["spp"],
                                       "--out-png", stem + "-spp.png"])
         budget = s["budget_ms"]  # an integer where it is one: the tracer may parse it so
@@ -216,7 +247,7 @@ def render_scene(tracer, key_base, scene, techs, s, out, common):
     for r in rows:
         ok = base_eff is not None and 0 < base_eff < math.inf and r["eff"] < math.inf
         r["speedup"] = r["eff"] / base_eff if ok else None
-    return {"scene": scene, "ref": ref, "rows": rows}
+    return {"scene": spec, "name": scene, "ref": ref, "rows": rows}
 
 
 def cell(key, value):
@@ -346,7 +377,7 @@ def write_html(path, info, results, s):
     parts.append("<p>" + EXPLANATION.format(spp=s["spp"], budget=s["budget_ms"],
                                             base=BASELINE) + "</p>")
     for res in results:
-        sc, rows = res["scene"], res["rows"]
+        sc, rows = file_name(res["scene"]), res["rows"]
         top = [figure(f"{sc}-reference.png", f"reference ({s['ref_spp']} passes)", width)]
         top += [figure(f"{sc}-{r['tech']}-time.png",
                        f"{r['tech']}: RMSE {r['rmse_time']:.3g}", width) for r in rows]
@@ -355,7 +386,7 @@ def write_html(path, info, results, s):
                        f"{r['tech']}: RMSE {r['rmse_spp']:.3g}", width) for r in rows]
         parts += [f"<h2>{html.escape(sc)}</h2>", html_table(rows)]
         parts += [f"<p><b>{html.escape(t)}</b>: {html.escape(why)}</p>"
-                  for (scene, t), why in KNOWN_FAILURES.items() if scene == sc]
+                  for (scene, t), why in KNOWN_FAILURES.items() if scene == res["name"]]
         parts += [
                   f'<p><img src="rmse-{html.escape(sc)}.svg" alt="RMSE against time"></p>',
                   f"<p>Top: reference, then each technique after {s['budget_ms']:g} ms; "
@@ -385,9 +416,9 @@ def write_markdown(path, info, results):
     for res in results:
         lines += [f"## {res['scene']}", "", md_table(res["rows"]), ""]
         lines += [f"**{t}**: {why}\n" for (scene, t), why in KNOWN_FAILURES.items()
-                  if scene == res["scene"]]
+                  if scene == res["name"]]
         lines += [
-                  f"![RMSE against time](rmse-{res['scene']}.svg)", ""]
+                  f"![RMSE against time](rmse-{file_name(res['scene'])}.svg)", ""]
     with open(path, "w") as f:
         f.write("\n".join(lines))
 
@@ -411,7 +442,7 @@ def check_means(results):
                 if abs(m - mr) > tol:
                     bad.append(f"channel {'rgb'[c]}: {m:.6g} vs reference {mr:.6g} "
                                f"(|diff| {abs(m - mr):.3g} > {tol:.3g})")
-            known = KNOWN_FAILURES.get((res["scene"], r["tech"]))
+            known = KNOWN_FAILURES.get((res["name"], r["tech"]))
             if known and bad:
                 log(f"check: {res['scene']}/{r['tech']} disagrees, as expected: {known}")
             elif known:
@@ -452,7 +483,7 @@ def main(argv=None):
                 return 2
             techs = [t for t in techs if t[0] in wanted]
         key_base = version + "\n" + sha256_file(binary)
-        results = [render_scene(tracer, key_base, sc, techs, s, out, common)
+        results = [render_scene(tracer, key_base, sc, techniques_for(sc, techs), s, out, common)
                    for sc in args.scenes]
     except TracerError as e:
         print(f"report: tracer failed: {e}", file=sys.stderr)
@@ -464,7 +495,7 @@ def main(argv=None):
         curves = [(r["tech"], r["curve"]) for r in res["rows"]]
         floor = math.sqrt(res["ref"]["variance_of_mean"]) or None
         title = f"{res['scene']}: RMSE against time, {s['width']}x{s['height']}"
-        with open(os.path.join(out, f"rmse-{res['scene']}.svg"), "w") as f:
+        with open(os.path.join(out, f"rmse-{file_name(res['scene'])}.svg"), "w") as f:
             f.write(svg_plot(title, curves, floor))
     for res in results:
         print(f"\n{res['scene']} ({s['width']}x{s['height']}, {s['spp']} passes / "

@@ -23,6 +23,21 @@
 #include <stdint.h>
 
 /**
+ * Cells per axis.
+ */
+#define LTC_TABLE_SIZE 64
+
+/**
+ * The smallest α the table was fitted for (row 0 uses it instead of α = 0).
+ */
+#define LTC_MIN_ALPHA 0.0001
+
+/**
+ * The largest view angle's cosine floor (column 63 uses it instead of cos θ = 0).
+ */
+#define LTC_MIN_COS_THETA 0.0001
+
+/**
  * The most vertices a polygon may have, in the C ABI: the length of the array that
  * `sphera_polygon_clip` works on and the largest `count` that a `prepare` accepts.
  */
@@ -38,6 +53,31 @@
  * The visibility estimate `v` that Peters 2021 uses for clamped optimal MIS.
  */
 #define SPHERA_MIS_DEFAULT_VISIBILITY 0.5
+
+/**
+ * The balance heuristic, `p_j / Σ p_k`.
+ */
+#define SPHERA_MIS_BALANCE 0
+
+/**
+ * The power heuristic with exponent 2, `p_j² / Σ p_k²`.
+ */
+#define SPHERA_MIS_POWER 1
+
+/**
+ * The weighted balance heuristic of Peters 2021, `c_j p_j / Σ c_k p_k`.
+ */
+#define SPHERA_MIS_WEIGHTED_BALANCE 2
+
+/**
+ * Clamped optimal MIS (Peters 2021, supplement B.3), with visibility estimate `v`.
+ */
+#define SPHERA_MIS_CLAMPED_OPTIMAL 3
+
+/**
+ * Optimal MIS (Peters 2021, supplement B.1), with visibility estimate `v`.
+ */
+#define SPHERA_MIS_OPTIMAL 4
 
 /**
  * A 3D vector of `float`s (a point or a direction in the local shading frame, whose z
@@ -490,6 +530,133 @@ typedef struct SpheraGgxBrdf {
    */
   SpheraVec3 f0;
 } SpheraGgxBrdf;
+
+/**
+ * A linearly transformed cosine in the local shading frame (z = normal).
+ */
+typedef struct SpheraLtc {
+  /**
+   * Rows of `M⁻¹`: `(M⁻¹ω)_k = inverse_rows[k] · ω`. The transformed space keeps the
+   * normal as its z axis.
+   */
+  SpheraVec3 inverse_rows[3];
+  /**
+   * Columns of `M`: `Mω' = Σ_k matrix_columns[k] ω'_k`.
+   */
+  SpheraVec3 matrix_columns[3];
+  /**
+   * `det M⁻¹ > 0`.
+   */
+  float inverse_determinant;
+  /**
+   * `∫ f cos θ dω` of the fitted BRDF with `F = 1`.
+   */
+  float albedo;
+  /**
+   * `∫ f (1 − ω_o·h)⁵ cos θ dω` of the fitted BRDF with `F = 1`.
+   */
+  float fresnel;
+} SpheraLtc;
+
+/**
+ * An LTC restricted to a convex polygon: projected solid angle sampling of the polygon
+ * transformed by `M⁻¹`, mapped back by `M` (Peters 2021, Sec. 5).
+ */
+typedef struct SpheraLtcPolygon {
+  struct SpheraLtc ltc;
+  /**
+   * The transformed polygon `M⁻¹P`, clipped to its horizon.
+   */
+  struct SpheraProjectedSolidAnglePolygon transformed;
+} SpheraLtcPolygon;
+
+/**
+ * A polygonal light prepared at one shading point for both techniques.
+ */
+typedef struct SpheraPolygonLight {
+  /**
+   * Technique 0: projected solid angle sampling.
+   */
+  struct SpheraProjectedSolidAnglePolygon diffuse;
+  /**
+   * Technique 1: the GGX LTC inside the polygon.
+   */
+  struct SpheraLtcPolygon specular;
+  struct SpheraGgxBrdf brdf;
+  /**
+   * 1 when the material has a GGX layer (`f0` not zero), else 0.
+   */
+  uint32_t has_specular;
+  /**
+   * `ρ / π`.
+   */
+  SpheraVec3 lambert;
+  /**
+   * The view direction, unit, above the horizon.
+   */
+  SpheraVec3 wo;
+  /**
+   * `c_0, c_1` per channel (unoccluded contribution per unit radiance).
+   */
+  SpheraVec3 contributions[2];
+  /**
+   * A [`MisHeuristic`] as a number.
+   */
+  uint32_t heuristic;
+  /**
+   * `v` of (clamped) optimal MIS, in `[0, 1]`.
+   */
+  float visibility;
+} SpheraPolygonLight;
+
+/**
+ * A surface's BRDF: Lambert with albedo `diffuse`, plus GGX with reflectance `f0` at
+ * normal incidence (Schlick's Fresnel) and `roughness = √α` in `[0, 1]`. `f0 = (0, 0, 0)`
+ * means no GGX layer at all (a Lambertian surface; Schlick's grazing reflection
+ * `(1 − ω_o·h)⁵`, which `F0 = 0` would otherwise keep, is dropped too).
+ */
+typedef struct SpheraMaterial {
+  /**
+   * Lambertian albedo per channel, in `[0, 1]`.
+   */
+  SpheraVec3 diffuse;
+  /**
+   * GGX reflectance at normal incidence per channel, in `[0, 1]`.
+   */
+  SpheraVec3 f0;
+  /**
+   * `√α`, in `[0, 1]`.
+   */
+  float roughness;
+} SpheraMaterial;
+
+/**
+ * A sample of a [`PolygonLight`]: the direction, the density of the technique that
+ * drew it, and its MIS-weighted contribution per unit radiance, in two parts. The
+ * estimate of the reflected radiance from this sample is
+ * `L × (V(dir) × visible + unoccluded)`, with `V` the visibility of the light along
+ * `dir`. `unoccluded` is zero except for optimal MIS, whose zero-mean terms do not
+ * depend on visibility (supplement B.1).
+ */
+typedef struct SpheraLightSample {
+  /**
+   * Unit direction in the local frame.
+   */
+  SpheraVec3 dir;
+  /**
+   * The density of the technique that drew the sample; 0: no sample (and both
+   * contribution parts are 0).
+   */
+  float pdf;
+  /**
+   * `f cos θ × weight / pdf`, per channel: multiply by `L V`.
+   */
+  SpheraVec3 visible;
+  /**
+   * The part of optimal MIS that does not depend on visibility: multiply by `L`.
+   */
+  SpheraVec3 unoccluded;
+} SpheraLightSample;
 
 #ifdef __cplusplus
 extern "C" {
@@ -1289,6 +1456,181 @@ float sphera_mis_clamped_optimal_weight(float p_this,
                                         float p_other,
                                         float c_other,
                                         float v);
+
+/**
+ * Looks up the LTC fitted to GGX `f(wo, ω) cos θ` (Fresnel 1; isotropic GGX with
+ * height-correlated Smith masking-shadowing, `α = roughness²`) for the view direction
+ * `wo` (local frame, towards the viewer, need not be normalised) and `roughness` in
+ * [0, 1] (clamped; NaN counts as 0). The table is interpolated bilinearly in
+ * `√α = roughness` and `√(1 − cos θ)`, and rotated to the view's azimuth.
+ *
+ * Returns `false` when `out` is null, or when `wo` is not finite, zero, or at or below
+ * the horizon (`wo.z <= 0`); in the second case `*out` is set to the plain cosine
+ * (`M = I`, albedo 1, fresnel 0).
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one `SpheraLtc`.
+ */
+bool sphera_ltc_ggx(struct SpheraLtc *out, struct SpheraVec3 wo, float roughness);
+
+/**
+ * The LTC's density per steradian at `dir` over the whole sphere (`dir` is normalised
+ * first): `D(ω) = max(0, (M⁻¹ω)_z) det M⁻¹ / (π |M⁻¹ω|⁴)`. 0 for a null `ltc` and for
+ * zero or non-finite `dir`.
+ *
+ * # Safety
+ *
+ * `ltc` must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`.
+ */
+float sphera_ltc_density(const struct SpheraLtc *ltc,
+                         struct SpheraVec3 dir);
+
+/**
+ * GGX's directional albedo with Schlick's Fresnel for the reflectance at normal
+ * incidence `f0` (per channel, used as given): `f0 (albedo − fresnel) + fresnel`, from
+ * the fitted integrals. Unshadowed GGX shading of a polygonal light with radiance `L`
+ * is `L × sphera_ltc_specular_albedo(ltc, f0) × sphera_ltc_polygon_integral(polygon)`.
+ * A null `ltc` gives (0, 0, 0).
+ *
+ * # Safety
+ *
+ * `ltc` must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`.
+ */
+struct SpheraVec3 sphera_ltc_specular_albedo(const struct SpheraLtc *ltc, struct SpheraVec3 f0);
+
+/**
+ * Prepares the LTC `*ltc` restricted to the convex polygon `vertices[0..count]`
+ * (positions relative to the shading point in the local frame, either winding, 3 to
+ * `SPHERA_MAX_POLYGON_VERTICES`): the polygon is transformed by `M⁻¹`, clipped to the
+ * horizon of that space, and prepared for projected solid angle sampling.
+ *
+ * Returns `false` when `out`, `ltc` or `vertices` is null, when `count` lies outside
+ * 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is not finite, when the
+ * vertices are collinear or the shading point lies in the polygon's plane, when nothing
+ * of the transformed polygon lies above the horizon (the LTC has no mass in the
+ * polygon), and when the transformed polygon has `SPHERA_MAX_POLYGON_VERTICES`
+ * vertices and crosses the horizon. Unless `out` is null, a `false` return writes the
+ * empty polygon: no samples, pdf 0, integral 0.
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one `SpheraLtcPolygon`; `ltc`
+ * must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`; `vertices` must
+ * be null or point to `count` readable `SpheraVec3`s.
+ */
+bool sphera_ltc_polygon_prepare(struct SpheraLtcPolygon *out,
+                                const struct SpheraLtc *ltc,
+                                const struct SpheraVec3 *vertices,
+                                uint32_t count);
+
+/**
+ * Draws a direction with density `D(ω) / ∫_P D` inside the polygon, from `u0`, `u1`
+ * in [0, 1) (clamped by the library). The direction may lie at or below the horizon
+ * (`dir.z <= 0`) where the LTC puts a little mass; the BRDF is zero there, so such a
+ * sample contributes nothing, and it must not be discarded and redrawn (the pdf counts
+ * it). Returns `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or empty; `dir` is
+ * always a finite unit vector.
+ *
+ * # Safety
+ *
+ * `polygon` must be null or point to a `SpheraLtcPolygon` written by
+ * `sphera_ltc_polygon_prepare`.
+ */
+struct SpheraSample sphera_ltc_polygon_sample(const struct SpheraLtcPolygon *polygon,
+                                              float u0,
+                                              float u1);
+
+/**
+ * The density of `sphera_ltc_polygon_sample` at `dir` (normalised first): `D(ω) /
+ * ∫_P D` inside the polygon, 0 outside, for a null or empty `polygon`, and for zero or
+ * non-finite `dir`. A sample exactly on the polygon's edge may get 0 here by rounding.
+ *
+ * # Safety
+ *
+ * As for `sphera_ltc_polygon_sample`.
+ */
+float sphera_ltc_polygon_pdf(const struct SpheraLtcPolygon *polygon, struct SpheraVec3 dir);
+
+/**
+ * `∫_P D dω`, the LTC's mass inside the polygon, in [0, 1]: the projected solid angle
+ * of the transformed polygon over π (Heitz et al. 2016). 0 for a null or empty
+ * `polygon`.
+ *
+ * # Safety
+ *
+ * As for `sphera_ltc_polygon_sample`.
+ */
+float sphera_ltc_polygon_integral(const struct SpheraLtcPolygon *polygon);
+
+/**
+ * Prepares a polygonal light at a shading point for both techniques of Peters 2021:
+ * technique 0 samples `cos θ` inside the polygon (projected solid angle sampling),
+ * technique 1 samples the LTC fitted to GGX (`material->roughness`, view `wo`) inside
+ * the polygon. `vertices[0..count]` are positions relative to the shading point in the
+ * local frame (z = normal), convex, either winding, 3 to `SPHERA_MAX_POLYGON_VERTICES`;
+ * `wo` points towards the viewer (normalised here). `heuristic` is one of
+ * `SPHERA_MIS_*` (anything else counts as `SPHERA_MIS_CLAMPED_OPTIMAL`); `visibility`
+ * is `v` of (clamped) optimal MIS, clamped to [0, 1], NaN meaning 1/2 (Peters' default).
+ * Material albedos and F0 are clamped to [0, 1], roughness as in `sphera_ltc_ggx`;
+ * `f0 = (0, 0, 0)` means a Lambertian surface without a GGX layer.
+ *
+ * Returns `false` when `out`, `vertices` or `material` is null, when `count` lies
+ * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when `wo` is not finite or not above the
+ * horizon, and when neither technique can sample the polygon (non-finite or collinear
+ * vertices, nothing above the horizon, the shading point in its plane). A technique
+ * that cannot sample the polygon on its own gets zero weight and draws no samples.
+ * Unless `out` is null, a `false` return writes a light whose samples are all "no
+ * sample" (pdf 0, zero contributions).
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one `SpheraPolygonLight`;
+ * `vertices` must be null or point to `count` readable `SpheraVec3`s; `material` must
+ * be null or point to a `SpheraMaterial`.
+ */
+bool sphera_polygon_light_prepare(struct SpheraPolygonLight *out,
+                                  const struct SpheraVec3 *vertices,
+                                  uint32_t count,
+                                  struct SpheraVec3 wo,
+                                  const struct SpheraMaterial *material,
+                                  uint32_t heuristic,
+                                  float visibility);
+
+/**
+ * Draws a sample from technique `technique` (0: projected solid angle sampling, 1:
+ * the GGX LTC; other values: no sample) with `u0`, `u1` in [0, 1) (clamped), weighted
+ * for the estimator that takes one sample from each technique. The reflected radiance
+ * of a light of radiance `L` is estimated by summing, over one sample of technique 0
+ * and one of technique 1, `L × (V(dir) × visible + unoccluded)`, with `V` the light's
+ * visibility along `dir` (trace a shadow ray only when `visible` is non-zero).
+ * `unoccluded` is non-zero only for `SPHERA_MIS_OPTIMAL`.
+ *
+ * `pdf` is the density of the technique that drew the sample; 0 means no sample (both
+ * parts 0). Directions at or below the horizon (the LTC's mass below the surface)
+ * come with their pdf and zero contributions. All outputs are finite; `dir` is a unit
+ * vector. A null `light` gives no sample.
+ *
+ * # Safety
+ *
+ * `light` must be null or point to a `SpheraPolygonLight` written by
+ * `sphera_polygon_light_prepare`.
+ */
+struct SpheraLightSample sphera_polygon_light_sample(const struct SpheraPolygonLight *light,
+                                                     uint32_t technique,
+                                                     float u0,
+                                                     float u1);
+
+/**
+ * The unshadowed shading per unit radiance in closed form: `ρ Φ / π` (exact) plus
+ * GGX's directional albedo times the LTC's mass in the polygon (Heitz et al. 2016),
+ * per channel. (0, 0, 0) for a null or empty `light`.
+ *
+ * # Safety
+ *
+ * As for `sphera_polygon_light_sample`.
+ */
+struct SpheraVec3 sphera_polygon_light_unshadowed(const struct SpheraPolygonLight *light);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -319,6 +319,9 @@ impl Estimate {
     pub fn variance(&self) -> f64 {
         self.m2 / (self.count.max(2) - 1) as f64
     }
+    pub fn mean(&self) -> f64 {
+        self.mean
+    }
     pub fn standard_error(&self) -> f64 {
         (self.variance() / self.count as f64).sqrt()
     }

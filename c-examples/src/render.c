@@ -52,34 +52,72 @@ static float rng_float(Rng *rng) {
 
 /* ---- BRDF ------------------------------------------------------------------------- */
 
-/* Smith's Lambda for GGX: (sqrt(1 + alpha^2 tan^2 theta) - 1) / 2. */
-static float ggx_lambda(float cos_theta, float alpha2) {
-    float cos2 = cos_theta * cos_theta;
-    float tan2 = (1.0f - cos2) / cos2;
-    return 0.5f * (sqrtf(1.0f + alpha2 * tan2) - 1.0f);
-}
-
-/* The GGX layer's f(wo, wi) in the local frame (both above the surface), with the
- * height-correlated Smith term G2 = 1 / (1 + Lambda(wo) + Lambda(wi)) and Schlick's
- * Fresnel F0 + (1 - F0)(1 - wo.h)^5; 0 for Lambert-only materials. */
+/* The GGX layer's f(wo, wi) (local frame), evaluated by libsphera (isotropic GGX,
+ * height-correlated Smith masking-shadowing, Schlick's Fresnel); 0 for Lambert-only
+ * materials. */
 static float3 brdf_specular(const Material *m, float3 wo, float3 wi) {
-    if (!(m->alpha > 0.0f && wo.z > 0.0f)) return f3(0, 0, 0);
-    float3 h = f3_normalize(f3_add(wo, wi));
-    float alpha2 = m->alpha * m->alpha;
-    float d_denominator = h.z * h.z * (alpha2 - 1.0f) + 1.0f;
-    float d = alpha2 / (PI_F * d_denominator * d_denominator);
-    float g2 = 1.0f / (1.0f + ggx_lambda(wo.z, alpha2) + ggx_lambda(wi.z, alpha2));
-    float c = 1.0f - f3_dot(wo, h);
-    c = c < 0.0f ? 0.0f : c;
-    float c5 = c * c * c * c * c;
-    float3 fresnel = f3(m->specular.x + (1.0f - m->specular.x) * c5,
-                        m->specular.y + (1.0f - m->specular.y) * c5,
-                        m->specular.z + (1.0f - m->specular.z) * c5);
-    return f3_scale(fresnel, d * g2 / (4.0f * wo.z * wi.z));
+    if (!(m->roughness > 0.0f)) return f3(0, 0, 0);
+    SpheraVec3 o = {wo.x, wo.y, wo.z}, i = {wi.x, wi.y, wi.z};
+    SpheraVec3 f = sphera_ggx_eval(&m->ggx, o, i);
+    return f3(f.x, f.y, f.z);
 }
 
 /* The Lambert part, albedo / pi. */
 static float3 brdf_diffuse(const Material *m) { return f3_scale(m->diffuse, 1.0f / PI_F); }
+
+/* ---- BRDF sampling ---------------------------------------------------------------- */
+
+/* Sampling of a material's whole BRDF: the GGX lobe by its visible normals (libsphera)
+ * with probability `specular_probability`, else the Lambert lobe cosine-weighted; the pdf
+ * is the mixture's. The probability is the lobes' share of the directional albedo
+ * (GGX's from the fitted LTC table), by luminance. */
+typedef struct BrdfSampler {
+    const Material *material;
+    SpheraVec3 wo;
+    float specular_probability;
+} BrdfSampler;
+
+static float luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+static void brdf_sampler_init(BrdfSampler *b, const Material *m, float3 wo) {
+    b->material = m;
+    b->wo.x = wo.x;
+    b->wo.y = wo.y;
+    b->wo.z = wo.z;
+    b->specular_probability = 0.0f;
+    SpheraLtc ltc;
+    if (m->roughness > 0.0f && sphera_ltc_ggx(&ltc, b->wo, m->roughness)) {
+        SpheraVec3 f0 = {m->specular.x, m->specular.y, m->specular.z};
+        SpheraVec3 a = sphera_ltc_specular_albedo(&ltc, f0);
+        float specular = luminance(f3(a.x, a.y, a.z)), diffuse = luminance(m->diffuse);
+        if (specular + diffuse > 0.0f) b->specular_probability = specular / (specular + diffuse);
+    }
+}
+
+static float brdf_sampler_pdf(const BrdfSampler *b, SpheraVec3 wi) {
+    float q = b->specular_probability;
+    float p = (1.0f - q) * sphera_lambert_pdf(wi);
+    if (q > 0.0f) p += q * sphera_ggx_pdf(&b->material->ggx, b->wo, wi);
+    return p;
+}
+
+static SpheraSample brdf_sampler_sample(const BrdfSampler *b, float u0, float u1) {
+    float q = b->specular_probability;
+    SpheraSample s;
+    if (u0 < q)
+        s = sphera_ggx_sample(&b->material->ggx, b->wo, u0 / q, u1);
+    else
+        s = sphera_lambert_sample((u0 - q) / (1.0f - q), u1);
+    if (s.pdf > 0.0f) s.pdf = brdf_sampler_pdf(b, s.dir);
+    return s;
+}
+
+/* f (no cosine) of the whole material. */
+static float3 brdf_sampler_eval(const BrdfSampler *b, SpheraVec3 wi) {
+    if (!(wi.z > 0.0f)) return f3(0, 0, 0);
+    float3 wo = f3(b->wo.x, b->wo.y, b->wo.z);
+    return f3_add(brdf_diffuse(b->material), brdf_specular(b->material, wo, f3(wi.x, wi.y, wi.z)));
+}
 
 /* ---- light sampling ----------------------------------------------------------------- */
 
@@ -135,31 +173,95 @@ static float3 light_cosine(const Scene *scene, struct RTCIntersectContext *conte
 
 static float3 to_float3(SpheraVec3 v) { return f3(v.x, v.y, v.z); }
 
-/* The reference estimator for one light sample: one projected solid angle sample `a`
- * and one solid angle sample `b`. The Lambert term is estimated from `a` alone
- * (projected sampling is proportional to it, so unoccluded it has zero variance); the
- * GGX term from both, weighted by the balance heuristic f / (p_projected +
- * p_solid_angle). Both parts are unbiased, and so is their sum. */
+static SpheraVec3 to_sphera(float3 v) {
+    SpheraVec3 r = {v.x, v.y, v.z};
+    return r;
+}
+
+/* The reference estimator for one light sample: a projected solid angle sample `a`, a
+ * solid angle sample `b` and a GGX sample `c` (visible normals). The Lambert term is
+ * estimated from `a` alone (projected sampling is proportional to it, so unoccluded it
+ * has zero variance); the GGX term from `b` and `c`, weighted by the balance heuristic
+ * f / (p_solid_angle + p_ggx): solid angle sampling covers small and distant lights,
+ * GGX sampling sharp lobes. Both parts are unbiased, and so is their sum. */
 static float3 reference_estimate(const Scene *scene, struct RTCIntersectContext *context,
                                  const Hit *hit, const Light *light,
-                                 const PreparedLight *prepared, SpheraSample a, SpheraSample b) {
+                                 const PreparedLight *prepared, SpheraSample a, SpheraSample b,
+                                 SpheraSample c) {
     const Material *m = &scene->materials[hit->material];
-    bool glossy = m->alpha > 0.0f;
     float3 sum = f3(0, 0, 0);
     if (a.pdf > 0.0f) {
         float3 radiance = light_cosine(scene, context, hit, light, a.dir);
         sum = f3_scale(f3_mul(radiance, brdf_diffuse(m)), 1.0f / a.pdf);
-        if (glossy) {
-            float p = a.pdf + sphera_solid_angle_polygon_pdf(&prepared->reference_solid_angle, a.dir);
-            float3 f = brdf_specular(m, hit->wo, to_float3(a.dir));
-            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), 1.0f / p));
-        }
     }
-    if (glossy && b.pdf > 0.0f) {
-        float p = b.pdf + sphera_projected_polygon_pdf(&prepared->u.projected, b.dir);
+    if (!(m->roughness > 0.0f)) return sum;
+    SpheraVec3 wo = to_sphera(hit->wo);
+    const SpheraSolidAnglePolygon *polygon = &prepared->reference_solid_angle;
+    if (b.pdf > 0.0f) {
+        float p = b.pdf + sphera_ggx_pdf(&m->ggx, wo, b.dir);
         float3 radiance = light_cosine(scene, context, hit, light, b.dir);
         float3 f = brdf_specular(m, hit->wo, to_float3(b.dir));
         sum = f3_add(sum, f3_scale(f3_mul(radiance, f), 1.0f / p));
+    }
+    float inside = c.pdf > 0.0f ? sphera_solid_angle_polygon_pdf(polygon, c.dir) : 0.0f;
+    if (inside > 0.0f) {
+        float p = c.pdf + inside;
+        float3 radiance = light_cosine(scene, context, hit, light, c.dir);
+        float3 f = brdf_specular(m, hit->wo, to_float3(c.dir));
+        sum = f3_add(sum, f3_scale(f3_mul(radiance, f), 1.0f / p));
+    }
+    return sum;
+}
+
+
+static bool is_zero(float3 v) { return v.x == 0.0f && v.y == 0.0f && v.z == 0.0f; }
+
+/* One light sample of a pair technique: one sample of each of its two techniques,
+ * weighted by MIS, times the light's radiance and visibility. */
+static float3 pair_estimate(const Scene *scene, struct RTCIntersectContext *context,
+                            const Hit *hit, const Light *light, Technique technique,
+                            const PreparedLight *prepared, const BrdfSampler *brdf, float u0,
+                            float u1, float v0, float v1) {
+    float3 sum = f3(0, 0, 0);
+    if (technique == TECHNIQUE_BRDF_BALANCE || technique == TECHNIQUE_BRDF_POWER) {
+        bool power = technique == TECHNIQUE_BRDF_POWER;
+        const SpheraProjectedSolidAnglePolygon *polygon = &prepared->u.projected;
+        /* light sampling */
+        SpheraSample a = sphera_projected_polygon_sample(polygon, u0, u1);
+        if (a.pdf > 0.0f) {
+            float other = brdf_sampler_pdf(brdf, a.dir);
+            float w = power ? sphera_mis_power(a.pdf, other) : sphera_mis_balance(a.pdf, other);
+            float3 f = brdf_sampler_eval(brdf, a.dir);
+            if (w > 0.0f && !is_zero(f)) {
+                float3 radiance = light_cosine(scene, context, hit, light, a.dir);
+                sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / a.pdf));
+            }
+        }
+        /* BRDF sampling: counts where the direction passes through the light */
+        SpheraSample b = brdf_sampler_sample(brdf, v0, v1);
+        float light_pdf = b.pdf > 0.0f ? sphera_projected_polygon_pdf(polygon, b.dir) : 0.0f;
+        if (light_pdf > 0.0f) {
+            float w = power ? sphera_mis_power(b.pdf, light_pdf) : sphera_mis_balance(b.pdf, light_pdf);
+            float3 f = brdf_sampler_eval(brdf, b.dir);
+            if (w > 0.0f && !is_zero(f)) {
+                float3 radiance = light_cosine(scene, context, hit, light, b.dir);
+                sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / b.pdf));
+            }
+        }
+        return sum;
+    }
+    /* LTC + projected through sphera_polygon_light_sample: L (V visible + unoccluded). */
+    for (uint32_t t = 0; t < 2; ++t) {
+        SpheraLightSample s = sphera_polygon_light_sample(&prepared->u.polygon_light, t,
+                                                          t ? v0 : u0, t ? v1 : u1);
+        if (!(s.pdf > 0.0f)) continue;
+        float3 visible = to_float3(s.visible), offset = to_float3(s.unoccluded);
+        sum = f3_add(sum, f3_mul(light->radiance, offset));
+        if (!is_zero(visible) && s.dir.z > 0.0f) {
+            /* light_cosine gives L cos V; the sample's factor already holds the cosine */
+            float3 radiance = light_cosine(scene, context, hit, light, s.dir);
+            sum = f3_add(sum, f3_scale(f3_mul(radiance, visible), 1.0f / s.dir.z));
+        }
     }
     return sum;
 }
@@ -169,6 +271,15 @@ static float3 reference_estimate(const Scene *scene, struct RTCIntersectContext 
 static float3 shade(const Scene *scene, struct RTCIntersectContext *context, const Hit *hit,
                     Technique technique, uint32_t k, Rng *rng, uint64_t *samples) {
     const Material *m = &scene->materials[hit->material];
+    ShadingPoint point;
+    point.wo = to_sphera(hit->wo);
+    point.material.diffuse = to_sphera(m->diffuse);
+    point.material.f0 = to_sphera(m->specular);
+    point.material.roughness = m->roughness;
+    BrdfSampler brdf;
+    memset(&brdf, 0, sizeof brdf);
+    if (technique == TECHNIQUE_BRDF_BALANCE || technique == TECHNIQUE_BRDF_POWER)
+        brdf_sampler_init(&brdf, m, hit->wo);
     float3 sum = f3(0, 0, 0);
     for (uint32_t l = 0; l < scene->light_count; ++l) {
         const Light *light = &scene->lights[l];
@@ -178,18 +289,27 @@ static float3 shade(const Scene *scene, struct RTCIntersectContext *context, con
         for (uint32_t i = 0; i < light->count; ++i)
             local[i] = frame_to_local(&hit->frame, f3_sub(light->vertices[i], hit->position));
         PreparedLight prepared;
-        if (!technique_prepare(technique, &prepared, local, light->count)) continue;
+        if (!technique_prepare(technique, &prepared, local, light->count, &point)) continue;
         float3 light_sum = f3(0, 0, 0);
         for (uint32_t s = 0; s < k; ++s) {
             float u0 = rng_float(rng), u1 = rng_float(rng);
-            if (technique == TECHNIQUE_REFERENCE) {
-                SpheraSample a = sphera_projected_polygon_sample(&prepared.u.projected, u0, u1);
+            if (technique_is_pair(technique)) {
                 float v0 = rng_float(rng), v1 = rng_float(rng);
-                SpheraSample b =
-                    sphera_solid_angle_polygon_sample(&prepared.reference_solid_angle, v0, v1);
                 *samples += 2;
-                light_sum = f3_add(light_sum,
-                                   reference_estimate(scene, context, hit, light, &prepared, a, b));
+                light_sum = f3_add(light_sum, pair_estimate(scene, context, hit, light, technique,
+                                                            &prepared, &brdf, u0, u1, v0, v1));
+            } else if (technique == TECHNIQUE_REFERENCE) {
+                SpheraSample a = sphera_projected_polygon_sample(&prepared.u.projected, u0, u1);
+                SpheraSample b = {{0, 0, 1}, 0}, c = {{0, 0, 1}, 0};
+                float v0 = rng_float(rng), v1 = rng_float(rng);
+                float w0 = rng_float(rng), w1 = rng_float(rng);
+                if (m->roughness > 0.0f) {
+                    b = sphera_solid_angle_polygon_sample(&prepared.reference_solid_angle, v0, v1);
+                    c = sphera_ggx_sample(&m->ggx, point.wo, w0, w1);
+                }
+                *samples += m->roughness > 0.0f ? 3 : 1;
+                light_sum = f3_add(light_sum, reference_estimate(scene, context, hit, light,
+                                                                 &prepared, a, b, c));
             } else {
                 SpheraSample sample = technique_sample(technique, &prepared, u0, u1);
                 *samples += 1;

@@ -12,9 +12,11 @@
 const SceneInfo scene_info[] = {
     {"cornell", "the Cornell box (mm), its quad light under the ceiling"},
     {"polygons", "a room lit by a triangle, quad, pentagon, hexagon and heptagon, some tilted, "
-                 "some crossing the horizon of the walls or the floor; GGX floor (alpha 0.3)"},
+                 "some crossing the horizon of the walls or the floor; GGX floor (roughness 0.55)"},
     {"hard", "a tiny distant light, a huge light just above the floor, a light edge-on to a wall"},
     {"floor", "one unoccluded quad light over a white Lambert floor (the zero-variance test)"},
+    {"glossy", "three GGX floor strips of roughness 0.1, 0.3 and 0.6 under a quad, a pentagon "
+               "and a triangle light, with a wall casting shadows across them"},
 };
 const uint32_t scene_count = sizeof scene_info / sizeof scene_info[0];
 
@@ -86,9 +88,15 @@ static bool add_box(Builder *b, float3 lo, float3 hi, uint32_t material) {
 #define MAX_MATERIALS 16
 
 /* Adds a material; past MAX_MATERIALS, surfaces get material 0 (black). */
-static uint32_t add_material(Scene *s, float3 diffuse, float3 specular, float alpha) {
-    Material m = {diffuse, specular, alpha};
+static uint32_t add_material(Scene *s, float3 diffuse, float3 specular, float roughness) {
+    Material m;
     if (s->material_count == MAX_MATERIALS) return 0;
+    memset(&m, 0, sizeof m);
+    m.diffuse = diffuse;
+    m.specular = specular;
+    m.roughness = roughness;
+    SpheraVec3 f0 = {specular.x, specular.y, specular.z};
+    sphera_ggx_brdf_prepare(&m.ggx, roughness, f0);
     s->materials[s->material_count] = m;
     return s->material_count++;
 }
@@ -172,7 +180,7 @@ static bool build_cornell(Builder *b, float aspect) {
 static bool build_polygons(Builder *b, float aspect) {
     Scene *s = b->scene;
     add_material(s, f3(0, 0, 0), f3(0, 0, 0), 0);
-    uint32_t floor = add_material(s, f3(0.40f, 0.40f, 0.42f), f3(0.2f, 0.2f, 0.2f), 0.3f);
+    uint32_t floor = add_material(s, f3(0.40f, 0.40f, 0.42f), f3(0.2f, 0.2f, 0.2f), 0.55f);
     uint32_t wall = add_material(s, f3(0.70f, 0.68f, 0.62f), f3(0, 0, 0), 0);
     uint32_t blue = add_material(s, f3(0.20f, 0.30f, 0.60f), f3(0, 0, 0), 0);
     uint32_t orange = add_material(s, f3(0.70f, 0.40f, 0.15f), f3(0, 0, 0), 0);
@@ -243,6 +251,37 @@ static bool build_floor(Builder *b, float aspect) {
     /* wound clockwise seen from above, so its normal points down */
     ok = ok && add_light(b, light, 4, f3(12, 12, 12));
     set_camera(s, f3(0, 3.5f, 5.0f), f3(0, 0, 0), 60.0f, aspect);
+    s->ray_epsilon = 2e-4f;
+    return ok;
+}
+
+static bool build_glossy(Builder *b, float aspect) {
+    Scene *s = b->scene;
+    add_material(s, f3(0, 0, 0), f3(0, 0, 0), 0);
+    /* Three strips across the view: roughness 0.1 (front), 0.3, 0.6 (back). */
+    uint32_t strip[3];
+    const float roughness[3] = {0.1f, 0.3f, 0.6f};
+    for (int k = 0; k < 3; ++k)
+        strip[k] = add_material(s, f3(0.15f, 0.15f, 0.16f), f3(0.6f, 0.6f, 0.6f), roughness[k]);
+    uint32_t wall = add_material(s, f3(0.6f, 0.6f, 0.6f), f3(0, 0, 0), 0);
+    bool ok = true;
+    for (int k = 0; k < 3; ++k) {
+        float z0 = 3.0f - 2.5f * (float)k, z1 = z0 - 2.5f;
+        ok = ok && add_quad(b, f3(-5, 0, z1), f3(-5, 0, z0), f3(5, 0, z0), f3(5, 0, z1), strip[k]);
+    }
+    ok = ok && add_quad(b, f3(-5, 0, -4.5f), f3(5, 0, -4.5f), f3(5, 4, -4.5f), f3(-5, 4, -4.5f), wall);
+    /* A low wall across the middle: shadows (occluded light samples) on every strip. */
+    ok = ok && add_box(b, f3(-0.3f, 0, -1.2f), f3(0.3f, 1.0f, 1.8f), wall);
+    /* A quad light overhead on the left, tilted towards the camera. */
+    ok = ok && add_regular_light(b, 4, f3(-2.2f, 2.2f, -1.5f), f3_normalize(f3(0.1f, -0.9f, 0.45f)),
+                                 1.0f, 0.785f, f3(9, 9, 8));
+    /* A pentagon on the right, lower and facing the strips at a grazing angle. */
+    ok = ok && add_regular_light(b, 5, f3(2.6f, 1.0f, -3.2f), f3_normalize(f3(-0.2f, -0.3f, 0.93f)),
+                                 0.8f, 0.1f, f3(4, 6, 12));
+    /* A small triangle high behind the wall. */
+    ok = ok && add_regular_light(b, 3, f3(0.0f, 3.0f, -4.0f), f3_normalize(f3(0.0f, -0.6f, 0.8f)),
+                                 0.5f, 0.0f, f3(20, 12, 6));
+    set_camera(s, f3(0, 2.0f, 6.5f), f3(0, 0.3f, -1.5f), 50.0f, aspect);
     s->ray_epsilon = 2e-4f;
     return ok;
 }
@@ -331,6 +370,7 @@ bool scene_create_with_obj(Scene *s, const char *name, float aspect, const char 
     else if (strcmp(name, "polygons") == 0) ok = build_polygons(&b, aspect);
     else if (strcmp(name, "hard") == 0) ok = build_hard(&b, aspect);
     else if (strcmp(name, "floor") == 0) ok = build_floor(&b, aspect);
+    else if (strcmp(name, "glossy") == 0) ok = build_glossy(&b, aspect);
     else {
         fprintf(stderr, "sphera-trace: unknown scene '%s' (see --list-scenes)\n", name);
         free(s->materials);

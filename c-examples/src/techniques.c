@@ -17,8 +17,18 @@ const TechniqueInfo technique_info[TECHNIQUE_COUNT] = {
     {"projected", false, "Peters 2021 (Algorithm 4): projected solid angle sampling"},
     {"projected_fast", true,
      "projected solid angle sampling with approximate sector areas and no refinement (biased)"},
+    {"brdf_balance", false,
+     "one BRDF sample (GGX visible normals or cosine) and one projected sample, balance heuristic"},
+    {"brdf_power", false,
+     "one BRDF sample and one projected sample, power heuristic"},
+    {"ltc_weighted", false,
+     "Peters 2021: one LTC and one projected sample, weighted balance heuristic"},
+    {"ltc_clamped", false,
+     "Peters 2021: one LTC and one projected sample, clamped optimal MIS (v = 1/2)"},
+    {"ltc_optimal", false,
+     "Peters 2021: one LTC and one projected sample, optimal MIS (v = 1/2)"},
     {"reference", false,
-     "projected sampling for the Lambert term; for GGX, one projected and one solid angle sample, balance heuristic (reference images)"},
+     "projected sampling for the Lambert term; for GGX, one solid angle and one GGX sample, balance heuristic (reference images)"},
 };
 
 int technique_from_name(const char *name) {
@@ -27,9 +37,30 @@ int technique_from_name(const char *name) {
     return -1;
 }
 
-bool technique_prepare(Technique technique, PreparedLight *out, const SpheraVec3 *vertices,
-                       uint32_t count) {
+bool technique_is_pair(Technique technique) {
+    return technique >= TECHNIQUE_BRDF_BALANCE && technique <= TECHNIQUE_LTC_OPTIMAL;
+}
+
+uint32_t technique_heuristic(Technique technique) {
     switch (technique) {
+    case TECHNIQUE_LTC_WEIGHTED: return SPHERA_MIS_WEIGHTED_BALANCE;
+    case TECHNIQUE_LTC_OPTIMAL: return SPHERA_MIS_OPTIMAL;
+    default: return SPHERA_MIS_CLAMPED_OPTIMAL;
+    }
+}
+
+bool technique_prepare(Technique technique, PreparedLight *out, const SpheraVec3 *vertices,
+                       uint32_t count, const ShadingPoint *point) {
+    switch (technique) {
+    case TECHNIQUE_BRDF_BALANCE:
+    case TECHNIQUE_BRDF_POWER:
+        return sphera_projected_polygon_prepare(&out->u.projected, vertices, count);
+    case TECHNIQUE_LTC_WEIGHTED:
+    case TECHNIQUE_LTC_CLAMPED:
+    case TECHNIQUE_LTC_OPTIMAL:
+        return sphera_polygon_light_prepare(&out->u.polygon_light, vertices, count, point->wo,
+                                            &point->material, technique_heuristic(technique),
+                                            0.5f);
     case TECHNIQUE_AREA: return sphera_turk_polygon_prepare(&out->u.area, vertices, count);
     case TECHNIQUE_ARVO: return sphera_arvo_polygon_prepare(&out->u.arvo, vertices, count);
     case TECHNIQUE_SOLID_ANGLE:
@@ -75,6 +106,11 @@ SpheraSample technique_sample(Technique technique, const PreparedLight *p, float
     case TECHNIQUE_REFERENCE: return sphera_projected_polygon_sample(&p->u.projected, u0, u1);
     case TECHNIQUE_PROJECTED_FAST:
         return sphera_projected_polygon_sample_fast(&p->u.projected, u0, u1);
+    case TECHNIQUE_BRDF_BALANCE:
+    case TECHNIQUE_BRDF_POWER:
+    case TECHNIQUE_LTC_WEIGHTED:
+    case TECHNIQUE_LTC_CLAMPED:
+    case TECHNIQUE_LTC_OPTIMAL:
     case TECHNIQUE_COUNT: break;
     }
     SpheraSample none = {{0, 0, 0}, 0};

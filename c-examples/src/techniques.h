@@ -15,14 +15,28 @@ typedef struct PreparedLight {
         SpheraHartBiquadraticPolygon biquadratic;
         SpheraArvoProjectedPolygon arvo_projected;
         SpheraProjectedSolidAnglePolygon projected;
+        SpheraPolygonLight polygon_light;
     } u;
     SpheraSolidAnglePolygon reference_solid_angle;
 } PreparedLight;
 
+/* The view direction (local frame) and the material at a shading point, for the
+ * techniques that sample the BRDF. */
+typedef struct ShadingPoint {
+    SpheraVec3 wo;
+    SpheraMaterial material;
+} ShadingPoint;
+
+/* Whether the technique draws two samples per light sample (one per technique, MIS). */
+bool technique_is_pair(Technique technique);
+
+/* The SPHERA_MIS_* heuristic of an LTC technique. */
+uint32_t technique_heuristic(Technique technique);
+
 /* Prepares the polygon (local frame, relative to the shading point); false if the
  * technique has nothing to sample (then no sample may be drawn). */
 bool technique_prepare(Technique technique, PreparedLight *out, const SpheraVec3 *vertices,
-                       uint32_t count);
+                       uint32_t count, const ShadingPoint *point);
 
 /* One sample (for the reference technique: its projected solid angle sample). */
 SpheraSample technique_sample(Technique technique, const PreparedLight *prepared, float u0,

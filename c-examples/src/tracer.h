@@ -36,6 +36,12 @@ typedef enum Technique {
     TECHNIQUE_ARVO_PROJECTED,      /* Arvo 2001-style projected solid angle sampling */
     TECHNIQUE_PROJECTED,           /* Peters 2021 projected solid angle sampling */
     TECHNIQUE_PROJECTED_FAST,      /* its biased fast variant */
+    /* Two samples per light sample, one from each technique, combined by MIS: */
+    TECHNIQUE_BRDF_BALANCE,        /* BRDF (VNDF / cosine) + projected, balance heuristic */
+    TECHNIQUE_BRDF_POWER,          /* BRDF + projected, power heuristic */
+    TECHNIQUE_LTC_WEIGHTED,        /* LTC + projected, weighted balance heuristic */
+    TECHNIQUE_LTC_CLAMPED,         /* LTC + projected, clamped optimal MIS, v = 1/2 */
+    TECHNIQUE_LTC_OPTIMAL,         /* LTC + projected, optimal MIS, v = 1/2 */
     TECHNIQUE_REFERENCE,           /* solid angle + projected, multi-sample MIS */
     TECHNIQUE_COUNT
 } Technique;
@@ -53,13 +59,14 @@ int technique_from_name(const char *name);
 
 /* ---- scenes ---------------------------------------------------------------------- */
 
-/* A surface's BRDF: Lambert with albedo `diffuse`, plus (when `alpha > 0`) a GGX
- * microfacet layer with Schlick's Fresnel from `specular` (F0) and the height-correlated
- * Smith masking-shadowing term. */
+/* A surface's BRDF: Lambert with albedo `diffuse`, plus (when `roughness > 0`) a GGX
+ * microfacet layer with alpha = roughness^2, Schlick's Fresnel from `specular` (F0) and
+ * the height-correlated Smith masking-shadowing term. */
 typedef struct Material {
     float3 diffuse;
     float3 specular;
-    float alpha;
+    float roughness;
+    SpheraGgxBrdf ggx; /* prepared from roughness and specular */
 } Material;
 
 /* A one-sided convex polygonal light: it emits `radiance` from the side its `normal`

@@ -1,5 +1,7 @@
 //! BRDFs of the shading point: the GGX microfacet BRDF with visible-normal sampling
-//! (Heitz 2018) and the Lambertian BRDF with cosine-weighted sampling.
+//! (Heitz 2018), the Lambertian BRDF with cosine-weighted sampling, and linearly
+//! transformed cosines fitted to GGX (Heitz et al. 2016), the distributions that Peters
+//! 2021 samples inside polygonal lights.
 //!
 //! Conventions, shared with the light samplers: directions live in the local shading
 //! frame whose z axis is the surface normal; `wo` points away from the surface towards
@@ -13,9 +15,13 @@
 
 pub mod ggx;
 pub mod lambert;
+pub mod ltc;
+#[rustfmt::skip]
+pub mod ltc_table;
 
 pub use ggx::GgxBrdf;
 pub use lambert::Lambert;
+pub use ltc::{Ltc, LtcPolygon};
 
 use crate::Vec3;
 

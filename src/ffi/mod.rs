@@ -31,8 +31,14 @@ mod projected;
 
 mod brdf;
 
+mod ltc;
+
+mod light;
+
 pub use brdf::*;
 pub use frame::*;
+pub use light::*;
+pub use ltc::*;
 pub use polygon::*;
 pub use projected::*;
 pub use types::*;

@@ -14,6 +14,7 @@ mod ellipse_sector;
 #[rustfmt::skip]
 mod clip_generated;
 pub mod clipped_solid_angle;
+pub mod light;
 pub mod projected;
 pub mod small_projected;
 pub mod solid_angle;

@@ -420,6 +420,20 @@ impl ProjectedSolidAnglePolygon {
         }
     }
 
+    /// Whether `dir` lies inside the clipped polygon or outside by at most `tolerance`
+    /// radians (approximately: the sine of the angle to each edge's great circle), and
+    /// strictly above the horizon. With `tolerance = 0` this is [`contains`](Self::contains).
+    #[inline]
+    pub fn contains_within(&self, dir: Vec3, tolerance: f32) -> bool {
+        let length = dir.length();
+        let mut inside = self.selectable_sectors > 0 && dir.z > 0.0 && dir.is_finite();
+        for n in &self.edge_normals {
+            // Unused slots hold zero normals, whose dot product 0 passes.
+            inside &= n.dot(dir) >= -tolerance * n.length() * length;
+        }
+        inside
+    }
+
     /// Whether the ray along `dir` passes through the clipped polygon (boundary
     /// included) and lies strictly above the horizon.
     #[inline]

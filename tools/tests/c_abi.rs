@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 use sphera_tools::repository_root;
 
 /// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
-const C_TESTS: [&str; 8] = [
+const C_TESTS: [&str; 10] = [
     "test_polygon_clip",
     "test_projected_polygon",
     "test_solid_angle_polygon",
@@ -19,6 +19,8 @@ const C_TESTS: [&str; 8] = [
     "test_warps",
     "test_ggx",
     "test_mis",
+    "test_ltc",
+    "test_polygon_light",
 ];
 
 /// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
@@ -198,6 +200,16 @@ fn test_mis() {
     run_c_test("test_mis");
 }
 
+#[test]
+fn test_ltc() {
+    run_c_test("test_ltc");
+}
+
+#[test]
+fn test_polygon_light() {
+    run_c_test("test_polygon_light");
+}
+
 /// Compiles `ffi-tests/<name>.c` with the tracer's sources, links `libsphera.a`, Embree
 /// 3, libpng and pthreads, runs it and asserts that it exits with status 0.
 fn run_tracer_test(name: &str) {
@@ -365,12 +377,13 @@ int main() {
 fn struct_layouts_match_rust() {
     use std::mem::{align_of, offset_of, size_of};
 
-    use sphera::brdf::GgxBrdf;
+    use sphera::brdf::{GgxBrdf, Ltc, LtcPolygon};
     use sphera::ffi::{SpheraSample, SpheraVec3};
     use sphera::math::Frame;
     use sphera::polygon::baselines::{
         ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
     };
+    use sphera::polygon::light::{LightSample, Material, PolygonLight};
     use sphera::polygon::{
         ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
     };
@@ -442,6 +455,14 @@ fn struct_layouts_match_rust() {
         ),
         ("sizeof(SpheraGgxBrdf)", size_of::<GgxBrdf>()),
         ("alignof(SpheraGgxBrdf)", align_of::<GgxBrdf>()),
+        ("sizeof(SpheraLtc)", size_of::<Ltc>()),
+        ("alignof(SpheraLtc)", align_of::<Ltc>()),
+        ("sizeof(SpheraLtcPolygon)", size_of::<LtcPolygon>()),
+        ("alignof(SpheraLtcPolygon)", align_of::<LtcPolygon>()),
+        ("sizeof(SpheraPolygonLight)", size_of::<PolygonLight>()),
+        ("alignof(SpheraPolygonLight)", align_of::<PolygonLight>()),
+        ("sizeof(SpheraMaterial)", size_of::<Material>()),
+        ("sizeof(SpheraLightSample)", size_of::<LightSample>()),
     ];
     let mut source =
         String::from("#include <stddef.h>\n#include <stdio.h>\n#include \"sphera.h\"\n");
@@ -458,6 +479,9 @@ fn struct_layouts_match_rust() {
         "SpheraProjectedSolidAnglePolygon",
         "SpheraArvoProjectedPolygon",
         "SpheraGgxBrdf",
+        "SpheraLtc",
+        "SpheraLtcPolygon",
+        "SpheraPolygonLight",
     ] {
         source += &format!("struct align_{name} {{ char c; {name} t; }};\n");
     }

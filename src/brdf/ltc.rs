@@ -1,0 +1,348 @@
+//! Linearly transformed cosines (Heitz, Dupuy, Hill, Neubelt 2016) fitted to GGX, and
+//! their sampling inside polygonal lights (Peters 2021, Section 5).
+//!
+//! An LTC is the distribution of `ω = M ω_c / ‖M ω_c‖` for `ω_c` cosine-distributed,
+//! `D_c(ω_c) = max(0, ω_c,z) / π`. By the change of variables `ω_c = M⁻¹ω / ‖M⁻¹ω‖`,
+//! whose Jacobian is `|det M⁻¹| / ‖M⁻¹ω‖³`, its density over solid angle is
+//!
+//! `D(ω) = max(0, (M⁻¹ω)_z) |det M⁻¹| / (π ‖M⁻¹ω‖⁴)`.
+//!
+//! The table (`ltc_table.rs`, fitted by `tools/src/ltc_fitter.rs`) gives, per roughness
+//! `r = √α` and view `t = √(1 − cos θ_o)`, the inverse matrix in the frame where the
+//! view lies in the xz-plane, `M⁻¹ = [[a, 0, b], [0, c, 0], [d, 0, 1]]`, such that
+//! `D ≈ f(ω_o, ω) cos θ / albedo` for GGX with `F = 1`, and the integrals `albedo` and
+//! `fresnel` that turn it into shading with Schlick's Fresnel. [`Ltc::ggx`] interpolates
+//! it bilinearly (as Heitz et al. interpolate their inverse matrices) and rotates it
+//! about the normal to the view's azimuth.
+//!
+//! Restricted to a polygon `P`, `∫_P D dω = Φ(M⁻¹P) / π`: linear maps keep polygons
+//! polygons, and the cosine integral over the transformed polygon is its projected solid
+//! angle (Heitz 2016, Eq. 11, "the polygon integral"). Sampling the LTC inside `P`
+//! therefore is projected solid angle sampling of `M⁻¹P` followed by the map `M`
+//! ([`LtcPolygon`], Peters 2021 Sec. 5): a sample `ω'` of `M⁻¹P` with density
+//! `ω'_z / Φ'` maps to `ω = Mω' / ‖Mω'‖` with density
+//! `(ω'_z / Φ') |det M⁻¹| ‖Mω'‖³` (since `‖M⁻¹ω‖ = 1 / ‖Mω'‖`), which equals
+//! `D(ω) / ∫_P D`. As in Heitz 2016, the polygon is clipped to the horizon of the
+//! transformed space (`(M⁻¹ω)_z > 0`, where `D` lives), not of the shading frame: the
+//! LTC may place a little mass below the surface, and such samples carry a zero BRDF.
+use crate::polygon::ProjectedSolidAnglePolygon;
+use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
+
+use super::ltc_table::{LTC_TABLE, LTC_TABLE_SIZE};
+
+const INV_PI: f32 = core::f32::consts::FRAC_1_PI;
+
+/// How far (in radians, in the cosine's space) a sampled direction mapped by `M` and back
+/// by `M⁻¹` may leave the transformed polygon and still count as inside: a few hundred
+/// f32 ulps of a unit vector, far above the rounding of a well-conditioned round trip
+/// and far below the jumps of an ill-conditioned one.
+const ROUND_TRIP_TOLERANCE: f32 = 1e-5;
+
+/// A linearly transformed cosine in the local shading frame (z = normal).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ltc {
+    /// Rows of `M⁻¹`: `(M⁻¹ω)_k = inverse_rows[k] · ω`. The transformed space keeps the
+    /// normal as its z axis.
+    inverse_rows: [Vec3; 3],
+    /// Columns of `M`: `Mω' = Σ_k matrix_columns[k] ω'_k`.
+    matrix_columns: [Vec3; 3],
+    /// `det M⁻¹ > 0`.
+    inverse_determinant: f32,
+    /// `∫ f cos θ dω` of the fitted BRDF with `F = 1`.
+    albedo: f32,
+    /// `∫ f (1 − ω_o·h)⁵ cos θ dω` of the fitted BRDF with `F = 1`.
+    fresnel: f32,
+}
+
+impl Ltc {
+    /// The cosine itself (`M = I`); written by a failed C `prepare`.
+    ///
+    /// cbindgen:ignore
+    pub const IDENTITY: Ltc = Ltc {
+        inverse_rows: [Vec3::X, Vec3::Y, Vec3::Z],
+        matrix_columns: [Vec3::X, Vec3::Y, Vec3::Z],
+        inverse_determinant: 1.0,
+        albedo: 1.0,
+        fresnel: 0.0,
+    };
+
+    /// The LTC fitted to GGX `f(ω_o, ·) cos θ` for the view direction `wo` (local frame,
+    /// need not be normalised) and roughness `r = √α`, clamped to `[0, 1]` (NaN counts as
+    /// 0; below the table's smallest α the first row is used). Returns `None` when `wo` is
+    /// not finite, zero, or at or below the horizon.
+    pub fn ggx(wo: Vec3, roughness: f32) -> Option<Ltc> {
+        let length = wo.length();
+        let cos_theta = wo.z / length;
+        if !(cos_theta > 0.0) || !(length < f32::INFINITY) {
+            return None;
+        }
+        let last = (LTC_TABLE_SIZE - 1) as f32;
+        let x = roughness.max(0.0).min(1.0) * last;
+        // t = √(1 − cos θ) from 1 − cos θ = sin²θ / (1 + cos θ), which keeps precision
+        // near normal incidence.
+        let sin2 = (wo.x * wo.x + wo.y * wo.y) / (length * length);
+        let y = libm::sqrtf(sin2 / (1.0 + cos_theta)).min(1.0) * last;
+        let entry = bilinear(x, y);
+        // The view's azimuth; at normal incidence any azimuth is right (the fit is then
+        // symmetric about the normal).
+        let rho = libm::sqrtf(wo.x * wo.x + wo.y * wo.y);
+        let (cos_phi, sin_phi) = if rho > 0.0 {
+            (wo.x / rho, wo.y / rho)
+        } else {
+            (1.0, 0.0)
+        };
+        Self::from_view_frame(entry, cos_phi, sin_phi)
+    }
+
+    /// The LTC with `M⁻¹ = [[a, 0, b], [0, c, 0], [d, 0, 1]]` in the frame whose x axis
+    /// has azimuth `(cos φ, sin φ)`, from a table entry `[a, b, c, d, albedo, fresnel]`.
+    /// `None` when the matrix is not invertible with a positive determinant.
+    pub(crate) fn from_view_frame(entry: [f32; 6], cos_phi: f32, sin_phi: f32) -> Option<Ltc> {
+        let [a, b, c, d, albedo, fresnel] = entry;
+        // M⁻¹ (view frame) times R, where R maps local to view-frame coordinates:
+        // x' = cos φ x + sin φ y, y' = −sin φ x + cos φ y, z' = z.
+        let inverse_rows = [
+            Vec3::new(a * cos_phi, a * sin_phi, b),
+            Vec3::new(-c * sin_phi, c * cos_phi, 0.0),
+            Vec3::new(d * cos_phi, d * sin_phi, 1.0),
+        ];
+        // The xz block [[a, b], [d, 1]] has the inverse [[1, −b], [−d, a]] / k.
+        let k = a - b * d;
+        let inverse_determinant = c * k;
+        if !(inverse_determinant > 0.0) || !(inverse_determinant < f32::INFINITY) {
+            return None;
+        }
+        let (ik, ic) = (1.0 / k, 1.0 / c);
+        // M = Rᵀ M_view: columns of M_view rotated back by Rᵀ(x', y', z) =
+        // (cos φ x' − sin φ y', sin φ x' + cos φ y', z).
+        let matrix_columns = [
+            Vec3::new(cos_phi * ik, sin_phi * ik, -d * ik),
+            Vec3::new(-sin_phi * ic, cos_phi * ic, 0.0),
+            Vec3::new(-cos_phi * b * ik, -sin_phi * b * ik, a * ik),
+        ];
+        let ltc = Ltc {
+            inverse_rows,
+            matrix_columns,
+            inverse_determinant,
+            albedo,
+            fresnel,
+        };
+        ltc.is_finite().then_some(ltc)
+    }
+
+    fn is_finite(&self) -> bool {
+        self.inverse_rows.iter().all(|r| r.is_finite())
+            && self.matrix_columns.iter().all(|c| c.is_finite())
+            && self.albedo.is_finite()
+            && self.fresnel.is_finite()
+    }
+
+    /// `M⁻¹ v`: from the shading frame to the cosine's space.
+    #[inline]
+    pub fn to_cosine_space(&self, v: Vec3) -> Vec3 {
+        Vec3::new(
+            self.inverse_rows[0].dot(v),
+            self.inverse_rows[1].dot(v),
+            self.inverse_rows[2].dot(v),
+        )
+    }
+
+    /// `M v`: from the cosine's space to the shading frame.
+    #[inline]
+    pub fn from_cosine_space(&self, v: Vec3) -> Vec3 {
+        self.matrix_columns[0] * v.x + self.matrix_columns[1] * v.y + self.matrix_columns[2] * v.z
+    }
+
+    /// `det M⁻¹`.
+    #[inline]
+    pub fn inverse_determinant(&self) -> f32 {
+        self.inverse_determinant
+    }
+
+    /// The density `D(ω) = max(0, (M⁻¹ω)_z) |det M⁻¹| / (π ‖M⁻¹ω‖⁴)` over the whole
+    /// sphere, for a unit `dir` (a non-unit `dir` is normalised; zero or non-finite
+    /// gives 0).
+    pub fn density(&self, dir: Vec3) -> f32 {
+        let w = self.to_cosine_space(dir.normalize_or_zero());
+        let length2 = w.length_squared();
+        if !(w.z > 0.0) || !(length2 < f32::INFINITY) {
+            return 0.0;
+        }
+        w.z * self.inverse_determinant * INV_PI / (length2 * length2)
+    }
+
+    /// `∫ f cos θ dω` of the fitted GGX with `F = 1`.
+    #[inline]
+    pub fn albedo(&self) -> f32 {
+        self.albedo
+    }
+
+    /// `∫ f (1 − ω_o·h)⁵ cos θ dω` of the fitted GGX with `F = 1`.
+    #[inline]
+    pub fn fresnel(&self) -> f32 {
+        self.fresnel
+    }
+
+    /// The directional albedo with Schlick's Fresnel `F0 + (1 − F0)(1 − ω_o·h)⁵`:
+    /// `F0 (albedo − fresnel) + fresnel`, per channel. Unshadowed GGX shading of a
+    /// polygon with radiance `L` is `L × specular_albedo(F0) × ∫_P D dω`.
+    #[inline]
+    pub fn specular_albedo(&self, f0: Vec3) -> Vec3 {
+        f0 * (self.albedo - self.fresnel) + Vec3::splat(self.fresnel)
+    }
+}
+
+/// The table entry at fractional cell coordinates `(x, y)` in `[0, 63]²`, interpolated
+/// bilinearly.
+fn bilinear(x: f32, y: f32) -> [f32; 6] {
+    let last = LTC_TABLE_SIZE - 1;
+    // `as usize` truncates towards zero and maps NaN to 0; the inputs are in [0, 63].
+    let (i0, j0) = ((x as usize).min(last - 1), (y as usize).min(last - 1));
+    let (fx, fy) = (x - i0 as f32, y - j0 as f32);
+    let at = |i: usize, j: usize| &LTC_TABLE[i * LTC_TABLE_SIZE + j];
+    let (e00, e01, e10, e11) = (
+        at(i0, j0),
+        at(i0, j0 + 1),
+        at(i0 + 1, j0),
+        at(i0 + 1, j0 + 1),
+    );
+    let mut out = [0.0; 6];
+    for k in 0..6 {
+        let low = e00[k] + fy * (e01[k] - e00[k]);
+        let high = e10[k] + fy * (e11[k] - e10[k]);
+        out[k] = low + fx * (high - low);
+    }
+    out
+}
+
+/// Whether the polygon's plane passes the shading point at a distance larger than
+/// rounding (relative to the polygon's size), so that it has a non-zero projected solid
+/// angle in exact arithmetic. `M⁻¹` would turn an exact zero (the shading point in the
+/// plane) into rounding noise that the projected sampler could not tell from a tiny
+/// polygon, so the test is made here, on the input. False for non-finite or collinear
+/// vertices.
+fn plane_misses_origin(vertices: &[Vec3]) -> bool {
+    let largest = vertices
+        .iter()
+        .fold(0.0f32, |m, v| m.max(v.abs().max_element()));
+    if !(largest > 0.0 && largest < f32::INFINITY) {
+        return false;
+    }
+    // Scaled into [-1, 1]: no overflow or underflow in the cross products.
+    let scale = 1.0 / largest;
+    let first = vertices[0] * scale;
+    let mut normal = Vec3::ZERO;
+    for pair in vertices[1..].windows(2) {
+        normal += (pair[0] * scale - first).cross(pair[1] * scale - first);
+    }
+    let offset = normal.dot(first).abs();
+    offset > 8.0 * f32::EPSILON * normal.length() * first.length()
+}
+
+/// An LTC restricted to a convex polygon: projected solid angle sampling of the polygon
+/// transformed by `M⁻¹`, mapped back by `M` (Peters 2021, Sec. 5).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct LtcPolygon {
+    ltc: Ltc,
+    /// The transformed polygon `M⁻¹P`, clipped to its horizon.
+    transformed: ProjectedSolidAnglePolygon,
+}
+
+impl LtcPolygon {
+    /// An empty polygon: no samples, pdf 0, integral 0.
+    ///
+    /// cbindgen:ignore
+    pub const EMPTY: LtcPolygon = LtcPolygon {
+        ltc: Ltc::IDENTITY,
+        transformed: ProjectedSolidAnglePolygon::EMPTY,
+    };
+
+    /// Prepares `ltc` restricted to the convex polygon with the given vertices (relative
+    /// to the shading point, local frame, either winding, 3 to 8 of them). Returns `None`
+    /// where [`ProjectedSolidAnglePolygon::new`] does for the transformed polygon: bad
+    /// counts or coordinates, nothing of it where the LTC lives (`(M⁻¹ω)_z > 0`), or the
+    /// shading point in its plane.
+    pub fn new(ltc: &Ltc, vertices: &[Vec3]) -> Option<Self> {
+        let count = vertices.len();
+        if !(3..=MAX_POLYGON_VERTICES).contains(&count) || !plane_misses_origin(vertices) {
+            return None;
+        }
+        let mut transformed = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+        for (t, v) in transformed.iter_mut().zip(vertices) {
+            *t = ltc.to_cosine_space(*v);
+        }
+        let transformed = ProjectedSolidAnglePolygon::new(&transformed[..count])?;
+        Some(LtcPolygon {
+            ltc: *ltc,
+            transformed,
+        })
+    }
+
+    /// `∫_P D dω = Φ(M⁻¹P) / π`: the LTC's mass inside the polygon (Heitz 2016, the
+    /// polygon integral), in `[0, 1]`; 0 when empty.
+    #[inline]
+    pub fn integral(&self) -> f32 {
+        self.transformed.projected_solid_angle() * INV_PI
+    }
+
+    /// The LTC this polygon was prepared with.
+    #[inline]
+    pub fn ltc(&self) -> &Ltc {
+        &self.ltc
+    }
+
+    /// Draws a direction with density `D(ω) / ∫_P D` inside the polygon. Its `z` may be
+    /// at or below 0 (the LTC's mass below the surface), where the BRDF is zero. `u` is
+    /// clamped to `[0, 1 − ulp]`. `Sample::NONE` when empty, and for a direction that
+    /// the f32 round trip through an ill-conditioned `M` throws out of the polygon
+    /// (only for the smoothest, most grazing cells of the table). A sample on the
+    /// polygon's edge may still get `pdf(dir) == 0` by rounding.
+    pub fn sample(&self, u: [f32; 2]) -> Sample {
+        let s = self.transformed.sample(u);
+        if !(s.pdf > 0.0) {
+            return Sample::NONE;
+        }
+        let w = self.ltc.from_cosine_space(s.dir);
+        let length = w.length();
+        let pdf = s.pdf * self.ltc.inverse_determinant * length * length * length;
+        let dir = w / length;
+        // The direction as `pdf` sees it: mapped back by M⁻¹, it must still lie in the
+        // transformed polygon. For ill-conditioned M (the smoothest and most grazing
+        // cells of the table have entries up to 7e5) the round trip through f32 can
+        // throw it far out of the polygon; such a sample would carry a pdf that
+        // `pdf(dir)` denies, and MIS weights computed from `pdf` would not sum to one
+        // there, so it is dropped. Samples outside by rounding only (on an edge, within
+        // ROUND_TRIP_TOLERANCE) are kept: they belong to the distribution.
+        let consistent = pdf > 0.0
+            && pdf < f32::INFINITY
+            && dir.is_finite()
+            && self
+                .transformed
+                .contains_within(self.ltc.to_cosine_space(dir), ROUND_TRIP_TOLERANCE);
+        if !consistent {
+            return Sample::NONE;
+        }
+        Sample { dir, pdf }
+    }
+
+    /// The density of [`sample`](Self::sample) at `dir`: `D(ω) / ∫_P D` inside the
+    /// polygon (computed as the transformed polygon's `ω'_z / Φ'` times the Jacobian
+    /// `|det M⁻¹| / ‖M⁻¹ω‖³`), 0 outside. `dir` is normalised first; zero or non-finite
+    /// gives 0.
+    pub fn pdf(&self, dir: Vec3) -> f32 {
+        let w = self.ltc.to_cosine_space(dir.normalize_or_zero());
+        let length = w.length();
+        let p = self.transformed.pdf(w);
+        if !(p > 0.0) || !(length > 0.0) {
+            return 0.0;
+        }
+        let pdf = p * self.ltc.inverse_determinant / (length * length * length);
+        if pdf < f32::INFINITY { pdf } else { 0.0 }
+    }
+}
+
+#[cfg(test)]
+#[path = "ltc_tests.rs"]
+mod tests;

@@ -1,0 +1,127 @@
+//! The one-call shading of a polygonal light: projected solid angle sampling and the GGX
+//! LTC inside the polygon, combined by multiple importance sampling
+//! (`sphera_polygon_light_*`).
+
+use super::types::{SpheraVec3, read_polygon};
+use crate::Vec3;
+use crate::polygon::light::{LightSample, Material, MisHeuristic, PolygonLight};
+
+/// The balance heuristic, `p_j / Σ p_k`.
+pub const SPHERA_MIS_BALANCE: u32 = 0;
+/// The power heuristic with exponent 2, `p_j² / Σ p_k²`.
+pub const SPHERA_MIS_POWER: u32 = 1;
+/// The weighted balance heuristic of Peters 2021, `c_j p_j / Σ c_k p_k`.
+pub const SPHERA_MIS_WEIGHTED_BALANCE: u32 = 2;
+/// Clamped optimal MIS (Peters 2021, supplement B.3), with visibility estimate `v`.
+pub const SPHERA_MIS_CLAMPED_OPTIMAL: u32 = 3;
+/// Optimal MIS (Peters 2021, supplement B.1), with visibility estimate `v`.
+pub const SPHERA_MIS_OPTIMAL: u32 = 4;
+
+// The numbers of the C constants are those of the Rust enum.
+const _: () = {
+    assert!(SPHERA_MIS_BALANCE == MisHeuristic::Balance as u32);
+    assert!(SPHERA_MIS_POWER == MisHeuristic::Power as u32);
+    assert!(SPHERA_MIS_WEIGHTED_BALANCE == MisHeuristic::WeightedBalance as u32);
+    assert!(SPHERA_MIS_CLAMPED_OPTIMAL == MisHeuristic::ClampedOptimal as u32);
+    assert!(SPHERA_MIS_OPTIMAL == MisHeuristic::Optimal as u32);
+};
+
+/// Prepares a polygonal light at a shading point for both techniques of Peters 2021:
+/// technique 0 samples `cos θ` inside the polygon (projected solid angle sampling),
+/// technique 1 samples the LTC fitted to GGX (`material->roughness`, view `wo`) inside
+/// the polygon. `vertices[0..count]` are positions relative to the shading point in the
+/// local frame (z = normal), convex, either winding, 3 to `SPHERA_MAX_POLYGON_VERTICES`;
+/// `wo` points towards the viewer (normalised here). `heuristic` is one of
+/// `SPHERA_MIS_*` (anything else counts as `SPHERA_MIS_CLAMPED_OPTIMAL`); `visibility`
+/// is `v` of (clamped) optimal MIS, clamped to [0, 1], NaN meaning 1/2 (Peters' default).
+/// Material albedos and F0 are clamped to [0, 1], roughness as in `sphera_ltc_ggx`;
+/// `f0 = (0, 0, 0)` means a Lambertian surface without a GGX layer.
+///
+/// Returns `false` when `out`, `vertices` or `material` is null, when `count` lies
+/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when `wo` is not finite or not above the
+/// horizon, and when neither technique can sample the polygon (non-finite or collinear
+/// vertices, nothing above the horizon, the shading point in its plane). A technique
+/// that cannot sample the polygon on its own gets zero weight and draws no samples.
+/// Unless `out` is null, a `false` return writes a light whose samples are all "no
+/// sample" (pdf 0, zero contributions).
+///
+/// # Safety
+///
+/// `out` must be null or point to writable memory for one `SpheraPolygonLight`;
+/// `vertices` must be null or point to `count` readable `SpheraVec3`s; `material` must
+/// be null or point to a `SpheraMaterial`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_polygon_light_prepare(
+    out: *mut PolygonLight,
+    vertices: *const SpheraVec3,
+    count: u32,
+    wo: SpheraVec3,
+    material: *const Material,
+    heuristic: u32,
+    visibility: f32,
+) -> bool {
+    if out.is_null() {
+        return false;
+    }
+    let heuristic = MisHeuristic::from_u32(heuristic).unwrap_or(MisHeuristic::ClampedOptimal);
+    // SAFETY: forwarded from the caller.
+    let polygon = unsafe { read_polygon(vertices, count) };
+    let prepared = match (polygon, material.is_null()) {
+        (Some((local, n)), false) => {
+            // SAFETY: `material` is non-null and the caller guarantees it is valid.
+            let material = unsafe { &*material };
+            PolygonLight::new(&local[..n], Vec3::from(wo), material, heuristic, visibility)
+        }
+        _ => None,
+    };
+    // SAFETY: `out` is non-null and the caller guarantees it is writable.
+    unsafe { out.write(prepared.unwrap_or(PolygonLight::EMPTY)) };
+    prepared.is_some()
+}
+
+/// Draws a sample from technique `technique` (0: projected solid angle sampling, 1:
+/// the GGX LTC; other values: no sample) with `u0`, `u1` in [0, 1) (clamped), weighted
+/// for the estimator that takes one sample from each technique. The reflected radiance
+/// of a light of radiance `L` is estimated by summing, over one sample of technique 0
+/// and one of technique 1, `L × (V(dir) × visible + unoccluded)`, with `V` the light's
+/// visibility along `dir` (trace a shadow ray only when `visible` is non-zero).
+/// `unoccluded` is non-zero only for `SPHERA_MIS_OPTIMAL`.
+///
+/// `pdf` is the density of the technique that drew the sample; 0 means no sample (both
+/// parts 0). Directions at or below the horizon (the LTC's mass below the surface)
+/// come with their pdf and zero contributions. All outputs are finite; `dir` is a unit
+/// vector. A null `light` gives no sample.
+///
+/// # Safety
+///
+/// `light` must be null or point to a `SpheraPolygonLight` written by
+/// `sphera_polygon_light_prepare`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_polygon_light_sample(
+    light: *const PolygonLight,
+    technique: u32,
+    u0: f32,
+    u1: f32,
+) -> LightSample {
+    if light.is_null() {
+        return LightSample::NONE;
+    }
+    // SAFETY: `light` is non-null and the caller guarantees it is prepared.
+    unsafe { &*light }.sample(technique, [u0, u1])
+}
+
+/// The unshadowed shading per unit radiance in closed form: `ρ Φ / π` (exact) plus
+/// GGX's directional albedo times the LTC's mass in the polygon (Heitz et al. 2016),
+/// per channel. (0, 0, 0) for a null or empty `light`.
+///
+/// # Safety
+///
+/// As for `sphera_polygon_light_sample`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_polygon_light_unshadowed(light: *const PolygonLight) -> SpheraVec3 {
+    if light.is_null() {
+        return Vec3::ZERO.into();
+    }
+    // SAFETY: `light` is non-null and the caller guarantees it is prepared.
+    unsafe { &*light }.unshadowed().into()
+}

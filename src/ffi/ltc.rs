@@ -1,0 +1,163 @@
+//! Linearly transformed cosines fitted to GGX (Heitz et al. 2016) and their sampling
+//! inside polygonal lights (Peters 2021): `sphera_ltc_*`.
+
+use super::polygon::prepare;
+use super::types::{SpheraSample, SpheraVec3, with_ref};
+use crate::brdf::{Ltc, LtcPolygon};
+use crate::{Sample, Vec3};
+
+/// Looks up the LTC fitted to GGX `f(wo, ω) cos θ` (Fresnel 1; isotropic GGX with
+/// height-correlated Smith masking-shadowing, `α = roughness²`) for the view direction
+/// `wo` (local frame, towards the viewer, need not be normalised) and `roughness` in
+/// [0, 1] (clamped; NaN counts as 0). The table is interpolated bilinearly in
+/// `√α = roughness` and `√(1 − cos θ)`, and rotated to the view's azimuth.
+///
+/// Returns `false` when `out` is null, or when `wo` is not finite, zero, or at or below
+/// the horizon (`wo.z <= 0`); in the second case `*out` is set to the plain cosine
+/// (`M = I`, albedo 1, fresnel 0).
+///
+/// # Safety
+///
+/// `out` must be null or point to writable memory for one `SpheraLtc`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_ltc_ggx(out: *mut Ltc, wo: SpheraVec3, roughness: f32) -> bool {
+    if out.is_null() {
+        return false;
+    }
+    let ltc = Ltc::ggx(wo.into(), roughness);
+    // SAFETY: `out` is non-null and the caller guarantees it is writable.
+    unsafe { out.write(ltc.unwrap_or(Ltc::IDENTITY)) };
+    ltc.is_some()
+}
+
+/// The LTC's density per steradian at `dir` over the whole sphere (`dir` is normalised
+/// first): `D(ω) = max(0, (M⁻¹ω)_z) det M⁻¹ / (π |M⁻¹ω|⁴)`. 0 for a null `ltc` and for
+/// zero or non-finite `dir`.
+///
+/// # Safety
+///
+/// `ltc` must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_ltc_density(ltc: *const Ltc, dir: SpheraVec3) -> f32 {
+    // SAFETY: the caller guarantees that a non-null `ltc` points to a valid value.
+    unsafe { with_ref(ltc, 0.0, |ltc| ltc.density(dir.into())) }
+}
+
+/// GGX's directional albedo with Schlick's Fresnel for the reflectance at normal
+/// incidence `f0` (per channel, used as given): `f0 (albedo − fresnel) + fresnel`, from
+/// the fitted integrals. Unshadowed GGX shading of a polygonal light with radiance `L`
+/// is `L × sphera_ltc_specular_albedo(ltc, f0) × sphera_ltc_polygon_integral(polygon)`.
+/// A null `ltc` gives (0, 0, 0).
+///
+/// # Safety
+///
+/// `ltc` must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_ltc_specular_albedo(ltc: *const Ltc, f0: SpheraVec3) -> SpheraVec3 {
+    // SAFETY: the caller guarantees that a non-null `ltc` points to a valid value.
+    unsafe {
+        with_ref(ltc, Vec3::ZERO.into(), |ltc| {
+            ltc.specular_albedo(f0.into()).into()
+        })
+    }
+}
+
+/// Prepares the LTC `*ltc` restricted to the convex polygon `vertices[0..count]`
+/// (positions relative to the shading point in the local frame, either winding, 3 to
+/// `SPHERA_MAX_POLYGON_VERTICES`): the polygon is transformed by `M⁻¹`, clipped to the
+/// horizon of that space, and prepared for projected solid angle sampling.
+///
+/// Returns `false` when `out`, `ltc` or `vertices` is null, when `count` lies outside
+/// 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is not finite, when the
+/// vertices are collinear or the shading point lies in the polygon's plane, when nothing
+/// of the transformed polygon lies above the horizon (the LTC has no mass in the
+/// polygon), and when the transformed polygon has `SPHERA_MAX_POLYGON_VERTICES`
+/// vertices and crosses the horizon. Unless `out` is null, a `false` return writes the
+/// empty polygon: no samples, pdf 0, integral 0.
+///
+/// # Safety
+///
+/// `out` must be null or point to writable memory for one `SpheraLtcPolygon`; `ltc`
+/// must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`; `vertices` must
+/// be null or point to `count` readable `SpheraVec3`s.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_ltc_polygon_prepare(
+    out: *mut LtcPolygon,
+    ltc: *const Ltc,
+    vertices: *const SpheraVec3,
+    count: u32,
+) -> bool {
+    if ltc.is_null() {
+        if !out.is_null() {
+            // SAFETY: `out` is non-null and the caller guarantees it is writable.
+            unsafe { out.write(LtcPolygon::EMPTY) };
+        }
+        return false;
+    }
+    // SAFETY: `ltc` is non-null and the caller guarantees it points to a valid value.
+    let ltc = unsafe { &*ltc };
+    // SAFETY: forwarded from the caller.
+    unsafe {
+        prepare(
+            out,
+            vertices,
+            count,
+            |v| LtcPolygon::new(ltc, v),
+            LtcPolygon::EMPTY,
+        )
+    }
+}
+
+/// Draws a direction with density `D(ω) / ∫_P D` inside the polygon, from `u0`, `u1`
+/// in [0, 1) (clamped by the library). The direction may lie at or below the horizon
+/// (`dir.z <= 0`) where the LTC puts a little mass; the BRDF is zero there, so such a
+/// sample contributes nothing, and it must not be discarded and redrawn (the pdf counts
+/// it). Returns `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or empty; `dir` is
+/// always a finite unit vector.
+///
+/// # Safety
+///
+/// `polygon` must be null or point to a `SpheraLtcPolygon` written by
+/// `sphera_ltc_polygon_prepare`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_ltc_polygon_sample(
+    polygon: *const LtcPolygon,
+    u0: f32,
+    u1: f32,
+) -> SpheraSample {
+    // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
+    unsafe {
+        with_ref(polygon, Sample::NONE.into(), |polygon| {
+            polygon.sample([u0, u1]).into()
+        })
+    }
+}
+
+/// The density of `sphera_ltc_polygon_sample` at `dir` (normalised first): `D(ω) /
+/// ∫_P D` inside the polygon, 0 outside, for a null or empty `polygon`, and for zero or
+/// non-finite `dir`. A sample exactly on the polygon's edge may get 0 here by rounding.
+///
+/// # Safety
+///
+/// As for `sphera_ltc_polygon_sample`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_ltc_polygon_pdf(
+    polygon: *const LtcPolygon,
+    dir: SpheraVec3,
+) -> f32 {
+    // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
+    unsafe { with_ref(polygon, 0.0, |polygon| polygon.pdf(dir.into())) }
+}
+
+/// `∫_P D dω`, the LTC's mass inside the polygon, in [0, 1]: the projected solid angle
+/// of the transformed polygon over π (Heitz et al. 2016). 0 for a null or empty
+/// `polygon`.
+///
+/// # Safety
+///
+/// As for `sphera_ltc_polygon_sample`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_ltc_polygon_integral(polygon: *const LtcPolygon) -> f32 {
+    // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
+    unsafe { with_ref(polygon, 0.0, |polygon| polygon.integral()) }
+}

@@ -1,0 +1,306 @@
+//! The one-call shading of a polygonal light for renderers (Peters 2021, Sec. 5 and
+//! supplement B): a diffuse technique, projected solid angle sampling, and a specular
+//! technique, the GGX-fitted LTC sampled inside the polygon, combined by multiple
+//! importance sampling with one sample from each.
+//!
+//! For a light of constant radiance `L` and the BRDF `f = ρ/π + f_GGX`, the integrand is
+//! `L V(ω) f(ω_o, ω) cos θ`. With perfect fits it equals `L V Σ_k c_k p_k(ω)`, where
+//! `p_0 = cos θ / Φ` (projected solid angle sampling) and `p_1 = D / ∫_P D` (the LTC
+//! inside the polygon), with the unoccluded contributions per unit radiance
+//!
+//! `c_0 = ρ Φ / π`,  `c_1 = (F0 (albedo − fresnel) + fresnel) ∫_P D`.
+//!
+//! Every heuristic of [`crate::mis`] is available; the default is clamped optimal MIS
+//! with `v = 1/2` (supplement B.3), which Peters recommends. The weights of the
+//! weighted balance heuristic and of (clamped) optimal MIS are applied per colour
+//! channel, with `c_k` per channel: each channel is its own integral, so the estimate
+//! stays unbiased and, unoccluded, has zero variance up to the fit error of the LTC.
+use crate::brdf::ggx::GgxBrdf;
+use crate::brdf::{Ltc, LtcPolygon};
+use crate::mis;
+use crate::polygon::ProjectedSolidAnglePolygon;
+use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
+
+/// A surface's BRDF: Lambert with albedo `diffuse`, plus GGX with reflectance `f0` at
+/// normal incidence (Schlick's Fresnel) and `roughness = √α` in `[0, 1]`. `f0 = (0, 0, 0)`
+/// means no GGX layer at all (a Lambertian surface; Schlick's grazing reflection
+/// `(1 − ω_o·h)⁵`, which `F0 = 0` would otherwise keep, is dropped too).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Material {
+    /// Lambertian albedo per channel, in `[0, 1]`.
+    pub diffuse: Vec3,
+    /// GGX reflectance at normal incidence per channel, in `[0, 1]`.
+    pub f0: Vec3,
+    /// `√α`, in `[0, 1]`.
+    pub roughness: f32,
+}
+
+/// How the two techniques' samples are weighted.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MisHeuristic {
+    /// `p_j / Σ p_k` (Veach 1997).
+    Balance = 0,
+    /// `p_j² / Σ p_k²` (Veach 1997).
+    Power = 1,
+    /// `c_j p_j / Σ c_k p_k` (Peters 2021): zero variance when nothing is occluded.
+    WeightedBalance = 2,
+    /// Clamped optimal MIS with visibility estimate `v` (supplement B.3): the weighted
+    /// balance heuristic blended with the balance heuristic, `v c_j p_j / Σ c_k p_k +
+    /// (1 − v) p_j / Σ p_k`.
+    ClampedOptimal = 3,
+    /// Optimal MIS with visibility estimate `v` (supplement B.1): contributions
+    /// `v c_j + (f − v Σ c_k p_k) / Σ p_k`, part of which does not depend on visibility.
+    Optimal = 4,
+}
+
+impl MisHeuristic {
+    /// The heuristic with the given number, or `None`.
+    pub fn from_u32(value: u32) -> Option<Self> {
+        Some(match value {
+            0 => Self::Balance,
+            1 => Self::Power,
+            2 => Self::WeightedBalance,
+            3 => Self::ClampedOptimal,
+            4 => Self::Optimal,
+            _ => return None,
+        })
+    }
+}
+
+/// A sample of a [`PolygonLight`]: the direction, the density of the technique that
+/// drew it, and its MIS-weighted contribution per unit radiance, in two parts. The
+/// estimate of the reflected radiance from this sample is
+/// `L × (V(dir) × visible + unoccluded)`, with `V` the visibility of the light along
+/// `dir`. `unoccluded` is zero except for optimal MIS, whose zero-mean terms do not
+/// depend on visibility (supplement B.1).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightSample {
+    /// Unit direction in the local frame.
+    pub dir: Vec3,
+    /// The density of the technique that drew the sample; 0: no sample (and both
+    /// contribution parts are 0).
+    pub pdf: f32,
+    /// `f cos θ × weight / pdf`, per channel: multiply by `L V`.
+    pub visible: Vec3,
+    /// The part of optimal MIS that does not depend on visibility: multiply by `L`.
+    pub unoccluded: Vec3,
+}
+
+impl LightSample {
+    /// No sample.
+    ///
+    /// cbindgen:ignore
+    pub const NONE: LightSample = LightSample {
+        dir: Vec3::Z,
+        pdf: 0.0,
+        visible: Vec3::ZERO,
+        unoccluded: Vec3::ZERO,
+    };
+}
+
+/// A polygonal light prepared at one shading point for both techniques.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct PolygonLight {
+    /// Technique 0: projected solid angle sampling.
+    diffuse: ProjectedSolidAnglePolygon,
+    /// Technique 1: the GGX LTC inside the polygon.
+    specular: LtcPolygon,
+    brdf: GgxBrdf,
+    /// 1 when the material has a GGX layer (`f0` not zero), else 0.
+    has_specular: u32,
+    /// `ρ / π`.
+    lambert: Vec3,
+    /// The view direction, unit, above the horizon.
+    wo: Vec3,
+    /// `c_0, c_1` per channel (unoccluded contribution per unit radiance).
+    contributions: [Vec3; 2],
+    /// A [`MisHeuristic`] as a number.
+    heuristic: u32,
+    /// `v` of (clamped) optimal MIS, in `[0, 1]`.
+    visibility: f32,
+}
+
+impl PolygonLight {
+    /// A light with nothing to sample: every sample is [`LightSample::NONE`].
+    ///
+    /// cbindgen:ignore
+    pub const EMPTY: PolygonLight = PolygonLight {
+        diffuse: ProjectedSolidAnglePolygon::EMPTY,
+        specular: LtcPolygon::EMPTY,
+        brdf: GgxBrdf {
+            alpha: 1.0,
+            f0: Vec3::ZERO,
+        },
+        has_specular: 0,
+        lambert: Vec3::ZERO,
+        wo: Vec3::Z,
+        contributions: [Vec3::ZERO; 2],
+        heuristic: MisHeuristic::ClampedOptimal as u32,
+        visibility: 0.5,
+    };
+
+    /// Prepares both techniques for the convex polygon with the given vertices (relative
+    /// to the shading point, local frame, either winding, 3 to 8), seen from the unit
+    /// view direction `wo` (towards the viewer, `wo.z > 0`), for `material`.
+    /// `visibility` is `v` of (clamped) optimal MIS, clamped to `[0, 1]` (NaN: 1/2).
+    ///
+    /// Returns `None` when `wo` is not above the horizon or not finite, or when neither
+    /// technique can sample the polygon (bad vertices, nothing above the horizon). A
+    /// technique that cannot sample it (for example when the LTC has no mass in the
+    /// polygon) gets `c = 0` and draws no samples.
+    pub fn new(
+        vertices: &[Vec3],
+        wo: Vec3,
+        material: &Material,
+        heuristic: MisHeuristic,
+        visibility: f32,
+    ) -> Option<Self> {
+        if !(3..=MAX_POLYGON_VERTICES).contains(&vertices.len()) {
+            return None;
+        }
+        let wo = wo.normalize_or_zero();
+        if !(wo.z > 0.0) {
+            return None;
+        }
+        let diffuse_albedo = material.diffuse.max(Vec3::ZERO).min(Vec3::ONE);
+        let f0 = material.f0.max(Vec3::ZERO).min(Vec3::ONE);
+        let brdf = GgxBrdf::new(material.roughness, f0);
+        let ltc = Ltc::ggx(wo, material.roughness)?;
+        let diffuse = ProjectedSolidAnglePolygon::new(vertices);
+        let specular = LtcPolygon::new(&ltc, vertices);
+        if diffuse.is_none() && specular.is_none() {
+            return None;
+        }
+        let has_specular = f0.max_element() > 0.0;
+        let diffuse = diffuse.unwrap_or(ProjectedSolidAnglePolygon::EMPTY);
+        // A Lambertian surface has nothing for the LTC to sample.
+        let specular = specular
+            .filter(|_| has_specular)
+            .unwrap_or(LtcPolygon::EMPTY);
+        let lambert = diffuse_albedo * core::f32::consts::FRAC_1_PI;
+        // Without a GGX layer the specular technique gets c_1 = 0 (no weight under the
+        // weighted heuristics) and the BRDF no GGX term.
+        let specular_albedo = if has_specular {
+            ltc.specular_albedo(f0)
+        } else {
+            Vec3::ZERO
+        };
+        let contributions = [
+            lambert * diffuse.projected_solid_angle(),
+            specular_albedo * specular.integral(),
+        ];
+        let visibility = if visibility.is_nan() {
+            0.5
+        } else {
+            visibility.max(0.0).min(1.0)
+        };
+        Some(PolygonLight {
+            diffuse,
+            specular,
+            brdf,
+            has_specular: has_specular as u32,
+            lambert,
+            wo,
+            contributions,
+            heuristic: heuristic as u32,
+            visibility,
+        })
+    }
+
+    /// The unshadowed shading per unit radiance in closed form, `c_0 + c_1`: exact for
+    /// the diffuse part, the LTC approximation (Heitz 2016) for the specular part.
+    pub fn unshadowed(&self) -> Vec3 {
+        self.contributions[0] + self.contributions[1]
+    }
+
+    /// `c_0` (diffuse) and `c_1` (specular), per channel.
+    pub fn contributions(&self) -> [Vec3; 2] {
+        self.contributions
+    }
+
+    /// The densities of both techniques at `dir`.
+    pub fn pdfs(&self, dir: Vec3) -> [f32; 2] {
+        [self.diffuse.pdf(dir), self.specular.pdf(dir)]
+    }
+
+    /// Draws a sample from technique `technique` (0: projected solid angle sampling, 1:
+    /// the LTC; anything else: no sample) and weights it for the multi-sample MIS
+    /// estimator that takes one sample from each technique: the sum of the two samples'
+    /// estimates is unbiased. Samples at or below the horizon, and samples of a
+    /// technique that could not be prepared, have zero contribution (`pdf` says which).
+    pub fn sample(&self, technique: u32, u: [f32; 2]) -> LightSample {
+        let sample = match technique {
+            0 => self.diffuse.sample(u),
+            1 => self.specular.sample(u),
+            _ => Sample::NONE,
+        };
+        if !(sample.pdf > 0.0) {
+            return LightSample::NONE;
+        }
+        let mut out = LightSample {
+            dir: sample.dir,
+            pdf: sample.pdf,
+            visible: Vec3::ZERO,
+            unoccluded: Vec3::ZERO,
+        };
+        let wi = sample.dir;
+        if !(wi.z > 0.0) {
+            // Below the horizon: f = 0, and the zero-mean terms of optimal MIS are
+            // dropped there too (supplement B.2 allows any admissible set).
+            return out;
+        }
+        let j = technique as usize;
+        let mut p = self.pdfs(wi);
+        // The sample's own technique has the density it was drawn with (pdf() may
+        // round to 0 on the polygon's edge).
+        p[j] = sample.pdf;
+        let specular = if self.has_specular != 0 {
+            self.brdf.eval(self.wo, wi)
+        } else {
+            Vec3::ZERO
+        };
+        let f = (self.lambert + specular) * wi.z;
+        let c = self.contributions;
+        let v = self.visibility;
+        // The sample's share of the balance heuristic, f / Σ p as a factor of f.
+        let balance = mis::balance_heuristic(&p, j) / p[j];
+        match MisHeuristic::from_u32(self.heuristic).unwrap_or(MisHeuristic::ClampedOptimal) {
+            MisHeuristic::Balance => out.visible = f * balance,
+            MisHeuristic::Power => out.visible = f * (mis::power_heuristic(&p, j) / p[j]),
+            heuristic => {
+                for k in 0..3 {
+                    let ck = [c[0][k], c[1][k]];
+                    match heuristic {
+                        MisHeuristic::WeightedBalance => {
+                            out.visible[k] =
+                                f[k] * (mis::weighted_balance_heuristic(&p, &ck, j) / p[j]);
+                        }
+                        MisHeuristic::ClampedOptimal => {
+                            out.visible[k] =
+                                mis::clamped_optimal_mis_contribution(f[k], &p, &ck, v, j);
+                        }
+                        _ => {
+                            // Optimal MIS: v c_j + (f − v Σ c p) / Σ p = f / Σ p (the
+                            // balance heuristic, times V) + the rest (independent of V).
+                            out.visible[k] = f[k] * balance;
+                            out.unoccluded[k] = mis::optimal_mis_contribution(0.0, &p, &ck, v, j);
+                        }
+                    }
+                }
+            }
+        }
+        if !out.visible.is_finite() || !out.unoccluded.is_finite() {
+            out.visible = Vec3::ZERO;
+            out.unoccluded = Vec3::ZERO;
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+#[path = "light_tests.rs"]
+mod tests;
