@@ -116,7 +116,9 @@ fn random_configuration(rng: &mut Rng, roughness: f32) -> Configuration {
             roughness,
         };
         let light = PolygonLight::new(&polygon, wo, &material, MisHeuristic::Balance, 0.5);
-        if light.is_some_and(|l| luminance(l.unshadowed()) > 1e-6) {
+        let above_horizon = ProjectedSolidAnglePolygon::new(&polygon).is_some()
+            && SolidAnglePolygon::new(&polygon).is_some();
+        if above_horizon && light.is_some_and(|l| luminance(l.unshadowed()) > 1e-6) {
             return Configuration {
                 polygon,
                 wo,
