@@ -173,48 +173,12 @@ static float3 light_cosine(const Scene *scene, struct RTCIntersectContext *conte
 
 static float3 to_float3(SpheraVec3 v) { return f3(v.x, v.y, v.z); }
 
+static bool is_zero(float3 v) { return v.x == 0.0f && v.y == 0.0f && v.z == 0.0f; }
+
 static SpheraVec3 to_sphera(float3 v) {
     SpheraVec3 r = {v.x, v.y, v.z};
     return r;
 }
-
-/* The reference estimator for one light sample: a projected solid angle sample `a`, a
- * solid angle sample `b` and a GGX sample `c` (visible normals). The Lambert term is
- * estimated from `a` alone (projected sampling is proportional to it, so unoccluded it
- * has zero variance); the GGX term from `b` and `c`, weighted by the balance heuristic
- * f / (p_solid_angle + p_ggx): solid angle sampling covers small and distant lights,
- * GGX sampling sharp lobes. Both parts are unbiased, and so is their sum. */
-static float3 reference_estimate(const Scene *scene, struct RTCIntersectContext *context,
-                                 const Hit *hit, const Light *light,
-                                 const PreparedLight *prepared, SpheraSample a, SpheraSample b,
-                                 SpheraSample c) {
-    const Material *m = &scene->materials[hit->material];
-    float3 sum = f3(0, 0, 0);
-    if (a.pdf > 0.0f) {
-        float3 radiance = light_cosine(scene, context, hit, light, a.dir);
-        sum = f3_scale(f3_mul(radiance, brdf_diffuse(m)), 1.0f / a.pdf);
-    }
-    if (!(m->roughness > 0.0f)) return sum;
-    SpheraVec3 wo = to_sphera(hit->wo);
-    const SpheraSolidAnglePolygon *polygon = &prepared->reference_solid_angle;
-    if (b.pdf > 0.0f) {
-        float p = b.pdf + sphera_ggx_pdf(&m->ggx, wo, b.dir);
-        float3 radiance = light_cosine(scene, context, hit, light, b.dir);
-        float3 f = brdf_specular(m, hit->wo, to_float3(b.dir));
-        sum = f3_add(sum, f3_scale(f3_mul(radiance, f), 1.0f / p));
-    }
-    float inside = c.pdf > 0.0f ? sphera_solid_angle_polygon_pdf(polygon, c.dir) : 0.0f;
-    if (inside > 0.0f) {
-        float p = c.pdf + inside;
-        float3 radiance = light_cosine(scene, context, hit, light, c.dir);
-        float3 f = brdf_specular(m, hit->wo, to_float3(c.dir));
-        sum = f3_add(sum, f3_scale(f3_mul(radiance, f), 1.0f / p));
-    }
-    return sum;
-}
-
-
-static bool is_zero(float3 v) { return v.x == 0.0f && v.y == 0.0f && v.z == 0.0f; }
 
 /* One light sample of a pair technique: one sample of each of its two techniques,
  * weighted by MIS, times the light's radiance and visibility. */
@@ -299,17 +263,21 @@ static float3 shade(const Scene *scene, struct RTCIntersectContext *context, con
                 light_sum = f3_add(light_sum, pair_estimate(scene, context, hit, light, technique,
                                                             &prepared, &brdf, u0, u1, v0, v1));
             } else if (technique == TECHNIQUE_REFERENCE) {
-                SpheraSample a = sphera_projected_polygon_sample(&prepared.u.projected, u0, u1);
-                SpheraSample b = {{0, 0, 1}, 0}, c = {{0, 0, 1}, 0};
                 float v0 = rng_float(rng), v1 = rng_float(rng);
-                float w0 = rng_float(rng), w1 = rng_float(rng);
-                if (m->roughness > 0.0f) {
-                    b = sphera_solid_angle_polygon_sample(&prepared.reference_solid_angle, v0, v1);
-                    c = sphera_ggx_sample(&m->ggx, point.wo, w0, w1);
+                if (prepared.reference_glossy) {
+                    *samples += 2;
+                    light_sum = f3_add(light_sum,
+                                       pair_estimate(scene, context, hit, light, TECHNIQUE_LTC_WEIGHTED,
+                                                     &prepared, &brdf, u0, u1, v0, v1));
+                } else {
+                    SpheraSample a = sphera_projected_polygon_sample(&prepared.u.projected, u0, u1);
+                    *samples += 1;
+                    if (a.pdf > 0.0f) {
+                        float3 radiance = light_cosine(scene, context, hit, light, a.dir);
+                        light_sum = f3_add(light_sum,
+                                           f3_scale(f3_mul(radiance, brdf_diffuse(m)), 1.0f / a.pdf));
+                    }
                 }
-                *samples += m->roughness > 0.0f ? 3 : 1;
-                light_sum = f3_add(light_sum, reference_estimate(scene, context, hit, light,
-                                                                 &prepared, a, b, c));
             } else {
                 SpheraSample sample = technique_sample(technique, &prepared, u0, u1);
                 *samples += 1;

@@ -28,7 +28,7 @@ const TechniqueInfo technique_info[TECHNIQUE_COUNT] = {
     {"ltc_optimal", false,
      "Peters 2021: one LTC and one projected sample, optimal MIS (v = 1/2)"},
     {"reference", false,
-     "projected sampling for the Lambert term; for GGX, one solid angle and one GGX sample, balance heuristic (reference images)"},
+     "reference images: projected sampling on Lambertian surfaces, one projected and one LTC sample with the weighted balance heuristic on GGX ones"},
 };
 
 int technique_from_name(const char *name) {
@@ -78,11 +78,18 @@ bool technique_prepare(Technique technique, PreparedLight *out, const SpheraVec3
     case TECHNIQUE_PROJECTED_FAST:
         return sphera_projected_polygon_prepare_fast(&out->u.projected, vertices, count);
     case TECHNIQUE_REFERENCE: {
-        /* Either technique alone can draw the samples; the reference needs one of them. */
-        bool projected = sphera_projected_polygon_prepare(&out->u.projected, vertices, count);
-        bool solid_angle =
-            sphera_solid_angle_polygon_prepare(&out->reference_solid_angle, vertices, count);
-        return projected || solid_angle;
+        /* Lambertian: projected sampling (zero variance where unoccluded). GGX: the
+         * weighted balance heuristic over projected and LTC sampling, the estimator of
+         * lowest variance here; its independence from the techniques under test is
+         * not needed for an unbiased reference, and a bias of its own would show up in
+         * the report's mean check against every other technique. */
+        const SpheraVec3 f0 = point->material.f0;
+        out->reference_glossy = f0.x > 0.0f || f0.y > 0.0f || f0.z > 0.0f;
+        if (out->reference_glossy)
+            return sphera_polygon_light_prepare(&out->u.polygon_light, vertices, count, point->wo,
+                                                &point->material, SPHERA_MIS_WEIGHTED_BALANCE,
+                                                0.5f);
+        return sphera_projected_polygon_prepare(&out->u.projected, vertices, count);
     }
     case TECHNIQUE_COUNT: break;
     }
@@ -102,8 +109,7 @@ SpheraSample technique_sample(Technique technique, const PreparedLight *p, float
         return sphera_hart_biquadratic_polygon_sample(&p->u.biquadratic, u0, u1);
     case TECHNIQUE_ARVO_PROJECTED:
         return sphera_arvo_projected_polygon_sample(&p->u.arvo_projected, u0, u1);
-    case TECHNIQUE_PROJECTED:
-    case TECHNIQUE_REFERENCE: return sphera_projected_polygon_sample(&p->u.projected, u0, u1);
+    case TECHNIQUE_PROJECTED: return sphera_projected_polygon_sample(&p->u.projected, u0, u1);
     case TECHNIQUE_PROJECTED_FAST:
         return sphera_projected_polygon_sample_fast(&p->u.projected, u0, u1);
     case TECHNIQUE_BRDF_BALANCE:
@@ -111,6 +117,7 @@ SpheraSample technique_sample(Technique technique, const PreparedLight *p, float
     case TECHNIQUE_LTC_WEIGHTED:
     case TECHNIQUE_LTC_CLAMPED:
     case TECHNIQUE_LTC_OPTIMAL:
+    case TECHNIQUE_REFERENCE:
     case TECHNIQUE_COUNT: break;
     }
     SpheraSample none = {{0, 0, 0}, 0};

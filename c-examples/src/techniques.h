@@ -17,7 +17,9 @@ typedef struct PreparedLight {
         SpheraProjectedSolidAnglePolygon projected;
         SpheraPolygonLight polygon_light;
     } u;
-    SpheraSolidAnglePolygon reference_solid_angle;
+    /* The reference technique on a GGX material: u.polygon_light (weighted balance);
+     * on a Lambertian one: u.projected. */
+    bool reference_glossy;
 } PreparedLight;
 
 /* The view direction (local frame) and the material at a shading point, for the
