@@ -395,6 +395,25 @@ pub fn projected_solid_angle_d3(p: &[D3]) -> f64 {
     0.5 * sigma * sum
 }
 
+/// The polygon clipped to `z >= 0` by Sutherland–Hodgman, in f64 (new vertices lie
+/// exactly on `z = 0`).
+pub fn clip_to_upper_hemisphere_f64(p: &[D3]) -> Vec<D3> {
+    let mut out = Vec::new();
+    for i in 0..p.len() {
+        let (a, b) = (p[i], p[(i + 1) % p.len()]);
+        if a[2] >= 0.0 {
+            out.push(a);
+        }
+        if (a[2] >= 0.0) != (b[2] >= 0.0) {
+            let t = a[2] / (a[2] - b[2]);
+            let mut q = add(a, scale(sub(b, a), t));
+            q[2] = 0.0;
+            out.push(q);
+        }
+    }
+    out
+}
+
 /// The plane x + y + z = 0 through the shading point; moved by (0.1, 0.2, 0.3) it is a
 /// valid polygon.
 const TILTED_THROUGH_ORIGIN: [Vec3; 4] = [

@@ -42,28 +42,10 @@ fn apply(m: &[D3; 3], v: D3) -> D3 {
     [dot(m[0], v), dot(m[1], v), dot(m[2], v)]
 }
 
-/// Sutherland–Hodgman against `z >= 0`, f64.
-fn clip_f64(p: &[D3]) -> Vec<D3> {
-    let mut out = Vec::new();
-    for i in 0..p.len() {
-        let (a, b) = (p[i], p[(i + 1) % p.len()]);
-        if a[2] >= 0.0 {
-            out.push(a);
-        }
-        if (a[2] >= 0.0) != (b[2] >= 0.0) {
-            let t = a[2] / (a[2] - b[2]);
-            let mut q = add(a, scale(sub(b, a), t));
-            q[2] = 0.0;
-            out.push(q);
-        }
-    }
-    out
-}
-
 /// `∫_cell D dω` up to the common factor: `Φ(M⁻¹ cell)` (f64), 0 if nothing is left.
 fn cell_weight(m: &[D3; 3], cell: &[D3]) -> f64 {
     let transformed: Vec<D3> = cell.iter().map(|&v| apply(m, v)).collect();
-    let clipped = clip_f64(&transformed);
+    let clipped = clip_to_upper_hemisphere_f64(&transformed);
     if clipped.len() < 3 {
         return 0.0;
     }

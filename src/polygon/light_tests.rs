@@ -181,22 +181,7 @@ fn unshadowed_value_matches_the_quadrature() {
         let [c0, c1] = light.contributions();
         // The diffuse part is exact: ρ Φ / π.
         let p: Vec<D3> = case.polygon.iter().map(|&v| d3(v)).collect();
-        let clipped: Vec<D3> = {
-            let mut out = Vec::new();
-            for i in 0..p.len() {
-                let (a, b) = (p[i], p[(i + 1) % p.len()]);
-                if a[2] >= 0.0 {
-                    out.push(a);
-                }
-                if (a[2] >= 0.0) != (b[2] >= 0.0) {
-                    let t = a[2] / (a[2] - b[2]);
-                    let mut q = add(a, scale(sub(b, a), t));
-                    q[2] = 0.0;
-                    out.push(q);
-                }
-            }
-            out
-        };
+        let clipped = clip_to_upper_hemisphere_f64(&p);
         let phi = projected_solid_angle_d3(&clipped).abs();
         let diffuse = case.material.diffuse.x as f64 * phi / core::f64::consts::PI;
         assert!(
