@@ -1632,6 +1632,46 @@ struct SpheraLightSample sphera_polygon_light_sample(const struct SpheraPolygonL
  */
 struct SpheraVec3 sphera_polygon_light_unshadowed(const struct SpheraPolygonLight *light);
 
+/**
+ * The pivot phase function `1/(4π) ((1 − g²)/(1 + g² − 2g mu))²` (Eq. 25), per
+ * steradian. Always finite.
+ */
+float sphera_phase_pivot(float mu, float g);
+
+/**
+ * The Henyey–Greenstein phase function `1/(4π) (1 − g²)/(1 + g² − 2g mu)^(3/2)`
+ * (Eq. 26), per steradian. Always finite.
+ */
+float sphera_phase_henyey_greenstein(float mu, float g);
+
+/**
+ * The pivot parameter whose phase function looks like Henyey–Greenstein with parameter
+ * `g` (the rational fit of Eq. 27–28). In (−1, 1).
+ */
+float sphera_phase_pivot_from_henyey_greenstein(float g);
+
+/**
+ * The mean cosine of the pivot phase function with parameter `g`: 4g/3 for small g,
+ * → ±1 as g → ±1; not g. Always finite.
+ */
+float sphera_phase_pivot_mean_cosine(float g);
+
+/**
+ * Samples the pivot phase function around the direction `wo` (normalised here) with
+ * `u0`, `u1` in [0, 1) (clamped); the pdf is the phase function's value. No sample
+ * (pdf 0, dir (0, 0, 1)) for a zero or non-finite `wo`.
+ */
+struct SpheraSample sphera_phase_pivot_sample(struct SpheraVec3 wo, float g, float u0, float u1);
+
+/**
+ * Samples Henyey–Greenstein around `wo`; as `sphera_phase_pivot_sample`. For |g| < 1e-4
+ * the direction is uniform (relative deviation from HG below 3e-4).
+ */
+struct SpheraSample sphera_phase_henyey_greenstein_sample(struct SpheraVec3 wo,
+                                                          float g,
+                                                          float u0,
+                                                          float u1);
+
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus

@@ -35,10 +35,13 @@ mod ltc;
 
 mod light;
 
+mod phase;
+
 pub use brdf::*;
 pub use frame::*;
 pub use light::*;
 pub use ltc::*;
+pub use phase::*;
 pub use polygon::*;
 pub use projected::*;
 pub use types::*;

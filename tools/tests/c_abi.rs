@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 use sphera_tools::repository_root;
 
 /// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
-const C_TESTS: [&str; 10] = [
+const C_TESTS: [&str; 11] = [
     "test_polygon_clip",
     "test_projected_polygon",
     "test_solid_angle_polygon",
@@ -21,6 +21,7 @@ const C_TESTS: [&str; 10] = [
     "test_mis",
     "test_ltc",
     "test_polygon_light",
+    "test_phase",
 ];
 
 /// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
@@ -208,6 +209,11 @@ fn test_ltc() {
 #[test]
 fn test_polygon_light() {
     run_c_test("test_polygon_light");
+}
+
+#[test]
+fn test_phase() {
+    run_c_test("test_phase");
 }
 
 /// Compiles `ffi-tests/<name>.c` with the tracer's sources, links `libsphera.a`, Embree

@@ -1,0 +1,209 @@
+//! Tests of the phase functions against f64 references written here: closed-form CDFs
+//! in `μ` for the chi-square tests, quadratures for normalisation and mean cosines.
+use super::*;
+use crate::testing::*;
+
+const GS: [f32; 8] = [-0.95, -0.5, 0.0, 1e-3, 0.3, 0.7, 0.95, 0.999];
+
+/// `f_pivot(μ)` in f64.
+fn pivot_f64(mu: f64, g: f64) -> f64 {
+    let r = (1.0 - g * g) / (1.0 + g * g - 2.0 * g * mu);
+    r * r / (4.0 * core::f64::consts::PI)
+}
+
+fn hg_f64(mu: f64, g: f64) -> f64 {
+    (1.0 - g * g) / (1.0 + g * g - 2.0 * g * mu).powf(1.5) / (4.0 * core::f64::consts::PI)
+}
+
+/// `∫_{-1}^{1} 2π h(μ) dμ` by the composite Simpson rule, refined towards `μ = ±1` by
+/// the substitution `μ = sin(πt/2)`.
+fn integrate(h: impl Fn(f64) -> f64) -> f64 {
+    let n = 200_000;
+    let mut sum = 0.0;
+    for i in 0..=n {
+        let t = -1.0 + 2.0 * i as f64 / n as f64;
+        let mu = (core::f64::consts::FRAC_PI_2 * t).sin();
+        let jacobian = core::f64::consts::FRAC_PI_2 * (core::f64::consts::FRAC_PI_2 * t).cos();
+        let w = if i == 0 || i == n {
+            1.0
+        } else if i % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        };
+        sum += w * h(mu) * jacobian;
+    }
+    sum * (2.0 / n as f64) / 3.0 * 2.0 * core::f64::consts::PI
+}
+
+/// Chi-square of sampled `μ` in `bins` bins of equal width against the probabilities
+/// `cdf(μ_{k+1}) − cdf(μ_k)`; also checks every sample's pdf against `density(μ)`.
+fn check_sampler(
+    what: &str,
+    sample: impl Fn([f32; 2]) -> Sample,
+    cdf: impl Fn(f64) -> f64,
+    density: impl Fn(f64) -> f64,
+) {
+    let bins = 64;
+    let mut counts = vec![0u64; bins];
+    let mut rng = Rng::new(21);
+    for _ in 0..400_000 {
+        let s = sample([rng.uniform_f32(), rng.uniform_f32()]);
+        assert!(
+            s.dir.is_finite() && s.pdf > 0.0 && s.pdf.is_finite(),
+            "{what}: {s:?}"
+        );
+        let mu = (s.dir.z as f64).clamp(-1.0, 1.0);
+        let expected = density(mu);
+        assert!(
+            (s.pdf as f64 - expected).abs() <= 2e-3 * expected + 1e-6,
+            "{what}: pdf {} vs {expected} at μ = {mu}",
+            s.pdf
+        );
+        let bin = (((mu + 1.0) / 2.0 * bins as f64) as usize).min(bins - 1);
+        counts[bin] += 1;
+    }
+    let probabilities: Vec<f64> = (0..bins)
+        .map(|k| {
+            let lo = -1.0 + 2.0 * k as f64 / bins as f64;
+            cdf(lo + 2.0 / bins as f64) - cdf(lo)
+        })
+        .collect();
+    let (_, _, p) = chi_square(&counts, &probabilities);
+    assert!(p > CHI_SQUARE_ALPHA, "{what}: p = {p}");
+}
+
+#[test]
+fn phase_functions_are_normalised() {
+    for g in GS {
+        let pivot = integrate(|mu| pivot_phase(mu as f32, g) as f64);
+        let hg = integrate(|mu| henyey_greenstein(mu as f32, g) as f64);
+        // The sharpest (g = 0.999) peaks over 1 − μ ≈ 5e-7, about 8 f32 steps of μ: the
+        // quadrature of the f32 function is then within 5e-3.
+        let tolerance = if g.abs() > 0.99 { 5e-3 } else { 1e-5 };
+        assert!((pivot - 1.0).abs() < tolerance, "pivot g = {g}: {pivot}");
+        assert!((hg - 1.0).abs() < tolerance, "HG g = {g}: {hg}");
+    }
+}
+
+#[test]
+fn pivot_phase_samples_follow_eq_25() {
+    for g in GS {
+        let gd = g as f64;
+        // CDF: (1 − g²)²/(2b) (1/(a − bμ) − 1/(a + b)), a = 1 + g², b = 2g.
+        let cdf = |mu: f64| {
+            if gd == 0.0 {
+                return (mu + 1.0) / 2.0;
+            }
+            let (a, b) = (1.0 + gd * gd, 2.0 * gd);
+            (1.0 - gd * gd).powi(2) / (2.0 * b) * (1.0 / (a - b * mu) - 1.0 / (a + b))
+        };
+        // Around +z, so that μ is the sample's z without a rounding round trip (near the
+        // peak of g = 0.999 one ulp of μ moves the density by 10%).
+        check_sampler(
+            &format!("pivot g = {g}"),
+            |u| sample_pivot_phase(Vec3::Z, g, u),
+            cdf,
+            |mu| pivot_f64(mu, gd),
+        );
+        let wo = Vec3::new(0.3, -0.2, 0.9).normalize();
+        let mut rng = Rng::new(4);
+        for _ in 0..1000 {
+            let s = sample_pivot_phase(wo, g, [rng.uniform_f32(), rng.uniform_f32()]);
+            assert!((s.dir.length() - 1.0).abs() < 1e-5 && s.pdf > 0.0);
+        }
+    }
+}
+
+#[test]
+fn henyey_greenstein_samples_follow_eq_26() {
+    for g in GS {
+        let gd = g as f64;
+        // CDF: (1 − g²)/(2g) (1/√(a − bμ) − 1/(1 + g)).
+        let cdf = |mu: f64| {
+            if gd.abs() < 1e-4 {
+                return (mu + 1.0) / 2.0;
+            }
+            (1.0 - gd * gd) / (2.0 * gd)
+                * (1.0 / (1.0 + gd * gd - 2.0 * gd * mu).sqrt() - 1.0 / (1.0 + gd))
+        };
+        let wo = Vec3::Z;
+        check_sampler(
+            &format!("HG g = {g}"),
+            |u| sample_henyey_greenstein(wo, g, u),
+            cdf,
+            |mu| hg_f64(mu, gd),
+        );
+    }
+}
+
+#[test]
+fn pivot_mean_cosine_matches_a_quadrature_and_is_not_g() {
+    for g in [
+        -0.9f32, -0.49, -0.1, 1e-6, 1e-3, 0.2, 0.499, 0.501, 0.8, 0.99,
+    ] {
+        let gd = g as f64;
+        let reference = integrate(|mu| mu * pivot_f64(mu, gd));
+        let mean = pivot_mean_cosine(g) as f64;
+        assert!(
+            (mean - reference).abs() <= 1e-5 * reference.abs() + 1e-12,
+            "g = {g}: {mean} vs quadrature {reference}"
+        );
+    }
+    assert_eq!(pivot_mean_cosine(0.0), 0.0);
+    assert!((pivot_mean_cosine(1e-3) / 1e-3 - 4.0 / 3.0).abs() < 1e-5);
+    assert!((pivot_mean_cosine(MAX_ANISOTROPY) - 1.0).abs() < 1e-4);
+}
+
+#[test]
+fn the_henyey_greenstein_fit_is_odd_monotone_and_below_one() {
+    assert_eq!(pivot_from_henyey_greenstein(0.0), 0.0);
+    let mut previous = -1.0;
+    for k in -100..=100 {
+        let g = k as f32 / 100.0;
+        let p = pivot_from_henyey_greenstein(g);
+        assert!(p.abs() < 1.0 && p > previous, "g = {g}: {p}");
+        assert_eq!(p, -pivot_from_henyey_greenstein(-g));
+        previous = p;
+    }
+    // The fit keeps the mean cosine for weak anisotropy and falls behind for strong.
+    for (g, mean) in [
+        (0.1f32, 0.1f32),
+        (0.3, 0.2985),
+        (0.5, 0.4898),
+        (0.9, 0.8181),
+        (0.99, 0.8739),
+    ] {
+        let fitted = pivot_mean_cosine(pivot_from_henyey_greenstein(g));
+        assert!((fitted - mean).abs() < 5e-4, "g = {g}: {fitted}");
+    }
+    // Eq. 28 at g = 0.9: (0.7489·0.9 − 0.6121·0.81) / (1 − 0.8409·0.9 + 0.0223·0.81).
+    let expected = (0.7489 * 0.9 - 0.6121 * 0.81) / (1.0 - 0.8409 * 0.9 + 0.0223 * 0.81);
+    assert!((pivot_from_henyey_greenstein(0.9) - expected).abs() < 1e-6);
+}
+
+#[test]
+fn bad_input_stays_finite() {
+    for g in [f32::NAN, f32::INFINITY, -2.0, 1.0, -1.0] {
+        for mu in [f32::NAN, -1.0, 1.0, 2.0] {
+            assert!(pivot_phase(mu, g).is_finite(), "{mu} {g}");
+            assert!(henyey_greenstein(mu, g).is_finite(), "{mu} {g}");
+        }
+        assert!(pivot_mean_cosine(g).is_finite());
+        assert!(pivot_from_henyey_greenstein(g).is_finite());
+        for u in [[f32::NAN, 0.5], [-1.0, 2.0], [1.0, 1.0]] {
+            let s = sample_pivot_phase(Vec3::Z, g, u);
+            assert!(s.dir.is_finite() && s.pdf.is_finite() && s.pdf > 0.0);
+            let s = sample_henyey_greenstein(Vec3::Z, g, u);
+            assert!(s.dir.is_finite() && s.pdf.is_finite() && s.pdf > 0.0);
+        }
+    }
+    assert_eq!(
+        sample_pivot_phase(Vec3::ZERO, 0.5, [0.5, 0.5]),
+        Sample::NONE
+    );
+    assert_eq!(
+        sample_henyey_greenstein(Vec3::NAN, 0.5, [0.5, 0.5]),
+        Sample::NONE
+    );
+}
