@@ -31,8 +31,11 @@
 //! r_p / ρ, where it peaks, and is defined over the whole sphere: it leaks below the
 //! horizon (the last column of the error table is its mass there), which the paper
 //! removes when rendering by intersecting with the cap of the upper hemisphere.
+//!
 //! The norm lies in [0.25675717, 0.9999671] (min at (63, 63), max at (0, 63): 1 − ρ = 3.29e-5), the
-//! elevation in [-1.569905, 0] rad (min at (0, 63)).
+//! elevation in [-1.569905, 0.037939504] rad (min at (0, 63), max at (63, 60): in the
+//! roughest rows the pivot stays near the normal, where the leak below the horizon is
+//! smallest, and in a few cells it is tilted slightly towards +x).
 //!
 //! # Fit
 //!
@@ -65,7 +68,19 @@
 //!
 //! The mean over a column is 0.181 at the normal, 0.415 in column 44, 0.882 in column 62
 //! and 0.926 in column 63; the mean over a row is 0.354 in row 0, 0.312 in row 31 and
-//! 0.486 in row 63. The SPTD has the smaller L1 error in 3 of the 4096 cells.
+//! 0.486 in row 63. The SPTD has the smaller L1 error in 3 of the 4096 cells. Narrow
+//! lobes seen from the normal have the SPTD's own shape: near the mirror direction GGX's
+//! D(h) ∝ 1/(α² + θh²)² is, with θ = 2θh, ∝ 1/(4α² + θ²)², and the SPTD is
+//! ∝ 1/((1 − ρ)²/ρ + θ²)² about its axis, so 1 − ρ ≈ 2α fits it almost exactly (cell
+//! (0, 0)). Away from the normal the reflected lobe is anisotropic: a tilt δ of h across
+//! the plane of incidence turns ω by 2δ cos θo, one within it by 2δ, so the lobe is
+//! narrower across the plane by the factor cos θo, which the rotationally symmetric SPTD
+//! cannot follow; rough lobes are wide and the SPTD's mass below the horizon counts in
+//! full; at grazing views the horizon cuts the lobe, whose bulk the SPTD then misses.
+//! These are the shapes where the four-parameter LTC does better (a cosine restricted to
+//! its own hemisphere, any linear stretch); the SPTD's advantages are elsewhere
+//! (closed-form integrals over spherical caps, which the paper renders with the
+//! hemisphere's cap removing the leak).
 
 /// Cells per axis.
 pub const PIVOT_TABLE_SIZE: usize = 64;
@@ -73,7 +88,7 @@ pub const PIVOT_TABLE_SIZE: usize = 64;
 /// t = √(1 − cos θo) = j / 63 (cos θo ≥ 10⁻⁴): `[norm, elevation, albedo]`, the pivot
 /// r_p = norm · (sin(elevation), 0, cos(elevation)) with 0 ≤ norm < 1 and the elevation in
 /// radians from the normal (negative: towards −x, the side the lobe leans to for the view
-/// (sin θo, 0, cos θo)), and albedo = ∫ f₁(ωo, ω) cos θ dω with F = 1.
+/// (sin θo, 0, cos θo); slightly positive in a few of the roughest cells), and albedo = ∫ f₁(ωo, ω) cos θ dω with F = 1.
 pub static PIVOT_TABLE: [[f32; 3]; PIVOT_TABLE_SIZE * PIVOT_TABLE_SIZE] = [
     [0.9998, 0.0, 1.0], // (0, 0)
     [0.9998, -0.022448305, 1.0], // (0, 1)
