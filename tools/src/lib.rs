@@ -11,5 +11,6 @@ pub fn repository_root() -> PathBuf {
 pub mod clipping_generator;
 pub mod header;
 pub mod ltc_fitter;
+pub mod pivot_fitter;
 pub mod reference;
 pub mod sorting_network_generator;

@@ -72,13 +72,13 @@ pub const EVALUATION_LATTICE: (usize, usize) = (10946, 6765);
 /// A direction or any 3-vector.
 pub type V3 = [f64; 3];
 
-fn dot(a: V3, b: V3) -> f64 {
+pub(crate) fn dot(a: V3, b: V3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
-fn add(a: V3, b: V3) -> V3 {
+pub(crate) fn add(a: V3, b: V3) -> V3 {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
-fn scale(a: V3, s: f64) -> V3 {
+pub(crate) fn scale(a: V3, s: f64) -> V3 {
     [a[0] * s, a[1] * s, a[2] * s]
 }
 fn normalize(a: V3) -> V3 {
@@ -402,7 +402,8 @@ pub fn params_from_coefficients(coefficients: [f64; 4]) -> [f64; 4] {
 /// whole with twice the density.
 pub struct SampleSet {
     cosine: Vec<V3>,
-    brdf: Vec<[f64; 3]>,
+    /// The lattice points as (u1, cos φ, sin φ) (also read by the pivot fitter).
+    pub(crate) brdf: Vec<[f64; 3]>,
 }
 
 impl SampleSet {
