@@ -18,6 +18,8 @@ pub mod lambert;
 pub mod ltc;
 #[rustfmt::skip]
 pub mod ltc_table;
+#[rustfmt::skip]
+pub mod pivot_table;
 
 pub use ggx::GgxBrdf;
 pub use lambert::Lambert;
