@@ -1,0 +1,10 @@
+//! Sphere lights as spherical caps (Dupuy, Heitz and Belcour 2017, "A Spherical Cap
+//! Preserving Parameterization for Spherical Distributions"): the cap that a sphere
+//! subtends, uniform sampling inside it, the solid angle of the intersection of two
+//! caps, and the pivot transformation that maps caps to caps.
+
+pub mod cap;
+
+pub use cap::Cap;
+pub mod cap_intersection;
+pub use cap_intersection::{cap_intersection_solid_angle, cap_intersection_solid_angle_oat_sander};
