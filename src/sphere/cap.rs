@@ -68,6 +68,7 @@ fn rescaling(m: f32) -> (f32, f32) {
 
 impl Cap {
     /// The empty cap: solid angle 0, contains nothing, draws no sample.
+    ///
     /// cbindgen:ignore
     pub const EMPTY: Cap = Cap {
         axis: Vec3::Z,
@@ -77,6 +78,7 @@ impl Cap {
     };
 
     /// The whole sphere around the axis `z`.
+    ///
     /// cbindgen:ignore
     pub const WHOLE_SPHERE: Cap = Cap {
         axis: Vec3::Z,

@@ -4,7 +4,9 @@
 //! caps, and the pivot transformation that maps caps to caps.
 
 pub mod cap;
+pub mod cap_intersection;
+pub mod pivot;
 
 pub use cap::Cap;
-pub mod cap_intersection;
 pub use cap_intersection::{cap_intersection_solid_angle, cap_intersection_solid_angle_oat_sander};
+pub use pivot::{pivot_cap, pivot_jacobian, pivot_transform};
