@@ -35,12 +35,15 @@ mod ltc;
 
 mod light;
 
+mod sphere;
+
 pub use brdf::*;
 pub use frame::*;
 pub use light::*;
 pub use ltc::*;
 pub use polygon::*;
 pub use projected::*;
+pub use sphere::*;
 pub use types::*;
 pub use warps::*;
 

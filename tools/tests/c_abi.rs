@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 use sphera_tools::repository_root;
 
 /// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
-const C_TESTS: [&str; 10] = [
+const C_TESTS: [&str; 11] = [
     "test_polygon_clip",
     "test_projected_polygon",
     "test_solid_angle_polygon",
@@ -21,6 +21,7 @@ const C_TESTS: [&str; 10] = [
     "test_mis",
     "test_ltc",
     "test_polygon_light",
+    "test_sphere_caps",
 ];
 
 /// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
@@ -210,6 +211,11 @@ fn test_polygon_light() {
     run_c_test("test_polygon_light");
 }
 
+#[test]
+fn test_sphere_caps() {
+    run_c_test("test_sphere_caps");
+}
+
 /// Compiles `ffi-tests/<name>.c` with the tracer's sources, links `libsphera.a`, Embree
 /// 3, libpng and pthreads, runs it and asserts that it exits with status 0.
 fn run_tracer_test(name: &str) {
@@ -387,6 +393,7 @@ fn struct_layouts_match_rust() {
     use sphera::polygon::{
         ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
     };
+    use sphera::sphere::Cap;
 
     let expected: Vec<(&str, usize)> = vec![
         ("sizeof(SpheraVec3)", size_of::<SpheraVec3>()),
@@ -463,6 +470,13 @@ fn struct_layouts_match_rust() {
         ("alignof(SpheraPolygonLight)", align_of::<PolygonLight>()),
         ("sizeof(SpheraMaterial)", size_of::<Material>()),
         ("sizeof(SpheraLightSample)", size_of::<LightSample>()),
+        ("sizeof(SpheraCap)", size_of::<Cap>()),
+        ("alignof(SpheraCap)", align_of::<Cap>()),
+        (
+            "offsetof(SpheraCap, one_minus_cos)",
+            offset_of!(Cap, one_minus_cos),
+        ),
+        ("offsetof(SpheraCap, sin2)", offset_of!(Cap, sin2)),
     ];
     let mut source =
         String::from("#include <stddef.h>\n#include <stdio.h>\n#include \"sphera.h\"\n");
@@ -482,6 +496,7 @@ fn struct_layouts_match_rust() {
         "SpheraLtc",
         "SpheraLtcPolygon",
         "SpheraPolygonLight",
+        "SpheraCap",
     ] {
         source += &format!("struct align_{name} {{ char c; {name} t; }};\n");
     }
