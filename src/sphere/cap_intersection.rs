@@ -33,8 +33,9 @@
 //! Eq. 37–38 replace the lens by `2π(1 − cos θ₁) P((θ₁ + θ₂ − d) / (2θ₁))` with
 //! `θ₁ ≤ θ₂` and the smoothstep `P(x) = 3x² − 2x³`, which is exact at both ends of the
 //! lens case. Error against the exact formula over a grid of `θ₁ ≤ θ₂` and `d`
-//! (128 × 128 half-angle pairs times 256 axis angles, lens cases only; relative error
-//! over the exact area, for areas above 1e-3 sr), from
+//! (half-angles `θ₁ ≤ θ₂` at the centers of 128 steps of `[0, π]`, axis angles at the
+//! centers of 256 steps, lens cases only, i.e. `θ₂ − θ₁ < d < θ₁ + θ₂`; the relative
+//! error is over the exact area, for areas above 1e-3 sr), from
 //! `oat_sander_error_table` in the tests (`cargo test -p sphera --lib oat_sander --
 //! --nocapture`):
 //!
