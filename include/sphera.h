@@ -38,6 +38,11 @@
 #define LTC_MIN_COS_THETA 0.0001
 
 /**
+ * Cells per axis.
+ */
+#define PIVOT_TABLE_SIZE 64
+
+/**
  * The most vertices a polygon may have, in the C ABI: the length of the array that
  * `sphera_polygon_clip` works on and the largest `count` that a `prepare` accepts.
  */
@@ -657,6 +662,30 @@ typedef struct SpheraLightSample {
    */
   SpheraVec3 unoccluded;
 } SpheraLightSample;
+
+/**
+ * A spherical cap `{ω : ω·axis ≥ cos}` with `1 − cos` stored to full relative
+ * precision.
+ */
+typedef struct SpheraCap {
+  /**
+   * Unit axis (direction of the cap's center).
+   */
+  SpheraVec3 axis;
+  /**
+   * `1 − cos θ` in `[0, 2]`: 0 for an empty cap, 1 for a hemisphere, 2 for the whole
+   * sphere.
+   */
+  float one_minus_cos;
+  /**
+   * `cos θ` in `[−1, 1]`.
+   */
+  float cos;
+  /**
+   * `sin²θ = (1 − cos θ)(1 + cos θ)` in `[0, 1]`.
+   */
+  float sin2;
+} SpheraCap;
 
 #ifdef __cplusplus
 extern "C" {
@@ -1671,6 +1700,77 @@ struct SpheraSample sphera_phase_henyey_greenstein_sample(struct SpheraVec3 wo,
                                                           float g,
                                                           float u0,
                                                           float u1);
+
+/**
+ * The cap of directions that a sphere of `radius` centered at `center` (relative to
+ * the shading point) subtends: `sin θ = radius / |center|`, with `1 − cos θ` kept to
+ * full relative precision for tiny or distant spheres. The whole sphere
+ * (`one_minus_cos = 2`) when the shading point is inside or on the sphere; the empty
+ * cap (solid angle 0, no samples) for a non-finite center or a radius that is not
+ * finite and positive.
+ */
+struct SpheraCap sphera_cap_from_sphere(struct SpheraVec3 center, float radius);
+
+/**
+ * The cap around `axis` (normalised) with `cos θ = cos_theta` (clamped to [-1, 1]); the
+ * empty cap for a non-finite or zero axis or a NaN `cos_theta`.
+ */
+struct SpheraCap sphera_cap_from_axis_cos(struct SpheraVec3 axis, float cos_theta);
+
+/**
+ * The solid angle `2π (1 − cos θ)` of a cap, in [0, 4π].
+ */
+float sphera_cap_solid_angle(struct SpheraCap cap);
+
+/**
+ * Whether `dir` (any non-zero finite vector) points into the cap, boundary included.
+ */
+bool sphera_cap_contains(struct SpheraCap cap, struct SpheraVec3 dir);
+
+/**
+ * Draws a direction uniformly in solid angle inside the cap (`u0`, `u1` in [0, 1),
+ * clamped). pdf 0 (and `dir = (0, 0, 1)`) for an empty cap.
+ */
+struct SpheraSample sphera_cap_sample_uniform(struct SpheraCap cap, float u0, float u1);
+
+/**
+ * The density of `sphera_cap_sample_uniform`: `1 / Ω` inside the cap, 0 outside.
+ */
+float sphera_cap_pdf(struct SpheraCap cap, struct SpheraVec3 dir);
+
+/**
+ * The exact solid angle of the intersection of two caps (disjoint, nested, lens, or
+ * both wider than a hemisphere with a union covering the sphere).
+ */
+float sphera_cap_intersection_solid_angle(struct SpheraCap a, struct SpheraCap b);
+
+/**
+ * The Oat–Sander approximation of `sphera_cap_intersection_solid_angle` (Eq. 37–38
+ * of Dupuy et al. 2017), for caps up to about a hemisphere; exact for disjoint and
+ * nested caps.
+ */
+float sphera_cap_intersection_solid_angle_oat_sander(struct SpheraCap a, struct SpheraCap b);
+
+/**
+ * The pivot transformation `g(dir)`: the second intersection with the unit sphere of
+ * the line from `dir` (normalised) through `pivot`. `|pivot| ≥ 1` is clamped to
+ * `1 − 2⁻²⁰`; a non-finite pivot counts as the origin (`g(dir) = −dir`); a zero or
+ * non-finite `dir` gives `(0, 0, 1)`.
+ */
+struct SpheraVec3 sphera_pivot_transform(struct SpheraVec3 dir, struct SpheraVec3 pivot);
+
+/**
+ * The Jacobian `((1 − |pivot|²) / |dir − pivot|²)²` of the pivot transformation at
+ * `dir` (normalised); 0 for a zero or non-finite `dir`. Pivots as in
+ * `sphera_pivot_transform`.
+ */
+float sphera_pivot_jacobian(struct SpheraVec3 dir, struct SpheraVec3 pivot);
+
+/**
+ * The image of a cap under the pivot transformation: a cap, which may be wider than a
+ * hemisphere. Pivots as in `sphera_pivot_transform`.
+ */
+struct SpheraCap sphera_pivot_cap(struct SpheraCap cap, struct SpheraVec3 pivot);
 
 #ifdef __cplusplus
 }  // extern "C"

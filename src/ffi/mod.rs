@@ -37,6 +37,8 @@ mod light;
 
 mod phase;
 
+mod sphere;
+
 pub use brdf::*;
 pub use frame::*;
 pub use light::*;
@@ -44,6 +46,7 @@ pub use ltc::*;
 pub use phase::*;
 pub use polygon::*;
 pub use projected::*;
+pub use sphere::*;
 pub use types::*;
 pub use warps::*;
 

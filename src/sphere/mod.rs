@@ -1,4 +1,13 @@
-//! Sphere lights (Dupuy, Heitz, Belcour 2017): spherical caps, the pivot
-//! transformation, spherical pivot transformed distributions, and the pivot phase function.
+//! Sphere lights (Dupuy, Heitz and Belcour 2017, "A Spherical Cap Preserving
+//! Parameterization for Spherical Distributions"): the cap that a sphere subtends,
+//! uniform sampling inside it, the solid angle of the intersection of two caps, the pivot
+//! transformation that maps caps to caps, and the pivot phase function.
 
+pub mod cap;
+pub mod cap_intersection;
 pub mod phase;
+pub mod pivot;
+
+pub use cap::Cap;
+pub use cap_intersection::{cap_intersection_solid_angle, cap_intersection_solid_angle_oat_sander};
+pub use pivot::{pivot_cap, pivot_jacobian, pivot_transform};

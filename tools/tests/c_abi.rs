@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 use sphera_tools::repository_root;
 
 /// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
-const C_TESTS: [&str; 11] = [
+const C_TESTS: [&str; 12] = [
     "test_polygon_clip",
     "test_projected_polygon",
     "test_solid_angle_polygon",
@@ -22,6 +22,7 @@ const C_TESTS: [&str; 11] = [
     "test_ltc",
     "test_polygon_light",
     "test_phase",
+    "test_sphere_caps",
 ];
 
 /// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
@@ -216,6 +217,11 @@ fn test_phase() {
     run_c_test("test_phase");
 }
 
+#[test]
+fn test_sphere_caps() {
+    run_c_test("test_sphere_caps");
+}
+
 /// Compiles `ffi-tests/<name>.c` with the tracer's sources, links `libsphera.a`, Embree
 /// 3, libpng and pthreads, runs it and asserts that it exits with status 0.
 fn run_tracer_test(name: &str) {
@@ -393,6 +399,7 @@ fn struct_layouts_match_rust() {
     use sphera::polygon::{
         ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
     };
+    use sphera::sphere::Cap;
 
     let expected: Vec<(&str, usize)> = vec![
         ("sizeof(SpheraVec3)", size_of::<SpheraVec3>()),
@@ -469,6 +476,13 @@ fn struct_layouts_match_rust() {
         ("alignof(SpheraPolygonLight)", align_of::<PolygonLight>()),
         ("sizeof(SpheraMaterial)", size_of::<Material>()),
         ("sizeof(SpheraLightSample)", size_of::<LightSample>()),
+        ("sizeof(SpheraCap)", size_of::<Cap>()),
+        ("alignof(SpheraCap)", align_of::<Cap>()),
+        (
+            "offsetof(SpheraCap, one_minus_cos)",
+            offset_of!(Cap, one_minus_cos),
+        ),
+        ("offsetof(SpheraCap, sin2)", offset_of!(Cap, sin2)),
     ];
     let mut source =
         String::from("#include <stddef.h>\n#include <stdio.h>\n#include \"sphera.h\"\n");
@@ -488,6 +502,7 @@ fn struct_layouts_match_rust() {
         "SpheraLtc",
         "SpheraLtcPolygon",
         "SpheraPolygonLight",
+        "SpheraCap",
     ] {
         source += &format!("struct align_{name} {{ char c; {name} t; }};\n");
     }

@@ -1,0 +1,151 @@
+/* C ABI tests of sphere caps and the pivot transformation (sphera_cap_*, sphera_pivot_*). */
+#include "check.h"
+
+static const double PI_D = 3.14159265358979323846;
+
+static int cap_is_finite(SpheraCap c) {
+  return vec3_is_finite(c.axis) && isfinite(c.one_minus_cos) && isfinite(c.cos) &&
+         isfinite(c.sin2) && c.one_minus_cos >= 0.0f && c.one_minus_cos <= 2.0f;
+}
+
+/* 1 - cos of the cap of a sphere, in double. */
+static double one_minus_cos_d(SpheraVec3 center, double radius) {
+  double d = dlength(dvec(center));
+  double s2 = (radius / d) * (radius / d);
+  return s2 / (1.0 + sqrt(1.0 - s2));
+}
+
+static void check_good_caps(void) {
+  SpheraVec3 center = vec3(1.0f, 2.0f, 2.0f); /* distance 3 */
+  SpheraCap cap = sphera_cap_from_sphere(center, 1.0f);
+  SpheraCap tiny = sphera_cap_from_sphere(vec3(0.0f, 0.0f, 1e6f), 1.0f);
+  SpheraCap whole = sphera_cap_from_sphere(center, 5.0f);
+  SpheraCap on = sphera_cap_from_sphere(center, 3.0f);
+  float u[U_COUNT];
+  int i, j;
+  CHECK(cap_is_finite(cap));
+  CHECK_REL(cap.one_minus_cos, one_minus_cos_d(center, 1.0), 1e-6);
+  CHECK_REL(sphera_cap_solid_angle(cap), 2.0 * PI_D * one_minus_cos_d(center, 1.0), 1e-6);
+  CHECK_ABS(cap.axis.x, 1.0 / 3.0, 1e-6);
+  /* sin^2 = 1e-12: a plain 1 - cos in float would be 0. */
+  CHECK_REL(sphera_cap_solid_angle(tiny), 2.0 * PI_D * 0.5e-12, 1e-5);
+  CHECK_REL(sphera_cap_solid_angle(whole), 4.0 * PI_D, 1e-6);
+  CHECK_REL(sphera_cap_solid_angle(on), 4.0 * PI_D, 1e-6);
+  CHECK(sphera_cap_contains(cap, center));
+  CHECK(!sphera_cap_contains(cap, vec3(-1.0f, 0.0f, 0.0f)));
+
+  fill_u_values(u);
+  for (i = 0; i < U_COUNT; i++) {
+    for (j = 0; j < U_COUNT; j++) {
+      SpheraSample s = sphera_cap_sample_uniform(cap, u[i], u[j]);
+      SpheraSample t = sphera_cap_sample_uniform(tiny, u[i], u[j]);
+      CHECK(vec3_is_finite(s.dir) && s.pdf > 0.0f);
+      CHECK_REL(s.pdf, 1.0 / (2.0 * PI_D * one_minus_cos_d(center, 1.0)), 1e-5);
+      CHECK(1.0 - ddot(dvec(s.dir), dscale(dvec(center), 1.0 / 3.0)) <=
+            one_minus_cos_d(center, 1.0) * (1.0 + 1e-4) + 1e-7);
+      CHECK(vec3_is_finite(t.dir) && t.pdf > 0.0f && isfinite(t.pdf));
+      CHECK(sqrt((double)t.dir.x * t.dir.x + (double)t.dir.y * t.dir.y) <= 1e-6 * (1.0 + 1e-5));
+      if (u_is_interior(i) && u_is_interior(j)) {
+        CHECK(sphera_cap_pdf(cap, s.dir) == s.pdf);
+      }
+    }
+  }
+}
+
+static void check_intersections(void) {
+  SpheraCap a = sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, 1.0f), 0.0f);
+  SpheraCap b = sphera_cap_from_axis_cos(vec3(1.0f, 0.0f, 0.0f), 0.0f);
+  SpheraCap c = sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, 1.0f), 0.5f);
+  SpheraCap d = sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, -1.0f), 0.5f);
+  SpheraCap w1 = sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, 1.0f), -0.5f);
+  SpheraCap w2 = sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, -1.0f), -0.5f);
+  /* Two orthogonal hemispheres: a lune of angle pi/2, area pi. */
+  CHECK_REL(sphera_cap_intersection_solid_angle(a, b), PI_D, 1e-5);
+  CHECK_REL(sphera_cap_intersection_solid_angle(a, c), 2.0 * PI_D * 0.5, 1e-6); /* nested */
+  CHECK_ABS(sphera_cap_intersection_solid_angle(c, d), 0.0, 0.0);               /* disjoint */
+  /* Antipodal caps wider than a hemisphere: the union is the sphere. */
+  CHECK_REL(sphera_cap_intersection_solid_angle(w1, w2), 2.0 * 2.0 * PI_D * 1.5 - 4.0 * PI_D,
+            1e-5);
+  CHECK_REL(sphera_cap_intersection_solid_angle_oat_sander(a, c), 2.0 * PI_D * 0.5, 1e-6);
+  CHECK(sphera_cap_intersection_solid_angle_oat_sander(a, b) > 0.0f);
+}
+
+static void check_pivot(void) {
+  SpheraVec3 pivot = vec3(0.2f, -0.3f, 0.4f);
+  SpheraVec3 w = vec3(0.6f, 0.0f, 0.8f);
+  SpheraVec3 g = sphera_pivot_transform(w, pivot);
+  SpheraVec3 back = sphera_pivot_transform(g, pivot);
+  SpheraCap cap = sphera_cap_from_axis_cos(vec3(0.0f, 0.6f, 0.8f), 0.7f);
+  SpheraCap image = sphera_pivot_cap(cap, pivot);
+  DVec3 e, p = dvec(pivot), wd = dvec(w);
+  double pp = ddot(p, p), j;
+  CHECK_ABS(dlength(dvec(g)), 1.0, 1e-6);
+  CHECK_ABS(back.x, w.x, 1e-5);
+  CHECK_ABS(back.y, w.y, 1e-5);
+  CHECK_ABS(back.z, w.z, 1e-5);
+  /* g(w) lies on the line from w through the pivot. */
+  CHECK_ABS(dlength(dcross(dsub(dvec(g), p), dsub(wd, p))), 0.0, 1e-5);
+  e = dsub(wd, p);
+  j = (1.0 - pp) / ddot(e, e);
+  CHECK_REL(sphera_pivot_jacobian(w, pivot), j * j, 1e-5);
+  CHECK(cap_is_finite(image) && image.one_minus_cos > 0.0f);
+  /* Pivot at the origin: the antipodal cap. */
+  image = sphera_pivot_cap(cap, vec3(0.0f, 0.0f, 0.0f));
+  CHECK_ABS(image.axis.y, -0.6, 1e-6);
+  CHECK_ABS(image.one_minus_cos, cap.one_minus_cos, 1e-6);
+}
+
+static void check_bad_input(void) {
+  const float bad[] = {NAN, INFINITY, -INFINITY, 0.0f, -1.0f, 1e30f, -1e30f, 3e38f};
+  const int n = (int)(sizeof(bad) / sizeof(bad[0]));
+  int i, k;
+  for (i = 0; i < n; i++) {
+    for (k = 0; k < n; k++) {
+      SpheraVec3 v = vec3(bad[i], 0.5f, bad[k]);
+      SpheraCap cap = sphera_cap_from_sphere(v, bad[k]);
+      SpheraCap garbage;
+      SpheraSample s;
+      SpheraVec3 g;
+      CHECK(cap_is_finite(cap));
+      CHECK(isfinite(sphera_cap_solid_angle(cap)));
+      s = sphera_cap_sample_uniform(cap, bad[i], bad[k]);
+      CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf) && s.pdf >= 0.0f);
+      garbage.axis = v;
+      garbage.one_minus_cos = bad[k];
+      garbage.cos = bad[i];
+      garbage.sin2 = bad[k];
+      CHECK(isfinite(sphera_cap_solid_angle(garbage)));
+      CHECK(sphera_cap_solid_angle(garbage) >= 0.0f);
+      s = sphera_cap_sample_uniform(garbage, bad[i], bad[k]);
+      CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf) && s.pdf >= 0.0f);
+      CHECK(isfinite(sphera_cap_pdf(garbage, v)));
+      CHECK(isfinite(sphera_cap_intersection_solid_angle(garbage, cap)));
+      CHECK(isfinite(sphera_cap_intersection_solid_angle_oat_sander(garbage, cap)));
+      CHECK(cap_is_finite(sphera_cap_from_axis_cos(v, bad[i])));
+      /* |pivot| >= 1, NaN, inf. */
+      g = sphera_pivot_transform(vec3(0.0f, 0.6f, 0.8f), v);
+      CHECK(vec3_is_finite(g));
+      g = sphera_pivot_transform(v, vec3(0.1f, 0.2f, 0.3f));
+      CHECK(vec3_is_finite(g));
+      CHECK(isfinite(sphera_pivot_jacobian(vec3(0.0f, 0.6f, 0.8f), v)));
+      CHECK(cap_is_finite(sphera_pivot_cap(garbage, v)));
+      CHECK(cap_is_finite(sphera_pivot_cap(sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, 1.0f), 0.3f), v)));
+    }
+  }
+  /* Invalid spheres give the empty cap: no samples. */
+  CHECK(sphera_cap_solid_angle(sphera_cap_from_sphere(vec3(0.0f, 0.0f, 3.0f), 0.0f)) == 0.0f);
+  CHECK(sphera_cap_solid_angle(sphera_cap_from_sphere(vec3(0.0f, 0.0f, 3.0f), -1.0f)) == 0.0f);
+  CHECK(sphera_cap_sample_uniform(sphera_cap_from_sphere(vec3(0.0f, 0.0f, 3.0f), NAN), 0.5f, 0.5f)
+            .pdf == 0.0f);
+  /* Point inside the sphere: the whole sphere. */
+  CHECK_REL(sphera_cap_solid_angle(sphera_cap_from_sphere(vec3(0.0f, 0.0f, 0.5f), 1.0f)),
+            4.0 * PI_D, 1e-6);
+}
+
+int main(void) {
+  check_good_caps();
+  check_intersections();
+  check_pivot();
+  check_bad_input();
+  return check_summary();
+}

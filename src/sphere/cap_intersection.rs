@@ -1,0 +1,155 @@
+//! The solid angle of the intersection of two spherical caps (Dupuy et al. 2017,
+//! Appendix B; Tovchigrechko and Vakser 2001; Oat and Sander 2007).
+//!
+//! Caps `C₁, C₂` with half-angles `θ₁, θ₂` and axes `a₁, a₂` at angle `d`. Writing
+//! `tᵢ = 1 − cos θᵢ` and `t_d = 1 − cos d = |a₁ − a₂|²/2` (no cancellation):
+//!
+//! - `d ≥ θ₁ + θ₂`: disjoint, 0;
+//! - `d ≤ |θ₁ − θ₂|`: one inside the other, the smaller solid angle;
+//! - `d ≥ 2π − θ₁ − θ₂`: the complements are disjoint, so the union is the sphere and
+//!   the intersection is `Ω₁ + Ω₂ − 4π` (a case that Eq. 35 of the paper omits; it
+//!   happens only when both caps are wider than a hemisphere);
+//! - otherwise the boundary circles cross at two points `P, P'` and the intersection
+//!   is a lens. By Gauss–Bonnet (the geodesic curvature of a circle of angular radius
+//!   `θ` is `cot θ`, so an arc spanning azimuth `2φ` contributes `2φ cos θ`) its area
+//!   is `2(π − γ) − 2φ₁ cos θ₁ − 2φ₂ cos θ₂`, where `φᵢ` is the angle at `aᵢ` and `γ`
+//!   the angle at `P` of the spherical triangle `(a₁, a₂, P)` (this is Eq. 36 with
+//!   `acos(−x) = π − acos(x)`). The triangle's angles add up to `π + E` with `E` its
+//!   area, so the lens area is `2φ₁ t₁ + 2φ₂ t₂ − 2E`: every term uses `tᵢ`, not
+//!   `cos θᵢ`. With `Nᵢ = cos θⱼ − cos θᵢ cos d = tᵢ + t_d − tⱼ − tᵢ t_d` and
+//!   `Y = |a₁·(a₂ × P)| = √(sin²θ₁ sin²d − N₁²)` (the same for both caps),
+//!   `φᵢ = atan2(Y, Nᵢ)` and, by Van Oosterom and Strackee,
+//!   `E = 2 atan2(Y, 1 + cos d + cos θ₁ + cos θ₂) = 2 atan2(Y, 4 − t_d − t₁ − t₂)`:
+//!   no `acos` anywhere, so nothing is lost near ±1.
+//!
+//! The case boundaries compare the angles `θ = 2 asin(√(t/2))` (accurate for small
+//! angles); the lens formula is continuous with every case at its boundary (`Y = 0`),
+//! and the result is clamped to `[max(0, Ω₁ + Ω₂ − 4π), min(Ω₁, Ω₂)]`. Caps wider
+//! than a hemisphere are first replaced by their complements (see
+//! [`cap_intersection_solid_angle`]), which also takes care of the union case.
+//!
+//! # The Oat–Sander approximation
+//!
+//! Eq. 37–38 replace the lens by `2π(1 − cos θ₁) P((θ₁ + θ₂ − d) / (2θ₁))` with
+//! `θ₁ ≤ θ₂` and the smoothstep `P(x) = 3x² − 2x³`, which is exact at both ends of the
+//! lens case. Error against the exact formula over a grid of `θ₁ ≤ θ₂` and `d`
+//! (half-angles `θ₁ ≤ θ₂` at the centers of 128 steps of `[0, π]`, axis angles at the
+//! centers of 256 steps, lens cases only, i.e. `θ₂ − θ₁ < d < θ₁ + θ₂`; the relative
+//! error is over the exact area, for areas above 1e-3 sr), from
+//! `oat_sander_error_table` in the tests (`cargo test -p sphera --lib oat_sander --
+//! --nocapture`):
+//!
+//! | half-angles        | mean abs (sr) | max abs (sr) | mean rel | max rel |
+//! |--------------------|---------------|--------------|----------|---------|
+//! | θ₂ ≤ π/8          | 9.39e-3       | 7.04e-2      | 1.49e-1  | 6.30e-1 |
+//! | π/8 < θ₂ ≤ π/4    | 3.61e-2       | 2.58e-1      | 1.52e-1  | 7.70e-1 |
+//! | π/4 < θ₂ ≤ π/2    | 1.08e-1       | 6.03e-1      | 1.68e-1  | 9.86e-1 |
+//! | π/2 < θ₂ ≤ π      | 1.06          | 6.83         | 2.18e-1  | 9.94e-1 |
+//!
+//! (Rows by the larger half-angle `θ₂`.) The relative error is largest near tangency
+//! (the smoothstep has zero slope at `x = 0` where the true lens area grows like
+//! `x^{3/2}`), so even small caps see relative errors of tens of percent at the rim
+//! of the overlap while the mean stays near 15%; the absolute error grows with the
+//! caps, and the formula breaks down for caps wider than a hemisphere, where it
+//! ignores the case in which the union covers the sphere and misses the exact value
+//! by up to 6.8 sr. Use it only for caps up to about a hemisphere and where a
+//! smooth, cheap estimate is enough.
+
+use super::cap::Cap;
+use core::f32::consts::PI;
+
+/// The half-angle `θ = 2 asin(√(t/2))` of `t = 1 − cos θ`.
+#[inline(always)]
+fn angle_of(t: f32) -> f32 {
+    2.0 * libm::asinf(libm::sqrtf((0.5 * t).max(0.0).min(1.0)))
+}
+
+/// `1 − a·b` of two unit axes, as `|a − b|²/2`, in `[0, 2]`.
+#[inline(always)]
+fn one_minus_dot(a: crate::Vec3, b: crate::Vec3) -> f32 {
+    (0.5 * (a - b).length_squared()).min(2.0)
+}
+
+/// The exact solid angle of `a ∩ b` (see the module documentation). The caps must be
+/// valid (unit axes, `one_minus_cos` in `[0, 2]`; see [`Cap::sanitized`]).
+///
+/// A cap wider than a hemisphere is replaced by its complement `(−axis, 2 − t)`
+/// (`2 − t` is exact for `t ∈ [1, 2]`): `Ω(C₁ ∩ C₂) = Ω₂ − Ω(C̄₁ ∩ C₂)`. The lens
+/// formula then only sees caps up to a hemisphere, where `t_d` near 2 (nearly
+/// antipodal axes, which the complement brings close together) cannot occur with an
+/// overlap, so `|a₁ − a₂|²/2` never has to resolve `2 − t_d`.
+pub fn cap_intersection_solid_angle(a: &Cap, b: &Cap) -> f32 {
+    let (t1, t2) = (a.one_minus_cos, b.one_minus_cos);
+    if !(t1 > 0.0) || !(t2 > 0.0) {
+        return 0.0;
+    }
+    let omega = |t: f32| 2.0 * PI * t;
+    let result = match (t1 > 1.0, t2 > 1.0) {
+        (false, false) => at_most_hemispheres(a.axis, t1, b.axis, t2),
+        (true, false) => omega(t2) - at_most_hemispheres(-a.axis, 2.0 - t1, b.axis, t2),
+        (false, true) => omega(t1) - at_most_hemispheres(a.axis, t1, -b.axis, 2.0 - t2),
+        (true, true) => {
+            // C₁ ∩ C₂ is the complement of C̄₁ ∪ C̄₂.
+            4.0 * PI - omega(2.0 - t1) - omega(2.0 - t2)
+                + at_most_hemispheres(-a.axis, 2.0 - t1, -b.axis, 2.0 - t2)
+        }
+    };
+    let low = (omega(t1) + omega(t2) - 4.0 * PI).max(0.0);
+    result.max(low).min(omega(t1).min(omega(t2)))
+}
+
+/// The intersection of two caps with `tᵢ ∈ [0, 1]` (at most hemispheres).
+#[inline(always)]
+fn at_most_hemispheres(a1: crate::Vec3, t1: f32, a2: crate::Vec3, t2: f32) -> f32 {
+    if !(t1 > 0.0) || !(t2 > 0.0) {
+        return 0.0;
+    }
+    let td = one_minus_dot(a1, a2);
+    let (theta1, theta2, d) = (angle_of(t1), angle_of(t2), angle_of(td));
+    if d >= theta1 + theta2 {
+        return 0.0;
+    }
+    if d <= (theta1 - theta2).abs() {
+        return 2.0 * PI * t1.min(t2);
+    }
+    let sin2_1 = (t1 * (2.0 - t1)).max(0.0);
+    let sin2_d = (td * (2.0 - td)).max(0.0);
+    let n1 = t1 + td - t2 - t1 * td;
+    let n2 = t2 + td - t1 - t2 * td;
+    let y = libm::sqrtf((sin2_1 * sin2_d - n1 * n1).max(0.0));
+    let phi1 = libm::atan2f(y, n1);
+    let phi2 = libm::atan2f(y, n2);
+    let excess = 2.0 * libm::atan2f(y, 4.0 - td - t1 - t2);
+    let area = 2.0 * (phi1 * t1 + phi2 * t2 - excess);
+    area.max(0.0).min(2.0 * PI * t1.min(t2))
+}
+
+/// The Oat–Sander approximation of [`cap_intersection_solid_angle`] (Eq. 37–38):
+/// the exact value in the disjoint and nested cases, and
+/// `2π(1 − cos θ₁) P((θ₁ + θ₂ − d) / (2θ₁))` (`θ₁ ≤ θ₂`, `P(x) = 3x² − 2x³`) in
+/// between. Meant for caps smaller than a hemisphere; see the module documentation
+/// for its error.
+pub fn cap_intersection_solid_angle_oat_sander(a: &Cap, b: &Cap) -> f32 {
+    let (mut t1, mut t2) = (a.one_minus_cos, b.one_minus_cos);
+    if !(t1 > 0.0) || !(t2 > 0.0) {
+        return 0.0;
+    }
+    if t1 > t2 {
+        core::mem::swap(&mut t1, &mut t2);
+    }
+    let td = one_minus_dot(a.axis, b.axis);
+    let (theta1, theta2, d) = (angle_of(t1), angle_of(t2), angle_of(td));
+    if d >= theta1 + theta2 {
+        return 0.0;
+    }
+    let omega1 = 2.0 * PI * t1;
+    if d <= theta2 - theta1 {
+        return omega1;
+    }
+    let x = ((theta1 + theta2 - d) / (2.0 * theta1)).max(0.0).min(1.0);
+    omega1 * x * x * (3.0 - 2.0 * x)
+}
+
+#[cfg(test)]
+#[path = "cap_intersection_tests.rs"]
+mod tests;

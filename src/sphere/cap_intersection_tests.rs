@@ -1,0 +1,242 @@
+use super::*;
+use crate::Vec3;
+use crate::testing::{Rng, d3, dot, normalize};
+use core::f64::consts::PI as PI64;
+
+/// Eq. 35–36 of the paper in f64 with `acos`, plus the case where the union covers the
+/// sphere; `theta` are half-angles, `d` the angle between the axes.
+fn reference(theta1: f64, theta2: f64, d: f64) -> f64 {
+    let (t1, t2) = if theta1 <= theta2 {
+        (theta1, theta2)
+    } else {
+        (theta2, theta1)
+    };
+    let cap = |t: f64| 2.0 * PI64 * (1.0 - t.cos());
+    if t1 + t2 <= d {
+        return 0.0;
+    }
+    if t2 - t1 >= d {
+        return cap(t1);
+    }
+    if t1 + t2 >= 2.0 * PI64 - d {
+        return cap(t1) + cap(t2) - 4.0 * PI64;
+    }
+    let c = |x: f64| x.max(-1.0).min(1.0).acos();
+    let (c1, c2, cd) = (t1.cos(), t2.cos(), d.cos());
+    let (s1, s2, sd) = (t1.sin(), t2.sin(), d.sin());
+    2.0 * PI64 - 2.0 * PI64 * c1 - 2.0 * PI64 * c2 - 2.0 * c((cd - c1 * c2) / (s1 * s2))
+        + 2.0 * c1 * c((c1 * cd - c2) / (s1 * sd))
+        + 2.0 * c2 * c((c2 * cd - c1) / (s2 * sd))
+}
+
+/// Two caps with half-angles `theta1, theta2` and axes at angle `d`, the first axis
+/// along `axis`.
+fn caps(axis: Vec3, theta1: f64, theta2: f64, d: f64) -> (Cap, Cap) {
+    let a = d3(axis);
+    let helper = if a[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let t = normalize(crate::testing::cross(helper, a));
+    let b: [f64; 3] = core::array::from_fn(|i| a[i] * d.cos() + t[i] * d.sin());
+    let omc = |x: f64| 2.0 * (0.5 * x).sin().powi(2);
+    (
+        Cap::from_axis_one_minus_cos(axis, omc(theta1) as f32),
+        Cap::from_axis_one_minus_cos(
+            Vec3::new(b[0] as f32, b[1] as f32, b[2] as f32),
+            omc(theta2) as f32,
+        ),
+    )
+}
+
+/// The half-angles and axis angle that the f32 caps actually hold, in f64.
+fn actual_angles(a: &Cap, b: &Cap) -> (f64, f64, f64) {
+    let angle = |t: f64| 2.0 * (0.5 * t).sqrt().min(1.0).asin();
+    let (x, y) = (normalize(d3(a.axis)), normalize(d3(b.axis)));
+    let e: [f64; 3] = core::array::from_fn(|i| x[i] - y[i]);
+    (
+        angle(a.one_minus_cos as f64),
+        angle(b.one_minus_cos as f64),
+        angle(0.5 * dot(e, e)),
+    )
+}
+
+#[test]
+fn matches_the_f64_formula_in_every_configuration() {
+    let mut rng = Rng::new(41);
+    let mut worst = 0.0f64;
+    for i in 0..200_000 {
+        let axis = rng.unit_vector_f32();
+        let theta1 = PI64 * rng.uniform();
+        let theta2 = PI64 * rng.uniform();
+        let d = match i % 8 {
+            0 => 0.0,
+            1 => PI64,
+            2 => (theta1 - theta2).abs(),
+            3 => theta1 + theta2,
+            _ => PI64 * rng.uniform(),
+        };
+        let (a, b) = caps(axis, theta1, theta2, d.min(PI64));
+        let (x, y, z) = actual_angles(&a, &b);
+        let expected = reference(x, y, z);
+        let got = cap_intersection_solid_angle(&a, &b) as f64;
+        let swapped = cap_intersection_solid_angle(&b, &a) as f64;
+        let error = (got - expected).abs();
+        worst = worst.max(error);
+        assert!(
+            error < 1e-5 + 2e-6 * expected.abs(),
+            "θ₁ {x} θ₂ {y} d {z}: {got} vs {expected}"
+        );
+        assert!((swapped - got).abs() < 1e-5 + 2e-6 * expected);
+    }
+    assert!(worst > 0.0);
+}
+
+#[test]
+fn tiny_caps_match_the_planar_lens() {
+    // For half-angles ~1e-4 the lens is planar to ~1e-8 relative: the area of two
+    // overlapping discs of radii r₁, r₂ at distance d.
+    let lens = |r1: f64, r2: f64, d: f64| {
+        let a1 = ((d * d + r1 * r1 - r2 * r2) / (2.0 * d * r1)).acos();
+        let a2 = ((d * d + r2 * r2 - r1 * r1) / (2.0 * d * r2)).acos();
+        r1 * r1 * (a1 - a1.sin() * a1.cos()) + r2 * r2 * (a2 - a2.sin() * a2.cos())
+    };
+    let mut rng = Rng::new(43);
+    for _ in 0..20000 {
+        let scale = rng.log_uniform(-5.0, -3.0);
+        let (r1, r2) = (scale * (0.2 + rng.uniform()), scale * (0.2 + rng.uniform()));
+        let d = (r1 - r2).abs() + (r1 + r2 - (r1 - r2).abs()) * (0.05 + 0.9 * rng.uniform());
+        let (a, b) = caps(Vec3::Z, r1, r2, d);
+        let (x, y, z) = actual_angles(&a, &b);
+        let expected = lens(x, y, z);
+        let got = cap_intersection_solid_angle(&a, &b) as f64;
+        assert!(
+            (got - expected).abs() < 2e-3 * expected,
+            "r {x} {y} d {z}: {got} vs {expected}"
+        );
+    }
+}
+
+#[test]
+fn matches_brute_force_monte_carlo() {
+    let mut rng = Rng::new(47);
+    let axis = rng.unit_vector_f32();
+    let configurations = [
+        (0.3, 0.5, 0.6),  // small lens
+        (1.2, 2.0, 1.5),  // one cap wider than a hemisphere
+        (2.5, 2.2, 2.0),  // both wider: the union covers the sphere
+        (2.5, 2.2, 0.8),  // both wider, ordinary lens
+        (0.4, 1.0, 0.2),  // nested
+        (0.4, 0.5, 1.2),  // disjoint
+        (0.9, 0.9, 0.0),  // identical
+        (2.0, 2.0, PI64), // antipodal axes
+        (PI64, 0.7, 1.0), // the whole sphere
+    ];
+    for (k, &(t1, t2, d)) in configurations.iter().enumerate() {
+        let (a, b) = caps(axis, t1, t2, d);
+        let (x, y) = (normalize(d3(a.axis)), normalize(d3(b.axis)));
+        let (c1, c2) = (t1.cos(), t2.cos());
+        let n = 400_000;
+        let mut hits = 0u64;
+        for _ in 0..n {
+            let z = 2.0 * rng.uniform() - 1.0;
+            let phi = 2.0 * PI64 * rng.uniform();
+            let r = (1.0 - z * z).sqrt();
+            let w = [r * phi.cos(), r * phi.sin(), z];
+            hits += (dot(w, x) >= c1 && dot(w, y) >= c2) as u64;
+        }
+        let p = hits as f64 / n as f64;
+        let estimate = 4.0 * PI64 * p;
+        let sigma = 4.0 * PI64 * (p * (1.0 - p) / n as f64).sqrt();
+        let got = cap_intersection_solid_angle(&a, &b) as f64;
+        assert!(
+            (got - estimate).abs() <= 5.0 * sigma + 1e-4,
+            "configuration {k}: {got} vs Monte Carlo {estimate} ± {sigma}"
+        );
+    }
+}
+
+#[test]
+fn oat_sander_error_table() {
+    // Lens cases over a grid; rows by the larger half-angle.
+    let rows = [
+        ("θ ≤ π/8", 0.0, PI64 / 8.0),
+        ("π/8 < θ ≤ π/4", PI64 / 8.0, PI64 / 4.0),
+        ("π/4 < θ ≤ π/2", PI64 / 4.0, PI64 / 2.0),
+        ("π/2 < θ ≤ π", PI64 / 2.0, PI64),
+    ];
+    let n = 128;
+    let m = 256;
+    let mut mean_rel_small = 0.0f64;
+    let mut max_abs_wide = 0.0f64;
+    for &(name, lo, hi) in &rows {
+        let (mut sum_abs, mut max_abs, mut sum_rel, mut max_rel, mut count, mut count_rel) =
+            (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0usize, 0usize);
+        for i in 0..n {
+            for j in 0..=i {
+                let theta2 = PI64 * (i as f64 + 0.5) / n as f64;
+                let theta1 = PI64 * (j as f64 + 0.5) / n as f64;
+                if !(theta2 > lo && theta2 <= hi) {
+                    continue;
+                }
+                for k in 0..m {
+                    let d = PI64 * (k as f64 + 0.5) / m as f64;
+                    if d <= theta2 - theta1 || d >= theta1 + theta2 {
+                        continue;
+                    }
+                    let (a, b) = caps(Vec3::Z, theta1, theta2, d);
+                    let exact = cap_intersection_solid_angle(&a, &b) as f64;
+                    let approx = cap_intersection_solid_angle_oat_sander(&a, &b) as f64;
+                    let error = (approx - exact).abs();
+                    sum_abs += error;
+                    max_abs = max_abs.max(error);
+                    count += 1;
+                    if exact > 1e-3 {
+                        sum_rel += error / exact;
+                        max_rel = max_rel.max(error / exact);
+                        count_rel += 1;
+                    }
+                }
+            }
+        }
+        println!(
+            "| {name:18} | {:13.2e} | {:12.2e} | {:8.2e} | {:7.2e} |",
+            sum_abs / count as f64,
+            max_abs,
+            sum_rel / count_rel.max(1) as f64,
+            max_rel
+        );
+        if hi <= PI64 / 8.0 {
+            mean_rel_small = sum_rel / count_rel.max(1) as f64;
+        }
+        if lo >= PI64 / 2.0 {
+            max_abs_wide = max_abs;
+        }
+    }
+    // Good for small caps, broken for caps wider than a hemisphere.
+    assert!(mean_rel_small < 0.2, "{mean_rel_small}");
+    assert!(max_abs_wide > 0.5, "{max_abs_wide}");
+    // Exact where it is not an approximation.
+    let (a, b) = caps(Vec3::Z, 0.3, 0.6, 0.1);
+    assert_eq!(
+        cap_intersection_solid_angle_oat_sander(&a, &b),
+        cap_intersection_solid_angle(&a, &b)
+    );
+}
+
+#[test]
+fn empty_caps_intersect_nothing() {
+    let a = Cap::from_axis_cos(Vec3::Z, 0.5);
+    assert_eq!(cap_intersection_solid_angle(&a, &Cap::EMPTY), 0.0);
+    assert_eq!(cap_intersection_solid_angle(&Cap::EMPTY, &a), 0.0);
+    assert_eq!(
+        cap_intersection_solid_angle_oat_sander(&Cap::EMPTY, &a),
+        0.0
+    );
+    let whole = Cap::WHOLE_SPHERE;
+    assert!((cap_intersection_solid_angle(&a, &whole) - a.solid_angle()).abs() < 1e-6);
+    assert!(
+        (cap_intersection_solid_angle(&whole, &whole) - 4.0 * core::f32::consts::PI).abs() < 1e-5
+    );
+}

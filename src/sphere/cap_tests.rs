@@ -1,0 +1,256 @@
+use super::*;
+use crate::testing::{CHI_SQUARE_ALPHA, D3, Rng, chi_square, d3, dot, norm, normalize, sub};
+
+/// `1 − cos θ` of the cap of a sphere, in f64 from the f64 center and radius.
+fn one_minus_cos_f64(center: D3, radius: f64) -> f64 {
+    let d = norm(center);
+    if d <= radius {
+        return 2.0;
+    }
+    let s2 = (radius / d) * (radius / d);
+    s2 / (1.0 + (1.0 - s2).sqrt())
+}
+
+/// `1 − ω·a` in f64 for unit vectors, by `|ω − a|²/2`.
+fn one_minus_dot_f64(w: D3, a: D3) -> f64 {
+    let w = normalize(w);
+    let a = normalize(a);
+    let e = sub(w, a);
+    0.5 * dot(e, e)
+}
+
+/// An f64 orthonormal frame around `a` (independent of the core's basis).
+fn frame_f64(a: D3) -> (D3, D3) {
+    let helper = if a[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let t = normalize(crate::testing::cross(helper, a));
+    let b = crate::testing::cross(a, t);
+    (t, b)
+}
+
+#[test]
+fn solid_angle_matches_f64_for_tiny_to_huge_caps_and_scaled_coordinates() {
+    let mut rng = Rng::new(1);
+    let mut worst = 0.0f64;
+    for i in 0..20000 {
+        let dir = rng.unit_vector_f32();
+        // sin²θ log-uniform in [1e-12, 1), then an f32 radius and distance.
+        let sin2 = rng.log_uniform(-12.0, 0.0);
+        let distance = rng.log_uniform(-3.0, 3.0) as f32;
+        let radius = (distance as f64 * sin2.sqrt()) as f32;
+        let scale = match i % 5 {
+            0 => 1.0,
+            1 => 1.267_650_6e30,
+            2 => 7.888_609e-31,
+            3 => 1e30,
+            _ => 1e-30,
+        };
+        let center = dir * distance * scale;
+        let radius = radius * scale;
+        if !(radius > 0.0) || !center.is_finite() || !radius.is_finite() {
+            continue;
+        }
+        let cap = Cap::from_sphere(center, radius);
+        let reference = one_minus_cos_f64(d3(center), radius as f64);
+        let error = (cap.one_minus_cos as f64 - reference).abs() / reference;
+        worst = worst.max(error);
+        assert!(
+            error < 2e-6,
+            "center {center:?} radius {radius}: 1 − cos {} vs {reference}",
+            cap.one_minus_cos
+        );
+        let omega = cap.solid_angle() as f64;
+        let omega_ref = 2.0 * core::f64::consts::PI * reference;
+        assert!((omega - omega_ref).abs() <= 3e-6 * omega_ref);
+        assert!((cap.axis.length() - 1.0).abs() < 1e-6);
+        assert!((cap.cos as f64 - (1.0 - reference)).abs() < 1e-6);
+    }
+    assert!(worst > 0.0, "the test compared nothing");
+}
+
+#[test]
+fn distant_spheres_keep_relative_precision() {
+    for &(d, r) in &[(1e6f32, 1.0f32), (1.0, 1e-6), (3.0e7, 0.5), (1e20, 1e14)] {
+        let cap = Cap::from_sphere(Vec3::new(0.3 * d, -0.4 * d, 0.866_025_4 * d), r);
+        let reference =
+            one_minus_cos_f64(d3(Vec3::new(0.3 * d, -0.4 * d, 0.866_025_4 * d)), r as f64);
+        assert!(
+            ((cap.one_minus_cos as f64 - reference) / reference).abs() < 2e-6,
+            "{d} {r}: {} vs {reference}",
+            cap.one_minus_cos
+        );
+        // A direct `1 − cos` in f32 would give 0 (or a few bits) here.
+        assert!(cap.solid_angle() > 0.0);
+    }
+}
+
+#[test]
+fn whole_sphere_on_and_inside_and_invalid_spheres() {
+    let c = Vec3::new(0.0, 0.0, 2.0);
+    assert_eq!(Cap::from_sphere(c, 2.0).one_minus_cos, 2.0);
+    assert_eq!(Cap::from_sphere(c, 3.0).one_minus_cos, 2.0);
+    assert_eq!(Cap::from_sphere(Vec3::ZERO, 1.0).one_minus_cos, 2.0);
+    let whole = Cap::from_sphere(c, 3.0);
+    assert!((whole.solid_angle() - 4.0 * PI).abs() < 1e-6);
+    assert!(whole.contains(Vec3::new(0.0, 0.0, -1.0)));
+    // Just outside the sphere: nearly a hemisphere.
+    let near = Cap::from_sphere(c, 2.0 * (1.0 - 1e-6));
+    assert!(near.one_minus_cos > 0.99 && near.one_minus_cos <= 1.0);
+    for (center, radius) in [
+        (c, 0.0),
+        (c, -1.0),
+        (c, f32::NAN),
+        (c, f32::INFINITY),
+        (Vec3::new(f32::NAN, 0.0, 1.0), 1.0),
+        (Vec3::new(f32::INFINITY, 0.0, 1.0), 1.0),
+    ] {
+        let cap = Cap::from_sphere(center, radius);
+        assert_eq!(cap, Cap::EMPTY);
+        assert_eq!(cap.solid_angle(), 0.0);
+        assert_eq!(cap.sample_uniform([0.5, 0.5]).pdf, 0.0);
+        assert!(!cap.contains(Vec3::Z));
+    }
+    // Huge coordinates do not overflow.
+    let cap = Cap::from_sphere(Vec3::new(3e38, 3e38, 3e38), 1e38);
+    assert!(cap.one_minus_cos > 0.0 && cap.one_minus_cos.is_finite());
+    assert!((cap.axis.length() - 1.0).abs() < 1e-6);
+}
+
+#[test]
+fn from_axis_cos_and_sanitized_handle_garbage() {
+    let cap = Cap::from_axis_cos(Vec3::new(0.0, 0.0, 5.0), -0.5);
+    assert_eq!(cap.axis, Vec3::Z);
+    assert!((cap.one_minus_cos - 1.5).abs() < 1e-7);
+    assert!((cap.sin2 - 0.75).abs() < 1e-6);
+    let garbage = Cap {
+        axis: Vec3::new(f32::NAN, 1.0, 0.0),
+        one_minus_cos: 7.0,
+        cos: f32::INFINITY,
+        sin2: -3.0,
+    };
+    assert_eq!(garbage.sanitized(), Cap::EMPTY);
+    let big = Cap {
+        axis: Vec3::new(3e38, 3e38, 0.0),
+        one_minus_cos: 7.0,
+        cos: 0.0,
+        sin2: 0.0,
+    }
+    .sanitized();
+    assert_eq!(big.one_minus_cos, 2.0);
+    assert!((big.axis.length() - 1.0).abs() < 1e-6);
+}
+
+/// Samples a cap, checks every sample against the pdf, containment and inversion, and
+/// runs a chi-square test on cells uniform in `(1 − cos)/(1 − cos θ)` and `φ` (in an
+/// independent f64 frame).
+fn check_sampler(cap: Cap, seed: u64, samples: usize) {
+    const N: usize = 12;
+    let mut rng = Rng::new(seed);
+    let a = d3(cap.axis);
+    let (t64, b64) = frame_f64(a);
+    let t_max = cap.one_minus_cos as f64;
+    let mut counts = vec![0u64; N * N];
+    let mut worst_round_trip = 0.0f32;
+    for _ in 0..samples {
+        let u = [rng.uniform_f32(), rng.uniform_f32()];
+        let s = cap.sample_uniform(u);
+        assert!(s.pdf > 0.0 && s.dir.is_finite());
+        assert!((s.dir.length() - 1.0).abs() < 1e-6);
+        let expected_pdf = 1.0 / (2.0 * core::f64::consts::PI * t_max);
+        assert!(((s.pdf as f64 - expected_pdf) / expected_pdf).abs() < 1e-6);
+        let w = d3(s.dir);
+        let t = one_minus_dot_f64(w, a);
+        assert!(
+            t <= t_max * (1.0 + 1e-4) + 1e-7,
+            "sample outside the cap: {t} > {t_max}"
+        );
+        let pdf = cap.pdf(s.dir);
+        // Samples on the boundary may round outside.
+        if pdf != 0.0 {
+            assert_eq!(pdf, s.pdf);
+            // The round trip in direction space: f32 directions do not resolve `u`
+            // near the axis of a small cap, but the direction comes back to rounding.
+            let v = cap.invert(s.dir).expect("inside");
+            let back = cap.sample_uniform(v).dir;
+            worst_round_trip = worst_round_trip.max((back - s.dir).length());
+            if cap.one_minus_cos > 0.1 {
+                let du1 = (v[1] - u[1]).abs().min(1.0 - (v[1] - u[1]).abs());
+                assert!((v[0] - u[0]).abs() < 1e-4 && du1 < 1e-4, "{u:?} -> {v:?}");
+            }
+        }
+        let phi = dot(w, b64).atan2(dot(w, t64));
+        let phi01 = (phi / (2.0 * core::f64::consts::PI)).rem_euclid(1.0);
+        let i = ((t / t_max * N as f64) as usize).min(N - 1);
+        let j = ((phi01 * N as f64) as usize).min(N - 1);
+        counts[i * N + j] += 1;
+    }
+    let probabilities = vec![1.0 / (N * N) as f64; N * N];
+    let (statistic, dof, p) = chi_square(&counts, &probabilities);
+    assert!(
+        p > CHI_SQUARE_ALPHA,
+        "cap {cap:?}: chi-square {statistic} with {dof} dof, p = {p}"
+    );
+    // Near the antipode of a wide cap, `sin θ = √(t(2 − t))` rounds `2 − t`.
+    let allowed = if cap.one_minus_cos <= 1.0 { 1e-6 } else { 3e-4 };
+    assert!(
+        worst_round_trip < allowed,
+        "cap {cap:?}: inverse round trip {worst_round_trip}"
+    );
+}
+
+#[test]
+fn uniform_sampling_passes_chi_square_with_consistent_pdf_and_inverse() {
+    let mut rng = Rng::new(7);
+    let axis = rng.unit_vector_f32();
+    check_sampler(Cap::from_sphere(axis * 3.0, 1.0), 11, 200_000);
+    check_sampler(Cap::from_sphere(axis * 1e3, 1.0), 12, 200_000);
+    check_sampler(Cap::from_axis_cos(axis, 0.0), 13, 200_000);
+    check_sampler(Cap::from_axis_cos(axis, -0.7), 14, 200_000);
+    check_sampler(Cap::from_axis_one_minus_cos(axis, 2.0), 15, 200_000);
+    // Tiny caps around an axis close to z, where f32 directions resolve them.
+    check_sampler(Cap::from_sphere(Vec3::new(0.0, 0.0, 1e5), 1.0), 16, 200_000);
+    check_sampler(Cap::from_sphere(Vec3::new(0.0, 0.0, 1e6), 1.0), 17, 200_000);
+}
+
+#[test]
+fn tiny_cap_samples_stay_inside_and_spread_over_the_cap() {
+    // sin²θ = 1e-12: a direct `1 − cos` in f32 would be 0 and every sample the axis.
+    let cap = Cap::from_sphere(Vec3::new(0.0, 0.0, 1e6), 1.0);
+    let mut rng = Rng::new(3);
+    let mut largest = 0.0f64;
+    for _ in 0..10000 {
+        let s = cap.sample_uniform([rng.uniform_f32(), rng.uniform_f32()]);
+        let sin = ((s.dir.x as f64).powi(2) + (s.dir.y as f64).powi(2)).sqrt();
+        assert!(sin <= 1e-6 * (1.0 + 1e-5));
+        largest = largest.max(sin);
+    }
+    assert!(
+        largest > 0.99e-6,
+        "samples do not reach the boundary: {largest}"
+    );
+}
+
+#[test]
+fn containment_boundary_matches_f64() {
+    let mut rng = Rng::new(5);
+    let mut disagreements = 0;
+    for _ in 0..20000 {
+        let axis = rng.unit_vector_f32();
+        let cos = (2.0 * rng.uniform() - 1.0) as f32;
+        let cap = Cap::from_axis_cos(axis, cos);
+        let w = rng.unit_vector_f32();
+        let t = one_minus_dot_f64(d3(w), d3(cap.axis));
+        let inside = t <= cap.one_minus_cos as f64;
+        if (t - cap.one_minus_cos as f64).abs() > 1e-5 {
+            assert_eq!(cap.contains(w), inside);
+            assert_eq!(cap.pdf(w) > 0.0, inside);
+            assert_eq!(cap.invert(w).is_some(), inside);
+        } else {
+            disagreements += (cap.contains(w) != inside) as usize;
+        }
+    }
+    assert!(disagreements < 10);
+}

@@ -1,0 +1,173 @@
+//! The pivot transformation (Dupuy et al. 2017, Section 3): for a pivot point `r_p`
+//! inside the unit sphere, `g(ω)` is the second intersection with the sphere of the
+//! line from `ω` through `r_p`.
+//!
+//! Derivation (first principles, equivalent to Eq. 2): the points `ω + s(r_p − ω)`
+//! lie on the sphere for `s = 0` and
+//! `s = 2(1 − ω·r_p) / |ω − r_p|²`, so `g(ω) = ω − s (ω − r_p)`. Since
+//! `|r_p| < 1`, `1 − ω·r_p > 0` and `|ω − r_p| > 0`: no division by zero. `g` is an
+//! involution (`g(g(ω)) = ω`: the same line through the same pivot), and its Jacobian
+//! on the sphere is `|dg/dω| = ((1 − |r_p|²) / |ω − r_p|²)²` (Eq. 4).
+//!
+//! # The image of a cap
+//!
+//! `g` maps circles to circles, so the image of a cap is a cap. Eq. 6–7 take the two
+//! boundary points `ω₁, ω₂` of the cap in the plane of its axis `ω_c` and `r_p`, and
+//! return the cap centered on the normalised mean of `g(ω₁), g(ω₂)` with
+//! `cos ψ' = ω'_c·g(ω₁)`. That cap is never wider than a hemisphere
+//! (`ω'_c·g(ω₁) = |g(ω₁) + g(ω₂)|/2 ≥ 0`), but the true image can be: the circle
+//! through `g(ω₁), g(ω₂)` bounds two caps, and `g(C)` is the one that contains
+//! `g(ω_c)`. In the plane, the projection through an interior point preserves the
+//! orientation of the circle (it is a continuous deformation of the rotation by `π`
+//! that the pivot at the origin gives), so the arc `ω₁ → ω_c → ω₂` (counterclockwise)
+//! maps to the arc `g(ω₁) → g(ω_c) → g(ω₂)` (counterclockwise). Its length `L` is the image
+//! cap's full aperture `2ψ'`, which exceeds `π` exactly when the image is wider than
+//! a hemisphere, where Eq. 6–7 return the complement of the true image. This happens
+//! for wide caps under a weak pivot (near the origin `g` is close to the antipodal
+//! map, which preserves the aperture), and for caps that contain `r_p/|r_p|`, the
+//! point nearest to the pivot, whose neighbourhood `g` magnifies by
+//! `((1 + |r_p|)/(1 − |r_p|))²` (its image contains `−r_p/|r_p|`).
+//!
+//! The implementation measures the two halves `g(ω₁) → g(ω_c)` and `g(ω_c) → g(ω₂)` with `atan2` of 2D cross and dot
+//! products in that plane, and rotates `g(ω₁)` by `L/2` to get the axis; the stored
+//! `1 − cos ψ' = 2 sin²(ψ'/2)`.
+//!
+//! Degenerate cases: a cap axis parallel to the pivot (any plane through the axis
+//! works; a fixed tangent is used); the pivot at the origin (`g(ω) = −ω`, the
+//! antipodal map, as Eq. 2 gives for `r_p = 0`: not the identity); `|r_p| ≥ 1` is
+//! clamped to `|r_p| = 1 − 2⁻²⁰` (same direction), so results stay finite; a
+//! non-finite pivot is treated as the origin. The empty cap maps to the empty cap and
+//! the whole sphere to the whole sphere.
+//!
+//! Precision: directions are `f32`, so image caps smaller than about `1e-6` rad keep
+//! only a few digits of `ψ'`.
+
+use super::cap::Cap;
+use crate::math::orthonormal_basis;
+use core::f32::consts::PI;
+use glam::{Vec2, Vec3};
+
+/// The largest pivot length used: `1 − 2⁻²⁰`.
+const MAX_PIVOT_LENGTH: f32 = 1.0 - 1.0 / 1_048_576.0;
+
+/// The pivot made valid: non-finite → origin, `|r_p|` clamped to `MAX_PIVOT_LENGTH`.
+#[inline(always)]
+fn valid_pivot(pivot: Vec3) -> Vec3 {
+    if !pivot.is_finite() {
+        return Vec3::ZERO;
+    }
+    let length = pivot.length();
+    if !length.is_finite() {
+        // Huge finite components: the direction survives a rescale.
+        return (pivot * 5.421_011e-20).normalize_or_zero() * MAX_PIVOT_LENGTH;
+    }
+    if length > MAX_PIVOT_LENGTH {
+        pivot * (MAX_PIVOT_LENGTH / length)
+    } else {
+        pivot
+    }
+}
+
+/// `g(ω)` for a unit `dir` and a valid pivot.
+#[inline(always)]
+fn transform(dir: Vec3, pivot: Vec3) -> Vec3 {
+    let e = dir - pivot;
+    let s = 2.0 * (1.0 - dir.dot(pivot)) / e.length_squared();
+    (dir - e * s).normalize_or(-dir)
+}
+
+/// The pivot transformation `g(ω; r_p)` (Eq. 2): the second intersection with the
+/// unit sphere of the line from `dir` (normalised here) through `pivot`. See the
+/// module documentation for invalid pivots; a zero or non-finite `dir` gives `+z`.
+pub fn pivot_transform(dir: Vec3, pivot: Vec3) -> Vec3 {
+    let length = dir.length();
+    if !(length > 0.0) || !length.is_finite() {
+        return Vec3::Z;
+    }
+    transform(dir / length, valid_pivot(pivot))
+}
+
+/// The Jacobian `|dg/dω| = ((1 − |r_p|²) / |ω − r_p|²)²` (Eq. 4) at a unit `dir`
+/// (normalised here): the ratio of the solid angle of `g(dω)` to that of `dω`. Zero
+/// for a zero or non-finite `dir`.
+pub fn pivot_jacobian(dir: Vec3, pivot: Vec3) -> f32 {
+    let length = dir.length();
+    if !(length > 0.0) || !length.is_finite() {
+        return 0.0;
+    }
+    let pivot = valid_pivot(pivot);
+    let ratio = (1.0 - pivot.length_squared()) / (dir / length - pivot).length_squared();
+    ratio * ratio
+}
+
+/// `g` in the 2D plane of a cap's axis (x) and the pivot (y ≥ 0), for a unit `w`.
+#[inline(always)]
+fn transform_2d(w: Vec2, pivot: Vec2) -> Vec2 {
+    let e = w - pivot;
+    let s = 2.0 * (1.0 - w.dot(pivot)) / e.length_squared();
+    (w - e * s).normalize_or(-w)
+}
+
+/// The counterclockwise angle from `a` to `b` in `[0, 2π)`.
+#[inline(always)]
+fn ccw_angle(a: Vec2, b: Vec2) -> f32 {
+    let angle = libm::atan2f(a.perp_dot(b), a.dot(b));
+    if angle < 0.0 { angle + 2.0 * PI } else { angle }
+}
+
+/// The image `g(C)` of a cap under the pivot transformation: the true image, which can
+/// be wider than a hemisphere (see the module documentation). The cap must be valid
+/// (see [`Cap::sanitized`]).
+pub fn pivot_cap(cap: &Cap, pivot: Vec3) -> Cap {
+    if !(cap.one_minus_cos > 0.0) {
+        return Cap::EMPTY;
+    }
+    let pivot = valid_pivot(pivot);
+    if cap.one_minus_cos >= 2.0 {
+        return Cap {
+            axis: transform(cap.axis, pivot),
+            ..Cap::WHOLE_SPHERE
+        };
+    }
+    // The plane of the axis and the pivot: x along the axis, y along the pivot's
+    // perpendicular component (any tangent when the pivot is on the axis line).
+    let along = pivot.dot(cap.axis);
+    let perpendicular = pivot - cap.axis * along;
+    let across = perpendicular.length();
+    let tangent = if across > 1e-30 {
+        perpendicular / across
+    } else {
+        orthonormal_basis(cap.axis).0
+    };
+    let p = Vec2::new(along, across.min(MAX_PIVOT_LENGTH));
+    let sin = libm::sqrtf(cap.sin2.max(0.0).min(1.0));
+    let cos = 1.0 - cap.one_minus_cos;
+    // ω₁ below, ω₂ above the axis: ω₁ → ω_c → ω₂ is counterclockwise.
+    let g1 = transform_2d(Vec2::new(cos, -sin), p);
+    let g2 = transform_2d(Vec2::new(cos, sin), p);
+    let gc = transform_2d(Vec2::X, p);
+    // The image arc g(ω₁) → g(ω_c) → g(ω₂), counterclockwise.
+    let mut first = ccw_angle(g1, gc);
+    let mut second = ccw_angle(gc, g2);
+    // Geometrically first + second < 2π; rounding can turn a tiny half into ~2π.
+    if first + second > 2.0 * PI {
+        if first > second {
+            first = 0.0;
+        } else {
+            second = 0.0;
+        }
+    }
+    let half = 0.5 * (first + second).min(2.0 * PI);
+    let (sin_half, cos_half) = libm::sincosf(half);
+    let axis_2d = Vec2::new(
+        g1.x * cos_half - g1.y * sin_half,
+        g1.x * sin_half + g1.y * cos_half,
+    );
+    let axis = cap.axis * axis_2d.x + tangent * axis_2d.y;
+    let s = libm::sinf(0.5 * half);
+    Cap::from_axis_one_minus_cos(axis, 2.0 * s * s)
+}
+
+#[cfg(test)]
+#[path = "pivot_tests.rs"]
+mod tests;

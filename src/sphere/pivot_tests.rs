@@ -1,0 +1,212 @@
+use super::*;
+use crate::testing::{D3, Rng, d3, dot, normalize, solid_angle_triangle_f64};
+
+/// Eq. 2 of the paper, literally, in f64.
+fn g_f64(r: D3, p: D3) -> D3 {
+    let c = |a: D3, b: D3| -> D3 {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let rp = dot(r, p) - 1.0;
+    let e: D3 = core::array::from_fn(|i| r[i] - p[i]);
+    let rxp = c(r, p);
+    let num0 = c(e, rxp);
+    let den = rp * rp + dot(rxp, rxp);
+    core::array::from_fn(|i| (rp * e[i] - num0[i]) / den)
+}
+
+fn one_minus_dot_f64(w: D3, a: D3) -> f64 {
+    let (w, a) = (normalize(w), normalize(a));
+    let e: D3 = core::array::from_fn(|i| w[i] - a[i]);
+    0.5 * dot(e, e)
+}
+
+fn random_pivot(rng: &mut Rng, max: f64) -> Vec3 {
+    rng.unit_vector_f32() * (max * rng.uniform().sqrt()) as f32
+}
+
+#[test]
+fn transform_matches_eq_2_in_f64_and_is_an_involution() {
+    let mut rng = Rng::new(61);
+    for _ in 0..100_000 {
+        let w = rng.unit_vector_f32();
+        let p = random_pivot(&mut rng, 0.9);
+        let g = pivot_transform(w, p);
+        let reference = g_f64(d3(w), d3(p));
+        let error = (0..3)
+            .map(|i| (g[i] as f64 - reference[i]).abs())
+            .fold(0.0, f64::max);
+        // The conditioning of g at w is its derivative, √J ≤ (1 + |p|)/(1 − |p|).
+        let bound = 4e-7 * ((1.0 + 0.9) / (1.0 - 0.9f64));
+        assert!(error < bound, "w {w:?} p {p:?}: {g:?} vs {reference:?}");
+        assert!((g.length() - 1.0).abs() < 1e-6);
+        let back = pivot_transform(g, p);
+        assert!(
+            (back - w).length() < 4.0 * bound as f32,
+            "{w:?} -> {g:?} -> {back:?}"
+        );
+    }
+}
+
+#[test]
+fn jacobian_matches_finite_difference_solid_angle_ratio() {
+    let mut rng = Rng::new(67);
+    for _ in 0..5000 {
+        let w = rng.unit_vector_f32();
+        let p = random_pivot(&mut rng, 0.95);
+        let w64 = d3(w);
+        // A small triangle around w, in f64.
+        let h = if w64[0].abs() < 0.6 {
+            [1.0, 0.0, 0.0]
+        } else {
+            [0.0, 1.0, 0.0]
+        };
+        let t = normalize(crate::testing::cross(h, w64));
+        let b = crate::testing::cross(w64, t);
+        let eps = 1e-5;
+        let v = |a: f64| -> D3 {
+            normalize(core::array::from_fn(|i| {
+                w64[i] + eps * (a.cos() * t[i] + a.sin() * b[i])
+            }))
+        };
+        let (v0, v1, v2) = (v(0.0), v(2.1), v(4.2));
+        let p64 = d3(p);
+        let before = solid_angle_triangle_f64(v0, v1, v2).abs();
+        let after = solid_angle_triangle_f64(g_f64(v0, p64), g_f64(v1, p64), g_f64(v2, p64)).abs();
+        let ratio = after / before;
+        let j = pivot_jacobian(w, p) as f64;
+        assert!(
+            (j - ratio).abs() < 1e-3 * ratio,
+            "w {w:?} p {p:?}: {j} vs {ratio}"
+        );
+    }
+}
+
+/// Checks `pivot_cap` by brute force: boundary points map to the image boundary,
+/// points inside map inside and points outside map outside.
+fn check_image(cap: &Cap, p: Vec3, rng: &mut Rng) -> Cap {
+    let image = pivot_cap(cap, p);
+    let (a, p64) = (d3(cap.axis), d3(p));
+    let a2 = d3(image.axis);
+    let t = cap.one_minus_cos as f64;
+    let t2 = image.one_minus_cos as f64;
+    let h = if a[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let u = normalize(crate::testing::cross(h, a));
+    let v = crate::testing::cross(a, u);
+    let point = |s: f64, phi: f64| -> D3 {
+        // 1 − cos = s.
+        let sin = (s * (2.0 - s)).max(0.0).sqrt();
+        core::array::from_fn(|i| (1.0 - s) * a[i] + sin * (phi.cos() * u[i] + phi.sin() * v[i]))
+    };
+    // Tolerance in 1 − cos, scaled by the local magnification of g.
+    let pl = dot(p64, p64).sqrt();
+    let tol = 2e-5 * ((1.0 + pl) / (1.0 - pl)).powi(2);
+    for _ in 0..200 {
+        let phi = 2.0 * core::f64::consts::PI * rng.uniform();
+        let g = g_f64(point(t, phi), p64);
+        let s = one_minus_dot_f64(g, a2);
+        assert!(
+            (s - t2).abs() < tol,
+            "cap {cap:?} pivot {p:?} image {image:?}: boundary at {s}"
+        );
+        let inside = g_f64(point(t * rng.uniform() * 0.95, phi), p64);
+        assert!(
+            one_minus_dot_f64(inside, a2) < t2 + tol,
+            "inside point maps outside: {image:?}"
+        );
+        let outside = g_f64(
+            point(t + (2.0 - t) * (0.05 + 0.95 * rng.uniform()), phi),
+            p64,
+        );
+        if t < 1.95 {
+            assert!(
+                one_minus_dot_f64(outside, a2) > t2 - tol,
+                "outside maps inside: {image:?}"
+            );
+        }
+    }
+    image
+}
+
+#[test]
+fn image_cap_boundary_and_interior_by_brute_force() {
+    let mut rng = Rng::new(71);
+    let mut wider_than_hemisphere = 0;
+    let mut contains_pivot_direction = 0;
+    for i in 0..3000 {
+        let axis = rng.unit_vector_f32();
+        let cos = (2.0 * rng.uniform() - 1.0) as f32;
+        let cap = Cap::from_axis_cos(axis, cos);
+        let p = match i % 4 {
+            // The pivot on the axis line.
+            0 => axis * (1.6 * rng.uniform() as f32 - 0.8),
+            _ => random_pivot(&mut rng, 0.8),
+        };
+        let image = check_image(&cap, p, &mut rng);
+        wider_than_hemisphere += (image.one_minus_cos > 1.0) as usize;
+        contains_pivot_direction += cap.contains(p) as usize;
+    }
+    // Both the flip and the ordinary case were exercised.
+    assert!(wider_than_hemisphere > 100, "{wider_than_hemisphere}");
+    assert!(contains_pivot_direction > 100);
+}
+
+#[test]
+fn small_caps_map_to_small_caps_with_the_jacobian_area() {
+    let mut rng = Rng::new(73);
+    for _ in 0..2000 {
+        let axis = rng.unit_vector_f32();
+        let cap = Cap::from_axis_one_minus_cos(axis, rng.log_uniform(-6.0, -3.0) as f32);
+        let p = random_pivot(&mut rng, 0.7);
+        let image = pivot_cap(&cap, p);
+        // For a small cap, Ω' ≈ J(ω_c) Ω.
+        let expected = pivot_jacobian(axis, p) as f64 * cap.solid_angle() as f64;
+        let got = image.solid_angle() as f64;
+        let relative = (got - expected).abs() / expected;
+        assert!(relative < 0.02, "{cap:?} {p:?}: {got} vs {expected}");
+        check_image(&cap, p, &mut rng);
+    }
+}
+
+#[test]
+fn degenerate_pivots_and_caps() {
+    let cap = Cap::from_axis_cos(Vec3::new(0.0, 0.6, 0.8), 0.5);
+    // Pivot at the origin: the antipodal map.
+    let image = pivot_cap(&cap, Vec3::ZERO);
+    assert!((image.axis + cap.axis).length() < 1e-6);
+    assert!((image.one_minus_cos - cap.one_minus_cos).abs() < 1e-6);
+    assert!((pivot_transform(Vec3::X, Vec3::ZERO) + Vec3::X).length() < 1e-7);
+    // |pivot| ≥ 1, non-finite: finite results.
+    for p in [
+        Vec3::new(0.0, 0.0, 1.0),
+        Vec3::new(0.0, 3.0, 4.0),
+        Vec3::new(3e38, 3e38, 0.0),
+        Vec3::new(f32::NAN, 0.0, 0.0),
+        Vec3::new(f32::INFINITY, 0.0, 0.0),
+    ] {
+        let image = pivot_cap(&cap, p);
+        assert!(image.axis.is_finite() && image.one_minus_cos.is_finite());
+        assert!((0.0..=2.0).contains(&image.one_minus_cos));
+        let g = pivot_transform(Vec3::new(0.6, 0.0, 0.8), p);
+        assert!(g.is_finite() && (g.length() - 1.0).abs() < 1e-5);
+        assert!(pivot_jacobian(Vec3::X, p).is_finite());
+    }
+    assert_eq!(pivot_cap(&Cap::EMPTY, Vec3::new(0.1, 0.2, 0.3)), Cap::EMPTY);
+    assert_eq!(
+        pivot_cap(&Cap::WHOLE_SPHERE, Vec3::new(0.1, 0.2, 0.3)).one_minus_cos,
+        2.0
+    );
+    // Non-finite direction.
+    assert_eq!(
+        pivot_transform(Vec3::new(f32::NAN, 0.0, 1.0), Vec3::ZERO),
+        Vec3::Z
+    );
+    assert_eq!(pivot_jacobian(Vec3::ZERO, Vec3::ZERO), 0.0);
+}
