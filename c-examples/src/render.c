@@ -139,8 +139,20 @@ static SpheraVec3 frame_to_local(const SpheraFrame *f, float3 v) {
  * triangles do not count. */
 static bool unoccluded(const Scene *scene, struct RTCIntersectContext *context, const Hit *hit,
                        const Light *light, float3 dir) {
-    float along = f3_dot(light->normal, dir);
-    float t = f3_dot(light->normal, f3_sub(light->vertices[0], hit->origin)) / along;
+    float t;
+    if (light->radius > 0.0f) {
+        /* The nearer intersection with the sphere: t = -b - sqrt(b^2 - c), written as
+         * c / (-b + sqrt(b^2 - c)) where -b > 0, which keeps precision for small
+         * spheres far away. */
+        float3 oc = f3_sub(hit->origin, light->center);
+        float b = f3_dot(oc, dir), c = f3_dot(oc, oc) - light->radius * light->radius;
+        float discriminant = b * b - c;
+        if (!(discriminant >= 0.0f) || !(b < 0.0f)) return false; /* misses or behind */
+        t = c / (-b + sqrtf(discriminant));
+    } else {
+        float along = f3_dot(light->normal, dir);
+        t = f3_dot(light->normal, f3_sub(light->vertices[0], hit->origin)) / along;
+    }
     if (!(t > 0.0f) || !(t < INFINITY)) return false; /* parallel or behind: no hit */
     float tfar = t * (1.0f - 1e-5f) - scene->ray_epsilon;
     if (tfar <= 0.0f) return true;
@@ -230,6 +242,41 @@ static float3 pair_estimate(const Scene *scene, struct RTCIntersectContext *cont
     return sum;
 }
 
+/* The reflected radiance from a sphere light, k samples: uniform cap sampling, or (for
+ * sphere_cap_brdf and the reference) one cap and one BRDF sample per light sample with
+ * the balance heuristic. Every polygon technique samples spheres uniformly in the cap. */
+static float3 shade_sphere(const Scene *scene, struct RTCIntersectContext *context,
+                           const Hit *hit, const Light *light, Technique technique, uint32_t k,
+                           const BrdfSampler *brdf, Rng *rng, uint64_t *samples) {
+    float3 centre = f3_sub(light->center, hit->position);
+    SpheraVec3 local = frame_to_local(&hit->frame, centre);
+    SpheraCap cap = sphera_cap_from_sphere(local, light->radius);
+    if (f3_dot(centre, centre) <= light->radius * light->radius) return f3(0, 0, 0);
+    bool mis = technique == TECHNIQUE_SPHERE_CAP_BRDF || technique == TECHNIQUE_REFERENCE;
+    float3 sum = f3(0, 0, 0);
+    for (uint32_t s = 0; s < k; ++s) {
+        float u0 = rng_float(rng), u1 = rng_float(rng);
+        SpheraSample a = sphera_cap_sample_uniform(cap, u0, u1);
+        *samples += mis ? 2 : 1;
+        if (a.pdf > 0.0f && a.dir.z > 0.0f) {
+            float w = mis ? sphera_mis_balance(a.pdf, brdf_sampler_pdf(brdf, a.dir)) : 1.0f;
+            const Material *m = &scene->materials[hit->material];
+            float3 f = f3_add(brdf_diffuse(m), brdf_specular(m, hit->wo, to_float3(a.dir)));
+            float3 radiance = light_cosine(scene, context, hit, light, a.dir);
+            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / a.pdf));
+        }
+        if (!mis) continue;
+        SpheraSample b = brdf_sampler_sample(brdf, rng_float(rng), rng_float(rng));
+        float cap_pdf = b.pdf > 0.0f ? sphera_cap_pdf(cap, b.dir) : 0.0f;
+        if (cap_pdf > 0.0f && b.dir.z > 0.0f) {
+            float w = sphera_mis_balance(b.pdf, cap_pdf);
+            float3 radiance = light_cosine(scene, context, hit, light, b.dir);
+            sum = f3_add(sum, f3_scale(f3_mul(radiance, brdf_sampler_eval(brdf, b.dir)), w / b.pdf));
+        }
+    }
+    return f3_scale(sum, 1.0f / (float)k);
+}
+
 /* The estimate of the radiance reflected at `hit` from all lights, with `k` samples
  * per light. */
 static float3 shade(const Scene *scene, struct RTCIntersectContext *context, const Hit *hit,
@@ -242,11 +289,17 @@ static float3 shade(const Scene *scene, struct RTCIntersectContext *context, con
     point.material.roughness = m->roughness;
     BrdfSampler brdf;
     memset(&brdf, 0, sizeof brdf);
-    if (technique == TECHNIQUE_BRDF_BALANCE || technique == TECHNIQUE_BRDF_POWER)
+    if (technique == TECHNIQUE_BRDF_BALANCE || technique == TECHNIQUE_BRDF_POWER ||
+        technique == TECHNIQUE_SPHERE_CAP_BRDF || technique == TECHNIQUE_REFERENCE)
         brdf_sampler_init(&brdf, m, hit->wo);
     float3 sum = f3(0, 0, 0);
     for (uint32_t l = 0; l < scene->light_count; ++l) {
         const Light *light = &scene->lights[l];
+        if (light->radius > 0.0f) {
+            sum = f3_add(sum, shade_sphere(scene, context, hit, light, technique, k, &brdf, rng,
+                                           samples));
+            continue;
+        }
         /* One-sided lights: nothing reaches points behind the light's plane. */
         if (!(f3_dot(light->normal, f3_sub(hit->position, light->vertices[0])) > 0.0f)) continue;
         SpheraVec3 local[SPHERA_MAX_POLYGON_VERTICES];
@@ -328,7 +381,7 @@ static void trace_camera_rays(const Scene *scene, uint32_t width, uint32_t heigh
             int32_t light = scene->triangle_light[triangle];
             if (light >= 0) {
                 const Light *l = &scene->lights[light];
-                if (f3_dot(l->normal, dir) < 0.0f) hit->emission = l->radiance;
+                if (l->radius > 0.0f || f3_dot(l->normal, dir) < 0.0f) hit->emission = l->radiance;
                 continue;
             }
             if (f3_dot(normal, dir) > 0.0f) normal = f3_scale(normal, -1.0f);

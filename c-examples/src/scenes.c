@@ -15,6 +15,8 @@ const SceneInfo scene_info[] = {
                  "some crossing the horizon of the walls or the floor; GGX floor (roughness 0.55)"},
     {"hard", "a tiny distant light, a huge light just above the floor, a light edge-on to a wall"},
     {"floor", "one unoccluded quad light over a white Lambert floor (the zero-variance test)"},
+    {"spheres", "sphere lights (small, large, near the floor, far and grazing) over a Lambert "
+                "and a GGX floor"},
     {"glossy", "three GGX floor strips of roughness 0.1, 0.3 and 0.6 under a quad, a pentagon "
                "and a triangle light, with a wall casting shadows across them"},
 };
@@ -117,6 +119,35 @@ static bool add_light(Builder *b, const float3 *v, uint32_t n, float3 radiance) 
     light->radiance = radiance;
     /* Lights are black where they do not emit (material 0 is black in every scene). */
     return add_polygon(b, v, n, 0, (int32_t)s->light_count++);
+}
+
+/* A sphere light; its surface enters the mesh as a UV sphere inscribed in it (so that
+ * shadow rays that stop at the analytic sphere never reach the triangles). */
+static bool add_sphere_light(Builder *b, float3 center, float radius, float3 radiance) {
+    Scene *s = b->scene;
+    if (s->light_count == TRACER_MAX_LIGHTS || !(radius > 0.0f)) return false;
+    Light *light = &s->lights[s->light_count];
+    memset(light, 0, sizeof *light);
+    light->radius = radius;
+    light->center = center;
+    light->radiance = radiance;
+    int32_t index = (int32_t)s->light_count++;
+    enum { RINGS = 12, SEGMENTS = 24 };
+    bool ok = true;
+    for (int i = 0; i < RINGS && ok; ++i) {
+        float t0 = 3.14159265f * (float)i / RINGS, t1 = 3.14159265f * (float)(i + 1) / RINGS;
+        for (int j = 0; j < SEGMENTS && ok; ++j) {
+            float p0 = 6.28318531f * (float)j / SEGMENTS, p1 = 6.28318531f * (float)(j + 1) / SEGMENTS;
+            float3 v[4] = {f3(sinf(t0) * cosf(p0), cosf(t0), sinf(t0) * sinf(p0)),
+                           f3(sinf(t0) * cosf(p1), cosf(t0), sinf(t0) * sinf(p1)),
+                           f3(sinf(t1) * cosf(p1), cosf(t1), sinf(t1) * sinf(p1)),
+                           f3(sinf(t1) * cosf(p0), cosf(t1), sinf(t1) * sinf(p0))};
+            for (int k = 0; k < 4; ++k) v[k] = f3_add(center, f3_scale(v[k], radius));
+            ok = builder_add_triangle(b, v[0], v[2], v[1], 0, index) &&
+                 builder_add_triangle(b, v[0], v[3], v[2], 0, index);
+        }
+    }
+    return ok;
 }
 
 /* A regular n-gon of circumradius r around `center`, facing `normal` (unit), rotated
@@ -286,6 +317,24 @@ static bool build_glossy(Builder *b, float aspect) {
     return ok;
 }
 
+static bool build_spheres(Builder *b, float aspect) {
+    Scene *s = b->scene;
+    add_material(s, f3(0, 0, 0), f3(0, 0, 0), 0);
+    uint32_t matte = add_material(s, f3(0.6f, 0.6f, 0.6f), f3(0, 0, 0), 0);
+    uint32_t glossy = add_material(s, f3(0.15f, 0.15f, 0.16f), f3(0.6f, 0.6f, 0.6f), 0.25f);
+    uint32_t wall = add_material(s, f3(0.5f, 0.5f, 0.5f), f3(0, 0, 0), 0);
+    bool ok = add_quad(b, f3(-6, 0, -6), f3(-6, 0, 6), f3(0, 0, 6), f3(0, 0, -6), matte) &&
+              add_quad(b, f3(0, 0, -6), f3(0, 0, 6), f3(6, 0, 6), f3(6, 0, -6), glossy) &&
+              add_quad(b, f3(-6, 0, -6), f3(6, 0, -6), f3(6, 4, -6), f3(-6, 4, -6), wall);
+    ok = ok && add_sphere_light(b, f3(-1.5f, 1.2f, -1.0f), 0.05f, f3(800, 700, 600)) /* small */
+         && add_sphere_light(b, f3(1.8f, 2.6f, -3.0f), 1.0f, f3(2.0f, 2.4f, 3.0f))  /* large */
+         && add_sphere_light(b, f3(0.8f, 0.32f, 0.8f), 0.3f, f3(6, 3, 1.5f))        /* near */
+         && add_sphere_light(b, f3(-14.0f, 0.8f, -12.0f), 0.6f, f3(40, 30, 20));   /* grazing */
+    set_camera(s, f3(0, 2.2f, 6.5f), f3(0, 0.5f, -1.0f), 55.0f, aspect);
+    s->ray_epsilon = 2e-4f;
+    return ok;
+}
+
 /* ---- OBJ ------------------------------------------------------------------------- */
 
 /* Adds the faces of a simple Wavefront OBJ file (`v x y z` and `f a b c ...` lines,
@@ -371,6 +420,7 @@ bool scene_create_with_obj(Scene *s, const char *name, float aspect, const char 
     else if (strcmp(name, "hard") == 0) ok = build_hard(&b, aspect);
     else if (strcmp(name, "floor") == 0) ok = build_floor(&b, aspect);
     else if (strcmp(name, "glossy") == 0) ok = build_glossy(&b, aspect);
+    else if (strcmp(name, "spheres") == 0) ok = build_spheres(&b, aspect);
     else {
         fprintf(stderr, "sphera-trace: unknown scene '%s' (see --list-scenes)\n", name);
         free(s->materials);

@@ -27,6 +27,10 @@ const TechniqueInfo technique_info[TECHNIQUE_COUNT] = {
      "Peters 2021: one LTC and one projected sample, clamped optimal MIS (v = 1/2)"},
     {"ltc_optimal", false,
      "Peters 2021: one LTC and one projected sample, optimal MIS (v = 1/2)"},
+    {"sphere_cap", false,
+     "sphere lights: uniform sampling of the cap of directions the sphere covers"},
+    {"sphere_cap_brdf", false,
+     "sphere lights: one cap and one BRDF sample, balance heuristic"},
     {"reference", false,
      "reference images: projected sampling on Lambertian surfaces, one projected and one LTC sample with the weighted balance heuristic on GGX ones"},
 };
@@ -74,6 +78,8 @@ bool technique_prepare(Technique technique, PreparedLight *out, const SpheraVec3
     case TECHNIQUE_ARVO_PROJECTED:
         return sphera_arvo_projected_polygon_prepare(&out->u.arvo_projected, vertices, count);
     case TECHNIQUE_PROJECTED:
+    case TECHNIQUE_SPHERE_CAP:
+    case TECHNIQUE_SPHERE_CAP_BRDF:
         return sphera_projected_polygon_prepare(&out->u.projected, vertices, count);
     case TECHNIQUE_PROJECTED_FAST:
         return sphera_projected_polygon_prepare_fast(&out->u.projected, vertices, count);
@@ -109,7 +115,9 @@ SpheraSample technique_sample(Technique technique, const PreparedLight *p, float
         return sphera_hart_biquadratic_polygon_sample(&p->u.biquadratic, u0, u1);
     case TECHNIQUE_ARVO_PROJECTED:
         return sphera_arvo_projected_polygon_sample(&p->u.arvo_projected, u0, u1);
-    case TECHNIQUE_PROJECTED: return sphera_projected_polygon_sample(&p->u.projected, u0, u1);
+    case TECHNIQUE_PROJECTED:
+    case TECHNIQUE_SPHERE_CAP:
+    case TECHNIQUE_SPHERE_CAP_BRDF: return sphera_projected_polygon_sample(&p->u.projected, u0, u1);
     case TECHNIQUE_PROJECTED_FAST:
         return sphera_projected_polygon_sample_fast(&p->u.projected, u0, u1);
     case TECHNIQUE_BRDF_BALANCE:

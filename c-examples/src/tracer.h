@@ -42,6 +42,9 @@ typedef enum Technique {
     TECHNIQUE_LTC_WEIGHTED,        /* LTC + projected, weighted balance heuristic */
     TECHNIQUE_LTC_CLAMPED,         /* LTC + projected, clamped optimal MIS, v = 1/2 */
     TECHNIQUE_LTC_OPTIMAL,         /* LTC + projected, optimal MIS, v = 1/2 */
+    /* Sphere lights (polygon lights are then sampled by projected solid angle sampling): */
+    TECHNIQUE_SPHERE_CAP,          /* uniform in the sphere's cap of directions */
+    TECHNIQUE_SPHERE_CAP_BRDF,     /* one cap and one BRDF sample, balance heuristic */
     TECHNIQUE_REFERENCE,           /* solid angle + projected, multi-sample MIS */
     TECHNIQUE_COUNT
 } Technique;
@@ -76,6 +79,10 @@ typedef struct Light {
     uint32_t count;
     float3 normal;
     float3 radiance;
+    /* radius > 0: a sphere light of this radius around `center`, emitting from its
+     * whole surface (vertices, count and normal unused). */
+    float radius;
+    float3 center;
 } Light;
 
 typedef struct Camera {
