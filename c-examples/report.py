@@ -60,7 +60,7 @@ def techniques_for(scene, techs):
     if name == "spheres":
         return [t for t in techs if t[0] in SPHERE_TECHNIQUES]
     return [t for t in techs if t[0] not in MIS_TECHNIQUES + SPHERE_TECHNIQUES]
-FULL = {"width": 256, "height": 192, "ref_spp": 768, "spp": 16, "budget_ms": 1500.0}
+FULL = {"width": 256, "height": 192, "ref_spp": 512, "spp": 16, "budget_ms": 1500.0}
 QUICK = {"width": 64, "height": 48, "ref_spp": 128, "spp": 4, "budget_ms": 150.0}
 REF_SEED = 1          # seed of reference renders
 RUN_SEED = 2          # seed of technique renders (independent of the reference's noise)
