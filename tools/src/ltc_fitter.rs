@@ -683,23 +683,38 @@ pub fn starts_from(table: &[[f32; 6]], i: usize, j: usize) -> Vec<[f32; 4]> {
         .collect()
 }
 
-/// Fits the whole table on `threads` threads. Cell (i, j) needs (i, j − 1) and
-/// (i + 1, j), so the anti-diagonals (63 − i) + j = 0, 1, …, 126 are fitted in turn, the
-/// cells of one in parallel; the result does not depend on `threads`. Returns the table
-/// and the total number of objective evaluations.
+/// Fits the whole table on `threads` threads (see [`sweep_anti_diagonals`]). Returns the
+/// table and the total number of objective evaluations.
 pub fn fit_table(threads: usize) -> (Vec<[f32; 6]>, usize) {
     let set = SampleSet::fit();
-    let mut table = vec![[0f32; 6]; TABLE_SIZE * TABLE_SIZE];
+    sweep_anti_diagonals(threads, [0f32; 6], |i, j, table| {
+        let fit = fit_cell(i, j, &starts_from(table, i, j), &set);
+        (fit.values, fit.evaluations)
+    })
+}
+
+/// Fills a `TABLE_SIZE`² table whose cell (i, j) is fitted from its stored neighbours
+/// (i, j − 1) and (i + 1, j): the anti-diagonals (63 − i) + j = 0, 1, …, 126 are fitted in
+/// turn, the cells of one in parallel on `threads` threads, so the result does not depend
+/// on `threads`. `fit(i, j, table)` returns the cell's values and its objective
+/// evaluations; returns the table and their total. Shared by the LTC and the pivot
+/// fitter.
+pub(crate) fn sweep_anti_diagonals<T: Copy + Send + Sync>(
+    threads: usize,
+    empty: T,
+    fit: impl Fn(usize, usize, &[T]) -> (T, usize) + Sync,
+) -> (Vec<T>, usize) {
+    let mut table = vec![empty; TABLE_SIZE * TABLE_SIZE];
     let mut evaluations = 0;
     for diagonal in 0..2 * TABLE_SIZE - 1 {
         let cells: Vec<(usize, usize)> = (diagonal.saturating_sub(LAST)..=diagonal.min(LAST))
             .map(|j| (LAST + j - diagonal, j))
             .collect();
         let next = std::sync::atomic::AtomicUsize::new(0);
-        let results: Vec<(usize, CellFit)> = std::thread::scope(|scope| {
+        let results: Vec<(usize, (T, usize))> = std::thread::scope(|scope| {
             let workers: Vec<_> = (0..threads.clamp(1, cells.len()))
                 .map(|_| {
-                    let (set, next, table, cells) = (&set, &next, &table, &cells);
+                    let (fit, next, table, cells) = (&fit, &next, &table, &cells);
                     scope.spawn(move || {
                         let mut done = Vec::new();
                         loop {
@@ -707,8 +722,7 @@ pub fn fit_table(threads: usize) -> (Vec<[f32; 6]>, usize) {
                             let Some(&(i, j)) = cells.get(k) else {
                                 return done;
                             };
-                            let fit = fit_cell(i, j, &starts_from(table, i, j), set);
-                            done.push((i * TABLE_SIZE + j, fit));
+                            done.push((i * TABLE_SIZE + j, fit(i, j, table)));
                         }
                     })
                 })
@@ -718,9 +732,9 @@ pub fn fit_table(threads: usize) -> (Vec<[f32; 6]>, usize) {
                 .flat_map(|w| w.join().expect("a fit thread panicked"))
                 .collect()
         });
-        for (index, fit) in results {
-            table[index] = fit.values;
-            evaluations += fit.evaluations;
+        for (index, (values, count)) in results {
+            table[index] = values;
+            evaluations += count;
         }
     }
     (table, evaluations)

@@ -291,41 +291,10 @@ pub fn starts_from(table: &[[f32; 3]], i: usize, j: usize) -> Vec<[f32; 3]> {
 /// depend on `threads`. Returns the table and the total number of objective evaluations.
 pub fn fit_table(threads: usize) -> (Vec<[f32; 3]>, usize) {
     let set = SampleSet::fit();
-    let mut table = vec![[0f32; 3]; TABLE_SIZE * TABLE_SIZE];
-    let mut evaluations = 0;
-    for diagonal in 0..2 * TABLE_SIZE - 1 {
-        let cells: Vec<(usize, usize)> = (diagonal.saturating_sub(LAST)..=diagonal.min(LAST))
-            .map(|j| (LAST + j - diagonal, j))
-            .collect();
-        let next = std::sync::atomic::AtomicUsize::new(0);
-        let results: Vec<(usize, CellFit)> = std::thread::scope(|scope| {
-            let workers: Vec<_> = (0..threads.clamp(1, cells.len()))
-                .map(|_| {
-                    let (set, next, table, cells) = (&set, &next, &table, &cells);
-                    scope.spawn(move || {
-                        let mut done = Vec::new();
-                        loop {
-                            let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                            let Some(&(i, j)) = cells.get(k) else {
-                                return done;
-                            };
-                            let fit = fit_cell(i, j, &starts_from(table, i, j), set);
-                            done.push((i * TABLE_SIZE + j, fit));
-                        }
-                    })
-                })
-                .collect();
-            workers
-                .into_iter()
-                .flat_map(|w| w.join().expect("a fit thread panicked"))
-                .collect()
-        });
-        for (index, fit) in results {
-            table[index] = fit.values;
-            evaluations += fit.evaluations;
-        }
-    }
-    (table, evaluations)
+    ltc_fitter::sweep_anti_diagonals(threads, [0f32; 3], |i, j, table| {
+        let fit = fit_cell(i, j, &starts_from(table, i, j), &set);
+        (fit.values, fit.evaluations)
+    })
 }
 
 /// L1 distance ∫ |D − f̂| dω and the mass below the horizon of stored cell (i, j),
