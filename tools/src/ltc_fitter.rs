@@ -751,12 +751,20 @@ pub fn cell_l1(i: usize, j: usize, values: &[f32; 6], set: &SampleSet) -> f64 {
 /// (rows computed on `threads` threads; the result does not depend on it).
 pub fn table_l1(table: &[[f32; 6]], threads: usize) -> Vec<f64> {
     let set = SampleSet::evaluation();
+    map_cells(threads, |i, j| {
+        cell_l1(i, j, &table[i * TABLE_SIZE + j], &set)
+    })
+}
+
+/// `f(i, j)` for every cell of a `TABLE_SIZE`² table, row-major, rows computed on
+/// `threads` threads (the result does not depend on `threads`). Shared by the LTC and
+/// the pivot fitter's error measurements.
+pub(crate) fn map_cells<R: Send>(threads: usize, f: impl Fn(usize, usize) -> R + Sync) -> Vec<R> {
     let next = std::sync::atomic::AtomicUsize::new(0);
-    let mut errors = vec![0.0; TABLE_SIZE * TABLE_SIZE];
-    let rows: Vec<(usize, Vec<f64>)> = std::thread::scope(|scope| {
+    let mut rows: Vec<(usize, Vec<R>)> = std::thread::scope(|scope| {
         let workers: Vec<_> = (0..threads.max(1))
             .map(|_| {
-                let (set, next) = (&set, &next);
+                let (f, next) = (&f, &next);
                 scope.spawn(move || {
                     let mut done = Vec::new();
                     loop {
@@ -764,10 +772,7 @@ pub fn table_l1(table: &[[f32; 6]], threads: usize) -> Vec<f64> {
                         if i >= TABLE_SIZE {
                             return done;
                         }
-                        let row = (0..TABLE_SIZE)
-                            .map(|j| cell_l1(i, j, &table[i * TABLE_SIZE + j], set))
-                            .collect();
-                        done.push((i, row));
+                        done.push((i, (0..TABLE_SIZE).map(|j| f(i, j)).collect()));
                     }
                 })
             })
@@ -777,10 +782,8 @@ pub fn table_l1(table: &[[f32; 6]], threads: usize) -> Vec<f64> {
             .flat_map(|w| w.join().expect("an error thread panicked"))
             .collect()
     });
-    for (i, row) in rows {
-        errors[i * TABLE_SIZE..(i + 1) * TABLE_SIZE].copy_from_slice(&row);
-    }
-    errors
+    rows.sort_by_key(|(i, _)| *i);
+    rows.into_iter().flat_map(|(_, row)| row).collect()
 }
 
 /// The summary of the L1 errors that the table's documentation states.

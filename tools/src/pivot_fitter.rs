@@ -310,40 +310,10 @@ pub fn cell_errors(i: usize, j: usize, values: &[f32; 3], set: &SampleSet) -> (f
 /// row-major (rows computed on `threads` threads; the result does not depend on it).
 pub fn table_errors(table: &[[f32; 3]], threads: usize) -> (Vec<f64>, Vec<f64>) {
     let set = SampleSet::evaluation();
-    let next = std::sync::atomic::AtomicUsize::new(0);
-    let rows: Vec<(usize, Vec<(f64, f64)>)> = std::thread::scope(|scope| {
-        let workers: Vec<_> = (0..threads.max(1))
-            .map(|_| {
-                let (set, next) = (&set, &next);
-                scope.spawn(move || {
-                    let mut done = Vec::new();
-                    loop {
-                        let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                        if i >= TABLE_SIZE {
-                            return done;
-                        }
-                        let row = (0..TABLE_SIZE)
-                            .map(|j| cell_errors(i, j, &table[i * TABLE_SIZE + j], set))
-                            .collect();
-                        done.push((i, row));
-                    }
-                })
-            })
-            .collect();
-        workers
-            .into_iter()
-            .flat_map(|w| w.join().expect("an error thread panicked"))
-            .collect()
+    let cells = ltc_fitter::map_cells(threads, |i, j| {
+        cell_errors(i, j, &table[i * TABLE_SIZE + j], &set)
     });
-    let mut l1 = vec![0.0; TABLE_SIZE * TABLE_SIZE];
-    let mut leak = vec![0.0; TABLE_SIZE * TABLE_SIZE];
-    for (i, row) in rows {
-        for (j, (e, l)) in row.into_iter().enumerate() {
-            l1[i * TABLE_SIZE + j] = e;
-            leak[i * TABLE_SIZE + j] = l;
-        }
-    }
-    (l1, leak)
+    cells.into_iter().unzip()
 }
 
 /// The regions of the error summary.
