@@ -82,6 +82,35 @@ pub fn normalize(a: D3) -> D3 {
     scale(a, 1.0 / norm(a))
 }
 
+/// The pivot transformation, Eq. 2 of Dupuy et al. 2017 literally, in f64.
+pub fn pivot_transform_f64(r: D3, p: D3) -> D3 {
+    let c = |a: D3, b: D3| -> D3 {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let rp = dot(r, p) - 1.0;
+    let e: D3 = core::array::from_fn(|i| r[i] - p[i]);
+    let rxp = c(r, p);
+    let num0 = c(e, rxp);
+    let den = rp * rp + dot(rxp, rxp);
+    core::array::from_fn(|i| (rp * e[i] - num0[i]) / den)
+}
+
+/// An f64 orthonormal frame around `a` (independent of the core's basis).
+pub fn frame_f64(a: D3) -> (D3, D3) {
+    let helper = if a[0].abs() < 0.6 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let t = normalize(crate::testing::cross(helper, a));
+    let b = crate::testing::cross(a, t);
+    (t, b)
+}
+
 /// Solid angle of the planar triangle `a, b, c` (positions relative to the viewpoint)
 /// by van Oosterom and Strackee (1983), in f64, with the determinant taken over edge
 /// vectors so that tiny triangles keep their relative precision.

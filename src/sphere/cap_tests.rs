@@ -1,5 +1,7 @@
 use super::*;
-use crate::testing::{CHI_SQUARE_ALPHA, D3, Rng, chi_square, d3, dot, norm, normalize, sub};
+use crate::testing::{
+    CHI_SQUARE_ALPHA, D3, Rng, chi_square, d3, dot, frame_f64, norm, normalize, sub,
+};
 
 /// `1 − cos θ` of the cap of a sphere, in f64 from the f64 center and radius.
 fn one_minus_cos_f64(center: D3, radius: f64) -> f64 {
@@ -17,18 +19,6 @@ fn one_minus_dot_f64(w: D3, a: D3) -> f64 {
     let a = normalize(a);
     let e = sub(w, a);
     0.5 * dot(e, e)
-}
-
-/// An f64 orthonormal frame around `a` (independent of the core's basis).
-fn frame_f64(a: D3) -> (D3, D3) {
-    let helper = if a[0].abs() < 0.6 {
-        [1.0, 0.0, 0.0]
-    } else {
-        [0.0, 1.0, 0.0]
-    };
-    let t = normalize(crate::testing::cross(helper, a));
-    let b = crate::testing::cross(a, t);
-    (t, b)
 }
 
 #[test]

@@ -52,7 +52,7 @@ const MAX_PIVOT_LENGTH: f32 = 1.0 - 1.0 / 1_048_576.0;
 
 /// The pivot made valid: non-finite → origin, `|r_p|` clamped to `MAX_PIVOT_LENGTH`.
 #[inline(always)]
-fn valid_pivot(pivot: Vec3) -> Vec3 {
+pub(crate) fn valid_pivot(pivot: Vec3) -> Vec3 {
     if !pivot.is_finite() {
         return Vec3::ZERO;
     }
@@ -70,7 +70,7 @@ fn valid_pivot(pivot: Vec3) -> Vec3 {
 
 /// `g(ω)` for a unit `dir` and a valid pivot.
 #[inline(always)]
-fn transform(dir: Vec3, pivot: Vec3) -> Vec3 {
+pub(crate) fn transform(dir: Vec3, pivot: Vec3) -> Vec3 {
     let e = dir - pivot;
     let s = 2.0 * (1.0 - dir.dot(pivot)) / e.length_squared();
     (dir - e * s).normalize_or(-dir)

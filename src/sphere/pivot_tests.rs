@@ -1,22 +1,7 @@
 use super::*;
-use crate::testing::{D3, Rng, d3, dot, normalize, solid_angle_triangle_f64};
-
-/// Eq. 2 of the paper, literally, in f64.
-fn g_f64(r: D3, p: D3) -> D3 {
-    let c = |a: D3, b: D3| -> D3 {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
-    let rp = dot(r, p) - 1.0;
-    let e: D3 = core::array::from_fn(|i| r[i] - p[i]);
-    let rxp = c(r, p);
-    let num0 = c(e, rxp);
-    let den = rp * rp + dot(rxp, rxp);
-    core::array::from_fn(|i| (rp * e[i] - num0[i]) / den)
-}
+use crate::testing::{
+    D3, Rng, d3, dot, normalize, pivot_transform_f64, solid_angle_triangle_f64,
+};
 
 fn one_minus_dot_f64(w: D3, a: D3) -> f64 {
     let (w, a) = (normalize(w), normalize(a));
@@ -35,7 +20,7 @@ fn transform_matches_eq_2_in_f64_and_is_an_involution() {
         let w = rng.unit_vector_f32();
         let p = random_pivot(&mut rng, 0.9);
         let g = pivot_transform(w, p);
-        let reference = g_f64(d3(w), d3(p));
+        let reference = pivot_transform_f64(d3(w), d3(p));
         let error = (0..3)
             .map(|i| (g[i] as f64 - reference[i]).abs())
             .fold(0.0, f64::max);
@@ -75,7 +60,7 @@ fn jacobian_matches_finite_difference_solid_angle_ratio() {
         let (v0, v1, v2) = (v(0.0), v(2.1), v(4.2));
         let p64 = d3(p);
         let before = solid_angle_triangle_f64(v0, v1, v2).abs();
-        let after = solid_angle_triangle_f64(g_f64(v0, p64), g_f64(v1, p64), g_f64(v2, p64)).abs();
+        let after = solid_angle_triangle_f64(pivot_transform_f64(v0, p64), pivot_transform_f64(v1, p64), pivot_transform_f64(v2, p64)).abs();
         let ratio = after / before;
         let j = pivot_jacobian(w, p) as f64;
         assert!(
@@ -110,18 +95,18 @@ fn check_image(cap: &Cap, p: Vec3, rng: &mut Rng) -> Cap {
     let tol = 2e-5 * ((1.0 + pl) / (1.0 - pl)).powi(2);
     for _ in 0..200 {
         let phi = 2.0 * core::f64::consts::PI * rng.uniform();
-        let g = g_f64(point(t, phi), p64);
+        let g = pivot_transform_f64(point(t, phi), p64);
         let s = one_minus_dot_f64(g, a2);
         assert!(
             (s - t2).abs() < tol,
             "cap {cap:?} pivot {p:?} image {image:?}: boundary at {s}"
         );
-        let inside = g_f64(point(t * rng.uniform() * 0.95, phi), p64);
+        let inside = pivot_transform_f64(point(t * rng.uniform() * 0.95, phi), p64);
         assert!(
             one_minus_dot_f64(inside, a2) < t2 + tol,
             "inside point maps outside: {image:?}"
         );
-        let outside = g_f64(
+        let outside = pivot_transform_f64(
             point(t + (2.0 - t) * (0.05 + 0.95 * rng.uniform()), phi),
             p64,
         );

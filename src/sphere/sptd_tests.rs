@@ -1,0 +1,355 @@
+use super::*;
+use crate::testing::{
+    CHI_SQUARE_ALPHA, D3, Estimate, Rng, chi_square, d3, dot, frame_f64, normalize,
+    pivot_transform_f64,
+};
+
+/// The SPTD density of Eq. 8 in f64, literally: the base density at the preimage times
+/// `((1 − |r_p|²)/|ω − r_p|²)²`. `cosine_axis = None` is the uniform base.
+fn density_f64(w: D3, pivot: D3, cosine_axis: Option<D3>) -> f64 {
+    let wi = pivot_transform_f64(w, pivot);
+    let base = match cosine_axis {
+        None => 0.25 / core::f64::consts::PI,
+        Some(a) => dot(wi, a).max(0.0) / core::f64::consts::PI,
+    };
+    let e: D3 = core::array::from_fn(|i| w[i] - pivot[i]);
+    let j = ((1.0 - dot(pivot, pivot)) / dot(e, e)).powi(2);
+    base * j
+}
+
+/// A direction of the cap (axis `a`) at `1 − cos = t` and azimuth `phi`, in f64.
+fn cap_point(a: D3, t: f64, phi: f64) -> D3 {
+    let (u, v) = frame_f64(a);
+    let s = (t * (2.0 - t)).max(0.0).sqrt();
+    normalize(core::array::from_fn(|i| {
+        a[i] * (1.0 - t) + s * (phi.cos() * u[i] + phi.sin() * v[i])
+    }))
+}
+
+fn inside_f64(w: D3, cap: &Cap) -> bool {
+    let a = d3(cap.axis);
+    let e: D3 = core::array::from_fn(|i| w[i] - a[i]);
+    0.5 * dot(e, e) <= cap.one_minus_cos as f64
+}
+
+/// `∫ f` over a cap by the midpoint rule in `(1 − cos θ, φ)`, where `dω = dt dφ`.
+fn integrate_over_cap_f64(cap: &Cap, n: usize, f: impl Fn(D3) -> f64) -> f64 {
+    let a = d3(cap.axis);
+    let t_max = cap.one_minus_cos as f64;
+    let (dt, dphi) = (t_max / n as f64, core::f64::consts::TAU / (2 * n) as f64);
+    let mut sum = 0.0;
+    for i in 0..n {
+        for k in 0..2 * n {
+            sum += f(cap_point(a, (i as f64 + 0.5) * dt, (k as f64 + 0.5) * dphi));
+        }
+    }
+    sum * dt * dphi
+}
+
+fn uniform_direction_f64(rng: &mut Rng) -> D3 {
+    let z = 1.0 - 2.0 * rng.uniform();
+    let phi = core::f64::consts::TAU * rng.uniform();
+    let s = (1.0 - z * z).max(0.0).sqrt();
+    [s * phi.cos(), s * phi.sin(), z]
+}
+
+fn cosine_direction_f64(rng: &mut Rng, a: D3) -> D3 {
+    let r2 = rng.uniform();
+    let phi = core::f64::consts::TAU * rng.uniform();
+    let (u, v) = frame_f64(a);
+    let r = r2.sqrt();
+    let z = (1.0 - r2).sqrt();
+    core::array::from_fn(|i| r * (phi.cos() * u[i] + phi.sin() * v[i]) + z * a[i])
+}
+
+/// Pivots and caps of the hard-case list: pivot at the origin, strong pivots, caps that
+/// contain the pivot's direction, tiny caps, wide caps, hemispheres.
+fn hard_cases() -> Vec<(Vec3, Cap)> {
+    let tilt = Vec3::new(0.6, 0.0, 0.8);
+    vec![
+        (Vec3::ZERO, Cap::from_axis_cos(Vec3::Z, 0.8)),
+        (Vec3::new(0.0, 0.0, 0.5), Cap::from_axis_cos(Vec3::Z, 0.9)),
+        (tilt * 0.9, Cap::from_axis_cos(Vec3::new(0.5, 0.5, 0.7), 0.95)),
+        (tilt * 0.9, Cap::from_axis_cos(Vec3::new(-0.3, 0.2, 0.9), 0.7)),
+        (tilt * 0.99, Cap::from_axis_cos(Vec3::new(0.0, 0.7, 0.7), 0.99)),
+        (Vec3::new(0.3, -0.4, 0.2), Cap::from_axis_cos(Vec3::new(1.0, 0.0, -0.2), -0.3)),
+        (Vec3::new(0.0, 0.2, -0.7), Cap::from_axis_cos(Vec3::new(0.0, 0.1, 1.0), 0.0)),
+        (tilt * 0.6, Cap::from_axis_one_minus_cos(tilt, 1e-3)),
+    ]
+}
+
+#[test]
+fn density_matches_eq_8_in_f64_and_integrates_to_one() {
+    let mut rng = Rng::new(5);
+    for (pivot, _) in hard_cases() {
+        for axis in [None, Some(Vec3::new(0.0, 0.6, 0.8)), Some(Vec3::new(0.0, 0.0, -1.0))] {
+            let sptd = match axis {
+                None => Sptd::uniform(pivot),
+                Some(a) => Sptd::clamped_cosine(pivot, a),
+            };
+            let axis64 = axis.map(d3);
+            // Importance sampling by the uniform SPTD of the same pivot in f64: u uniform,
+            // ω = g(u), density J/4π; E[D/(J/4π)] = ∫ D = 1.
+            let mut estimate = Estimate::default();
+            for _ in 0..20000 {
+                let u = uniform_direction_f64(&mut rng);
+                let w = pivot_transform_f64(u, d3(pivot));
+                let reference = density_f64(w, d3(pivot), axis64);
+                let value = sptd.eval(Vec3::new(w[0] as f32, w[1] as f32, w[2] as f32)) as f64;
+                // The cosine base at a preimage near its horizon is ill-conditioned: the
+                // bound is relative to the uniform SPTD's density J/4π there.
+                // g's condition number (1 + ρ)/(1 − ρ) amplifies the rounding of the
+                // preimage.
+                let scale = density_f64(w, d3(pivot), None);
+                let rho = pivot.length() as f64;
+                let condition = (1.0 + rho) / (1.0 - rho);
+                assert!(
+                    (value - reference).abs() <= (2e-4 + 1e-5 * condition) * (reference + scale),
+                    "{pivot:?} {axis:?}: {value} vs {reference}"
+                );
+                estimate.add(reference / density_f64(w, d3(pivot), None));
+            }
+            estimate.assert_mean_is(1.0, 5.0, 1e-9, "∫ D over the sphere");
+        }
+    }
+}
+
+#[test]
+fn integral_over_caps_is_the_probability_of_landing_in_them() {
+    // Independent of the pivoted cap: the fraction of g(ω_i), ω_i from the base, that
+    // lands in C (binomial noise ≤ 1/(2√n) = 5e-4 at n = 1e6).
+    let mut rng = Rng::new(7);
+    let n = 1_000_000;
+    for (pivot, cap) in hard_cases() {
+        for axis in [None, Some(Vec3::new(0.0, 0.6, 0.8))] {
+            let sptd = match axis {
+                None => Sptd::uniform(pivot),
+                Some(a) => Sptd::clamped_cosine(pivot, a),
+            };
+            let second = Cap::from_axis_cos(Vec3::new(0.2, 0.0, 1.0), 0.3);
+            let (mut hits, mut both) = (0u64, 0u64);
+            for _ in 0..n {
+                let wi = match axis {
+                    None => uniform_direction_f64(&mut rng),
+                    Some(a) => cosine_direction_f64(&mut rng, d3(a)),
+                };
+                let w = pivot_transform_f64(wi, d3(pivot));
+                let in_cap = inside_f64(w, &cap);
+                hits += in_cap as u64;
+                both += (in_cap && inside_f64(w, &second)) as u64;
+            }
+            let p = hits as f64 / n as f64;
+            let p_both = both as f64 / n as f64;
+            let sigma = |p: f64| (p * (1.0 - p) / n as f64).sqrt();
+            let single = sptd.integral_over_cap(&cap) as f64;
+            assert!(
+                (single - p).abs() <= 5.0 * sigma(p) + 2e-5,
+                "{pivot:?} {axis:?} {cap:?}: {single} vs {p}"
+            );
+            let pair = sptd.integral_over_cap_intersection(&cap, &second) as f64;
+            assert!(
+                (pair - p_both).abs() <= 5.0 * sigma(p_both) + 2e-5,
+                "{pivot:?} {axis:?} {cap:?} ∩ {second:?}: {pair} vs {p_both}"
+            );
+        }
+    }
+}
+
+#[test]
+fn clamped_cosine_over_a_cap_matches_quadrature_in_every_configuration() {
+    // Above, below, straddling the horizon, wider than a hemisphere, tiny, the whole
+    // sphere; the closed form and the boundary integral against a midpoint rule.
+    let mut rng = Rng::new(11);
+    let a = Vec3::new(0.0, 0.0, 1.0);
+    for case in 0..400 {
+        let axis = rng.unit_vector_f32();
+        let t = match case % 4 {
+            0 => rng.uniform() as f32 * 2.0,
+            1 => rng.log_uniform(-4.0, 0.0) as f32,
+            2 => 1.0,
+            _ => 1.0 + rng.uniform() as f32,
+        };
+        let cap = Cap::from_axis_one_minus_cos(axis, t);
+        let reference = integrate_over_cap_f64(&cap, 200, |w| w[2].max(0.0));
+        let closed = clamped_cosine_over_cap(&cap, a) as f64;
+        let boundary = clamped_cosine_over_caps(&cap, &Cap::WHOLE_SPHERE, a) as f64;
+        let bound = 2e-3 * reference + 2e-4 * cap.solid_angle() as f64 + 1e-6;
+        assert!((closed - reference).abs() <= bound, "{cap:?}: {closed} vs {reference}");
+        assert!((boundary - reference).abs() <= bound, "{cap:?}: {boundary} vs {reference}");
+    }
+    // The whole sphere and the empty cap.
+    assert!((clamped_cosine_over_cap(&Cap::WHOLE_SPHERE, a) - PI).abs() < 1e-5);
+    assert_eq!(clamped_cosine_over_cap(&Cap::EMPTY, a), 0.0);
+}
+
+#[test]
+fn clamped_cosine_over_cap_intersections_matches_quadrature() {
+    let mut rng = Rng::new(13);
+    let a = Vec3::new(0.3, -0.2, 0.9).normalize();
+    for case in 0..300 {
+        let first = Cap::from_axis_one_minus_cos(rng.unit_vector_f32(), rng.uniform() as f32 * 2.0);
+        let second = match case % 5 {
+            // Coincident and complementary caps.
+            0 => first,
+            1 => Cap::from_axis_one_minus_cos(-first.axis, 2.0 - first.one_minus_cos),
+            _ => Cap::from_axis_one_minus_cos(rng.unit_vector_f32(), rng.uniform() as f32 * 2.0),
+        };
+        let a64 = d3(a);
+        let reference = integrate_over_cap_f64(&first, 300, |w| {
+            if inside_f64(w, &second) { dot(w, a64).max(0.0) } else { 0.0 }
+        });
+        let value = clamped_cosine_over_caps(&first, &second, a) as f64;
+        // The midpoint rule on a discontinuous integrand: error ~ perimeter × cell size.
+        let bound = 2e-2 * reference + 1e-2 * first.solid_angle() as f64 / 30.0 + 1e-5;
+        assert!(
+            (value - reference).abs() <= bound,
+            "case {case}: {first:?} ∩ {second:?}: {value} vs {reference}"
+        );
+    }
+}
+
+/// Samples of a prepared SPTD in a cap against cells of the cap (10 rings equal in
+/// `1 − cos`, 12 sectors), with cell probabilities from the f64 density.
+fn chi_square_in_cap(sptd: &Sptd, cap: &Cap, axis: Option<D3>, seed: u64) {
+    let prepared = SptdInCap::new(sptd, cap).expect("prepares");
+    let (rings, sectors, sub) = (10usize, 12usize, 24usize);
+    let a = d3(cap.axis);
+    let t_max = cap.one_minus_cos as f64;
+    let pivot = d3(sptd.pivot);
+    let mut probabilities = vec![0.0; rings * sectors];
+    for (cell, p) in probabilities.iter_mut().enumerate() {
+        let (ring, sector) = (cell / sectors, cell % sectors);
+        let mut sum = 0.0;
+        for i in 0..sub {
+            for k in 0..sub {
+                let t = (ring as f64 + (i as f64 + 0.5) / sub as f64) * t_max / rings as f64;
+                let phi = (sector as f64 + (k as f64 + 0.5) / sub as f64) * core::f64::consts::TAU
+                    / sectors as f64;
+                sum += density_f64(cap_point(a, t, phi), pivot, axis);
+            }
+        }
+        *p = sum;
+    }
+    let total: f64 = probabilities.iter().sum();
+    probabilities.iter_mut().for_each(|p| *p /= total);
+    let (u_frame, v_frame) = frame_f64(a);
+    let mut observed = vec![0u64; rings * sectors];
+    let mut rng = Rng::new(seed);
+    let mut inverse_estimate = Estimate::default();
+    let mut dropped = 0;
+    for _ in 0..200_000 {
+        let u = [rng.uniform_f32(), rng.uniform_f32()];
+        let s = prepared.sample(u);
+        if s.pdf == 0.0 {
+            // Rounding moved it out of the cap (see `SptdInCap::sample`).
+            dropped += 1;
+            inverse_estimate.add(0.0);
+            continue;
+        }
+        let w = d3(s.dir);
+        let e: D3 = core::array::from_fn(|i| w[i] - a[i]);
+        let t = (0.5 * dot(e, e) / t_max).min(1.0 - 1e-12);
+        let mut phi = dot(w, v_frame).atan2(dot(w, u_frame));
+        if phi < 0.0 {
+            phi += core::f64::consts::TAU;
+        }
+        let ring = ((t * rings as f64) as usize).min(rings - 1);
+        let sector = ((phi / core::f64::consts::TAU * sectors as f64) as usize).min(sectors - 1);
+        observed[ring * sectors + sector] += 1;
+        // pdf(dir) agrees with the sample's pdf, and E[1/pdf] = Ω(C).
+        let pdf = prepared.pdf(s.dir);
+        assert!((pdf - s.pdf).abs() <= 1e-3 * s.pdf, "{pdf} vs {}", s.pdf);
+        inverse_estimate.add(1.0 / s.pdf as f64);
+    }
+    assert!(dropped <= 20, "{dropped} of 200000 samples dropped");
+    let (statistic, dof, p) = chi_square(&observed, &probabilities);
+    assert!(p > CHI_SQUARE_ALPHA, "{sptd:?} in {cap:?}: chi² {statistic} dof {dof} p {p}");
+    inverse_estimate.assert_mean_is(cap.solid_angle() as f64, 5.0, 2e-3, "E[1/pdf] = Ω(C)");
+}
+
+#[test]
+fn uniform_sptd_samples_in_a_cap_follow_the_f64_density() {
+    for (seed, (pivot, cap)) in hard_cases().into_iter().enumerate() {
+        chi_square_in_cap(&Sptd::uniform(pivot), &cap, None, 100 + seed as u64);
+    }
+}
+
+#[test]
+fn clamped_cosine_sptd_samples_in_a_cap_follow_the_f64_density() {
+    let a = Vec3::new(0.0, 0.0, 1.0);
+    let mut tested = 0;
+    // The clamped cosine about z peaks, once pivoted by r_p, towards r_p/|r_p| when r_p
+    // points down (the preimage of r_p/|r_p| is −r_p/|r_p|): caps below the horizon
+    // whose images lie above it.
+    let mut cases = hard_cases();
+    cases.extend([
+        (Vec3::new(0.2, 0.0, -0.6), Cap::from_axis_cos(Vec3::new(-0.1, 0.2, -1.0), 0.9)),
+        (Vec3::new(0.0, 0.0, -0.9), Cap::from_axis_cos(Vec3::new(0.3, 0.0, -1.0), 0.99)),
+        (Vec3::ZERO, Cap::from_axis_cos(Vec3::new(0.2, 0.1, -1.0), 0.8)),
+        (Vec3::new(0.1, 0.1, -0.3), Cap::from_axis_cos(Vec3::new(0.1, 0.1, -1.0), 0.3)),
+    ]);
+    for (seed, (pivot, cap)) in cases.into_iter().enumerate() {
+        let sptd = Sptd::clamped_cosine(pivot, a);
+        let image = pivot_cap(&cap, sptd.pivot);
+        let above = image.one_minus_cos <= 1.0 && image.axis.dot(a) >= image.sin2.sqrt();
+        assert_eq!(SptdInCap::new(&sptd, &cap).is_some(), above, "{pivot:?} {cap:?}");
+        if above {
+            chi_square_in_cap(&sptd, &cap, Some(d3(a)), 200 + seed as u64);
+            tested += 1;
+        }
+    }
+    assert!(tested >= 3, "only {tested} cases were samplable");
+}
+
+#[test]
+fn samples_invert_to_their_random_numbers() {
+    let mut rng = Rng::new(17);
+    for (pivot, cap) in hard_cases() {
+        for sptd in [Sptd::uniform(pivot), Sptd::clamped_cosine(pivot, Vec3::Z)] {
+            let Some(prepared) = SptdInCap::new(&sptd, &cap) else {
+                continue;
+            };
+            for _ in 0..2000 {
+                let u = [rng.uniform_f32() * 0.98 + 0.01, rng.uniform_f32() * 0.98 + 0.01];
+                let s = prepared.sample(u);
+                let back = prepared.invert(s.dir).expect("inside");
+                // The inversion goes through g twice; strong pivots amplify rounding.
+                assert!(
+                    (back[0] - u[0]).abs() < 2e-3 && (back[1] - u[1]).abs() < 2e-3,
+                    "{sptd:?} {cap:?}: {u:?} -> {back:?}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn degenerate_inputs_give_no_sample_and_finite_values() {
+    let sptd = Sptd::uniform(Vec3::new(f32::NAN, 0.0, 0.0));
+    assert_eq!(sptd.pivot, Vec3::ZERO);
+    let strong = Sptd::uniform(Vec3::new(0.0, 0.0, 5.0));
+    assert!(strong.pivot.length() < 1.0);
+    assert!(SptdInCap::new(&sptd, &Cap::EMPTY).is_none());
+    assert_eq!(sptd.integral_over_cap(&Cap::EMPTY), 0.0);
+    assert!((sptd.integral_over_cap(&Cap::WHOLE_SPHERE) - 1.0).abs() < 1e-6);
+    let nan_cap = Cap {
+        axis: Vec3::new(f32::NAN, 0.0, 1.0),
+        ..Cap::WHOLE_SPHERE
+    };
+    assert_eq!(sptd.integral_over_cap(&nan_cap), 0.0);
+    for d in [Vec3::ZERO, Vec3::splat(f32::NAN), Vec3::splat(f32::INFINITY)] {
+        assert_eq!(strong.eval(d), 0.0);
+    }
+    let prepared = SptdInCap::new(&strong, &Cap::from_axis_cos(Vec3::Z, 0.5)).unwrap();
+    for u in [[f32::NAN, 0.5], [-1.0, 2.0], [1.0, 1.0], [f32::INFINITY, 0.0]] {
+        let s = prepared.sample(u);
+        assert!(s.dir.is_finite() && s.pdf.is_finite() && s.pdf > 0.0, "{u:?}: {s:?}");
+    }
+    assert_eq!(prepared.pdf(Vec3::splat(f32::NAN)), 0.0);
+    assert_eq!(prepared.pdf(-Vec3::Z), 0.0);
+    // A strong pivot: whole-sphere sampling stays finite.
+    for k in 0..100 {
+        let s = strong.sample([k as f32 / 100.0, 0.3]);
+        assert!(s.dir.is_finite() && s.pdf.is_finite());
+    }
+}
