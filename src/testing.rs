@@ -82,6 +82,24 @@ pub fn normalize(a: D3) -> D3 {
     scale(a, 1.0 / norm(a))
 }
 
+/// f64 GGX (height-correlated Smith, Schlick), written independently of the core.
+pub fn ggx_f64(wo: D3, wi: D3, roughness: f64, f0: f64) -> f64 {
+    if wo[2] <= 0.0 || wi[2] <= 0.0 {
+        return 0.0;
+    }
+    let alpha = (roughness * roughness).max(1e-4);
+    let a2 = alpha * alpha;
+    let h = normalize(add(wo, wi));
+    let d = a2 / (core::f64::consts::PI * (h[2] * h[2] * (a2 - 1.0) + 1.0).powi(2));
+    let lambda = |c: f64| {
+        let t2 = (1.0 - c * c) / (c * c);
+        0.5 * ((1.0 + a2 * t2).sqrt() - 1.0)
+    };
+    let g2 = 1.0 / (1.0 + lambda(wo[2]) + lambda(wi[2]));
+    let f = f0 + (1.0 - f0) * (1.0 - dot(wo, h)).max(0.0).powi(5);
+    f * d * g2 / (4.0 * wo[2] * wi[2])
+}
+
 /// The pivot transformation, Eq. 2 of Dupuy et al. 2017 literally, in f64.
 pub fn pivot_transform_f64(r: D3, p: D3) -> D3 {
     let c = |a: D3, b: D3| -> D3 {
@@ -97,6 +115,49 @@ pub fn pivot_transform_f64(r: D3, p: D3) -> D3 {
     let num0 = c(e, rxp);
     let den = rp * rp + dot(rxp, rxp);
     core::array::from_fn(|i| (rp * e[i] - num0[i]) / den)
+}
+
+/// A direction of the cap (axis `a`) at `1 − cos = t` and azimuth `phi`, in f64.
+pub fn cap_point(a: D3, t: f64, phi: f64) -> D3 {
+    let (u, v) = frame_f64(a);
+    let s = (t * (2.0 - t)).max(0.0).sqrt();
+    normalize(core::array::from_fn(|i| {
+        a[i] * (1.0 - t) + s * (phi.cos() * u[i] + phi.sin() * v[i])
+    }))
+}
+
+pub fn inside_f64(w: D3, cap: &crate::sphere::Cap) -> bool {
+    let a = d3(cap.axis);
+    let e: D3 = core::array::from_fn(|i| w[i] - a[i]);
+    0.5 * dot(e, e) <= cap.one_minus_cos as f64
+}
+
+/// `∫ f` over a cap by the midpoint rule in `(s, φ)` with `1 − cos θ = t_max s²`, where
+/// `dω = dt dφ = 2 t_max s ds dφ`: the substitution refines the grid towards the cap's
+/// axis, where peaked integrands (glossy lobes, pivoted densities) concentrate.
+pub fn integrate_over_cap_f64(cap: &crate::sphere::Cap, n: usize, f: impl Fn(D3) -> f64) -> f64 {
+    let a = d3(cap.axis);
+    let t_max = cap.one_minus_cos as f64;
+    let (ds, dphi) = (1.0 / n as f64, core::f64::consts::TAU / (2 * n) as f64);
+    let mut sum = 0.0;
+    for i in 0..n {
+        let s = (i as f64 + 0.5) * ds;
+        let t = t_max * s * s;
+        let mut ring = 0.0;
+        for k in 0..2 * n {
+            ring += f(cap_point(a, t, (k as f64 + 0.5) * dphi));
+        }
+        sum += ring * 2.0 * t_max * s;
+    }
+    sum * ds * dphi
+}
+
+/// A uniformly distributed direction, in f64.
+pub fn uniform_direction_f64(rng: &mut Rng) -> D3 {
+    let z = 1.0 - 2.0 * rng.uniform();
+    let phi = core::f64::consts::TAU * rng.uniform();
+    let s = (1.0 - z * z).max(0.0).sqrt();
+    [s * phi.cos(), s * phi.sin(), z]
 }
 
 /// An f64 orthonormal frame around `a` (independent of the core's basis).

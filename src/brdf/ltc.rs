@@ -72,26 +72,8 @@ impl Ltc {
     /// 0; below the table's smallest α the first row is used). Returns `None` when `wo` is
     /// not finite, zero, or at or below the horizon.
     pub fn ggx(wo: Vec3, roughness: f32) -> Option<Ltc> {
-        let length = wo.length();
-        let cos_theta = wo.z / length;
-        if !(cos_theta > 0.0) || !(length < f32::INFINITY) {
-            return None;
-        }
-        let last = (LTC_TABLE_SIZE - 1) as f32;
-        let x = roughness.max(0.0).min(1.0) * last;
-        // t = √(1 − cos θ) from 1 − cos θ = sin²θ / (1 + cos θ), which keeps precision
-        // near normal incidence.
-        let sin2 = (wo.x * wo.x + wo.y * wo.y) / (length * length);
-        let y = libm::sqrtf(sin2 / (1.0 + cos_theta)).min(1.0) * last;
-        let entry = bilinear(x, y);
-        // The view's azimuth; at normal incidence any azimuth is right (the fit is then
-        // symmetric about the normal).
-        let rho = libm::sqrtf(wo.x * wo.x + wo.y * wo.y);
-        let (cos_phi, sin_phi) = if rho > 0.0 {
-            (wo.x / rho, wo.y / rho)
-        } else {
-            (1.0, 0.0)
-        };
+        let (x, y, cos_phi, sin_phi) = super::table_coordinates(wo, roughness)?;
+        let entry = super::table_bilinear(&LTC_TABLE, LTC_TABLE_SIZE, x, y);
         Self::from_view_frame(entry, cos_phi, sin_phi)
     }
 
@@ -191,29 +173,6 @@ impl Ltc {
     pub fn specular_albedo(&self, f0: Vec3) -> Vec3 {
         f0 * (self.albedo - self.fresnel) + Vec3::splat(self.fresnel)
     }
-}
-
-/// The table entry at fractional cell coordinates `(x, y)` in `[0, 63]²`, interpolated
-/// bilinearly.
-fn bilinear(x: f32, y: f32) -> [f32; 6] {
-    let last = LTC_TABLE_SIZE - 1;
-    // `as usize` truncates towards zero and maps NaN to 0; the inputs are in [0, 63].
-    let (i0, j0) = ((x as usize).min(last - 1), (y as usize).min(last - 1));
-    let (fx, fy) = (x - i0 as f32, y - j0 as f32);
-    let at = |i: usize, j: usize| &LTC_TABLE[i * LTC_TABLE_SIZE + j];
-    let (e00, e01, e10, e11) = (
-        at(i0, j0),
-        at(i0, j0 + 1),
-        at(i0 + 1, j0),
-        at(i0 + 1, j0 + 1),
-    );
-    let mut out = [0.0; 6];
-    for k in 0..6 {
-        let low = e00[k] + fy * (e01[k] - e00[k]);
-        let high = e10[k] + fy * (e11[k] - e10[k]);
-        out[k] = low + fx * (high - low);
-    }
-    out
 }
 
 /// Whether the polygon's plane passes the shading point at a distance larger than

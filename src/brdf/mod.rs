@@ -55,6 +55,62 @@ pub(crate) fn unit(v: Vec3) -> Option<Vec3> {
     Some(scaled / scaled.length())
 }
 
+/// The coordinates of the fitted tables (LTC, pivot) for a view `wo` (local frame, need
+/// not be normalised) and roughness `r = √α`: `(x, y, cos φ, sin φ)` with
+/// `x = r·63` (`r` clamped to `[0, 1]`, NaN as 0), `y = √(1 − cos θo)·63` and the view's
+/// azimuth `φ` (any azimuth at normal incidence, where the fits are symmetric about the
+/// normal). `None` when `wo` is not finite, zero, or at or below the horizon.
+#[inline]
+pub(crate) fn table_coordinates(wo: Vec3, roughness: f32) -> Option<(f32, f32, f32, f32)> {
+    let length = wo.length();
+    let cos_theta = wo.z / length;
+    if !(cos_theta > 0.0) || !(length < f32::INFINITY) {
+        return None;
+    }
+    let last = 63.0;
+    let x = roughness.max(0.0).min(1.0) * last;
+    // t = √(1 − cos θ) from 1 − cos θ = sin²θ / (1 + cos θ), which keeps precision near
+    // normal incidence.
+    let sin2 = (wo.x * wo.x + wo.y * wo.y) / (length * length);
+    let y = libm::sqrtf(sin2 / (1.0 + cos_theta)).min(1.0) * last;
+    let rho = libm::sqrtf(wo.x * wo.x + wo.y * wo.y);
+    let (cos_phi, sin_phi) = if rho > 0.0 {
+        (wo.x / rho, wo.y / rho)
+    } else {
+        (1.0, 0.0)
+    };
+    Some((x, y, cos_phi, sin_phi))
+}
+
+/// The entry of a `size × size` table (row-major, rows along `x`) at fractional cell
+/// coordinates `(x, y)` in `[0, size − 1]²`, interpolated bilinearly.
+#[inline]
+pub(crate) fn table_bilinear<const K: usize>(
+    table: &[[f32; K]],
+    size: usize,
+    x: f32,
+    y: f32,
+) -> [f32; K] {
+    let last = size - 1;
+    // `as usize` truncates towards zero and maps NaN to 0; the inputs are in [0, last].
+    let (i0, j0) = ((x as usize).min(last - 1), (y as usize).min(last - 1));
+    let (fx, fy) = (x - i0 as f32, y - j0 as f32);
+    let at = |i: usize, j: usize| &table[i * size + j];
+    let (e00, e01, e10, e11) = (
+        at(i0, j0),
+        at(i0, j0 + 1),
+        at(i0 + 1, j0),
+        at(i0 + 1, j0 + 1),
+    );
+    let mut out = [0.0; K];
+    for k in 0..K {
+        let low = e00[k] + fy * (e01[k] - e00[k]);
+        let high = e10[k] + fy * (e11[k] - e10[k]);
+        out[k] = low + fx * (high - low);
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

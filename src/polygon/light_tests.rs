@@ -10,24 +10,6 @@ use super::*;
 use crate::testing::*;
 use crate::{Sample, Vec3};
 
-/// f64 GGX (height-correlated Smith, Schlick), written independently of the core.
-fn ggx_f64(wo: D3, wi: D3, roughness: f64, f0: f64) -> f64 {
-    if wo[2] <= 0.0 || wi[2] <= 0.0 {
-        return 0.0;
-    }
-    let alpha = (roughness * roughness).max(1e-4);
-    let a2 = alpha * alpha;
-    let h = normalize(add(wo, wi));
-    let d = a2 / (core::f64::consts::PI * (h[2] * h[2] * (a2 - 1.0) + 1.0).powi(2));
-    let lambda = |c: f64| {
-        let t2 = (1.0 - c * c) / (c * c);
-        0.5 * ((1.0 + a2 * t2).sqrt() - 1.0)
-    };
-    let g2 = 1.0 / (1.0 + lambda(wo[2]) + lambda(wi[2]));
-    let f = f0 + (1.0 - f0) * (1.0 - dot(wo, h)).max(0.0).powi(5);
-    f * d * g2 / (4.0 * wo[2] * wi[2])
-}
-
 /// The occluder of the tests: it blocks directions with `y < 0.05 |ω|` (part of every
 /// light), or nothing.
 fn visible(dir: D3, occluded: bool) -> f64 {

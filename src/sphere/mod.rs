@@ -5,11 +5,13 @@
 
 pub mod cap;
 pub mod cap_intersection;
+pub mod light;
 pub mod phase;
 pub mod pivot;
 pub mod sptd;
 
 pub use cap::Cap;
 pub use cap_intersection::{cap_intersection_solid_angle, cap_intersection_solid_angle_oat_sander};
+pub use light::{GgxPivot, SphereLightSampler, SphereShadingSptd};
 pub use pivot::{pivot_cap, pivot_jacobian, pivot_transform};
 pub use sptd::{Sptd, SptdBase, SptdInCap};

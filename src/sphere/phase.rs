@@ -35,6 +35,8 @@
 //! Hard cases: `g = 0` (uniform), `|g|` up to `1 − 2⁻²⁰` (peaks of 1e12 sr⁻¹), `μ = ±1`,
 //! `g` negative (back scattering), NaN and out-of-range `g` (clamped to `(−1, 1)`, NaN as
 //! 0), `u` outside `[0, 1)`.
+use super::cap::Cap;
+use super::sptd::{Sptd, SptdInCap};
 use crate::math::Frame;
 use crate::sample::clamp_random;
 use crate::{Sample, Vec3};
@@ -149,6 +151,21 @@ pub fn sample_pivot_phase(wo: Vec3, g: f32, u: [f32; 2]) -> Sample {
         dir: frame.to_world(local),
         pdf: pivot_phase(local.z, g),
     }
+}
+
+/// The pivot phase function restricted to a sphere light's cap and normalised there
+/// (Section 6.2, joint phase function and light sampling): the uniform SPTD with pivot
+/// `g ω_o` (`ω_o` normalised here, `g` clamped as for [`pivot_phase`]) in the cap. Its
+/// density is `f_pivot(μ) / ∫_C f_pivot` with `∫_C f_pivot = Ω(g(C))/4π`
+/// ([`SptdInCap::integral`]), so the estimate `L f_pivot / pdf = L ∫_C f_pivot` of a
+/// uniformly bright, unoccluded light has zero variance. `None` for a zero or
+/// non-finite `ω_o` or an empty cap.
+pub fn pivot_phase_in_cap(wo: Vec3, g: f32, cap: &Cap) -> Option<SptdInCap> {
+    let wo = wo.normalize_or_zero();
+    if wo == Vec3::ZERO {
+        return None;
+    }
+    SptdInCap::new(&Sptd::uniform(wo * clamp_g(g)), cap)
 }
 
 /// Samples Henyey–Greenstein around the unit direction `wo` by inverting its CDF in `μ`:

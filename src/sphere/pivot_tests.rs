@@ -1,7 +1,5 @@
 use super::*;
-use crate::testing::{
-    D3, Rng, d3, dot, normalize, pivot_transform_f64, solid_angle_triangle_f64,
-};
+use crate::testing::{D3, Rng, d3, dot, normalize, pivot_transform_f64, solid_angle_triangle_f64};
 
 fn one_minus_dot_f64(w: D3, a: D3) -> f64 {
     let (w, a) = (normalize(w), normalize(a));
@@ -60,7 +58,12 @@ fn jacobian_matches_finite_difference_solid_angle_ratio() {
         let (v0, v1, v2) = (v(0.0), v(2.1), v(4.2));
         let p64 = d3(p);
         let before = solid_angle_triangle_f64(v0, v1, v2).abs();
-        let after = solid_angle_triangle_f64(pivot_transform_f64(v0, p64), pivot_transform_f64(v1, p64), pivot_transform_f64(v2, p64)).abs();
+        let after = solid_angle_triangle_f64(
+            pivot_transform_f64(v0, p64),
+            pivot_transform_f64(v1, p64),
+            pivot_transform_f64(v2, p64),
+        )
+        .abs();
         let ratio = after / before;
         let j = pivot_jacobian(w, p) as f64;
         assert!(

@@ -245,7 +245,8 @@ fn same_circle(p: &Cap, q: &Cap) -> Option<bool> {
     let t_d = 0.5 * (p.axis - q.axis).length_squared();
     if t_d <= TOLERANCE && (p.one_minus_cos - q.one_minus_cos).abs() <= TOLERANCE {
         Some(true)
-    } else if t_d >= 2.0 - TOLERANCE && (p.one_minus_cos + q.one_minus_cos - 2.0).abs() <= TOLERANCE {
+    } else if t_d >= 2.0 - TOLERANCE && (p.one_minus_cos + q.one_minus_cos - 2.0).abs() <= TOLERANCE
+    {
         Some(false)
     } else {
         None

@@ -1,7 +1,7 @@
 use super::*;
 use crate::testing::{
-    CHI_SQUARE_ALPHA, D3, Estimate, Rng, chi_square, d3, dot, frame_f64, normalize,
-    pivot_transform_f64,
+    CHI_SQUARE_ALPHA, D3, Estimate, Rng, cap_point, chi_square, d3, dot, frame_f64, inside_f64,
+    integrate_over_cap_f64, pivot_transform_f64, uniform_direction_f64,
 };
 
 /// The SPTD density of Eq. 8 in f64, literally: the base density at the preimage times
@@ -15,42 +15,6 @@ fn density_f64(w: D3, pivot: D3, cosine_axis: Option<D3>) -> f64 {
     let e: D3 = core::array::from_fn(|i| w[i] - pivot[i]);
     let j = ((1.0 - dot(pivot, pivot)) / dot(e, e)).powi(2);
     base * j
-}
-
-/// A direction of the cap (axis `a`) at `1 − cos = t` and azimuth `phi`, in f64.
-fn cap_point(a: D3, t: f64, phi: f64) -> D3 {
-    let (u, v) = frame_f64(a);
-    let s = (t * (2.0 - t)).max(0.0).sqrt();
-    normalize(core::array::from_fn(|i| {
-        a[i] * (1.0 - t) + s * (phi.cos() * u[i] + phi.sin() * v[i])
-    }))
-}
-
-fn inside_f64(w: D3, cap: &Cap) -> bool {
-    let a = d3(cap.axis);
-    let e: D3 = core::array::from_fn(|i| w[i] - a[i]);
-    0.5 * dot(e, e) <= cap.one_minus_cos as f64
-}
-
-/// `∫ f` over a cap by the midpoint rule in `(1 − cos θ, φ)`, where `dω = dt dφ`.
-fn integrate_over_cap_f64(cap: &Cap, n: usize, f: impl Fn(D3) -> f64) -> f64 {
-    let a = d3(cap.axis);
-    let t_max = cap.one_minus_cos as f64;
-    let (dt, dphi) = (t_max / n as f64, core::f64::consts::TAU / (2 * n) as f64);
-    let mut sum = 0.0;
-    for i in 0..n {
-        for k in 0..2 * n {
-            sum += f(cap_point(a, (i as f64 + 0.5) * dt, (k as f64 + 0.5) * dphi));
-        }
-    }
-    sum * dt * dphi
-}
-
-fn uniform_direction_f64(rng: &mut Rng) -> D3 {
-    let z = 1.0 - 2.0 * rng.uniform();
-    let phi = core::f64::consts::TAU * rng.uniform();
-    let s = (1.0 - z * z).max(0.0).sqrt();
-    [s * phi.cos(), s * phi.sin(), z]
 }
 
 fn cosine_direction_f64(rng: &mut Rng, a: D3) -> D3 {
@@ -69,11 +33,26 @@ fn hard_cases() -> Vec<(Vec3, Cap)> {
     vec![
         (Vec3::ZERO, Cap::from_axis_cos(Vec3::Z, 0.8)),
         (Vec3::new(0.0, 0.0, 0.5), Cap::from_axis_cos(Vec3::Z, 0.9)),
-        (tilt * 0.9, Cap::from_axis_cos(Vec3::new(0.5, 0.5, 0.7), 0.95)),
-        (tilt * 0.9, Cap::from_axis_cos(Vec3::new(-0.3, 0.2, 0.9), 0.7)),
-        (tilt * 0.99, Cap::from_axis_cos(Vec3::new(0.0, 0.7, 0.7), 0.99)),
-        (Vec3::new(0.3, -0.4, 0.2), Cap::from_axis_cos(Vec3::new(1.0, 0.0, -0.2), -0.3)),
-        (Vec3::new(0.0, 0.2, -0.7), Cap::from_axis_cos(Vec3::new(0.0, 0.1, 1.0), 0.0)),
+        (
+            tilt * 0.9,
+            Cap::from_axis_cos(Vec3::new(0.5, 0.5, 0.7), 0.95),
+        ),
+        (
+            tilt * 0.9,
+            Cap::from_axis_cos(Vec3::new(-0.3, 0.2, 0.9), 0.7),
+        ),
+        (
+            tilt * 0.99,
+            Cap::from_axis_cos(Vec3::new(0.0, 0.7, 0.7), 0.99),
+        ),
+        (
+            Vec3::new(0.3, -0.4, 0.2),
+            Cap::from_axis_cos(Vec3::new(1.0, 0.0, -0.2), -0.3),
+        ),
+        (
+            Vec3::new(0.0, 0.2, -0.7),
+            Cap::from_axis_cos(Vec3::new(0.0, 0.1, 1.0), 0.0),
+        ),
         (tilt * 0.6, Cap::from_axis_one_minus_cos(tilt, 1e-3)),
     ]
 }
@@ -82,7 +61,11 @@ fn hard_cases() -> Vec<(Vec3, Cap)> {
 fn density_matches_eq_8_in_f64_and_integrates_to_one() {
     let mut rng = Rng::new(5);
     for (pivot, _) in hard_cases() {
-        for axis in [None, Some(Vec3::new(0.0, 0.6, 0.8)), Some(Vec3::new(0.0, 0.0, -1.0))] {
+        for axis in [
+            None,
+            Some(Vec3::new(0.0, 0.6, 0.8)),
+            Some(Vec3::new(0.0, 0.0, -1.0)),
+        ] {
             let sptd = match axis {
                 None => Sptd::uniform(pivot),
                 Some(a) => Sptd::clamped_cosine(pivot, a),
@@ -174,8 +157,14 @@ fn clamped_cosine_over_a_cap_matches_quadrature_in_every_configuration() {
         let closed = clamped_cosine_over_cap(&cap, a) as f64;
         let boundary = clamped_cosine_over_caps(&cap, &Cap::WHOLE_SPHERE, a) as f64;
         let bound = 2e-3 * reference + 2e-4 * cap.solid_angle() as f64 + 1e-6;
-        assert!((closed - reference).abs() <= bound, "{cap:?}: {closed} vs {reference}");
-        assert!((boundary - reference).abs() <= bound, "{cap:?}: {boundary} vs {reference}");
+        assert!(
+            (closed - reference).abs() <= bound,
+            "{cap:?}: {closed} vs {reference}"
+        );
+        assert!(
+            (boundary - reference).abs() <= bound,
+            "{cap:?}: {boundary} vs {reference}"
+        );
     }
     // The whole sphere and the empty cap.
     assert!((clamped_cosine_over_cap(&Cap::WHOLE_SPHERE, a) - PI).abs() < 1e-5);
@@ -196,7 +185,11 @@ fn clamped_cosine_over_cap_intersections_matches_quadrature() {
         };
         let a64 = d3(a);
         let reference = integrate_over_cap_f64(&first, 300, |w| {
-            if inside_f64(w, &second) { dot(w, a64).max(0.0) } else { 0.0 }
+            if inside_f64(w, &second) {
+                dot(w, a64).max(0.0)
+            } else {
+                0.0
+            }
         });
         let value = clamped_cosine_over_caps(&first, &second, a) as f64;
         // The midpoint rule on a discontinuous integrand: error ~ perimeter × cell size.
@@ -263,7 +256,10 @@ fn chi_square_in_cap(sptd: &Sptd, cap: &Cap, axis: Option<D3>, seed: u64) {
     }
     assert!(dropped <= 20, "{dropped} of 200000 samples dropped");
     let (statistic, dof, p) = chi_square(&observed, &probabilities);
-    assert!(p > CHI_SQUARE_ALPHA, "{sptd:?} in {cap:?}: chi² {statistic} dof {dof} p {p}");
+    assert!(
+        p > CHI_SQUARE_ALPHA,
+        "{sptd:?} in {cap:?}: chi² {statistic} dof {dof} p {p}"
+    );
     inverse_estimate.assert_mean_is(cap.solid_angle() as f64, 5.0, 2e-3, "E[1/pdf] = Ω(C)");
 }
 
@@ -283,16 +279,32 @@ fn clamped_cosine_sptd_samples_in_a_cap_follow_the_f64_density() {
     // whose images lie above it.
     let mut cases = hard_cases();
     cases.extend([
-        (Vec3::new(0.2, 0.0, -0.6), Cap::from_axis_cos(Vec3::new(-0.1, 0.2, -1.0), 0.9)),
-        (Vec3::new(0.0, 0.0, -0.9), Cap::from_axis_cos(Vec3::new(0.3, 0.0, -1.0), 0.99)),
-        (Vec3::ZERO, Cap::from_axis_cos(Vec3::new(0.2, 0.1, -1.0), 0.8)),
-        (Vec3::new(0.1, 0.1, -0.3), Cap::from_axis_cos(Vec3::new(0.1, 0.1, -1.0), 0.3)),
+        (
+            Vec3::new(0.2, 0.0, -0.6),
+            Cap::from_axis_cos(Vec3::new(-0.1, 0.2, -1.0), 0.9),
+        ),
+        (
+            Vec3::new(0.0, 0.0, -0.9),
+            Cap::from_axis_cos(Vec3::new(0.3, 0.0, -1.0), 0.99),
+        ),
+        (
+            Vec3::ZERO,
+            Cap::from_axis_cos(Vec3::new(0.2, 0.1, -1.0), 0.8),
+        ),
+        (
+            Vec3::new(0.1, 0.1, -0.3),
+            Cap::from_axis_cos(Vec3::new(0.1, 0.1, -1.0), 0.3),
+        ),
     ]);
     for (seed, (pivot, cap)) in cases.into_iter().enumerate() {
         let sptd = Sptd::clamped_cosine(pivot, a);
         let image = pivot_cap(&cap, sptd.pivot);
         let above = image.one_minus_cos <= 1.0 && image.axis.dot(a) >= image.sin2.sqrt();
-        assert_eq!(SptdInCap::new(&sptd, &cap).is_some(), above, "{pivot:?} {cap:?}");
+        assert_eq!(
+            SptdInCap::new(&sptd, &cap).is_some(),
+            above,
+            "{pivot:?} {cap:?}"
+        );
         if above {
             chi_square_in_cap(&sptd, &cap, Some(d3(a)), 200 + seed as u64);
             tested += 1;
@@ -310,7 +322,10 @@ fn samples_invert_to_their_random_numbers() {
                 continue;
             };
             for _ in 0..2000 {
-                let u = [rng.uniform_f32() * 0.98 + 0.01, rng.uniform_f32() * 0.98 + 0.01];
+                let u = [
+                    rng.uniform_f32() * 0.98 + 0.01,
+                    rng.uniform_f32() * 0.98 + 0.01,
+                ];
                 let s = prepared.sample(u);
                 let back = prepared.invert(s.dir).expect("inside");
                 // The inversion goes through g twice; strong pivots amplify rounding.
@@ -337,13 +352,25 @@ fn degenerate_inputs_give_no_sample_and_finite_values() {
         ..Cap::WHOLE_SPHERE
     };
     assert_eq!(sptd.integral_over_cap(&nan_cap), 0.0);
-    for d in [Vec3::ZERO, Vec3::splat(f32::NAN), Vec3::splat(f32::INFINITY)] {
+    for d in [
+        Vec3::ZERO,
+        Vec3::splat(f32::NAN),
+        Vec3::splat(f32::INFINITY),
+    ] {
         assert_eq!(strong.eval(d), 0.0);
     }
     let prepared = SptdInCap::new(&strong, &Cap::from_axis_cos(Vec3::Z, 0.5)).unwrap();
-    for u in [[f32::NAN, 0.5], [-1.0, 2.0], [1.0, 1.0], [f32::INFINITY, 0.0]] {
+    for u in [
+        [f32::NAN, 0.5],
+        [-1.0, 2.0],
+        [1.0, 1.0],
+        [f32::INFINITY, 0.0],
+    ] {
         let s = prepared.sample(u);
-        assert!(s.dir.is_finite() && s.pdf.is_finite() && s.pdf > 0.0, "{u:?}: {s:?}");
+        assert!(
+            s.dir.is_finite() && s.pdf.is_finite() && s.pdf > 0.0,
+            "{u:?}: {s:?}"
+        );
     }
     assert_eq!(prepared.pdf(Vec3::splat(f32::NAN)), 0.0);
     assert_eq!(prepared.pdf(-Vec3::Z), 0.0);

@@ -1,0 +1,201 @@
+//! Sphere lights over GGX surfaces with the fitted uniform SPTD (Dupuy et al. 2017,
+//! Sections 5 and 6.1).
+//!
+//! [`GgxPivot::lookup`] reads the pivot table (`brdf/pivot_table.rs`, fitted by
+//! `tools/src/pivot_fitter.rs`): for a view `ω_o` and roughness `r = √α`, the pivot
+//! `r_p` of the uniform SPTD `D ≈ f cos θ / albedo` and the albedo `∫ f cos θ dω`
+//! (Fresnel = 1), interpolated bilinearly like the LTC table and rotated to the view's
+//! azimuth.
+//!
+//! **Real-time shading** (Section 5.2, Eq. 17–19; biased: the SPTD only approximates
+//! GGX): a sphere of radiance `L` subtending the cap `C` gives
+//!
+//! `L_o ≈ L · albedo · ∫_{C ∩ H} D = L · albedo · Ω(g(C) ∩ g(H)) / 4π`,
+//!
+//! with `H` the upper hemisphere's cap and the exact two-cap solid angle (the paper uses
+//! Oat and Sander's approximation, which fails for the image of `H`, often wider than a
+//! hemisphere). **Specular occlusion** (Section 5.4, Eq. 23) replaces `H` by a bent cone
+//! `V` (the visibility cap): `L · albedo · Ω(g(C) ∩ g(V)) / 4π`, the triple product of
+//! BRDF, light and visibility; for an unoccluded point `V = H` and both agree. The
+//! Fresnel factor is the LTC table's Schlick-weighted albedo ([`Ltc::specular_albedo`]),
+//! so the result is RGB.
+//!
+//! **Joint BRDF–light sampling** (Section 6.1, unbiased): [`SphereLightSampler`] draws
+//! directions from the SPTD restricted to the light's cap (its density `J(ω)/Ω(g(C))`
+//! follows the BRDF inside the cap) and is meant to be combined with GGX VNDF sampling
+//! by MIS. When `Ω(g(C)) < 10⁻³` the SPTD density `∝ 1/Ω(g(C))` becomes unstable and
+//! the sampler falls back to uniform cap sampling (the paper's "classic MIS"); those
+//! are the configurations far from the highlight.
+//!
+//! Hard cases (tested): views from normal incidence to grazing (`cos θo = 10⁻⁴`),
+//! roughness 0 to 1, tiny caps (1e-6 sr), caps straddling the horizon or below it, a
+//! shading point inside the sphere (the whole sphere), bent cones narrower than and
+//! disjoint from the light.
+
+use super::cap::Cap;
+use super::cap_intersection::cap_intersection_solid_angle;
+use super::pivot::pivot_cap;
+use super::sptd::{Sptd, SptdInCap};
+use crate::Sample;
+use crate::brdf::Ltc;
+use crate::brdf::pivot_table::{PIVOT_TABLE, PIVOT_TABLE_SIZE};
+use crate::brdf::{table_bilinear, table_coordinates};
+use core::f32::consts::PI;
+use glam::Vec3;
+
+/// The solid angle of `g(C)` below which [`SphereLightSampler`] samples the cap
+/// uniformly instead of by the SPTD (Section 6.1: "smaller than 10⁻³").
+pub const MIN_PIVOTED_SOLID_ANGLE: f32 = 1e-3;
+
+/// The uniform SPTD fitted to GGX `f cos θ` at one view and roughness.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GgxPivot {
+    /// The pivot `r_p` in the local frame (`|r_p| < 1`).
+    pub pivot: Vec3,
+    /// `∫ f cos θ dω` with Fresnel = 1.
+    pub albedo: f32,
+}
+
+impl GgxPivot {
+    /// The fit for the view `wo` (local frame, need not be normalised) and roughness
+    /// `r = √α` (clamped to `[0, 1]`, NaN as 0). `None` when `wo` is not finite, zero,
+    /// or at or below the horizon.
+    pub fn lookup(wo: Vec3, roughness: f32) -> Option<GgxPivot> {
+        let (x, y, cos_phi, sin_phi) = table_coordinates(wo, roughness)?;
+        let [norm, elevation, albedo] = table_bilinear(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y);
+        let (sin_e, cos_e) = libm::sincosf(elevation);
+        // Elevation from the normal, negative towards −x of the view frame, whose x axis
+        // has the view's azimuth.
+        let pivot = Vec3::new(norm * sin_e * cos_phi, norm * sin_e * sin_phi, norm * cos_e);
+        Some(GgxPivot {
+            pivot: super::pivot::valid_pivot(pivot),
+            albedo,
+        })
+    }
+
+    /// The SPTD `D ≈ f cos θ / albedo`.
+    #[inline]
+    pub fn sptd(&self) -> Sptd {
+        Sptd::uniform(self.pivot)
+    }
+}
+
+/// Real-time GGX shading of sphere lights by the fitted SPTD (biased; see the module
+/// documentation): prepared once per shading point and material, then evaluated for
+/// any number of lights.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SphereShadingSptd {
+    /// The fitted pivot.
+    pub fit: GgxPivot,
+    /// The image `g(H)` of the upper hemisphere's cap.
+    pub horizon_image: Cap,
+    /// The Schlick-weighted albedo per channel.
+    pub specular_albedo: Vec3,
+}
+
+impl SphereShadingSptd {
+    /// Prepares the shading of a GGX surface with roughness `r = √α` and Fresnel
+    /// reflectance at normal incidence `f0` for the view `wo`. `None` when `wo` is not
+    /// finite, zero, or at or below the horizon.
+    pub fn new(wo: Vec3, roughness: f32, f0: Vec3) -> Option<SphereShadingSptd> {
+        let fit = GgxPivot::lookup(wo, roughness)?;
+        let ltc = Ltc::ggx(wo, roughness)?;
+        let f0 = if f0.is_finite() {
+            f0.max(Vec3::ZERO).min(Vec3::ONE)
+        } else {
+            Vec3::ZERO
+        };
+        Some(SphereShadingSptd {
+            fit,
+            horizon_image: pivot_cap(&Cap::from_axis_one_minus_cos(Vec3::Z, 1.0), fit.pivot),
+            specular_albedo: ltc.specular_albedo(f0),
+        })
+    }
+
+    /// `∫_{C ∩ H} f cos θ dω ≈ albedo_F · Ω(g(C) ∩ g(H)) / 4π` per unit radiance
+    /// (Eq. 19), for the cap `C` of a light (sanitized here).
+    pub fn shade(&self, light: &Cap) -> Vec3 {
+        let image = pivot_cap(&light.sanitized(), self.fit.pivot);
+        self.specular_albedo
+            * (cap_intersection_solid_angle(&image, &self.horizon_image) * (0.25 / PI))
+    }
+
+    /// Specular occlusion with a bent cone `visibility` (Eq. 23): `∫_{C ∩ V} f cos θ dω
+    /// ≈ albedo_F · Ω(g(C) ∩ g(V)) / 4π`. The bent cone takes the place of the upper
+    /// hemisphere (an unoccluded point's bent cone is `H`, and then this equals
+    /// [`SphereShadingSptd::shade`]).
+    pub fn shade_occluded(&self, light: &Cap, visibility: &Cap) -> Vec3 {
+        let image = pivot_cap(&light.sanitized(), self.fit.pivot);
+        let visible = pivot_cap(&visibility.sanitized(), self.fit.pivot);
+        self.specular_albedo * (cap_intersection_solid_angle(&image, &visible) * (0.25 / PI))
+    }
+}
+
+/// Light sampling of a sphere light by the fitted SPTD restricted to its cap
+/// (Section 6.1), with the paper's fallback to uniform cap sampling when
+/// `Ω(g(C)) < 10⁻³`. Combine it with [`crate::brdf::GgxBrdf::sample`] by MIS; its pdf is
+/// per steradian and 0 outside the cap.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SphereLightSampler {
+    /// The SPTD in the light's cap (its `cap` is the light's cap).
+    pub sptd: SptdInCap,
+    /// Whether the SPTD is used (else uniform sampling of `sptd.cap`).
+    pub uses_sptd: bool,
+}
+
+impl SphereLightSampler {
+    /// Prepares sampling of the sphere (center relative to the shading point, radius)
+    /// for a GGX surface with roughness `r = √α` seen from `wo`. `None` when the cap is
+    /// empty (bad center or radius) or `wo` is at or below the horizon, not finite or
+    /// zero.
+    pub fn new(center: Vec3, radius: f32, wo: Vec3, roughness: f32) -> Option<SphereLightSampler> {
+        let cap = Cap::from_sphere(center, radius);
+        if !(cap.one_minus_cos > 0.0) {
+            return None;
+        }
+        let fit = GgxPivot::lookup(wo, roughness)?;
+        Self::with_pivot(&cap, fit.pivot)
+    }
+
+    /// Prepares sampling of a cap with an explicit pivot (any uniform SPTD).
+    pub fn with_pivot(cap: &Cap, pivot: Vec3) -> Option<SphereLightSampler> {
+        let cap = cap.sanitized();
+        if !(cap.one_minus_cos > 0.0) {
+            return None;
+        }
+        let (sptd, uses_sptd) = match SptdInCap::new(&Sptd::uniform(pivot), &cap) {
+            Some(sptd) if sptd.image.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE => (sptd, true),
+            // The pivot at the origin gives J = 1: the uniform distribution in the cap,
+            // sampled directly below.
+            _ => (SptdInCap::new(&Sptd::uniform(Vec3::ZERO), &cap)?, false),
+        };
+        Some(SphereLightSampler { sptd, uses_sptd })
+    }
+
+    /// Draws a direction in the light's cap.
+    #[inline]
+    pub fn sample(&self, u: [f32; 2]) -> Sample {
+        if self.uses_sptd {
+            self.sptd.sample(u)
+        } else {
+            self.sptd.cap.sample_uniform(u)
+        }
+    }
+
+    /// The density of [`SphereLightSampler::sample`] at `dir`: 0 outside the cap.
+    #[inline]
+    pub fn pdf(&self, dir: Vec3) -> f32 {
+        if self.uses_sptd {
+            self.sptd.pdf(dir)
+        } else {
+            self.sptd.cap.pdf(dir)
+        }
+    }
+}
+
+#[cfg(test)]
+#[path = "light_tests.rs"]
+mod tests;

@@ -1,0 +1,305 @@
+//! Tests of sphere-light shading and sampling with the fitted SPTD: the table lookup
+//! against the table's cells and under rotation of the view, the real-time shading
+//! against the f64 probability that the pivoted uniform distribution lands in the
+//! light's cap above the horizon, the MIS estimate of joint SPTD–BRDF sampling against
+//! an f64 quadrature of GGX over the cap, its variance against uniform cap sampling, and
+//! the pivot phase function restricted to a cap.
+//!
+//! Hard cases: views at 0°, 45°, 80° and 89.9°, roughness 0.05 to 1, lights in the
+//! mirror direction, overhead, straddling the horizon, tiny (1e-6 sr, the uniform
+//! fallback) and huge (the shading point inside the sphere).
+use super::*;
+use crate::brdf::GgxBrdf;
+use crate::brdf::pivot_table::PIVOT_TABLE;
+use crate::testing::*;
+
+fn view(degrees: f32) -> Vec3 {
+    let (s, c) = degrees.to_radians().sin_cos();
+    Vec3::new(s, 0.0, c)
+}
+
+/// The mirror direction of `wo` about the normal.
+fn mirror(wo: Vec3) -> Vec3 {
+    Vec3::new(-wo.x, -wo.y, wo.z)
+}
+
+/// Light caps of the hard-case list for a view.
+fn lights(wo: Vec3) -> Vec<(&'static str, Vec3, f32)> {
+    vec![
+        ("mirror, small", mirror(wo) * 4.0, 0.3),
+        ("mirror, large", mirror(wo) * 2.0, 1.0),
+        ("overhead", Vec3::new(0.1, 0.2, 3.0), 0.5),
+        ("straddling the horizon", Vec3::new(-2.0, 1.0, 0.1), 0.6),
+        ("tiny", mirror(wo) * 1000.0, 1.0),
+        ("inside", Vec3::new(0.0, 0.0, 0.5), 1.0),
+    ]
+}
+
+#[test]
+fn lookup_matches_the_table_at_cells_and_turns_with_the_view() {
+    for (i, j) in [(0, 0), (10, 20), (31, 40), (63, 5), (45, 62), (20, 61)] {
+        let r = i as f32 / 63.0;
+        let t = j as f32 / 63.0;
+        let cos = if j == 63 { 1e-4 } else { 1.0 - t * t };
+        let wo = Vec3::new((1.0 - cos * cos).sqrt(), 0.0, cos);
+        let fit = GgxPivot::lookup(wo, r).unwrap();
+        let [norm, elevation, albedo] = PIVOT_TABLE[i * 64 + j];
+        assert!((fit.pivot.length() - norm).abs() < 2e-4, "({i}, {j})");
+        let expected = Vec3::new(elevation.sin(), 0.0, elevation.cos()) * norm;
+        assert!(
+            (fit.pivot - expected).length() < 2e-3,
+            "({i}, {j}): {fit:?}"
+        );
+        assert!((fit.albedo - albedo).abs() < 1e-4);
+        // Rotating the view about the normal rotates the pivot.
+        let phi = 1.1f32;
+        let rotate = |v: Vec3| {
+            Vec3::new(
+                v.x * phi.cos() - v.y * phi.sin(),
+                v.x * phi.sin() + v.y * phi.cos(),
+                v.z,
+            )
+        };
+        let turned = GgxPivot::lookup(rotate(wo), r).unwrap();
+        assert!(
+            (turned.pivot - rotate(fit.pivot)).length() < 1e-4,
+            "({i}, {j})"
+        );
+    }
+    assert!(GgxPivot::lookup(Vec3::new(1.0, 0.0, 0.0), 0.5).is_none());
+    assert!(GgxPivot::lookup(Vec3::new(f32::NAN, 0.0, 1.0), 0.5).is_none());
+    assert!(GgxPivot::lookup(Vec3::Z, f32::NAN).is_some());
+}
+
+#[test]
+fn real_time_shading_is_the_pivoted_probability_of_the_clipped_cap() {
+    // With F0 = 1 the specular albedo is the fit's albedo, and the shading must equal
+    // albedo × P(g(u) ∈ C, g(u)_z > 0) for u uniform on the sphere (Eq. 17–19),
+    // estimated here in f64 with Eq. 2 literally.
+    let mut rng = Rng::new(3);
+    let n = 400_000;
+    for degrees in [0.0, 45.0, 80.0] {
+        for roughness in [0.1, 0.5, 1.0] {
+            let wo = view(degrees);
+            let shading = SphereShadingSptd::new(wo, roughness, Vec3::ONE).unwrap();
+            let pivot = d3(shading.fit.pivot);
+            for (name, center, radius) in lights(wo) {
+                let cap = Cap::from_sphere(center, radius);
+                let mut hits = 0u64;
+                for _ in 0..n {
+                    let w = pivot_transform_f64(uniform_direction_f64(&mut rng), pivot);
+                    hits += (w[2] > 0.0 && inside_f64(w, &cap)) as u64;
+                }
+                let p = hits as f64 / n as f64;
+                let expected = shading.fit.albedo as f64 * p;
+                let value = shading.shade(&cap);
+                let sigma = shading.fit.albedo as f64 * (p * (1.0 - p) / n as f64).sqrt();
+                assert!(
+                    (value.x as f64 - expected).abs()
+                        <= 5.0 * sigma + 1e-5 * shading.fit.albedo as f64,
+                    "{degrees}° r {roughness} {name}: {value} vs {expected}"
+                );
+                assert_eq!(value.x, value.y);
+                // The bent cone of an unoccluded point is the upper hemisphere.
+                let horizon = Cap::from_axis_cos(Vec3::Z, 0.0);
+                assert_eq!(shading.shade_occluded(&cap, &horizon), value);
+                // A bent cone away from the light blocks it.
+                let away = Cap::from_axis_cos(-cap.axis, 0.999);
+                if cap.one_minus_cos < 1.0 {
+                    assert_eq!(shading.shade_occluded(&cap, &away), Vec3::ZERO, "{name}");
+                }
+                // A narrower bent cone never lets more light through.
+                let narrow = Cap::from_axis_cos(Vec3::new(0.2, 0.0, 1.0), 0.5);
+                assert!(shading.shade_occluded(&cap, &narrow).x <= value.x + 1e-6);
+            }
+        }
+    }
+}
+
+/// `∫_C f cos θ dω` (F = 1) by the midpoint rule over the cap in f64.
+fn reference_integral(wo: Vec3, roughness: f32, cap: &Cap) -> f64 {
+    let wo64 = d3(wo);
+    integrate_over_cap_f64(cap, 400, |w| {
+        ggx_f64(wo64, w, roughness as f64, 1.0) * w[2].max(0.0)
+    })
+}
+
+/// One MIS estimate of `∫_C f cos` with the balance heuristic between a light sampler
+/// (given as sample and pdf functions) and GGX VNDF sampling.
+fn mis_estimate(
+    brdf: &GgxBrdf,
+    wo: Vec3,
+    cap: &Cap,
+    light_sample: impl Fn([f32; 2]) -> Sample,
+    light_pdf: impl Fn(Vec3) -> f32,
+    u: [f32; 4],
+) -> f64 {
+    let mut sum = 0.0;
+    let s = light_sample([u[0], u[1]]);
+    if s.pdf > 0.0 {
+        let f = brdf.eval_without_fresnel(wo, s.dir) as f64 * s.dir.z.max(0.0) as f64;
+        sum += f / (s.pdf as f64 + brdf.pdf(wo, s.dir) as f64);
+    }
+    let b = brdf.sample(wo, [u[2], u[3]]);
+    if b.pdf > 0.0 && cap.contains(b.dir) {
+        let f = brdf.eval_without_fresnel(wo, b.dir) as f64 * b.dir.z.max(0.0) as f64;
+        sum += f / (b.pdf as f64 + light_pdf(b.dir) as f64);
+    }
+    sum
+}
+
+#[test]
+fn joint_sptd_and_brdf_sampling_is_unbiased_and_beats_uniform_cap_sampling_in_the_highlight() {
+    let mut rng = Rng::new(9);
+    for degrees in [0.0, 45.0, 80.0] {
+        for roughness in [0.2, 0.5, 1.0] {
+            let wo = view(degrees);
+            let brdf = GgxBrdf::new(roughness, Vec3::ONE);
+            for (name, center, radius) in lights(wo) {
+                let cap = Cap::from_sphere(center, radius);
+                let sampler = SphereLightSampler::new(center, radius, wo, roughness).unwrap();
+                let pivoted = pivot_cap(&cap, GgxPivot::lookup(wo, roughness).unwrap().pivot);
+                assert_eq!(
+                    sampler.uses_sptd,
+                    pivoted.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE
+                );
+                let reference = reference_integral(wo, roughness, &cap);
+                let (mut joint, mut classic) = (Estimate::default(), Estimate::default());
+                for _ in 0..40_000 {
+                    let u = [
+                        rng.uniform_f32(),
+                        rng.uniform_f32(),
+                        rng.uniform_f32(),
+                        rng.uniform_f32(),
+                    ];
+                    joint.add(mis_estimate(
+                        &brdf,
+                        wo,
+                        &cap,
+                        |u| sampler.sample(u),
+                        |d| sampler.pdf(d),
+                        u,
+                    ));
+                    classic.add(mis_estimate(
+                        &brdf,
+                        wo,
+                        &cap,
+                        |u| cap.sample_uniform(u),
+                        |d| cap.pdf(d),
+                        u,
+                    ));
+                }
+                let what = format!("{degrees}° r {roughness} {name}");
+                // The quadrature's own error: 0.5% of the value.
+                joint.assert_mean_is(reference, 5.0, 5e-3, &what);
+                classic.assert_mean_is(reference, 5.0, 5e-3, &what);
+                if name == "mirror, large" && roughness <= 0.5 && degrees < 60.0 {
+                    // Measured: 0.2-0.35× at r = 0.2, 0.65× at r = 0.5. At 80° the
+                    // fitted SPTD misses GGX's elongated grazing lobe (the paper's Fig.
+                    // 7 and Section 5.3) and the variance is 1.24× that of uniform cap
+                    // sampling at r = 0.2: not asserted there.
+                    let bound = if roughness < 0.3 { 0.5 } else { 0.8 };
+                    assert!(
+                        joint.variance() < bound * classic.variance(),
+                        "{what}: variance {} vs {}",
+                        joint.variance(),
+                        classic.variance()
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn small_pivoted_caps_fall_back_to_uniform_cap_sampling() {
+    // A tiny light away from the highlight: its pivoted cap is smaller still.
+    let wo = view(60.0);
+    let center = Vec3::new(0.5, 0.2, 0.3) * 1000.0;
+    let sampler = SphereLightSampler::new(center, 1.0, wo, 0.2).unwrap();
+    assert!(!sampler.uses_sptd);
+    let cap = Cap::from_sphere(center, 1.0);
+    let s = sampler.sample([0.3, 0.7]);
+    assert!(cap.contains(s.dir));
+    assert_eq!(s.pdf, cap.pdf(s.dir));
+    assert_eq!(sampler.pdf(s.dir), s.pdf);
+    // The same light in the mirror direction is pivoted.
+    let sampler = SphereLightSampler::new(mirror(wo) * 1000.0, 1.0, wo, 0.2).unwrap();
+    assert!(sampler.uses_sptd);
+}
+
+#[test]
+fn pivot_phase_in_a_cap_has_zero_variance_for_an_unoccluded_light() {
+    let mut rng = Rng::new(21);
+    let wo = Vec3::new(0.3, -0.2, 0.9).normalize();
+    for g in [-0.7, 0.0, 0.5, 0.9, 0.99] {
+        for (center, radius) in [
+            (Vec3::new(1.0, 2.0, 3.0), 0.5),
+            (wo * 10.0, 1.0),
+            (Vec3::new(0.0, 0.0, -3.0), 2.9),
+        ] {
+            let cap = Cap::from_sphere(center, radius);
+            let prepared = super::super::phase::pivot_phase_in_cap(wo, g, &cap).unwrap();
+            // ∫_C f_pivot against the f64 probability that the pivoted uniform lands in C.
+            let n = 400_000;
+            let pivot = d3(wo * g);
+            let hits = (0..n)
+                .filter(|_| {
+                    inside_f64(
+                        pivot_transform_f64(uniform_direction_f64(&mut rng), pivot),
+                        &cap,
+                    )
+                })
+                .count();
+            let p = hits as f64 / n as f64;
+            let sigma = (p * (1.0 - p) / n as f64).sqrt();
+            assert!(
+                (prepared.integral as f64 - p).abs() <= 5.0 * sigma + 1e-5,
+                "g {g}: {} vs {p}",
+                prepared.integral
+            );
+            for _ in 0..2000 {
+                let s = prepared.sample([rng.uniform_f32(), rng.uniform_f32()]);
+                if s.pdf == 0.0 {
+                    continue;
+                }
+                // Eq. 25 in f64 with 1 + g² − 2gμ = (1 − g)² + g|ω − ω_o|² (μ from the f32
+                // dot product would cancel near the forward peak).
+                let (w, o, g64) = (d3(s.dir), d3(wo), g as f64);
+                let e = sub(w, o);
+                let den = (1.0 - g64) * (1.0 - g64) + g64 * dot(e, e);
+                let f = ((1.0 - g64 * g64) / den).powi(2) / (4.0 * core::f64::consts::PI);
+                let ratio = (f / s.pdf as f64) as f32;
+                assert!(
+                    (ratio - prepared.integral).abs() <= 2e-3 * prepared.integral,
+                    "g {g}: f/pdf {ratio} vs ∫ {}",
+                    prepared.integral
+                );
+            }
+        }
+    }
+    assert!(super::super::phase::pivot_phase_in_cap(Vec3::ZERO, 0.5, &Cap::WHOLE_SPHERE).is_none());
+}
+
+#[test]
+fn bad_input_gives_none_or_finite_values() {
+    assert!(SphereLightSampler::new(Vec3::splat(f32::NAN), 1.0, Vec3::Z, 0.5).is_none());
+    assert!(SphereLightSampler::new(Vec3::Z * 3.0, -1.0, Vec3::Z, 0.5).is_none());
+    assert!(SphereLightSampler::new(Vec3::Z * 3.0, 1.0, -Vec3::Z, 0.5).is_none());
+    assert!(SphereShadingSptd::new(Vec3::new(0.0, 0.0, f32::INFINITY), 0.5, Vec3::ONE).is_none());
+    let shading = SphereShadingSptd::new(Vec3::Z, f32::NAN, Vec3::splat(f32::NAN)).unwrap();
+    let nan_cap = Cap {
+        axis: Vec3::splat(f32::NAN),
+        ..Cap::WHOLE_SPHERE
+    };
+    assert_eq!(shading.shade(&nan_cap), Vec3::ZERO);
+    assert!(shading.shade(&Cap::WHOLE_SPHERE).is_finite());
+    let sampler =
+        SphereLightSampler::new(Vec3::new(0.0, 0.5, 2.0), 0.3, Vec3::new(0.5, 0.0, 0.5), 0.0)
+            .unwrap();
+    for u in [[f32::NAN, 0.2], [2.0, -1.0], [1.0, 1.0]] {
+        let s = sampler.sample(u);
+        assert!(s.dir.is_finite() && s.pdf.is_finite(), "{u:?}: {s:?}");
+    }
+    assert_eq!(sampler.pdf(Vec3::splat(f32::NAN)), 0.0);
+}
