@@ -85,6 +85,41 @@
 #define SPHERA_MIS_OPTIMAL 4
 
 /**
+ * The uniform base distribution `1/4π` (Eq. 16).
+ */
+#define SPHERA_SPTD_UNIFORM 0
+
+/**
+ * The clamped-cosine base distribution `max(0, ω·a)/π`.
+ */
+#define SPHERA_SPTD_CLAMPED_COSINE 1
+
+/**
+ * The base distribution that the pivot transforms.
+ */
+enum SpheraSptdBase
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * `D_std = 1/4π` over the sphere (Eq. 16).
+   */
+  SpheraSptdBase_Uniform = 0,
+  /**
+   * `D_std = max(0, ω·a)/π` about the SPTD's `cosine_axis`.
+   */
+  SpheraSptdBase_ClampedCosine = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SpheraSptdBase SpheraSptdBase;
+#else
+typedef uint32_t SpheraSptdBase;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
  * A 3D vector of `float`s (a point or a direction in the local shading frame, whose z
  * axis is the surface normal).
  */
@@ -686,6 +721,112 @@ typedef struct SpheraCap {
    */
   float sin2;
 } SpheraCap;
+
+/**
+ * A spherical pivot-transformed distribution (Eq. 8): a base distribution and a
+ * pivot. Build it with [`Sptd::uniform`] or [`Sptd::clamped_cosine`], which make the
+ * pivot valid (non-finite → origin, `|r_p|` clamped below 1).
+ */
+typedef struct SpheraSptd {
+  /**
+   * The pivot `r_p`, `|r_p| ≤ 1 − 2⁻²⁰`.
+   */
+  SpheraVec3 pivot;
+  /**
+   * The unit axis `a` of the clamped-cosine base (`z` for the uniform base).
+   */
+  SpheraVec3 cosine_axis;
+  /**
+   * Which base distribution.
+   */
+  SpheraSptdBase base;
+} SpheraSptd;
+
+/**
+ * An SPTD restricted to a cap `C` and normalised there: a prepared sampler
+ * (Section 4.2, importance sampling over spherical caps). Samples are
+ * `ω = g(ω_i)` with `ω_i` drawn from the base inside `g(C)`; the density is
+ * `D(ω) / ∫_C D` inside `C` and 0 outside. For the uniform base it is
+ * `J(ω) / Ω(g(C))`.
+ */
+typedef struct SpheraSptdInCap {
+  /**
+   * The distribution.
+   */
+  struct SpheraSptd sptd;
+  /**
+   * The cap `C` (sanitized).
+   */
+  struct SpheraCap cap;
+  /**
+   * Its image `g(C)`.
+   */
+  struct SpheraCap image;
+  /**
+   * `∫_C D = ∫_{g(C)} D_std`.
+   */
+  float integral;
+  /**
+   * For the clamped-cosine base: `(x, y, z)` = the projected ellipse's center offset
+   * `cos θ sin β`, its semi-axes `sin θ cos β` (along `e1`) and `sin θ`.
+   */
+  SpheraVec3 ellipse;
+  /**
+   * Unit tangent of the base axis pointing to the image cap's axis.
+   */
+  SpheraVec3 e1;
+} SpheraSptdInCap;
+
+/**
+ * The uniform SPTD fitted to GGX `f cos θ` at one view and roughness.
+ */
+typedef struct SpheraGgxPivot {
+  /**
+   * The pivot `r_p` in the local frame (`|r_p| < 1`).
+   */
+  SpheraVec3 pivot;
+  /**
+   * `∫ f cos θ dω` with Fresnel = 1.
+   */
+  float albedo;
+} SpheraGgxPivot;
+
+/**
+ * Real-time GGX shading of sphere lights by the fitted SPTD (biased; see the module
+ * documentation): prepared once per shading point and material, then evaluated for
+ * any number of lights.
+ */
+typedef struct SpheraSphereLightShading {
+  /**
+   * The fitted pivot.
+   */
+  struct SpheraGgxPivot fit;
+  /**
+   * The image `g(H)` of the upper hemisphere's cap.
+   */
+  struct SpheraCap horizon_image;
+  /**
+   * The Schlick-weighted albedo per channel.
+   */
+  SpheraVec3 specular_albedo;
+} SpheraSphereLightShading;
+
+/**
+ * Light sampling of a sphere light by the fitted SPTD restricted to its cap
+ * (Section 6.1), with the paper's fallback to uniform cap sampling when
+ * `Ω(g(C)) < 10⁻³`. Combine it with [`crate::brdf::GgxBrdf::sample`] by MIS; its pdf is
+ * per steradian and 0 outside the cap.
+ */
+typedef struct SpheraSphereLightSampler {
+  /**
+   * The SPTD in the light's cap (its `cap` is the light's cap).
+   */
+  struct SpheraSptdInCap sptd;
+  /**
+   * Whether the SPTD is used (else uniform sampling of `sptd.cap`).
+   */
+  bool uses_sptd;
+} SpheraSphereLightSampler;
 
 #ifdef __cplusplus
 extern "C" {
@@ -1771,6 +1912,217 @@ float sphera_pivot_jacobian(struct SpheraVec3 dir, struct SpheraVec3 pivot);
  * hemisphere. Pivots as in `sphera_pivot_transform`.
  */
 struct SpheraCap sphera_pivot_cap(struct SpheraCap cap, struct SpheraVec3 pivot);
+
+/**
+ * The SPTD density `D(ω) = D_std(g(ω)) J(ω)` (Eq. 8) at `dir` (normalised); 0 for a
+ * zero or non-finite `dir`.
+ */
+float sphera_sptd_eval(struct SpheraVec3 pivot,
+                       uint32_t base,
+                       struct SpheraVec3 cosine_axis,
+                       struct SpheraVec3 dir);
+
+/**
+ * Draws `g(ω_i)` with `ω_i` from the base over the whole sphere; the pdf is
+ * `sphera_sptd_eval`. pdf 0 only where the density underflows.
+ */
+struct SpheraSample sphera_sptd_sample(struct SpheraVec3 pivot,
+                                       uint32_t base,
+                                       struct SpheraVec3 cosine_axis,
+                                       float u0,
+                                       float u1);
+
+/**
+ * `∫_C D = ∫_{g(C)} D_std` (Eq. 10), in [0, 1], exact.
+ */
+float sphera_sptd_integral_over_cap(struct SpheraVec3 pivot,
+                                    uint32_t base,
+                                    struct SpheraVec3 cosine_axis,
+                                    struct SpheraCap cap);
+
+/**
+ * `∫_{A ∩ B} D = ∫_{g(A) ∩ g(B)} D_std` (Eq. 11), in [0, 1], exact.
+ */
+float sphera_sptd_integral_over_cap_intersection(struct SpheraVec3 pivot,
+                                                 uint32_t base,
+                                                 struct SpheraVec3 cosine_axis,
+                                                 struct SpheraCap a,
+                                                 struct SpheraCap b);
+
+/**
+ * Prepares the SPTD restricted to `cap` and normalised there: samples `g(ω_i)` with
+ * `ω_i` from the base inside `g(C)`, density `D(ω)/∫_C D` inside `C`. Returns `false`
+ * (and writes a sampler without samples, pdf 0) when `∫_C D` is 0 or its inverse
+ * overflows, or, for the clamped-cosine base, when `g(C)` crosses
+ * the base's horizon (only the integral is available there). Does nothing and returns
+ * `false` when `out` is null.
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one `SpheraSptdInCap`.
+ */
+bool sphera_sptd_in_cap_prepare(struct SpheraSptdInCap *out,
+                                struct SpheraVec3 pivot,
+                                uint32_t base,
+                                struct SpheraVec3 cosine_axis,
+                                struct SpheraCap cap);
+
+/**
+ * Draws a direction of a prepared SPTD in a cap (`u0`, `u1` clamped into [0, 1)).
+ * pdf 0 for a null pointer, a failed prepare, or a sample that rounding moved out of
+ * the cap.
+ *
+ * # Safety
+ *
+ * `prepared` must be null or point to a `SpheraSptdInCap` written by
+ * `sphera_sptd_in_cap_prepare` or `sphera_phase_pivot_in_cap_prepare`.
+ */
+struct SpheraSample sphera_sptd_in_cap_sample(const struct SpheraSptdInCap *prepared,
+                                              float u0,
+                                              float u1);
+
+/**
+ * The density of `sphera_sptd_in_cap_sample` at `dir`: 0 outside the cap and for a
+ * null pointer.
+ *
+ * # Safety
+ *
+ * As for `sphera_sptd_in_cap_sample`.
+ */
+float sphera_sptd_in_cap_pdf(const struct SpheraSptdInCap *prepared, struct SpheraVec3 dir);
+
+/**
+ * `∫_C D` of a prepared SPTD in a cap (for the pivot phase function, `∫_C f_pivot`:
+ * the zero-variance estimate of an unoccluded light of unit radiance); 0 for null.
+ *
+ * # Safety
+ *
+ * As for `sphera_sptd_in_cap_sample`.
+ */
+float sphera_sptd_in_cap_integral(const struct SpheraSptdInCap *prepared);
+
+/**
+ * The pivot phase function (pivot `g·wo`, `wo` normalised, `g` clamped as in
+ * `sphera_phase_pivot`) restricted to a sphere light's cap (Section 6.2): sample and
+ * evaluate it with `sphera_sptd_in_cap_*`. Returns `false` (writing a sampler without
+ * samples) for a zero or non-finite `wo` or an empty cap; does nothing for a null
+ * `out`.
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one `SpheraSptdInCap`.
+ */
+bool sphera_phase_pivot_in_cap_prepare(struct SpheraSptdInCap *out,
+                                       struct SpheraVec3 wo,
+                                       float g,
+                                       struct SpheraCap cap);
+
+/**
+ * The uniform SPTD fitted to GGX `f cos θ` (the pivot table, 64×64, bilinear) for the
+ * view `wo` (local frame, normalised) and roughness `r = √α` (clamped to [0, 1], NaN as
+ * 0). Returns `false` (writing a zero pivot and albedo) when `wo` is not finite, zero
+ * or at or below the horizon; does nothing for a null `out`.
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one `SpheraGgxPivot`.
+ */
+bool sphera_ggx_pivot_lookup(struct SpheraGgxPivot *out, struct SpheraVec3 wo, float roughness);
+
+/**
+ * Prepares real-time GGX shading of sphere lights (BIASED: the fitted SPTD
+ * approximates GGX; errors are tabulated in the README) for the view `wo`, roughness
+ * `r = √α` and Fresnel `f0` (each channel clamped to [0, 1], NaN as 0). Returns
+ * `false` (writing a shading that returns zero) when `wo` is not finite, zero, or at
+ * or below the horizon; does nothing for a null `out`.
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one `SpheraSphereLightShading`.
+ */
+bool sphera_sphere_light_shading_prepare(struct SpheraSphereLightShading *out,
+                                         struct SpheraVec3 wo,
+                                         float roughness,
+                                         struct SpheraVec3 f0);
+
+/**
+ * `∫_{C ∩ H} f cos θ dω ≈ albedo_F Ω(g(C) ∩ g(H))/4π` per unit radiance (Eq. 19,
+ * BIASED), RGB, for the cap `light` of a sphere light; multiply by its radiance. Zero
+ * for a null pointer or an empty cap.
+ *
+ * # Safety
+ *
+ * `shading` must be null or point to a `SpheraSphereLightShading` written by
+ * `sphera_sphere_light_shading_prepare`.
+ */
+struct SpheraVec3 sphera_sphere_light_shade(const struct SpheraSphereLightShading *shading,
+                                            struct SpheraCap light);
+
+/**
+ * Specular occlusion with a bent cone `visibility` (Eq. 23, BIASED):
+ * `albedo_F Ω(g(C) ∩ g(V))/4π`; the bent cone replaces the upper hemisphere (pass the
+ * hemisphere `(0, 0, 1)`, `cos θ = 0`, for an unoccluded point). Zero for a null
+ * pointer.
+ *
+ * # Safety
+ *
+ * As for `sphera_sphere_light_shade`.
+ */
+struct SpheraVec3 sphera_sphere_light_shade_occluded(const struct SpheraSphereLightShading *shading,
+                                                     struct SpheraCap light,
+                                                     struct SpheraCap visibility);
+
+/**
+ * Prepares joint BRDF–light sampling of a sphere light (Section 6.1): the fitted SPTD
+ * restricted to the light's cap, or uniform cap sampling when the pivoted cap is
+ * smaller than 1e-3 sr (`sphera_sphere_light_sampler_uses_sptd` tells which). Combine
+ * with `sphera_ggx_sample` by MIS. `center` is relative to the shading point, `wo`
+ * points to the viewer, roughness as in `sphera_ggx_pivot_lookup`. Returns `false`
+ * (writing a sampler without samples) for an empty cap (non-finite center, radius not
+ * finite and positive) or a `wo` at or below the horizon; does nothing for null `out`.
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one `SpheraSphereLightSampler`.
+ */
+bool sphera_sphere_light_sampler_prepare(struct SpheraSphereLightSampler *out,
+                                         struct SpheraVec3 center,
+                                         float radius,
+                                         struct SpheraVec3 wo,
+                                         float roughness);
+
+/**
+ * Draws a direction in the light's cap; pdf 0 for null or a failed prepare.
+ *
+ * # Safety
+ *
+ * `sampler` must be null or point to a `SpheraSphereLightSampler` written by
+ * `sphera_sphere_light_sampler_prepare`.
+ */
+struct SpheraSample sphera_sphere_light_sampler_sample(const struct SpheraSphereLightSampler *sampler,
+                                                       float u0,
+                                                       float u1);
+
+/**
+ * The density of `sphera_sphere_light_sampler_sample` at `dir`; 0 outside the cap and
+ * for null.
+ *
+ * # Safety
+ *
+ * As for `sphera_sphere_light_sampler_sample`.
+ */
+float sphera_sphere_light_sampler_pdf(const struct SpheraSphereLightSampler *sampler,
+                                      struct SpheraVec3 dir);
+
+/**
+ * Whether the sampler draws from the SPTD (`true`) or uniformly in the cap (the
+ * fallback for pivoted caps under 1e-3 sr); `false` for null.
+ *
+ * # Safety
+ *
+ * As for `sphera_sphere_light_sampler_sample`.
+ */
+bool sphera_sphere_light_sampler_uses_sptd(const struct SpheraSphereLightSampler *sampler);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -39,6 +39,8 @@ mod phase;
 
 mod sphere;
 
+mod sptd;
+
 pub use brdf::*;
 pub use frame::*;
 pub use light::*;
@@ -47,6 +49,7 @@ pub use phase::*;
 pub use polygon::*;
 pub use projected::*;
 pub use sphere::*;
+pub use sptd::*;
 pub use types::*;
 pub use warps::*;
 

@@ -147,6 +147,14 @@ pub struct SphereLightSampler {
 }
 
 impl SphereLightSampler {
+    /// The sampler of an empty cap: no samples, pdf 0.
+    ///
+    /// cbindgen:ignore
+    pub const EMPTY: SphereLightSampler = SphereLightSampler {
+        sptd: SptdInCap::EMPTY,
+        uses_sptd: false,
+    };
+
     /// Prepares sampling of the sphere (center relative to the shading point, radius)
     /// for a GGX surface with roughness `r = √α` seen from `wo`. `None` when the cap is
     /// empty (bad center or radius) or `wo` is at or below the horizon, not finite or

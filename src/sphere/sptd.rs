@@ -61,6 +61,17 @@ pub enum SptdBase {
     ClampedCosine = 1,
 }
 
+impl SptdBase {
+    /// The base with number `n` (0 uniform, 1 clamped cosine), `None` otherwise.
+    pub fn from_u32(n: u32) -> Option<SptdBase> {
+        match n {
+            0 => Some(SptdBase::Uniform),
+            1 => Some(SptdBase::ClampedCosine),
+            _ => None,
+        }
+    }
+}
+
 /// A spherical pivot-transformed distribution (Eq. 8): a base distribution and a
 /// pivot. Build it with [`Sptd::uniform`] or [`Sptd::clamped_cosine`], which make the
 /// pivot valid (non-finite → origin, `|r_p|` clamped below 1).
@@ -410,6 +421,22 @@ pub struct SptdInCap {
 }
 
 impl SptdInCap {
+    /// The SPTD in the empty cap: no samples, pdf 0 everywhere, integral 0.
+    ///
+    /// cbindgen:ignore
+    pub const EMPTY: SptdInCap = SptdInCap {
+        sptd: Sptd {
+            pivot: Vec3::ZERO,
+            cosine_axis: Vec3::Z,
+            base: SptdBase::Uniform,
+        },
+        cap: Cap::EMPTY,
+        image: Cap::EMPTY,
+        integral: 0.0,
+        ellipse: Vec3::ZERO,
+        e1: Vec3::X,
+    };
+
     /// Prepares `sptd` restricted to `cap` (sanitized). `None` when `∫_C D` is 0 or its
     /// inverse is not finite, or, for the clamped-cosine base, when `g(C)` crosses the
     /// base's horizon (see the module documentation; use
@@ -485,6 +512,12 @@ impl SptdInCap {
         if !self.cap.contains(dir) {
             return Sample::NONE;
         }
+        // The density from `dir` alone, exactly as `pdf` computes it (the cosine base
+        // re-derives the preimage), so that `pdf(sample.dir) == sample.pdf` bit for bit.
+        let base = match self.sptd.base {
+            SptdBase::Uniform => base,
+            SptdBase::ClampedCosine => transform(dir, self.sptd.pivot),
+        };
         let pdf = self.density_of(dir, base);
         if pdf > 0.0 && pdf.is_finite() {
             Sample { dir, pdf }
@@ -516,7 +549,10 @@ impl SptdInCap {
         if !self.cap.contains(dir) {
             return 0.0;
         }
-        let dir = dir.normalize_or_zero();
+        // `unit` leaves the samplers' (unit) directions unchanged, bit for bit.
+        let Some(dir) = crate::brdf::unit(dir) else {
+            return 0.0;
+        };
         let base = transform(dir, self.sptd.pivot);
         let pdf = self.density_of(dir, base);
         if pdf.is_finite() { pdf } else { 0.0 }

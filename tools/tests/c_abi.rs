@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 use sphera_tools::repository_root;
 
 /// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
-const C_TESTS: [&str; 12] = [
+const C_TESTS: [&str; 13] = [
     "test_polygon_clip",
     "test_projected_polygon",
     "test_solid_angle_polygon",
@@ -23,6 +23,7 @@ const C_TESTS: [&str; 12] = [
     "test_polygon_light",
     "test_phase",
     "test_sphere_caps",
+    "test_sptd",
 ];
 
 /// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
@@ -222,6 +223,11 @@ fn test_sphere_caps() {
     run_c_test("test_sphere_caps");
 }
 
+#[test]
+fn test_sptd() {
+    run_c_test("test_sptd");
+}
+
 /// Compiles `ffi-tests/<name>.c` with the tracer's sources, links `libsphera.a`, Embree
 /// 3, libpng and pthreads, runs it and asserts that it exits with status 0.
 fn run_tracer_test(name: &str) {
@@ -399,7 +405,7 @@ fn struct_layouts_match_rust() {
     use sphera::polygon::{
         ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
     };
-    use sphera::sphere::Cap;
+    use sphera::sphere::{Cap, GgxPivot, SphereLightSampler, SphereShadingSptd, SptdInCap};
 
     let expected: Vec<(&str, usize)> = vec![
         ("sizeof(SpheraVec3)", size_of::<SpheraVec3>()),
@@ -483,6 +489,29 @@ fn struct_layouts_match_rust() {
             offset_of!(Cap, one_minus_cos),
         ),
         ("offsetof(SpheraCap, sin2)", offset_of!(Cap, sin2)),
+        ("sizeof(SpheraSptdInCap)", size_of::<SptdInCap>()),
+        ("alignof(SpheraSptdInCap)", align_of::<SptdInCap>()),
+        (
+            "offsetof(SpheraSptdInCap, integral)",
+            offset_of!(SptdInCap, integral),
+        ),
+        ("sizeof(SpheraGgxPivot)", size_of::<GgxPivot>()),
+        (
+            "offsetof(SpheraGgxPivot, albedo)",
+            offset_of!(GgxPivot, albedo),
+        ),
+        (
+            "sizeof(SpheraSphereLightShading)",
+            size_of::<SphereShadingSptd>(),
+        ),
+        (
+            "sizeof(SpheraSphereLightSampler)",
+            size_of::<SphereLightSampler>(),
+        ),
+        (
+            "alignof(SpheraSphereLightSampler)",
+            align_of::<SphereLightSampler>(),
+        ),
     ];
     let mut source =
         String::from("#include <stddef.h>\n#include <stdio.h>\n#include \"sphera.h\"\n");
@@ -503,6 +532,8 @@ fn struct_layouts_match_rust() {
         "SpheraLtcPolygon",
         "SpheraPolygonLight",
         "SpheraCap",
+        "SpheraSptdInCap",
+        "SpheraSphereLightSampler",
     ] {
         source += &format!("struct align_{name} {{ char c; {name} t; }};\n");
     }

@@ -1,0 +1,183 @@
+/* C ABI tests of SPTDs and sphere lights over GGX (sphera_sptd_*, sphera_ggx_pivot_lookup,
+ * sphera_sphere_light_*, sphera_phase_pivot_in_cap_prepare). */
+#include "check.h"
+
+static const double PI_D = 3.14159265358979323846;
+
+static void check_sptd_in_cap(void) {
+  SpheraVec3 pivot = vec3(0.3f, 0.0f, 0.6f);
+  SpheraVec3 z = vec3(0.0f, 0.0f, 1.0f);
+  SpheraCap cap = sphera_cap_from_sphere(vec3(1.0f, 0.5f, 3.0f), 1.0f);
+  SpheraSptdInCap prepared;
+  float u[U_COUNT];
+  double inverse_sum = 0.0;
+  int i, j, n = 0;
+  CHECK(sphera_sptd_in_cap_prepare(&prepared, pivot, SPHERA_SPTD_UNIFORM, z, cap));
+  CHECK_REL(sphera_sptd_in_cap_integral(&prepared),
+            sphera_sptd_integral_over_cap(pivot, SPHERA_SPTD_UNIFORM, z, cap), 1e-6);
+  /* The uniform SPTD is the Jacobian over 4 pi (Eq. 8). */
+  CHECK_REL(sphera_sptd_eval(pivot, SPHERA_SPTD_UNIFORM, z, vec3(0.0f, 0.6f, 0.8f)),
+            sphera_pivot_jacobian(vec3(0.0f, 0.6f, 0.8f), pivot) / (4.0 * PI_D), 1e-5);
+  fill_u_values(u);
+  for (i = 0; i < U_COUNT; i++) {
+    for (j = 0; j < U_COUNT; j++) {
+      SpheraSample s = sphera_sptd_in_cap_sample(&prepared, u[i], u[j]);
+      CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf));
+      if (s.pdf > 0.0f) {
+        CHECK(sphera_cap_contains(cap, s.dir));
+        CHECK(sphera_sptd_in_cap_pdf(&prepared, s.dir) == s.pdf);
+      }
+    }
+  }
+  /* E[1/pdf] = solid angle of the cap. */
+  for (i = 0; i < 100; i++) {
+    for (j = 0; j < 100; j++) {
+      SpheraSample s = sphera_sptd_in_cap_sample(&prepared, (i + 0.5f) / 100.0f, (j + 0.5f) / 100.0f);
+      if (s.pdf > 0.0f) {
+        inverse_sum += 1.0 / s.pdf;
+        n++;
+      }
+    }
+  }
+  CHECK(n >= 9990);
+  CHECK_REL(inverse_sum / 10000.0, sphera_cap_solid_angle(cap), 2e-2);
+  /* The clamped cosine: the integral over the whole sphere is one; over the
+   * intersection of a cap with itself, the integral over the cap. */
+  CHECK_REL(sphera_sptd_integral_over_cap(pivot, SPHERA_SPTD_CLAMPED_COSINE, z,
+                                          sphera_cap_from_axis_cos(z, -1.0f)),
+            1.0, 1e-5);
+  CHECK_REL(sphera_sptd_integral_over_cap_intersection(pivot, SPHERA_SPTD_CLAMPED_COSINE, z, cap, cap),
+            sphera_sptd_integral_over_cap(pivot, SPHERA_SPTD_CLAMPED_COSINE, z, cap), 1e-4);
+}
+
+static void check_sphere_light(void) {
+  SpheraVec3 wo = vec3(0.5f, 0.0f, 0.8660254f);
+  SpheraVec3 mirror = vec3(-1.5f, 0.0f, 2.598076f);
+  SpheraCap light = sphera_cap_from_sphere(mirror, 0.5f);
+  SpheraCap horizon = sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, 1.0f), 0.0f);
+  SpheraCap away = sphera_cap_from_axis_cos(vec3(1.0f, 0.0f, 0.2f), 0.9f);
+  SpheraSphereLightShading shading;
+  SpheraSphereLightSampler sampler;
+  SpheraGgxPivot fit;
+  SpheraVec3 value;
+  float u[U_COUNT];
+  int i, j;
+  CHECK(sphera_ggx_pivot_lookup(&fit, wo, 0.3f));
+  CHECK(dlength(dvec(fit.pivot)) < 1.0 && fit.albedo > 0.5f && fit.albedo <= 1.0f);
+  CHECK(fit.pivot.x < 0.0f); /* it leans towards the mirror direction */
+  CHECK(sphera_sphere_light_shading_prepare(&shading, wo, 0.3f, vec3(1.0f, 1.0f, 1.0f)));
+  value = sphera_sphere_light_shade(&shading, light);
+  CHECK(value.x > 0.0f && value.x <= fit.albedo && value.x == value.z);
+  CHECK(vec3_equal(sphera_sphere_light_shade_occluded(&shading, light, horizon), value));
+  CHECK(sphera_sphere_light_shade_occluded(&shading, light, away).x == 0.0f);
+
+  CHECK(sphera_sphere_light_sampler_prepare(&sampler, mirror, 0.5f, wo, 0.3f));
+  CHECK(sphera_sphere_light_sampler_uses_sptd(&sampler));
+  fill_u_values(u);
+  for (i = 0; i < U_COUNT; i++) {
+    for (j = 0; j < U_COUNT; j++) {
+      SpheraSample s = sphera_sphere_light_sampler_sample(&sampler, u[i], u[j]);
+      CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf));
+      if (s.pdf > 0.0f) {
+        CHECK(sphera_cap_contains(light, s.dir));
+        CHECK(sphera_sphere_light_sampler_pdf(&sampler, s.dir) == s.pdf);
+      }
+    }
+  }
+  /* A tiny light away from the highlight falls back to uniform cap sampling. */
+  CHECK(sphera_sphere_light_sampler_prepare(&sampler, vec3(500.0f, 200.0f, 300.0f), 1.0f, wo, 0.2f));
+  CHECK(!sphera_sphere_light_sampler_uses_sptd(&sampler));
+}
+
+static void check_phase_in_cap(void) {
+  SpheraVec3 wo = vec3(0.0f, 0.6f, 0.8f);
+  SpheraCap light = sphera_cap_from_sphere(vec3(0.0f, 3.0f, 4.0f), 1.0f);
+  SpheraSptdInCap prepared;
+  int i;
+  CHECK(sphera_phase_pivot_in_cap_prepare(&prepared, wo, 0.7f, light));
+  for (i = 0; i < 64; i++) {
+    SpheraSample s = sphera_sptd_in_cap_sample(&prepared, (i + 0.5f) / 64.0f, 0.37f);
+    float f;
+    if (s.pdf == 0.0f) continue;
+    f = sphera_phase_pivot(s.dir.x * wo.x + s.dir.y * wo.y + s.dir.z * wo.z, 0.7f);
+    /* Zero variance: f / pdf is the integral for every sample. */
+    CHECK_REL(f / s.pdf, sphera_sptd_in_cap_integral(&prepared), 2e-3);
+  }
+}
+
+static void check_bad_input(void) {
+  const float bad[] = {NAN, INFINITY, -INFINITY, 0.0f, -0.0f, 1e-40f, 1e30f, -1e30f};
+  const int n = (int)(sizeof bad / sizeof bad[0]);
+  SpheraCap cap = sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, 1.0f), 0.5f);
+  SpheraSptdInCap prepared;
+  SpheraSphereLightShading shading;
+  SpheraSphereLightSampler sampler;
+  SpheraGgxPivot fit;
+  int i, k;
+  CHECK(!sphera_sptd_in_cap_prepare(NULL, vec3(0, 0, 0), 0, vec3(0, 0, 1), cap));
+  CHECK(sphera_sptd_in_cap_sample(NULL, 0.5f, 0.5f).pdf == 0.0f);
+  CHECK(sphera_sptd_in_cap_pdf(NULL, vec3(0, 0, 1)) == 0.0f);
+  CHECK(sphera_sptd_in_cap_integral(NULL) == 0.0f);
+  CHECK(!sphera_ggx_pivot_lookup(NULL, vec3(0, 0, 1), 0.5f));
+  CHECK(!sphera_sphere_light_shading_prepare(NULL, vec3(0, 0, 1), 0.5f, vec3(1, 1, 1)));
+  CHECK(vec3_equal(sphera_sphere_light_shade(NULL, cap), vec3(0, 0, 0)));
+  CHECK(vec3_equal(sphera_sphere_light_shade_occluded(NULL, cap, cap), vec3(0, 0, 0)));
+  CHECK(!sphera_sphere_light_sampler_prepare(NULL, vec3(0, 0, 3), 1.0f, vec3(0, 0, 1), 0.5f));
+  CHECK(sphera_sphere_light_sampler_sample(NULL, 0.5f, 0.5f).pdf == 0.0f);
+  CHECK(sphera_sphere_light_sampler_pdf(NULL, vec3(0, 0, 1)) == 0.0f);
+  CHECK(!sphera_sphere_light_sampler_uses_sptd(NULL));
+  CHECK(!sphera_phase_pivot_in_cap_prepare(NULL, vec3(0, 0, 1), 0.5f, cap));
+  /* Failed prepares write samplers without samples. */
+  CHECK(!sphera_sptd_in_cap_prepare(&prepared, vec3(0, 0, 0), 0, vec3(0, 0, 1),
+                                    sphera_cap_from_sphere(vec3(0, 0, 3), -1.0f)));
+  CHECK(sphera_sptd_in_cap_sample(&prepared, 0.5f, 0.5f).pdf == 0.0f);
+  CHECK(!sphera_sphere_light_sampler_prepare(&sampler, vec3(0, 0, 3), 1.0f, vec3(0, 0, -1), 0.5f));
+  CHECK(sphera_sphere_light_sampler_sample(&sampler, 0.5f, 0.5f).pdf == 0.0f);
+  CHECK(!sphera_sphere_light_shading_prepare(&shading, vec3(1, 0, 0), 0.5f, vec3(1, 1, 1)));
+  CHECK(vec3_equal(sphera_sphere_light_shade(&shading, cap), vec3(0, 0, 0)));
+  CHECK(!sphera_ggx_pivot_lookup(&fit, vec3(0, 0, -1), 0.5f));
+  for (i = 0; i < n; i++) {
+    for (k = 0; k < n; k++) {
+      SpheraVec3 v = vec3(bad[i], bad[k], 1.0f);
+      SpheraCap garbage;
+      SpheraSample s;
+      unsigned base = (unsigned)(i % 3); /* 2 is not a base: uniform */
+      garbage.axis = v;
+      garbage.one_minus_cos = bad[k];
+      garbage.cos = bad[i];
+      garbage.sin2 = bad[k];
+      CHECK(isfinite(sphera_sptd_eval(v, base, v, v)));
+      s = sphera_sptd_sample(v, base, v, bad[i], bad[k]);
+      CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf));
+      CHECK(isfinite(sphera_sptd_integral_over_cap(v, base, v, garbage)));
+      CHECK(isfinite(sphera_sptd_integral_over_cap_intersection(v, base, v, garbage, cap)));
+      sphera_sptd_in_cap_prepare(&prepared, v, base, v, garbage);
+      s = sphera_sptd_in_cap_sample(&prepared, bad[i], bad[k]);
+      CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf));
+      CHECK(isfinite(sphera_sptd_in_cap_pdf(&prepared, v)));
+      sphera_sptd_in_cap_prepare(&prepared, v, base, v, cap);
+      s = sphera_sptd_in_cap_sample(&prepared, bad[i], bad[k]);
+      CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf));
+      sphera_sphere_light_shading_prepare(&shading, v, bad[k], v);
+      CHECK(vec3_is_finite(sphera_sphere_light_shade(&shading, garbage)));
+      CHECK(vec3_is_finite(sphera_sphere_light_shade_occluded(&shading, cap, garbage)));
+      sphera_sphere_light_sampler_prepare(&sampler, v, bad[k], v, bad[i]);
+      s = sphera_sphere_light_sampler_sample(&sampler, bad[i], bad[k]);
+      CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf));
+      CHECK(isfinite(sphera_sphere_light_sampler_pdf(&sampler, v)));
+      sphera_phase_pivot_in_cap_prepare(&prepared, v, bad[k], garbage);
+      s = sphera_sptd_in_cap_sample(&prepared, bad[i], bad[k]);
+      CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf));
+      sphera_ggx_pivot_lookup(&fit, v, bad[k]);
+      CHECK(vec3_is_finite(fit.pivot) && isfinite(fit.albedo));
+    }
+  }
+}
+
+int main(void) {
+  check_sptd_in_cap();
+  check_sphere_light();
+  check_phase_in_cap();
+  check_bad_input();
+  return check_summary();
+}
