@@ -14,3 +14,4 @@ pub mod ltc_fitter;
 pub mod pivot_fitter;
 pub mod reference;
 pub mod sorting_network_generator;
+pub mod sphere_shading_error;
