@@ -39,6 +39,8 @@ mod phase;
 
 mod sphere;
 
+mod vsgl;
+
 pub use brdf::*;
 pub use frame::*;
 pub use light::*;
@@ -48,6 +50,7 @@ pub use polygon::*;
 pub use projected::*;
 pub use sphere::*;
 pub use types::*;
+pub use vsgl::*;
 pub use warps::*;
 
 /// The precompiled `core` of hosted targets is built with unwinding, and its object

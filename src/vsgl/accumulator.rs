@@ -59,7 +59,7 @@ pub struct Vpl {
     pub roughness: f32,
 }
 
-/// The sums of a cluster of VPLs (the table in the module documentation), relative to
+/// The sums of a cluster of VPLs (tabled in the docs of `sphera::vsgl::accumulator`), relative to
 /// a reference point `o` kept outside the texel. This is what a texel of the mip
 /// pyramid stores: a texel of level `l + 1` is the field-wise sum of its four children.
 #[repr(C)]
@@ -257,7 +257,7 @@ const UNIFORM_SG: Sg = Sg {
 };
 
 /// Sums VPLs, mip texels or other accumulators into one VSGL. Allocation-free and
-/// `Copy`; the sums are relative to `origin` (see the module documentation).
+/// `Copy`; the sums are relative to `origin`, a point the caller picks near the VPLs.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VsglAccumulator {

@@ -37,8 +37,9 @@
 use super::accumulator::{Vsgl, VsglAccumulator, VsglTexel};
 use glam::Vec3;
 
-/// The largest pyramid: `2^15 × 2^15` texels at level 0.
-const MAX_LOG2_SIZE: u32 = 15;
+/// The largest pyramid: `2^14 × 2^14` texels at level 0 (the texel count then fits a
+/// 32-bit `usize`).
+const MAX_LOG2_SIZE: u32 = 14;
 
 /// Bisection steps are capped at this count (more cannot change an `f32` level).
 const MAX_ITERATIONS: u32 = 32;
@@ -53,14 +54,18 @@ pub struct VsglPyramid<'a> {
 }
 
 impl<'a> VsglPyramid<'a> {
-    /// The number of texels of the pyramid of a `size × size` map: `(4 size² − 1)/3`.
+    /// The number of texels of the pyramid of a `size × size` map, `(4 size² − 1)/3`,
+    /// or 0 when `size` is not a power of two in `1..=2^14`.
     pub const fn texel_count(size: u32) -> usize {
+        if !size.is_power_of_two() || size > 1 << MAX_LOG2_SIZE {
+            return 0;
+        }
         let size = size as usize;
         (4 * size * size - 1) / 3
     }
 
     /// The pyramid over `texels`, or `None` when `size` is not a power of two in
-    /// `1..=2^15`, `texels` holds fewer than [`Self::texel_count`] texels (extra ones
+    /// `1..=2^14`, `texels` holds fewer than [`Self::texel_count`] texels (extra ones
     /// are ignored) or `origin` is not finite.
     pub fn new(texels: &'a [VsglTexel], size: u32, origin: Vec3) -> Option<VsglPyramid<'a>> {
         if !size.is_power_of_two()
