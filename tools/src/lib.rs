@@ -14,3 +14,5 @@ pub mod ltc_fitter;
 pub mod pivot_fitter;
 pub mod reference;
 pub mod sorting_network_generator;
+pub mod vsgl_kmeans;
+pub mod vsgl_pyramid;
