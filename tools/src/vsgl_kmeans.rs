@@ -92,7 +92,7 @@ pub fn kmeans_vsgls(
         assignment: vec![u32::MAX; vpls.len()],
         vsgls: Vec::new(),
     };
-    if !(total > 0.0) || cluster_count == 0 {
+    if total <= 0.0 || total.is_nan() || cluster_count == 0 {
         return clusters;
     }
     // Centres ∝ importance, by the inverse of the cumulative sum.
