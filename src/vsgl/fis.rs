@@ -98,23 +98,27 @@ impl<'a> VsglPyramid<'a> {
         self.origin
     }
 
-    /// The side of `level`.
+    /// The side of `level` (levels above `L` count as `L`).
     pub fn level_size(&self, level: u32) -> u32 {
-        self.size >> level
+        self.size >> level.min(self.top_level)
     }
 
-    /// The index of the first texel of `level` in the slice.
+    /// The index of the first texel of `level` in the slice (levels above `L` count as
+    /// `L`).
     pub fn level_offset(&self, level: u32) -> usize {
         // Σ_{k<l} 4^{L−k} = (4^{L+1} − 4^{L+1−l}) / 3.
+        let level = level.min(self.top_level);
         let total = 1usize << (2 * (self.top_level + 1));
         let rest = 1usize << (2 * (self.top_level + 1 - level));
         (total - rest) / 3
     }
 
-    /// The texel `(x, y)` of `level` (indices must lie inside the level).
+    /// The texel `(x, y)` of `level`; a level above `L` counts as `L`, and indices
+    /// outside the level are clamped to its edge (so this never panics).
     pub fn texel(&self, level: u32, x: u32, y: u32) -> &VsglTexel {
-        let side = self.level_size(level) as usize;
-        &self.texels[self.level_offset(level) + y as usize * side + x as usize]
+        let side = self.level_size(level);
+        let (x, y) = (x.min(side - 1) as usize, y.min(side - 1) as usize);
+        &self.texels[self.level_offset(level) + y * side as usize + x]
     }
 
     /// The importance `p` of a texel: its weight, with negative, NaN or infinite

@@ -72,6 +72,20 @@ fn pyramid_layout_and_validation() {
         assert!(fis_cluster(&pyramid, 4, 1.0, 8, [0.5, 0.5]).is_none());
         assert!(fis_select(&pyramid, 4, 1.0, 8, [0.5, 0.5]).is_empty());
     }
+    for size in [0, 3, 6, 12, 1 << 15, u32::MAX] {
+        assert_eq!(VsglPyramid::texel_count(size), 0);
+    }
+    assert_eq!(VsglPyramid::texel_count(1 << 14), (4usize << 28) / 3);
+    // Out-of-range levels and indices are clamped, never a panic.
+    let mut texels = vec![VsglTexel::ZERO; VsglPyramid::texel_count(4)];
+    texels[2].weight = 1.0;
+    texels[20].weight = 5.0;
+    let pyramid = VsglPyramid::new(&texels, 4, Vec3::ZERO).unwrap();
+    assert_eq!(pyramid.texel(0, 7, 0).weight, 0.0);
+    assert_eq!(pyramid.texel(0, 2, 0).weight, 1.0);
+    assert_eq!(pyramid.texel(0, 2, u32::MAX).weight, 0.0);
+    assert_eq!(pyramid.texel(99, 5, 5).weight, 5.0);
+    assert_eq!(pyramid.level_size(40), 1);
     let texels = vec![VsglTexel::ZERO; 100];
     for size in [0, 3, 6, 12] {
         assert!(VsglPyramid::new(&texels, size, Vec3::ZERO).is_none());
