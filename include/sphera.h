@@ -688,9 +688,10 @@ typedef struct SpheraCap {
 } SpheraCap;
 
 /**
- * The sums of a cluster of VPLs (tabled in the docs of `sphera::vsgl::accumulator`), relative to
- * a reference point `o` kept outside the texel. This is what a texel of the mip
- * pyramid stores: a texel of level `l + 1` is the field-wise sum of its four children.
+ * The sums of a cluster of VPLs (tabled in the docs of `sphera::vsgl::accumulator`),
+ * relative to a reference point `o` kept outside the texel. This is what a texel of
+ * the mip pyramid stores: a texel of level `l + 1` is the field-wise sum of its four
+ * children.
  */
 typedef struct SpheraVsglTexel {
   /**

@@ -23,8 +23,11 @@
 //! texels). The variance `σ² = E‖y − o‖² − ‖μ − o‖²` (Section 3.2, which takes
 //! `o = 0`) then loses only about `ε · E‖y − o‖²` to cancellation in `f32` instead of
 //! `ε · E‖y‖²`: for VPLs at 10⁴ from the world origin with unit spread, `o = 0` leaves
-//! no correct digit of `σ²` while an `o` among the VPLs keeps about six. Pick `o` near
-//! the VPLs (the centre of the scene or of the light's view).
+//! no correct digit of `σ²` while an `o` among the VPLs keeps at least four (tested).
+//! Pick `o` near the VPLs (the centre of the scene or of the light's view).
+//! A cluster far from `o` still loses digits in the same way: with one `o` for a
+//! whole RSM, a small cluster at distance `D` from `o` keeps about
+//! `log10(σ²/(ε D²))` digits of its variance.
 
 use crate::sg::{Sg, diffuse_lobe_normalized, sg_integral, specular_lobe_normalized};
 use glam::Vec3;
@@ -59,9 +62,10 @@ pub struct Vpl {
     pub roughness: f32,
 }
 
-/// The sums of a cluster of VPLs (tabled in the docs of `sphera::vsgl::accumulator`), relative to
-/// a reference point `o` kept outside the texel. This is what a texel of the mip
-/// pyramid stores: a texel of level `l + 1` is the field-wise sum of its four children.
+/// The sums of a cluster of VPLs (tabled in the docs of `sphera::vsgl::accumulator`),
+/// relative to a reference point `o` kept outside the texel. This is what a texel of
+/// the mip pyramid stores: a texel of level `l + 1` is the field-wise sum of its four
+/// children.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct VsglTexel {
