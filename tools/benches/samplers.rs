@@ -11,7 +11,7 @@ use sphera::brdf::lambert::Lambert;
 use sphera::brdf::{Ltc, LtcPolygon};
 use sphera::sphere::phase;
 use sphera::sphere::{Cap, pivot_transform};
-use sphera::vsgl::{Vpl, VsglAccumulator, fis_select};
+use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, fis_select, luminance};
 use sphera::{Sample, Vec3};
 use sphera_tools::vsgl_kmeans::{KMeansMetric, kmeans_vsgls};
 use sphera_tools::vsgl_pyramid::VsglPyramidBuffer;
@@ -255,4 +255,42 @@ fn vsgl_table(rng: &mut Rng, us: &[[f32; 2]]) {
     println!("|---|---:|");
     println!("| pyramid build + FIS | {fis_ms:.3} |");
     println!("| k-means (brute-force nearest centre, no iteration) | {kmeans_ms:.3} |");
+
+    // Compactness of the clusters: luminance-weighted mean σ_v and mean diffuse and
+    // specular λ_v (smaller σ, sharper lobes: tighter clusters).
+    let fis: Vec<Vsgl> = (0..CLUSTERS as usize)
+        .map(|i| fis_select(&pyramid, CLUSTERS, 1.0, 8, us[i]))
+        .collect();
+    let mut state = 1u64;
+    let mut uniform = || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let metric = KMeansMetric::for_clusters(CLUSTERS as usize, 6.4);
+    let kmeans = kmeans_vsgls(&vpls, SIZE, CLUSTERS as usize, metric, &mut uniform).vsgls;
+    let stats = |vsgls: &[Vsgl]| {
+        let (mut w, mut sigma, mut diffuse, mut specular, mut empty) = (0.0, 0.0, 0.0, 0.0, 0);
+        for v in vsgls {
+            let weight = luminance(v.diffuse_power + v.specular_power) as f64;
+            if !(weight > 0.0) {
+                empty += 1;
+                continue;
+            }
+            w += weight;
+            sigma += weight * (v.variance as f64).sqrt();
+            diffuse += weight * v.diffuse.sharpness as f64;
+            specular += weight * v.specular.sharpness as f64;
+        }
+        (sigma / w, diffuse / w, specular / w, empty, w)
+    };
+    println!("\n## Cluster compactness, {CLUSTERS} VSGLs from the same {SIZE}² RSM (one draw)\n");
+    println!("Luminance-weighted means; the RSM spans 6.4 × 6.4 world units.\n");
+    println!("| method | σ_v | diffuse λ_v | specular λ_v | empty clusters | Σ luminance |");
+    println!("|---|---:|---:|---:|---:|---:|");
+    for (name, vsgls) in [("FIS (K = 1)", &fis), ("k-means", &kmeans)] {
+        let (sigma, diffuse, specular, empty, w) = stats(vsgls);
+        println!("| {name} | {sigma:.3} | {diffuse:.3} | {specular:.3} | {empty} | {w:.1} |");
+    }
 }
