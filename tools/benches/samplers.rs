@@ -274,7 +274,7 @@ fn vsgl_table(rng: &mut Rng, us: &[[f32; 2]]) {
         let (mut w, mut sigma, mut diffuse, mut specular, mut empty) = (0.0, 0.0, 0.0, 0.0, 0);
         for v in vsgls {
             let weight = luminance(v.diffuse_power + v.specular_power) as f64;
-            if !(weight > 0.0) {
+            if weight <= 0.0 || weight.is_nan() {
                 empty += 1;
                 continue;
             }
