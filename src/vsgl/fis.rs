@@ -317,9 +317,11 @@ pub fn fis_cluster(
 }
 
 /// The VSGL of [`fis_cluster`], or [`Vsgl::EMPTY`] (mean at the pyramid's origin) when
-/// there is none. Give each cluster `i` of the `N` its own random point (for example
-/// stratified); the `N` VSGLs together carry the total power of the map (module
-/// documentation, step 4).
+/// there is none. Give each cluster `i` of the `N` its own random point, stratified
+/// over `[0, 1)²` (for example the Hammersley point `((i + ξ)/N, radical_inverse(i))`):
+/// the kernel masses are then close to `K/N` and the kernels tile the map with few
+/// overlaps and gaps (Tokuyoshi 2016); the `N` VSGLs together carry the total power of
+/// the map (module documentation, step 4).
 pub fn fis_select(
     pyramid: &VsglPyramid,
     cluster_count: u32,
