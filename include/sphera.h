@@ -828,6 +828,151 @@ typedef struct SpheraSphereLightSampler {
   bool uses_sptd;
 } SpheraSphereLightSampler;
 
+/**
+ * The sums of a cluster of VPLs (tabled in the docs of `sphera::vsgl::accumulator`),
+ * relative to a reference point `o` kept outside the texel. This is what a texel of
+ * the mip pyramid stores: a texel of level `l + 1` is the field-wise sum of its four
+ * children.
+ */
+typedef struct SpheraVsglTexel {
+  /**
+   * `Σ Φ ∘ R_d` (RGB).
+   */
+  SpheraVec3 diffuse_power;
+  /**
+   * `Σ Φ ∘ R_s` (RGB).
+   */
+  SpheraVec3 specular_power;
+  /**
+   * `Σ lum(Φ ∘ R_d) ξ̄_d` with `ξ̄ = λ/(λ+1) ξ`.
+   */
+  SpheraVec3 diffuse_direction;
+  /**
+   * `Σ lum(Φ ∘ R_s) ξ̄_s` with `ξ̄ = λ/(λ+1) ξ`.
+   */
+  SpheraVec3 specular_direction;
+  /**
+   * `Σ w (y − o)`, `w = lum(Φ ∘ (R_d + R_s))`.
+   */
+  SpheraVec3 position;
+  /**
+   * `Σ w ‖y − o‖²`.
+   */
+  float squared_distance;
+  /**
+   * `Σ w`: also the importance `p` of filtered importance sampling.
+   */
+  float weight;
+} SpheraVsglTexel;
+
+/**
+ * Sums VPLs, mip texels or other accumulators into one VSGL. Allocation-free and
+ * `Copy`; the sums are relative to `origin`, a point the caller picks near the VPLs.
+ */
+typedef struct SpheraVsglAccumulator {
+  /**
+   * The sums so far.
+   */
+  struct SpheraVsglTexel sums;
+  /**
+   * The reference point `o` of the sums.
+   */
+  SpheraVec3 origin;
+} SpheraVsglAccumulator;
+
+/**
+ * A virtual point light: a point `y` on a surface lit by a photon of power `Φ` that
+ * arrived from `toward_incoming` (`ω'`, pointing away from the surface).
+ */
+typedef struct SpheraVpl {
+  /**
+   * World position `y`.
+   */
+  SpheraVec3 position;
+  /**
+   * Surface normal `n` (normalised on use).
+   */
+  SpheraVec3 normal;
+  /**
+   * Photon power `Φ` (RGB, negative or NaN channels count as 0).
+   */
+  SpheraVec3 power;
+  /**
+   * Diffuse reflectance `R_d` (RGB, negative or NaN channels count as 0).
+   */
+  SpheraVec3 diffuse_reflectance;
+  /**
+   * Specular reflectance `R_s` (RGB, negative or NaN channels count as 0).
+   */
+  SpheraVec3 specular_reflectance;
+  /**
+   * Unit direction toward the light the photon came from, `ω'` (normalised on use).
+   */
+  SpheraVec3 toward_incoming;
+  /**
+   * GGX/Beckmann roughness `α` of the specular lobe (raised to `1e-4`).
+   */
+  float roughness;
+} SpheraVpl;
+
+/**
+ * `G(ω) = exp(log_amplitude) · exp(λ(ω·ξ − 1))`, axis `ξ` a unit vector, sharpness
+ * `λ ≥ 0`.
+ */
+typedef struct SpheraSg {
+  /**
+   * The lobe axis `ξ` (unit vector).
+   */
+  SpheraVec3 axis;
+  /**
+   * The sharpness `λ ≥ 0`.
+   */
+  float sharpness;
+  /**
+   * The natural logarithm of the amplitude.
+   */
+  float log_amplitude;
+} SpheraSg;
+
+/**
+ * A virtual spherical Gaussian light: the radiant intensity of a cluster as two SGs
+ * and the positional distribution as an isotropic Gaussian (supplement Sections
+ * 3.1–3.2).
+ *
+ * The intensity is `I_v(ω) = diffuse_power ∘ diffuse(ω) + specular_power ∘
+ * specular(ω)` where each SG is *normalised* (amplitude `1/A(λ_v)`), i.e. the paper's
+ * `c_v = Σ Φ R / A(λ_v)` is `power / A(λ_v)` per RGB channel. An empty cluster (no
+ * power, or sums that are not finite) is [`Vsgl::EMPTY`]-like: both powers zero.
+ */
+typedef struct SpheraVsgl {
+  /**
+   * Normalised SG of the diffuse radiant intensity: axis `ξ_v`, sharpness `λ_v`.
+   */
+  struct SpheraSg diffuse;
+  /**
+   * Normalised SG of the specular radiant intensity.
+   */
+  struct SpheraSg specular;
+  /**
+   * `Σ Φ ∘ R_d` (RGB).
+   */
+  SpheraVec3 diffuse_power;
+  /**
+   * `Σ Φ ∘ R_s` (RGB).
+   */
+  SpheraVec3 specular_power;
+  /**
+   * The weighted mean position `μ_v`.
+   */
+  SpheraVec3 mean;
+  /**
+   * The positional variance `σ_v²` (Section 3.2). 0 for a single VPL or a cluster
+   * whose spread is below the `f32` rounding of the sums: the shading must treat
+   * `σ² = 0` as a point light (the limit `λ_σ → ∞` of Eq. 6).
+   */
+  float variance;
+} SpheraVsgl;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -2123,6 +2268,116 @@ float sphera_sphere_light_sampler_pdf(const struct SpheraSphereLightSampler *sam
  * As for `sphera_sphere_light_sampler_sample`.
  */
 bool sphera_sphere_light_sampler_uses_sptd(const struct SpheraSphereLightSampler *sampler);
+
+/**
+ * Writes an empty accumulator whose sums are taken relative to `origin` (a
+ * non-finite origin counts as the world origin; choose a point near the VPLs, such as
+ * the centre of the scene, to keep the variance precise). `false` when `accumulator`
+ * is null.
+ *
+ * # Safety
+ *
+ * `accumulator` must be null or point to writable memory for a
+ * `SpheraVsglAccumulator`.
+ */
+bool sphera_vsgl_accumulator_init(struct SpheraVsglAccumulator *accumulator,
+                                  struct SpheraVec3 origin);
+
+/**
+ * Adds one VPL. `false` (nothing added) when a pointer is null or the VPL has a
+ * non-finite position, normal, direction or roughness, a zero normal or direction, or
+ * sums that overflow; negative or NaN power and reflectance channels count as 0.
+ *
+ * # Safety
+ *
+ * `accumulator` must be null or point to a valid `SpheraVsglAccumulator` (from
+ * `sphera_vsgl_accumulator_init`); `vpl` null or valid.
+ */
+bool sphera_vsgl_accumulator_add_vpl(struct SpheraVsglAccumulator *accumulator,
+                                     const struct SpheraVpl *vpl);
+
+/**
+ * Adds a texel of sums taken relative to the accumulator's origin (a mip texel).
+ * `false` (nothing added) when a pointer is null or a sum is not finite.
+ *
+ * # Safety
+ *
+ * As `sphera_vsgl_accumulator_add_vpl`, with `texel` null or valid.
+ */
+bool sphera_vsgl_accumulator_add_texel(struct SpheraVsglAccumulator *accumulator,
+                                       const struct SpheraVsglTexel *texel);
+
+/**
+ * Adds the sums of `other` (moved to the accumulator's origin). `false` (nothing
+ * added) when a pointer is null or the moved sums are not finite. `other` may equal
+ * `accumulator` (the sums then double).
+ *
+ * # Safety
+ *
+ * Both pointers null or valid `SpheraVsglAccumulator`s.
+ */
+bool sphera_vsgl_accumulator_merge(struct SpheraVsglAccumulator *accumulator,
+                                   const struct SpheraVsglAccumulator *other);
+
+/**
+ * The VSGL of the sums: normalised diffuse and specular SGs (Toksvig), RGB powers,
+ * mean and variance (0 for a single VPL: treat as a point light). An empty VSGL (zero
+ * powers, mean at the origin) for a null pointer, no power or non-finite sums.
+ *
+ * # Safety
+ *
+ * `accumulator` null or valid.
+ */
+struct SpheraVsgl sphera_vsgl_accumulator_finish(const struct SpheraVsglAccumulator *accumulator);
+
+/**
+ * Writes the sums of one VPL relative to `origin` into `*texel` (a level-0 texel of a
+ * pyramid). `false`, with the zero texel written when `texel` is non-null, when `vpl`
+ * is null or rejected (see `sphera_vsgl_accumulator_add_vpl`) or `origin` is not
+ * finite.
+ *
+ * # Safety
+ *
+ * `vpl` null or valid; `texel` null or writable.
+ */
+bool sphera_vsgl_texel_from_vpl(const struct SpheraVpl *vpl,
+                                struct SpheraVec3 origin,
+                                struct SpheraVsglTexel *texel);
+
+/**
+ * The number of texels of the mip pyramid of a `size × size` map, `(4 size² − 1)/3`,
+ * or 0 when `size` is not a power of two in `1..=16384`.
+ */
+size_t sphera_vsgl_pyramid_texel_count(uint32_t size);
+
+/**
+ * Cluster `i` of `cluster_count` by filtered importance sampling (Tokuyoshi 2016,
+ * Section 3.3 and Algorithm 1) from the random point `(u0, u1)` (clamped to [0, 1)):
+ * an image position drawn in proportion to the texels' `weight`, the mip level where
+ * the kernel holds `kernel_scale / cluster_count` of the total weight (`iterations`
+ * bisection steps, capped at 32), and the trilinearly filtered sums there, weighted so
+ * that the `cluster_count` VSGLs carry the map's total luminance exactly.
+ *
+ * `texels` holds the pyramid: level 0 (`size × size`, row-major) then each coarser
+ * level down to 1×1, every texel the sum of its four children, all relative to
+ * `origin`; `texel_count` must be at least `sphera_vsgl_pyramid_texel_count(size)`.
+ * An empty VSGL (zero powers) when `texels` is null, `size` unsupported,
+ * `texel_count` too small, `origin` not finite, `cluster_count` 0, `kernel_scale` not
+ * finite and positive, or the map has no weight.
+ *
+ * # Safety
+ *
+ * `texels` null or pointing to `texel_count` readable, initialised texels.
+ */
+struct SpheraVsgl sphera_vsgl_fis_select(const struct SpheraVsglTexel *texels,
+                                         size_t texel_count,
+                                         uint32_t size,
+                                         struct SpheraVec3 origin,
+                                         uint32_t cluster_count,
+                                         float kernel_scale,
+                                         uint32_t iterations,
+                                         float u0,
+                                         float u1);
 
 #ifdef __cplusplus
 }  // extern "C"

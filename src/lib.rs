@@ -24,7 +24,9 @@ pub mod math;
 pub mod mis;
 pub mod polygon;
 mod sample;
+pub mod sg;
 pub mod sphere;
+pub mod vsgl;
 
 #[cfg(test)]
 pub(crate) mod testing;

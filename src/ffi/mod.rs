@@ -41,6 +41,8 @@ mod sphere;
 
 mod sptd;
 
+mod vsgl;
+
 pub use brdf::*;
 pub use frame::*;
 pub use light::*;
@@ -51,6 +53,7 @@ pub use projected::*;
 pub use sphere::*;
 pub use sptd::*;
 pub use types::*;
+pub use vsgl::*;
 pub use warps::*;
 
 /// The precompiled `core` of hosted targets is built with unwinding, and its object

@@ -4,13 +4,17 @@
 //! the phase functions (pivot and Henyey–Greenstein), each with its pdf where the
 //! sampler returns one. Median of repeated runs over 4096 random inputs; ratios to
 //! uniform cap sampling measured in the same run (`cargo bench -p sphera-tools --bench
-//! samplers`, a few seconds).
+//! samplers`, a few seconds). A second table times the VSGL accumulator and FIS cluster
+//! selection, and one frame of FIS against the k-means comparison.
 use sphera::brdf::ggx::GgxBrdf;
 use sphera::brdf::lambert::Lambert;
 use sphera::brdf::{Ltc, LtcPolygon};
 use sphera::sphere::phase;
 use sphera::sphere::{Cap, pivot_transform};
+use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, fis_select, luminance};
 use sphera::{Sample, Vec3};
+use sphera_tools::vsgl_kmeans::{KMeansMetric, kmeans_vsgls};
+use sphera_tools::vsgl_pyramid::VsglPyramidBuffer;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -148,5 +152,145 @@ fn main() {
     println!("|---|---:|---:|");
     for (name, ns) in rows {
         println!("| {name} | {ns:.1} | {:.2}× |", ns / cap_sample);
+    }
+    vsgl_table(&mut rng, &us);
+}
+
+/// ns per VSGL operation on a 64×64 RSM of random VPLs, and one frame of 256 clusters
+/// by FIS and by the k-means comparison.
+fn vsgl_table(rng: &mut Rng, us: &[[f32; 2]]) {
+    const SIZE: usize = 64;
+    const CLUSTERS: u32 = 256;
+    let vpls: Vec<Vpl> = (0..SIZE * SIZE)
+        .map(|k| {
+            let (x, y) = ((k % SIZE) as f32, (k / SIZE) as f32);
+            let normal = (rng.direction() + Vec3::new(0.0, 0.0, 1.5)).normalize();
+            Vpl {
+                position: Vec3::new(x * 0.1, y * 0.1, rng.uniform()),
+                normal,
+                power: Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * 4.0,
+                diffuse_reflectance: Vec3::splat(0.6),
+                specular_reflectance: Vec3::splat(0.04),
+                toward_incoming: (normal + rng.direction() * 0.5).normalize(),
+                roughness: 0.1 + 0.8 * rng.uniform(),
+            }
+        })
+        .collect();
+    let origin = Vec3::new(3.2, 3.2, 0.5);
+    let base = {
+        let mut a = VsglAccumulator::new(origin);
+        a.add_vpl(&vpls[0]);
+        a
+    };
+    let clusters: Vec<VsglAccumulator> = (0..INPUTS)
+        .map(|i| {
+            let mut a = VsglAccumulator::new(origin);
+            for k in 0..16 {
+                a.add_vpl(&vpls[(i * 16 + k) % vpls.len()]);
+            }
+            a
+        })
+        .collect();
+    let buffer = VsglPyramidBuffer::from_vpls(&vpls, SIZE as u32, origin).unwrap();
+    let pyramid = buffer.pyramid();
+    let add_vpl = time_ns(|i| {
+        let mut a = base;
+        a.add_vpl(&vpls[i % vpls.len()]);
+        a.sums.weight
+    });
+    let rows = [
+        ("accumulator: add_vpl", add_vpl),
+        (
+            "accumulator: finish",
+            time_ns(|i| clusters[i].finish().variance),
+        ),
+        (
+            "fis_select (64² RSM, N = 256, K = 1, 8 bisection steps)",
+            time_ns(|i| fis_select(&pyramid, CLUSTERS, 1.0, 8, us[i]).variance),
+        ),
+    ];
+    println!("\n## ns per call of the VSGL accumulator and FIS\n");
+    println!("{INPUTS} random inputs, median of {REPEATS} runs; ratio to add_vpl.\n");
+    println!("| operation | ns | ratio |");
+    println!("|---|---:|---:|");
+    for (name, ns) in rows {
+        println!("| {name} | {ns:.1} | {:.2}× |", ns / add_vpl);
+    }
+    // One frame: building the pyramid + 256 FIS clusters, against k-means.
+    let frame = |run: &dyn Fn() -> f32| {
+        let mut times: Vec<f64> = (0..9)
+            .map(|_| {
+                let start = Instant::now();
+                black_box(run());
+                start.elapsed().as_secs_f64() * 1e3
+            })
+            .collect();
+        times.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        times[4]
+    };
+    let fis_ms = frame(&|| {
+        let buffer = VsglPyramidBuffer::from_vpls(&vpls, SIZE as u32, origin).unwrap();
+        let pyramid = buffer.pyramid();
+        (0..CLUSTERS as usize)
+            .map(|i| fis_select(&pyramid, CLUSTERS, 1.0, 8, us[i]).variance)
+            .sum()
+    });
+    let kmeans_ms = frame(&|| {
+        let mut state = 1u64;
+        let mut uniform = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let metric = KMeansMetric::for_clusters(CLUSTERS as usize, 6.4);
+        kmeans_vsgls(&vpls, SIZE, CLUSTERS as usize, metric, &mut uniform)
+            .vsgls
+            .iter()
+            .map(|v| v.variance)
+            .sum()
+    });
+    println!("\n## One frame of {CLUSTERS} VSGLs from a {SIZE}² RSM (one core, ms, median of 9)\n");
+    println!("| method | ms |");
+    println!("|---|---:|");
+    println!("| pyramid build + FIS | {fis_ms:.3} |");
+    println!("| k-means (brute-force nearest centre, no iteration) | {kmeans_ms:.3} |");
+
+    // Compactness of the clusters: luminance-weighted mean σ_v and mean diffuse and
+    // specular λ_v (smaller σ, sharper lobes: tighter clusters).
+    let fis: Vec<Vsgl> = (0..CLUSTERS as usize)
+        .map(|i| fis_select(&pyramid, CLUSTERS, 1.0, 8, us[i]))
+        .collect();
+    let mut state = 1u64;
+    let mut uniform = || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let metric = KMeansMetric::for_clusters(CLUSTERS as usize, 6.4);
+    let kmeans = kmeans_vsgls(&vpls, SIZE, CLUSTERS as usize, metric, &mut uniform).vsgls;
+    let stats = |vsgls: &[Vsgl]| {
+        let (mut w, mut sigma, mut diffuse, mut specular, mut empty) = (0.0, 0.0, 0.0, 0.0, 0);
+        for v in vsgls {
+            let weight = luminance(v.diffuse_power + v.specular_power) as f64;
+            if weight <= 0.0 || weight.is_nan() {
+                empty += 1;
+                continue;
+            }
+            w += weight;
+            sigma += weight * (v.variance as f64).sqrt();
+            diffuse += weight * v.diffuse.sharpness as f64;
+            specular += weight * v.specular.sharpness as f64;
+        }
+        (sigma / w, diffuse / w, specular / w, empty, w)
+    };
+    println!("\n## Cluster compactness, {CLUSTERS} VSGLs from the same {SIZE}² RSM (one draw)\n");
+    println!("Luminance-weighted means; the RSM spans 6.4 × 6.4 world units.\n");
+    println!("| method | σ_v | diffuse λ_v | specular λ_v | empty clusters | Σ luminance |");
+    println!("|---|---:|---:|---:|---:|---:|");
+    for (name, vsgls) in [("FIS (K = 1)", &fis), ("k-means", &kmeans)] {
+        let (sigma, diffuse, specular, empty, w) = stats(vsgls);
+        println!("| {name} | {sigma:.3} | {diffuse:.3} | {specular:.3} | {empty} | {w:.1} |");
     }
 }

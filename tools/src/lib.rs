@@ -15,3 +15,5 @@ pub mod pivot_fitter;
 pub mod reference;
 pub mod sorting_network_generator;
 pub mod sphere_shading_error;
+pub mod vsgl_kmeans;
+pub mod vsgl_pyramid;

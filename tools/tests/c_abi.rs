@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 use sphera_tools::repository_root;
 
 /// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
-const C_TESTS: [&str; 13] = [
+const C_TESTS: [&str; 14] = [
     "test_polygon_clip",
     "test_projected_polygon",
     "test_solid_angle_polygon",
@@ -24,6 +24,7 @@ const C_TESTS: [&str; 13] = [
     "test_phase",
     "test_sphere_caps",
     "test_sptd",
+    "test_vsgl",
 ];
 
 /// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
@@ -228,6 +229,11 @@ fn test_sptd() {
     run_c_test("test_sptd");
 }
 
+#[test]
+fn test_vsgl() {
+    run_c_test("test_vsgl");
+}
+
 /// Compiles `ffi-tests/<name>.c` with the tracer's sources, links `libsphera.a`, Embree
 /// 3, libpng and pthreads, runs it and asserts that it exits with status 0.
 fn run_tracer_test(name: &str) {
@@ -405,7 +411,9 @@ fn struct_layouts_match_rust() {
     use sphera::polygon::{
         ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
     };
+    use sphera::sg::Sg;
     use sphera::sphere::{Cap, GgxPivot, SphereLightSampler, SphereShadingSptd, SptdInCap};
+    use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, VsglTexel};
 
     let expected: Vec<(&str, usize)> = vec![
         ("sizeof(SpheraVec3)", size_of::<SpheraVec3>()),
@@ -512,6 +520,32 @@ fn struct_layouts_match_rust() {
             "alignof(SpheraSphereLightSampler)",
             align_of::<SphereLightSampler>(),
         ),
+        ("sizeof(SpheraSg)", size_of::<Sg>()),
+        (
+            "offsetof(SpheraSg, log_amplitude)",
+            offset_of!(Sg, log_amplitude),
+        ),
+        ("sizeof(SpheraVpl)", size_of::<Vpl>()),
+        ("alignof(SpheraVpl)", align_of::<Vpl>()),
+        ("offsetof(SpheraVpl, roughness)", offset_of!(Vpl, roughness)),
+        ("sizeof(SpheraVsglTexel)", size_of::<VsglTexel>()),
+        ("alignof(SpheraVsglTexel)", align_of::<VsglTexel>()),
+        (
+            "offsetof(SpheraVsglTexel, weight)",
+            offset_of!(VsglTexel, weight),
+        ),
+        (
+            "sizeof(SpheraVsglAccumulator)",
+            size_of::<VsglAccumulator>(),
+        ),
+        (
+            "offsetof(SpheraVsglAccumulator, origin)",
+            offset_of!(VsglAccumulator, origin),
+        ),
+        ("sizeof(SpheraVsgl)", size_of::<Vsgl>()),
+        ("alignof(SpheraVsgl)", align_of::<Vsgl>()),
+        ("offsetof(SpheraVsgl, mean)", offset_of!(Vsgl, mean)),
+        ("offsetof(SpheraVsgl, variance)", offset_of!(Vsgl, variance)),
     ];
     let mut source =
         String::from("#include <stddef.h>\n#include <stdio.h>\n#include \"sphera.h\"\n");
@@ -534,6 +568,9 @@ fn struct_layouts_match_rust() {
         "SpheraCap",
         "SpheraSptdInCap",
         "SpheraSphereLightSampler",
+        "SpheraVpl",
+        "SpheraVsglTexel",
+        "SpheraVsgl",
     ] {
         source += &format!("struct align_{name} {{ char c; {name} t; }};\n");
     }
