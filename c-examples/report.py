@@ -47,7 +47,7 @@ SCENES = ("cornell", "polygons", "polygons@8", "hard", "glossy", "spheres")  # n
 MIS_TECHNIQUES = ("brdf_balance", "brdf_power", "ltc_weighted", "ltc_clamped", "ltc_optimal")
 GLOSSY_TECHNIQUES = ("area", "solid_angle", "projected") + MIS_TECHNIQUES
 # Sphere lights have their own samplers; they run on the `spheres` scene only.
-SPHERE_TECHNIQUES = ("sphere_cap", "sphere_cap_brdf")
+SPHERE_TECHNIQUES = ("sphere_cap", "sphere_cap_brdf", "sphere_sptd", "sphere_realtime")
 # The baseline of the speed-up column: area sampling, or on `spheres` uniform cap sampling.
 SCENE_BASELINE = {"spheres": "sphere_cap"}
 

@@ -242,36 +242,184 @@ static float3 pair_estimate(const Scene *scene, struct RTCIntersectContext *cont
     return sum;
 }
 
+/* Which part of the BRDF an estimate integrates: f = f_diffuse + f_specular. */
+typedef enum BrdfPart { BRDF_WHOLE, BRDF_DIFFUSE, BRDF_SPECULAR } BrdfPart;
+
+static float3 brdf_part(const Material *m, float3 wo, SpheraVec3 wi, BrdfPart part) {
+    if (!(wi.z > 0.0f)) return f3(0, 0, 0);
+    float3 f = f3(0, 0, 0);
+    if (part != BRDF_SPECULAR) f = brdf_diffuse(m);
+    if (part != BRDF_DIFFUSE) f = f3_add(f, brdf_specular(m, wo, to_float3(wi)));
+    return f;
+}
+
+/* One light sample of sphere_cap_brdf for `part` of the BRDF: one uniform cap sample
+ * and one sample of the material's BRDF sampler, balance heuristic. */
+static float3 sphere_cap_brdf_estimate(const Scene *scene, struct RTCIntersectContext *context,
+                                       const Hit *hit, const Light *light, SpheraCap cap,
+                                       const BrdfSampler *brdf, BrdfPart part, Rng *rng) {
+    const Material *m = &scene->materials[hit->material];
+    float3 sum = f3(0, 0, 0);
+    float u0 = rng_float(rng), u1 = rng_float(rng);
+    SpheraSample a = sphera_cap_sample_uniform(cap, u0, u1);
+    if (a.pdf > 0.0f && a.dir.z > 0.0f) {
+        float w = sphera_mis_balance(a.pdf, brdf_sampler_pdf(brdf, a.dir));
+        float3 f = brdf_part(m, hit->wo, a.dir, part);
+        if (w > 0.0f && !is_zero(f)) {
+            float3 radiance = light_cosine(scene, context, hit, light, a.dir);
+            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / a.pdf));
+        }
+    }
+    SpheraSample b = brdf_sampler_sample(brdf, rng_float(rng), rng_float(rng));
+    float cap_pdf = b.pdf > 0.0f ? sphera_cap_pdf(cap, b.dir) : 0.0f;
+    if (cap_pdf > 0.0f && b.dir.z > 0.0f) {
+        float w = sphera_mis_balance(b.pdf, cap_pdf);
+        float3 f = brdf_part(m, hit->wo, b.dir, part);
+        if (w > 0.0f && !is_zero(f)) {
+            float3 radiance = light_cosine(scene, context, hit, light, b.dir);
+            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / b.pdf));
+        }
+    }
+    return sum;
+}
+
+/* One light sample of sphere_sptd for the GGX layer alone: one sample of the joint
+ * SPTD light sampler (the fitted SPTD restricted to the cap, Dupuy et al. 2017,
+ * Section 6.1, or its own uniform-cap fallback) and one GGX visible-normal sample,
+ * balance heuristic. The SPTD has support in the whole cap, so the weights sum to 1
+ * wherever f_specular cos > 0 inside the cap. */
+static float3 sphere_sptd_specular_estimate(const Scene *scene, struct RTCIntersectContext *context,
+                                            const Hit *hit, const Light *light,
+                                            const SpheraSphereLightSampler *sampler, Rng *rng) {
+    const Material *m = &scene->materials[hit->material];
+    const SpheraVec3 wo = to_sphera(hit->wo);
+    float3 sum = f3(0, 0, 0);
+    float u0 = rng_float(rng), u1 = rng_float(rng);
+    SpheraSample a = sphera_sphere_light_sampler_sample(sampler, u0, u1);
+    if (a.pdf > 0.0f && a.dir.z > 0.0f) {
+        float w = sphera_mis_balance(a.pdf, sphera_ggx_pdf(&m->ggx, wo, a.dir));
+        float3 f = brdf_part(m, hit->wo, a.dir, BRDF_SPECULAR);
+        if (w > 0.0f && !is_zero(f)) {
+            float3 radiance = light_cosine(scene, context, hit, light, a.dir);
+            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / a.pdf));
+        }
+    }
+    float v0 = rng_float(rng), v1 = rng_float(rng);
+    SpheraSample b = sphera_ggx_sample(&m->ggx, wo, v0, v1);
+    float light_pdf = b.pdf > 0.0f ? sphera_sphere_light_sampler_pdf(sampler, b.dir) : 0.0f;
+    if (light_pdf > 0.0f && b.dir.z > 0.0f) {
+        float w = sphera_mis_balance(b.pdf, light_pdf);
+        float3 f = brdf_part(m, hit->wo, b.dir, BRDF_SPECULAR);
+        if (w > 0.0f && !is_zero(f)) {
+            float3 radiance = light_cosine(scene, context, hit, light, b.dir);
+            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / b.pdf));
+        }
+    }
+    return sum;
+}
+
+/* Draws at most this many uniform cap directions for sphere_realtime's visibility ray
+ * before giving up (the cap is then almost all below the horizon). */
+#define REALTIME_VISIBILITY_TRIES 8
+
+/* One light sample of sphere_realtime (BIASED): the Lambert layer as in sphere_cap
+ * (one uniform cap sample, unbiased), plus the GGX layer as
+ *   L * S(C) * V,
+ * where S(C) = sphera_sphere_light_shade, the fitted SPTD's integral over the cap
+ * clipped to the horizon (Dupuy et al. 2017, Eq. 19; includes cos and Fresnel), and V
+ * is the visibility of one direction uniform in the cap above the horizon: the cap
+ * sample when it lies above the horizon (its shadow ray is shared), else the first of
+ * further uniform cap samples that does (rejection). V is an unbiased estimate of the
+ * visible fraction of C ∩ H, so the GGX layer is exact up to the SPTD fit where the
+ * light is wholly visible or wholly hidden; in penumbrae the product of the fraction
+ * and S(C) is a further bias. */
+static float3 sphere_realtime_estimate(const Scene *scene, struct RTCIntersectContext *context,
+                                       const Hit *hit, const Light *light, SpheraCap cap,
+                                       const SpheraSphereLightShading *shading, Rng *rng,
+                                       uint64_t *samples) {
+    const Material *m = &scene->materials[hit->material];
+    float3 sum = f3(0, 0, 0);
+    float u0 = rng_float(rng), u1 = rng_float(rng);
+    SpheraSample a = sphera_cap_sample_uniform(cap, u0, u1);
+    *samples += 1;
+    bool drawn = false, visible = false;
+    if (a.pdf > 0.0f && a.dir.z > 0.0f) {
+        drawn = true;
+        visible = unoccluded(scene, context, hit, light, frame_to_world(&hit->frame, a.dir));
+        if (visible)
+            sum = f3_scale(f3_mul(light->radiance, brdf_diffuse(m)), a.dir.z / a.pdf);
+    }
+    if (!shading) return sum;
+    for (uint32_t t = 0; !drawn && t < REALTIME_VISIBILITY_TRIES; ++t) {
+        float v0 = rng_float(rng), v1 = rng_float(rng);
+        SpheraSample b = sphera_cap_sample_uniform(cap, v0, v1);
+        if (!(b.pdf > 0.0f)) break;
+        if (!(b.dir.z > 0.0f)) continue;
+        drawn = true;
+        *samples += 1;
+        visible = unoccluded(scene, context, hit, light, frame_to_world(&hit->frame, b.dir));
+    }
+    if (visible) {
+        float3 specular = to_float3(sphera_sphere_light_shade(shading, cap));
+        sum = f3_add(sum, f3_mul(light->radiance, specular));
+    }
+    return sum;
+}
+
 /* The reflected radiance from a sphere light, k samples: uniform cap sampling, or (for
  * sphere_cap_brdf and the reference) one cap and one BRDF sample per light sample with
- * the balance heuristic. Every polygon technique samples spheres uniformly in the cap. */
+ * the balance heuristic. sphere_sptd splits the BRDF: its Lambert part exactly as
+ * sphere_cap_brdf (the same estimator on f_diffuse), its GGX part by the SPTD light
+ * sampler and VNDF sampling; on materials without GGX it is sphere_cap_brdf.
+ * sphere_realtime: see sphere_realtime_estimate (`shading` is its prepared SPTD
+ * shading, NULL without a GGX layer). Every polygon technique samples spheres
+ * uniformly in the cap. */
 static float3 shade_sphere(const Scene *scene, struct RTCIntersectContext *context,
                            const Hit *hit, const Light *light, Technique technique, uint32_t k,
-                           const BrdfSampler *brdf, Rng *rng, uint64_t *samples) {
+                           const BrdfSampler *brdf, const SpheraSphereLightShading *shading,
+                           Rng *rng, uint64_t *samples) {
     float3 centre = f3_sub(light->center, hit->position);
     SpheraVec3 local = frame_to_local(&hit->frame, centre);
     SpheraCap cap = sphera_cap_from_sphere(local, light->radius);
     if (f3_dot(centre, centre) <= light->radius * light->radius) return f3(0, 0, 0);
-    bool mis = technique == TECHNIQUE_SPHERE_CAP_BRDF || technique == TECHNIQUE_REFERENCE;
+    const Material *m = &scene->materials[hit->material];
     float3 sum = f3(0, 0, 0);
+    if (technique == TECHNIQUE_SPHERE_REALTIME) {
+        for (uint32_t s = 0; s < k; ++s)
+            sum = f3_add(sum, sphere_realtime_estimate(scene, context, hit, light, cap, shading,
+                                                       rng, samples));
+        return f3_scale(sum, 1.0f / (float)k);
+    }
+    SpheraSphereLightSampler sampler;
+    bool sptd = technique == TECHNIQUE_SPHERE_SPTD && m->roughness > 0.0f &&
+                sphera_sphere_light_sampler_prepare(&sampler, local, light->radius,
+                                                    to_sphera(hit->wo), m->roughness);
+    if (sptd) {
+        for (uint32_t s = 0; s < k; ++s) {
+            *samples += 4;
+            sum = f3_add(sum, sphere_cap_brdf_estimate(scene, context, hit, light, cap, brdf,
+                                                       BRDF_DIFFUSE, rng));
+            sum = f3_add(sum, sphere_sptd_specular_estimate(scene, context, hit, light, &sampler,
+                                                            rng));
+        }
+        return f3_scale(sum, 1.0f / (float)k);
+    }
+    bool mis = technique == TECHNIQUE_SPHERE_CAP_BRDF || technique == TECHNIQUE_SPHERE_SPTD ||
+               technique == TECHNIQUE_REFERENCE;
     for (uint32_t s = 0; s < k; ++s) {
+        if (mis) {
+            *samples += 2;
+            sum = f3_add(sum, sphere_cap_brdf_estimate(scene, context, hit, light, cap, brdf,
+                                                       BRDF_WHOLE, rng));
+            continue;
+        }
         float u0 = rng_float(rng), u1 = rng_float(rng);
         SpheraSample a = sphera_cap_sample_uniform(cap, u0, u1);
-        *samples += mis ? 2 : 1;
+        *samples += 1;
         if (a.pdf > 0.0f && a.dir.z > 0.0f) {
-            float w = mis ? sphera_mis_balance(a.pdf, brdf_sampler_pdf(brdf, a.dir)) : 1.0f;
-            const Material *m = &scene->materials[hit->material];
-            float3 f = f3_add(brdf_diffuse(m), brdf_specular(m, hit->wo, to_float3(a.dir)));
+            float3 f = brdf_part(m, hit->wo, a.dir, BRDF_WHOLE);
             float3 radiance = light_cosine(scene, context, hit, light, a.dir);
-            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / a.pdf));
-        }
-        if (!mis) continue;
-        SpheraSample b = brdf_sampler_sample(brdf, rng_float(rng), rng_float(rng));
-        float cap_pdf = b.pdf > 0.0f ? sphera_cap_pdf(cap, b.dir) : 0.0f;
-        if (cap_pdf > 0.0f && b.dir.z > 0.0f) {
-            float w = sphera_mis_balance(b.pdf, cap_pdf);
-            float3 radiance = light_cosine(scene, context, hit, light, b.dir);
-            sum = f3_add(sum, f3_scale(f3_mul(radiance, brdf_sampler_eval(brdf, b.dir)), w / b.pdf));
+            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), 1.0f / a.pdf));
         }
     }
     return f3_scale(sum, 1.0f / (float)k);
@@ -290,14 +438,21 @@ static float3 shade(const Scene *scene, struct RTCIntersectContext *context, con
     BrdfSampler brdf;
     memset(&brdf, 0, sizeof brdf);
     if (technique == TECHNIQUE_BRDF_BALANCE || technique == TECHNIQUE_BRDF_POWER ||
-        technique == TECHNIQUE_SPHERE_CAP_BRDF || technique == TECHNIQUE_REFERENCE)
+        technique == TECHNIQUE_SPHERE_CAP_BRDF || technique == TECHNIQUE_SPHERE_SPTD ||
+        technique == TECHNIQUE_REFERENCE)
         brdf_sampler_init(&brdf, m, hit->wo);
+    /* sphere_realtime: the SPTD shading depends on the view and the material only */
+    SpheraSphereLightShading shading;
+    const SpheraSphereLightShading *sphere_shading = NULL;
+    if (technique == TECHNIQUE_SPHERE_REALTIME && m->roughness > 0.0f &&
+        sphera_sphere_light_shading_prepare(&shading, point.wo, m->roughness, point.material.f0))
+        sphere_shading = &shading;
     float3 sum = f3(0, 0, 0);
     for (uint32_t l = 0; l < scene->light_count; ++l) {
         const Light *light = &scene->lights[l];
         if (light->radius > 0.0f) {
-            sum = f3_add(sum, shade_sphere(scene, context, hit, light, technique, k, &brdf, rng,
-                                           samples));
+            sum = f3_add(sum, shade_sphere(scene, context, hit, light, technique, k, &brdf,
+                                           sphere_shading, rng, samples));
             continue;
         }
         /* One-sided lights: nothing reaches points behind the light's plane. */

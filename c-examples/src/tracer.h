@@ -45,6 +45,8 @@ typedef enum Technique {
     /* Sphere lights (polygon lights are then sampled by projected solid angle sampling): */
     TECHNIQUE_SPHERE_CAP,          /* uniform in the sphere's cap of directions */
     TECHNIQUE_SPHERE_CAP_BRDF,     /* one cap and one BRDF sample, balance heuristic */
+    TECHNIQUE_SPHERE_SPTD,         /* GGX layer: one SPTD light and one VNDF sample, balance */
+    TECHNIQUE_SPHERE_REALTIME,     /* biased: Eq. 19 SPTD shading x one-ray visibility */
     TECHNIQUE_REFERENCE,           /* solid angle + projected, multi-sample MIS */
     TECHNIQUE_COUNT
 } Technique;
