@@ -48,8 +48,13 @@ MIS_TECHNIQUES = ("brdf_balance", "brdf_power", "ltc_weighted", "ltc_clamped", "
 GLOSSY_TECHNIQUES = ("area", "solid_angle", "projected") + MIS_TECHNIQUES
 # Sphere lights have their own samplers; they run on the `spheres` scene only.
 SPHERE_TECHNIQUES = ("sphere_cap", "sphere_cap_brdf", "sphere_sptd", "sphere_realtime")
-# The baseline of the speed-up column: area sampling, or on `spheres` uniform cap sampling.
-SCENE_BASELINE = {"spheres": "sphere_cap"}
+# In-scattering in a medium: the `slab` scene (not in SCENES: --scenes slab), against
+# uniform cap sampling.
+MEDIUM_TECHNIQUES = ("medium_pivot", "medium_hg_cap")
+SLAB_TECHNIQUES = ("sphere_cap",) + MEDIUM_TECHNIQUES
+# The baseline of the speed-up column: area sampling, or on `spheres` and `slab` uniform
+# cap sampling.
+SCENE_BASELINE = {"spheres": "sphere_cap", "slab": "sphere_cap"}
 
 
 def techniques_for(scene, techs):
@@ -59,7 +64,10 @@ def techniques_for(scene, techs):
         return [t for t in techs if t[0] in GLOSSY_TECHNIQUES]
     if name == "spheres":
         return [t for t in techs if t[0] in SPHERE_TECHNIQUES]
-    return [t for t in techs if t[0] not in MIS_TECHNIQUES + SPHERE_TECHNIQUES]
+    if name == "slab":
+        return [t for t in techs if t[0] in SLAB_TECHNIQUES]
+    return [t for t in techs
+            if t[0] not in MIS_TECHNIQUES + SPHERE_TECHNIQUES + MEDIUM_TECHNIQUES]
 FULL = {"width": 256, "height": 192, "ref_spp": 512, "spp": 16, "budget_ms": 1500.0}
 QUICK = {"width": 64, "height": 48, "ref_spp": 128, "spp": 4, "budget_ms": 150.0}
 REF_SEED = 1          # seed of reference renders
