@@ -417,8 +417,9 @@ static float3 sphere_realtime_estimate(const Scene *scene, struct RTCIntersectCo
 }
 
 /* The reflected radiance from a sphere light, k samples: uniform cap sampling, or (for
- * sphere_cap_brdf and the reference) one cap and one BRDF sample per light sample with
- * the balance heuristic. sphere_sptd splits the BRDF: its Lambert part exactly as
+ * sphere_cap_brdf) one cap and one BRDF sample per light sample with the balance
+ * heuristic. sphere_sptd (and the reference, whose variance is lowest with it) splits
+ * the BRDF: its Lambert part exactly as
  * sphere_cap_brdf (the same estimator on f_diffuse), its GGX part by the SPTD light
  * sampler and VNDF sampling; on materials without GGX it is sphere_cap_brdf.
  * sphere_realtime: see sphere_realtime_estimate (`shading` is its prepared SPTD
@@ -441,7 +442,8 @@ static float3 shade_sphere(const Scene *scene, struct RTCIntersectContext *conte
         return f3_scale(sum, 1.0f / (float)k);
     }
     SpheraSphereLightSampler sampler;
-    bool sptd = technique == TECHNIQUE_SPHERE_SPTD && m->roughness > 0.0f &&
+    bool sptd = (technique == TECHNIQUE_SPHERE_SPTD || technique == TECHNIQUE_REFERENCE) &&
+                m->roughness > 0.0f &&
                 sphera_sphere_light_sampler_prepare(&sampler, local, light->radius,
                                                     to_sphera(hit->wo), m->roughness);
     if (sptd) {

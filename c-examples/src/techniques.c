@@ -45,7 +45,7 @@ const TechniqueInfo technique_info[TECHNIQUE_COUNT] = {
      "medium in-scattering from sphere lights: one HG and one uniform cap sample, balance "
      "heuristic; surfaces as sphere_cap_brdf"},
     {"reference", false,
-     "reference images: projected sampling on Lambertian surfaces, one projected and one LTC sample with the weighted balance heuristic on GGX ones"},
+     "reference images: projected sampling on Lambertian surfaces, one projected and one LTC sample with the weighted balance heuristic on GGX ones; sphere lights as sphere_sptd, medium in-scattering as medium_hg_cap"},
 };
 
 int technique_from_name(const char *name) {
