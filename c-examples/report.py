@@ -47,9 +47,14 @@ SCENES = ("cornell", "polygons", "polygons@8", "hard", "glossy", "spheres")  # n
 MIS_TECHNIQUES = ("brdf_balance", "brdf_power", "ltc_weighted", "ltc_clamped", "ltc_optimal")
 GLOSSY_TECHNIQUES = ("area", "solid_angle", "projected") + MIS_TECHNIQUES
 # Sphere lights have their own samplers; they run on the `spheres` scene only.
-SPHERE_TECHNIQUES = ("sphere_cap", "sphere_cap_brdf")
-# The baseline of the speed-up column: area sampling, or on `spheres` uniform cap sampling.
-SCENE_BASELINE = {"spheres": "sphere_cap"}
+SPHERE_TECHNIQUES = ("sphere_cap", "sphere_cap_brdf", "sphere_sptd", "sphere_realtime")
+# In-scattering in a medium: the `slab` scene (not in SCENES: --scenes slab), against
+# uniform cap sampling.
+MEDIUM_TECHNIQUES = ("medium_pivot", "medium_hg_cap")
+SLAB_TECHNIQUES = ("sphere_cap",) + MEDIUM_TECHNIQUES
+# The baseline of the speed-up column: area sampling, or on `spheres` and `slab` uniform
+# cap sampling.
+SCENE_BASELINE = {"spheres": "sphere_cap", "slab": "sphere_cap"}
 
 
 def techniques_for(scene, techs):
@@ -59,9 +64,16 @@ def techniques_for(scene, techs):
         return [t for t in techs if t[0] in GLOSSY_TECHNIQUES]
     if name == "spheres":
         return [t for t in techs if t[0] in SPHERE_TECHNIQUES]
-    return [t for t in techs if t[0] not in MIS_TECHNIQUES + SPHERE_TECHNIQUES]
+    if name == "slab":
+        return [t for t in techs if t[0] in SLAB_TECHNIQUES]
+    return [t for t in techs
+            if t[0] not in MIS_TECHNIQUES + SPHERE_TECHNIQUES + MEDIUM_TECHNIQUES]
 FULL = {"width": 256, "height": 192, "ref_spp": 512, "spp": 16, "budget_ms": 1500.0}
 QUICK = {"width": 64, "height": 48, "ref_spp": 128, "spp": 4, "budget_ms": 150.0}
+# Full mode without --ref-spp: scenes whose reference technique is efficient enough for
+# fewer passes (spheres: sphere_sptd's estimator, whose reference noise at 256 passes is
+# about half of sphere_cap_brdf's at 512), which keeps the full report near 4.5 minutes.
+FULL_REF_SPP = {"spheres": 256}
 REF_SEED = 1          # seed of reference renders
 RUN_SEED = 2          # seed of technique renders (independent of the reference's noise)
 BASELINE = "area"     # technique the speed-up is relative to
@@ -121,7 +133,14 @@ def parse_args(argv):
     base = QUICK if args.quick else FULL
     args.settings = {k: base[k] if getattr(args, k) is None else getattr(args, k) for k in FULL}
     args.scenes = [s for s in args.scenes.split(",") if s]
+    args.ref_spp_by_scene = {} if args.quick or args.ref_spp is not None else FULL_REF_SPP
     return args
+
+
+def scene_settings(args, spec):
+    """The settings of one scene spec: args.settings with its reference pass count."""
+    name = spec.partition("@")[0]
+    return dict(args.settings, ref_spp=args.ref_spp_by_scene.get(name, args.settings["ref_spp"]))
 
 
 def tracer_binary(words):
@@ -255,7 +274,7 @@ def render_scene(tracer, key_base, spec, techs, s, out, common):
     for r in rows:
         ok = base_eff is not None and 0 < base_eff < math.inf and r["eff"] < math.inf
         r["speedup"] = r["eff"] / base_eff if ok else None
-    return {"scene": spec, "name": scene, "ref": ref, "rows": rows}
+    return {"scene": spec, "name": scene, "ref": ref, "rows": rows, "ref_spp": s["ref_spp"]}
 
 
 def cell(key, value):
@@ -386,7 +405,7 @@ def write_html(path, info, results, s):
                                             base=BASELINE + " (sphere_cap on spheres)") + "</p>")
     for res in results:
         sc, rows = file_name(res["scene"]), res["rows"]
-        top = [figure(f"{sc}-reference.png", f"reference ({s['ref_spp']} passes)", width)]
+        top = [figure(f"{sc}-reference.png", f"reference ({res['ref_spp']} passes)", width)]
         top += [figure(f"{sc}-{r['tech']}-time.png",
                        f"{r['tech']}: RMSE {r['rmse_time']:.3g}", width) for r in rows]
         low = [f'<div class="label">equal samples<br>({s["spp"]} passes)</div>']
@@ -491,8 +510,8 @@ def main(argv=None):
                 return 2
             techs = [t for t in techs if t[0] in wanted]
         key_base = version + "\n" + sha256_file(binary)
-        results = [render_scene(tracer, key_base, sc, techniques_for(sc, techs), s, out, common)
-                   for sc in args.scenes]
+        results = [render_scene(tracer, key_base, sc, techniques_for(sc, techs),
+                                scene_settings(args, sc), out, common) for sc in args.scenes]
     except TracerError as e:
         print(f"report: tracer failed: {e}", file=sys.stderr)
         return 1
@@ -507,7 +526,7 @@ def main(argv=None):
             f.write(svg_plot(title, curves, floor))
     for res in results:
         print(f"\n{res['scene']} ({s['width']}x{s['height']}, {s['spp']} passes / "
-              f"{s['budget_ms']:g} ms, reference {s['ref_spp']} passes)\n")
+              f"{s['budget_ms']:g} ms, reference {res['ref_spp']} passes)\n")
         print(text_table(res["rows"]))
     wall = time.monotonic() - start
     info = [("date", datetime.datetime.now().astimezone().isoformat(timespec="seconds")),
@@ -515,7 +534,10 @@ def main(argv=None):
             ("machine", f"{os.cpu_count()} logical CPUs, {cpu_name()}, "
                         f"{platform.machine()}, {platform.system()}"),
             ("settings", f"{'quick' if args.quick else 'full'}: {s['width']}x{s['height']}, "
-                         f"reference {s['ref_spp']} passes, equal samples {s['spp']} passes, "
+                         f"reference {s['ref_spp']} passes"
+                         + "".join(f" ({k}: {v})" for k, v in args.ref_spp_by_scene.items()
+                                   if k in {sc.partition('@')[0] for sc in args.scenes})
+                         + f", equal samples {s['spp']} passes, "
                          f"equal time {s['budget_ms']:g} ms, threads "
                          f"{args.threads or 'all'}, seeds {REF_SEED} (reference) / {RUN_SEED}"),
             ("total wall time of the report", f"{wall:.1f} s")]

@@ -29,6 +29,12 @@ typedef struct Hit {
     float3 emission;     /* radiance emitted towards the camera (lights only) */
     uint32_t material;
     bool reflects;       /* false: nothing or a light was hit */
+    /* The camera ray's part inside the scene's medium (if `in_medium`): from
+     * camera + t0 dir to camera + t1 dir; `transmittance` (1 without a medium) scales
+     * what lies behind it (emission and reflection). */
+    bool in_medium;
+    float3 camera_dir; /* world, unit */
+    float t0, t1, transmittance;
 } Hit;
 
 /* ---- random numbers ---------------------------------------------------------------- */
@@ -134,32 +140,68 @@ static SpheraVec3 frame_to_local(const SpheraFrame *f, float3 v) {
     return r;
 }
 
-/* True when nothing blocks the way from the hit towards `light` along the world
- * direction `dir`. The ray ends just before the light's plane, so that the light's own
- * triangles do not count. */
-static bool unoccluded(const Scene *scene, struct RTCIntersectContext *context, const Hit *hit,
-                       const Light *light, float3 dir) {
+/* The part [t0, t1] of the ray origin + t dir, t in [0, tmax], inside the medium's box
+ * (slab method); false when the ray misses it or there is no medium. */
+static bool medium_segment(const Medium *m, float3 origin, float3 dir, float tmax, float *t0,
+                           float *t1) {
+    if (!m->present) return false;
+    float lo = 0.0f, hi = tmax;
+    const float o[3] = {origin.x, origin.y, origin.z}, d[3] = {dir.x, dir.y, dir.z};
+    const float a[3] = {m->lo.x, m->lo.y, m->lo.z}, b[3] = {m->hi.x, m->hi.y, m->hi.z};
+    for (int i = 0; i < 3; ++i) {
+        if (d[i] == 0.0f) {
+            if (o[i] < a[i] || o[i] > b[i]) return false;
+            continue;
+        }
+        float ta = (a[i] - o[i]) / d[i], tb = (b[i] - o[i]) / d[i];
+        if (ta > tb) {
+            float t = ta;
+            ta = tb;
+            tb = t;
+        }
+        if (ta > lo) lo = ta;
+        if (tb < hi) hi = tb;
+    }
+    if (!(lo < hi)) return false;
+    *t0 = lo;
+    *t1 = hi;
+    return true;
+}
+
+/* exp(-sigma_t * length inside the medium) along origin + t dir, t in [0, tmax]. */
+static float medium_transmittance(const Scene *scene, float3 origin, float3 dir, float tmax) {
+    float t0, t1;
+    if (!medium_segment(&scene->medium, origin, dir, tmax, &t0, &t1)) return 1.0f;
+    return expf(-scene->medium.sigma_t * (t1 - t0));
+}
+
+/* The fraction of light that reaches `origin` from `light` along the world direction
+ * `dir`: 0 when something blocks the way, else the medium's transmittance (1 without
+ * a medium). The ray ends just before the light's plane or sphere, so that the light's
+ * own triangles do not count. */
+static float transmitted(const Scene *scene, struct RTCIntersectContext *context, float3 origin,
+                         const Light *light, float3 dir) {
     float t;
     if (light->radius > 0.0f) {
         /* The nearer intersection with the sphere: t = -b - sqrt(b^2 - c), written as
          * c / (-b + sqrt(b^2 - c)) where -b > 0, which keeps precision for small
          * spheres far away. */
-        float3 oc = f3_sub(hit->origin, light->center);
+        float3 oc = f3_sub(origin, light->center);
         float b = f3_dot(oc, dir), c = f3_dot(oc, oc) - light->radius * light->radius;
         float discriminant = b * b - c;
-        if (!(discriminant >= 0.0f) || !(b < 0.0f)) return false; /* misses or behind */
+        if (!(discriminant >= 0.0f) || !(b < 0.0f)) return 0.0f; /* misses or behind */
         t = c / (-b + sqrtf(discriminant));
     } else {
         float along = f3_dot(light->normal, dir);
-        t = f3_dot(light->normal, f3_sub(light->vertices[0], hit->origin)) / along;
+        t = f3_dot(light->normal, f3_sub(light->vertices[0], origin)) / along;
     }
-    if (!(t > 0.0f) || !(t < INFINITY)) return false; /* parallel or behind: no hit */
+    if (!(t > 0.0f) || !(t < INFINITY)) return 0.0f; /* parallel or behind: no hit */
     float tfar = t * (1.0f - 1e-5f) - scene->ray_epsilon;
-    if (tfar <= 0.0f) return true;
+    if (tfar <= 0.0f) return medium_transmittance(scene, origin, dir, t);
     struct RTCRay ray;
-    ray.org_x = hit->origin.x;
-    ray.org_y = hit->origin.y;
-    ray.org_z = hit->origin.z;
+    ray.org_x = origin.x;
+    ray.org_y = origin.y;
+    ray.org_z = origin.z;
     ray.dir_x = dir.x;
     ray.dir_y = dir.y;
     ray.dir_z = dir.z;
@@ -170,7 +212,14 @@ static bool unoccluded(const Scene *scene, struct RTCIntersectContext *context, 
     ray.id = 0;
     ray.flags = 0;
     rtcOccluded1(scene->rtc, context, &ray);
-    return ray.tfar >= 0.0f; /* Embree sets tfar to -inf on a hit */
+    if (!(ray.tfar >= 0.0f)) return 0.0f; /* Embree sets tfar to -inf on a hit */
+    return medium_transmittance(scene, origin, dir, t);
+}
+
+/* transmitted() from a surface hit (its shadow ray origin). */
+static float unoccluded(const Scene *scene, struct RTCIntersectContext *context, const Hit *hit,
+                        const Light *light, float3 dir) {
+    return transmitted(scene, context, hit->origin, light, dir);
 }
 
 /* L * cos * visibility for the local direction `wi` towards `light` (0 below the
@@ -179,8 +228,9 @@ static float3 light_cosine(const Scene *scene, struct RTCIntersectContext *conte
                            const Hit *hit, const Light *light, SpheraVec3 wi) {
     if (!(wi.z > 0.0f)) return f3(0, 0, 0);
     float3 dir = frame_to_world(&hit->frame, wi);
-    if (!unoccluded(scene, context, hit, light, dir)) return f3(0, 0, 0);
-    return f3_scale(light->radiance, wi.z);
+    float visible = unoccluded(scene, context, hit, light, dir);
+    if (!(visible > 0.0f)) return f3(0, 0, 0);
+    return f3_scale(light->radiance, wi.z * visible);
 }
 
 static float3 to_float3(SpheraVec3 v) { return f3(v.x, v.y, v.z); }
@@ -242,36 +292,187 @@ static float3 pair_estimate(const Scene *scene, struct RTCIntersectContext *cont
     return sum;
 }
 
+/* Which part of the BRDF an estimate integrates: f = f_diffuse + f_specular. */
+typedef enum BrdfPart { BRDF_WHOLE, BRDF_DIFFUSE, BRDF_SPECULAR } BrdfPart;
+
+static float3 brdf_part(const Material *m, float3 wo, SpheraVec3 wi, BrdfPart part) {
+    if (!(wi.z > 0.0f)) return f3(0, 0, 0);
+    float3 f = f3(0, 0, 0);
+    if (part != BRDF_SPECULAR) f = brdf_diffuse(m);
+    if (part != BRDF_DIFFUSE) f = f3_add(f, brdf_specular(m, wo, to_float3(wi)));
+    return f;
+}
+
+/* One light sample of sphere_cap_brdf for `part` of the BRDF: one uniform cap sample
+ * and one sample of the material's BRDF sampler, balance heuristic. */
+static float3 sphere_cap_brdf_estimate(const Scene *scene, struct RTCIntersectContext *context,
+                                       const Hit *hit, const Light *light, SpheraCap cap,
+                                       const BrdfSampler *brdf, BrdfPart part, Rng *rng) {
+    const Material *m = &scene->materials[hit->material];
+    float3 sum = f3(0, 0, 0);
+    float u0 = rng_float(rng), u1 = rng_float(rng);
+    SpheraSample a = sphera_cap_sample_uniform(cap, u0, u1);
+    if (a.pdf > 0.0f && a.dir.z > 0.0f) {
+        float w = sphera_mis_balance(a.pdf, brdf_sampler_pdf(brdf, a.dir));
+        float3 f = brdf_part(m, hit->wo, a.dir, part);
+        if (w > 0.0f && !is_zero(f)) {
+            float3 radiance = light_cosine(scene, context, hit, light, a.dir);
+            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / a.pdf));
+        }
+    }
+    SpheraSample b = brdf_sampler_sample(brdf, rng_float(rng), rng_float(rng));
+    float cap_pdf = b.pdf > 0.0f ? sphera_cap_pdf(cap, b.dir) : 0.0f;
+    if (cap_pdf > 0.0f && b.dir.z > 0.0f) {
+        float w = sphera_mis_balance(b.pdf, cap_pdf);
+        float3 f = brdf_part(m, hit->wo, b.dir, part);
+        if (w > 0.0f && !is_zero(f)) {
+            float3 radiance = light_cosine(scene, context, hit, light, b.dir);
+            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / b.pdf));
+        }
+    }
+    return sum;
+}
+
+/* One light sample of sphere_sptd for the GGX layer alone: one sample of the joint
+ * SPTD light sampler (the fitted SPTD restricted to the cap, Dupuy et al. 2017,
+ * Section 6.1, or its own uniform-cap fallback) and one GGX visible-normal sample,
+ * balance heuristic. The SPTD has support in the whole cap, so the weights sum to 1
+ * wherever f_specular cos > 0 inside the cap. */
+static float3 sphere_sptd_specular_estimate(const Scene *scene, struct RTCIntersectContext *context,
+                                            const Hit *hit, const Light *light,
+                                            const SpheraSphereLightSampler *sampler, Rng *rng) {
+    const Material *m = &scene->materials[hit->material];
+    const SpheraVec3 wo = to_sphera(hit->wo);
+    float3 sum = f3(0, 0, 0);
+    float u0 = rng_float(rng), u1 = rng_float(rng);
+    SpheraSample a = sphera_sphere_light_sampler_sample(sampler, u0, u1);
+    if (a.pdf > 0.0f && a.dir.z > 0.0f) {
+        float w = sphera_mis_balance(a.pdf, sphera_ggx_pdf(&m->ggx, wo, a.dir));
+        float3 f = brdf_part(m, hit->wo, a.dir, BRDF_SPECULAR);
+        if (w > 0.0f && !is_zero(f)) {
+            float3 radiance = light_cosine(scene, context, hit, light, a.dir);
+            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / a.pdf));
+        }
+    }
+    float v0 = rng_float(rng), v1 = rng_float(rng);
+    SpheraSample b = sphera_ggx_sample(&m->ggx, wo, v0, v1);
+    float light_pdf = b.pdf > 0.0f ? sphera_sphere_light_sampler_pdf(sampler, b.dir) : 0.0f;
+    if (light_pdf > 0.0f && b.dir.z > 0.0f) {
+        float w = sphera_mis_balance(b.pdf, light_pdf);
+        float3 f = brdf_part(m, hit->wo, b.dir, BRDF_SPECULAR);
+        if (w > 0.0f && !is_zero(f)) {
+            float3 radiance = light_cosine(scene, context, hit, light, b.dir);
+            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / b.pdf));
+        }
+    }
+    return sum;
+}
+
+/* Draws at most this many uniform cap directions for sphere_realtime's visibility ray
+ * before giving up (the cap is then almost all below the horizon). */
+#define REALTIME_VISIBILITY_TRIES 8
+
+/* One light sample of sphere_realtime (BIASED): the Lambert layer as in sphere_cap
+ * (one uniform cap sample, unbiased), plus the GGX layer as
+ *   L * S(C) * V,
+ * where S(C) = sphera_sphere_light_shade, the fitted SPTD's integral over the cap
+ * clipped to the horizon (Dupuy et al. 2017, Eq. 19; includes cos and Fresnel), and V
+ * is the visibility of one direction uniform in the cap above the horizon: the cap
+ * sample when it lies above the horizon (its shadow ray is shared), else the first of
+ * further uniform cap samples that does (rejection). V is an unbiased estimate of the
+ * visible fraction of C ∩ H, so the GGX layer is exact up to the SPTD fit where the
+ * light is wholly visible or wholly hidden; in penumbrae the product of the fraction
+ * and S(C) is a further bias. */
+static float3 sphere_realtime_estimate(const Scene *scene, struct RTCIntersectContext *context,
+                                       const Hit *hit, const Light *light, SpheraCap cap,
+                                       const SpheraSphereLightShading *shading, Rng *rng,
+                                       uint64_t *samples) {
+    const Material *m = &scene->materials[hit->material];
+    float3 sum = f3(0, 0, 0);
+    float u0 = rng_float(rng), u1 = rng_float(rng);
+    SpheraSample a = sphera_cap_sample_uniform(cap, u0, u1);
+    *samples += 1;
+    bool drawn = false;
+    float visible = 0.0f;
+    if (a.pdf > 0.0f && a.dir.z > 0.0f) {
+        drawn = true;
+        visible = unoccluded(scene, context, hit, light, frame_to_world(&hit->frame, a.dir));
+        sum = f3_scale(f3_mul(light->radiance, brdf_diffuse(m)), visible * a.dir.z / a.pdf);
+    }
+    if (!shading) return sum;
+    for (uint32_t t = 0; !drawn && t < REALTIME_VISIBILITY_TRIES; ++t) {
+        float v0 = rng_float(rng), v1 = rng_float(rng);
+        SpheraSample b = sphera_cap_sample_uniform(cap, v0, v1);
+        if (!(b.pdf > 0.0f)) break;
+        if (!(b.dir.z > 0.0f)) continue;
+        drawn = true;
+        *samples += 1;
+        visible = unoccluded(scene, context, hit, light, frame_to_world(&hit->frame, b.dir));
+    }
+    if (visible > 0.0f) {
+        float3 specular = to_float3(sphera_sphere_light_shade(shading, cap));
+        sum = f3_add(sum, f3_scale(f3_mul(light->radiance, specular), visible));
+    }
+    return sum;
+}
+
 /* The reflected radiance from a sphere light, k samples: uniform cap sampling, or (for
- * sphere_cap_brdf and the reference) one cap and one BRDF sample per light sample with
- * the balance heuristic. Every polygon technique samples spheres uniformly in the cap. */
+ * sphere_cap_brdf) one cap and one BRDF sample per light sample with the balance
+ * heuristic. sphere_sptd (and the reference, whose variance is lowest with it) splits
+ * the BRDF: its Lambert part exactly as
+ * sphere_cap_brdf (the same estimator on f_diffuse), its GGX part by the SPTD light
+ * sampler and VNDF sampling; on materials without GGX it is sphere_cap_brdf.
+ * sphere_realtime: see sphere_realtime_estimate (`shading` is its prepared SPTD
+ * shading, NULL without a GGX layer). Every polygon technique samples spheres
+ * uniformly in the cap. */
 static float3 shade_sphere(const Scene *scene, struct RTCIntersectContext *context,
                            const Hit *hit, const Light *light, Technique technique, uint32_t k,
-                           const BrdfSampler *brdf, Rng *rng, uint64_t *samples) {
+                           const BrdfSampler *brdf, const SpheraSphereLightShading *shading,
+                           Rng *rng, uint64_t *samples) {
     float3 centre = f3_sub(light->center, hit->position);
     SpheraVec3 local = frame_to_local(&hit->frame, centre);
     SpheraCap cap = sphera_cap_from_sphere(local, light->radius);
     if (f3_dot(centre, centre) <= light->radius * light->radius) return f3(0, 0, 0);
-    bool mis = technique == TECHNIQUE_SPHERE_CAP_BRDF || technique == TECHNIQUE_REFERENCE;
+    const Material *m = &scene->materials[hit->material];
     float3 sum = f3(0, 0, 0);
+    if (technique == TECHNIQUE_SPHERE_REALTIME) {
+        for (uint32_t s = 0; s < k; ++s)
+            sum = f3_add(sum, sphere_realtime_estimate(scene, context, hit, light, cap, shading,
+                                                       rng, samples));
+        return f3_scale(sum, 1.0f / (float)k);
+    }
+    SpheraSphereLightSampler sampler;
+    bool sptd = (technique == TECHNIQUE_SPHERE_SPTD || technique == TECHNIQUE_REFERENCE) &&
+                m->roughness > 0.0f &&
+                sphera_sphere_light_sampler_prepare(&sampler, local, light->radius,
+                                                    to_sphera(hit->wo), m->roughness);
+    if (sptd) {
+        for (uint32_t s = 0; s < k; ++s) {
+            *samples += 4;
+            sum = f3_add(sum, sphere_cap_brdf_estimate(scene, context, hit, light, cap, brdf,
+                                                       BRDF_DIFFUSE, rng));
+            sum = f3_add(sum, sphere_sptd_specular_estimate(scene, context, hit, light, &sampler,
+                                                            rng));
+        }
+        return f3_scale(sum, 1.0f / (float)k);
+    }
+    bool mis = technique == TECHNIQUE_SPHERE_CAP_BRDF || technique == TECHNIQUE_SPHERE_SPTD ||
+               technique == TECHNIQUE_MEDIUM_PIVOT || technique == TECHNIQUE_MEDIUM_HG_CAP ||
+               technique == TECHNIQUE_REFERENCE;
     for (uint32_t s = 0; s < k; ++s) {
+        if (mis) {
+            *samples += 2;
+            sum = f3_add(sum, sphere_cap_brdf_estimate(scene, context, hit, light, cap, brdf,
+                                                       BRDF_WHOLE, rng));
+            continue;
+        }
         float u0 = rng_float(rng), u1 = rng_float(rng);
         SpheraSample a = sphera_cap_sample_uniform(cap, u0, u1);
-        *samples += mis ? 2 : 1;
+        *samples += 1;
         if (a.pdf > 0.0f && a.dir.z > 0.0f) {
-            float w = mis ? sphera_mis_balance(a.pdf, brdf_sampler_pdf(brdf, a.dir)) : 1.0f;
-            const Material *m = &scene->materials[hit->material];
-            float3 f = f3_add(brdf_diffuse(m), brdf_specular(m, hit->wo, to_float3(a.dir)));
+            float3 f = brdf_part(m, hit->wo, a.dir, BRDF_WHOLE);
             float3 radiance = light_cosine(scene, context, hit, light, a.dir);
-            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / a.pdf));
-        }
-        if (!mis) continue;
-        SpheraSample b = brdf_sampler_sample(brdf, rng_float(rng), rng_float(rng));
-        float cap_pdf = b.pdf > 0.0f ? sphera_cap_pdf(cap, b.dir) : 0.0f;
-        if (cap_pdf > 0.0f && b.dir.z > 0.0f) {
-            float w = sphera_mis_balance(b.pdf, cap_pdf);
-            float3 radiance = light_cosine(scene, context, hit, light, b.dir);
-            sum = f3_add(sum, f3_scale(f3_mul(radiance, brdf_sampler_eval(brdf, b.dir)), w / b.pdf));
+            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), 1.0f / a.pdf));
         }
     }
     return f3_scale(sum, 1.0f / (float)k);
@@ -290,14 +491,22 @@ static float3 shade(const Scene *scene, struct RTCIntersectContext *context, con
     BrdfSampler brdf;
     memset(&brdf, 0, sizeof brdf);
     if (technique == TECHNIQUE_BRDF_BALANCE || technique == TECHNIQUE_BRDF_POWER ||
-        technique == TECHNIQUE_SPHERE_CAP_BRDF || technique == TECHNIQUE_REFERENCE)
+        technique == TECHNIQUE_SPHERE_CAP_BRDF || technique == TECHNIQUE_SPHERE_SPTD ||
+        technique == TECHNIQUE_MEDIUM_PIVOT || technique == TECHNIQUE_MEDIUM_HG_CAP ||
+        technique == TECHNIQUE_REFERENCE)
         brdf_sampler_init(&brdf, m, hit->wo);
+    /* sphere_realtime: the SPTD shading depends on the view and the material only */
+    SpheraSphereLightShading shading;
+    const SpheraSphereLightShading *sphere_shading = NULL;
+    if (technique == TECHNIQUE_SPHERE_REALTIME && m->roughness > 0.0f &&
+        sphera_sphere_light_shading_prepare(&shading, point.wo, m->roughness, point.material.f0))
+        sphere_shading = &shading;
     float3 sum = f3(0, 0, 0);
     for (uint32_t l = 0; l < scene->light_count; ++l) {
         const Light *light = &scene->lights[l];
         if (light->radius > 0.0f) {
-            sum = f3_add(sum, shade_sphere(scene, context, hit, light, technique, k, &brdf, rng,
-                                           samples));
+            sum = f3_add(sum, shade_sphere(scene, context, hit, light, technique, k, &brdf,
+                                           sphere_shading, rng, samples));
             continue;
         }
         /* One-sided lights: nothing reaches points behind the light's plane. */
@@ -345,6 +554,92 @@ static float3 shade(const Scene *scene, struct RTCIntersectContext *context, con
     return sum;
 }
 
+/* ---- single scattering in the medium ------------------------------------------------ */
+
+/* The radiance scattered once towards the camera along the camera ray's part inside
+ * the medium, from all sphere lights, k samples per light (polygon lights do not light
+ * the medium). The distance is drawn proportionally to the transmittance over
+ * [t0, t1]: t = t0 - ln(1 - u (1 - e^(-sigma_t d))) / sigma_t, so that
+ * transmittance * sigma_s / pdf(t) = (sigma_s / sigma_t) (1 - e^(-sigma_t d)), and at
+ * that point the in-scattered radiance
+ *   L_s = int_cap HG(w . camera_dir, g) L(w) T(w) dw
+ * (w towards the light; forward scattering when w = camera_dir) is estimated by
+ * - medium_pivot: one sample of the pivot phase function with pivot g_p
+ *   = sphera_phase_pivot_from_henyey_greenstein(g) (Eq. 27-28) restricted to the cap
+ *   (sphera_phase_pivot_in_cap_prepare, Section 6.2), estimate HG L T / pdf: unbiased,
+ *   as the pdf is positive in the whole cap;
+ * - medium_hg_cap and the reference: one HG sample and one uniform cap sample,
+ *   balance heuristic;
+ * - every other technique: one uniform cap sample. */
+static float3 in_scattering(const Scene *scene, struct RTCIntersectContext *context,
+                            const Hit *hit, Technique technique, uint32_t k, Rng *rng,
+                            uint64_t *samples) {
+    const Medium *medium = &scene->medium;
+    const float3 d = hit->camera_dir;
+    const float length = hit->t1 - hit->t0;
+    const float sigma_t = medium->sigma_t, g = medium->g;
+    const float absorbed = -expm1f(-sigma_t * length); /* 1 - e^(-sigma_t d) */
+    const float scale = medium->sigma_s / sigma_t * absorbed;
+    float3 sum = f3(0, 0, 0);
+    for (uint32_t l = 0; l < scene->light_count; ++l) {
+        const Light *light = &scene->lights[l];
+        if (!(light->radius > 0.0f)) continue;
+        for (uint32_t s = 0; s < k; ++s) {
+            float u = rng_float(rng);
+            float t = hit->t0 - log1pf(-u * absorbed) / sigma_t;
+            if (!(t < hit->t1)) t = hit->t1;
+            float3 x = f3_add(scene->camera.position, f3_scale(d, t));
+            float3 centre = f3_sub(light->center, x);
+            if (f3_dot(centre, centre) <= light->radius * light->radius) continue;
+            SpheraVec3 c = to_sphera(centre);
+            SpheraCap cap = sphera_cap_from_sphere(c, light->radius);
+            float u0 = rng_float(rng), u1 = rng_float(rng);
+            float v0 = rng_float(rng), v1 = rng_float(rng);
+            float estimate = 0.0f; /* of L_s per unit radiance */
+            if (technique == TECHNIQUE_MEDIUM_PIVOT) {
+                SpheraSptdInCap pivot;
+                *samples += 1;
+                if (!sphera_phase_pivot_in_cap_prepare(
+                        &pivot, to_sphera(d), sphera_phase_pivot_from_henyey_greenstein(g), cap))
+                    continue;
+                SpheraSample a = sphera_sptd_in_cap_sample(&pivot, u0, u1);
+                if (!(a.pdf > 0.0f)) continue;
+                float3 w = to_float3(a.dir);
+                float f = sphera_phase_henyey_greenstein(f3_dot(w, d), g);
+                estimate = f * transmitted(scene, context, x, light, w) / a.pdf;
+            } else if (technique == TECHNIQUE_MEDIUM_HG_CAP || technique == TECHNIQUE_REFERENCE) {
+                *samples += 2;
+                SpheraSample a = sphera_cap_sample_uniform(cap, u0, u1);
+                if (a.pdf > 0.0f) {
+                    float3 w = to_float3(a.dir);
+                    float f = sphera_phase_henyey_greenstein(f3_dot(w, d), g);
+                    float weight = sphera_mis_balance(a.pdf, f);
+                    if (weight > 0.0f)
+                        estimate += f * weight * transmitted(scene, context, x, light, w) / a.pdf;
+                }
+                SpheraSample b = sphera_phase_henyey_greenstein_sample(to_sphera(d), g, v0, v1);
+                float cap_pdf = b.pdf > 0.0f ? sphera_cap_pdf(cap, b.dir) : 0.0f;
+                if (cap_pdf > 0.0f) {
+                    float3 w = to_float3(b.dir);
+                    float f = sphera_phase_henyey_greenstein(f3_dot(w, d), g);
+                    float weight = sphera_mis_balance(b.pdf, cap_pdf);
+                    if (weight > 0.0f)
+                        estimate += f * weight * transmitted(scene, context, x, light, w) / b.pdf;
+                }
+            } else {
+                *samples += 1;
+                SpheraSample a = sphera_cap_sample_uniform(cap, u0, u1);
+                if (!(a.pdf > 0.0f)) continue;
+                float3 w = to_float3(a.dir);
+                float f = sphera_phase_henyey_greenstein(f3_dot(w, d), g);
+                estimate = f * transmitted(scene, context, x, light, w) / a.pdf;
+            }
+            sum = f3_add(sum, f3_scale(light->radiance, scale * estimate / (float)k));
+        }
+    }
+    return sum;
+}
+
 /* ---- camera rays ------------------------------------------------------------------ */
 
 static void trace_camera_rays(const Scene *scene, uint32_t width, uint32_t height, Hit *hits) {
@@ -375,6 +670,13 @@ static void trace_camera_rays(const Scene *scene, uint32_t width, uint32_t heigh
             rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
             rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
             rtcIntersect1(scene->rtc, &context, &rh);
+            hit->camera_dir = dir;
+            hit->transmittance = 1.0f;
+            if (medium_segment(&scene->medium, camera->position, dir, rh.ray.tfar, &hit->t0,
+                               &hit->t1)) {
+                hit->in_medium = true;
+                hit->transmittance = expf(-scene->medium.sigma_t * (hit->t1 - hit->t0));
+            }
             if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
             uint32_t triangle = rh.hit.primID;
             float3 normal = scene->triangle_normal[triangle];
@@ -440,13 +742,18 @@ static void *render_tiles(void *argument) {
                 uint32_t pixel = y * width + x;
                 const Hit *hit = &shared->hits[pixel];
                 float3 value = hit->emission;
-                if (hit->reflects) {
-                    Rng rng = {settings->seed * 0x632BE59BD9B4E019ull +
-                               ((uint64_t)shared->pass << 32) + pixel};
-                    splitmix64(&rng.state);
+                Rng rng = {settings->seed * 0x632BE59BD9B4E019ull +
+                           ((uint64_t)shared->pass << 32) + pixel};
+                splitmix64(&rng.state);
+                if (hit->reflects)
                     value = f3_add(value, shade(shared->scene, &context, hit, settings->technique,
                                                 settings->light_samples, &rng, &samples));
-                }
+                /* what lies behind the medium is seen through it */
+                value = f3_scale(value, hit->transmittance);
+                if (hit->in_medium)
+                    value = f3_add(value, in_scattering(shared->scene, &context, hit,
+                                                        settings->technique,
+                                                        settings->light_samples, &rng, &samples));
                 double v[3] = {value.x, value.y, value.z};
                 for (int c = 0; c < 3; ++c) {
                     shared->sum[3 * pixel + c] += v[c];

@@ -19,6 +19,8 @@ const SceneInfo scene_info[] = {
                 "and a GGX floor"},
     {"glossy", "three GGX floor strips of roughness 0.1, 0.3 and 0.6 under a quad, a pentagon "
                "and a triangle light, with a wall casting shadows across them"},
+    {"slab", "a thin slab of single-scattering medium (HG, g = 0.85) over part of a Lambert "
+             "floor, lit by one sphere light behind it (not in the report's default list)"},
 };
 const uint32_t scene_count = sizeof scene_info / sizeof scene_info[0];
 
@@ -335,6 +337,27 @@ static bool build_spheres(Builder *b, float aspect) {
     return ok;
 }
 
+static bool build_slab(Builder *b, float aspect) {
+    Scene *s = b->scene;
+    add_material(s, f3(0, 0, 0), f3(0, 0, 0), 0);
+    uint32_t matte = add_material(s, f3(0.3f, 0.3f, 0.3f), f3(0, 0, 0), 0);
+    uint32_t wall = add_material(s, f3(0.3f, 0.3f, 0.3f), f3(0, 0, 0), 0);
+    bool ok = add_quad(b, f3(-6, 0, -6), f3(-6, 0, 6), f3(6, 0, 6), f3(6, 0, -6), matte) &&
+              add_quad(b, f3(-6, 0, -6), f3(6, 0, -6), f3(6, 4, -6), f3(-6, 4, -6), wall);
+    /* A box on the floor inside the slab: shadows and occluded in-scattering. */
+    ok = ok && add_box(b, f3(-1.6f, 0, -0.6f), f3(-1.0f, 0.8f, 0.0f), wall);
+    ok = ok && add_sphere_light(b, f3(0.3f, 1.0f, -2.5f), 0.4f, f3(30, 25, 20));
+    s->medium.present = true;
+    s->medium.lo = f3(-3.0f, 0.0f, -4.5f);
+    s->medium.hi = f3(2.5f, 0.5f, 3.0f);
+    s->medium.sigma_s = 1.5f;
+    s->medium.sigma_t = 1.6f;
+    s->medium.g = 0.85f;
+    set_camera(s, f3(0, 1.6f, 5.5f), f3(0, 0.3f, -1.5f), 50.0f, aspect);
+    s->ray_epsilon = 2e-4f;
+    return ok;
+}
+
 /* ---- OBJ ------------------------------------------------------------------------- */
 
 /* Adds the faces of a simple Wavefront OBJ file (`v x y z` and `f a b c ...` lines,
@@ -421,6 +444,7 @@ bool scene_create_with_obj(Scene *s, const char *name, float aspect, const char 
     else if (strcmp(name, "floor") == 0) ok = build_floor(&b, aspect);
     else if (strcmp(name, "glossy") == 0) ok = build_glossy(&b, aspect);
     else if (strcmp(name, "spheres") == 0) ok = build_spheres(&b, aspect);
+    else if (strcmp(name, "slab") == 0) ok = build_slab(&b, aspect);
     else {
         fprintf(stderr, "sphera-trace: unknown scene '%s' (see --list-scenes)\n", name);
         free(s->materials);

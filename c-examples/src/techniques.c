@@ -31,8 +31,21 @@ const TechniqueInfo technique_info[TECHNIQUE_COUNT] = {
      "sphere lights: uniform sampling of the cap of directions the sphere covers"},
     {"sphere_cap_brdf", false,
      "sphere lights: one cap and one BRDF sample, balance heuristic"},
+    {"sphere_sptd", false,
+     "sphere lights: GGX layer by one SPTD light sample (Dupuy et al. 2017, Section 6.1) and one "
+     "VNDF sample, balance heuristic; Lambert layer as in sphere_cap_brdf"},
+    {"sphere_realtime", true,
+     "sphere lights: GGX layer by SPTD shading (Dupuy et al. 2017, Eq. 19, biased) times the "
+     "visibility of one shadow ray uniform in the cap above the horizon; Lambert layer as in "
+     "sphere_cap"},
+    {"medium_pivot", false,
+     "medium in-scattering from sphere lights: one sample of the pivot phase function fitted to "
+     "HG (Eq. 27-28), restricted to the light's cap (Section 6.2); surfaces as sphere_cap_brdf"},
+    {"medium_hg_cap", false,
+     "medium in-scattering from sphere lights: one HG and one uniform cap sample, balance "
+     "heuristic; surfaces as sphere_cap_brdf"},
     {"reference", false,
-     "reference images: projected sampling on Lambertian surfaces, one projected and one LTC sample with the weighted balance heuristic on GGX ones"},
+     "reference images: projected sampling on Lambertian surfaces, one projected and one LTC sample with the weighted balance heuristic on GGX ones; sphere lights as sphere_sptd, medium in-scattering as medium_hg_cap"},
 };
 
 int technique_from_name(const char *name) {
@@ -80,6 +93,10 @@ bool technique_prepare(Technique technique, PreparedLight *out, const SpheraVec3
     case TECHNIQUE_PROJECTED:
     case TECHNIQUE_SPHERE_CAP:
     case TECHNIQUE_SPHERE_CAP_BRDF:
+    case TECHNIQUE_SPHERE_SPTD:
+    case TECHNIQUE_SPHERE_REALTIME:
+    case TECHNIQUE_MEDIUM_PIVOT:
+    case TECHNIQUE_MEDIUM_HG_CAP:
         return sphera_projected_polygon_prepare(&out->u.projected, vertices, count);
     case TECHNIQUE_PROJECTED_FAST:
         return sphera_projected_polygon_prepare_fast(&out->u.projected, vertices, count);
@@ -117,7 +134,11 @@ SpheraSample technique_sample(Technique technique, const PreparedLight *p, float
         return sphera_arvo_projected_polygon_sample(&p->u.arvo_projected, u0, u1);
     case TECHNIQUE_PROJECTED:
     case TECHNIQUE_SPHERE_CAP:
-    case TECHNIQUE_SPHERE_CAP_BRDF: return sphera_projected_polygon_sample(&p->u.projected, u0, u1);
+    case TECHNIQUE_SPHERE_CAP_BRDF:
+    case TECHNIQUE_SPHERE_SPTD:
+    case TECHNIQUE_SPHERE_REALTIME:
+    case TECHNIQUE_MEDIUM_PIVOT:
+    case TECHNIQUE_MEDIUM_HG_CAP: return sphera_projected_polygon_sample(&p->u.projected, u0, u1);
     case TECHNIQUE_PROJECTED_FAST:
         return sphera_projected_polygon_sample_fast(&p->u.projected, u0, u1);
     case TECHNIQUE_BRDF_BALANCE:

@@ -45,6 +45,11 @@ typedef enum Technique {
     /* Sphere lights (polygon lights are then sampled by projected solid angle sampling): */
     TECHNIQUE_SPHERE_CAP,          /* uniform in the sphere's cap of directions */
     TECHNIQUE_SPHERE_CAP_BRDF,     /* one cap and one BRDF sample, balance heuristic */
+    TECHNIQUE_SPHERE_SPTD,         /* GGX layer: one SPTD light and one VNDF sample, balance */
+    TECHNIQUE_SPHERE_REALTIME,     /* biased: Eq. 19 SPTD shading x one-ray visibility */
+    /* In-scattering in a medium (sphere lights; elsewhere as sphere_cap_brdf): */
+    TECHNIQUE_MEDIUM_PIVOT,        /* the pivot phase function sampled in the light's cap */
+    TECHNIQUE_MEDIUM_HG_CAP,       /* one HG and one uniform cap sample, balance heuristic */
     TECHNIQUE_REFERENCE,           /* solid angle + projected, multi-sample MIS */
     TECHNIQUE_COUNT
 } Technique;
@@ -85,6 +90,18 @@ typedef struct Light {
     float3 center;
 } Light;
 
+/* A box of homogeneous, grey, single-scattering medium (no geometry: camera rays and
+ * shadow rays pass through it and are attenuated by exp(-sigma_t * length)). Light
+ * scattered once towards the camera from sphere lights is added; light scattered onto
+ * surfaces is not (single scattering along camera rays only). Phase function:
+ * Henyey-Greenstein with mean cosine `g`. */
+typedef struct Medium {
+    bool present;
+    float3 lo, hi; /* the box's corners */
+    float sigma_s, sigma_t;
+    float g;
+} Medium;
+
 typedef struct Camera {
     float3 position, forward, right, up; /* right and up are scaled to the image plane */
 } Camera;
@@ -105,6 +122,7 @@ typedef struct Scene {
     uint32_t light_count;
     Camera camera;
     float ray_epsilon; /* offset of shadow ray origins, in scene units */
+    Medium medium;
 } Scene;
 
 typedef struct SceneInfo {
