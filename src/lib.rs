@@ -24,6 +24,7 @@ pub mod math;
 pub mod mis;
 pub mod polygon;
 mod sample;
+pub mod sg;
 pub mod sphere;
 
 #[cfg(test)]
