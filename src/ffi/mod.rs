@@ -39,6 +39,8 @@ mod phase;
 
 mod sphere;
 
+mod sg;
+
 pub use brdf::*;
 pub use frame::*;
 pub use light::*;
@@ -46,6 +48,7 @@ pub use ltc::*;
 pub use phase::*;
 pub use polygon::*;
 pub use projected::*;
+pub use sg::*;
 pub use sphere::*;
 pub use types::*;
 pub use warps::*;

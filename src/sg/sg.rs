@@ -74,10 +74,10 @@ pub(crate) const LN_TAU: f32 = 1.837_877_1;
 pub struct Sg {
     /// Unit lobe axis `ξ`.
     pub axis: Vec3,
-    /// Sharpness `λ` in `[0, MAX_SHARPNESS]`.
+    /// Sharpness `λ` in `[0, 1e8]` (`MAX_SHARPNESS`).
     pub sharpness: f32,
     /// Natural logarithm of the amplitude (the value at the axis), in
-    /// `[MIN_LOG_AMPLITUDE, MAX_LOG_AMPLITUDE]`; `MIN_LOG_AMPLITUDE` means 0.
+    /// `[−1e30, 88.72283]` (`MIN_LOG_AMPLITUDE`, `ln FLT_MAX`); −1e30 means amplitude 0.
     pub log_amplitude: f32,
 }
 

@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 use sphera_tools::repository_root;
 
 /// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
-const C_TESTS: [&str; 12] = [
+const C_TESTS: [&str; 13] = [
     "test_polygon_clip",
     "test_projected_polygon",
     "test_solid_angle_polygon",
@@ -23,6 +23,7 @@ const C_TESTS: [&str; 12] = [
     "test_polygon_light",
     "test_phase",
     "test_sphere_caps",
+    "test_sg",
 ];
 
 /// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
@@ -222,6 +223,11 @@ fn test_sphere_caps() {
     run_c_test("test_sphere_caps");
 }
 
+#[test]
+fn test_sg() {
+    run_c_test("test_sg");
+}
+
 /// Compiles `ffi-tests/<name>.c` with the tracer's sources, links `libsphera.a`, Embree
 /// 3, libpng and pthreads, runs it and asserts that it exits with status 0.
 fn run_tracer_test(name: &str) {
@@ -399,6 +405,7 @@ fn struct_layouts_match_rust() {
     use sphera::polygon::{
         ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
     };
+    use sphera::sg::{Asg, Sg};
     use sphera::sphere::Cap;
 
     let expected: Vec<(&str, usize)> = vec![
@@ -483,6 +490,19 @@ fn struct_layouts_match_rust() {
             offset_of!(Cap, one_minus_cos),
         ),
         ("offsetof(SpheraCap, sin2)", offset_of!(Cap, sin2)),
+        ("sizeof(SpheraSg)", size_of::<Sg>()),
+        ("alignof(SpheraSg)", align_of::<Sg>()),
+        ("offsetof(SpheraSg, sharpness)", offset_of!(Sg, sharpness)),
+        (
+            "offsetof(SpheraSg, log_amplitude)",
+            offset_of!(Sg, log_amplitude),
+        ),
+        ("sizeof(SpheraAsg)", size_of::<Asg>()),
+        ("alignof(SpheraAsg)", align_of::<Asg>()),
+        ("offsetof(SpheraAsg, y)", offset_of!(Asg, y)),
+        ("offsetof(SpheraAsg, z)", offset_of!(Asg, z)),
+        ("offsetof(SpheraAsg, eta_y)", offset_of!(Asg, eta_y)),
+        ("offsetof(SpheraAsg, amplitude)", offset_of!(Asg, amplitude)),
     ];
     let mut source =
         String::from("#include <stddef.h>\n#include <stdio.h>\n#include \"sphera.h\"\n");
@@ -503,6 +523,8 @@ fn struct_layouts_match_rust() {
         "SpheraLtcPolygon",
         "SpheraPolygonLight",
         "SpheraCap",
+        "SpheraSg",
+        "SpheraAsg",
     ] {
         source += &format!("struct align_{name} {{ char c; {name} t; }};\n");
     }
