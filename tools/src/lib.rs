@@ -13,4 +13,5 @@ pub mod header;
 pub mod ltc_fitter;
 pub mod pivot_fitter;
 pub mod reference;
+pub mod sg_error;
 pub mod sorting_network_generator;
