@@ -4,6 +4,9 @@
 //! the regimes where they are meant to be used.
 use sphera_tools::sg_error::{Sample, is_exact, measure};
 
+/// Which measurements of a quantity a bound applies to.
+type Filter<'a> = &'a dyn Fn(&Sample) -> bool;
+
 fn worst(samples: &[Sample], quantity: &str, keep: impl Fn(&Sample) -> bool) -> f64 {
     let errors: Vec<f64> = samples
         .iter()
@@ -28,7 +31,7 @@ fn reduced_error_table_stays_within_the_measured_bounds() {
         let w = worst(&samples, q, |_| true);
         assert!(w < 1e-4, "{q}: {w}");
     }
-    let checks: [(&str, &dyn Fn(&Sample) -> bool, f64); 7] = [
+    let checks: [(&str, Filter, f64); 7] = [
         ("ASG × SG convolution", &|_| true, 5e-3),
         ("ASG integral π/√(η_x η_y)", &|s| s.decade >= 1, 2e-4),
         ("diffuse shading, SG product", &|s| s.decade <= 0, 0.1),
