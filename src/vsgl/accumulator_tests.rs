@@ -56,8 +56,9 @@ fn reference(vpls: &[Vpl]) -> Reference {
         let pd = [phi[0] * rd[0], phi[1] * rd[1], phi[2] * rd[2]];
         let ps = [phi[0] * rs[0], phi[1] * rs[1], phi[2] * rs[2]];
         let (wd, ws) = (dot(pd, LUM), dot(ps, LUM));
-        // Diffuse: λ_d = 2, ξ̄ = 2/3 n.
-        diffuse_sum = add(diffuse_sum, scale(n, wd * 2.0 / 3.0));
+        // Diffuse: ξ̄ = λ_d/(λ_d + 1) n.
+        let lambda_d = crate::sg::DIFFUSE_LOBE_SHARPNESS as f64;
+        diffuse_sum = add(diffuse_sum, scale(n, wd * lambda_d / (lambda_d + 1.0)));
         // Specular: ξ_s = 2(ω'·n)n − ω', λ_s = (2/α²)/(4|ξ_s·n|).
         let xi = sub(scale(n, 2.0 * dot(wi, n)), wi);
         let alpha = vpl.roughness as f64;
@@ -230,7 +231,7 @@ fn a_single_vpl_gives_its_own_lobes_and_zero_variance() {
         assert_eq!(vsgl.variance, 0.0, "origin {origin:?}");
         assert!((vsgl.mean - vpl.position).length() < 1e-6 * (1.0 + origin.length()) * 8.0);
         assert!((vsgl.diffuse.axis - vpl.normal).length() < 1e-6);
-        assert!((vsgl.diffuse.sharpness - 2.0).abs() < 1e-5);
+        assert!((vsgl.diffuse.sharpness - crate::sg::DIFFUSE_LOBE_SHARPNESS).abs() < 1e-5);
         // ξ_s = 2(ω'·n)n − ω' and λ_s = (2/α²)/(4 ω'·n).
         let xi = 2.0 * 0.8 * vpl.normal - vpl.toward_incoming;
         assert!((vsgl.specular.axis - xi).length() < 1e-5);
@@ -344,7 +345,14 @@ fn mirror_like_lobes_clamp_the_sharpness() {
         roughness: 0.3,
     }));
     let vsgl = grazing.finish();
-    assert_eq!(vsgl.specular.sharpness, Vsgl::MAX_SHARPNESS);
+    // The lobe clamps |ξ_s·n| (crate::sg::lobes::MIN_SPECULAR_COSINE); Toksvig's round
+    // trip λ → λ/(λ+1) → λ keeps it to the f32 resolution of 1 − λ/(λ+1).
+    let expected = crate::sg::specular_lobe_normalized(Vec3::Z, Vec3::X, 0.3).sharpness;
+    assert!(
+        (vsgl.specular.sharpness - expected).abs() <= 0.05 * expected,
+        "{} vs {expected}",
+        vsgl.specular.sharpness
+    );
     assert!(vsgl.intensity(Vec3::X).is_finite());
 }
 
