@@ -32,28 +32,10 @@ use sphera::mis;
 use sphera::polygon::light::{Material, MisHeuristic, PolygonLight};
 use sphera::polygon::{ProjectedSolidAnglePolygon, SolidAnglePolygon};
 use sphera::{Sample, Vec3};
+use sphera_tools::bench::Rng;
 use std::f32::consts::PI;
 use std::hint::black_box;
 use std::time::Instant;
-
-/// SplitMix64 for inputs.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn uniform(&mut self) -> f32 {
-        (self.next() >> 40) as f32 * (1.0 / 16_777_216.0)
-    }
-    fn u2(&mut self) -> [f32; 2] {
-        [self.uniform(), self.uniform()]
-    }
-}
 
 const ROUGHNESS: [f32; 3] = [0.1, 0.3, 0.6];
 const CONFIGURATIONS: usize = 200;
@@ -73,7 +55,7 @@ struct Configuration {
 
 fn random_configuration(rng: &mut Rng, roughness: f32) -> Configuration {
     loop {
-        let n = 3 + (rng.next() % 4) as usize;
+        let n = 3 + (rng.next_u64() % 4) as usize;
         let elevation = (rng.uniform() * 80.0 - 5.0).to_radians();
         let azimuth = rng.uniform() * 2.0 * PI;
         let distance = 1.0 + 3.0 * rng.uniform();

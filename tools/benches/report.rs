@@ -40,37 +40,11 @@ use sphera::polygon::baselines::{
 };
 use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon};
 use sphera::{Sample, Vec3};
+use sphera_tools::bench::Rng;
 use sphera_tools::reference::{self, D3};
 use std::f32::consts::{PI, TAU};
 use std::hint::black_box;
 use std::time::Instant;
-
-/// SplitMix64 for inputs.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn uniform(&mut self) -> f32 {
-        (self.next() >> 40) as f32 / (1u32 << 24) as f32
-    }
-    /// Uniform in `[lo, hi)`.
-    fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.uniform()
-    }
-    /// A random vector in the cube `[-1, 1)³`.
-    fn cube(&mut self) -> Vec3 {
-        Vec3::new(
-            self.range(-1.0, 1.0),
-            self.range(-1.0, 1.0),
-            self.range(-1.0, 1.0),
-        )
-    }
-}
 
 /// A random convex polygon with `n` vertices, irregularly spaced on an ellipse of the
 /// given radius and a random aspect in `[min_aspect, 1]` around `center`, in the plane

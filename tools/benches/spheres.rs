@@ -12,31 +12,7 @@ use sphera::sphere::phase::{
 };
 use sphera::sphere::{Cap, pivot_cap};
 use sphera::{Sample, Vec3};
-use std::hint::black_box;
-use std::time::Instant;
-
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn uniform(&mut self) -> f32 {
-        (self.next() >> 40) as f32 * (1.0 / 16_777_216.0)
-    }
-    fn u4(&mut self) -> [f32; 4] {
-        [
-            self.uniform(),
-            self.uniform(),
-            self.uniform(),
-            self.uniform(),
-        ]
-    }
-}
+use sphera_tools::bench::Rng;
 
 /// A light configuration: view, sphere center and radius.
 struct Config {
@@ -297,19 +273,7 @@ const INPUTS: usize = 4096;
 const REPEATS: usize = 31;
 
 fn time_ns(run: impl Fn(usize) -> f32) -> f64 {
-    let mut times: Vec<f64> = (0..REPEATS)
-        .map(|_| {
-            let start = Instant::now();
-            let mut sum = 0.0f32;
-            for i in 0..INPUTS {
-                sum += run(black_box(i));
-            }
-            black_box(sum);
-            start.elapsed().as_secs_f64() * 1e9 / INPUTS as f64
-        })
-        .collect();
-    times.sort_by(|a, b| a.partial_cmp(b).unwrap());
-    times[REPEATS / 2]
+    sphera_tools::bench::time_ns(INPUTS, REPEATS, run)
 }
 
 fn timing_table(rng: &mut Rng) {
