@@ -21,6 +21,19 @@ impl Sample {
         dir: Vec3::Z,
         pdf: 0.0,
     };
+
+    /// The sample `dir` with density `pdf`, or [`Sample::NONE`] where `pdf` is not
+    /// positive (for example a cosine-weighted sampler's direction exactly on the
+    /// horizon, where `cos θ = 0`), so that `pdf == 0` always comes with
+    /// `dir = (0, 0, 1)` as documented above.
+    #[inline(always)]
+    pub fn new_or_none(dir: Vec3, pdf: f32) -> Sample {
+        if pdf > 0.0 {
+            Sample { dir, pdf }
+        } else {
+            Sample::NONE
+        }
+    }
 }
 
 /// The largest `f32` below one.

@@ -399,10 +399,7 @@ impl ProjectedSolidAnglePolygon {
         if !dir.is_finite() {
             return Sample::NONE;
         }
-        Sample {
-            dir,
-            pdf: dir.z * self.density,
-        }
+        Sample::new_or_none(dir, dir.z * self.density)
     }
 
     /// `ω_z / Φ` for a direction inside the polygon (or on its boundary) and above the

@@ -157,10 +157,7 @@ impl SmallPolygonCosineSampler {
             .fan
             .sample_in_triangle(k, a * triangle_solid_angle, t * t);
         let cosine = (1.0 - t) * za + t * zf;
-        Sample {
-            dir: sample.dir,
-            pdf: cosine * self.density,
-        }
+        Sample::new_or_none(sample.dir, cosine * self.density)
     }
 
     /// `ℓ / Φ̃` at the direction (through the inverse of solid angle sampling), 0 outside
