@@ -661,3 +661,41 @@ fn small_polygons_follow_the_cosine_through_the_warped_solid_angle_sampler() {
     }
     assert_eq!(tested, 6);
 }
+
+/// Regression (found by the fuzz target `polygon`): a sliver of coordinates up to 3e38
+/// gave a sector of angle π - 1e-38, whose bisector `s0 + s1` underflowed, and the
+/// prepared polygon held NaN quarter directions.
+#[test]
+fn a_sector_of_nearly_pi_has_finite_quarter_directions() {
+    let v = [
+        Vec3::new(-0.75, -1.5, -1e30),
+        Vec3::new(-1.573_557_1, 2.946_931_5e38, 5.000_001e29),
+        Vec3::new(2.323_557_1, -2.946_931_7e38, 4.999_999_3e29),
+    ];
+    for polygon in [
+        ProjectedSolidAnglePolygon::new(&v),
+        ProjectedSolidAnglePolygon::new_fast_biased(&v),
+    ]
+    .into_iter()
+    .flatten()
+    {
+        for sector in &polygon.sectors {
+            for b in sector.quarters {
+                assert!(b[0].is_finite() && b[1].is_finite(), "{sector:?}");
+            }
+            assert!(sector.quarter_det.is_finite(), "{sector:?}");
+            assert!(
+                sector.inner_radius.iter().all(|r| !r.is_nan()),
+                "{sector:?}"
+            );
+            assert!(
+                sector.outer_radius.iter().all(|r| !r.is_nan()),
+                "{sector:?}"
+            );
+        }
+        for u in [[0.0, 0.0], [0.3, 0.7], [0.999, 0.5]] {
+            let s = polygon.sample(u);
+            assert!(s.dir.is_finite() && s.pdf.is_finite(), "{s:?}");
+        }
+    }
+}
