@@ -333,6 +333,17 @@ impl SolidAnglePolygon {
         let s_new = b - 1.0;
         let t = libm::sqrtf(u1 * one_plus_s / b.max(f32::MIN_POSITIVE));
         let dir = v1 * (s - t * s_new) + new_vertex * t;
+        // Where the apex and v2' are nearly antipodal (a shading point just above a
+        // large polygon, close to its plane), b is tiny and known only to an absolute
+        // ulp, so t and with it |dir| can be off by up to about 1e-3 (found by fuzzing:
+        // |dir| = 0.99957); renormalise then. The test leaves every other direction
+        // (|dir|² within 2e-6 of 1) bit for bit as it was.
+        let length_squared = dir.length_squared();
+        let dir = if (length_squared - 1.0).abs() > 2e-6 {
+            dir * (1.0 / libm::sqrtf(length_squared))
+        } else {
+            dir
+        };
         if !dir.is_finite() {
             return Sample::NONE;
         }

@@ -411,3 +411,29 @@ fn accuracy_per_decade_of_solid_angle() {
         );
     }
 }
+
+/// Regression (found by the fuzz target `polygon` through the Hart warps): a pentagon of
+/// radius 1e5 just above the shading point, whose fan triangles have nearly antipodal
+/// corners, gave directions of length 0.99957.
+#[test]
+fn directions_are_unit_for_a_huge_polygon_just_above_the_shading_point() {
+    let v = [
+        Vec3::new(-0.5, -99_998.5, 3.75),
+        Vec3::new(-95_107.195, -30_902.277, 0.373_970_5),
+        Vec3::new(-58_781.734, 80_901.914, -0.927_687_05),
+        Vec3::new(58_775.34, 80_904.47, 1.643_874_5),
+        Vec3::new(95_104.11, -30_898.133, 4.534_843_4),
+    ];
+    let polygon = SolidAnglePolygon::new(&v).expect("valid");
+    let mut worst = 0.0f32;
+    for i in 0..64 {
+        for j in 0..64 {
+            let u = [(i as f32 + 0.5) / 64.0, (j as f32 + 0.5) / 64.0];
+            let s = polygon.sample(u);
+            assert!(s.pdf > 0.0, "{u:?}");
+            worst = worst.max((s.dir.length() - 1.0).abs());
+        }
+    }
+    // Directions with | |dir|² - 1 | <= 2e-6 are kept as they are: |dir| within 1e-6.
+    assert!(worst < 1.5e-6, "|dir| off by {worst}");
+}
