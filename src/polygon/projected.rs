@@ -219,10 +219,13 @@ impl ProjectedSolidAnglePolygon {
             let t = sigma * normal_dot / (n.z * xy_length[c]);
             if t.is_finite() { t } else { 0.0 }
         };
-        // det(s_a, s_b) from the positions.
+        // det(s_a, s_b) from the positions; 0 where a vertex lies on the z axis
+        // (xy_length 0, whose 0 / 0 gave a NaN det; found by fuzzing).
         let sector_det = |a: usize, b: usize| {
             let (pa, pb) = (positions[a], positions[b]);
-            difference_of_products(pa.x, pb.y, pa.y, pb.x) / (xy_length[a] * xy_length[b])
+            let det =
+                difference_of_products(pa.x, pb.y, pa.y, pb.x) / (xy_length[a] * xy_length[b]);
+            if det.is_finite() { det } else { 0.0 }
         };
         // Algorithm 4, first part: each vertex is associated with the ellipse that leaves
         // it counter-clockwise: its own edge if that edge is outer, else the previous edge.

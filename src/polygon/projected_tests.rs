@@ -699,3 +699,30 @@ fn a_sector_of_nearly_pi_has_finite_quarter_directions() {
         }
     }
 }
+
+/// Regression (found by the fuzz target `polygon`): a (non-convex, extreme) triangle
+/// with a vertex on the z axis after rescaling gave a sector whose `det(s0, s1)` was
+/// 0 / 0 = NaN inside the prepared polygon.
+#[test]
+fn a_vertex_on_the_z_axis_gives_no_nan_in_the_sectors() {
+    let v = [
+        Vec3::new(1e30, 1e30, 1e30),
+        Vec3::new(-3.4375, 0.3125, 1e30),
+        Vec3::new(-2.0, f32::MAX, 0.0),
+    ];
+    for polygon in [
+        ProjectedSolidAnglePolygon::new(&v),
+        ProjectedSolidAnglePolygon::new_fast_biased(&v),
+    ]
+    .into_iter()
+    .flatten()
+    {
+        for sector in &polygon.sectors {
+            assert!(!sector.det.is_nan(), "{sector:?}");
+        }
+        for u in [[0.0, 0.0], [0.3, 0.7], [0.999, 0.5]] {
+            let s = polygon.sample(u);
+            assert!(s.dir.is_finite() && s.pdf.is_finite(), "{s:?}");
+        }
+    }
+}
