@@ -367,7 +367,9 @@ impl SolidAnglePolygon {
     /// Whether the ray along `dir` passes through the polygon (boundary included).
     #[inline]
     pub fn contains(&self, dir: Vec3) -> bool {
-        let mut inside = self.vertex_count > 0 && dir.length_squared() > 0.0;
+        // A non-finite `dir` is outside (found by fuzzing: (0, 0, ∞) passed every edge
+        // test with an infinite dot product and got the density 1 / Ω).
+        let mut inside = self.vertex_count > 0 && dir.is_finite() && dir.length_squared() > 0.0;
         for i in 0..MAX_POLYGON_VERTICES {
             // Unused slots hold zero normals, whose dot product 0 passes.
             inside &= self.edge_normals[i].dot(dir) >= 0.0;

@@ -437,3 +437,25 @@ fn directions_are_unit_for_a_huge_polygon_just_above_the_shading_point() {
     // Directions with | |dir|² - 1 | <= 2e-6 are kept as they are: |dir| within 1e-6.
     assert!(worst < 1.5e-6, "|dir| off by {worst}");
 }
+
+/// Regression (found by the fuzz target `polygon`): `(0, 0, ∞)` passed every edge test
+/// of a polygon around the zenith and got the density `1 / Ω`.
+#[test]
+fn non_finite_directions_are_outside() {
+    let v = [
+        Vec3::new(-1.0, -1.0, 1.0),
+        Vec3::new(1.0, -1.0, 1.0),
+        Vec3::new(1.0, 1.0, 1.0),
+        Vec3::new(-1.0, 1.0, 1.0),
+    ];
+    let polygon = SolidAnglePolygon::new(&v).expect("valid");
+    assert!(polygon.pdf(Vec3::Z) > 0.0);
+    for dir in [
+        Vec3::new(0.0, 0.0, f32::INFINITY),
+        Vec3::new(f32::INFINITY, f32::INFINITY, f32::INFINITY),
+        Vec3::new(0.0, 0.0, f32::NAN),
+    ] {
+        assert_eq!(polygon.pdf(dir), 0.0, "{dir:?}");
+        assert!(polygon.invert(dir).is_none(), "{dir:?}");
+    }
+}
