@@ -399,6 +399,17 @@ impl ProjectedSolidAnglePolygon {
             sector.sample_between(local, fraction, u1, iterations)
         };
         let dir = Vec3::new(point[0], point[1], libm::sqrtf(z2.max(0.0)));
+        // In a sector of nearly π (a large polygon seen nearly edge-on, crossing the
+        // horizon), |w|² from the sector's coordinates cancels, and the point and its z
+        // disagree: found by fuzzing, |dir| = 1.117. Renormalise such a direction (the
+        // test leaves every direction with | |dir|² - 1 | <= 2e-6 bit for bit as it was);
+        // its pdf is then `dir.z / Φ` of the direction returned, as `pdf` gives.
+        let length_squared = dir.length_squared();
+        let dir = if (length_squared - 1.0).abs() > 2e-6 {
+            dir * (1.0 / libm::sqrtf(length_squared))
+        } else {
+            dir
+        };
         if !dir.is_finite() {
             return Sample::NONE;
         }

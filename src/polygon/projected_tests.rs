@@ -726,3 +726,32 @@ fn a_vertex_on_the_z_axis_gives_no_nan_in_the_sectors() {
         }
     }
 }
+
+/// Regression (found by the fuzz target `polygon`): a heptagon of radius 1e5 seen
+/// nearly edge-on and crossing the horizon has a sector of angle π - 5e-4, where the
+/// sampled point and its z disagreed: |dir| = 1.117.
+#[test]
+fn directions_are_unit_in_a_sector_of_nearly_pi() {
+    let v = [
+        Vec3::new(-0.4375, -100_002.69, 3.625),
+        Vec3::new(2.767_870_4, -62_351.66, 2.377_809_8),
+        Vec3::new(5.865_657, 22_249.42, -0.424_601_02),
+        Vec3::new(6.523_162, 90_094.2, -2.671_959_4),
+        Vec3::new(4.245_271, 90_094.19, -2.671_959),
+    ];
+    let polygon = ProjectedSolidAnglePolygon::new(&v).expect("part above the horizon");
+    let mut worst = 0.0f32;
+    for i in 0..32 {
+        for j in 0..32 {
+            let u = [(i as f32 + 0.5) / 32.0, (j as f32 + 0.5) / 32.0];
+            for s in [polygon.sample(u), polygon.sample_fast(u)] {
+                if s.pdf > 0.0 {
+                    worst = worst.max((s.dir.length() - 1.0).abs());
+                    let p = polygon.pdf(s.dir);
+                    assert!(p == 0.0 || (p - s.pdf).abs() <= 1e-5 * s.pdf, "{s:?} {p}");
+                }
+            }
+        }
+    }
+    assert!(worst < 1.5e-6, "|dir| off by {worst}");
+}
