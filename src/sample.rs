@@ -36,6 +36,22 @@ impl Sample {
     }
 }
 
+/// `dir` unchanged when `| |dir|² - 1 | <= 2e-6` (every direction a sampler computes
+/// accurately, bit for bit), otherwise `dir / |dir|`, scaled by its largest component
+/// first so that the squares neither underflow into denormals nor overflow; a zero or
+/// non-finite `dir` comes back non-finite or zero, for the caller's "no sample" test.
+/// The samplers use it where an ill-conditioned construction can lose the unit length
+/// (found by fuzzing; see the callers).
+#[inline(always)]
+pub(crate) fn unit_if_needed(dir: Vec3) -> Vec3 {
+    let length_squared = dir.length_squared();
+    if (length_squared - 1.0).abs() <= 2e-6 {
+        return dir;
+    }
+    let scaled = dir * (1.0 / dir.abs().max_element());
+    scaled * (1.0 / libm::sqrtf(scaled.length_squared()))
+}
+
 /// The largest `f32` below one.
 pub(crate) const ONE_MINUS_ULP: f32 = 1.0 - f32::EPSILON / 2.0;
 

@@ -404,12 +404,7 @@ impl ProjectedSolidAnglePolygon {
         // disagree: found by fuzzing, |dir| = 1.117. Renormalise such a direction (the
         // test leaves every direction with | |dir|² - 1 | <= 2e-6 bit for bit as it was);
         // its pdf is then `dir.z / Φ` of the direction returned, as `pdf` gives.
-        let length_squared = dir.length_squared();
-        let dir = if (length_squared - 1.0).abs() > 2e-6 {
-            dir * (1.0 / libm::sqrtf(length_squared))
-        } else {
-            dir
-        };
+        let dir = crate::sample::unit_if_needed(dir);
         if !dir.is_finite() {
             return Sample::NONE;
         }

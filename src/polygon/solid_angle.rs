@@ -338,12 +338,7 @@ impl SolidAnglePolygon {
         // ulp, so t and with it |dir| can be off by up to about 1e-3 (found by fuzzing:
         // |dir| = 0.99957); renormalise then. The test leaves every other direction
         // (|dir|² within 2e-6 of 1) bit for bit as it was.
-        let length_squared = dir.length_squared();
-        let dir = if (length_squared - 1.0).abs() > 2e-6 {
-            dir * (1.0 / libm::sqrtf(length_squared))
-        } else {
-            dir
-        };
+        let dir = crate::sample::unit_if_needed(dir);
         if !dir.is_finite() {
             return Sample::NONE;
         }

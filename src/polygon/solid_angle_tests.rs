@@ -459,3 +459,31 @@ fn non_finite_directions_are_outside() {
         assert!(polygon.invert(dir).is_none(), "{dir:?}");
     }
 }
+
+/// Regression (found by the fuzz target `polygon`): vertices of z up to 3e38 and x, y
+/// of a few units rescale to directions of denormal x, y, and a sample on the horizon
+/// came out of length 0.973 (its renormalisation squared denormals).
+#[test]
+fn directions_are_unit_for_vertices_at_the_poles() {
+    let v = [
+        Vec3::new(-2.809_545, -4.147_937, -3.330_761e38),
+        Vec3::new(3.515_491_2, 0.272_501_3, 1.378_964_7e38),
+        Vec3::new(1.001_577_3, 1.107_870_3, 3.110_894_3e38),
+        Vec3::new(-4.648_689_3, -3.269_245_4, -1.691_758_4e38),
+    ];
+    let Some(polygon) = SolidAnglePolygon::new(&v) else {
+        return;
+    };
+    for u in [
+        [ONE_MINUS_ULP, ONE_MINUS_ULP],
+        [0.5, 0.5],
+        [0.0, 0.0],
+        [0.9, 0.1],
+    ] {
+        let s = polygon.sample(u);
+        assert!(
+            s.pdf == 0.0 || (s.dir.length() - 1.0).abs() < 1e-6,
+            "{u:?}: {s:?}"
+        );
+    }
+}
