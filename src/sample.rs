@@ -48,8 +48,21 @@ pub(crate) fn unit_if_needed(dir: Vec3) -> Vec3 {
     if (length_squared - 1.0).abs() <= 2e-6 {
         return dir;
     }
-    let scaled = dir * (1.0 / dir.abs().max_element());
+    let scaled = dir / dir.abs().max_element();
     scaled * (1.0 / libm::sqrtf(scaled.length_squared()))
+}
+
+/// `v / |v|`, scaled by its largest component first so that tiny vectors (whose
+/// squares are denormal, e.g. 5e-22) and huge ones normalise to full precision; zero
+/// for a zero or non-finite `v` (found by fuzzing: a view or phase direction of length
+/// 5e-22 normalised to length 0.99986).
+#[inline(always)]
+pub(crate) fn normalize_scaled(v: Vec3) -> Vec3 {
+    let largest = v.abs().max_element();
+    if !(largest > 0.0 && largest.is_finite()) {
+        return Vec3::ZERO;
+    }
+    (v / largest).normalize_or_zero()
 }
 
 /// The largest `f32` below one.
