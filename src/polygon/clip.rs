@@ -440,4 +440,21 @@ mod tests {
             assert!(v.is_finite() && v.z >= 0.0, "{v:?}");
         }
     }
+
+    /// Regression (found by the fuzz target `polygon`): x near ±f32::MAX and z of a few
+    /// denormals: the halved z difference was 0 / 0 and the vertex NaN.
+    #[test]
+    fn huge_and_denormal_coordinates_clip_to_finite_vertices() {
+        let input = [
+            Vec3::new(-1.520_989_5e38, -3e-45, -3e-45),
+            Vec3::new(-3.236_277_5e38, -3e-45, -3e-45),
+            Vec3::new(-2.000_129_1e38, -1e-45, -1e-45),
+            Vec3::new(2.000_130_4e38, 1e-45, 1e-45),
+            Vec3::new(3.236_277_3e38, 0.0, 0.0),
+        ];
+        let (count, vertices) = clip(&input);
+        for v in &vertices[..count] {
+            assert!(v.is_finite() && v.z >= 0.0, "{v:?}");
+        }
+    }
 }

@@ -21,7 +21,12 @@ use glam::Vec3;
 fn horizon_point(above: Vec3, below: Vec3) -> Vec3 {
     let mut point = below + (above - below) * (below.z / (below.z - above.z));
     if !point.is_finite() {
-        let t = (0.5 * below.z) / (0.5 * below.z - 0.5 * above.z);
+        let t = below.z / (below.z - above.z);
+        let t = if t.is_finite() {
+            t
+        } else {
+            (0.5 * below.z) / (0.5 * below.z - 0.5 * above.z)
+        };
         point = below * (1.0 - t) + above * t;
     }
     point.z = 0.0;

@@ -412,7 +412,12 @@ pub fn generate() -> String {
          fn horizon_point(above: Vec3, below: Vec3) -> Vec3 {\n\
          \x20   let mut point = below + (above - below) * (below.z / (below.z - above.z));\n\
          \x20   if !point.is_finite() {\n\
-         \x20       let t = (0.5 * below.z) / (0.5 * below.z - 0.5 * above.z);\n\
+         \x20       let t = below.z / (below.z - above.z);\n\
+         \x20       let t = if t.is_finite() {\n\
+         \x20           t\n\
+         \x20       } else {\n\
+         \x20           (0.5 * below.z) / (0.5 * below.z - 0.5 * above.z)\n\
+         \x20       };\n\
          \x20       point = below * (1.0 - t) + above * t;\n\
          \x20   }\n\
          \x20   point.z = 0.0;\n\
