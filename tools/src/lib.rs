@@ -8,6 +8,7 @@ pub fn repository_root() -> PathBuf {
         .expect("tools/ has a parent")
         .to_path_buf()
 }
+pub mod abi_invariants;
 pub mod clipping_generator;
 pub mod header;
 pub mod ltc_fitter;
