@@ -1518,8 +1518,9 @@ float sphera_ltc_density(const struct SpheraLtc *ltc,
 
 /**
  * GGX's directional albedo with Schlick's Fresnel for the reflectance at normal
- * incidence `f0` (per channel, used as given): `f0 (albedo − fresnel) + fresnel`, from
- * the fitted integrals. Unshadowed GGX shading of a polygonal light with radiance `L`
+ * incidence `f0` (per channel, clamped to [0, 1], NaN counting as 0, as in
+ * `sphera_ggx_brdf_prepare`): `f0 (albedo − fresnel) + fresnel`, from the fitted
+ * integrals; always finite. Unshadowed GGX shading of a polygonal light with radiance `L`
  * is `L × sphera_ltc_specular_albedo(ltc, f0) × sphera_ltc_polygon_integral(polygon)`.
  * A null `ltc` gives (0, 0, 0).
  *

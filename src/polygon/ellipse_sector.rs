@@ -174,7 +174,17 @@ impl EllipseSector {
         // underflow (found by fuzzing: NaN quarters for a sector of angle π - 1e-38);
         // there the equal bisector R (s0 - s1) (unit s0, s1: |s0 - s1|² = 4 - |s0 + s1|²)
         // is used instead, whose length is at least √3 when |s0 + s1| < 1.
-        let unit = |v: Vec2| scale2(v, 1.0 / libm::sqrtf(dot2(v, v)));
+        // A zero direction (a sector of a vertex on the z axis, whose s0 = s1 = 0 after
+        // an LTC's transformation; found by the adversarial C test) stays zero rather
+        // than 0 / 0: such a sector has zero area and is never sampled.
+        let unit = |v: Vec2| {
+            let scaled = scale2(v, 1.0 / libm::sqrtf(dot2(v, v)));
+            if scaled[0].is_finite() && scaled[1].is_finite() {
+                scaled
+            } else {
+                [0.0, 0.0]
+            }
+        };
         let sum = add2(s0, s1);
         let b2 = if dot2(sum, sum) < 1.0 {
             unit(rotate([s0[0] - s1[0], s0[1] - s1[1]]))

@@ -420,7 +420,9 @@ impl ProjectedSolidAnglePolygon {
             return self.small.pdf(dir);
         }
         if self.contains(dir) {
-            dir.z / dir.length() * self.density
+            // Normalised by the largest component first: a tiny `dir` (1e-45) had a
+            // length of 0 and an infinite pdf (found by the adversarial C test).
+            crate::sample::normalize_scaled(dir).z * self.density
         } else {
             0.0
         }

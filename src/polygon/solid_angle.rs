@@ -394,7 +394,7 @@ impl SolidAnglePolygon {
         if !self.contains(dir) || self.selectable_triangles == 0 {
             return None;
         }
-        let w = dir.normalize();
+        let w = crate::sample::normalize_scaled(dir);
         let apex = self.vertices[0];
         let count = self.vertex_count as usize;
         // Diagonal j runs from the apex to vertex j; w is on the inner side of diagonal
