@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 use sphera_tools::repository_root;
 
 /// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
-const C_TESTS: [&str; 12] = [
+const C_TESTS: [&str; 13] = [
     "test_polygon_clip",
     "test_projected_polygon",
     "test_solid_angle_polygon",
@@ -23,6 +23,7 @@ const C_TESTS: [&str; 12] = [
     "test_polygon_light",
     "test_phase",
     "test_sphere_caps",
+    "test_adversarial",
 ];
 
 /// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
@@ -220,6 +221,11 @@ fn test_phase() {
 #[test]
 fn test_sphere_caps() {
     run_c_test("test_sphere_caps");
+}
+
+#[test]
+fn test_adversarial() {
+    run_c_test("test_adversarial");
 }
 
 /// Compiles `ffi-tests/<name>.c` with the tracer's sources, links `libsphera.a`, Embree
