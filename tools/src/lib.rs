@@ -10,6 +10,7 @@ pub fn repository_root() -> PathBuf {
 }
 pub mod abi_invariants;
 pub mod clipping_generator;
+pub mod determinism;
 pub mod header;
 pub mod ltc_fitter;
 pub mod pivot_fitter;
