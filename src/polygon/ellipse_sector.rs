@@ -206,7 +206,11 @@ impl EllipseSector {
                 let b = boundaries[j];
                 let alpha = (b[0] * s1[1] - b[1] * s1[0]) * inverse_basis;
                 let beta = (s0[0] * b[1] - s0[1] * b[0]) * inverse_basis;
-                dots[j] = alpha * t[0] + beta * t[1];
+                // A sector of π up to denormals has an inverse basis near 1e38 and these
+                // products overflow to ∞ − ∞ (found by fuzzing): 0 then, like the other
+                // non-finite constants of a degenerate sector.
+                let dot = alpha * t[0] + beta * t[1];
+                dots[j] = if dot.is_finite() { dot } else { 0.0 };
             }
             dots
         };
