@@ -268,7 +268,15 @@ fn assert_pdf_consistent(
     boundary_distance: f64,
     what: &str,
 ) {
-    assert_pdf_consistent_with_floor(sampled, evaluated, tolerance, 0.0, boundary_distance, what);
+    assert_pdf_consistent_with_floor(
+        sampled,
+        evaluated,
+        tolerance,
+        0.0,
+        boundary_distance,
+        EDGE_SLACK,
+        what,
+    );
 }
 
 /// [`assert_pdf_consistent`] with an absolute allowance `floor` added to the relative
@@ -279,11 +287,12 @@ fn assert_pdf_consistent_with_floor(
     tolerance: f64,
     floor: f64,
     boundary_distance: f64,
+    slack: f64,
     what: &str,
 ) {
     if evaluated == 0.0 {
         assert!(
-            boundary_distance < EDGE_SLACK,
+            boundary_distance < slack,
             "{what}: sample with pdf {sampled} gets pdf(dir) = 0 although it lies \
              {boundary_distance:e} rad inside the domain"
         );
@@ -636,6 +645,11 @@ fn check_family<T: Copy>(
                 family.tolerance,
                 floor,
                 distance,
+                // Seen at a grazing angle, an edge plane built from vertices rounded by
+                // ε |v| turns by about ε / plane_ratio (found by fuzzing: samples of solid
+                // angle sampling up to 5e-4 rad inside with pdf(dir) = 0 at plane ratios
+                // 2e-6 to 3e-5).
+                EDGE_SLACK + 16.0 * f32::EPSILON as f64 / polygon.plane_ratio,
                 &what,
             );
         }
@@ -982,10 +996,15 @@ pub fn ltc_and_light_entry_points(data: &[u8]) {
     }
     // SAFETY: valid pointer.
     let integral = unsafe { sphera_ltc_polygon_integral(&restricted) };
+    // In [0, 1] for convex polygons; a non-convex one (outside the contract) can
+    // exceed 1 (found by fuzzing: 1.23), so only finiteness is asserted there.
     assert!(
-        (0.0..=1.0 + 1e-5).contains(&integral),
+        integral.is_finite() && integral >= 0.0,
         "ltc integral {integral}"
     );
+    if polygon.convex {
+        assert!(integral <= 1.0 + 1e-5, "ltc integral {integral}");
+    }
     if !ok {
         assert_eq!(integral, 0.0);
     }
@@ -1003,7 +1022,9 @@ pub fn ltc_and_light_entry_points(data: &[u8]) {
             assert_no_sample(sample, &what);
             continue;
         }
-        if sample.pdf == 0.0 || !polygon.convex {
+        // Consistency as for projected solid angle sampling, which the LTC polygon runs
+        // in the transformed space: not at grazing views (see [`GRAZING`]).
+        if sample.pdf == 0.0 || !polygon.convex || polygon.plane_ratio < GRAZING {
             continue;
         }
         // SAFETY: valid pointer.
@@ -1023,7 +1044,11 @@ pub fn ltc_and_light_entry_points(data: &[u8]) {
         // The density `D(ω) / ∫_P D` both ways, from the same `M⁻¹ω`: the tolerance
         // covers `|M⁻¹ω|⁴` and the clipped polygon's projected solid angle, both within
         // a few ulps.
-        assert_pdf_consistent(sample.pdf, evaluated, 1e-3, distance, &what);
+        // Measured by fuzzing: differences of 0.1–0.5% where M⁻¹ stretches by 1e2 or
+        // more (the round trip through M and M⁻¹ loses ε × stretch² relatively), so
+        // the tolerance grows with the stretch.
+        let tolerance = 1e-3 + 1e-6 * stretch * stretch;
+        assert_pdf_consistent(sample.pdf, evaluated, tolerance, distance, &what);
     }
 
     // The polygon light.
@@ -1221,8 +1246,14 @@ pub fn sphere_entry_points(data: &[u8]) {
                     .min(1.0)
                     .asin();
             let distance = half_angle - angle;
-            // The pdf is `1 / Ω` both ways.
-            assert_pdf_consistent(sample.pdf, evaluated, 0.0, distance, &what);
+            // The pdf is `1 / Ω` both ways. Containment compares `|ω − a|² / 2` with
+            // `1 − cos θ`; near 2 (a cap of nearly the whole sphere) one ulp of it is
+            // an angle of √(2 · 2.4e-7) = 7e-4 rad around the antipode (found by
+            // fuzzing: 2e-4 rad inside with pdf(dir) = 0 at 1 − cos θ = 2 − 1.2e-7).
+            let slack = EDGE_SLACK + 1e-3 * (cap.one_minus_cos as f64 - 1.0).clamp(0.0, 1.0);
+            assert_pdf_consistent_with_floor(
+                sample.pdf, evaluated, 0.0, 0.0, distance, slack, &what,
+            );
             if distance > EDGE_SLACK {
                 assert!(
                     sphera_cap_contains(cap, sample.dir),
