@@ -1079,9 +1079,10 @@ struct SpheraSample sphera_solid_angle_polygon_sample(const struct SpheraSolidAn
 
 /**
  * The density per steradian with which `sphera_solid_angle_polygon_sample` produces
- * the unit direction `dir`: 1 / solid angle inside the polygon, 0 outside it.
+ * the direction `dir` (need not be normalised): 1 / solid angle inside the polygon
+ * (boundary included), 0 outside it.
  *
- * Returns 0 when `polygon` is null or empty.
+ * Returns 0 when `polygon` is null or empty, and for a zero or non-finite `dir`.
  *
  * # Safety
  *
@@ -1532,9 +1533,9 @@ bool sphera_projected_polygon_prepare_fast(struct SpheraProjectedSolidAnglePolyg
  * is per steradian: `dir.z / Φ` (for polygons handled by the small-polygon sampler,
  * within 1e-4 relative of it).
  *
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty. A
- * direction exactly on the horizon (possible only for polygons that touch it) has
- * pdf 0. `dir` is always a finite unit vector.
+ * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
+ * and for a draw that lands exactly on the horizon (`cos θ = 0`, possible only for
+ * polygons that touch it). `dir` is always a finite unit vector.
  *
  * # Safety
  *
@@ -1606,8 +1607,8 @@ bool sphera_arvo_projected_polygon_prepare(struct SpheraArvoProjectedPolygon *ou
 /**
  * Draws a direction with density cos θ / Φ by Arvo's method from `u0`, `u1` in [0, 1)
  * (clamped by the library); the pdf is `dir.z / Φ`. Returns
- * `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or empty. `dir` is always a
- * finite unit vector.
+ * `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or empty, and for a draw exactly
+ * on the horizon. `dir` is always a finite unit vector.
  *
  * # Safety
  *
@@ -1845,8 +1846,9 @@ float sphera_ltc_density(const struct SpheraLtc *ltc,
 
 /**
  * GGX's directional albedo with Schlick's Fresnel for the reflectance at normal
- * incidence `f0` (per channel, used as given): `f0 (albedo − fresnel) + fresnel`, from
- * the fitted integrals. Unshadowed GGX shading of a polygonal light with radiance `L`
+ * incidence `f0` (per channel, clamped to [0, 1], NaN counting as 0, as in
+ * `sphera_ggx_brdf_prepare`): `f0 (albedo − fresnel) + fresnel`, from the fitted
+ * integrals; always finite. Unshadowed GGX shading of a polygonal light with radiance `L`
  * is `L × sphera_ltc_specular_albedo(ltc, f0) × sphera_ltc_polygon_integral(polygon)`.
  * A null `ltc` gives (0, 0, 0).
  *

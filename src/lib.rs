@@ -31,6 +31,9 @@ pub mod vsgl;
 #[cfg(test)]
 pub(crate) mod testing;
 
+#[cfg(all(test, target_arch = "x86_64"))]
+mod float_environment_tests;
+
 pub use glam::Vec3;
 pub use sample::Sample;
 

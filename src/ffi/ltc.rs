@@ -44,8 +44,9 @@ pub unsafe extern "C" fn sphera_ltc_density(ltc: *const Ltc, dir: SpheraVec3) ->
 }
 
 /// GGX's directional albedo with Schlick's Fresnel for the reflectance at normal
-/// incidence `f0` (per channel, used as given): `f0 (albedo − fresnel) + fresnel`, from
-/// the fitted integrals. Unshadowed GGX shading of a polygonal light with radiance `L`
+/// incidence `f0` (per channel, clamped to [0, 1], NaN counting as 0, as in
+/// `sphera_ggx_brdf_prepare`): `f0 (albedo − fresnel) + fresnel`, from the fitted
+/// integrals; always finite. Unshadowed GGX shading of a polygonal light with radiance `L`
 /// is `L × sphera_ltc_specular_albedo(ltc, f0) × sphera_ltc_polygon_integral(polygon)`.
 /// A null `ltc` gives (0, 0, 0).
 ///
@@ -57,7 +58,11 @@ pub unsafe extern "C" fn sphera_ltc_specular_albedo(ltc: *const Ltc, f0: SpheraV
     // SAFETY: the caller guarantees that a non-null `ltc` points to a valid value.
     unsafe {
         with_ref(ltc, Vec3::ZERO.into(), |ltc| {
-            ltc.specular_albedo(f0.into()).into()
+            // Infinite or NaN channels gave non-finite albedos (found by the adversarial
+            // C test): clamp as every other reflectance of the C ABI is clamped.
+            let clamp = |c: f32| c.max(0.0).min(1.0);
+            let f0 = Vec3::new(clamp(f0.x), clamp(f0.y), clamp(f0.z));
+            ltc.specular_albedo(f0).into()
         })
     }
 }

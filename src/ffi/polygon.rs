@@ -124,9 +124,10 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_sample(
 }
 
 /// The density per steradian with which `sphera_solid_angle_polygon_sample` produces
-/// the unit direction `dir`: 1 / solid angle inside the polygon, 0 outside it.
+/// the direction `dir` (need not be normalised): 1 / solid angle inside the polygon
+/// (boundary included), 0 outside it.
 ///
-/// Returns 0 when `polygon` is null or empty.
+/// Returns 0 when `polygon` is null or empty, and for a zero or non-finite `dir`.
 ///
 /// # Safety
 ///

@@ -83,9 +83,9 @@ pub unsafe extern "C" fn sphera_projected_polygon_prepare_fast(
 /// is per steradian: `dir.z / Φ` (for polygons handled by the small-polygon sampler,
 /// within 1e-4 relative of it).
 ///
-/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty. A
-/// direction exactly on the horizon (possible only for polygons that touch it) has
-/// pdf 0. `dir` is always a finite unit vector.
+/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
+/// and for a draw that lands exactly on the horizon (`cos θ = 0`, possible only for
+/// polygons that touch it). `dir` is always a finite unit vector.
 ///
 /// # Safety
 ///
@@ -193,8 +193,8 @@ pub unsafe extern "C" fn sphera_arvo_projected_polygon_prepare(
 
 /// Draws a direction with density cos θ / Φ by Arvo's method from `u0`, `u1` in [0, 1)
 /// (clamped by the library); the pdf is `dir.z / Φ`. Returns
-/// `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or empty. `dir` is always a
-/// finite unit vector.
+/// `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or empty, and for a draw exactly
+/// on the horizon. `dir` is always a finite unit vector.
 ///
 /// # Safety
 ///

@@ -423,4 +423,38 @@ mod tests {
             assert_eq!(clip_to_upper_hemisphere(&mut vertices, count), 0);
         }
     }
+
+    /// Regression (found by the fuzz target `polygon`): with y coordinates of ±f32::MAX,
+    /// `above - below` overflowed and a clipped vertex came out infinite.
+    #[test]
+    fn coordinates_near_the_largest_float_clip_to_finite_vertices() {
+        let input = [
+            Vec3::new(-0.125, -f32::MAX, -1.1875),
+            Vec3::new(-0.124_999_88, 1.487_421_3e31, 1.500_000_1),
+            Vec3::new(3.875_000_2, f32::MAX, 4.1875),
+            Vec3::new(3.875, -4.057_826_3e30, 1.5),
+        ];
+        let (count, vertices) = clip(&input);
+        assert!(count >= 3);
+        for v in &vertices[..count] {
+            assert!(v.is_finite() && v.z >= 0.0, "{v:?}");
+        }
+    }
+
+    /// Regression (found by the fuzz target `polygon`): x near ±f32::MAX and z of a few
+    /// denormals: the halved z difference was 0 / 0 and the vertex NaN.
+    #[test]
+    fn huge_and_denormal_coordinates_clip_to_finite_vertices() {
+        let input = [
+            Vec3::new(-1.520_989_5e38, -3e-45, -3e-45),
+            Vec3::new(-3.236_277_5e38, -3e-45, -3e-45),
+            Vec3::new(-2.000_129_1e38, -1e-45, -1e-45),
+            Vec3::new(2.000_130_4e38, 1e-45, 1e-45),
+            Vec3::new(3.236_277_3e38, 0.0, 0.0),
+        ];
+        let (count, vertices) = clip(&input);
+        for v in &vertices[..count] {
+            assert!(v.is_finite() && v.z >= 0.0, "{v:?}");
+        }
+    }
 }

@@ -14,10 +14,21 @@ use glam::Vec3;
 
 /// The point where the edge from `above` (`above.z > 0`) to `below` (`below.z <= 0`)
 /// meets the horizon, anchored at `below`: exactly `below` (with `z = +0.0`) if
-/// `below.z == 0`.
+/// `below.z == 0`. Where a difference of coordinates near `f32::MAX` overflows, the
+/// halved differences and the convex combination give the finite point (found by
+/// fuzzing: an infinite clipped vertex); elsewhere the result is the anchored form's.
 #[inline(always)]
 fn horizon_point(above: Vec3, below: Vec3) -> Vec3 {
     let mut point = below + (above - below) * (below.z / (below.z - above.z));
+    if !point.is_finite() {
+        let t = below.z / (below.z - above.z);
+        let t = if t.is_finite() {
+            t
+        } else {
+            (0.5 * below.z) / (0.5 * below.z - 0.5 * above.z)
+        };
+        point = below * (1.0 - t) + above * t;
+    }
     point.z = 0.0;
     point
 }

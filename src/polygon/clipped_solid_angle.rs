@@ -81,8 +81,17 @@ impl ClippedSolidAnglePolygon {
     #[inline]
     pub fn sample(&self, u: [f32; 2]) -> Sample {
         let mut sample = self.clipped.sample(u);
-        // Only rounding puts a direction below the clipped horizon edge.
-        sample.dir.z = sample.dir.z.max(0.0);
+        // Only rounding puts a direction below the clipped horizon edge; for a
+        // degenerate clipped polygon (coordinates near f32::MAX) that can be far below,
+        // so the direction is renormalised where clamping cost its unit length (found by
+        // fuzzing: |dir| = 0.875).
+        if sample.dir.z < 0.0 {
+            sample.dir.z = 0.0;
+            sample.dir = crate::sample::unit_if_needed(sample.dir);
+            if !(sample.dir.is_finite() && sample.dir != Vec3::ZERO) {
+                return Sample::NONE;
+            }
+        }
         sample
     }
 

@@ -169,9 +169,28 @@ impl EllipseSector {
     ) -> Self {
         let (ui2, uo2) = (dot2(inner, inner), dot2(outer, outer));
         // Quarter directions by repeated bisection: b2 ∝ s0 + s1, b1 ∝ s0 + b2,
-        // b3 ∝ b2 + s1 (sectors span less than π, so the sums do not vanish).
-        let unit = |v: Vec2| scale2(v, 1.0 / libm::sqrtf(dot2(v, v)));
-        let b2 = unit(add2(s0, s1));
+        // b3 ∝ b2 + s1 (sectors span less than π, so the sums do not vanish). For a
+        // sector close to π, s0 + s1 is tiny, inaccurate, and its squared length can
+        // underflow (found by fuzzing: NaN quarters for a sector of angle π - 1e-38);
+        // there the equal bisector R (s0 - s1) (unit s0, s1: |s0 - s1|² = 4 - |s0 + s1|²)
+        // is used instead, whose length is at least √3 when |s0 + s1| < 1.
+        // A zero direction (a sector of a vertex on the z axis, whose s0 = s1 = 0 after
+        // an LTC's transformation; found by the adversarial C test) stays zero rather
+        // than 0 / 0: such a sector has zero area and is never sampled.
+        let unit = |v: Vec2| {
+            let scaled = scale2(v, 1.0 / libm::sqrtf(dot2(v, v)));
+            if scaled[0].is_finite() && scaled[1].is_finite() {
+                scaled
+            } else {
+                [0.0, 0.0]
+            }
+        };
+        let sum = add2(s0, s1);
+        let b2 = if dot2(sum, sum) < 1.0 {
+            unit(rotate([s0[0] - s1[0], s0[1] - s1[1]]))
+        } else {
+            unit(sum)
+        };
         let (b1, b3) = (unit(add2(s0, b2)), unit(add2(b2, s1)));
         let boundaries = [s0, b1, b2, b3, s1];
         let inverse_basis = 1.0 / det2(s0, s1);
@@ -187,7 +206,11 @@ impl EllipseSector {
                 let b = boundaries[j];
                 let alpha = (b[0] * s1[1] - b[1] * s1[0]) * inverse_basis;
                 let beta = (s0[0] * b[1] - s0[1] * b[0]) * inverse_basis;
-                dots[j] = alpha * t[0] + beta * t[1];
+                // A sector of π up to denormals has an inverse basis near 1e38 and these
+                // products overflow to ∞ − ∞ (found by fuzzing): 0 then, like the other
+                // non-finite constants of a degenerate sector.
+                let dot = alpha * t[0] + beta * t[1];
+                dots[j] = if dot.is_finite() { dot } else { 0.0 };
             }
             dots
         };

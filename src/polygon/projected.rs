@@ -219,10 +219,13 @@ impl ProjectedSolidAnglePolygon {
             let t = sigma * normal_dot / (n.z * xy_length[c]);
             if t.is_finite() { t } else { 0.0 }
         };
-        // det(s_a, s_b) from the positions.
+        // det(s_a, s_b) from the positions; 0 where a vertex lies on the z axis
+        // (xy_length 0, whose 0 / 0 gave a NaN det; found by fuzzing).
         let sector_det = |a: usize, b: usize| {
             let (pa, pb) = (positions[a], positions[b]);
-            difference_of_products(pa.x, pb.y, pa.y, pb.x) / (xy_length[a] * xy_length[b])
+            let det =
+                difference_of_products(pa.x, pb.y, pa.y, pb.x) / (xy_length[a] * xy_length[b]);
+            if det.is_finite() { det } else { 0.0 }
         };
         // Algorithm 4, first part: each vertex is associated with the ellipse that leaves
         // it counter-clockwise: its own edge if that edge is outer, else the previous edge.
@@ -396,13 +399,16 @@ impl ProjectedSolidAnglePolygon {
             sector.sample_between(local, fraction, u1, iterations)
         };
         let dir = Vec3::new(point[0], point[1], libm::sqrtf(z2.max(0.0)));
+        // In a sector of nearly π (a large polygon seen nearly edge-on, crossing the
+        // horizon), |w|² from the sector's coordinates cancels, and the point and its z
+        // disagree: found by fuzzing, |dir| = 1.117. Renormalise such a direction (the
+        // test leaves every direction with | |dir|² - 1 | <= 2e-6 bit for bit as it was);
+        // its pdf is then `dir.z / Φ` of the direction returned, as `pdf` gives.
+        let dir = crate::sample::unit_if_needed(dir);
         if !dir.is_finite() {
             return Sample::NONE;
         }
-        Sample {
-            dir,
-            pdf: dir.z * self.density,
-        }
+        Sample::new_or_none(dir, dir.z * self.density)
     }
 
     /// `ω_z / Φ` for a direction inside the polygon (or on its boundary) and above the
@@ -414,7 +420,9 @@ impl ProjectedSolidAnglePolygon {
             return self.small.pdf(dir);
         }
         if self.contains(dir) {
-            dir.z / dir.length() * self.density
+            // Normalised by the largest component first: a tiny `dir` (1e-45) had a
+            // length of 0 and an infinite pdf (found by the adversarial C test).
+            crate::sample::normalize_scaled(dir).z * self.density
         } else {
             0.0
         }

@@ -471,9 +471,13 @@ fn extreme_random_numbers_give_valid_samples() {
         for &a in &extremes {
             for &b in &extremes {
                 for s in [polygon.sample([a, b]), polygon.sample_fast([a, b])] {
-                    // pdf 0 only for a sample exactly on the horizon (cos θ = 0).
+                    // pdf 0 only for a sample exactly on the horizon (cos θ = 0),
+                    // which is returned as "no sample".
                     assert!(s.dir.is_finite() && s.pdf.is_finite(), "{a} {b}");
-                    assert!(s.pdf > 0.0 || s.dir.z == 0.0, "{a} {b}: {s:?}");
+                    assert!(s.pdf > 0.0 || s == Sample::NONE, "{a} {b}: {s:?}");
+                    if s.pdf == 0.0 {
+                        continue;
+                    }
                     assert!((s.dir.length() - 1.0).abs() < 1e-5);
                     // Inside up to rounding: the pdf test accepts points on the boundary.
                     let d = s.dir;
@@ -656,4 +660,98 @@ fn small_polygons_follow_the_cosine_through_the_warped_solid_angle_sampler() {
         tested += 1;
     }
     assert_eq!(tested, 6);
+}
+
+/// Regression (found by the fuzz target `polygon`): a sliver of coordinates up to 3e38
+/// gave a sector of angle π - 1e-38, whose bisector `s0 + s1` underflowed, and the
+/// prepared polygon held NaN quarter directions.
+#[test]
+fn a_sector_of_nearly_pi_has_finite_quarter_directions() {
+    let v = [
+        Vec3::new(-0.75, -1.5, -1e30),
+        Vec3::new(-1.573_557_1, 2.946_931_5e38, 5.000_001e29),
+        Vec3::new(2.323_557_1, -2.946_931_7e38, 4.999_999_3e29),
+    ];
+    for polygon in [
+        ProjectedSolidAnglePolygon::new(&v),
+        ProjectedSolidAnglePolygon::new_fast_biased(&v),
+    ]
+    .into_iter()
+    .flatten()
+    {
+        for sector in &polygon.sectors {
+            for b in sector.quarters {
+                assert!(b[0].is_finite() && b[1].is_finite(), "{sector:?}");
+            }
+            assert!(sector.quarter_det.is_finite(), "{sector:?}");
+            assert!(
+                sector.inner_radius.iter().all(|r| !r.is_nan()),
+                "{sector:?}"
+            );
+            assert!(
+                sector.outer_radius.iter().all(|r| !r.is_nan()),
+                "{sector:?}"
+            );
+        }
+        for u in [[0.0, 0.0], [0.3, 0.7], [0.999, 0.5]] {
+            let s = polygon.sample(u);
+            assert!(s.dir.is_finite() && s.pdf.is_finite(), "{s:?}");
+        }
+    }
+}
+
+/// Regression (found by the fuzz target `polygon`): a (non-convex, extreme) triangle
+/// with a vertex on the z axis after rescaling gave a sector whose `det(s0, s1)` was
+/// 0 / 0 = NaN inside the prepared polygon.
+#[test]
+fn a_vertex_on_the_z_axis_gives_no_nan_in_the_sectors() {
+    let v = [
+        Vec3::new(1e30, 1e30, 1e30),
+        Vec3::new(-3.4375, 0.3125, 1e30),
+        Vec3::new(-2.0, f32::MAX, 0.0),
+    ];
+    for polygon in [
+        ProjectedSolidAnglePolygon::new(&v),
+        ProjectedSolidAnglePolygon::new_fast_biased(&v),
+    ]
+    .into_iter()
+    .flatten()
+    {
+        for sector in &polygon.sectors {
+            assert!(!sector.det.is_nan(), "{sector:?}");
+        }
+        for u in [[0.0, 0.0], [0.3, 0.7], [0.999, 0.5]] {
+            let s = polygon.sample(u);
+            assert!(s.dir.is_finite() && s.pdf.is_finite(), "{s:?}");
+        }
+    }
+}
+
+/// Regression (found by the fuzz target `polygon`): a heptagon of radius 1e5 seen
+/// nearly edge-on and crossing the horizon has a sector of angle π - 5e-4, where the
+/// sampled point and its z disagreed: |dir| = 1.117.
+#[test]
+fn directions_are_unit_in_a_sector_of_nearly_pi() {
+    let v = [
+        Vec3::new(-0.4375, -100_002.69, 3.625),
+        Vec3::new(2.767_870_4, -62_351.66, 2.377_809_8),
+        Vec3::new(5.865_657, 22_249.42, -0.424_601_02),
+        Vec3::new(6.523_162, 90_094.2, -2.671_959_4),
+        Vec3::new(4.245_271, 90_094.19, -2.671_959),
+    ];
+    let polygon = ProjectedSolidAnglePolygon::new(&v).expect("part above the horizon");
+    let mut worst = 0.0f32;
+    for i in 0..32 {
+        for j in 0..32 {
+            let u = [(i as f32 + 0.5) / 32.0, (j as f32 + 0.5) / 32.0];
+            for s in [polygon.sample(u), polygon.sample_fast(u)] {
+                if s.pdf > 0.0 {
+                    worst = worst.max((s.dir.length() - 1.0).abs());
+                    let p = polygon.pdf(s.dir);
+                    assert!(p == 0.0 || (p - s.pdf).abs() <= 1e-5 * s.pdf, "{s:?} {p}");
+                }
+            }
+        }
+    }
+    assert!(worst < 1.5e-6, "|dir| off by {worst}");
 }

@@ -157,10 +157,18 @@ impl SmallPolygonCosineSampler {
             .fan
             .sample_in_triangle(k, a * triangle_solid_angle, t * t);
         let cosine = (1.0 - t) * za + t * zf;
-        Sample {
-            dir: sample.dir,
-            pdf: cosine * self.density,
+        // Only rounding puts a direction of the clipped fan below the horizon (found by
+        // fuzzing: z = -3e-10 with pdf > 0 for a polygon 4e-8 rad across the horizon):
+        // clamp as clipped solid angle sampling does, keeping the unit length.
+        let mut dir = sample.dir;
+        if dir.z < 0.0 {
+            dir.z = 0.0;
+            dir = crate::sample::unit_if_needed(dir);
         }
+        if !dir.is_finite() {
+            return Sample::NONE;
+        }
+        Sample::new_or_none(dir, cosine * self.density)
     }
 
     /// `ℓ / Φ̃` at the direction (through the inverse of solid angle sampling), 0 outside

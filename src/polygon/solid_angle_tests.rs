@@ -411,3 +411,79 @@ fn accuracy_per_decade_of_solid_angle() {
         );
     }
 }
+
+/// Regression (found by the fuzz target `polygon` through the Hart warps): a pentagon of
+/// radius 1e5 just above the shading point, whose fan triangles have nearly antipodal
+/// corners, gave directions of length 0.99957.
+#[test]
+fn directions_are_unit_for_a_huge_polygon_just_above_the_shading_point() {
+    let v = [
+        Vec3::new(-0.5, -99_998.5, 3.75),
+        Vec3::new(-95_107.195, -30_902.277, 0.373_970_5),
+        Vec3::new(-58_781.734, 80_901.914, -0.927_687_05),
+        Vec3::new(58_775.34, 80_904.47, 1.643_874_5),
+        Vec3::new(95_104.11, -30_898.133, 4.534_843_4),
+    ];
+    let polygon = SolidAnglePolygon::new(&v).expect("valid");
+    let mut worst = 0.0f32;
+    for i in 0..64 {
+        for j in 0..64 {
+            let u = [(i as f32 + 0.5) / 64.0, (j as f32 + 0.5) / 64.0];
+            let s = polygon.sample(u);
+            assert!(s.pdf > 0.0, "{u:?}");
+            worst = worst.max((s.dir.length() - 1.0).abs());
+        }
+    }
+    // Directions with | |dir|² - 1 | <= 2e-6 are kept as they are: |dir| within 1e-6.
+    assert!(worst < 1.5e-6, "|dir| off by {worst}");
+}
+
+/// Regression (found by the fuzz target `polygon`): `(0, 0, ∞)` passed every edge test
+/// of a polygon around the zenith and got the density `1 / Ω`.
+#[test]
+fn non_finite_directions_are_outside() {
+    let v = [
+        Vec3::new(-1.0, -1.0, 1.0),
+        Vec3::new(1.0, -1.0, 1.0),
+        Vec3::new(1.0, 1.0, 1.0),
+        Vec3::new(-1.0, 1.0, 1.0),
+    ];
+    let polygon = SolidAnglePolygon::new(&v).expect("valid");
+    assert!(polygon.pdf(Vec3::Z) > 0.0);
+    for dir in [
+        Vec3::new(0.0, 0.0, f32::INFINITY),
+        Vec3::new(f32::INFINITY, f32::INFINITY, f32::INFINITY),
+        Vec3::new(0.0, 0.0, f32::NAN),
+    ] {
+        assert_eq!(polygon.pdf(dir), 0.0, "{dir:?}");
+        assert!(polygon.invert(dir).is_none(), "{dir:?}");
+    }
+}
+
+/// Regression (found by the fuzz target `polygon`): vertices of z up to 3e38 and x, y
+/// of a few units rescale to directions of denormal x, y, and a sample on the horizon
+/// came out of length 0.973 (its renormalisation squared denormals).
+#[test]
+fn directions_are_unit_for_vertices_at_the_poles() {
+    let v = [
+        Vec3::new(-2.809_545, -4.147_937, -3.330_761e38),
+        Vec3::new(3.515_491_2, 0.272_501_3, 1.378_964_7e38),
+        Vec3::new(1.001_577_3, 1.107_870_3, 3.110_894_3e38),
+        Vec3::new(-4.648_689_3, -3.269_245_4, -1.691_758_4e38),
+    ];
+    let Some(polygon) = SolidAnglePolygon::new(&v) else {
+        return;
+    };
+    for u in [
+        [ONE_MINUS_ULP, ONE_MINUS_ULP],
+        [0.5, 0.5],
+        [0.0, 0.0],
+        [0.9, 0.1],
+    ] {
+        let s = polygon.sample(u);
+        assert!(
+            s.pdf == 0.0 || (s.dir.length() - 1.0).abs() < 1e-6,
+            "{u:?}: {s:?}"
+        );
+    }
+}

@@ -137,17 +137,16 @@ impl Cap {
     /// (clamped to `[0, 2]`). [`Cap::EMPTY`] for a non-finite or zero axis or a NaN
     /// `one_minus_cos`.
     pub fn from_axis_one_minus_cos(axis: Vec3, one_minus_cos: f32) -> Cap {
-        let length = axis.length();
-        if !axis.is_finite() || !(length > 0.0) || !length.is_finite() || one_minus_cos.is_nan() {
-            // A huge finite axis overflows `length`: rescale before giving up.
-            if axis.is_finite() && length.is_infinite() && !one_minus_cos.is_nan() {
-                return Cap::from_axis_one_minus_cos(axis * 5.421_011e-20, one_minus_cos);
-            }
+        // Normalised by the largest component first: a huge axis overflowed `length`,
+        // and a tiny one (components of 1e-23) normalised through denormal squares to
+        // length 1.006 (found by fuzzing).
+        let unit = crate::sample::normalize_scaled(axis);
+        if unit == Vec3::ZERO || one_minus_cos.is_nan() {
             return Cap::EMPTY;
         }
         let t = one_minus_cos.max(0.0).min(2.0);
         Cap {
-            axis: axis / length,
+            axis: unit,
             one_minus_cos: t,
             cos: 1.0 - t,
             sin2: (t * (2.0 - t)).max(0.0),

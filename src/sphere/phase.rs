@@ -130,7 +130,7 @@ fn uniform_sphere(u0: f32, u1: f32) -> Vec3 {
 /// light travels in, `μ = wo·ω`): a uniform direction pivoted through `r_p = g wo`. The
 /// pdf is `f_pivot(μ)`. `Sample::NONE` for a zero or non-finite `wo`.
 pub fn sample_pivot_phase(wo: Vec3, g: f32, u: [f32; 2]) -> Sample {
-    let Some(frame) = Frame::from_normal(wo.normalize_or_zero()) else {
+    let Some(frame) = Frame::from_normal(crate::sample::normalize_scaled(wo)) else {
         return Sample::NONE;
     };
     let g = clamp_g(g);
@@ -174,7 +174,7 @@ pub fn pivot_phase_in_cap(wo: Vec3, g: f32, cap: &Cap) -> Option<SptdInCap> {
 /// relative, and the returned pdf is the HG density, so the bias is below that). The
 /// pdf is `f_HG(μ)`.
 pub fn sample_henyey_greenstein(wo: Vec3, g: f32, u: [f32; 2]) -> Sample {
-    let Some(frame) = Frame::from_normal(wo.normalize_or_zero()) else {
+    let Some(frame) = Frame::from_normal(crate::sample::normalize_scaled(wo)) else {
         return Sample::NONE;
     };
     let g = clamp_g(g);

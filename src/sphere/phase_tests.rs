@@ -207,3 +207,26 @@ fn bad_input_stays_finite() {
         Sample::NONE
     );
 }
+
+/// Regression (found by the fuzz target `sphere`): a direction `wo` of length 5e-22
+/// normalised (through denormal squares) to length 0.99986, and so did the samples.
+#[test]
+fn tiny_directions_give_unit_samples() {
+    for wo in [
+        Vec3::new(5.449_677e-22, -0.0, -0.0),
+        Vec3::new(1e-30, 2e-30, -1e-30),
+        Vec3::new(1e-45, 0.0, 0.0),
+    ] {
+        for g in [0.0, 0.5, -0.9] {
+            for s in [
+                sample_pivot_phase(wo, g, [0.0, 0.0]),
+                sample_henyey_greenstein(wo, g, [0.3, 0.7]),
+            ] {
+                assert!(
+                    s.pdf > 0.0 && (s.dir.length() - 1.0).abs() < 1e-6,
+                    "{wo:?} {s:?}"
+                );
+            }
+        }
+    }
+}

@@ -405,10 +405,21 @@ pub fn generate() -> String {
          \n\
          /// The point where the edge from `above` (`above.z > 0`) to `below` (`below.z <= 0`)\n\
          /// meets the horizon, anchored at `below`: exactly `below` (with `z = +0.0`) if\n\
-         /// `below.z == 0`.\n\
+         /// `below.z == 0`. Where a difference of coordinates near `f32::MAX` overflows, the\n\
+         /// halved differences and the convex combination give the finite point (found by\n\
+         /// fuzzing: an infinite clipped vertex); elsewhere the result is the anchored form's.\n\
          #[inline(always)]\n\
          fn horizon_point(above: Vec3, below: Vec3) -> Vec3 {\n\
          \x20   let mut point = below + (above - below) * (below.z / (below.z - above.z));\n\
+         \x20   if !point.is_finite() {\n\
+         \x20       let t = below.z / (below.z - above.z);\n\
+         \x20       let t = if t.is_finite() {\n\
+         \x20           t\n\
+         \x20       } else {\n\
+         \x20           (0.5 * below.z) / (0.5 * below.z - 0.5 * above.z)\n\
+         \x20       };\n\
+         \x20       point = below * (1.0 - t) + above * t;\n\
+         \x20   }\n\
          \x20   point.z = 0.0;\n\
          \x20   point\n\
          }\n\

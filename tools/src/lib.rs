@@ -8,8 +8,10 @@ pub fn repository_root() -> PathBuf {
         .expect("tools/ has a parent")
         .to_path_buf()
 }
+pub mod abi_invariants;
 pub mod bench;
 pub mod clipping_generator;
+pub mod determinism;
 pub mod header;
 pub mod ltc_fitter;
 pub mod pivot_fitter;

@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 use sphera_tools::repository_root;
 
 /// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
-const C_TESTS: [&str; 15] = [
+const C_TESTS: [&str; 17] = [
     "test_polygon_clip",
     "test_projected_polygon",
     "test_solid_angle_polygon",
@@ -26,6 +26,8 @@ const C_TESTS: [&str; 15] = [
     "test_sptd",
     "test_vsgl",
     "test_sg",
+    "test_adversarial",
+    "test_determinism",
 ];
 
 /// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
@@ -238,6 +240,18 @@ fn test_vsgl() {
 #[test]
 fn test_sg() {
     run_c_test("test_sg");
+}
+
+#[test]
+fn test_adversarial() {
+    run_c_test("test_adversarial");
+}
+
+/// Runs in the test's working directory (`tools/`), from which the program finds
+/// `../ffi-tests/determinism_table.txt`.
+#[test]
+fn test_determinism() {
+    run_c_test("test_determinism");
 }
 
 /// Compiles `ffi-tests/<name>.c` with the tracer's sources, links `libsphera.a`, Embree

@@ -136,10 +136,7 @@ impl ArvoProjectedPolygon {
         if !dir.is_finite() {
             return Sample::NONE;
         }
-        Sample {
-            dir,
-            pdf: dir.z * sectors.density,
-        }
+        Sample::new_or_none(dir, dir.z * sectors.density)
     }
 
     /// `ω_z / Φ` inside the polygon and above the horizon, 0 otherwise.
@@ -153,6 +150,30 @@ impl ArvoProjectedPolygon {
 mod tests {
     use super::*;
     use crate::testing::*;
+
+    /// Regression (found by the fuzz target `polygon`): a polygon with a vertex a few
+    /// ulps above the horizon drew, at `u = (0, 0)`, a direction exactly on the horizon
+    /// with pdf 0 but not the canonical "no sample" direction `(0, 0, 1)`.
+    #[test]
+    fn a_sample_on_the_horizon_is_no_sample() {
+        let v = [
+            Vec3::new(-5.375, -5.75, -5.375),
+            Vec3::new(-5.375, -0.375, -6.125),
+            Vec3::new(2.349_487_1e-7, -0.375_000_24, 3.005_158e-7),
+            Vec3::new(0.0, -5.75, 0.75),
+        ];
+        let polygon = ArvoProjectedPolygon::new(&v).expect("part of it lies above the horizon");
+        for u in [
+            [0.0, 0.0],
+            [0.0, 0.5],
+            [0.5, 0.0],
+            [crate::sample::ONE_MINUS_ULP, 0.0],
+        ] {
+            let s = polygon.sample(u);
+            assert!(s.pdf > 0.0 || s == Sample::NONE, "{u:?}: {s:?}");
+        }
+        assert_eq!(polygon.sample([0.0, 0.0]), Sample::NONE);
+    }
 
     fn cell_weight(c: &[D3; 3]) -> f64 {
         projected_solid_angle_d3(c).abs()

@@ -1,0 +1,198 @@
+/* Determinism through the C ABI: recomputes every record of
+ * ffi-tests/determinism_table.txt (written through the Rust entry points by
+ * `cargo run -p sphera-tools --bin generate_determinism_table`) with the functions of
+ * libsphera.a and requires bit-identical outputs. The record format is documented in
+ * tools/src/determinism.rs. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+
+#define MAX_TOKENS 40
+
+static float bits_to_float(const char *token) {
+  uint32_t bits = (uint32_t)strtoul(token, NULL, 16);
+  float x;
+  memcpy(&x, &bits, sizeof x);
+  return x;
+}
+
+static uint32_t float_to_bits(float x) {
+  uint32_t bits;
+  memcpy(&bits, &x, sizeof bits);
+  return bits;
+}
+
+static int mismatches_printed = 0;
+
+/* Compares n outputs with the tokens from `first` on; reports the line on a mismatch. */
+static void expect_bits(const float *outputs, int n, char **tokens, int first, int line) {
+  int i, ok = 1;
+  for (i = 0; i < n; i++)
+    if (float_to_bits(outputs[i]) != (uint32_t)strtoul(tokens[first + i], NULL, 16)) ok = 0;
+  if (!ok && mismatches_printed++ < 20) {
+    printf("line %d differs:", line);
+    for (i = 0; i < n; i++) printf(" %08lx/%s", (unsigned long)float_to_bits(outputs[i]), tokens[first + i]);
+    printf("\n");
+  }
+  CHECK(ok);
+}
+
+static SpheraVec3 polygons[16][SPHERA_MAX_POLYGON_VERTICES];
+static uint32_t counts[16];
+
+static void sample_outputs(SpheraSample s, float *o) {
+  o[0] = s.dir.x;
+  o[1] = s.dir.y;
+  o[2] = s.dir.z;
+  o[3] = s.pdf;
+}
+
+int main(void) {
+  const char *paths[3] = {"../ffi-tests/determinism_table.txt", "ffi-tests/determinism_table.txt",
+                          "determinism_table.txt"};
+  FILE *file = NULL;
+  char buffer[2048];
+  char *tokens[MAX_TOKENS];
+  int i, line = 0, records = 0;
+  SpheraLtc ltc;
+  SpheraMaterial material;
+
+  for (i = 0; i < 3 && file == NULL; i++) file = fopen(paths[i], "r");
+  CHECK(file != NULL);
+  if (file == NULL) return check_summary();
+  CHECK(sphera_ltc_ggx(&ltc, vec3(0.3f, 0.1f, 0.9f), 0.4f));
+  material.diffuse = vec3(0.5f, 0.5f, 0.5f);
+  material.f0 = vec3(0.04f, 0.04f, 0.04f);
+  material.roughness = 0.4f;
+
+  while (fgets(buffer, sizeof buffer, file) != NULL) {
+    int n = 0;
+    char *token;
+    const char *kind;
+    float o[16];
+    line++;
+    if (buffer[0] == '#' || buffer[0] == '\n') continue;
+    for (token = strtok(buffer, " \n"); token != NULL && n < MAX_TOKENS; token = strtok(NULL, " \n"))
+      tokens[n++] = token;
+    kind = tokens[0];
+    records++;
+    if (strcmp(kind, "polygon") == 0) {
+      int id = atoi(tokens[1]), k;
+      counts[id] = (uint32_t)atoi(tokens[2]);
+      for (k = 0; k < (int)counts[id]; k++)
+        polygons[id][k] = vec3(bits_to_float(tokens[3 + 3 * k]), bits_to_float(tokens[4 + 3 * k]),
+                               bits_to_float(tokens[5 + 3 * k]));
+      continue;
+    }
+    if (strcmp(kind, "light") == 0) {
+      int id = atoi(tokens[1]);
+      uint32_t technique = (uint32_t)atoi(tokens[2]);
+      SpheraPolygonLight light;
+      SpheraLightSample s;
+      sphera_polygon_light_prepare(&light, polygons[id], counts[id], vec3(0.3f, 0.1f, 0.9f),
+                                   &material, SPHERA_MIS_CLAMPED_OPTIMAL, 0.5f);
+      s = sphera_polygon_light_sample(&light, technique, bits_to_float(tokens[3]),
+                                      bits_to_float(tokens[4]));
+      o[0] = s.dir.x, o[1] = s.dir.y, o[2] = s.dir.z, o[3] = s.pdf;
+      o[4] = s.visible.x, o[5] = s.visible.y, o[6] = s.visible.z;
+      o[7] = s.unoccluded.x, o[8] = s.unoccluded.y, o[9] = s.unoccluded.z;
+      expect_bits(o, 10, tokens, 5, line);
+      continue;
+    }
+    if (strcmp(kind, "ggx") == 0) {
+      SpheraGgxBrdf brdf;
+      sphera_ggx_brdf_prepare(&brdf, bits_to_float(tokens[1]), vec3(1.0f, 1.0f, 1.0f));
+      sample_outputs(sphera_ggx_sample(&brdf,
+                                       vec3(bits_to_float(tokens[2]), bits_to_float(tokens[3]),
+                                            bits_to_float(tokens[4])),
+                                       bits_to_float(tokens[5]), bits_to_float(tokens[6])),
+                     o);
+      expect_bits(o, 4, tokens, 7, line);
+      continue;
+    }
+    if (strcmp(kind, "lambert") == 0) {
+      sample_outputs(sphera_lambert_sample(bits_to_float(tokens[1]), bits_to_float(tokens[2])), o);
+      expect_bits(o, 4, tokens, 3, line);
+      continue;
+    }
+    if (strcmp(kind, "cap") == 0) {
+      SpheraCap cap = sphera_cap_from_sphere(
+          vec3(bits_to_float(tokens[1]), bits_to_float(tokens[2]), bits_to_float(tokens[3])),
+          bits_to_float(tokens[4]));
+      sample_outputs(sphera_cap_sample_uniform(cap, bits_to_float(tokens[5]), bits_to_float(tokens[6])), o);
+      expect_bits(o, 4, tokens, 7, line);
+      continue;
+    }
+    if (strcmp(kind, "pivot_phase") == 0 || strcmp(kind, "hg_phase") == 0) {
+      SpheraVec3 wo = vec3(bits_to_float(tokens[1]), bits_to_float(tokens[2]), bits_to_float(tokens[3]));
+      float g = bits_to_float(tokens[4]), u0 = bits_to_float(tokens[5]), u1 = bits_to_float(tokens[6]);
+      sample_outputs(kind[0] == 'p' ? sphera_phase_pivot_sample(wo, g, u0, u1)
+                                    : sphera_phase_henyey_greenstein_sample(wo, g, u0, u1),
+                     o);
+      expect_bits(o, 4, tokens, 7, line);
+      continue;
+    }
+    /* The polygon samplers: <sampler> <id> <u0> <u1> -> dir, pdf. */
+    {
+      int id = atoi(tokens[1]);
+      float u0 = bits_to_float(tokens[2]), u1 = bits_to_float(tokens[3]);
+      const SpheraVec3 *v = polygons[id];
+      uint32_t count = counts[id];
+      SpheraSample s;
+      s.pdf = -1.0f;
+      s.dir = vec3(0.0f, 0.0f, 0.0f);
+      if (strcmp(kind, "solid_angle") == 0) {
+        SpheraSolidAnglePolygon p;
+        sphera_solid_angle_polygon_prepare(&p, v, count);
+        s = sphera_solid_angle_polygon_sample(&p, u0, u1);
+      } else if (strcmp(kind, "turk") == 0) {
+        SpheraTurkPolygon p;
+        sphera_turk_polygon_prepare(&p, v, count);
+        s = sphera_turk_polygon_sample(&p, u0, u1);
+      } else if (strcmp(kind, "arvo") == 0) {
+        SpheraArvoPolygon p;
+        sphera_arvo_polygon_prepare(&p, v, count);
+        s = sphera_arvo_polygon_sample(&p, u0, u1);
+      } else if (strcmp(kind, "hart_bilinear") == 0) {
+        SpheraHartBilinearPolygon p;
+        sphera_hart_bilinear_polygon_prepare(&p, v, count);
+        s = sphera_hart_bilinear_polygon_sample(&p, u0, u1);
+      } else if (strcmp(kind, "hart_biquadratic") == 0) {
+        SpheraHartBiquadraticPolygon p;
+        sphera_hart_biquadratic_polygon_prepare(&p, v, count);
+        s = sphera_hart_biquadratic_polygon_sample(&p, u0, u1);
+      } else if (strcmp(kind, "clipped_solid_angle") == 0) {
+        SpheraClippedSolidAnglePolygon p;
+        sphera_clipped_solid_angle_polygon_prepare(&p, v, count);
+        s = sphera_clipped_solid_angle_polygon_sample(&p, u0, u1);
+      } else if (strcmp(kind, "projected") == 0) {
+        SpheraProjectedSolidAnglePolygon p;
+        sphera_projected_polygon_prepare(&p, v, count);
+        s = sphera_projected_polygon_sample(&p, u0, u1);
+      } else if (strcmp(kind, "projected_fast") == 0) {
+        SpheraProjectedSolidAnglePolygon p;
+        sphera_projected_polygon_prepare_fast(&p, v, count);
+        s = sphera_projected_polygon_sample_fast(&p, u0, u1);
+      } else if (strcmp(kind, "arvo_projected") == 0) {
+        SpheraArvoProjectedPolygon p;
+        sphera_arvo_projected_polygon_prepare(&p, v, count);
+        s = sphera_arvo_projected_polygon_sample(&p, u0, u1);
+      } else if (strcmp(kind, "ltc") == 0) {
+        SpheraLtcPolygon p;
+        sphera_ltc_polygon_prepare(&p, &ltc, v, count);
+        s = sphera_ltc_polygon_sample(&p, u0, u1);
+      } else {
+        printf("line %d: unknown record %s\n", line, kind);
+        CHECK(0);
+        continue;
+      }
+      sample_outputs(s, o);
+      expect_bits(o, 4, tokens, 4, line);
+    }
+  }
+  fclose(file);
+  printf("%d records\n", records);
+  CHECK(records > 400);
+  return check_summary();
+}
