@@ -81,9 +81,13 @@ int main(void) {
   CHECK_ABS(v.variance, 1.0, 1e-5);
   CHECK_REL(v.diffuse_power.y, 2.0, 1e-6); /* 2 VPLs × power 2 × R_d 0.5 */
   CHECK_ABS(v.diffuse.axis.z, 1.0, 1e-6);
-  CHECK_REL(v.diffuse.sharpness, 2.0, 1e-5); /* λ_d of a single normal */
-  /* amplitude 1/A(2) = 2 / (2π (1 − e⁻⁴)) */
-  CHECK_REL(exp(v.diffuse.log_amplitude), 2.0 / (2.0 * 3.14159265358979 * (1.0 - exp(-4.0))), 1e-5);
+  /* λ_d of a single normal: the diffuse lobe fit of Eq. 1 */
+  CHECK_REL(v.diffuse.sharpness, SPHERA_SG_DIFFUSE_LOBE_SHARPNESS, 1e-5);
+  /* amplitude 1/A(λ_d) = λ_d / (2π (1 − e^{−2λ_d})) */
+  CHECK_REL(exp(v.diffuse.log_amplitude),
+            SPHERA_SG_DIFFUSE_LOBE_SHARPNESS /
+                (2.0 * 3.14159265358979 * (1.0 - exp(-2.0 * SPHERA_SG_DIFFUSE_LOBE_SHARPNESS))),
+            1e-5);
 
   /* Merging the accumulator with itself doubles the power, keeps mean and variance. */
   other = acc;

@@ -95,6 +95,16 @@
 #define SPHERA_SPTD_CLAMPED_COSINE 1
 
 /**
+ * The largest sharpness of an SG (and bandwidth of an ASG): a lobe 1e-4 rad wide.
+ */
+#define SPHERA_SG_MAX_SHARPNESS 1e8
+
+/**
+ * The least-squares sharpness `λ_d` of the SG fit of the clamped cosine (Eq. 1).
+ */
+#define SPHERA_SG_DIFFUSE_LOBE_SHARPNESS 2.292504
+
+/**
  * The base distribution that the pivot transforms.
  */
 enum SpheraSptdBase
@@ -916,20 +926,21 @@ typedef struct SpheraVpl {
 } SpheraVpl;
 
 /**
- * `G(ω) = exp(log_amplitude) · exp(λ(ω·ξ − 1))`, axis `ξ` a unit vector, sharpness
- * `λ ≥ 0`.
+ * A spherical Gaussian `G(ω) = exp(log_amplitude) · exp(λ(ω·ξ − 1))` with unit axis
+ * `ξ = axis` and sharpness `λ = sharpness`.
  */
 typedef struct SpheraSg {
   /**
-   * The lobe axis `ξ` (unit vector).
+   * Unit lobe axis `ξ`.
    */
   SpheraVec3 axis;
   /**
-   * The sharpness `λ ≥ 0`.
+   * Sharpness `λ` in `[0, 1e8]` (`MAX_SHARPNESS`).
    */
   float sharpness;
   /**
-   * The natural logarithm of the amplitude.
+   * Natural logarithm of the amplitude (the value at the axis), in
+   * `[−1e30, 88.72283]` (`MIN_LOG_AMPLITUDE`, `ln FLT_MAX`); −1e30 means amplitude 0.
    */
   float log_amplitude;
 } SpheraSg;
@@ -972,6 +983,37 @@ typedef struct SpheraVsgl {
    */
   float variance;
 } SpheraVsgl;
+
+/**
+ * An anisotropic spherical Gaussian
+ * `a · max(ω·z, 0) · exp(−η_x (ω·x)² − η_y (ω·y)²)`.
+ */
+typedef struct SpheraAsg {
+  /**
+   * Tangent axis of bandwidth `eta_x`.
+   */
+  SpheraVec3 x;
+  /**
+   * Tangent axis of bandwidth `eta_y`.
+   */
+  SpheraVec3 y;
+  /**
+   * Lobe axis.
+   */
+  SpheraVec3 z;
+  /**
+   * Bandwidth along `x`, in `[0, MAX_SHARPNESS]`.
+   */
+  float eta_x;
+  /**
+   * Bandwidth along `y`, in `[0, MAX_SHARPNESS]`.
+   */
+  float eta_y;
+  /**
+   * Amplitude `a ≥ 0` (finite).
+   */
+  float amplitude;
+} SpheraAsg;
 
 #ifdef __cplusplus
 extern "C" {
@@ -2378,6 +2420,178 @@ struct SpheraVsgl sphera_vsgl_fis_select(const struct SpheraVsglTexel *texels,
                                          uint32_t iterations,
                                          float u0,
                                          float u1);
+
+/**
+ * The SG `amplitude · exp(sharpness (ω·axis − 1))` (axis normalised, sharpness clamped
+ * to [0, SPHERA_SG_MAX_SHARPNESS], amplitude stored as its logarithm; an amplitude
+ * `<= 0` or NaN gives amplitude 0). A zero or non-finite axis gives the zero SG.
+ */
+struct SpheraSg sphera_sg_new(struct SpheraVec3 axis, float sharpness, float amplitude);
+
+/**
+ * The SG's value at `dir` (normalised; 0 for a zero or non-finite `dir`).
+ */
+float sphera_sg_eval(struct SpheraSg sg, struct SpheraVec3 dir);
+
+/**
+ * `A(λ) = 2π/λ (1 − e^{−2λ})`, the integral of an SG of amplitude 1 (`4π` at
+ * `λ = 0`; NaN or negative `λ` counts as 0).
+ */
+float sphera_sg_integral(float sharpness);
+
+/**
+ * The product of two SGs, an SG (sharpness 0 when the axes cancel).
+ */
+struct SpheraSg sphera_sg_product(struct SpheraSg a, struct SpheraSg b);
+
+/**
+ * `∫ a(ω) b(ω) dω`, the integral of the product of two SGs.
+ */
+float sphera_sg_inner_product(struct SpheraSg a, struct SpheraSg b);
+
+/**
+ * Draws a direction from the normalised SG (von Mises–Fisher distribution; the
+ * amplitude is ignored). `u0`, `u1` in [0, 1) (clamped). pdf 0 (and `dir = (0, 0, 1)`)
+ * for the zero SG built from an invalid axis.
+ */
+struct SpheraSample sphera_sg_vmf_sample(struct SpheraSg sg, float u0, float u1);
+
+/**
+ * The density per steradian of `sphera_sg_vmf_sample` at `dir` (normalised; 0 for a
+ * zero or non-finite `dir`).
+ */
+float sphera_sg_vmf_pdf(struct SpheraSg sg, struct SpheraVec3 dir);
+
+/**
+ * Writes to `u[0]`, `u[1]` the random numbers that `sphera_sg_vmf_sample` maps to
+ * `dir` and returns true; returns false (writing nothing) for a null `u`, a zero or
+ * non-finite `dir`, or an SG with an invalid axis.
+ *
+ * # Safety
+ *
+ * `u` must be null or point to two writable `float`s.
+ */
+bool sphera_sg_vmf_invert(struct SpheraSg sg, struct SpheraVec3 dir, float *u);
+
+/**
+ * The diffuse lobe `G(ω, n, λ_d)/A(λ_d)` (Eq. 1 without `R_d`); the zero SG for a zero
+ * or non-finite normal.
+ */
+struct SpheraSg sphera_sg_diffuse_lobe(struct SpheraVec3 normal);
+
+/**
+ * The GGX specular lobe of Eq. 2 without `R_s`: axis `ξ_s = 2(ω'·n)n − ω'`, sharpness
+ * `(2/α²)/(4|ξ_s·n|)` (`|ξ_s·n|` at least 1e-4, `α` clamped to [1e-3, 1]), amplitude
+ * `1/A(λ_s)`. `toward_incoming` is `ω'`. The zero SG for invalid vectors.
+ */
+struct SpheraSg sphera_sg_specular_lobe(struct SpheraVec3 normal,
+                                        struct SpheraVec3 toward_incoming,
+                                        float alpha);
+
+/**
+ * As `sphera_sg_specular_lobe` with amplitude 1 (the warped unnormalised NDF).
+ */
+struct SpheraSg sphera_sg_specular_lobe_unnormalized(struct SpheraVec3 normal,
+                                                     struct SpheraVec3 toward_incoming,
+                                                     float alpha);
+
+/**
+ * The incoming radiance SG of a VSGL (Eq. 6–7): `lobe` holds `c_v` (amplitude),
+ * `ξ_v` and `λ_v`; `mean` is the positional mean relative to the shading point,
+ * `variance` the positional variance. A variance of 0 (or NaN, or negative) is a point
+ * light (sharpness clamped, inverse-square energy kept); a mean at the shading point
+ * with variance 0, a non-finite mean or an infinite variance give the zero SG.
+ */
+struct SpheraSg sphera_sg_incoming_radiance(struct SpheraSg lobe,
+                                            struct SpheraVec3 mean,
+                                            float variance);
+
+/**
+ * Diffuse shading `V R_d ∫ L_in G(ω, n, λ_d)/A(λ_d) dω` (product integral with the
+ * diffuse SG). `visibility` is clamped to [0, 1] (NaN to 0), `r_d` to [0, FLT_MAX].
+ */
+float sphera_sg_diffuse_shading_product(struct SpheraSg incoming,
+                                        struct SpheraVec3 normal,
+                                        float r_d,
+                                        float visibility);
+
+/**
+ * Diffuse shading `V (c_in R_d/π) A(λ_in) max(ξ_in·n, 0)` (the cosine taken at the
+ * lobe's axis).
+ */
+float sphera_sg_diffuse_shading_constant_cosine(struct SpheraSg incoming,
+                                                struct SpheraVec3 normal,
+                                                float r_d,
+                                                float visibility);
+
+/**
+ * Diffuse shading `V (2 c_in R_d/λ_in) max(ξ_in·n, 0)`: the constant-cosine form with
+ * `A(λ) ≈ 2π/λ`, for `λ_in ≳ 2` only (it diverges as `λ_in → 0`; finite, at most
+ * FLT_MAX).
+ */
+float sphera_sg_diffuse_shading_sharp_lobe(struct SpheraSg incoming,
+                                           struct SpheraVec3 normal,
+                                           float r_d,
+                                           float visibility);
+
+/**
+ * GGX specular shading `V c_in C(ξ_in) ∫ G_in Ĝ dω` through the ASG fit of the lobe
+ * (Section 4.2). `view` points toward the viewer; `α = roughness²` (clamped to
+ * [1e-3, 1]); `f0` is Schlick's reflectance of one channel (clamped to [0, 1]). 0
+ * when the view or `ξ_in` lies at or below the horizon.
+ */
+float sphera_sg_specular_shading(struct SpheraSg incoming,
+                                 struct SpheraVec3 normal,
+                                 struct SpheraVec3 view,
+                                 float roughness,
+                                 float f0,
+                                 float visibility);
+
+/**
+ * As `sphera_sg_specular_shading` with the isotropic SG fit of Eq. 2 instead of the
+ * ASG.
+ */
+float sphera_sg_specular_shading_sg(struct SpheraSg incoming,
+                                    struct SpheraVec3 normal,
+                                    struct SpheraVec3 view,
+                                    float roughness,
+                                    float f0,
+                                    float visibility);
+
+/**
+ * The ASG `amplitude · max(ω·z, 0) · exp(−η_x (ω·x)² − η_y (ω·y)²)` with `z`
+ * normalised, `x` made orthogonal to it and `y = z × x`; bandwidths clamped to
+ * [0, SPHERA_SG_MAX_SHARPNESS], amplitude to [0, FLT_MAX] (NaN to 0). The zero ASG for
+ * a zero or non-finite `z`.
+ */
+struct SpheraAsg sphera_asg_new(struct SpheraVec3 x,
+                                struct SpheraVec3 z,
+                                float eta_x,
+                                float eta_y,
+                                float amplitude);
+
+/**
+ * The ASG's value at `dir` (normalised; 0 for a zero or non-finite `dir`).
+ */
+float sphera_asg_eval(struct SpheraAsg asg, struct SpheraVec3 dir);
+
+/**
+ * The approximate integral `a π/√(η_x η_y)`, at most `a π` (accurate to 1 % for
+ * bandwidths above ~4.6; too high for small ones).
+ */
+float sphera_asg_integral(struct SpheraAsg asg);
+
+/**
+ * `∫ G Ĝ dω` for an SG and an ASG by the boxed formula of Section 4.2.
+ */
+float sphera_asg_convolve_sg(struct SpheraAsg asg, struct SpheraSg sg);
+
+/**
+ * The ASG fit (amplitude 1) of GGX's warped unnormalised NDF at a shading point:
+ * `z` the reflection of `view` about `normal`, `η_x = 1/(4α²)` in the plane of
+ * incidence and `η_y = 1/(4α² cos²θ_o)` across it. The zero ASG for invalid vectors.
+ */
+struct SpheraAsg sphera_asg_ggx_lobe(struct SpheraVec3 normal, struct SpheraVec3 view, float alpha);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -43,6 +43,8 @@ mod sptd;
 
 mod vsgl;
 
+mod sg;
+
 pub use brdf::*;
 pub use frame::*;
 pub use light::*;
@@ -50,6 +52,7 @@ pub use ltc::*;
 pub use phase::*;
 pub use polygon::*;
 pub use projected::*;
+pub use sg::*;
 pub use sphere::*;
 pub use sptd::*;
 pub use types::*;

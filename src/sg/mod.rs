@@ -1,12 +1,30 @@
-// STUB: replaced by the sg branch at merge
-//! Spherical Gaussians (SGs) and the SG approximations of reflection lobes
-//! (Tokuyoshi 2016, supplement Section 2). Minimal stub: only what the VSGL accumulator
-//! needs, with the signatures of the `sg` branch.
+//! Spherical Gaussians for virtual spherical Gaussian lights (Tokuyoshi 2016,
+//! "Modified Filtered Importance Sampling for Virtual Spherical Gaussian Lights",
+//! supplement Sections 2, 2.1 and 4): SG algebra, von Mises–Fisher sampling, SG fits
+//! of reflection lobes, anisotropic SGs, and shading with the incoming radiance of a
+//! VSGL.
 
-#[allow(clippy::module_inception)]
-pub mod sg;
-
+pub mod asg;
 pub mod lobes;
+#[allow(clippy::module_inception)] // the interface fixes `sg::sg::Sg`
+pub mod sg;
+pub mod shading;
+pub mod vmf;
 
-pub use lobes::{DIFFUSE_LOBE_SHARPNESS, diffuse_lobe_normalized, specular_lobe_normalized};
-pub use sg::{Sg, sg_integral};
+pub use asg::Asg;
+pub use lobes::{
+    DIFFUSE_LOBE_SHARPNESS, diffuse_lobe_normalized, specular_lobe, specular_lobe_normalized,
+};
+pub use sg::{MAX_SHARPNESS, Sg, sg_inner_product, sg_integral, sg_product};
+pub use vmf::{vmf_invert, vmf_pdf, vmf_sample};
+
+#[cfg(test)]
+mod asg_tests;
+#[cfg(test)]
+mod lobes_tests;
+#[cfg(test)]
+mod sg_tests;
+#[cfg(test)]
+mod shading_tests;
+#[cfg(test)]
+mod vmf_tests;

@@ -4,6 +4,9 @@ use glam::Vec3;
 
 const LUM: D3 = [0.2126, 0.7152, 0.0722];
 
+/// The sharpness of the diffuse lobe fit of Eq. 1 (`sphera::sg::DIFFUSE_LOBE_SHARPNESS`).
+const DIFFUSE_LAMBDA: f64 = 2.292_504;
+
 fn random_vpl(rng: &mut Rng, center: Vec3, spread: f32) -> Vpl {
     let normal = rng.unit_vector_f32();
     // ω' in the hemisphere of the normal.
@@ -56,8 +59,9 @@ fn reference(vpls: &[Vpl]) -> Reference {
         let pd = [phi[0] * rd[0], phi[1] * rd[1], phi[2] * rd[2]];
         let ps = [phi[0] * rs[0], phi[1] * rs[1], phi[2] * rs[2]];
         let (wd, ws) = (dot(pd, LUM), dot(ps, LUM));
-        // Diffuse: λ_d = 2, ξ̄ = 2/3 n.
-        diffuse_sum = add(diffuse_sum, scale(n, wd * 2.0 / 3.0));
+        // Diffuse: λ_d = 2.2925 (the least-squares fit of Eq. 1), ξ̄ = λ_d/(λ_d + 1) n.
+        let lambda_d = DIFFUSE_LAMBDA;
+        diffuse_sum = add(diffuse_sum, scale(n, wd * lambda_d / (lambda_d + 1.0)));
         // Specular: ξ_s = 2(ω'·n)n − ω', λ_s = (2/α²)/(4|ξ_s·n|).
         let xi = sub(scale(n, 2.0 * dot(wi, n)), wi);
         let alpha = vpl.roughness as f64;
@@ -230,7 +234,7 @@ fn a_single_vpl_gives_its_own_lobes_and_zero_variance() {
         assert_eq!(vsgl.variance, 0.0, "origin {origin:?}");
         assert!((vsgl.mean - vpl.position).length() < 1e-6 * (1.0 + origin.length()) * 8.0);
         assert!((vsgl.diffuse.axis - vpl.normal).length() < 1e-6);
-        assert!((vsgl.diffuse.sharpness - 2.0).abs() < 1e-5);
+        assert!((vsgl.diffuse.sharpness as f64 - DIFFUSE_LAMBDA).abs() < 1e-5);
         // ξ_s = 2(ω'·n)n − ω' and λ_s = (2/α²)/(4 ω'·n).
         let xi = 2.0 * 0.8 * vpl.normal - vpl.toward_incoming;
         assert!((vsgl.specular.axis - xi).length() < 1e-5);
@@ -344,7 +348,11 @@ fn mirror_like_lobes_clamp_the_sharpness() {
         roughness: 0.3,
     }));
     let vsgl = grazing.finish();
-    assert_eq!(vsgl.specular.sharpness, Vsgl::MAX_SHARPNESS);
+    // |ξ_s·n| is clamped to 1e-4 in the warp: λ_s = (2/α²)/(4·1e-4), up to the f32
+    // round trip through Toksvig's λ/(λ+1).
+    let lambda = (2.0 / 0.09) / (4.0 * 1e-4);
+    assert!((vsgl.specular.sharpness - lambda).abs() < 1e-2 * lambda);
+    assert!(vsgl.specular.sharpness <= Vsgl::MAX_SHARPNESS);
     assert!(vsgl.intensity(Vec3::X).is_finite());
 }
 

@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 use sphera_tools::repository_root;
 
 /// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
-const C_TESTS: [&str; 14] = [
+const C_TESTS: [&str; 15] = [
     "test_polygon_clip",
     "test_projected_polygon",
     "test_solid_angle_polygon",
@@ -25,6 +25,7 @@ const C_TESTS: [&str; 14] = [
     "test_sphere_caps",
     "test_sptd",
     "test_vsgl",
+    "test_sg",
 ];
 
 /// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
@@ -234,6 +235,11 @@ fn test_vsgl() {
     run_c_test("test_vsgl");
 }
 
+#[test]
+fn test_sg() {
+    run_c_test("test_sg");
+}
+
 /// Compiles `ffi-tests/<name>.c` with the tracer's sources, links `libsphera.a`, Embree
 /// 3, libpng and pthreads, runs it and asserts that it exits with status 0.
 fn run_tracer_test(name: &str) {
@@ -411,7 +417,7 @@ fn struct_layouts_match_rust() {
     use sphera::polygon::{
         ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
     };
-    use sphera::sg::Sg;
+    use sphera::sg::{Asg, Sg};
     use sphera::sphere::{Cap, GgxPivot, SphereLightSampler, SphereShadingSptd, SptdInCap};
     use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, VsglTexel};
 
@@ -521,6 +527,8 @@ fn struct_layouts_match_rust() {
             align_of::<SphereLightSampler>(),
         ),
         ("sizeof(SpheraSg)", size_of::<Sg>()),
+        ("alignof(SpheraSg)", align_of::<Sg>()),
+        ("offsetof(SpheraSg, sharpness)", offset_of!(Sg, sharpness)),
         (
             "offsetof(SpheraSg, log_amplitude)",
             offset_of!(Sg, log_amplitude),
@@ -546,6 +554,12 @@ fn struct_layouts_match_rust() {
         ("alignof(SpheraVsgl)", align_of::<Vsgl>()),
         ("offsetof(SpheraVsgl, mean)", offset_of!(Vsgl, mean)),
         ("offsetof(SpheraVsgl, variance)", offset_of!(Vsgl, variance)),
+        ("sizeof(SpheraAsg)", size_of::<Asg>()),
+        ("alignof(SpheraAsg)", align_of::<Asg>()),
+        ("offsetof(SpheraAsg, y)", offset_of!(Asg, y)),
+        ("offsetof(SpheraAsg, z)", offset_of!(Asg, z)),
+        ("offsetof(SpheraAsg, eta_y)", offset_of!(Asg, eta_y)),
+        ("offsetof(SpheraAsg, amplitude)", offset_of!(Asg, amplitude)),
     ];
     let mut source =
         String::from("#include <stddef.h>\n#include <stdio.h>\n#include \"sphera.h\"\n");
@@ -571,6 +585,8 @@ fn struct_layouts_match_rust() {
         "SpheraVpl",
         "SpheraVsglTexel",
         "SpheraVsgl",
+        "SpheraSg",
+        "SpheraAsg",
     ] {
         source += &format!("struct align_{name} {{ char c; {name} t; }};\n");
     }

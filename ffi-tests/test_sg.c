@@ -1,0 +1,222 @@
+/* C ABI tests of spherical Gaussians, vMF sampling, lobes, ASGs and VSGL shading
+ * (sphera_sg_*, sphera_asg_*). */
+#include <float.h>
+#include <stddef.h>
+
+#include "check.h"
+
+static const double PI_D = 3.14159265358979323846;
+
+static int sg_is_finite(SpheraSg s) {
+  return vec3_is_finite(s.axis) && isfinite(s.sharpness) && isfinite(s.log_amplitude) &&
+         s.sharpness >= 0.0f && s.sharpness <= SPHERA_SG_MAX_SHARPNESS;
+}
+
+static int asg_is_finite(SpheraAsg a) {
+  return vec3_is_finite(a.x) && vec3_is_finite(a.y) && vec3_is_finite(a.z) && isfinite(a.eta_x) &&
+         isfinite(a.eta_y) && isfinite(a.amplitude);
+}
+
+/* A(lambda) in double. */
+static double a_d(double l) { return l < 1e-12 ? 4.0 * PI_D : 2.0 * PI_D / l * (1.0 - exp(-2.0 * l)); }
+
+static void check_algebra(void) {
+  SpheraVec3 z = vec3(0.0f, 0.0f, 1.0f);
+  SpheraSg a = sphera_sg_new(vec3(0.0f, 0.0f, 2.0f), 10.0f, 3.0f);
+  SpheraSg b = sphera_sg_new(vec3(0.0f, 0.6f, 0.8f), 5.0f, 0.5f);
+  SpheraSg p = sphera_sg_product(a, b);
+  SpheraVec3 w = vec3(0.0f, 0.2f, 0.979795897f);
+  double l_m;
+  CHECK(sg_is_finite(a));
+  CHECK_ABS(a.axis.z, 1.0, 1e-7);
+  CHECK_REL(sphera_sg_eval(a, z), 3.0, 1e-6);
+  CHECK_REL(sphera_sg_eval(a, w), 3.0 * exp(10.0 * (0.979795897 - 1.0)), 1e-5);
+  CHECK_REL(sphera_sg_integral(0.0f), 4.0 * PI_D, 1e-7);
+  CHECK_REL(sphera_sg_integral(1e-4f), a_d(1e-4), 1e-6);
+  CHECK_REL(sphera_sg_integral(3.0f), a_d(3.0), 1e-6);
+  CHECK_REL(sphera_sg_integral(1e6f), a_d(1e6), 1e-6);
+  /* The product evaluates to the product, and integrates to the inner product. */
+  CHECK_REL(sphera_sg_eval(p, w), (double)sphera_sg_eval(a, w) * sphera_sg_eval(b, w), 1e-4);
+  l_m = sqrt(100.0 + 25.0 + 2.0 * 50.0 * 0.8);
+  CHECK_REL(p.sharpness, l_m, 1e-5);
+  CHECK_REL(sphera_sg_inner_product(a, b), 1.5 * exp(l_m - 15.0) * a_d(l_m), 1e-4);
+  /* Opposite sharp lobes: a constant e^{-2 lambda}, no NaN. */
+  {
+    SpheraSg s = sphera_sg_new(z, 1e6f, 1.0f);
+    SpheraSg t = sphera_sg_new(vec3(0.0f, 0.0f, -1.0f), 1e6f, 1.0f);
+    SpheraSg q = sphera_sg_product(s, t);
+    CHECK(sg_is_finite(q) && q.sharpness == 0.0f);
+    CHECK(sphera_sg_inner_product(s, t) == 0.0f);
+    CHECK_REL(q.log_amplitude, -2e6, 1e-6);
+  }
+}
+
+static void check_vmf(void) {
+  float u[U_COUNT];
+  float lambdas[4] = {0.0f, 1e-4f, 2.0f, 1e5f};
+  int i, j, k;
+  fill_u_values(u);
+  for (k = 0; k < 4; k++) {
+    SpheraSg s = sphera_sg_new(vec3(0.3f, -0.4f, 0.5f), lambdas[k], 7.0f);
+    for (i = 0; i < U_COUNT; i++) {
+      for (j = 0; j < U_COUNT; j++) {
+        SpheraSample x = sphera_sg_vmf_sample(s, u[i], u[j]);
+        float inverse[2] = {-1.0f, -1.0f};
+        double t = 1.0 - ddot(dvec(x.dir), dvec(s.axis));
+        double l = s.sharpness;
+        double pdf = l < 1e-12 ? 1.0 / (4.0 * PI_D) : l * exp(-l * t) / (2.0 * PI_D * (1.0 - exp(-2.0 * l)));
+        CHECK(vec3_is_finite(x.dir) && x.pdf > 0.0f && isfinite(x.pdf));
+        CHECK_ABS(dlength(dvec(x.dir)), 1.0, 1e-6);
+        if (l < 1e3) {
+          CHECK_REL(x.pdf, pdf, 1e-4);
+        }
+        CHECK(sphera_sg_vmf_pdf(s, x.dir) == x.pdf);
+        CHECK(sphera_sg_vmf_invert(s, x.dir, inverse));
+        CHECK(inverse[0] >= 0.0f && inverse[0] <= 1.0f && inverse[1] >= 0.0f && inverse[1] < 1.0f);
+        if (u_is_interior(i) && l < 1e3) {
+          CHECK_ABS(inverse[0], u[i], 1e-3);
+        }
+      }
+    }
+  }
+}
+
+static void check_lobes_and_shading(void) {
+  SpheraVec3 n = vec3(0.0f, 0.0f, 1.0f);
+  SpheraVec3 view = vec3(0.5f, 0.0f, 0.8660254f);
+  SpheraSg d = sphera_sg_diffuse_lobe(n);
+  SpheraSg s = sphera_sg_specular_lobe(n, view, 0.09f);
+  SpheraSg lobe = sphera_sg_new(vec3(0.0f, 0.0f, -1.0f), 4.0f, 10.0f);
+  SpheraSg l_in = sphera_sg_incoming_radiance(lobe, vec3(0.0f, 1.0f, 3.0f), 0.04f);
+  SpheraAsg g = sphera_asg_ggx_lobe(n, view, 0.09f);
+  double exact;
+  CHECK(d.sharpness == (float)SPHERA_SG_DIFFUSE_LOBE_SHARPNESS);
+  CHECK_REL(exp(d.log_amplitude) * a_d(d.sharpness), 1.0, 1e-5);
+  CHECK_ABS(s.axis.x, -0.5, 1e-6);
+  CHECK_REL(s.sharpness, (2.0 / (0.09 * 0.09)) / (4.0 * 0.8660254), 1e-5);
+  CHECK_REL(exp(s.log_amplitude) * a_d(s.sharpness), 1.0, 1e-4);
+  CHECK_REL(sphera_sg_specular_lobe_unnormalized(n, view, 0.09f).sharpness, s.sharpness, 1e-7);
+  /* Eq. 7: lambda_sigma = 10 / 0.04 = 250 toward (0, 1, 3)/sqrt(10). */
+  CHECK(sg_is_finite(l_in));
+  CHECK(l_in.sharpness > 250.0f && l_in.sharpness < 254.0f);
+  exact = 10.0 / (2.0 * PI_D * 0.04) * exp(4.0 * (3.0 / sqrt(10.0) - 1.0));
+  CHECK_REL(sphera_sg_eval(l_in, vec3(0.0f, 1.0f, 3.0f)), exact, 1e-3);
+  /* Diffuse: three forms agree to a few percent for this narrow lobe. */
+  {
+    float product = sphera_sg_diffuse_shading_product(l_in, n, 0.5f, 1.0f);
+    float constant = sphera_sg_diffuse_shading_constant_cosine(l_in, n, 0.5f, 1.0f);
+    float sharp = sphera_sg_diffuse_shading_sharp_lobe(l_in, n, 0.5f, 1.0f);
+    CHECK(product > 0.0f && constant > 0.0f && sharp > 0.0f);
+    CHECK_REL(sharp, constant, 0.01);
+    CHECK_REL(product, constant, 0.1);
+    CHECK_REL(sphera_sg_diffuse_shading_constant_cosine(l_in, n, 0.5f, 0.25f), 0.25 * constant, 1e-5);
+  }
+  /* Specular: the ASG's axis is the reflection, narrower across the plane. */
+  CHECK(asg_is_finite(g));
+  CHECK_ABS(g.z.x, -0.5, 1e-6);
+  CHECK(g.eta_y > g.eta_x);
+  CHECK_REL(g.eta_x, 1.0 / (4.0 * 0.09 * 0.09), 1e-5);
+  {
+    SpheraSg toward = sphera_sg_new(vec3(-0.5f, 0.0f, 0.8660254f), 1e4f, 1.0f);
+    float asg = sphera_sg_specular_shading(toward, n, view, 0.3f, 0.04f, 1.0f);
+    float sg = sphera_sg_specular_shading_sg(toward, n, view, 0.3f, 0.04f, 1.0f);
+    CHECK(asg > 0.0f && sg > 0.0f);
+    CHECK_REL(asg, sg, 0.01);
+    CHECK(sphera_sg_specular_shading(toward, n, vec3(0.0f, 0.6f, -0.8f), 0.3f, 0.04f, 1.0f) == 0.0f);
+  }
+  /* ASG algebra. */
+  {
+    SpheraAsg h = sphera_asg_new(vec3(1.0f, 0.0f, 0.0f), n, 100.0f, 400.0f, 2.0f);
+    SpheraSg narrow = sphera_sg_new(n, 1e6f, 1.0f);
+    CHECK_REL(sphera_asg_eval(h, n), 2.0, 1e-6);
+    CHECK_REL(sphera_asg_integral(h), 2.0 * PI_D / 200.0, 1e-6);
+    CHECK_ABS(h.y.y, 1.0, 1e-6);
+    CHECK_REL(sphera_asg_convolve_sg(h, narrow), 2.0 * a_d(1e6), 1e-3);
+  }
+}
+
+static void check_bad_input(void) {
+  float bad[7] = {NAN, INFINITY, -INFINITY, -1.0f, 0.0f, 1e-45f, FLT_MAX};
+  SpheraVec3 vectors[5];
+  float u[2];
+  int i, j, k;
+  vectors[0] = vec3(0.0f, 0.0f, 0.0f);
+  vectors[1] = vec3(NAN, 0.0f, 1.0f);
+  vectors[2] = vec3(INFINITY, 0.0f, 0.0f);
+  vectors[3] = vec3(FLT_MAX, FLT_MAX, FLT_MAX);
+  vectors[4] = vec3(0.0f, 0.0f, 1.0f);
+  for (i = 0; i < 5; i++) {
+    for (j = 0; j < 7; j++) {
+      SpheraSg hand;
+      SpheraAsg ahand;
+      SpheraSg s = sphera_sg_new(vectors[i], bad[j], bad[j]);
+      hand.axis = vectors[i];
+      hand.sharpness = bad[j];
+      hand.log_amplitude = bad[j];
+      ahand.x = vectors[i];
+      ahand.y = vectors[i];
+      ahand.z = vectors[i];
+      ahand.eta_x = bad[j];
+      ahand.eta_y = bad[j];
+      ahand.amplitude = bad[j];
+      CHECK(sg_is_finite(s));
+      CHECK(asg_is_finite(sphera_asg_new(vectors[i], vectors[i], bad[j], bad[j], bad[j])));
+      CHECK(asg_is_finite(sphera_asg_ggx_lobe(vectors[i], vectors[4], bad[j])));
+      CHECK(sg_is_finite(sphera_sg_specular_lobe(vectors[i], vectors[4], bad[j])));
+      CHECK(isfinite(sphera_sg_integral(bad[j])) && sphera_sg_integral(bad[j]) > 0.0f);
+      for (k = 0; k < 5; k++) {
+        SpheraSg l_in = sphera_sg_incoming_radiance(hand, vectors[k], bad[j]);
+        SpheraSample x = sphera_sg_vmf_sample(hand, bad[j], bad[j]);
+        float values[11];
+        int m;
+        values[0] = sphera_sg_eval(hand, vectors[k]);
+        values[1] = sphera_sg_inner_product(hand, s);
+        values[2] = sphera_sg_vmf_pdf(hand, vectors[k]);
+        values[3] = sphera_sg_diffuse_shading_product(l_in, vectors[k], bad[j], bad[j]);
+        values[4] = sphera_sg_diffuse_shading_constant_cosine(l_in, vectors[k], bad[j], 1.0f);
+        values[5] = sphera_sg_diffuse_shading_sharp_lobe(l_in, vectors[k], 1.0f, bad[j]);
+        values[6] = sphera_sg_specular_shading(l_in, vectors[i], vectors[k], bad[j], bad[j], 1.0f);
+        values[7] = sphera_sg_specular_shading_sg(l_in, vectors[k], vectors[4], bad[j], 0.5f, 1.0f);
+        values[8] = sphera_asg_eval(ahand, vectors[k]);
+        values[9] = sphera_asg_integral(ahand);
+        values[10] = sphera_asg_convolve_sg(ahand, hand);
+        for (m = 0; m < 11; m++) {
+          CHECK(isfinite(values[m]) && values[m] >= 0.0f);
+        }
+        CHECK(sg_is_finite(l_in));
+        CHECK(sg_is_finite(sphera_sg_product(hand, l_in)));
+        CHECK(vec3_is_finite(x.dir) && isfinite(x.pdf) && x.pdf >= 0.0f);
+        (void)sphera_sg_vmf_invert(hand, vectors[k], u);
+      }
+    }
+  }
+  /* Zero axis: no sample; null output: false. */
+  {
+    SpheraSg zero;
+    zero.axis = vec3(0.0f, 0.0f, 0.0f);
+    zero.sharpness = 1.0f;
+    zero.log_amplitude = 0.0f;
+    CHECK(sphera_sg_vmf_sample(zero, 0.5f, 0.5f).pdf == 0.0f);
+    CHECK(!sphera_sg_vmf_invert(sphera_sg_new(vec3(0.0f, 0.0f, 1.0f), 1.0f, 1.0f),
+                                vec3(0.0f, 0.0f, 1.0f), NULL));
+    CHECK(!sphera_sg_vmf_invert(zero, vec3(0.0f, 0.0f, 1.0f), u));
+  }
+}
+
+static void check_layout(void) {
+  CHECK(sizeof(SpheraSg) == 5 * sizeof(float));
+  CHECK(offsetof(SpheraSg, sharpness) == 3 * sizeof(float));
+  CHECK(offsetof(SpheraSg, log_amplitude) == 4 * sizeof(float));
+  CHECK(sizeof(SpheraAsg) == 12 * sizeof(float));
+  CHECK(offsetof(SpheraAsg, z) == 6 * sizeof(float));
+  CHECK(offsetof(SpheraAsg, amplitude) == 11 * sizeof(float));
+}
+
+int main(void) {
+  check_algebra();
+  check_vmf();
+  check_lobes_and_shading();
+  check_bad_input();
+  check_layout();
+  return check_summary();
+}

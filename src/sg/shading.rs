@@ -1,0 +1,273 @@
+//! Shading with a VSGL (Tokuyoshi 2016, supplement Section 4): the incoming radiance as
+//! an SG (Eq. 6–7), diffuse shading in the product-integral and the constant-cosine
+//! forms, and specular shading through the ASG × SG product integral.
+//!
+//! Every function takes plain values: the VSGL's radiant-intensity lobe as an [`Sg`]
+//! (`c_v` as its amplitude, the emission axis `ξ_v`, `λ_v`), its positional mean
+//! relative to the shading point, its positional variance, the shading normal, the
+//! view direction (toward the viewer), and the visibility `V(y_p, μ_v)` that the
+//! caller found (a shadow-map lookup: a multiplier, clamped to `[0, 1]`, NaN to 0).
+//! All vectors may be in any frame, as long as it is the same one. Every result is
+//! finite and non-negative.
+//!
+//! # Incoming radiance (Eq. 6–7)
+//!
+//! `L_in(ω) ≈ c_v/(2πσ²) · G(ω, −ξ_v, λ_v) · G(ω, ξ_μ, λ_σ)` with
+//! `ξ_μ = μ/|μ|`, `λ_σ = |μ|²/σ²`, the product of two SGs ([`Sg::product`]):
+//! `λ_in = |λ_σ ξ_μ − λ_v ξ_v|`, `c_in = c_v/(2πσ²) e^{λ_in − λ_v − λ_σ}`, all in log
+//! space (the exponent without cancellation). Degenerate inputs:
+//!
+//! - `σ² → 0` (a point light): `λ_σ = |μ|²/σ²` exceeds `MAX_SHARPNESS`. It is clamped
+//!   there, and `1/(2πσ²)` replaced by `λ_σ/(2π|μ|²)` with the clamped `λ_σ`, which
+//!   keeps the limit `∫ G_σ/(2πσ²) dω → 1/|μ|²` (inverse-square falloff) exact.
+//!   A NaN or negative variance (the accumulator's `E|y|² − |μ|²` can round below 0)
+//!   counts as 0.
+//! - `|μ| → 0` (the shading point at the VSGL's mean): `λ_σ = 0` and `ξ_μ` is irrelevant;
+//!   with `σ² > 0` the result is `c_v/(2πσ²) G(ω, −ξ_v, λ_v)`. With `σ² = 0` too the
+//!   radiance is that of a point light at the shading point, infinite: this returns
+//!   [`Sg::ZERO`] (no contribution), as renderers skip a light at the shading point.
+//! - a non-finite mean, an infinite variance or an invalid lobe give [`Sg::ZERO`].
+//!
+//! # Diffuse shading (Section 4.2)
+//!
+//! - [`diffuse_shading_product`]: `R_d ∫ L_in G(ω, n, λ_d)/A(λ_d) dω`, the SG inner
+//!   product with the diffuse lobe of Eq. 1 (leaks light from below the horizon).
+//! - [`diffuse_shading_constant_cosine`]: `(c_in R_d/π) A(λ_in) max(ξ_in·n, 0)`, the
+//!   cosine pulled out of the integral at the lobe's axis (exact for a delta lobe).
+//! - [`diffuse_shading_sharp_lobe`]: `(2 c_in R_d/λ_in) max(ξ_in·n, 0)`, the same with
+//!   `A(λ_in) ≈ 2π/λ_in`: 2 % high at `λ_in = 2`, and wrong as `λ_in → 0` (it diverges;
+//!   `λ_in` is clamped to at least 1e-20 so that it stays finite, `f32::MAX` at most).
+//!
+//! All three are approximations (biased); `docs/sg-error.md` measures them against
+//! `∫ L_in max(ω·n, 0)/π dω`.
+//!
+//! # Specular shading (Section 4.2)
+//!
+//! GGX's `ρ_s cos = F D G2/(4 cos θ_o)` with `D = D̂/(πα²)` (`D̂` the NDF scaled to
+//! maximum 1) splits into the lobe shape `D̂ ≈` SG or ASG of [`crate::sg::lobes`] /
+//! [`Asg::ggx_lobe`], and
+//!
+//! ```text
+//! C(ω) = F(ω_o·h) G2(ω_o, ω) / (4 π α² cos θ_o),
+//! ```
+//!
+//! Schlick's Fresnel at the half vector `h` of `ω_o` and `ω`, the height-correlated
+//! Smith term ([`GgxBrdf::lambda`]), and the normalisations. `C` is 0 when `ω` or the view
+//! lies at or below the horizon. With either lobe fit the integral of `C(ξ_s) D̂` is
+//! `F G2` for narrow lobes (`∫ D̂ ≈ 4πα² cos θ_o`). [`specular_shading`] is the boxed
+//! formula `c_in C(ξ_in) ∫ G_in Ĝ dω` with the ASG fit; [`specular_shading_sg`] is
+//! `C(ξ_in) ∫ L_in G(ω, ξ_s, λ_s) dω` with the isotropic SG fit. Roughness gives
+//! `α = roughness²` as in [`GgxBrdf::new`], `α` clamped to `[MIN_LOBE_ALPHA, 1]`;
+//! `f0` (one channel) is clamped to `[0, 1]`.
+
+use super::asg::Asg;
+use super::lobes::{MIN_SPECULAR_COSINE, clamp_lobe_alpha, diffuse_lobe_normalized, specular_lobe};
+use super::sg::{
+    LN_TAU, MAX_SHARPNESS, Sg, exp_finite, log_of_amplitude, log_sg_integral, unit_or_none,
+};
+use crate::Vec3;
+use crate::brdf::ggx::GgxBrdf;
+use core::f32::consts::PI;
+
+/// `x` clamped to `[0, 1]`, NaN to 0.
+#[inline(always)]
+fn clamp_unit(x: f32) -> f32 {
+    x.max(0.0).min(1.0)
+}
+
+/// `x` clamped to `[0, f32::MAX]`, NaN to 0.
+#[inline(always)]
+fn clamp_nonnegative(x: f32) -> f32 {
+    x.max(0.0).min(f32::MAX)
+}
+
+/// The incoming radiance `c_in G(ω, ξ_in, λ_in)` of Eq. 7 from the VSGL lobe
+/// `lobe` (`c_v`, `ξ_v`, `λ_v`), its positional mean `mean` relative to the shading point
+/// and its positional variance `variance` (see the module documentation for the
+/// degenerate cases).
+pub fn incoming_radiance(lobe: &Sg, mean: Vec3, variance: f32) -> Sg {
+    let lobe = lobe.sanitized();
+    if lobe == Sg::ZERO || !mean.is_finite() || variance == f32::INFINITY {
+        return Sg::ZERO;
+    }
+    let variance = if variance > 0.0 { variance } else { 0.0 };
+    let emitted = Sg {
+        axis: -lobe.axis,
+        ..lobe
+    };
+    let largest = mean.abs().max_element();
+    let spatial = if largest > 0.0 {
+        let scaled = mean / largest;
+        let scaled_length = scaled.length();
+        let axis = scaled / scaled_length;
+        // ln |μ|², without overflow or underflow of |μ|².
+        let log_distance2 = 2.0 * (libm::logf(largest) + libm::logf(scaled_length));
+        let log_variance = if variance > 0.0 {
+            libm::logf(variance)
+        } else {
+            f32::NEG_INFINITY
+        };
+        let log_sharpness = log_distance2 - log_variance;
+        if log_sharpness <= libm::logf(MAX_SHARPNESS) {
+            Sg {
+                axis,
+                sharpness: libm::expf(log_sharpness).min(MAX_SHARPNESS),
+                log_amplitude: -LN_TAU - log_variance,
+            }
+        } else {
+            // σ² → 0: keep ∫ G_σ/(2πσ²) = 1/|μ|² with the clamped sharpness.
+            Sg {
+                axis,
+                sharpness: MAX_SHARPNESS,
+                log_amplitude: libm::logf(MAX_SHARPNESS) - LN_TAU - log_distance2,
+            }
+        }
+    } else if variance > 0.0 {
+        Sg::from_log_amplitude(Vec3::Z, 0.0, -LN_TAU - libm::logf(variance))
+    } else {
+        return Sg::ZERO;
+    };
+    let spatial = spatial.sanitized();
+    emitted.product(&spatial)
+}
+
+/// `R_d ∫ L_in(ω) G(ω, n, λ_d)/A(λ_d) dω · V`: diffuse shading by the SG product
+/// integral with the diffuse lobe of Eq. 1. `r_d` is clamped to `[0, f32::MAX]`.
+pub fn diffuse_shading_product(incoming: &Sg, normal: Vec3, r_d: f32, visibility: f32) -> f32 {
+    let incoming = incoming.sanitized();
+    let lobe = diffuse_lobe_normalized(normal);
+    let scale = clamp_nonnegative(r_d) * clamp_unit(visibility);
+    if !(scale > 0.0) || lobe == Sg::ZERO {
+        return 0.0;
+    }
+    let lobe = Sg {
+        log_amplitude: lobe.log_amplitude + libm::logf(scale),
+        ..lobe
+    };
+    incoming.inner_product(&lobe)
+}
+
+/// `max(ξ_in·n, 0)` for a sanitised SG, or 0 for an invalid normal.
+#[inline(always)]
+fn axis_cosine(incoming: &Sg, normal: Vec3) -> f32 {
+    match unit_or_none(normal) {
+        Some(n) => incoming.axis.dot(n).max(0.0),
+        None => 0.0,
+    }
+}
+
+/// `(c_in R_d/π) A(λ_in) max(ξ_in·n, 0) · V`: diffuse shading with the cosine taken
+/// at the lobe's axis (Section 4.2).
+pub fn diffuse_shading_constant_cosine(
+    incoming: &Sg,
+    normal: Vec3,
+    r_d: f32,
+    visibility: f32,
+) -> f32 {
+    let incoming = incoming.sanitized();
+    let factor = clamp_nonnegative(r_d) * clamp_unit(visibility) * axis_cosine(&incoming, normal);
+    exp_finite(
+        incoming.log_amplitude + log_sg_integral(incoming.sharpness) - libm::logf(PI)
+            + log_of_amplitude(factor),
+    )
+}
+
+/// `(2 c_in R_d/λ_in) max(ξ_in·n, 0) · V`: [`diffuse_shading_constant_cosine`] with
+/// `A(λ_in) ≈ 2π/λ_in` (Section 4.2, after Iwasaki et al. 2012); only for
+/// `λ_in ≳ 2` (see the module documentation).
+pub fn diffuse_shading_sharp_lobe(incoming: &Sg, normal: Vec3, r_d: f32, visibility: f32) -> f32 {
+    let incoming = incoming.sanitized();
+    let factor = clamp_nonnegative(r_d) * clamp_unit(visibility) * axis_cosine(&incoming, normal);
+    let sharpness = incoming.sharpness.max(1e-20);
+    exp_finite(
+        incoming.log_amplitude + core::f32::consts::LN_2 - libm::logf(sharpness)
+            + log_of_amplitude(factor),
+    )
+}
+
+/// `C(ω) = F(ω_o·h) G2(ω_o, ω)/(4πα² cos θ_o)`: the factor of GGX's `ρ_s cos` left
+/// once the unnormalised NDF `D̂` is taken out (see the module documentation). 0 for
+/// `dir` or `view` at or below the horizon of `normal`, or for invalid vectors.
+pub fn ggx_lobe_factor(normal: Vec3, view: Vec3, dir: Vec3, alpha: f32, f0: f32) -> f32 {
+    let (Some(n), Some(wo), Some(wi)) =
+        (unit_or_none(normal), unit_or_none(view), unit_or_none(dir))
+    else {
+        return 0.0;
+    };
+    let (co, ci) = (wo.dot(n), wi.dot(n));
+    if !(co > 0.0) || !(ci > 0.0) {
+        return 0.0;
+    }
+    let Some(h) = unit_or_none(wo + wi) else {
+        return 0.0;
+    };
+    let alpha = clamp_lobe_alpha(alpha);
+    let f0 = clamp_unit(f0);
+    let m = (1.0 - wo.dot(h)).max(0.0).min(1.0);
+    let m2 = m * m;
+    let fresnel = f0 + (1.0 - f0) * (m2 * m2 * m);
+    let ggx = GgxBrdf::from_alpha(alpha, Vec3::splat(f0));
+    let g2 = 1.0 / (1.0 + ggx.lambda(co) + ggx.lambda(ci));
+    let value = fresnel * g2 / (4.0 * PI * alpha * alpha * co.max(MIN_SPECULAR_COSINE));
+    if value.is_finite() { value } else { 0.0 }
+}
+
+/// `V c_in C(ξ_in) ∫ G(ω, ξ_in, λ_in) Ĝ(ω) dω`: specular shading by the boxed formula of
+/// Section 4.2 with the ASG fit [`Asg::ggx_lobe`] of the GGX lobe at the shading point.
+pub fn specular_shading(
+    incoming: &Sg,
+    normal: Vec3,
+    view: Vec3,
+    roughness: f32,
+    f0: f32,
+    visibility: f32,
+) -> f32 {
+    let incoming = incoming.sanitized();
+    let alpha = roughness_to_alpha(roughness);
+    let c = ggx_lobe_factor(normal, view, incoming.axis, alpha, f0) * clamp_unit(visibility);
+    if !(c > 0.0) {
+        return 0.0;
+    }
+    let lobe = Asg::ggx_lobe(normal, view, alpha);
+    let value = c * lobe.convolve_sg(&incoming);
+    if value.is_finite() {
+        value.min(f32::MAX)
+    } else {
+        f32::MAX
+    }
+}
+
+/// `V C(ξ_in) ∫ L_in G(ω, ξ_s, λ_s) dω`: specular shading with the isotropic SG fit of
+/// Eq. 2 ([`specular_lobe`], amplitude 1) instead of the ASG.
+pub fn specular_shading_sg(
+    incoming: &Sg,
+    normal: Vec3,
+    view: Vec3,
+    roughness: f32,
+    f0: f32,
+    visibility: f32,
+) -> f32 {
+    let incoming = incoming.sanitized();
+    let alpha = roughness_to_alpha(roughness);
+    let c = ggx_lobe_factor(normal, view, incoming.axis, alpha, f0) * clamp_unit(visibility);
+    if !(c > 0.0) {
+        return 0.0;
+    }
+    let lobe = specular_lobe(normal, view, alpha);
+    let lobe = Sg {
+        log_amplitude: libm::logf(c),
+        ..lobe
+    };
+    incoming.inner_product(&lobe)
+}
+
+/// `α = roughness²` with roughness clamped to `[0, 1]` (NaN to 1, the roughest).
+#[inline(always)]
+pub fn roughness_to_alpha(roughness: f32) -> f32 {
+    let r = if roughness.is_nan() {
+        1.0
+    } else {
+        clamp_unit(roughness)
+    };
+    clamp_lobe_alpha(r * r)
+}

@@ -1,0 +1,246 @@
+use super::sg::{MAX_SHARPNESS, Sg, sg_integral};
+use super::shading::*;
+use crate::Vec3;
+use crate::brdf::ggx::GgxBrdf;
+use crate::testing::{Rng, d3, dot, normalize, sub};
+use core::f64::consts::PI as PI64;
+
+/// `e^{λ(ω·ξ − 1)}` in f64 with `1 − ω·ξ = |ω − ξ|²/2`.
+fn sg64(axis: [f64; 3], l: f64, w: [f64; 3]) -> f64 {
+    let e = sub(normalize(w), normalize(axis));
+    (-0.5 * l * dot(e, e)).exp()
+}
+
+#[test]
+fn incoming_radiance_is_the_product_of_eq_7() {
+    let mut rng = Rng::new(41);
+    for _ in 0..5000 {
+        let cv = rng.log_uniform(-2.0, 2.0);
+        let lobe = Sg::new(
+            rng.unit_vector_f32(),
+            rng.log_uniform(-2.0, 3.0) as f32,
+            cv as f32,
+        );
+        let mean = rng.unit_vector_f32() * rng.log_uniform(-2.0, 2.0) as f32;
+        let variance = rng.log_uniform(-3.0, 1.0) as f32;
+        let l_in = incoming_radiance(&lobe, mean, variance);
+        let mu = d3(mean);
+        let d2 = dot(mu, mu);
+        let l_sigma = d2 / variance as f64;
+        if l_sigma > 1e5 {
+            continue;
+        }
+        for _ in 0..4 {
+            // Directions near the product's axis, where it is not negligible.
+            let w = (l_in.axis + rng.unit_vector_f32() * (1.0 / (1.0 + l_in.sharpness).sqrt()))
+                .normalize();
+            let reference = cv / (2.0 * PI64 * variance as f64)
+                * sg64(d3(-lobe.axis), lobe.sharpness as f64, d3(w))
+                * sg64(mu, l_sigma, d3(w));
+            let value = l_in.eval(w) as f64;
+            if reference > 1e-20 {
+                let slack = 1e-5 * (1.0 + l_sigma + lobe.sharpness as f64);
+                assert!(
+                    ((value - reference) / reference).abs() < slack,
+                    "{value} vs {reference}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn point_light_limit_keeps_the_inverse_square_law() {
+    // σ² → 0: ∫ L_in dω → c_v G(−ξ_μ... ) / |μ|² (the lobe at the direction toward the
+    // shading point, −ξ_μ, i.e. G(ξ_μ, −ξ_v, λ_v)).
+    let lobe = Sg::new(Vec3::new(0.0, 0.0, -1.0), 3.0, 2.0);
+    let mean = Vec3::new(0.3, 0.0, 2.0);
+    let d2 = mean.length_squared() as f64;
+    let expected = 2.0 * sg64([0.0, 0.0, 1.0], 3.0, d3(mean)) / d2;
+    for variance in [0.0f32, 1e-30, 1e-12, -1.0, f32::NAN] {
+        let l_in = incoming_radiance(&lobe, mean, variance);
+        assert!(l_in.sharpness <= MAX_SHARPNESS && l_in.sharpness > 1e6);
+        let total = l_in.integral() as f64;
+        assert!(
+            ((total - expected) / expected).abs() < 1e-3,
+            "σ² {variance}: {total} vs {expected}"
+        );
+    }
+    // Just above the clamp the two branches agree.
+    let v = (mean.length_squared() / MAX_SHARPNESS) * 1.0001;
+    let a = incoming_radiance(&lobe, mean, v).integral();
+    let b = incoming_radiance(&lobe, mean, v * 0.9998).integral();
+    assert!(((a - b) / a).abs() < 1e-3);
+}
+
+#[test]
+fn degenerate_vsgls_give_finite_radiance() {
+    let lobe = Sg::new(Vec3::Z, 2.0, 1.0);
+    // Shading point at the mean: λ_σ = 0.
+    let at_mean = incoming_radiance(&lobe, Vec3::ZERO, 0.5);
+    assert!((at_mean.amplitude() - 1.0 / (2.0 * core::f32::consts::PI * 0.5)).abs() < 1e-5);
+    assert_eq!(at_mean.sharpness, 2.0);
+    assert_eq!(incoming_radiance(&lobe, Vec3::ZERO, 0.0), Sg::ZERO);
+    let vectors = [
+        Vec3::ZERO,
+        Vec3::new(f32::NAN, 0.0, 1.0),
+        Vec3::splat(f32::INFINITY),
+        Vec3::splat(1e-38),
+        Vec3::splat(3e38),
+        Vec3::Z,
+    ];
+    let scalars = [f32::NAN, -1.0, 0.0, 1e-38, 1e38, f32::INFINITY];
+    for &axis in &vectors {
+        for &s in &scalars {
+            let hand = Sg {
+                axis,
+                sharpness: s,
+                log_amplitude: s,
+            };
+            for &mean in &vectors {
+                for &variance in &scalars {
+                    let l_in = incoming_radiance(&hand, mean, variance);
+                    assert!(
+                        l_in.axis.is_finite()
+                            && l_in.sharpness.is_finite()
+                            && l_in.log_amplitude.is_finite()
+                    );
+                    for &n in &vectors {
+                        for value in [
+                            diffuse_shading_product(&l_in, n, s, s),
+                            diffuse_shading_constant_cosine(&l_in, n, s, 1.0),
+                            diffuse_shading_sharp_lobe(&l_in, n, 1.0, s),
+                            specular_shading(&l_in, n, mean, s, s, 1.0),
+                            specular_shading_sg(&l_in, n, mean, s, 0.5, s),
+                        ] {
+                            assert!(value.is_finite() && value >= 0.0);
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// `∫ L(ω) max(ω·n, 0)/π dω` for an SG `L` by quadrature in the SG's frame (f64).
+fn exact_diffuse(l_in: &Sg, n: Vec3) -> f64 {
+    let (t, b) = crate::math::orthonormal_basis(l_in.axis);
+    let l = l_in.sharpness as f64;
+    let top = (60.0 / l.max(1e-9)).min(2.0);
+    let (nt, np) = (4000, 512);
+    let mut total = 0.0;
+    for i in 0..nt {
+        let s = (i as f64 + 0.5) / nt as f64;
+        let tt = top * s * s;
+        let dt = top * 2.0 * s / nt as f64;
+        let sin = (tt * (2.0 - tt)).max(0.0).sqrt();
+        for j in 0..np {
+            let phi = (j as f64 + 0.5) / np as f64 * 2.0 * PI64;
+            let w = [
+                (1.0 - tt) * l_in.axis.x as f64
+                    + sin * (phi.cos() * t.x as f64 + phi.sin() * b.x as f64),
+                (1.0 - tt) * l_in.axis.y as f64
+                    + sin * (phi.cos() * t.y as f64 + phi.sin() * b.y as f64),
+                (1.0 - tt) * l_in.axis.z as f64
+                    + sin * (phi.cos() * t.z as f64 + phi.sin() * b.z as f64),
+            ];
+            total += (-l * tt).exp() * dot(w, d3(n)).max(0.0) / PI64 * dt;
+        }
+    }
+    total * 2.0 * PI64 / np as f64 * (l_in.log_amplitude as f64).exp()
+}
+
+#[test]
+fn diffuse_forms_approach_the_exact_integral_for_sharp_lobes() {
+    let n = Vec3::Z;
+    let axis = Vec3::new(0.6, 0.0, 0.8);
+    for (l, bound_constant, bound_sharp) in
+        [(1000.0f32, 2e-3, 2e-3), (30.0, 0.06, 0.06), (3.0, 0.6, 0.6)]
+    {
+        let l_in = Sg::new(axis, l, 1.5);
+        let exact = exact_diffuse(&l_in, n);
+        let constant = diffuse_shading_constant_cosine(&l_in, n, 1.0, 1.0) as f64;
+        let sharp = diffuse_shading_sharp_lobe(&l_in, n, 1.0, 1.0) as f64;
+        assert!(
+            ((constant - exact) / exact).abs() < bound_constant,
+            "λ {l}: {constant} vs {exact}"
+        );
+        assert!(
+            ((sharp - exact) / exact).abs() < bound_sharp,
+            "λ {l}: {sharp} vs {exact}"
+        );
+        // The product form is the inner product with the normalised diffuse SG.
+        let product = diffuse_shading_product(&l_in, n, 0.5, 0.5) as f64;
+        let reference = 0.25 * l_in.inner_product(&super::lobes::diffuse_lobe_normalized(n)) as f64;
+        assert!(((product - reference) / reference).abs() < 1e-5);
+    }
+    // The constant-cosine form at λ_in = 0: c_in R_d 4 max(ξ·n, 0).
+    let flat = Sg::new(Vec3::Z, 0.0, 1.0);
+    assert!((diffuse_shading_constant_cosine(&flat, n, 1.0, 1.0) - 4.0).abs() < 1e-5);
+    assert!((sg_integral(0.0) - 4.0 * core::f32::consts::PI).abs() < 1e-6);
+}
+
+#[test]
+fn specular_shading_of_a_delta_like_light_is_the_brdf_at_its_direction() {
+    // A very sharp incoming lobe (λ = 1e8, so that the fits' own width, ~η/ν, stays
+    // below 1e-4) at direction ω: the exact result is
+    // c A(λ) ρ_s(ω_o, ω) cos θ = c A(λ) F D G2 / (4 cos θ_o), and at the reflection
+    // direction the fits' D̂ = 1, so both forms must give it.
+    let n = Vec3::Z;
+    for deg in [0.0f32, 30.0, 60.0, 75.0] {
+        for roughness in [0.2f32, 0.5, 0.9] {
+            let t = deg.to_radians();
+            let view = Vec3::new(t.sin(), 0.0, t.cos());
+            let reflected = Vec3::new(-t.sin(), 0.0, t.cos());
+            let l_in = Sg::new(reflected, MAX_SHARPNESS, 1.0);
+            let ggx = GgxBrdf::new(roughness, Vec3::splat(0.04));
+            let exact =
+                l_in.integral() as f64 * ggx.eval(view, reflected).x as f64 * reflected.z as f64;
+            let asg = specular_shading(&l_in, n, view, roughness, 0.04, 1.0) as f64;
+            let sg = specular_shading_sg(&l_in, n, view, roughness, 0.04, 1.0) as f64;
+            assert!(
+                ((asg - exact) / exact).abs() < 2e-3,
+                "{deg}° r {roughness}: ASG {asg} vs {exact}"
+            );
+            assert!(
+                ((sg - exact) / exact).abs() < 2e-3,
+                "{deg}° r {roughness}: SG {sg} vs {exact}"
+            );
+            // Visibility multiplies.
+            let half = specular_shading(&l_in, n, view, roughness, 0.04, 0.5) as f64;
+            assert!((half - 0.5 * asg).abs() <= 1e-6 * asg);
+        }
+    }
+    // Light from below the horizon, or a view below it: nothing.
+    let below = Sg::new(Vec3::new(0.0, 0.6, -0.8), 100.0, 1.0);
+    assert_eq!(specular_shading(&below, n, Vec3::Z, 0.5, 0.04, 1.0), 0.0);
+    let l_in = Sg::new(Vec3::Z, 100.0, 1.0);
+    assert_eq!(
+        specular_shading(&l_in, n, Vec3::new(0.0, 0.6, -0.8), 0.5, 0.04, 1.0),
+        0.0
+    );
+}
+
+#[test]
+fn ggx_lobe_factor_is_the_brdf_over_the_unnormalised_ndf() {
+    let mut rng = Rng::new(43);
+    for _ in 0..2000 {
+        let mut wo = rng.unit_vector_f32();
+        wo.z = wo.z.abs().max(0.05);
+        let wo = wo.normalize();
+        let mut wi = rng.unit_vector_f32();
+        wi.z = wi.z.abs().max(0.05);
+        let wi = wi.normalize();
+        let roughness = 0.1 + 0.9 * rng.uniform_f32();
+        let alpha = roughness * roughness;
+        let ggx = GgxBrdf::new(roughness, Vec3::splat(0.04));
+        let h = (wo + wi).normalize();
+        let d_hat = ggx.d(h) as f64 * PI64 * (alpha as f64).powi(2);
+        let expected = ggx.eval(wo, wi).x as f64 * wi.z as f64 / d_hat;
+        let c = ggx_lobe_factor(Vec3::Z, wo, wi, alpha, 0.04) as f64;
+        assert!(
+            ((c - expected) / expected).abs() < 1e-4,
+            "{c} vs {expected}"
+        );
+    }
+}
