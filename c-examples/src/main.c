@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "indirect.h"
 #include "tracer.h"
 
 static void usage(FILE *out) {
@@ -65,6 +66,11 @@ int main(int argc, char **argv) {
     const char *obj_path = NULL;
     float obj_scale = 1.0f;
     float3 obj_offset = f3(0, 0, 0);
+
+    /* The one-bounce indirect scene has its own renderer and options (indirect.c). */
+    for (int i = 1; i + 1 < argc; ++i)
+        if (strcmp(argv[i], "--scene") == 0 && strcmp(argv[i + 1], "indirect") == 0)
+            return indirect_main(argc, argv);
 
     for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];

@@ -34,7 +34,13 @@ const C_TESTS: [&str; 15] = [
 const TRACER_TESTS: [&str; 1] = ["test_tracer_end_to_end"];
 
 /// The tracer's sources that the tracer tests link (all but its `main.c`).
-const TRACER_SOURCES: [&str; 4] = ["scenes.c", "techniques.c", "render.c", "image.c"];
+const TRACER_SOURCES: [&str; 5] = [
+    "scenes.c",
+    "techniques.c",
+    "render.c",
+    "image.c",
+    "indirect.c",
+];
 
 const C_FLAGS: [&str; 5] = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"];
 
