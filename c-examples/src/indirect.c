@@ -658,6 +658,13 @@ bool indirect_render_vsgl(const Scene *scene, const SpotLight *spot,
         rsm_trace(scene, spot, &rsm);
         double t1 = now_ms();
         result->vpl_count = rsm_build_pyramid(&rsm);
+        memset(result->rsm_flux, 0, sizeof result->rsm_flux);
+        for (uint32_t k = 0; k < s->rsm_size * s->rsm_size; ++k)
+            if (rsm.valid[k]) {
+                result->rsm_flux[0] += rsm.vpls[k].power.x;
+                result->rsm_flux[1] += rsm.vpls[k].power.y;
+                result->rsm_flux[2] += rsm.vpls[k].power.z;
+            }
         if (s->clustering == CLUSTERING_FIS) cluster_fis(&rsm, s, &state, vsgls);
         else if (!cluster_kmeans(&rsm, s, &state, vsgls)) ok = false;
         double t2 = now_ms();

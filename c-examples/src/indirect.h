@@ -56,6 +56,7 @@ typedef struct IndirectResult {
     double ms_rsm, ms_clustering, ms_shading; /* its parts (clustering: pyramid included) */
     double rsm_luminance;      /* Σ lum(Φ ∘ (R_d + R_s)) over the VPLs (the top texel) */
     double cluster_luminance;  /* the same summed over the N VSGLs (last frame) */
+    double rsm_flux[3];        /* Σ Φ over the VPLs: the spot's flux onto the scene */
     uint32_t vpl_count;        /* texels with a VPL of positive weight */
     uint32_t empty_clusters;   /* VSGLs without power (last frame) */
     double mean[3];            /* image mean (last frame) */

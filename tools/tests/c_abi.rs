@@ -31,7 +31,7 @@ const C_TESTS: [&str; 15] = [
 /// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
 /// besides `libsphera.a`; they need `libembree-dev` and `libpng-dev` installed
 /// (`c-examples/install-deps.sh`).
-const TRACER_TESTS: [&str; 1] = ["test_tracer_end_to_end"];
+const TRACER_TESTS: [&str; 2] = ["test_tracer_end_to_end", "test_tracer_indirect"];
 
 /// The tracer's sources that the tracer tests link (all but its `main.c`).
 const TRACER_SOURCES: [&str; 5] = [
@@ -283,6 +283,11 @@ fn run_tracer_test(name: &str) {
 #[test]
 fn test_tracer_end_to_end() {
     run_tracer_test("test_tracer_end_to_end");
+}
+
+#[test]
+fn test_tracer_indirect() {
+    run_tracer_test("test_tracer_indirect");
 }
 
 #[test]
