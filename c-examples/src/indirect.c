@@ -735,10 +735,14 @@ int indirect_main(int argc, char **argv) {
     const char *technique = "fis", *reference_path = NULL, *pfm = NULL, *png = NULL;
     uint32_t spp = 256, seed = 1;
     float exposure = 0.0f;
-    bool ok = true;
+    bool ok = true, help = false;
     for (int i = 1; i < argc && ok; ++i) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (strcmp(a, "--quiet") == 0) continue;
+        if (strcmp(a, "--help") == 0) {
+            help = true;
+            break;
+        }
         if (!v) {
             ok = false;
             break;
@@ -767,13 +771,13 @@ int indirect_main(int argc, char **argv) {
         fprintf(stderr, "sphera-trace: indirect: technique must be fis, kmeans or reference\n");
         ok = false;
     }
-    if (!ok) {
-        fprintf(stderr,
+    if (!ok || help) {
+        fprintf(help ? stdout : stderr,
                 "usage: sphera-trace --scene indirect [--technique fis|kmeans|reference]\n"
                 "  [--clusters N] [--rsm-size S] [--frames F] [--spp P (reference)]\n"
                 "  [--width W --height H] [--threads T] [--seed S] [--reference F.pfm]\n"
                 "  [--out-pfm F] [--out-png F] [--exposure E] [--quiet]\n");
-        return 2;
+        return help ? 0 : 2;
     }
     s.seed = seed;
     Scene scene;

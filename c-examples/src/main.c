@@ -11,6 +11,7 @@ static void usage(FILE *out) {
     fprintf(out,
             "usage: sphera-trace [options]\n"
             "  --scene NAME            built-in scene (--list-scenes); default cornell\n"
+            "                          (--scene indirect: VSGLs, its own options: --scene indirect --help)\n"
             "  --technique NAME        light sampling technique (--list-techniques); default projected\n"
             "  --width W --height H    image size; default 256 x 192\n"
             "  --spp N                 passes (a pass: one camera ray per pixel, K light samples\n"
