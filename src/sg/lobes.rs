@@ -25,9 +25,13 @@
 //!
 //! GGX's normal distribution without its normalisation, `D̂(h) = πα² D(h)` (maximum 1 at
 //! `h = n`), is approximated by `G(h, n, λ_h)` with `λ_h = 2/α²` as the paper gives for
-//! Beckmann and GGX. (Matching the curvature of GGX at its peak would give `4/α²`:
-//! `(1 + s²/α²)^{−2} ≈ 1 − 2s²/α²` against `1 − λ_h s²/2`; GGX's long tail is why a
-//! smaller value fits better in L2. `docs/sg-error.md` measures the shape error.)
+//! Beckmann and GGX. For GGX this value keeps energy rather than shape: the projected
+//! integral of `D̂` is exactly `∫ D̂(h) cos θ_h dh = πα²`, and that of the SG is
+//! `≈ 2π/λ_h` for narrow lobes, equal for `λ_h = 2/α²`. Matching the curvature of GGX at
+//! its peak would instead give `4/α²` (`(1 + s²/α²)^{−2} ≈ 1 − 2s²/α²` against
+//! `1 − λ_h s²/2`), half the energy. The price is the shape: GGX's peak is narrower and
+//! its tail heavier than the Gaussian's; `docs/sg-error.md` measures the L1 distance of
+//! the normalised lobes (0.5–1.15) and the resulting shading error.
 //! Warping from half vectors to directions around the reflection vector
 //! `ξ_s = 2(ω'·n)n − ω'` with the Jacobian `|dω_h/dω| = 1/(4 |ξ_s·n|)` of the
 //! half-vector map at `ω = ξ_s` gives `λ_s = λ_h / (4|ξ_s·n|)`. `|ξ_s·n|` is clamped to

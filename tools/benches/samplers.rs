@@ -2,13 +2,20 @@
 //! sampling (GGX visible normals, Lambert), the LTC inside a prepared polygon, sphere
 //! caps (construction from a sphere and uniform sampling), the pivot transformation, and
 //! the phase functions (pivot and Henyey–Greenstein), each with its pdf where the
-//! sampler returns one. Median of repeated runs over 4096 random inputs; ratios to
+//! sampler returns one, and the SG operations (evaluation, vMF sampling, product, inner
+//! product, ASG convolution, VSGL incoming radiance, diffuse and specular shading). Median of repeated runs over 4096 random inputs; ratios to
 //! uniform cap sampling measured in the same run (`cargo bench -p sphera-tools --bench
 //! samplers`, a few seconds). A second table times the VSGL accumulator and FIS cluster
 //! selection, and one frame of FIS against the k-means comparison.
 use sphera::brdf::ggx::GgxBrdf;
 use sphera::brdf::lambert::Lambert;
 use sphera::brdf::{Ltc, LtcPolygon};
+use sphera::sg::asg::Asg;
+use sphera::sg::shading::{
+    diffuse_shading_constant_cosine, diffuse_shading_product, incoming_radiance, specular_shading,
+    specular_shading_sg,
+};
+use sphera::sg::{Sg, vmf_sample};
 use sphera::sphere::phase;
 use sphera::sphere::{Cap, pivot_transform};
 use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, fis_select, luminance};
@@ -102,6 +109,25 @@ fn main() {
         .map(|&wo| LtcPolygon::new(&Ltc::ggx(wo, 0.3).unwrap(), &quad).unwrap_or(LtcPolygon::EMPTY))
         .collect();
 
+    let sgs: Vec<Sg> = (0..INPUTS)
+        .map(|_| {
+            Sg::new(
+                rng.direction(),
+                10f32.powf(4.0 * rng.uniform() - 1.0),
+                1.0 + rng.uniform(),
+            )
+        })
+        .collect();
+    let asgs: Vec<Asg> = views
+        .iter()
+        .map(|&wo| Asg::ggx_lobe(Vec3::Z, wo, 0.09))
+        .collect();
+    let vsgl_means: Vec<Vec3> = (0..INPUTS)
+        .map(|_| rng.direction() * (1.0 + 9.0 * rng.uniform()))
+        .collect();
+    let incoming: Vec<Sg> = (0..INPUTS)
+        .map(|i| incoming_radiance(&sgs[i], vsgl_means[i], 0.1))
+        .collect();
     let cap_sample = time_ns(|i| value(caps[i].sample_uniform(us[i])));
     let rows = [
         ("sphere cap: uniform sample", cap_sample),
@@ -145,8 +171,45 @@ fn main() {
             "LTC: lookup (Ltc::ggx)",
             time_ns(|i| Ltc::ggx(views[i], 0.3).map_or(0.0, |l| l.albedo())),
         ),
+        ("SG: eval", time_ns(|i| sgs[i].eval(views[i]))),
+        (
+            "SG: vMF sample",
+            time_ns(|i| value(vmf_sample(&sgs[i], us[i]))),
+        ),
+        (
+            "SG: product",
+            time_ns(|i| sgs[i].product(&sgs[(i + 1) % INPUTS]).log_amplitude),
+        ),
+        (
+            "SG: inner product",
+            time_ns(|i| sgs[i].inner_product(&sgs[(i + 1) % INPUTS])),
+        ),
+        (
+            "ASG: convolution with an SG",
+            time_ns(|i| asgs[i].convolve_sg(&sgs[i])),
+        ),
+        (
+            "VSGL: incoming radiance SG (Eq. 7)",
+            time_ns(|i| incoming_radiance(&sgs[i], vsgl_means[i], 0.1).log_amplitude),
+        ),
+        (
+            "VSGL: diffuse shading, SG product",
+            time_ns(|i| diffuse_shading_product(&incoming[i], Vec3::Z, 0.5, 1.0)),
+        ),
+        (
+            "VSGL: diffuse shading, constant cosine",
+            time_ns(|i| diffuse_shading_constant_cosine(&incoming[i], Vec3::Z, 0.5, 1.0)),
+        ),
+        (
+            "VSGL: specular shading, ASG (incl. the fit)",
+            time_ns(|i| specular_shading(&incoming[i], Vec3::Z, views[i], 0.3, 0.04, 1.0)),
+        ),
+        (
+            "VSGL: specular shading, SG (incl. the fit)",
+            time_ns(|i| specular_shading_sg(&incoming[i], Vec3::Z, views[i], 0.3, 0.04, 1.0)),
+        ),
     ];
-    println!("## ns per call of the BRDF, LTC, sphere-cap and phase-function samplers\n");
+    println!("## ns per call of the BRDF, LTC, sphere-cap, phase-function and SG operations\n");
     println!("{INPUTS} random inputs, median of {REPEATS} runs; ratio to uniform cap sampling.\n");
     println!("| operation | ns | ratio |");
     println!("|---|---:|---:|");
