@@ -40,7 +40,9 @@ EXPLANATION = (
     "clustering</b> includes the pyramid. <b>mean ratio</b>: image mean / reference mean "
     "(VSGLs are biased by design: the SG diffuse lobe puts 9 % of a VPL's light below its "
     "horizon, visibility is that of the cluster mean). Reference: {spp} one-bounce paths per "
-    "pixel; its noise (RMSE) is about {noise:.2g}.")
+    "pixel; its noise (RMSE) is about {noise:.2g}. <b>VPLs, exact</b> (a diagnosis, N = the "
+    "VPL count): every VPL as a point light with the exact BRDFs at both ends and a shadow "
+    "ray, unclamped: the RSM's own error, without clustering and SG fits.")
 
 
 def _cached(call_json, key_base, out, log, s, spp, seed, name):
@@ -83,6 +85,15 @@ def run(call_json, key_base, out, quick, threads, log):
             log(f"[indirect] {clustering} N={n}: {r['ms_per_frame']:.1f} ms/frame, "
                 f"RMSE {r['rmse']:.3g}, mean ratio {r['mean_ratio']:.3f}")
             rows.append(r)
+    # Diagnosis: every VPL shaded exactly as a point light (no clustering, no SG fits).
+    png = "indirect-vpl.png"
+    r = call_json(["--scene", "indirect", "--technique", "vpl", "--rsm-size", s["rsm_size"],
+                   "--seed", 1, "--reference", ref + ".pfm", "--out-png", os.path.join(out, png),
+                   "--exposure", EXPOSURE] + common)
+    r["clustering"], r["png"], r["clusters"], r["empty_clusters"] = "vpl", png, r["vpls"], 0
+    log(f"[indirect] exact VPLs: {r['ms_per_frame']:.1f} ms/frame, RMSE {r['rmse']:.3g}, "
+        f"mean ratio {r['mean_ratio']:.3f}")
+    rows.append(r)
     return {"rows": rows, "settings": s, "noise": noise, "mode": mode}
 
 
@@ -111,7 +122,7 @@ def _cell(key, r):
     if key == "mean_ratio":
         return f"{v:.3f}"
     if key == "clustering":
-        return "FIS" if v == "fis" else "k-means"
+        return {"fis": "FIS", "kmeans": "k-means", "vpl": "VPLs, exact"}[v]
     return str(v)
 
 
@@ -163,6 +174,8 @@ def check(section):
     failures = []
     for r in section["rows"]:
         name = f"indirect/{r['clustering']} N={r['clusters']}"
+        if r["clustering"] == "vpl":
+            continue
         if not all(m == m and abs(m) != float("inf") for m in r["mean"]):
             failures.append(f"check FAILED: {name}: image mean not finite")
         if abs(r["cluster_luminance"] - r["rsm_luminance"]) > 1e-3 * r["rsm_luminance"]:

@@ -338,6 +338,7 @@ typedef struct Rsm {
     uint32_t size;
     SpheraVpl *vpls;
     bool *valid;
+    uint32_t *material; /* of the surface each VPL lies on */
     SpheraVsglTexel *texels; /* the pyramid, sphera_vsgl_pyramid_texel_count(size) */
     size_t texel_count;
     SpheraVec3 origin;
@@ -346,6 +347,7 @@ typedef struct Rsm {
 static void rsm_free(Rsm *rsm) {
     free(rsm->vpls);
     free(rsm->valid);
+    free(rsm->material);
     free(rsm->texels);
     memset(rsm, 0, sizeof *rsm);
 }
@@ -357,9 +359,10 @@ static bool rsm_alloc(Rsm *rsm, uint32_t size, float3 origin) {
     if (rsm->texel_count == 0) return false;
     rsm->vpls = calloc((size_t)size * size, sizeof(SpheraVpl));
     rsm->valid = calloc((size_t)size * size, sizeof(bool));
+    rsm->material = calloc((size_t)size * size, sizeof(uint32_t));
     rsm->texels = calloc(rsm->texel_count, sizeof(SpheraVsglTexel));
     rsm->origin = sv(origin);
-    if (!rsm->vpls || !rsm->valid || !rsm->texels) {
+    if (!rsm->vpls || !rsm->valid || !rsm->material || !rsm->texels) {
         rsm_free(rsm);
         return false;
     }
@@ -406,6 +409,7 @@ static void rsm_trace(const Scene *scene, const SpotLight *spot, Rsm *rsm) {
                     vpl->specular_reflectance = sv(specular_albedo(m, to_local(&local, toward)));
                 vpl->toward_incoming = sv(toward);
                 vpl->roughness = m->roughness * m->roughness; /* GGX alpha */
+                rsm->material[k] = scene->triangle_material[triangle];
                 rsm->valid[k] = true;
             }
         }
@@ -613,6 +617,56 @@ static float3 shade_vsgls(const Scene *scene, struct RTCIntersectContext *rtc,
     return sum;
 }
 
+/* Diagnosis (`--technique vpl`): every VPL as a point light with the exact BRDFs at
+ * both ends, Φ f_y(ω', ω) cos_y f_x cos_x / d² V (instant radiosity, unclamped): the
+ * RSM's own discretisation error, without the VSGL approximations. */
+static float3 shade_vpls(const Scene *scene, struct RTCIntersectContext *rtc,
+                         const CameraHit *hit, const Rsm *rsm) {
+    const Material *m = &scene->materials[hit->material];
+    float3 sum = f3(0, 0, 0);
+    for (uint32_t k = 0; k < rsm->size * rsm->size; ++k) {
+        if (!rsm->valid[k]) continue;
+        const SpheraVpl *vpl = &rsm->vpls[k];
+        float3 d = f3_sub(fv(vpl->position), hit->position);
+        float d2 = f3_dot(d, d);
+        if (!(d2 > 1e-8f)) continue;
+        float3 l = f3_scale(d, 1.0f / sqrtf(d2));
+        SpheraVec3 wi = to_local(&hit->frame, l);
+        float3 fx = material_eval(m, hit->wo, wi);
+        if (!(lum(fx) > 0.0f)) continue;
+        SpheraFrame frame;
+        if (!sphera_frame_from_normal(&frame, vpl->normal)) continue;
+        const Material *my = &scene->materials[rsm->material[k]];
+        SpheraVec3 out = to_local(&frame, f3_scale(l, -1.0f));
+        float3 fy = material_eval(my, to_local(&frame, fv(vpl->toward_incoming)), out);
+        if (!(lum(fy) > 0.0f)) continue;
+        float3 value = f3_scale(f3_mul(f3_mul(fx, fy), fv(vpl->power)), wi.z * out.z / d2);
+        if (!segment_free(scene, rtc, hit->origin, fv(vpl->position))) continue;
+        sum = f3_add(sum, value);
+    }
+    return sum;
+}
+
+typedef struct VplJob {
+    const Scene *scene;
+    const CameraHit *hits;
+    const Rsm *rsm;
+    uint32_t width;
+    float *image;
+} VplJob;
+
+static void vpl_row(void *context, struct RTCIntersectContext *rtc, uint32_t y) {
+    VplJob *job = context;
+    for (uint32_t x = 0; x < job->width; ++x) {
+        uint32_t pixel = y * job->width + x;
+        const CameraHit *hit = &job->hits[pixel];
+        float3 value = hit->valid ? shade_vpls(job->scene, rtc, hit, job->rsm) : f3(0, 0, 0);
+        job->image[3 * pixel + 0] = value.x;
+        job->image[3 * pixel + 1] = value.y;
+        job->image[3 * pixel + 2] = value.z;
+    }
+}
+
 static void shade_row(void *context, struct RTCIntersectContext *rtc, uint32_t y) {
     ShadeJob *job = context;
     for (uint32_t x = 0; x < job->width; ++x) {
@@ -666,10 +720,18 @@ bool indirect_render_vsgl(const Scene *scene, const SpotLight *spot,
                 result->rsm_flux[2] += rsm.vpls[k].power.z;
             }
         if (s->clustering == CLUSTERING_FIS) cluster_fis(&rsm, s, &state, vsgls);
-        else if (!cluster_kmeans(&rsm, s, &state, vsgls)) ok = false;
+        else if (s->clustering == CLUSTERING_KMEANS) {
+            if (!cluster_kmeans(&rsm, s, &state, vsgls)) ok = false;
+        } else
+            memset(vsgls, 0, sizeof(SpheraVsgl) * s->cluster_count);
         double t2 = now_ms();
-        ShadeJob job = {scene, hits, vsgls, s->cluster_count, s->width, image};
-        for_each_row(threads, s->height, shade_row, &job);
+        if (s->clustering == CLUSTERING_VPLS) {
+            VplJob job = {scene, hits, &rsm, s->width, image};
+            for_each_row(threads, s->height, vpl_row, &job);
+        } else {
+            ShadeJob job = {scene, hits, vsgls, s->cluster_count, s->width, image};
+            for_each_row(threads, s->height, shade_row, &job);
+        }
         double t3 = now_ms();
         result->ms_rsm += t1 - t0;
         result->ms_clustering += t2 - t1;
@@ -767,13 +829,15 @@ int indirect_main(int argc, char **argv) {
     }
     bool is_reference = strcmp(technique, "reference") == 0;
     if (strcmp(technique, "kmeans") == 0) s.clustering = CLUSTERING_KMEANS;
+    else if (strcmp(technique, "vpl") == 0) s.clustering = CLUSTERING_VPLS;
     else if (!is_reference && strcmp(technique, "fis") != 0) {
-        fprintf(stderr, "sphera-trace: indirect: technique must be fis, kmeans or reference\n");
+        fprintf(stderr,
+                "sphera-trace: indirect: technique must be fis, kmeans, vpl or reference\n");
         ok = false;
     }
     if (!ok || help) {
         fprintf(help ? stdout : stderr,
-                "usage: sphera-trace --scene indirect [--technique fis|kmeans|reference]\n"
+                "usage: sphera-trace --scene indirect [--technique fis|kmeans|vpl|reference]\n"
                 "  [--clusters N] [--rsm-size S] [--frames F] [--spp P (reference)]\n"
                 "  [--width W --height H] [--threads T] [--seed S] [--reference F.pfm]\n"
                 "  [--out-pfm F] [--out-png F] [--exposure E] [--quiet]\n");

@@ -34,7 +34,11 @@ SpotLight indirect_scene_spot(void);
 /* Its intensity toward the unit direction `dir` (from the light). */
 float3 spot_intensity(const SpotLight *spot, float3 dir);
 
-typedef enum Clustering { CLUSTERING_FIS, CLUSTERING_KMEANS } Clustering;
+typedef enum Clustering {
+    CLUSTERING_FIS,
+    CLUSTERING_KMEANS,
+    CLUSTERING_VPLS /* diagnosis: no clusters, every VPL shaded exactly (N ignored) */
+} Clustering;
 
 typedef struct IndirectSettings {
     uint32_t width, height;
