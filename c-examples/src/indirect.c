@@ -18,7 +18,7 @@
 
 #define PI_F 3.14159265358979f
 
-/* ---- small helpers ------------------------------------------------------------------ */
+/* ---- small helpers --------------------------------------------------------------- */
 
 static double now_ms(void) {
     struct timespec t;
@@ -142,7 +142,7 @@ static float3 specular_albedo(const Material *m, SpheraVec3 wo) {
     return fv(sphera_ltc_specular_albedo(&ltc, sv(m->specular)));
 }
 
-/* ---- the spot ------------------------------------------------------------------------ */
+/* ---- the spot -------------------------------------------------------------------- */
 
 SpotLight indirect_scene_spot(void) {
     SpotLight spot;
@@ -162,7 +162,7 @@ float3 spot_intensity(const SpotLight *spot, float3 dir) {
     return f3_scale(spot->intensity, t * t * (3.0f - 2.0f * t));
 }
 
-/* ---- camera hits ---------------------------------------------------------------------- */
+/* ---- camera hits ----------------------------------------------------------------- */
 
 typedef struct CameraHit {
     float3 position, origin; /* origin: pushed off the surface along the normal */
@@ -198,7 +198,7 @@ static void trace_camera(const Scene *scene, uint32_t width, uint32_t height, Ca
         }
 }
 
-/* ---- parallel loop over image rows ------------------------------------------------------ */
+/* ---- parallel loop over image rows ----------------------------------------------- */
 
 typedef struct RowJob {
     void (*row)(void *context, struct RTCIntersectContext *rtc, uint32_t y);
@@ -232,7 +232,7 @@ static void for_each_row(uint32_t threads, uint32_t height,
     for (uint32_t t = 1; t < started; ++t) pthread_join(ids[t], NULL);
 }
 
-/* ---- the reference ------------------------------------------------------------------------ */
+/* ---- the reference --------------------------------------------------------------- */
 
 typedef struct ReferenceJob {
     const Scene *scene;
@@ -328,7 +328,7 @@ bool indirect_render_reference(const Scene *scene, const SpotLight *spot, uint32
     return true;
 }
 
-/* ---- the RSM and its pyramid --------------------------------------------------------------- */
+/* ---- the RSM and its pyramid ----------------------------------------------------- */
 
 /* The VPLs of an `size²` grid of rays over the square that holds the spot's outer cone
  * (texel centres on the plane at distance 1 along the axis). A texel's ray carries the
@@ -386,7 +386,8 @@ static void rsm_trace(const Scene *scene, const SpotLight *spot, Rsm *rsm) {
             rsm->valid[k] = false;
             float sx = half * (2.0f * ((float)i + 0.5f) / (float)size - 1.0f);
             float sy = half * (2.0f * ((float)j + 0.5f) / (float)size - 1.0f);
-            float3 v = f3_add(spot->direction, f3_add(f3_scale(tangent, sx), f3_scale(bitangent, sy)));
+            float3 v = f3_add(spot->direction,
+                              f3_add(f3_scale(tangent, sx), f3_scale(bitangent, sy)));
             float length = f3_length(v);
             float3 dir = f3_scale(v, 1.0f / length);
             float3 intensity = spot_intensity(spot, dir);
@@ -459,7 +460,7 @@ static uint32_t rsm_build_pyramid(Rsm *rsm) {
     return count;
 }
 
-/* ---- clustering ------------------------------------------------------------------------------ */
+/* ---- clustering ------------------------------------------------------------------ */
 
 static float radical_inverse2(uint32_t i) {
     i = (i << 16) | (i >> 16);
@@ -542,7 +543,8 @@ static bool cluster_kmeans(const Rsm *rsm, const IndirectSettings *s, uint64_t *
                 float dx = ix - c[0], dy = iy - c[1];
                 float wx = v->position.x - c[2], wy = v->position.y - c[3],
                       wz = v->position.z - c[4];
-                float d = (dx * dx + dy * dy) * inv_image2 + (wx * wx + wy * wy + wz * wz) * inv_world2;
+                float d = (dx * dx + dy * dy) * inv_image2 +
+                          (wx * wx + wy * wy + wz * wz) * inv_world2;
                 if (d < best) {
                     best = d;
                     best_i = i;
@@ -558,7 +560,7 @@ static bool cluster_kmeans(const Rsm *rsm, const IndirectSettings *s, uint64_t *
     return true;
 }
 
-/* ---- shading ------------------------------------------------------------------------------------ */
+/* ---- shading --------------------------------------------------------------------- */
 
 typedef struct ShadeJob {
     const Scene *scene;
@@ -572,7 +574,8 @@ typedef struct ShadeJob {
  * when the channels agree). */
 static float3 specular_rgb(SpheraSg incoming, SpheraVec3 n, SpheraVec3 view, const Material *m,
                            float visibility) {
-    float r = sphera_sg_specular_shading(incoming, n, view, m->roughness, m->specular.x, visibility);
+    float r =
+        sphera_sg_specular_shading(incoming, n, view, m->roughness, m->specular.x, visibility);
     float g = m->specular.y == m->specular.x
                   ? r
                   : sphera_sg_specular_shading(incoming, n, view, m->roughness, m->specular.y,
@@ -680,7 +683,7 @@ static void shade_row(void *context, struct RTCIntersectContext *rtc, uint32_t y
     }
 }
 
-/* ---- frames ---------------------------------------------------------------------------------------- */
+/* ---- frames ---------------------------------------------------------------------- */
 
 bool indirect_render_vsgl(const Scene *scene, const SpotLight *spot,
                           const IndirectSettings *s, const float *reference,
@@ -771,7 +774,7 @@ bool indirect_render_vsgl(const Scene *scene, const SpotLight *spot,
     return ok;
 }
 
-/* ---- the command line ----------------------------------------------------------------------------- */
+/* ---- the command line ------------------------------------------------------------ */
 
 static bool parse_u32(const char *text, uint32_t *out) {
     char *end;
@@ -813,8 +816,10 @@ int indirect_main(int argc, char **argv) {
         else if (strcmp(a, "--technique") == 0 || strcmp(a, "--clustering") == 0) technique = v;
         else if (strcmp(a, "--width") == 0) ok = parse_u32(v, &s.width) && s.width > 0;
         else if (strcmp(a, "--height") == 0) ok = parse_u32(v, &s.height) && s.height > 0;
-        else if (strcmp(a, "--clusters") == 0) ok = parse_u32(v, &s.cluster_count) && s.cluster_count > 0;
-        else if (strcmp(a, "--rsm-size") == 0) ok = parse_u32(v, &s.rsm_size) && sphera_vsgl_pyramid_texel_count(s.rsm_size) > 0;
+        else if (strcmp(a, "--clusters") == 0)
+            ok = parse_u32(v, &s.cluster_count) && s.cluster_count > 0;
+        else if (strcmp(a, "--rsm-size") == 0)
+            ok = parse_u32(v, &s.rsm_size) && sphera_vsgl_pyramid_texel_count(s.rsm_size) > 0;
         else if (strcmp(a, "--frames") == 0) ok = parse_u32(v, &s.frames) && s.frames > 0;
         else if (strcmp(a, "--spp") == 0) ok = parse_u32(v, &spp) && spp > 0;
         else if (strcmp(a, "--threads") == 0) ok = parse_u32(v, &s.threads);
