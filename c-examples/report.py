@@ -40,6 +40,8 @@ import subprocess
 import sys
 import time
 
+import indirect_report
+
 SCENES = ("cornell", "polygons", "polygons@8", "hard", "glossy", "spheres")  # name@K: K per light
 # The techniques that combine two samples by MIS (BRDF or LTC sampling with projected
 # solid angle sampling) matter on glossy surfaces: they run on the `glossy` scene, with
@@ -126,6 +128,8 @@ def parse_args(argv):
     ap.add_argument("--scenes", default=",".join(SCENES))
     ap.add_argument("--techniques", help="comma-separated subset (default: all)")
     ap.add_argument("--check", action="store_true", help="check the unbiased means")
+    ap.add_argument("--no-indirect", action="store_true",
+                    help="leave out the VSGL one-bounce indirect section")
     ap.add_argument("--threads", type=int, help="passed to the tracer")
     for name in FULL:
         ap.add_argument("--" + name.replace("_", "-"), type=type(FULL[name]))
@@ -512,6 +516,8 @@ def main(argv=None):
         key_base = version + "\n" + sha256_file(binary)
         results = [render_scene(tracer, key_base, sc, techniques_for(sc, techs),
                                 scene_settings(args, sc), out, common) for sc in args.scenes]
+        indirect = None if args.no_indirect else indirect_report.run(
+            lambda a: run_json(tracer, a), key_base, out, args.quick, args.threads, log)
     except TracerError as e:
         print(f"report: tracer failed: {e}", file=sys.stderr)
         return 1
@@ -528,6 +534,9 @@ def main(argv=None):
         print(f"\n{res['scene']} ({s['width']}x{s['height']}, {s['spp']} passes / "
               f"{s['budget_ms']:g} ms, reference {res['ref_spp']} passes)\n")
         print(text_table(res["rows"]))
+    if indirect:
+        print("\nVSGL one-bounce indirect (biased by design; no mean check)\n")
+        print(indirect_report.text_table(indirect))
     wall = time.monotonic() - start
     info = [("date", datetime.datetime.now().astimezone().isoformat(timespec="seconds")),
             ("tracer", f"{version} ({args.tracer})"),
@@ -544,12 +553,16 @@ def main(argv=None):
     index = os.path.join(out, "index.html")
     write_html(index, info, results, s)
     write_markdown(os.path.join(out, "report.md"), info, results)
+    if indirect:
+        indirect_report.append(index, os.path.join(out, "report.md"), indirect)
     print(f"\nreport: {index}, total wall time {wall:.1f} s")
     if not os.path.isfile(index) or os.path.getsize(index) == 0:
         print(f"report: {index} was not written", file=sys.stderr)
         return 1
     if args.check or args.quick:
         failures, agreed = check_means(results)
+        if indirect:
+            failures += indirect_report.check(indirect)
         for f in failures:
             print(f)
         if failures:

@@ -4,12 +4,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "indirect.h"
 #include "tracer.h"
 
 static void usage(FILE *out) {
     fprintf(out,
             "usage: sphera-trace [options]\n"
             "  --scene NAME            built-in scene (--list-scenes); default cornell\n"
+            "                          (--scene indirect: VSGLs, its own options: --scene indirect --help)\n"
             "  --technique NAME        light sampling technique (--list-techniques); default projected\n"
             "  --width W --height H    image size; default 256 x 192\n"
             "  --spp N                 passes (a pass: one camera ray per pixel, K light samples\n"
@@ -65,6 +67,11 @@ int main(int argc, char **argv) {
     const char *obj_path = NULL;
     float obj_scale = 1.0f;
     float3 obj_offset = f3(0, 0, 0);
+
+    /* The one-bounce indirect scene has its own renderer and options (indirect.c). */
+    for (int i = 1; i + 1 < argc; ++i)
+        if (strcmp(argv[i], "--scene") == 0 && strcmp(argv[i + 1], "indirect") == 0)
+            return indirect_main(argc, argv);
 
     for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];

@@ -17,6 +17,8 @@ const SceneInfo scene_info[] = {
     {"floor", "one unoccluded quad light over a white Lambert floor (the zero-variance test)"},
     {"spheres", "sphere lights (small, large, near the floor, far and grazing) over a Lambert "
                 "and a GGX floor"},
+    {"indirect", "a room lit by a spot light (indirect.c) on a GGX floor, for one-bounce "
+                 "indirect light (VSGLs against path tracing; render it with --scene indirect)"},
     {"glossy", "three GGX floor strips of roughness 0.1, 0.3 and 0.6 under a quad, a pentagon "
                "and a triangle light, with a wall casting shadows across them"},
     {"slab", "a thin slab of single-scattering medium (HG, g = 0.85) over part of a Lambert "
@@ -358,6 +360,31 @@ static bool build_slab(Builder *b, float aspect) {
     return ok;
 }
 
+/* A 6 m room (open towards the camera) lit only by the spot light of indirect.c,
+ * which shines down onto a GGX floor and the red left wall: their first bounce lights
+ * the rest of the room, glossily off the floor. No polygon light: render it with
+ * `--scene indirect` (indirect.c). */
+static bool build_indirect(Builder *b, float aspect) {
+    Scene *s = b->scene;
+    add_material(s, f3(0, 0, 0), f3(0, 0, 0), 0);
+    uint32_t floor = add_material(s, f3(0.30f, 0.30f, 0.32f), f3(0.5f, 0.5f, 0.5f), 0.45f);
+    uint32_t white = add_material(s, f3(0.75f, 0.75f, 0.72f), f3(0, 0, 0), 0);
+    uint32_t red = add_material(s, f3(0.70f, 0.15f, 0.12f), f3(0.2f, 0.2f, 0.2f), 0.6f);
+    uint32_t green = add_material(s, f3(0.15f, 0.55f, 0.20f), f3(0, 0, 0), 0);
+    uint32_t box = add_material(s, f3(0.60f, 0.55f, 0.45f), f3(0.3f, 0.3f, 0.3f), 0.35f);
+    bool ok = add_quad(b, f3(-3, 0, -3), f3(-3, 0, 3), f3(3, 0, 3), f3(3, 0, -3), floor) &&
+              add_quad(b, f3(-3, 3, -3), f3(3, 3, -3), f3(3, 3, 3), f3(-3, 3, 3), white) &&
+              add_quad(b, f3(-3, 0, -3), f3(3, 0, -3), f3(3, 3, -3), f3(-3, 3, -3), white) &&
+              add_quad(b, f3(-3, 0, -3), f3(-3, 3, -3), f3(-3, 3, 3), f3(-3, 0, 3), red) &&
+              add_quad(b, f3(3, 0, -3), f3(3, 0, 3), f3(3, 3, 3), f3(3, 3, -3), green);
+    /* A glossy block on the floor: a receiver of glossy indirect light that also casts
+     * indirect shadows. */
+    ok = ok && add_box(b, f3(0.6f, 0, -2.0f), f3(1.6f, 1.0f, -1.0f), box);
+    set_camera(s, f3(0, 1.5f, 2.9f), f3(0, 1.1f, -3.0f), 70.0f, aspect);
+    s->ray_epsilon = 2e-4f;
+    return ok;
+}
+
 /* ---- OBJ ------------------------------------------------------------------------- */
 
 /* Adds the faces of a simple Wavefront OBJ file (`v x y z` and `f a b c ...` lines,
@@ -445,6 +472,7 @@ bool scene_create_with_obj(Scene *s, const char *name, float aspect, const char 
     else if (strcmp(name, "glossy") == 0) ok = build_glossy(&b, aspect);
     else if (strcmp(name, "spheres") == 0) ok = build_spheres(&b, aspect);
     else if (strcmp(name, "slab") == 0) ok = build_slab(&b, aspect);
+    else if (strcmp(name, "indirect") == 0) ok = build_indirect(&b, aspect);
     else {
         fprintf(stderr, "sphera-trace: unknown scene '%s' (see --list-scenes)\n", name);
         free(s->materials);

@@ -33,10 +33,16 @@ const C_TESTS: [&str; 17] = [
 /// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
 /// besides `libsphera.a`; they need `libembree-dev` and `libpng-dev` installed
 /// (`c-examples/install-deps.sh`).
-const TRACER_TESTS: [&str; 1] = ["test_tracer_end_to_end"];
+const TRACER_TESTS: [&str; 2] = ["test_tracer_end_to_end", "test_tracer_indirect"];
 
 /// The tracer's sources that the tracer tests link (all but its `main.c`).
-const TRACER_SOURCES: [&str; 4] = ["scenes.c", "techniques.c", "render.c", "image.c"];
+const TRACER_SOURCES: [&str; 5] = [
+    "scenes.c",
+    "techniques.c",
+    "render.c",
+    "image.c",
+    "indirect.c",
+];
 
 const C_FLAGS: [&str; 5] = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"];
 
@@ -291,6 +297,11 @@ fn run_tracer_test(name: &str) {
 #[test]
 fn test_tracer_end_to_end() {
     run_tracer_test("test_tracer_end_to_end");
+}
+
+#[test]
+fn test_tracer_indirect() {
+    run_tracer_test("test_tracer_indirect");
 }
 
 #[test]

@@ -19,7 +19,13 @@ fn quick_report(name: &str, bias: bool) -> (Output, PathBuf) {
     let mut command = Command::new("python3");
     command
         .arg(root.join("c-examples").join("report.py"))
-        .args(["--quick", "--scenes", "cornell,polygons", "--tracer"])
+        .args([
+            "--quick",
+            "--no-indirect",
+            "--scenes",
+            "cornell,polygons",
+            "--tracer",
+        ])
         .arg(format!("python3 {}", mock.display()))
         .arg("--out")
         .arg(&out)

@@ -1,0 +1,911 @@
+/* One-bounce indirect light from a spot: VSGLs (FIS or k-means) against path tracing.
+ * See indirect.h. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#if defined(__SSE__) || defined(__x86_64__)
+#include <pmmintrin.h>
+#include <xmmintrin.h>
+#define INDIRECT_SSE_CONTROL 1
+#endif
+
+#include "indirect.h"
+
+#define PI_F 3.14159265358979f
+
+/* ---- small helpers --------------------------------------------------------------- */
+
+static double now_ms(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return 1e3 * (double)t.tv_sec + 1e-6 * (double)t.tv_nsec;
+}
+
+static void flush_to_zero(void) {
+#ifdef INDIRECT_SSE_CONTROL
+    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+#endif
+}
+
+static uint32_t cores(void) {
+    FILE *f = fopen("/proc/cpuinfo", "r");
+    uint32_t n = 0;
+    char line[256];
+    if (f) {
+        while (fgets(line, sizeof line, f))
+            if (strncmp(line, "processor", 9) == 0) ++n;
+        fclose(f);
+    }
+    return n ? n : 1;
+}
+
+/* SplitMix64 (Steele et al. 2014). */
+static uint64_t splitmix(uint64_t *state) {
+    uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+static float uniform(uint64_t *state) { return (float)(splitmix(state) >> 40) * 0x1p-24f; }
+
+static SpheraVec3 sv(float3 v) {
+    SpheraVec3 r = {v.x, v.y, v.z};
+    return r;
+}
+
+static float3 fv(SpheraVec3 v) { return f3(v.x, v.y, v.z); }
+
+static float lum(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+static float3 to_world(const SpheraFrame *f, SpheraVec3 v) {
+    return f3(f->tangent.x * v.x + f->bitangent.x * v.y + f->normal.x * v.z,
+              f->tangent.y * v.x + f->bitangent.y * v.y + f->normal.y * v.z,
+              f->tangent.z * v.x + f->bitangent.z * v.y + f->normal.z * v.z);
+}
+
+static SpheraVec3 to_local(const SpheraFrame *f, float3 v) {
+    SpheraVec3 r = {f->tangent.x * v.x + f->tangent.y * v.y + f->tangent.z * v.z,
+                    f->bitangent.x * v.x + f->bitangent.y * v.y + f->bitangent.z * v.z,
+                    f->normal.x * v.x + f->normal.y * v.y + f->normal.z * v.z};
+    return r;
+}
+
+/* The nearest hit along a ray: false on a miss or a light's triangle. */
+static bool intersect(const Scene *scene, struct RTCIntersectContext *context, float3 origin,
+                      float3 dir, float *t, uint32_t *triangle) {
+    struct RTCRayHit rh;
+    rh.ray.org_x = origin.x;
+    rh.ray.org_y = origin.y;
+    rh.ray.org_z = origin.z;
+    rh.ray.dir_x = dir.x;
+    rh.ray.dir_y = dir.y;
+    rh.ray.dir_z = dir.z;
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = INFINITY;
+    rh.ray.time = 0.0f;
+    rh.ray.mask = (unsigned)-1;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene->rtc, context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    if (scene->triangle_light[rh.hit.primID] >= 0) return false;
+    *t = rh.ray.tfar;
+    *triangle = rh.hit.primID;
+    return true;
+}
+
+/* Whether the segment from `origin` to `target` is free (ending `epsilon` short). */
+static bool segment_free(const Scene *scene, struct RTCIntersectContext *context, float3 origin,
+                         float3 target) {
+    float3 d = f3_sub(target, origin);
+    float length = f3_length(d);
+    if (!(length > 2.0f * scene->ray_epsilon)) return true;
+    struct RTCRay ray;
+    ray.org_x = origin.x;
+    ray.org_y = origin.y;
+    ray.org_z = origin.z;
+    ray.dir_x = d.x / length;
+    ray.dir_y = d.y / length;
+    ray.dir_z = d.z / length;
+    ray.tnear = 0.0f;
+    ray.tfar = length - scene->ray_epsilon;
+    ray.time = 0.0f;
+    ray.mask = (unsigned)-1;
+    ray.id = 0;
+    ray.flags = 0;
+    rtcOccluded1(scene->rtc, context, &ray);
+    return ray.tfar >= 0.0f;
+}
+
+/* The full BRDF f(wo, wi) of a material (no cosine), local frame. */
+static float3 material_eval(const Material *m, SpheraVec3 wo, SpheraVec3 wi) {
+    if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return f3(0, 0, 0);
+    float3 f = f3_scale(m->diffuse, 1.0f / PI_F);
+    if (m->roughness > 0.0f) f = f3_add(f, fv(sphera_ggx_eval(&m->ggx, wo, wi)));
+    return f;
+}
+
+/* The GGX layer's directional albedo at `wo` (Schlick-weighted, from libsphera's
+ * fitted LTC table): the specular reflectance R_s of a VPL. */
+static float3 specular_albedo(const Material *m, SpheraVec3 wo) {
+    SpheraLtc ltc;
+    if (!(m->roughness > 0.0f) || !sphera_ltc_ggx(&ltc, wo, m->roughness)) return f3(0, 0, 0);
+    return fv(sphera_ltc_specular_albedo(&ltc, sv(m->specular)));
+}
+
+/* ---- the spot -------------------------------------------------------------------- */
+
+SpotLight indirect_scene_spot(void) {
+    SpotLight spot;
+    spot.position = f3(1.8f, 2.7f, 1.6f);
+    spot.direction = f3_normalize(f3_sub(f3(-1.2f, 0.0f, -0.8f), spot.position));
+    spot.cos_inner = cosf(20.0f * PI_F / 180.0f);
+    spot.cos_outer = cosf(35.0f * PI_F / 180.0f);
+    spot.intensity = f3(60.0f, 55.0f, 48.0f);
+    return spot;
+}
+
+float3 spot_intensity(const SpotLight *spot, float3 dir) {
+    float c = f3_dot(spot->direction, dir);
+    if (!(c > spot->cos_outer)) return f3(0, 0, 0);
+    float t = (c - spot->cos_outer) / (spot->cos_inner - spot->cos_outer);
+    t = t > 1.0f ? 1.0f : t;
+    return f3_scale(spot->intensity, t * t * (3.0f - 2.0f * t));
+}
+
+/* ---- camera hits ----------------------------------------------------------------- */
+
+typedef struct CameraHit {
+    float3 position, origin; /* origin: pushed off the surface along the normal */
+    SpheraFrame frame;       /* z = the normal turned towards the camera */
+    SpheraVec3 wo;           /* towards the camera, local */
+    uint32_t material;
+    bool valid;
+} CameraHit;
+
+static void trace_camera(const Scene *scene, uint32_t width, uint32_t height, CameraHit *hits) {
+    struct RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    const Camera *camera = &scene->camera;
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            CameraHit *hit = &hits[y * width + x];
+            memset(hit, 0, sizeof *hit);
+            float sx = 2.0f * ((float)x + 0.5f) / (float)width - 1.0f;
+            float sy = 1.0f - 2.0f * ((float)y + 0.5f) / (float)height;
+            float3 dir = f3_normalize(f3_add(
+                camera->forward, f3_add(f3_scale(camera->right, sx), f3_scale(camera->up, sy))));
+            float t;
+            uint32_t triangle;
+            if (!intersect(scene, &context, camera->position, dir, &t, &triangle)) continue;
+            float3 normal = scene->triangle_normal[triangle];
+            if (f3_dot(normal, dir) > 0.0f) normal = f3_scale(normal, -1.0f);
+            if (!sphera_frame_from_normal(&hit->frame, sv(normal))) continue;
+            hit->position = f3_add(camera->position, f3_scale(dir, t));
+            hit->origin = f3_add(hit->position, f3_scale(normal, scene->ray_epsilon));
+            hit->wo = to_local(&hit->frame, f3_scale(dir, -1.0f));
+            hit->material = scene->triangle_material[triangle];
+            hit->valid = true;
+        }
+}
+
+/* ---- parallel loop over image rows ----------------------------------------------- */
+
+typedef struct RowJob {
+    void (*row)(void *context, struct RTCIntersectContext *rtc, uint32_t y);
+    void *context;
+    uint32_t height, next;
+} RowJob;
+
+static void *row_worker(void *argument) {
+    RowJob *job = argument;
+    flush_to_zero();
+    struct RTCIntersectContext rtc;
+    rtcInitIntersectContext(&rtc);
+    for (;;) {
+        uint32_t y = __atomic_fetch_add(&job->next, 1, __ATOMIC_RELAXED);
+        if (y >= job->height) break;
+        job->row(job->context, &rtc, y);
+    }
+    return NULL;
+}
+
+static void for_each_row(uint32_t threads, uint32_t height,
+                         void (*row)(void *, struct RTCIntersectContext *, uint32_t),
+                         void *context) {
+    RowJob job = {row, context, height, 0};
+    pthread_t ids[64];
+    if (threads > 64) threads = 64;
+    uint32_t started = 1;
+    for (; started < threads; ++started)
+        if (pthread_create(&ids[started], NULL, row_worker, &job) != 0) break;
+    row_worker(&job);
+    for (uint32_t t = 1; t < started; ++t) pthread_join(ids[t], NULL);
+}
+
+/* ---- the reference --------------------------------------------------------------- */
+
+typedef struct ReferenceJob {
+    const Scene *scene;
+    const SpotLight *spot;
+    const CameraHit *hits;
+    uint32_t width, spp;
+    uint64_t seed;
+    float *image;
+} ReferenceJob;
+
+/* The spot's direct light reflected at the surface point reached along `dir` from
+ * `from`, towards `from` (0 when nothing is hit, the spot is behind the surface or
+ * occluded). */
+static float3 bounce_radiance(const Scene *scene, const SpotLight *spot,
+                              struct RTCIntersectContext *rtc, float3 from, float3 dir) {
+    float t;
+    uint32_t triangle;
+    if (!intersect(scene, rtc, from, dir, &t, &triangle)) return f3(0, 0, 0);
+    float3 y = f3_add(from, f3_scale(dir, t));
+    float3 normal = scene->triangle_normal[triangle];
+    if (f3_dot(normal, dir) > 0.0f) normal = f3_scale(normal, -1.0f);
+    float3 to_light = f3_sub(spot->position, y);
+    float distance2 = f3_dot(to_light, to_light);
+    float3 l = f3_scale(to_light, 1.0f / sqrtf(distance2));
+    float cosine = f3_dot(normal, l);
+    if (!(cosine > 0.0f)) return f3(0, 0, 0);
+    float3 intensity = spot_intensity(spot, f3_scale(l, -1.0f));
+    if (intensity.x == 0.0f && intensity.y == 0.0f && intensity.z == 0.0f) return f3(0, 0, 0);
+    float3 origin = f3_add(y, f3_scale(normal, scene->ray_epsilon));
+    if (!segment_free(scene, rtc, origin, spot->position)) return f3(0, 0, 0);
+    SpheraFrame frame;
+    if (!sphera_frame_from_normal(&frame, sv(normal))) return f3(0, 0, 0);
+    const Material *m = &scene->materials[scene->triangle_material[triangle]];
+    float3 f = material_eval(m, to_local(&frame, f3_scale(dir, -1.0f)), to_local(&frame, l));
+    return f3_scale(f3_mul(f, intensity), cosine / distance2);
+}
+
+static void reference_row(void *context, struct RTCIntersectContext *rtc, uint32_t y) {
+    ReferenceJob *job = context;
+    for (uint32_t x = 0; x < job->width; ++x) {
+        uint32_t pixel = y * job->width + x;
+        const CameraHit *hit = &job->hits[pixel];
+        double sum[3] = {0, 0, 0};
+        if (hit->valid) {
+            const Material *m = &job->scene->materials[hit->material];
+            /* The BRDF sampler: GGX by visible normals with the probability of the GGX
+             * layer's share of the albedo (luminance), else cosine-weighted. */
+            float q = 0.0f;
+            float3 spec = specular_albedo(m, hit->wo);
+            if (lum(spec) + lum(m->diffuse) > 0.0f) q = lum(spec) / (lum(spec) + lum(m->diffuse));
+            uint64_t state = job->seed * 0xD1342543DE82EF95ull + pixel;
+            splitmix(&state);
+            for (uint32_t s = 0; s < job->spp; ++s) {
+                float u0 = uniform(&state), u1 = uniform(&state);
+                SpheraSample sample = u0 < q ? sphera_ggx_sample(&m->ggx, hit->wo, u0 / q, u1)
+                                             : sphera_lambert_sample((u0 - q) / (1.0f - q), u1);
+                if (!(sample.pdf > 0.0f) || !(sample.dir.z > 0.0f)) continue;
+                float pdf = (1.0f - q) * sphera_lambert_pdf(sample.dir);
+                if (q > 0.0f) pdf += q * sphera_ggx_pdf(&m->ggx, hit->wo, sample.dir);
+                if (!(pdf > 0.0f)) continue;
+                float3 f = material_eval(m, hit->wo, sample.dir);
+                float3 dir = to_world(&hit->frame, sample.dir);
+                float3 radiance = bounce_radiance(job->scene, job->spot, rtc, hit->origin, dir);
+                float w = sample.dir.z / pdf;
+                sum[0] += (double)(f.x * radiance.x * w);
+                sum[1] += (double)(f.y * radiance.y * w);
+                sum[2] += (double)(f.z * radiance.z * w);
+            }
+        }
+        for (int c = 0; c < 3; ++c) job->image[3 * pixel + c] = (float)(sum[c] / job->spp);
+    }
+}
+
+bool indirect_render_reference(const Scene *scene, const SpotLight *spot, uint32_t width,
+                               uint32_t height, uint32_t spp, uint32_t threads, uint64_t seed,
+                               float **image, double *ms) {
+    size_t pixels = (size_t)width * height;
+    CameraHit *hits = malloc(sizeof(CameraHit) * pixels);
+    *image = malloc(sizeof(float) * 3 * pixels);
+    if (!hits || !*image) {
+        free(hits);
+        free(*image);
+        *image = NULL;
+        return false;
+    }
+    flush_to_zero();
+    trace_camera(scene, width, height, hits);
+    double start = now_ms();
+    ReferenceJob job = {scene, spot, hits, width, spp ? spp : 1, seed, *image};
+    for_each_row(threads ? threads : cores(), height, reference_row, &job);
+    *ms = now_ms() - start;
+    free(hits);
+    return true;
+}
+
+/* ---- the RSM and its pyramid ----------------------------------------------------- */
+
+/* The VPLs of an `size²` grid of rays over the square that holds the spot's outer cone
+ * (texel centres on the plane at distance 1 along the axis). A texel's ray carries the
+ * flux `I(ω) dω` with `dω = (2 tan θ_outer / size)² cos³ψ` (ψ from the axis); a miss,
+ * a light or a zero intensity leaves a VPL without power (`valid` false). */
+typedef struct Rsm {
+    uint32_t size;
+    SpheraVpl *vpls;
+    bool *valid;
+    uint32_t *material; /* of the surface each VPL lies on */
+    SpheraVsglTexel *texels; /* the pyramid, sphera_vsgl_pyramid_texel_count(size) */
+    size_t texel_count;
+    SpheraVec3 origin;
+} Rsm;
+
+static void rsm_free(Rsm *rsm) {
+    free(rsm->vpls);
+    free(rsm->valid);
+    free(rsm->material);
+    free(rsm->texels);
+    memset(rsm, 0, sizeof *rsm);
+}
+
+static bool rsm_alloc(Rsm *rsm, uint32_t size, float3 origin) {
+    memset(rsm, 0, sizeof *rsm);
+    rsm->size = size;
+    rsm->texel_count = sphera_vsgl_pyramid_texel_count(size);
+    if (rsm->texel_count == 0) return false;
+    rsm->vpls = calloc((size_t)size * size, sizeof(SpheraVpl));
+    rsm->valid = calloc((size_t)size * size, sizeof(bool));
+    rsm->material = calloc((size_t)size * size, sizeof(uint32_t));
+    rsm->texels = calloc(rsm->texel_count, sizeof(SpheraVsglTexel));
+    rsm->origin = sv(origin);
+    if (!rsm->vpls || !rsm->valid || !rsm->material || !rsm->texels) {
+        rsm_free(rsm);
+        return false;
+    }
+    return true;
+}
+
+static void rsm_trace(const Scene *scene, const SpotLight *spot, Rsm *rsm) {
+    struct RTCIntersectContext rtc;
+    rtcInitIntersectContext(&rtc);
+    SpheraFrame frame;
+    sphera_frame_from_normal(&frame, sv(spot->direction));
+    float3 tangent = fv(frame.tangent), bitangent = fv(frame.bitangent);
+    const uint32_t size = rsm->size;
+    float half = tanf(acosf(spot->cos_outer));
+    float texel = 2.0f * half / (float)size;
+    for (uint32_t j = 0; j < size; ++j)
+        for (uint32_t i = 0; i < size; ++i) {
+            uint32_t k = j * size + i;
+            SpheraVpl *vpl = &rsm->vpls[k];
+            memset(vpl, 0, sizeof *vpl);
+            rsm->valid[k] = false;
+            float sx = half * (2.0f * ((float)i + 0.5f) / (float)size - 1.0f);
+            float sy = half * (2.0f * ((float)j + 0.5f) / (float)size - 1.0f);
+            float3 v = f3_add(spot->direction,
+                              f3_add(f3_scale(tangent, sx), f3_scale(bitangent, sy)));
+            float length = f3_length(v);
+            float3 dir = f3_scale(v, 1.0f / length);
+            float3 intensity = spot_intensity(spot, dir);
+            float t;
+            uint32_t triangle;
+            if (lum(intensity) > 0.0f &&
+                intersect(scene, &rtc, spot->position, dir, &t, &triangle)) {
+                float cos_psi = 1.0f / length;
+                float solid_angle = texel * texel * cos_psi * cos_psi * cos_psi;
+                float3 normal = scene->triangle_normal[triangle];
+                if (f3_dot(normal, dir) > 0.0f) normal = f3_scale(normal, -1.0f);
+                const Material *m = &scene->materials[scene->triangle_material[triangle]];
+                SpheraFrame local;
+                float3 toward = f3_scale(dir, -1.0f);
+                vpl->position = sv(f3_add(spot->position, f3_scale(dir, t)));
+                vpl->normal = sv(normal);
+                vpl->power = sv(f3_scale(intensity, solid_angle));
+                vpl->diffuse_reflectance = sv(m->diffuse);
+                if (sphera_frame_from_normal(&local, sv(normal)))
+                    vpl->specular_reflectance = sv(specular_albedo(m, to_local(&local, toward)));
+                vpl->toward_incoming = sv(toward);
+                vpl->roughness = m->roughness * m->roughness; /* GGX alpha */
+                rsm->material[k] = scene->triangle_material[triangle];
+                rsm->valid[k] = true;
+            }
+        }
+}
+
+/* Level 0 from the VPLs, then every coarser texel the field-wise sum of its four
+ * children (the layout of sphera_vsgl_fis_select). Returns the VPLs with weight. */
+static uint32_t rsm_build_pyramid(Rsm *rsm) {
+    const uint32_t size = rsm->size;
+    uint32_t count = 0;
+    for (uint32_t k = 0; k < size * size; ++k) {
+        SpheraVsglTexel *t = &rsm->texels[k];
+        if (!rsm->valid[k] || !sphera_vsgl_texel_from_vpl(&rsm->vpls[k], rsm->origin, t))
+            memset(t, 0, sizeof *t);
+        if (t->weight > 0.0f) ++count;
+    }
+    size_t below = 0, offset = (size_t)size * size;
+    for (uint32_t side = size / 2; side >= 1; side /= 2) {
+        uint32_t child = 2 * side;
+        for (uint32_t y = 0; y < side; ++y)
+            for (uint32_t x = 0; x < side; ++x) {
+                const SpheraVsglTexel *c[4] = {
+                    &rsm->texels[below + (2 * y) * child + 2 * x],
+                    &rsm->texels[below + (2 * y) * child + 2 * x + 1],
+                    &rsm->texels[below + (2 * y + 1) * child + 2 * x],
+                    &rsm->texels[below + (2 * y + 1) * child + 2 * x + 1]};
+                SpheraVsglTexel *t = &rsm->texels[offset + y * side + x];
+                memset(t, 0, sizeof *t);
+                for (int q = 0; q < 4; ++q) {
+#define ADD3(field)                                                                           \
+    t->field.x += c[q]->field.x;                                                              \
+    t->field.y += c[q]->field.y;                                                              \
+    t->field.z += c[q]->field.z
+                    ADD3(diffuse_power);
+                    ADD3(specular_power);
+                    ADD3(diffuse_direction);
+                    ADD3(specular_direction);
+                    ADD3(position);
+#undef ADD3
+                    t->squared_distance += c[q]->squared_distance;
+                    t->weight += c[q]->weight;
+                }
+            }
+        below = offset;
+        offset += (size_t)side * side;
+    }
+    return count;
+}
+
+/* ---- clustering ------------------------------------------------------------------ */
+
+static float radical_inverse2(uint32_t i) {
+    i = (i << 16) | (i >> 16);
+    i = ((i & 0x00ff00ffu) << 8) | ((i & 0xff00ff00u) >> 8);
+    i = ((i & 0x0f0f0f0fu) << 4) | ((i & 0xf0f0f0f0u) >> 4);
+    i = ((i & 0x33333333u) << 2) | ((i & 0xccccccccu) >> 2);
+    i = ((i & 0x55555555u) << 1) | ((i & 0xaaaaaaaau) >> 1);
+    return (float)(i >> 8) * 0x1p-24f;
+}
+
+/* FIS: cluster i from the shifted Hammersley point ((i + ξ0)/N, frac(φ2(i) + ξ1)). */
+static void cluster_fis(const Rsm *rsm, const IndirectSettings *s, uint64_t *state,
+                        SpheraVsgl *vsgls) {
+    float xi0 = uniform(state), xi1 = uniform(state);
+    uint32_t n = s->cluster_count;
+    for (uint32_t i = 0; i < n; ++i) {
+        float u0 = ((float)i + xi0) / (float)n;
+        float u1 = radical_inverse2(i) + xi1;
+        if (u1 >= 1.0f) u1 -= 1.0f;
+        vsgls[i] = sphera_vsgl_fis_select(rsm->texels, rsm->texel_count, rsm->size, rsm->origin,
+                                          n, s->kernel_scale, s->iterations, u0, u1);
+    }
+}
+
+/* k-means of Section 5 (one assignment pass, as tools/src/vsgl_kmeans.rs): N centres
+ * drawn among the texels in proportion to their weight (with replacement), every texel
+ * with weight assigned to the nearest centre in
+ * d² = |x_a − x_b|²/h_image² + |y_a − y_b|²/h_world², h_image = 1/√N,
+ * h_world = world_extent/√N (brute force), each cluster summed about its centre. */
+static bool cluster_kmeans(const Rsm *rsm, const IndirectSettings *s, uint64_t *state,
+                           SpheraVsgl *vsgls) {
+    const uint32_t size = rsm->size, m = size * size, n = s->cluster_count;
+    double *cumulative = malloc(sizeof(double) * m);
+    uint32_t *centres = malloc(sizeof(uint32_t) * n);
+    SpheraVsglAccumulator *acc = malloc(sizeof(SpheraVsglAccumulator) * n);
+    float *cx = malloc(sizeof(float) * 5 * n);
+    if (!cumulative || !centres || !acc || !cx) {
+        free(cumulative);
+        free(centres);
+        free(acc);
+        free(cx);
+        return false;
+    }
+    double running = 0.0;
+    for (uint32_t k = 0; k < m; ++k) {
+        float w = rsm->texels[k].weight;
+        running += w > 0.0f ? (double)w : 0.0;
+        cumulative[k] = running;
+    }
+    const float inv_image2 = (float)n, inv_world2 = (float)n / (s->world_extent * s->world_extent);
+    for (uint32_t i = 0; i < n; ++i) {
+        double target = (double)uniform(state) * running;
+        uint32_t lo = 0, hi = m; /* the first k with cumulative[k] > target */
+        while (lo < hi) {
+            uint32_t mid = (lo + hi) / 2;
+            if (cumulative[mid] <= target) lo = mid + 1;
+            else hi = mid;
+        }
+        uint32_t c = lo < m ? lo : m - 1;
+        while (c > 0 && !(rsm->texels[c].weight > 0.0f)) --c;
+        centres[i] = c;
+        const SpheraVpl *v = &rsm->vpls[c];
+        cx[5 * i + 0] = ((float)(c % size) + 0.5f) / (float)size;
+        cx[5 * i + 1] = ((float)(c / size) + 0.5f) / (float)size;
+        cx[5 * i + 2] = v->position.x;
+        cx[5 * i + 3] = v->position.y;
+        cx[5 * i + 4] = v->position.z;
+        sphera_vsgl_accumulator_init(&acc[i], v->position);
+    }
+    if (running > 0.0)
+        for (uint32_t k = 0; k < m; ++k) {
+            if (!(rsm->texels[k].weight > 0.0f)) continue;
+            const SpheraVpl *v = &rsm->vpls[k];
+            float ix = ((float)(k % size) + 0.5f) / (float)size;
+            float iy = ((float)(k / size) + 0.5f) / (float)size;
+            float best = INFINITY;
+            uint32_t best_i = 0;
+            for (uint32_t i = 0; i < n; ++i) {
+                const float *c = &cx[5 * i];
+                float dx = ix - c[0], dy = iy - c[1];
+                float wx = v->position.x - c[2], wy = v->position.y - c[3],
+                      wz = v->position.z - c[4];
+                float d = (dx * dx + dy * dy) * inv_image2 +
+                          (wx * wx + wy * wy + wz * wz) * inv_world2;
+                if (d < best) {
+                    best = d;
+                    best_i = i;
+                }
+            }
+            sphera_vsgl_accumulator_add_vpl(&acc[best_i], v);
+        }
+    for (uint32_t i = 0; i < n; ++i) vsgls[i] = sphera_vsgl_accumulator_finish(&acc[i]);
+    free(cumulative);
+    free(centres);
+    free(acc);
+    free(cx);
+    return true;
+}
+
+/* ---- shading --------------------------------------------------------------------- */
+
+typedef struct ShadeJob {
+    const Scene *scene;
+    const CameraHit *hits;
+    const SpheraVsgl *vsgls;
+    uint32_t count, width;
+    float *image;
+} ShadeJob;
+
+/* The GGX layer's shading of one incoming-radiance SG per RGB channel of F0 (one call
+ * when the channels agree). */
+static float3 specular_rgb(SpheraSg incoming, SpheraVec3 n, SpheraVec3 view, const Material *m,
+                           float visibility) {
+    float r =
+        sphera_sg_specular_shading(incoming, n, view, m->roughness, m->specular.x, visibility);
+    float g = m->specular.y == m->specular.x
+                  ? r
+                  : sphera_sg_specular_shading(incoming, n, view, m->roughness, m->specular.y,
+                                               visibility);
+    float b = m->specular.z == m->specular.x
+                  ? r
+                  : sphera_sg_specular_shading(incoming, n, view, m->roughness, m->specular.z,
+                                               visibility);
+    return f3(r, g, b);
+}
+
+/* The radiance at a camera hit from all VSGLs: per VSGL and per lobe (diffuse, specular
+ * emission), L_in of Eq. 6-7 for unit power, constant-cosine diffuse and ASG specular
+ * shading, times the lobe's RGB power; V from one shadow ray to the VSGL's mean, traced
+ * only when the unshadowed term is positive. */
+static float3 shade_vsgls(const Scene *scene, struct RTCIntersectContext *rtc,
+                          const CameraHit *hit, const SpheraVsgl *vsgls, uint32_t count) {
+    const Material *m = &scene->materials[hit->material];
+    SpheraVec3 n = hit->frame.normal;
+    SpheraVec3 view = sv(to_world(&hit->frame, hit->wo));
+    bool glossy = m->roughness > 0.0f;
+    float3 sum = f3(0, 0, 0);
+    for (uint32_t v = 0; v < count; ++v) {
+        const SpheraVsgl *g = &vsgls[v];
+        float3 mean = fv(g->mean);
+        SpheraVec3 offset = sv(f3_sub(mean, hit->position));
+        float3 value = f3(0, 0, 0);
+        for (int lobe = 0; lobe < 2; ++lobe) {
+            float3 power = fv(lobe ? g->specular_power : g->diffuse_power);
+            if (!(lum(power) > 0.0f)) continue;
+            SpheraSg incoming =
+                sphera_sg_incoming_radiance(lobe ? g->specular : g->diffuse, offset, g->variance);
+            float d = sphera_sg_diffuse_shading_constant_cosine(incoming, n, 1.0f, 1.0f);
+            float3 r = f3_scale(m->diffuse, d);
+            if (glossy) r = f3_add(r, specular_rgb(incoming, n, view, m, 1.0f));
+            value = f3_add(value, f3_mul(power, r));
+        }
+        if (!(lum(value) > 0.0f)) continue;
+        if (!segment_free(scene, rtc, hit->origin, mean)) continue;
+        sum = f3_add(sum, value);
+    }
+    return sum;
+}
+
+/* Diagnosis (`--technique vpl`): every VPL as a point light with the exact BRDFs at
+ * both ends, Φ f_y(ω', ω) cos_y f_x cos_x / d² V (instant radiosity, unclamped): the
+ * RSM's own discretisation error, without the VSGL approximations. */
+static float3 shade_vpls(const Scene *scene, struct RTCIntersectContext *rtc,
+                         const CameraHit *hit, const Rsm *rsm) {
+    const Material *m = &scene->materials[hit->material];
+    float3 sum = f3(0, 0, 0);
+    for (uint32_t k = 0; k < rsm->size * rsm->size; ++k) {
+        if (!rsm->valid[k]) continue;
+        const SpheraVpl *vpl = &rsm->vpls[k];
+        float3 d = f3_sub(fv(vpl->position), hit->position);
+        float d2 = f3_dot(d, d);
+        if (!(d2 > 1e-8f)) continue;
+        float3 l = f3_scale(d, 1.0f / sqrtf(d2));
+        SpheraVec3 wi = to_local(&hit->frame, l);
+        float3 fx = material_eval(m, hit->wo, wi);
+        if (!(lum(fx) > 0.0f)) continue;
+        SpheraFrame frame;
+        if (!sphera_frame_from_normal(&frame, vpl->normal)) continue;
+        const Material *my = &scene->materials[rsm->material[k]];
+        SpheraVec3 out = to_local(&frame, f3_scale(l, -1.0f));
+        float3 fy = material_eval(my, to_local(&frame, fv(vpl->toward_incoming)), out);
+        if (!(lum(fy) > 0.0f)) continue;
+        float3 value = f3_scale(f3_mul(f3_mul(fx, fy), fv(vpl->power)), wi.z * out.z / d2);
+        if (!segment_free(scene, rtc, hit->origin, fv(vpl->position))) continue;
+        sum = f3_add(sum, value);
+    }
+    return sum;
+}
+
+typedef struct VplJob {
+    const Scene *scene;
+    const CameraHit *hits;
+    const Rsm *rsm;
+    uint32_t width;
+    float *image;
+} VplJob;
+
+static void vpl_row(void *context, struct RTCIntersectContext *rtc, uint32_t y) {
+    VplJob *job = context;
+    for (uint32_t x = 0; x < job->width; ++x) {
+        uint32_t pixel = y * job->width + x;
+        const CameraHit *hit = &job->hits[pixel];
+        float3 value = hit->valid ? shade_vpls(job->scene, rtc, hit, job->rsm) : f3(0, 0, 0);
+        job->image[3 * pixel + 0] = value.x;
+        job->image[3 * pixel + 1] = value.y;
+        job->image[3 * pixel + 2] = value.z;
+    }
+}
+
+static void shade_row(void *context, struct RTCIntersectContext *rtc, uint32_t y) {
+    ShadeJob *job = context;
+    for (uint32_t x = 0; x < job->width; ++x) {
+        uint32_t pixel = y * job->width + x;
+        const CameraHit *hit = &job->hits[pixel];
+        float3 value = hit->valid ? shade_vsgls(job->scene, rtc, hit, job->vsgls, job->count)
+                                  : f3(0, 0, 0);
+        job->image[3 * pixel + 0] = value.x;
+        job->image[3 * pixel + 1] = value.y;
+        job->image[3 * pixel + 2] = value.z;
+    }
+}
+
+/* ---- frames ---------------------------------------------------------------------- */
+
+bool indirect_render_vsgl(const Scene *scene, const SpotLight *spot,
+                          const IndirectSettings *s, const float *reference,
+                          IndirectResult *result) {
+    memset(result, 0, sizeof *result);
+    const size_t pixels = (size_t)s->width * s->height;
+    const uint32_t frames = s->frames ? s->frames : 1;
+    const uint32_t threads = s->threads ? s->threads : cores();
+    CameraHit *hits = malloc(sizeof(CameraHit) * pixels);
+    SpheraVsgl *vsgls = malloc(sizeof(SpheraVsgl) * (s->cluster_count ? s->cluster_count : 1));
+    float *image = malloc(sizeof(float) * 3 * pixels);
+    Rsm rsm;
+    /* The pyramid's reference point: the room's centre. */
+    bool ok = hits && vsgls && image && s->cluster_count > 0 &&
+              rsm_alloc(&rsm, s->rsm_size, f3(0.0f, 1.5f, 0.0f));
+    if (!ok) {
+        fprintf(stderr, "sphera-trace: indirect: bad settings or out of memory\n");
+        free(hits);
+        free(vsgls);
+        free(image);
+        return false;
+    }
+    flush_to_zero();
+    trace_camera(scene, s->width, s->height, hits);
+    uint64_t state = s->seed * 0x9E3779B97F4A7C15ull + 0x1234567ull;
+    double rmse_sum = 0.0, relmse_sum = 0.0, ratio_sum = 0.0;
+    for (uint32_t frame = 0; frame < frames; ++frame) {
+        double t0 = now_ms();
+        rsm_trace(scene, spot, &rsm);
+        double t1 = now_ms();
+        result->vpl_count = rsm_build_pyramid(&rsm);
+        memset(result->rsm_flux, 0, sizeof result->rsm_flux);
+        for (uint32_t k = 0; k < s->rsm_size * s->rsm_size; ++k)
+            if (rsm.valid[k]) {
+                result->rsm_flux[0] += rsm.vpls[k].power.x;
+                result->rsm_flux[1] += rsm.vpls[k].power.y;
+                result->rsm_flux[2] += rsm.vpls[k].power.z;
+            }
+        if (s->clustering == CLUSTERING_FIS) cluster_fis(&rsm, s, &state, vsgls);
+        else if (s->clustering == CLUSTERING_KMEANS) {
+            if (!cluster_kmeans(&rsm, s, &state, vsgls)) ok = false;
+        } else
+            memset(vsgls, 0, sizeof(SpheraVsgl) * s->cluster_count);
+        double t2 = now_ms();
+        if (s->clustering == CLUSTERING_VPLS) {
+            VplJob job = {scene, hits, &rsm, s->width, image};
+            for_each_row(threads, s->height, vpl_row, &job);
+        } else {
+            ShadeJob job = {scene, hits, vsgls, s->cluster_count, s->width, image};
+            for_each_row(threads, s->height, shade_row, &job);
+        }
+        double t3 = now_ms();
+        result->ms_rsm += t1 - t0;
+        result->ms_clustering += t2 - t1;
+        result->ms_shading += t3 - t2;
+        if (reference) {
+            double rmse, relmse, a = 0.0, b = 0.0;
+            image_error(image, reference, s->width, s->height, &rmse, &relmse);
+            for (size_t i = 0; i < 3 * pixels; ++i) {
+                a += image[i];
+                b += reference[i];
+            }
+            rmse_sum += rmse;
+            relmse_sum += relmse;
+            ratio_sum += b > 0.0 ? a / b : 0.0;
+        }
+    }
+    result->frames = frames;
+    result->ms_rsm /= frames;
+    result->ms_clustering /= frames;
+    result->ms_shading /= frames;
+    result->ms_per_frame = result->ms_rsm + result->ms_clustering + result->ms_shading;
+    result->rmse = rmse_sum / frames;
+    result->relmse = relmse_sum / frames;
+    result->mean_ratio = ratio_sum / frames;
+    result->rsm_luminance = rsm.texels[rsm.texel_count - 1].weight;
+    for (uint32_t i = 0; i < s->cluster_count; ++i) {
+        double l = lum(f3_add(fv(vsgls[i].diffuse_power), fv(vsgls[i].specular_power)));
+        result->cluster_luminance += l;
+        if (!(l > 0.0)) ++result->empty_clusters;
+    }
+    for (size_t i = 0; i < 3 * pixels; ++i) result->mean[i % 3] += image[i];
+    for (int c = 0; c < 3; ++c) result->mean[c] /= (double)pixels;
+    result->image = image;
+    rsm_free(&rsm);
+    free(hits);
+    free(vsgls);
+    return ok;
+}
+
+/* ---- the command line ------------------------------------------------------------ */
+
+static bool parse_u32(const char *text, uint32_t *out) {
+    char *end;
+    unsigned long v = strtoul(text, &end, 10);
+    if (*text == '\0' || *end != '\0' || v > 100000000ul) return false;
+    *out = (uint32_t)v;
+    return true;
+}
+
+int indirect_main(int argc, char **argv) {
+    IndirectSettings s;
+    memset(&s, 0, sizeof s);
+    s.width = 128;
+    s.height = 96;
+    s.rsm_size = 64;
+    s.cluster_count = 256;
+    s.clustering = CLUSTERING_FIS;
+    s.frames = 1;
+    s.seed = 1;
+    s.kernel_scale = 1.0f;
+    s.iterations = 8;
+    s.world_extent = 6.0f;
+    const char *technique = "fis", *reference_path = NULL, *pfm = NULL, *png = NULL;
+    uint32_t spp = 256, seed = 1;
+    float exposure = 0.0f;
+    bool ok = true, help = false;
+    for (int i = 1; i < argc && ok; ++i) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--quiet") == 0) continue;
+        if (strcmp(a, "--help") == 0) {
+            help = true;
+            break;
+        }
+        if (!v) {
+            ok = false;
+            break;
+        }
+        if (strcmp(a, "--scene") == 0) ok = strcmp(v, "indirect") == 0;
+        else if (strcmp(a, "--technique") == 0 || strcmp(a, "--clustering") == 0) technique = v;
+        else if (strcmp(a, "--width") == 0) ok = parse_u32(v, &s.width) && s.width > 0;
+        else if (strcmp(a, "--height") == 0) ok = parse_u32(v, &s.height) && s.height > 0;
+        else if (strcmp(a, "--clusters") == 0)
+            ok = parse_u32(v, &s.cluster_count) && s.cluster_count > 0;
+        else if (strcmp(a, "--rsm-size") == 0)
+            ok = parse_u32(v, &s.rsm_size) && sphera_vsgl_pyramid_texel_count(s.rsm_size) > 0;
+        else if (strcmp(a, "--frames") == 0) ok = parse_u32(v, &s.frames) && s.frames > 0;
+        else if (strcmp(a, "--spp") == 0) ok = parse_u32(v, &spp) && spp > 0;
+        else if (strcmp(a, "--threads") == 0) ok = parse_u32(v, &s.threads);
+        else if (strcmp(a, "--seed") == 0) ok = parse_u32(v, &seed);
+        else if (strcmp(a, "--reference") == 0) reference_path = v;
+        else if (strcmp(a, "--out-pfm") == 0) pfm = v;
+        else if (strcmp(a, "--out-png") == 0) png = v;
+        else if (strcmp(a, "--exposure") == 0) exposure = (float)atof(v);
+        else ok = false;
+        if (!ok) fprintf(stderr, "sphera-trace: indirect: bad option or value: %s %s\n", a, v);
+        ++i;
+    }
+    bool is_reference = strcmp(technique, "reference") == 0;
+    if (strcmp(technique, "kmeans") == 0) s.clustering = CLUSTERING_KMEANS;
+    else if (strcmp(technique, "vpl") == 0) s.clustering = CLUSTERING_VPLS;
+    else if (!is_reference && strcmp(technique, "fis") != 0) {
+        fprintf(stderr,
+                "sphera-trace: indirect: technique must be fis, kmeans, vpl or reference\n");
+        ok = false;
+    }
+    if (!ok || help) {
+        fprintf(help ? stdout : stderr,
+                "usage: sphera-trace --scene indirect [--technique fis|kmeans|vpl|reference]\n"
+                "  [--clusters N] [--rsm-size S] [--frames F] [--spp P (reference)]\n"
+                "  [--width W --height H] [--threads T] [--seed S] [--reference F.pfm]\n"
+                "  [--out-pfm F] [--out-png F] [--exposure E] [--quiet]\n");
+        return help ? 0 : 2;
+    }
+    s.seed = seed;
+    Scene scene;
+    if (!scene_create(&scene, "indirect", (float)s.width / (float)s.height)) return 1;
+    SpotLight spot = indirect_scene_spot();
+    float *reference = NULL;
+    if (reference_path) {
+        uint32_t w, h;
+        reference = read_pfm(reference_path, &w, &h);
+        if (!reference || w != s.width || h != s.height) {
+            fprintf(stderr, "sphera-trace: cannot use %s as a %u x %u reference\n",
+                    reference_path, s.width, s.height);
+            free(reference);
+            scene_destroy(&scene);
+            return 1;
+        }
+    }
+    float *image = NULL;
+    int status = 0;
+    if (is_reference) {
+        double ms;
+        if (!indirect_render_reference(&scene, &spot, s.width, s.height, spp, s.threads, s.seed,
+                                       &image, &ms))
+            status = 1;
+        else {
+            double mean[3] = {0, 0, 0};
+            for (size_t i = 0; i < 3 * (size_t)s.width * s.height; ++i) mean[i % 3] += image[i];
+            double pixels = (double)s.width * s.height;
+            printf("{\"scene\": \"indirect\", \"technique\": \"reference\", \"width\": %u, "
+                   "\"height\": %u, \"spp\": %u, \"time_ms\": %.6g, "
+                   "\"mean\": [%.9g, %.9g, %.9g]}\n",
+                   s.width, s.height, spp, ms, mean[0] / pixels, mean[1] / pixels,
+                   mean[2] / pixels);
+        }
+    } else {
+        IndirectResult r;
+        if (!indirect_render_vsgl(&scene, &spot, &s, reference, &r)) status = 1;
+        image = r.image;
+        if (status == 0) {
+            printf("{\"scene\": \"indirect\", \"technique\": \"%s\", \"biased\": true, "
+                   "\"width\": %u, \"height\": %u, \"clusters\": %u, \"rsm_size\": %u, "
+                   "\"frames\": %u, \"ms_per_frame\": %.6g, \"ms_rsm\": %.6g, "
+                   "\"ms_clustering\": %.6g, \"ms_shading\": %.6g, \"vpls\": %u, "
+                   "\"rsm_luminance\": %.9g, \"cluster_luminance\": %.9g, "
+                   "\"empty_clusters\": %u, \"mean\": [%.9g, %.9g, %.9g]",
+                   technique, s.width, s.height, s.cluster_count, s.rsm_size, r.frames,
+                   r.ms_per_frame, r.ms_rsm, r.ms_clustering, r.ms_shading, r.vpl_count,
+                   r.rsm_luminance, r.cluster_luminance, r.empty_clusters, r.mean[0], r.mean[1],
+                   r.mean[2]);
+            if (reference)
+                printf(", \"rmse\": %.9g, \"relmse\": %.9g, \"mean_ratio\": %.9g", r.rmse,
+                       r.relmse, r.mean_ratio);
+            printf("}\n");
+        }
+    }
+    if (status == 0 && pfm && !write_pfm(pfm, image, s.width, s.height)) status = 1;
+    if (status == 0 && png && !write_png(png, image, s.width, s.height, exposure)) status = 1;
+    free(image);
+    free(reference);
+    scene_destroy(&scene);
+    return status;
+}
