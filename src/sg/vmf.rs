@@ -103,7 +103,7 @@ pub fn vmf_invert(sg: &Sg, dir: Vec3) -> Option<[f32; 2]> {
         u1 += 1.0;
     }
     Some([
-        u0.max(0.0).min(1.0),
+        u0.max(0.0).min(crate::sample::ONE_MINUS_ULP),
         u1.max(0.0).min(crate::sample::ONE_MINUS_ULP),
     ])
 }

@@ -147,3 +147,16 @@ fn bad_input_draws_no_sample_or_a_finite_one() {
         assert_eq!(vmf_pdf(&sg, Vec3::new(f32::NAN, 0.0, 0.0)), 0.0);
     }
 }
+
+/// Found by fuzzing: the antipode of the axis inverted to `u0 = 1`, outside `[0, 1)`.
+#[test]
+fn the_antipode_inverts_inside_the_unit_square() {
+    for sharpness in [0.0, 1e-3, 1.0, 30.0] {
+        let sg = Sg::new(Vec3::new(0.0, 0.6, 0.8), sharpness, 1.0);
+        let u = vmf_invert(&sg, -sg.axis).expect("valid");
+        assert!(
+            u.iter().all(|x| (0.0..1.0).contains(x)),
+            "λ {sharpness}: {u:?}"
+        );
+    }
+}

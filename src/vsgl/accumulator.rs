@@ -156,6 +156,16 @@ impl VsglTexel {
         }
     }
 
+    /// Whether the sums can be those of VPLs: every sum finite, and the powers, the
+    /// weight and the squared distances non-negative (per channel; NaN fails).
+    pub fn is_valid_sum(&self) -> bool {
+        self.is_finite()
+            && self.diffuse_power.min_element() >= 0.0
+            && self.specular_power.min_element() >= 0.0
+            && self.weight >= 0.0
+            && self.squared_distance >= 0.0
+    }
+
     /// Whether every sum is finite.
     pub fn is_finite(&self) -> bool {
         self.diffuse_power.is_finite()
@@ -289,40 +299,44 @@ impl VsglAccumulator {
     /// rejects it.
     pub fn add_vpl(&mut self, vpl: &Vpl) -> bool {
         match VsglTexel::from_vpl(vpl, self.origin) {
-            Some(texel) => {
-                self.sums = self.sums.add(&texel);
-                true
-            }
+            Some(texel) => self.add_sums(&texel),
             None => false,
         }
     }
 
     /// Adds pre-summed sums (a mip texel) taken relative to this accumulator's origin;
-    /// returns `false` (and adds nothing) when a sum is not finite.
+    /// returns `false` (and adds nothing) when they are not valid sums of VPLs
+    /// ([`VsglTexel::is_valid_sum`]: a non-finite sum, a negative power, weight or
+    /// squared distance) or when the total would overflow.
     pub fn add_texel(&mut self, texel: &VsglTexel) -> bool {
         self.add_texel_scaled(texel, 1.0)
     }
 
-    /// Adds `factor` times a texel (a filter weight); `false` when the product is not
-    /// finite.
+    /// Adds `factor` times a texel (a filter weight); `false` (adding nothing) when the
+    /// product is not a valid sum or the total would overflow.
     pub fn add_texel_scaled(&mut self, texel: &VsglTexel, factor: f32) -> bool {
         let scaled = texel.scaled(factor);
-        if !scaled.is_finite() {
+        scaled.is_valid_sum() && self.add_sums(&scaled)
+    }
+
+    /// Adds valid sums unless the total overflows (found by fuzzing: texels near
+    /// `f32::MAX` made the totals infinite, and negative powers made negative VSGLs).
+    fn add_sums(&mut self, sums: &VsglTexel) -> bool {
+        let total = self.sums.add(sums);
+        if !total.is_valid_sum() {
             return false;
         }
-        self.sums = self.sums.add(&scaled);
+        self.sums = total;
         true
     }
 
     /// Adds the sums of `other`, moved from its origin to this one
     /// ([`VsglTexel::moved`]); `false` when they are not finite.
     pub fn merge(&mut self, other: &VsglAccumulator) -> bool {
-        let moved = other.sums.moved(other.origin, self.origin);
-        if !moved.is_finite() {
-            return false;
-        }
-        self.sums = self.sums.add(&moved);
-        true
+        let mut moved = other.sums.moved(other.origin, self.origin);
+        // Non-negative in exact arithmetic; rounding may leave a tiny negative value.
+        moved.squared_distance = moved.squared_distance.max(0.0);
+        moved.is_finite() && self.add_sums(&moved)
     }
 
     /// The VSGL of the sums (supplement Sections 3.1–3.2):
@@ -349,13 +363,26 @@ impl VsglAccumulator {
         let mean_square = sums.squared_distance / weight;
         let variance = mean_square - offset.length_squared();
         let noise = 16.0 * f32::EPSILON * mean_square;
-        Vsgl {
+        let vsgl = Vsgl {
             diffuse: filtered_lobe(sums.diffuse_power, sums.diffuse_direction),
             specular: filtered_lobe(sums.specular_power, sums.specular_direction),
             diffuse_power: sums.diffuse_power,
             specular_power: sums.specular_power,
             mean: self.origin + offset,
             variance: if variance > noise { variance } else { 0.0 },
+        };
+        // A tiny weight under large position sums overflows the mean or the variance.
+        if vsgl.mean.is_finite()
+            && vsgl.variance.is_finite()
+            && vsgl.diffuse.log_amplitude.is_finite()
+            && vsgl.specular.log_amplitude.is_finite()
+        {
+            vsgl
+        } else {
+            Vsgl {
+                mean: self.origin,
+                ..Vsgl::EMPTY
+            }
         }
     }
 }

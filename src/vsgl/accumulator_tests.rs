@@ -459,3 +459,45 @@ fn bad_vpls_are_rejected_and_never_poison_the_sums() {
     assert!(hand.finish().is_empty());
     assert!(hand.finish().mean.is_finite());
 }
+
+/// Found by fuzzing: a texel with negative powers made a VSGL of negative power, and
+/// texels near `f32::MAX` overflowed the totals; both are now rejected and leave the
+/// sums unchanged.
+#[test]
+fn invalid_or_overflowing_texels_are_rejected() {
+    let mut accumulator = VsglAccumulator::new(Vec3::ZERO);
+    let good = VsglTexel {
+        diffuse_power: Vec3::ONE,
+        weight: 1.0,
+        ..VsglTexel::ZERO
+    };
+    assert!(accumulator.add_texel(&good));
+    let before = accumulator.finish();
+    let negative = VsglTexel {
+        diffuse_power: Vec3::new(-1.0, 1.0, 1.0),
+        weight: 1.0,
+        ..VsglTexel::ZERO
+    };
+    assert!(!accumulator.add_texel(&negative));
+    let huge = VsglTexel {
+        diffuse_power: Vec3::splat(3e38),
+        weight: 3e38,
+        ..VsglTexel::ZERO
+    };
+    assert!(accumulator.add_texel(&huge));
+    assert!(!accumulator.add_texel(&huge), "the second one overflows");
+    let mut fresh = VsglAccumulator::new(Vec3::ZERO);
+    assert!(fresh.add_texel(&good));
+    assert_eq!(fresh.finish(), before);
+    // A tiny weight under a huge position sum: the mean overflows, the VSGL is empty.
+    let mut tiny = VsglAccumulator::new(Vec3::ZERO);
+    assert!(tiny.add_texel(&VsglTexel {
+        diffuse_power: Vec3::ONE,
+        position: Vec3::splat(1e30),
+        squared_distance: 1e30,
+        weight: 1e-30,
+        ..VsglTexel::ZERO
+    }));
+    let v = tiny.finish();
+    assert!(v.mean.is_finite() && v.variance.is_finite());
+}

@@ -1329,3 +1329,227 @@ pub fn sphere_entry_points(data: &[u8]) {
         }
     }
 }
+
+fn decode_sg(input: &mut Input) -> sphera::sg::Sg {
+    sphera::sg::Sg {
+        axis: input.vec3().into(),
+        sharpness: input.float(),
+        log_amplitude: input.float(),
+    }
+}
+
+/// SGs, vMF sampling, lobes, ASGs and SG shading (`sphera_sg_*`, `sphera_asg_*`) on
+/// decoded inputs, raw SGs included (any axis, sharpness and log amplitude): every
+/// output finite, densities and shading values non-negative, the product an SG with
+/// finite fields, the inner product symmetric, and vMF samples consistent with
+/// `sphera_sg_vmf_pdf` (relative 1e-3; the sampler draws `1 − cos θ` and the pdf
+/// evaluates `exp(−λ t)` from the returned direction: both are the same function of
+/// `t` up to the rounding of the direction, amplified by `λ |dt|` near sharp lobes —
+/// hence the floor proportional to the pdf's sharpness).
+pub fn sg_entry_points(data: &[u8]) {
+    let mut input = Input::new(data);
+    let a = decode_sg(&mut input);
+    let b = decode_sg(&mut input);
+    let pairs = random_pairs(&mut input);
+    let probes = probe_directions(&mut input);
+    let normal = input.vec3();
+    let view = input.vec3();
+    let alpha = input.float();
+    let variance = input.float();
+    let mean = input.vec3();
+    let scalars = [input.float(), input.float(), input.float()];
+
+    for (sg, name) in [(a, "sg a"), (b, "sg b")] {
+        let clean = sphera_sg_new(sg.axis.into(), sg.sharpness, sg.log_amplitude);
+        assert_words_finite(&clean, name);
+        assert_density(sphera_sg_integral(sg.sharpness), "A(λ)");
+        for &probe in &probes {
+            assert_density(sphera_sg_eval(sg, probe), name);
+            assert_density(sphera_sg_vmf_pdf(sg, probe), name);
+            let mut u = [0.0f32; 2];
+            // SAFETY: `u` holds two floats.
+            let inverted = unsafe { sphera_sg_vmf_invert(sg, probe, u.as_mut_ptr()) };
+            if inverted {
+                assert!(
+                    u.iter().all(|x| (0.0..1.0).contains(x)),
+                    "{name}: inverse {u:?}"
+                );
+            }
+        }
+        for &(u0, u1) in &pairs {
+            let sample = sphera_sg_vmf_sample(sg, u0, u1);
+            let what = format!("{name} vMF u = ({u0:e}, {u1:e}) {sg:?}");
+            assert_sample(sample, &what);
+            if sample.pdf > 0.0 {
+                let evaluated = sphera_sg_vmf_pdf(sg, sample.dir);
+                let sharpness = if sg.sharpness.is_nan() {
+                    0.0
+                } else {
+                    sg.sharpness.clamp(0.0, 1e8) as f64
+                };
+                let tolerance = 1e-3 + 1e-6 * sharpness;
+                assert!(
+                    (evaluated as f64 - sample.pdf as f64).abs() <= tolerance * sample.pdf as f64,
+                    "{what}: sample pdf {} but pdf(dir) {evaluated}",
+                    sample.pdf
+                );
+            }
+        }
+    }
+    let product = sphera_sg_product(a, b);
+    assert_words_finite(&product, "product");
+    let ab = sphera_sg_inner_product(a, b);
+    let ba = sphera_sg_inner_product(b, a);
+    assert_density(ab, "inner product");
+    assert!(
+        // The two orders round `exp` differently: 1.5e-5 relative measured at 4e6, and
+        // subnormal results keep only a few digits.
+        ab == ba || (ab as f64 - ba as f64).abs() <= 1e-4 * ab.max(ba) as f64 + 1e-35,
+        "inner product not symmetric: {ab} vs {ba}"
+    );
+    for lobe in [
+        sphera_sg_diffuse_lobe(normal),
+        sphera_sg_specular_lobe(normal, view, alpha),
+        sphera_sg_specular_lobe_unnormalized(normal, view, alpha),
+    ] {
+        assert_words_finite(&lobe, "lobe");
+    }
+    let incoming = sphera_sg_incoming_radiance(a, mean, variance);
+    assert_words_finite(&incoming, "incoming radiance");
+    for sg in [incoming, a, b] {
+        for value in [
+            sphera_sg_diffuse_shading_product(sg, normal, scalars[0], scalars[1]),
+            sphera_sg_diffuse_shading_constant_cosine(sg, normal, scalars[0], scalars[1]),
+            sphera_sg_diffuse_shading_sharp_lobe(sg, normal, scalars[0], scalars[1]),
+            sphera_sg_specular_shading(sg, normal, view, alpha, scalars[0], scalars[1]),
+            sphera_sg_specular_shading_sg(sg, normal, view, alpha, scalars[0], scalars[1]),
+        ] {
+            assert_density(value, "SG shading");
+        }
+    }
+    let asg = sphera_asg_new(normal, view, scalars[0], scalars[1], scalars[2]);
+    assert_words_finite(&asg, "asg");
+    let ggx = sphera_asg_ggx_lobe(normal, view, alpha);
+    assert_words_finite(&ggx, "ggx asg");
+    for asg in [asg, ggx] {
+        assert_density(sphera_asg_integral(asg), "ASG integral");
+        assert_density(sphera_asg_convolve_sg(asg, a), "ASG × SG");
+        for &probe in &probes {
+            assert_density(sphera_asg_eval(asg, probe), "ASG eval");
+        }
+    }
+}
+
+fn decode_vpl(input: &mut Input) -> sphera::vsgl::Vpl {
+    sphera::vsgl::Vpl {
+        position: input.vec3().into(),
+        normal: input.vec3().into(),
+        power: input.vec3().into(),
+        diffuse_reflectance: input.vec3().into(),
+        specular_reflectance: input.vec3().into(),
+        toward_incoming: input.vec3().into(),
+        roughness: input.float(),
+    }
+}
+
+/// The VSGL accumulator and FIS (`sphera_vsgl_*`) on decoded VPLs and on pyramids built
+/// from them (up to 8×8) and on raw texels: every VSGL has finite fields, non-negative
+/// powers and variance; FIS never panics for any cluster count, kernel scale, iteration
+/// count or random numbers.
+pub fn vsgl_entry_points(data: &[u8]) {
+    let mut input = Input::new(data);
+    let origin = input.vec3();
+    let count = (input.byte() % 9) as usize;
+    let vpls: Vec<sphera::vsgl::Vpl> = (0..count).map(|_| decode_vpl(&mut input)).collect();
+    let mut accumulator = MaybeUninit::<sphera::vsgl::VsglAccumulator>::uninit();
+    // SAFETY: init writes the accumulator.
+    let ok = unsafe { sphera_vsgl_accumulator_init(accumulator.as_mut_ptr(), origin) };
+    assert!(ok, "init");
+    // SAFETY: initialised above.
+    let mut accumulator = unsafe { accumulator.assume_init() };
+    let check = |v: &sphera::vsgl::Vsgl, what: &str| {
+        assert_words_finite(v, what);
+        for c in [v.diffuse_power, v.specular_power] {
+            assert!(c.min_element() >= 0.0, "{what}: negative power {v:?}");
+        }
+        assert!(v.variance >= 0.0, "{what}: negative variance {v:?}");
+    };
+    for vpl in &vpls {
+        // SAFETY: valid pointers.
+        unsafe { sphera_vsgl_accumulator_add_vpl(&mut accumulator, vpl) };
+        // SAFETY: as above.
+        check(
+            &unsafe { sphera_vsgl_accumulator_finish(&accumulator) },
+            "finish",
+        );
+    }
+    let raw = sphera::vsgl::VsglTexel {
+        diffuse_power: input.vec3().into(),
+        specular_power: input.vec3().into(),
+        diffuse_direction: input.vec3().into(),
+        specular_direction: input.vec3().into(),
+        position: input.vec3().into(),
+        squared_distance: input.float(),
+        weight: input.float(),
+    };
+    let other = accumulator;
+    // SAFETY: valid pointers.
+    unsafe {
+        sphera_vsgl_accumulator_add_texel(&mut accumulator, &raw);
+        check(&sphera_vsgl_accumulator_finish(&accumulator), "texel");
+        sphera_vsgl_accumulator_merge(&mut accumulator, &other);
+        check(&sphera_vsgl_accumulator_finish(&accumulator), "merge");
+    }
+
+    // A pyramid of size 1, 2, 4 or 8 whose finest texels come from the VPLs (and the raw
+    // texel), each coarser texel the sum of its four children.
+    let size = 1u32 << (input.byte() % 4);
+    let total = sphera_vsgl_pyramid_texel_count(size);
+    let mut texels = vec![sphera::vsgl::VsglTexel::ZERO; total];
+    for (i, texel) in texels.iter_mut().take((size * size) as usize).enumerate() {
+        match vpls.get(i % (vpls.len() + 1)) {
+            // SAFETY: valid pointers.
+            Some(vpl) => unsafe {
+                sphera_vsgl_texel_from_vpl(vpl, origin, texel);
+            },
+            None => *texel = raw,
+        }
+    }
+    let (mut offset, mut level) = (0usize, size);
+    while level > 1 {
+        let next = offset + (level * level) as usize;
+        let half = level / 2;
+        for y in 0..half {
+            for x in 0..half {
+                let at = |dx: u32, dy: u32| offset + ((2 * y + dy) * level + 2 * x + dx) as usize;
+                let sum = texels[at(0, 0)]
+                    .add(&texels[at(1, 0)])
+                    .add(&texels[at(0, 1)])
+                    .add(&texels[at(1, 1)]);
+                texels[next + (y * half + x) as usize] = sum;
+            }
+        }
+        offset = next;
+        level = half;
+    }
+    let clusters = [0u32, 1, 3, 64, u32::MAX][(input.byte() % 5) as usize];
+    let kernel = input.float();
+    let iterations = input.byte() as u32 % 40;
+    for (u0, u1) in random_pairs(&mut input) {
+        // SAFETY: `texels` holds `total` texels.
+        let v = unsafe {
+            sphera_vsgl_fis_select(
+                texels.as_ptr(),
+                total,
+                size,
+                origin,
+                clusters,
+                kernel,
+                iterations,
+                u0,
+                u1,
+            )
+        };
+        check(&v, "fis");
+    }
+}

@@ -6,7 +6,8 @@
 use std::path::Path;
 
 use sphera_tools::abi_invariants::{
-    ltc_and_light_entry_points, polygon_entry_points, sphere_entry_points,
+    ltc_and_light_entry_points, polygon_entry_points, sg_entry_points, sphere_entry_points,
+    vsgl_entry_points,
 };
 use sphera_tools::repository_root;
 
@@ -14,10 +15,12 @@ use sphera_tools::repository_root;
 /// A target's check.
 type Check = fn(&[u8]);
 
-const TARGETS: [(&str, Check); 3] = [
+const TARGETS: [(&str, Check); 5] = [
     ("polygon", polygon_entry_points),
     ("ltc_light", ltc_and_light_entry_points),
     ("sphere", sphere_entry_points),
+    ("sg", sg_entry_points),
+    ("vsgl", vsgl_entry_points),
 ];
 
 /// Runs `check` on every file in `dir` (if it exists); returns (files, failures).
@@ -92,4 +95,14 @@ fn every_corpus_has_a_replay() {
             );
         }
     }
+}
+
+#[test]
+fn sg_corpus() {
+    replay_target("sg");
+}
+
+#[test]
+fn vsgl_corpus() {
+    replay_target("vsgl");
 }
