@@ -336,6 +336,7 @@ impl ProjectedSolidAnglePolygon {
         }
         polygon.projected_solid_angle = total;
         polygon.density = density;
+        ignore_short_edges_in_containment(&mut polygon.edge_normals, &positions, count);
         Some(polygon)
     }
 
@@ -442,6 +443,22 @@ impl ProjectedSolidAnglePolygon {
         inside
     }
 
+    /// [`pdf`](Self::pdf) extended to directions outside the polygon by at most
+    /// `tolerance` radians (approximately; see [`contains_within`](Self::contains_within)):
+    /// the density formula continued there. For samplers that map this sampler's
+    /// directions through a transformation whose rounding may move them slightly out
+    /// (the LTC polygon). With `tolerance = 0` this is `pdf`.
+    pub(crate) fn pdf_within(&self, dir: Vec3, tolerance: f32) -> f32 {
+        if self.is_small != 0 {
+            return self.small.pdf_within(dir, tolerance);
+        }
+        if self.contains_within(dir, tolerance) {
+            crate::sample::normalize_scaled(dir).z * self.density
+        } else {
+            0.0
+        }
+    }
+
     /// Whether the ray along `dir` passes through the clipped polygon (boundary
     /// included) and lies strictly above the horizon.
     #[inline]
@@ -452,6 +469,62 @@ impl ProjectedSolidAnglePolygon {
             inside &= n.dot(dir) >= 0.0;
         }
         inside
+    }
+}
+
+/// Edges shorter than this (the sine of the angle between their endpoints) may be left
+/// out of the containment test: 2⁻²⁰ ≈ 9.5e-7 rad.
+const SHORT_EDGE_SINE: f32 = 1.0 / 1_048_576.0;
+
+/// The smallest sine of the turn between the neighbours of a short edge for which the
+/// edge is left out of the containment test: 1/16.
+const SHORT_EDGE_TURN_SINE: f32 = 1.0 / 16.0;
+
+/// Drops from the containment test (sets the normal to 0, which passes) every edge
+/// whose endpoints are closer than [`SHORT_EDGE_SINE`], unless the planes of its two
+/// neighbouring edges are nearly antiparallel.
+///
+/// Why: a vertex carries a rounding error of about `ε |p|`, which tilts the plane of an
+/// edge of angular length `θ` by about `ε / θ`. Where clipping puts a horizon point next
+/// to a vertex a few ulps above the horizon, `θ` is of the order of `ε` and the edge's
+/// plane is noise: found by fuzzing, the rounded clip point had the x and y of its
+/// neighbour, so the edge's plane passed through the zenith and cut the polygon in two,
+/// and `pdf` denied samples 0.2 rad inside. The sampler, which works with the sectors
+/// between vertex azimuths, never sees such an edge.
+///
+/// Without the edge, the region grows by the triangle between its endpoints and the
+/// meeting point of its neighbours' planes. With the edge's length `ℓ` and the exterior
+/// angles `δa`, `δb` at its endpoints, that triangle's height is
+/// `ℓ sin δa sin δb / sin(δa + δb) <= ℓ / sin(δa + δb)`, and `δa + δb` is the angle
+/// between the neighbours' normals. The edge is dropped where that angle is below 90°
+/// or its sine is at least [`SHORT_EDGE_TURN_SINE`]: the region then stays within
+/// 16 ℓ < 1.6e-5 rad of the polygon. Where the neighbours are nearly antiparallel (the
+/// end of a sliver) the triangle could be long, and the edge is kept.
+fn ignore_short_edges_in_containment(
+    normals: &mut [Vec3; MAX_POLYGON_VERTICES],
+    positions: &[Vec3; MAX_POLYGON_VERTICES],
+    count: usize,
+) {
+    let original = *normals;
+    for j in 0..count {
+        let (a, b) = (
+            positions[j],
+            positions[if j + 1 == count { 0 } else { j + 1 }],
+        );
+        let short = original[j].length_squared()
+            <= SHORT_EDGE_SINE * SHORT_EDGE_SINE * a.length_squared() * b.length_squared();
+        let previous = original[if j == 0 { count - 1 } else { j - 1 }];
+        let next = original[if j + 1 == count { 0 } else { j + 1 }];
+        let turn_sine2 = previous.cross(next).length_squared();
+        let bounded = previous.dot(next) > 0.0
+            || turn_sine2
+                >= SHORT_EDGE_TURN_SINE
+                    * SHORT_EDGE_TURN_SINE
+                    * previous.length_squared()
+                    * next.length_squared();
+        if short && bounded {
+            normals[j] = Vec3::ZERO;
+        }
     }
 }
 

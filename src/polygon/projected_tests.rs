@@ -755,3 +755,36 @@ fn directions_are_unit_in_a_sector_of_nearly_pi() {
     }
     assert!(worst < 1.5e-6, "|dir| off by {worst}");
 }
+
+/// Found by fuzzing: a vertex 9e-8 above the horizon next to one below. The clip point
+/// rounds to that vertex's x and y, and the plane of the 2e-8 rad edge between them
+/// passed through the zenith and cut the polygon in two, so `pdf` returned 0 for
+/// samples 0.2 rad inside. The containment test now leaves such edges out.
+#[test]
+fn pdf_accepts_samples_next_to_an_edge_that_clipping_made_tiny() {
+    let polygons = [
+        [
+            Vec3::new(6.87515e-1, -5.574833, -2.0544543),
+            Vec3::new(2.625, -3.0624998, 9.0154735e-8),
+            Vec3::new(-1.4673305e-1, 1.5162764, 1.964659),
+            Vec3::new(-1.3933886, -2.7320867, -9.3635577e-1),
+        ],
+        [
+            Vec3::new(2.5640106, -2.683063e-1, -1.07154585e-1),
+            Vec3::new(4.566898e-9, -1.2499994e-1, -5e-1),
+            Vec3::new(-2.625, 1.3750001, 4.371139e-8),
+            Vec3::new(1.504121e-7, 1.375, 5e-1),
+        ],
+    ];
+    for vertices in &polygons {
+        let polygon = ProjectedSolidAnglePolygon::new(vertices).unwrap();
+        let mut rng = Rng::new(7);
+        let mut denied = 0;
+        for _ in 0..10_000 {
+            let s = polygon.sample([rng.uniform_f32(), rng.uniform_f32()]);
+            assert!(s.pdf > 0.0);
+            denied += (polygon.pdf(s.dir) == 0.0) as u32;
+        }
+        assert_eq!(denied, 0, "{vertices:?}");
+    }
+}

@@ -175,10 +175,18 @@ impl SmallPolygonCosineSampler {
     /// the polygon or at or below the horizon.
     #[inline]
     pub fn pdf(&self, dir: Vec3) -> f32 {
+        self.pdf_within(dir, 0.0)
+    }
+
+    /// [`pdf`](Self::pdf) extended to directions outside the polygon by at most
+    /// `tolerance` radians (the density formula continued there), for samplers that map
+    /// this sampler's directions through a transformation whose rounding may move them
+    /// slightly out (the LTC polygon). With `tolerance = 0` this is `pdf`.
+    pub(crate) fn pdf_within(&self, dir: Vec3, tolerance: f32) -> f32 {
         if !(dir.z > 0.0) {
             return 0.0;
         }
-        let Some((k, local, u1)) = self.fan.invert_in_triangle(dir) else {
+        let Some((k, local, u1)) = self.fan.invert_in_triangle_within(dir, tolerance) else {
             return 0.0;
         };
         let triangle_solid_angle = self.fan.triangle_solid_angle(k);

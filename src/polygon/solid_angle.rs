@@ -382,6 +382,20 @@ impl SolidAnglePolygon {
         inside
     }
 
+    /// Whether `dir` lies inside the polygon or outside by at most `tolerance` radians
+    /// (approximately: the sine of the angle to each edge's great circle). With
+    /// `tolerance = 0` this is [`contains`](Self::contains).
+    #[inline]
+    pub fn contains_within(&self, dir: Vec3, tolerance: f32) -> bool {
+        let length = dir.length();
+        let mut inside = self.vertex_count > 0 && dir.is_finite() && length > 0.0;
+        for n in &self.edge_normals {
+            // Unused slots hold zero normals, whose dot product 0 passes.
+            inside &= n.dot(dir) >= -tolerance * n.length() * length;
+        }
+        inside
+    }
+
     /// The random numbers `u` for which [`sample`](Self::sample) returns `dir` (up to
     /// rounding), or `None` when `dir` is outside the polygon or the polygon is empty.
     pub fn invert(&self, dir: Vec3) -> Option<[f32; 2]> {
@@ -401,7 +415,29 @@ impl SolidAnglePolygon {
     /// which [`sample_in_triangle`](Self::sample_in_triangle) returns `dir` (up to
     /// rounding), or `None` when `dir` is outside the polygon or the polygon is empty.
     pub(crate) fn invert_in_triangle(&self, dir: Vec3) -> Option<(usize, f32, f32)> {
-        if !self.contains(dir) || self.selectable_triangles == 0 {
+        if !self.contains(dir) {
+            return None;
+        }
+        self.invert_in_triangle_unchecked(dir)
+    }
+
+    /// [`invert_in_triangle`](Self::invert_in_triangle) for a `dir` inside or outside by
+    /// at most `tolerance` radians (see [`contains_within`](Self::contains_within)); a
+    /// direction outside maps to the nearest triangle and clamped coordinates.
+    pub(crate) fn invert_in_triangle_within(
+        &self,
+        dir: Vec3,
+        tolerance: f32,
+    ) -> Option<(usize, f32, f32)> {
+        if !self.contains_within(dir, tolerance) {
+            return None;
+        }
+        self.invert_in_triangle_unchecked(dir)
+    }
+
+    /// The inversion for a finite, non-zero `dir` already tested to lie in the polygon.
+    fn invert_in_triangle_unchecked(&self, dir: Vec3) -> Option<(usize, f32, f32)> {
+        if self.selectable_triangles == 0 {
             return None;
         }
         let w = crate::sample::normalize_scaled(dir);
