@@ -7,6 +7,8 @@
 //!
 //! [`MAX_POLYGON_VERTICES`]: crate::MAX_POLYGON_VERTICES
 
+use crate::{MAX_POLYGON_VERTICES, Vec3};
+
 pub mod baselines;
 pub mod clip;
 mod ellipse;
@@ -26,3 +28,62 @@ pub use clip::clip_to_upper_hemisphere;
 pub use clipped_solid_angle::ClippedSolidAnglePolygon;
 pub use projected::ProjectedSolidAnglePolygon;
 pub use solid_angle::SolidAnglePolygon;
+
+/// Edges shorter than this (the sine of the angle between their endpoints) may be left
+/// out of the containment test: 2⁻¹⁶ ≈ 1.5e-5 rad.
+const SHORT_EDGE_SINE: f32 = 1.0 / 65_536.0;
+
+/// The farthest (in radians) that leaving a short edge out of the containment test may
+/// extend the polygon: 16 × [`SHORT_EDGE_SINE`] ≈ 2.4e-4 rad (by a triangle whose base
+/// is the edge, at most 3.7e-9 sr).
+const SHORT_EDGE_REACH: f32 = 16.0 * SHORT_EDGE_SINE;
+
+/// Drops from the containment test (sets the normal to 0, which passes) every edge
+/// whose endpoints are closer than [`SHORT_EDGE_SINE`] where that extends the region by
+/// at most [`SHORT_EDGE_REACH`].
+///
+/// Why: a vertex carries a rounding error of about `ε |p|`, which tilts the plane of an
+/// edge of angular length `ℓ` by about `ε / ℓ`. Where clipping puts a horizon point next
+/// to a vertex a few ulps above the horizon, `ℓ` is of the order of `ε` and the edge's
+/// plane is noise: found by fuzzing, the rounded clip point had the x and y of its
+/// neighbour, so the edge's plane passed through the zenith and cut the polygon in two,
+/// and `pdf` denied samples 0.2 rad inside (projected solid angle sampling; solid angle
+/// sampling of a clipped polygon likewise, 6e-3 rad inside for an edge of 1.3e-6 rad).
+/// The samplers never see such an edge: projected solid angle sampling works with the
+/// sectors between vertex azimuths, solid angle sampling with fan triangles.
+///
+/// Without the edge, the region grows by the triangle between its endpoints and the
+/// meeting point of its neighbours' planes. With the exterior angles `δa`, `δb` at its
+/// endpoints, that triangle's height is `ℓ sin δa sin δb / sin(δa + δb)`: at most `ℓ`
+/// when `δa + δb < 90°`, and at most `ℓ / sin(δa + δb)` otherwise, where `δa + δb` is
+/// the angle between the neighbours' normals. The edge is kept where that bound exceeds
+/// [`SHORT_EDGE_REACH`] (neighbours nearly antiparallel: the sharp end of a sliver).
+pub(crate) fn ignore_short_edges_in_containment(
+    normals: &mut [Vec3; MAX_POLYGON_VERTICES],
+    positions: &[Vec3; MAX_POLYGON_VERTICES],
+    count: usize,
+) {
+    let original = *normals;
+    for j in 0..count {
+        let (a, b) = (
+            positions[j],
+            positions[if j + 1 == count { 0 } else { j + 1 }],
+        );
+        // sin²ℓ = |n|² / (|a|² |b|²), kept as products (no division by a tiny length).
+        let length2 = original[j].length_squared();
+        let scale2 = a.length_squared() * b.length_squared();
+        let short = length2 <= SHORT_EDGE_SINE * SHORT_EDGE_SINE * scale2;
+        let previous = original[if j == 0 { count - 1 } else { j - 1 }];
+        let next = original[if j + 1 == count { 0 } else { j + 1 }];
+        // sin²(δa + δb) = |p × q|² / (|p|² |q|²); reach² = sin²ℓ / sin²(δa + δb).
+        let bounded = previous.dot(next) > 0.0
+            || length2 * previous.length_squared() * next.length_squared()
+                <= SHORT_EDGE_REACH
+                    * SHORT_EDGE_REACH
+                    * previous.cross(next).length_squared()
+                    * scale2;
+        if short && bounded {
+            normals[j] = Vec3::ZERO;
+        }
+    }
+}

@@ -336,7 +336,7 @@ impl ProjectedSolidAnglePolygon {
         }
         polygon.projected_solid_angle = total;
         polygon.density = density;
-        ignore_short_edges_in_containment(&mut polygon.edge_normals, &positions, count);
+        super::ignore_short_edges_in_containment(&mut polygon.edge_normals, &positions, count);
         Some(polygon)
     }
 
@@ -379,7 +379,14 @@ impl ProjectedSolidAnglePolygon {
         }
         let (u0, u1) = (clamp_random(u[0]), clamp_random(u[1]));
         if self.is_small != 0 {
-            return self.small.sample(u0, u1);
+            // The pdf through the inverse of the warp, exactly as `pdf` computes it: the
+            // warp's own value at the drawn coordinates differs from it by the rounding
+            // of the direction relative to the polygon's size, which is large for
+            // polygons of 1e-5 rad and below and unbounded relative to ℓ near a vertex on
+            // the horizon (found by fuzzing: up to 2e3 times; 2 times for u0 = 0 where a
+            // clipped vertex repeats). MIS needs `pdf(sample.dir) == sample.pdf`.
+            let s = self.small.sample(u0, u1);
+            return Sample::new_or_none(s.dir, self.small.pdf_within(s.dir, SMALL_ROUNDING));
         }
         let target = u0 * self.projected_solid_angle;
         // The sector: the number of sectors (among all but the last selectable) that start
@@ -409,16 +416,21 @@ impl ProjectedSolidAnglePolygon {
         if !dir.is_finite() {
             return Sample::NONE;
         }
-        Sample::new_or_none(dir, dir.z * self.density)
+        // `dir.z / Φ` as `pdf` computes it, so that `pdf(sample.dir) == sample.pdf` bit
+        // for bit wherever `pdf` finds the direction inside.
+        Sample::new_or_none(dir, crate::sample::normalize_scaled(dir).z * self.density)
     }
 
     /// `ω_z / Φ` for a direction inside the polygon (or on its boundary) and above the
     /// horizon, 0 otherwise. `dir` need not be normalised; a zero or non-finite `dir`
-    /// gives 0.
+    /// gives 0. For polygons below [`SMALL_EXTENT`](super::small_projected::SMALL_EXTENT)
+    /// (handled by the small-polygon sampler) it is that sampler's `ℓ / Φ̃` through the
+    /// inverse of its warp, and directions up to 16 ulps (1.9e-6 rad) outside count as
+    /// inside, where rounding puts samples of polygons that small.
     #[inline]
     pub fn pdf(&self, dir: Vec3) -> f32 {
         if self.is_small != 0 {
-            return self.small.pdf(dir);
+            return self.small.pdf_within(dir, SMALL_ROUNDING);
         }
         if self.contains(dir) {
             // Normalised by the largest component first: a tiny `dir` (1e-45) had a
@@ -472,61 +484,11 @@ impl ProjectedSolidAnglePolygon {
     }
 }
 
-/// Edges shorter than this (the sine of the angle between their endpoints) may be left
-/// out of the containment test: 2⁻²⁰ ≈ 9.5e-7 rad.
-const SHORT_EDGE_SINE: f32 = 1.0 / 1_048_576.0;
-
-/// The smallest sine of the turn between the neighbours of a short edge for which the
-/// edge is left out of the containment test: 1/16.
-const SHORT_EDGE_TURN_SINE: f32 = 1.0 / 16.0;
-
-/// Drops from the containment test (sets the normal to 0, which passes) every edge
-/// whose endpoints are closer than [`SHORT_EDGE_SINE`], unless the planes of its two
-/// neighbouring edges are nearly antiparallel.
-///
-/// Why: a vertex carries a rounding error of about `ε |p|`, which tilts the plane of an
-/// edge of angular length `θ` by about `ε / θ`. Where clipping puts a horizon point next
-/// to a vertex a few ulps above the horizon, `θ` is of the order of `ε` and the edge's
-/// plane is noise: found by fuzzing, the rounded clip point had the x and y of its
-/// neighbour, so the edge's plane passed through the zenith and cut the polygon in two,
-/// and `pdf` denied samples 0.2 rad inside. The sampler, which works with the sectors
-/// between vertex azimuths, never sees such an edge.
-///
-/// Without the edge, the region grows by the triangle between its endpoints and the
-/// meeting point of its neighbours' planes. With the edge's length `ℓ` and the exterior
-/// angles `δa`, `δb` at its endpoints, that triangle's height is
-/// `ℓ sin δa sin δb / sin(δa + δb) <= ℓ / sin(δa + δb)`, and `δa + δb` is the angle
-/// between the neighbours' normals. The edge is dropped where that angle is below 90°
-/// or its sine is at least [`SHORT_EDGE_TURN_SINE`]: the region then stays within
-/// 16 ℓ < 1.6e-5 rad of the polygon. Where the neighbours are nearly antiparallel (the
-/// end of a sliver) the triangle could be long, and the edge is kept.
-fn ignore_short_edges_in_containment(
-    normals: &mut [Vec3; MAX_POLYGON_VERTICES],
-    positions: &[Vec3; MAX_POLYGON_VERTICES],
-    count: usize,
-) {
-    let original = *normals;
-    for j in 0..count {
-        let (a, b) = (
-            positions[j],
-            positions[if j + 1 == count { 0 } else { j + 1 }],
-        );
-        let short = original[j].length_squared()
-            <= SHORT_EDGE_SINE * SHORT_EDGE_SINE * a.length_squared() * b.length_squared();
-        let previous = original[if j == 0 { count - 1 } else { j - 1 }];
-        let next = original[if j + 1 == count { 0 } else { j + 1 }];
-        let turn_sine2 = previous.cross(next).length_squared();
-        let bounded = previous.dot(next) > 0.0
-            || turn_sine2
-                >= SHORT_EDGE_TURN_SINE
-                    * SHORT_EDGE_TURN_SINE
-                    * previous.length_squared()
-                    * next.length_squared();
-        if short && bounded {
-            normals[j] = Vec3::ZERO;
-        }
-    }
-}
+/// How far outside a polygon handled by the small-polygon sampler (in radians) a
+/// direction may lie and still get the density (the warp's formula continued): 16 ulps
+/// of a unit vector, the rounding of a sampled direction, which for polygons of 1e-6 rad
+/// and below is a good part of their size.
+const SMALL_ROUNDING: f32 = 16.0 * f32::EPSILON;
 
 #[cfg(test)]
 #[path = "projected_tests.rs"]

@@ -151,15 +151,36 @@ impl TurkPolygon {
         let (p0, p1, p2) = (self.vertices[0], self.vertices[i + 1], self.vertices[i + 2]);
         let s = libm::sqrtf(a);
         let point = p0 + s * ((p1 - p0) + u1 * (p2 - p1));
-        let distance_squared = point.length_squared();
-        let dir = point * (1.0 / libm::sqrtf(distance_squared));
-        let cos_light = self.normal.dot(dir).abs();
-        let pdf = distance_squared * self.inv_area / cos_light;
-        if dir.is_finite() && pdf.is_finite() && pdf > 0.0 {
+        // Normalised by the largest component first: `|point|²` of a far polygon
+        // overflowed and gave non-unit directions (found by fuzzing).
+        let dir = crate::sample::normalize_scaled(point);
+        // The pdf as `pdf(dir)` computes it, from the ray's intersection with the plane
+        // rather than from `point`: the two differ by rounding amplified by
+        // `1 / cos θ_light` (found by fuzzing: far polygons), and MIS needs
+        // `pdf(sample.dir) == sample.pdf`. Bit for bit wherever `pdf` finds `dir`
+        // inside (it may not on an edge).
+        let pdf = self.density_along(dir / dir.abs().max_element());
+        if dir.is_finite() && pdf > 0.0 {
             Sample { dir, pdf }
         } else {
             Sample::NONE
         }
+    }
+
+    /// `|P|² / (area · |cos θ_light|)` for the point `P` where the ray along `dir` (its
+    /// largest component ±1) meets the polygon's plane; 0 where it does not (or not in
+    /// front) and where the result is not finite.
+    #[inline]
+    fn density_along(&self, dir: Vec3) -> f32 {
+        let normal_dot = self.normal.dot(dir);
+        let t = self.plane_offset / normal_dot;
+        if !(t > 0.0 && t.is_finite()) {
+            return 0.0;
+        }
+        let point = dir * t;
+        let cos_light = normal_dot.abs() / dir.length();
+        let pdf = point.length_squared() * self.inv_area / cos_light;
+        if pdf.is_finite() { pdf } else { 0.0 }
     }
 
     /// The density per steradian of [`sample`](Self::sample) in direction `dir` (need
@@ -185,16 +206,7 @@ impl TurkPolygon {
                 return 0.0;
             }
         }
-        // Intersection with the polygon's plane.
-        let normal_dot = self.normal.dot(dir);
-        let t = self.plane_offset / normal_dot;
-        if !(t > 0.0 && t.is_finite()) {
-            return 0.0;
-        }
-        let point = dir * t;
-        let cos_light = normal_dot.abs() / dir.length();
-        let pdf = point.length_squared() * self.inv_area / cos_light;
-        if pdf.is_finite() { pdf } else { 0.0 }
+        self.density_along(dir)
     }
 
     /// The polygon's area.
@@ -422,5 +434,46 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Found by fuzzing: far polygons (up to 1e30 away) gave sample pdfs that differed
+    /// from `pdf(dir)` (the point and the ray's intersection with the plane round
+    /// differently), and non-unit directions (`|P|²` overflowed). Now the sample's pdf
+    /// is `pdf(dir)` bit for bit wherever `pdf` finds `dir` inside, which all samples do
+    /// here but a few on edges (at most 1%).
+    #[test]
+    fn turk_sample_pdf_is_the_pdf_of_the_sampled_direction() {
+        let mut rng = Rng::new(41);
+        let (mut drawn, mut on_edge) = (0u32, 0u32);
+        for trial in 0..2000 {
+            let distance = 10f64.powf(60.0 * rng.uniform() - 30.0);
+            let c = d3(rng.unit_vector_f32());
+            let center = [c[0] * distance, c[1] * distance, c[2] * distance];
+            let radius = distance * 10f64.powf(-4.0 * rng.uniform());
+            let normal = d3(rng.unit_vector_f32());
+            let vertices = circle_polygon(3 + trial % 6, center, normal, radius, trial % 2 == 1);
+            let Some(polygon) = TurkPolygon::new(&vertices) else {
+                continue;
+            };
+            for _ in 0..10 {
+                let s = polygon.sample([rng.uniform_f32(), rng.uniform_f32()]);
+                if s.pdf == 0.0 {
+                    continue;
+                }
+                drawn += 1;
+                assert!((s.dir.length() - 1.0).abs() < 1e-6, "{s:?}");
+                let evaluated = polygon.pdf(s.dir);
+                if evaluated == 0.0 {
+                    on_edge += 1;
+                    continue;
+                }
+                assert_eq!(evaluated.to_bits(), s.pdf.to_bits(), "{vertices:?}");
+            }
+        }
+        assert!(drawn > 5_000, "{drawn}");
+        assert!(
+            (on_edge as f64) < 0.01 * drawn as f64,
+            "{on_edge} of {drawn}"
+        );
     }
 }
