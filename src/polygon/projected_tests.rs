@@ -73,7 +73,13 @@ fn error_bound(p: &ProjectedSolidAnglePolygon, v: &[Vec3]) -> f64 {
         }
         return 2e-6 + 1e-3 * (s2 as f64).powi(2) + 2.0 * fan_error;
     }
-    2e-6 + 2.5e-7 * condition(p)
+    // Three roundings (ε = 2⁻²³) of sector areas of the outer ellipses' size. Measured
+    // worst over the 3000 random polygons of
+    // `projected_solid_angle_matches_lamberts_formula_on_random_polygons`: 1.9 ε ×
+    // condition in the default build, 2.4 ε × condition built with `+fma` (where the
+    // error-free products take the FMA path and the roundings fall differently; the
+    // bound was 2.1 ε, calibrated on the default build only).
+    2e-6 + 3.0 * f32::EPSILON as f64 * condition(p)
 }
 
 fn cell_projected_solid_angle(c: &[D3; 3]) -> f64 {
@@ -202,8 +208,8 @@ fn projected_solid_angle_matches_lamberts_formula_on_random_polygons() {
         match ProjectedSolidAnglePolygon::new(&v) {
             Some(p) => {
                 let e = (p.projected_solid_angle() as f64 - reference).abs() / reference;
-                // Relative to the bound 2e-6 + 2.4e-7 × condition (a few roundings of
-                // the sector areas, amplified by the cancellation between them).
+                // Relative to the bound 2e-6 + 3ε × condition (a few roundings of the
+                // sector areas, amplified by the cancellation between them).
                 worst = worst.max(e / error_bound(&p, &v));
             }
             // 8 vertices that cross the horizon would need 9 after clipping.

@@ -183,13 +183,18 @@ impl SphereLightSampler {
         Some(SphereLightSampler { sptd, uses_sptd })
     }
 
-    /// Draws a direction in the light's cap.
+    /// Draws a direction in the light's cap; `pdf(sample.dir) == sample.pdf` bit for bit
+    /// (MIS relies on it). Samples that rounding puts just outside the cap are dropped
+    /// (`Sample::NONE`), as [`SptdInCap::sample`] drops them; for uniform sampling
+    /// (found by fuzzing: `u` next to 1 put the direction on the rim, where the cap's
+    /// containment test said outside).
     #[inline]
     pub fn sample(&self, u: [f32; 2]) -> Sample {
         if self.uses_sptd {
             self.sptd.sample(u)
         } else {
-            self.sptd.cap.sample_uniform(u)
+            let s = self.sptd.cap.sample_uniform(u);
+            Sample::new_or_none(s.dir, self.sptd.cap.pdf(s.dir))
         }
     }
 

@@ -303,3 +303,52 @@ fn bad_input_gives_none_or_finite_values() {
     }
     assert_eq!(sampler.pdf(Vec3::splat(f32::NAN)), 0.0);
 }
+
+/// Found by fuzzing: where the sampler falls back to uniform cap sampling, `u` next to
+/// 1 put the direction on the cap's rim and `pdf(dir)` said 0. Now every sample's pdf is
+/// `pdf(sample.dir)` bit for bit, for both paths, and few samples are dropped.
+#[test]
+fn sample_pdf_is_the_pdf_of_the_sampled_direction() {
+    let mut rng = Rng::new(91);
+    let (mut drawn, mut dropped, mut fallbacks) = (0u32, 0u32, 0u32);
+    let extremes = [0.0, 0.5, 1.0 - f32::EPSILON / 2.0];
+    for _ in 0..400 {
+        let distance = 10f32.powf(3.0 * rng.uniform_f32());
+        let center = rng.unit_vector_f32() * distance;
+        let radius = distance * 10f32.powf(-3.0 * rng.uniform_f32()) * 0.99;
+        let theta = 1.5 * rng.uniform_f32();
+        let wo = Vec3::new(theta.sin(), 0.0, theta.cos());
+        let Some(sampler) = SphereLightSampler::new(center, radius, wo, rng.uniform_f32()) else {
+            continue;
+        };
+        fallbacks += u32::from(!sampler.uses_sptd);
+        let mut us: std::vec::Vec<[f32; 2]> = (0..20)
+            .map(|_| [rng.uniform_f32(), rng.uniform_f32()])
+            .collect();
+        for a in extremes {
+            for b in extremes {
+                us.push([a, b]);
+            }
+        }
+        for (k, u) in us.into_iter().enumerate() {
+            let s = sampler.sample(u);
+            if s.pdf == 0.0 {
+                // Only rounding at the rim drops a sample: counted for random `u`
+                // (the extremes put half of their samples on the rim).
+                dropped += u32::from(k < 20);
+                continue;
+            }
+            drawn += u32::from(k < 20);
+            assert_eq!(
+                sampler.pdf(s.dir).to_bits(),
+                s.pdf.to_bits(),
+                "{center:?} {radius} {u:?}"
+            );
+        }
+    }
+    assert!(fallbacks > 20 && drawn > 7000, "{fallbacks} {drawn}");
+    assert!(
+        (dropped as f64) < 1e-3 * drawn as f64,
+        "{dropped} of {drawn}"
+    );
+}

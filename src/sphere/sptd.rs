@@ -159,14 +159,17 @@ impl Sptd {
     }
 
     /// Draws `ω = g(ω_i)` with `ω_i` from the base over the whole sphere; the pdf is
-    /// [`Sptd::eval`] (Section 4.2, importance sampling).
+    /// [`Sptd::eval`] at the returned direction, bit for bit (Section 4.2, importance
+    /// sampling). Computed from `ω_i` instead, `D_std(ω_i)` differs from `D_std(g(ω))`
+    /// by the rounding of the round trip `g(g(ω_i))`, which the Jacobian amplifies for
+    /// pivots near the unit sphere (found by fuzzing: 0.1–13% for the clamped cosine).
     pub fn sample(&self, u: [f32; 2]) -> Sample {
         let base = match self.base {
             SptdBase::Uniform => Cap::WHOLE_SPHERE.sample_uniform(u).dir,
             SptdBase::ClampedCosine => sample_cosine(self.cosine_axis, u),
         };
         let dir = transform(base, self.pivot);
-        let pdf = self.base_density(base) * jacobian(dir, self.pivot);
+        let pdf = self.eval(dir);
         if pdf > 0.0 && pdf.is_finite() {
             Sample { dir, pdf }
         } else {

@@ -1534,3 +1534,289 @@ pub fn vsgl_entry_points(data: &[u8]) {
         check(&v, "fis");
     }
 }
+
+/// A vector that is either raw (any floats) or a direction with the given length in
+/// `[0, 1)` (a "nice" pivot or view), so that the fuzzer explores valid input too.
+fn decode_pivot_or_direction(input: &mut Input, unit: bool) -> SpheraVec3 {
+    if input.byte() & 1 == 0 {
+        return input.vec3();
+    }
+    let t = input.random().max(0.0).min(1.0);
+    let p = input.random().max(0.0).min(1.0);
+    let length = if unit {
+        1.0
+    } else {
+        input.random().max(0.0).min(0.999)
+    };
+    let (s, c) = (std::f32::consts::PI * t).sin_cos();
+    let phi = 2.0 * std::f32::consts::PI * p;
+    vec3(length * s * phi.cos(), length * s * phi.sin(), length * c)
+}
+
+/// Asserts what every sampler restricted to a cap (an `SptdInCap`) keeps: finite words,
+/// the empty sampler after a failed prepare, integral in [0, 1], and samples whose pdf
+/// is `pdf(dir)` bit for bit (the contract: samples that rounding moves out of the cap
+/// are dropped).
+fn check_sptd_in_cap(
+    value: &sphera::sphere::SptdInCap,
+    ok: bool,
+    pairs: &[(f32, f32)],
+    probes: &[SpheraVec3],
+    what: &str,
+) {
+    assert_words_not_nan(value, what);
+    // SAFETY: valid pointer.
+    let integral = unsafe { sphera_sptd_in_cap_integral(value) };
+    assert!(
+        integral.is_finite() && (0.0..=1.0 + 1e-5).contains(&integral),
+        "{what}: integral {integral}"
+    );
+    for &probe in probes {
+        // SAFETY: valid pointer.
+        let p = unsafe { sphera_sptd_in_cap_pdf(value, probe) };
+        assert_density(p, what);
+        if !ok || !is_finite3(probe) {
+            assert_eq!(
+                p, 0.0,
+                "{what}: pdf({probe:?}) of a failed prepare or bad dir"
+            );
+        }
+    }
+    for &(u0, u1) in pairs {
+        // SAFETY: valid pointer.
+        let sample = unsafe { sphera_sptd_in_cap_sample(value, u0, u1) };
+        let what = format!("{what} u = ({u0:e}, {u1:e})");
+        assert_sample(sample, &what);
+        if !ok {
+            assert_no_sample(sample, &what);
+        }
+        if sample.pdf > 0.0 {
+            // SAFETY: valid pointer.
+            let evaluated = unsafe { sphera_sptd_in_cap_pdf(value, sample.dir) };
+            assert!(
+                evaluated.to_bits() == sample.pdf.to_bits(),
+                "{what}: sample pdf {} but pdf(dir) = {evaluated}",
+                sample.pdf
+            );
+        }
+    }
+}
+
+/// The SPTD and sphere-light entry points (Dupuy et al. 2017): SPTD density, sampling
+/// and integrals over caps and cap intersections, SPTDs restricted to a cap and the
+/// pivot phase function restricted to a cap, the GGX pivot lookup, real-time shading
+/// (with and without a visibility cone) and the joint light sampler.
+///
+/// Checked besides finiteness and the failure values: SPTD integrals in [0, 1];
+/// `sphera_sptd_sample`'s pdf equals `sphera_sptd_eval` at its direction and samplers
+/// restricted to a cap theirs, bit for bit; shading
+/// per unit radiance in [0, 1] per channel (it is at most the Fresnel-weighted albedo);
+/// the light sampler's samples have `pdf(dir)` equal to their pdf bit for bit.
+pub fn sptd_entry_points(data: &[u8]) {
+    use sphera::sphere::{GgxPivot, SphereLightSampler, SphereShadingSptd, SptdInCap};
+    let mut input = Input::new(data);
+    let a = decode_cap(&mut input);
+    let b = decode_cap(&mut input);
+    let pairs = random_pairs(&mut input);
+    let probes = probe_directions(&mut input);
+    let pivot = decode_pivot_or_direction(&mut input, false);
+    let base = u32::from(input.byte() % 3);
+    let axis = decode_pivot_or_direction(&mut input, true);
+    let wo = decode_pivot_or_direction(&mut input, true);
+    let roughness = if input.byte() & 1 == 0 {
+        input.float()
+    } else {
+        input.random()
+    };
+    let f0 = input.vec3();
+    let g = input.float();
+    let center = input.vec3();
+    let radius = input.float();
+
+    // The SPTD over the whole sphere.
+    for &probe in &probes {
+        let d = sphera_sptd_eval(pivot, base, axis, probe);
+        assert_density(d, "sptd eval");
+        if !is_finite3(probe) {
+            assert_eq!(d, 0.0, "sptd eval of {probe:?}");
+        }
+    }
+    for &(u0, u1) in &pairs {
+        let sample = sphera_sptd_sample(pivot, base, axis, u0, u1);
+        let what = format!("sptd u = ({u0:e}, {u1:e}) pivot {pivot:?} base {base}");
+        assert_sample(sample, &what);
+        if sample.pdf > 0.0 {
+            let evaluated = sphera_sptd_eval(pivot, base, axis, sample.dir);
+            assert!(
+                evaluated.to_bits() == sample.pdf.to_bits(),
+                "{what}: sample pdf {} but eval {evaluated}",
+                sample.pdf
+            );
+        }
+    }
+    for (integral, what) in [
+        (
+            sphera_sptd_integral_over_cap(pivot, base, axis, a),
+            "integral over a",
+        ),
+        (
+            sphera_sptd_integral_over_cap_intersection(pivot, base, axis, a, b),
+            "integral over a ∩ b",
+        ),
+    ] {
+        assert!(
+            integral.is_finite() && (0.0..=1.0 + 1e-5).contains(&integral),
+            "{what}: {integral} (pivot {pivot:?}, base {base}, {a:?}, {b:?})"
+        );
+    }
+
+    // Restricted to a cap: the SPTD and the pivot phase function.
+    // SAFETY: null is allowed.
+    unsafe {
+        assert!(!sphera_sptd_in_cap_prepare(
+            std::ptr::null_mut(),
+            pivot,
+            base,
+            axis,
+            a
+        ));
+        assert!(!sphera_phase_pivot_in_cap_prepare(
+            std::ptr::null_mut(),
+            wo,
+            g,
+            a
+        ));
+        assert_eq!(sphera_sptd_in_cap_integral(std::ptr::null()), 0.0);
+        assert_eq!(sphera_sptd_in_cap_pdf(std::ptr::null(), wo), 0.0);
+        assert_no_sample(
+            sphera_sptd_in_cap_sample(std::ptr::null(), 0.5, 0.5),
+            "null",
+        );
+    }
+    // SAFETY: `out` is writable.
+    let (in_cap, ok) = unsafe {
+        prepared::<SptdInCap>(|out| sphera_sptd_in_cap_prepare(out, pivot, base, axis, a))
+    };
+    check_sptd_in_cap(&in_cap, ok, &pairs, &probes, "sptd in cap");
+    // SAFETY: `out` is writable.
+    let (phase, ok) =
+        unsafe { prepared::<SptdInCap>(|out| sphera_phase_pivot_in_cap_prepare(out, wo, g, b)) };
+    check_sptd_in_cap(&phase, ok, &pairs, &probes, "pivot phase in cap");
+
+    // The GGX pivot table.
+    // SAFETY: null is allowed; `out` is writable.
+    unsafe {
+        assert!(!sphera_ggx_pivot_lookup(
+            std::ptr::null_mut(),
+            wo,
+            roughness
+        ));
+        let (fit, ok) = prepared::<GgxPivot>(|out| sphera_ggx_pivot_lookup(out, wo, roughness));
+        assert_words_finite(&fit, "ggx pivot");
+        if ok {
+            let p = to_f64(fit.pivot.into());
+            assert!(length(p) < 1.0, "ggx pivot {fit:?}");
+            assert!(
+                (0.0..=1.0 + 1e-5).contains(&fit.albedo),
+                "ggx albedo {fit:?}"
+            );
+        }
+        if !is_finite3(wo) || !(wo.z > 0.0) {
+            assert!(!ok, "ggx pivot accepted wo = {wo:?}");
+        }
+    }
+
+    // Real-time shading.
+    // SAFETY: null is allowed; `out` is writable.
+    unsafe {
+        assert!(!sphera_sphere_light_shading_prepare(
+            std::ptr::null_mut(),
+            wo,
+            roughness,
+            f0
+        ));
+        let zero = vec3(0.0, 0.0, 0.0);
+        assert_eq!(sphera_sphere_light_shade(std::ptr::null(), a), zero);
+        assert_eq!(
+            sphera_sphere_light_shade_occluded(std::ptr::null(), a, b),
+            zero
+        );
+        let (shading, ok) = prepared::<SphereShadingSptd>(|out| {
+            sphera_sphere_light_shading_prepare(out, wo, roughness, f0)
+        });
+        assert_words_finite(&shading, "shading");
+        for (value, what) in [
+            (sphera_sphere_light_shade(&shading, a), "shade"),
+            (
+                sphera_sphere_light_shade_occluded(&shading, a, b),
+                "shade occluded",
+            ),
+        ] {
+            let v = to_f64(value);
+            assert!(
+                v.iter().all(|c| (0.0..=1.0 + 1e-5).contains(c)),
+                "{what}: {value:?} (wo {wo:?}, r {roughness}, f0 {f0:?}, {a:?}, {b:?})"
+            );
+            if !ok {
+                assert_eq!(value, zero, "{what} after a failed prepare");
+            }
+        }
+    }
+
+    // The joint light sampler.
+    // SAFETY: null is allowed.
+    unsafe {
+        assert!(!sphera_sphere_light_sampler_prepare(
+            std::ptr::null_mut(),
+            center,
+            radius,
+            wo,
+            roughness
+        ));
+        assert_no_sample(
+            sphera_sphere_light_sampler_sample(std::ptr::null(), 0.5, 0.5),
+            "null",
+        );
+        assert_eq!(sphera_sphere_light_sampler_pdf(std::ptr::null(), wo), 0.0);
+        assert!(!sphera_sphere_light_sampler_uses_sptd(std::ptr::null()));
+    }
+    // SAFETY: `out` is writable.
+    let (sampler, ok) = unsafe {
+        prepared::<SphereLightSampler>(|out| {
+            sphera_sphere_light_sampler_prepare(out, center, radius, wo, roughness)
+        })
+    };
+    assert_words_not_nan(&sampler, "light sampler");
+    if !(is_finite3(center) && radius > 0.0 && radius.is_finite()) {
+        assert!(
+            !ok,
+            "light sampler accepted center {center:?} radius {radius}"
+        );
+    }
+    for &probe in &probes {
+        // SAFETY: valid pointer.
+        let p = unsafe { sphera_sphere_light_sampler_pdf(&sampler, probe) };
+        assert_density(p, "light sampler pdf");
+        if !ok || !is_finite3(probe) {
+            assert_eq!(p, 0.0, "light sampler pdf({probe:?})");
+        }
+    }
+    for &(u0, u1) in &pairs {
+        // SAFETY: valid pointer.
+        let sample = unsafe { sphera_sphere_light_sampler_sample(&sampler, u0, u1) };
+        let what = format!("light sampler u = ({u0:e}, {u1:e}) center {center:?} radius {radius}");
+        assert_sample(sample, &what);
+        if !ok {
+            assert_no_sample(sample, &what);
+        }
+        if sample.pdf > 0.0 {
+            // SAFETY: valid pointer.
+            let evaluated = unsafe { sphera_sphere_light_sampler_pdf(&sampler, sample.dir) };
+            assert!(
+                evaluated.to_bits() == sample.pdf.to_bits(),
+                "{what}: sample pdf {} but pdf(dir) = {evaluated}",
+                sample.pdf
+            );
+        }
+    }
+}

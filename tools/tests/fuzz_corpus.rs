@@ -7,7 +7,7 @@ use std::path::Path;
 
 use sphera_tools::abi_invariants::{
     ltc_and_light_entry_points, polygon_entry_points, sg_entry_points, sphere_entry_points,
-    vsgl_entry_points,
+    sptd_entry_points, vsgl_entry_points,
 };
 use sphera_tools::repository_root;
 
@@ -15,12 +15,13 @@ use sphera_tools::repository_root;
 /// A target's check.
 type Check = fn(&[u8]);
 
-const TARGETS: [(&str, Check); 5] = [
+const TARGETS: [(&str, Check); 6] = [
     ("polygon", polygon_entry_points),
     ("ltc_light", ltc_and_light_entry_points),
     ("sphere", sphere_entry_points),
     ("sg", sg_entry_points),
     ("vsgl", vsgl_entry_points),
+    ("sptd", sptd_entry_points),
 ];
 
 /// Runs `check` on every file in `dir` (if it exists); returns (files, failures).
@@ -105,4 +106,9 @@ fn sg_corpus() {
 #[test]
 fn vsgl_corpus() {
     replay_target("vsgl");
+}
+
+#[test]
+fn sptd_corpus() {
+    replay_target("sptd");
 }
