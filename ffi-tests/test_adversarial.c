@@ -766,6 +766,456 @@ static void sphere_suite(void) {
   }
 }
 
+
+/* ---- SPTDs, the GGX pivot table, real-time sphere shading, the light sampler -------- */
+
+static SpheraCap hard_caps[10];
+static int hard_cap_count = 0;
+static void fill_hard_caps(void) {
+  hard_cap_count = 0;
+  hard_caps[hard_cap_count++] = sphera_cap_from_sphere(vec3(0.0f, 0.0f, 1e3f), 0.178f);
+  hard_caps[hard_cap_count++] = sphera_cap_from_sphere(vec3(0.0f, 0.0f, 1.0f), 1.0f);
+  hard_caps[hard_cap_count++] = sphera_cap_from_sphere(vec3(0.1f, 0.0f, 0.0f), 1.0f);
+  hard_caps[hard_cap_count++] = sphera_cap_from_sphere(vec3(0.3f, -0.2f, 2.0f), 0.5f);
+  hard_caps[hard_cap_count++] = sphera_cap_from_sphere(vec3(2.0f, 0.0f, -0.3f), 0.5f); /* behind */
+  hard_caps[hard_cap_count++] = sphera_cap_from_axis_cos(vec3(0, 0, 1), -1.0f);       /* whole */
+  hard_caps[hard_cap_count++] = sphera_cap_from_axis_cos(vec3(0, 0, 1), 1.0f);        /* empty */
+  hard_caps[hard_cap_count++] = sphera_cap_from_axis_cos(vec3(1, 1, 1), 0.0f);        /* half */
+  hard_caps[hard_cap_count++] = sphera_cap_from_axis_cos(vec3(0, 1, 0), nextafterf(1.0f, 0.0f));
+  hard_caps[hard_cap_count].axis = vec3(NAN, 0.0f, 1.0f); /* by hand, broken */
+  hard_caps[hard_cap_count].one_minus_cos = INFINITY;
+  hard_caps[hard_cap_count].cos = NAN;
+  hard_caps[hard_cap_count].sin2 = -1.0f;
+  hard_cap_count++;
+}
+
+/* A prepared SPTD in a cap: finite, the empty sampler after a failed prepare, integral
+ * in [0, 1], and samples whose pdf is pdf(dir) bit for bit (the contract). */
+static void check_sptd_in_cap(const SpheraSptdInCap *s, int ok) {
+  int k, d;
+  float integral = sphera_sptd_in_cap_integral(s);
+  calls++;
+  expect_words_not_nan(s, sizeof *s);
+  EXPECT(isfinite(integral) && integral >= 0.0f && integral <= 1.00001f);
+  if (!ok) EXPECT(integral == 0.0f);
+  for (d = 0; d < DIRECTION_COUNT; d++) {
+    float p = sphera_sptd_in_cap_pdf(s, directions[d]);
+    calls++;
+    expect_density(p);
+    if (!ok || !finite3(directions[d])) EXPECT(p == 0.0f);
+  }
+  for (k = 0; k < pair_count(0); k++) {
+    float u0, u1;
+    SpheraSample sample;
+    pair(k, 0, &u0, &u1);
+    sample = sphera_sptd_in_cap_sample(s, u0, u1);
+    calls++;
+    expect_sample(sample);
+    if (!ok) EXPECT(is_no_sample(sample));
+    if (sample.pdf > 0.0f) {
+      float p = sphera_sptd_in_cap_pdf(s, sample.dir);
+      calls++;
+      EXPECT(memcmp(&p, &sample.pdf, sizeof p) == 0);
+    }
+  }
+}
+
+static void sptd_suite(void) {
+  const uint32_t bases[4] = {SPHERA_SPTD_UNIFORM, SPHERA_SPTD_CLAMPED_COSINE, 2u, UINT32_MAX};
+  float norms[8] = {0.0f, 0.0f, 1.0f, 2.0f, 0.0f, 0.0f, 1e-45f, 0.5f};
+  SpheraVec3 pivots[8 * DIRECTION_COUNT + 24];
+  int pivot_count = 0, k, j, b, c, d;
+  norms[1] = nextafterf(1.0f, 0.0f);
+  norms[4] = NAN;
+  norms[5] = INFINITY;
+  fill_hard_caps();
+  for (k = 0; k < 8; k++)
+    for (d = 0; d < DIRECTION_COUNT; d++) {
+      SpheraVec3 a = directions[(d + 1) % DIRECTION_COUNT];
+      pivots[pivot_count++] = vec3(a.x * norms[k], a.y * norms[k], a.z * norms[k]);
+    }
+  for (k = 0; k < 24; k++) pivots[pivot_count++] = special_vec(k * 5);
+
+  /* Null pointers. */
+  EXPECT(!sphera_sptd_in_cap_prepare(NULL, pivots[0], 0, directions[0], hard_caps[0]));
+  EXPECT(!sphera_phase_pivot_in_cap_prepare(NULL, directions[0], 0.5f, hard_caps[0]));
+  EXPECT(sphera_sptd_in_cap_integral(NULL) == 0.0f);
+  EXPECT(sphera_sptd_in_cap_pdf(NULL, directions[0]) == 0.0f);
+  EXPECT(is_no_sample(sphera_sptd_in_cap_sample(NULL, 0.5f, 0.5f)));
+  EXPECT(!sphera_ggx_pivot_lookup(NULL, directions[1], 0.5f));
+  EXPECT(!sphera_sphere_light_shading_prepare(NULL, directions[1], 0.5f, vec3(1, 1, 1)));
+  EXPECT(vec3_equal(sphera_sphere_light_shade(NULL, hard_caps[3]), vec3(0, 0, 0)));
+  EXPECT(vec3_equal(sphera_sphere_light_shade_occluded(NULL, hard_caps[3], hard_caps[7]),
+                    vec3(0, 0, 0)));
+  EXPECT(!sphera_sphere_light_sampler_prepare(NULL, vec3(0, 0, 2), 0.5f, directions[1], 0.5f));
+  EXPECT(is_no_sample(sphera_sphere_light_sampler_sample(NULL, 0.5f, 0.5f)));
+  EXPECT(sphera_sphere_light_sampler_pdf(NULL, directions[0]) == 0.0f);
+  EXPECT(!sphera_sphere_light_sampler_uses_sptd(NULL));
+  calls += 13;
+
+  /* SPTDs: every pivot, base and cosine axis. */
+  for (k = 0; k < pivot_count; k++) {
+    for (b = 0; b < 4; b++) {
+      for (j = 0; j < 3; j++) {
+        SpheraVec3 axis = directions[(k + 5 * j) % DIRECTION_COUNT];
+        for (d = 0; d < DIRECTION_COUNT; d++) {
+          float e = sphera_sptd_eval(pivots[k], bases[b], axis, directions[d]);
+          calls++;
+          expect_density(e);
+          if (!finite3(directions[d])) EXPECT(e == 0.0f);
+        }
+        for (d = 0; d < pair_count(0); d++) {
+          float u0, u1;
+          SpheraSample s;
+          pair(d, 0, &u0, &u1);
+          s = sphera_sptd_sample(pivots[k], bases[b], axis, u0, u1);
+          calls++;
+          expect_sample(s);
+          if (s.pdf > 0.0f) {
+            float e = sphera_sptd_eval(pivots[k], bases[b], axis, s.dir);
+            calls++;
+            EXPECT(memcmp(&e, &s.pdf, sizeof e) == 0);
+          }
+        }
+        for (c = 0; c < hard_cap_count; c++) {
+          SpheraSptdInCap in_cap;
+          int ok;
+          float whole = sphera_sptd_integral_over_cap(pivots[k], bases[b], axis, hard_caps[c]);
+          float both = sphera_sptd_integral_over_cap_intersection(
+              pivots[k], bases[b], axis, hard_caps[c], hard_caps[(c + 3) % hard_cap_count]);
+          calls += 2;
+          EXPECT(isfinite(whole) && whole >= 0.0f && whole <= 1.00001f);
+          EXPECT(isfinite(both) && both >= 0.0f && both <= 1.00001f);
+          memset(&in_cap, 0xff, sizeof in_cap);
+          ok = sphera_sptd_in_cap_prepare(&in_cap, pivots[k], bases[b], axis, hard_caps[c]);
+          calls++;
+          if (j == 0) check_sptd_in_cap(&in_cap, ok);
+        }
+      }
+    }
+  }
+
+  /* The pivot phase function in a cap, the pivot table, real-time shading and the
+   * light sampler, over special views, parameters and caps. */
+  for (k = 0; k < SPECIAL_COUNT + DIRECTION_COUNT; k++) {
+    SpheraVec3 wo = k < DIRECTION_COUNT ? directions[k] : special_vec(k * 3);
+    for (j = 0; j < SPECIAL_COUNT; j++) {
+      float x = specials[j];
+      SpheraSptdInCap phase;
+      SpheraGgxPivot fit;
+      SpheraSphereLightShading shading;
+      SpheraSphereLightSampler sampler;
+      SpheraVec3 f0 = special_vec(j + k);
+      int ok, c2;
+      for (c = 0; c < hard_cap_count; c += 3) {
+        memset(&phase, 0xff, sizeof phase);
+        ok = sphera_phase_pivot_in_cap_prepare(&phase, wo, x, hard_caps[c]);
+        calls++;
+        check_sptd_in_cap(&phase, ok);
+      }
+      memset(&fit, 0xff, sizeof fit);
+      ok = sphera_ggx_pivot_lookup(&fit, wo, x);
+      calls++;
+      expect_words_finite(&fit, sizeof fit);
+      if (ok) EXPECT(fit.albedo >= 0.0f && fit.albedo <= 1.00001f &&
+                     fit.pivot.x * fit.pivot.x + fit.pivot.y * fit.pivot.y +
+                             fit.pivot.z * fit.pivot.z < 1.0f);
+      if (!finite3(wo) || !(wo.z > 0.0f)) EXPECT(!ok);
+
+      memset(&shading, 0xff, sizeof shading);
+      ok = sphera_sphere_light_shading_prepare(&shading, wo, x, f0);
+      calls++;
+      expect_words_finite(&shading, sizeof shading);
+      if (!finite3(wo) || !(wo.z > 0.0f)) EXPECT(!ok);
+      for (c = 0; c < hard_cap_count; c++) {
+        for (c2 = 0; c2 < hard_cap_count; c2 += 2) {
+          SpheraVec3 v = c2 == 0 ? sphera_sphere_light_shade(&shading, hard_caps[c])
+                                 : sphera_sphere_light_shade_occluded(&shading, hard_caps[c],
+                                                                      hard_caps[c2]);
+          calls++;
+          EXPECT(finite3(v) && v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f && v.x <= 1.00001f &&
+                 v.y <= 1.00001f && v.z <= 1.00001f);
+          if (!ok) EXPECT(vec3_equal(v, vec3(0, 0, 0)));
+        }
+      }
+
+      for (c = 0; c < 4; c++) {
+        SpheraVec3 center = c == 0 ? vec3(0.3f, -0.2f, 2.0f)
+                            : c == 1 ? special_vec(j * 7 + k)
+                            : c == 2 ? vec3(0.0f, 0.0f, 0.1f) /* inside the sphere */
+                                     : vec3(3.0f, 0.0f, -1.0f); /* behind */
+        float radius = c == 1 ? 0.5f : x;
+        int s;
+        memset(&sampler, 0xff, sizeof sampler);
+        ok = sphera_sphere_light_sampler_prepare(&sampler, center, radius, wo,
+                                                 specials[(j + 5) % SPECIAL_COUNT]);
+        calls += 2;
+        expect_words_not_nan(&sampler, sizeof sampler);
+        (void)sphera_sphere_light_sampler_uses_sptd(&sampler);
+        if (!finite3(center) || !(radius > 0.0f) || !isfinite(radius)) EXPECT(!ok);
+        for (d = 0; d < DIRECTION_COUNT; d++) {
+          float p = sphera_sphere_light_sampler_pdf(&sampler, directions[d]);
+          calls++;
+          expect_density(p);
+          if (!ok || !finite3(directions[d])) EXPECT(p == 0.0f);
+        }
+        for (s = 0; s < pair_count(0); s++) {
+          float u0, u1;
+          SpheraSample sample;
+          pair(s, 0, &u0, &u1);
+          sample = sphera_sphere_light_sampler_sample(&sampler, u0, u1);
+          calls++;
+          expect_sample(sample);
+          if (!ok) EXPECT(is_no_sample(sample));
+          if (sample.pdf > 0.0f) {
+            float p = sphera_sphere_light_sampler_pdf(&sampler, sample.dir);
+            calls++;
+            EXPECT(memcmp(&p, &sample.pdf, sizeof p) == 0);
+          }
+        }
+      }
+    }
+  }
+}
+
+/* ---- SGs, ASGs, VSGLs ---------------------------------------------------------------- */
+
+static int sg_is_valid(SpheraSg g) {
+  return finite3(g.axis) && isfinite(g.sharpness) && g.sharpness >= 0.0f &&
+         g.sharpness <= (float)SPHERA_SG_MAX_SHARPNESS && isfinite(g.log_amplitude);
+}
+
+static int vsgl_is_finite(SpheraVsgl v) {
+  return sg_is_valid(v.diffuse) && sg_is_valid(v.specular) && finite3(v.diffuse_power) &&
+         finite3(v.specular_power) && finite3(v.mean) && isfinite(v.variance) &&
+         v.variance >= 0.0f && v.diffuse_power.x >= 0.0f && v.diffuse_power.y >= 0.0f &&
+         v.diffuse_power.z >= 0.0f && v.specular_power.x >= 0.0f &&
+         v.specular_power.y >= 0.0f && v.specular_power.z >= 0.0f;
+}
+
+static int vsgl_is_empty(SpheraVsgl v) {
+  return vec3_equal(v.diffuse_power, vec3(0, 0, 0)) && vec3_equal(v.specular_power, vec3(0, 0, 0));
+}
+
+#define SG_COUNT 96
+static SpheraSg sgs[SG_COUNT];
+static void fill_sgs(void) {
+  int k;
+  for (k = 0; k < SG_COUNT; k++) {
+    SpheraVec3 axis = k % 2 ? directions[k % DIRECTION_COUNT] : special_vec(k);
+    if (k < 64) {
+      sgs[k] = sphera_sg_new(axis, specials[k % SPECIAL_COUNT], specials[(k * 7 + 3) % SPECIAL_COUNT]);
+    } else {
+      /* By hand: any fields. */
+      sgs[k].axis = axis;
+      sgs[k].sharpness = specials[k % SPECIAL_COUNT];
+      sgs[k].log_amplitude = specials[(k * 5) % SPECIAL_COUNT];
+    }
+  }
+}
+
+static void sg_suite(void) {
+  int k, j, d;
+  fill_sgs();
+  for (k = 0; k < SG_COUNT; k++) {
+    SpheraSg g = sgs[k];
+    if (k < 64) EXPECT(sg_is_valid(g));
+    EXPECT(isfinite(sphera_sg_integral(specials[k % SPECIAL_COUNT])) &&
+           sphera_sg_integral(specials[k % SPECIAL_COUNT]) >= 0.0f);
+    calls += 2;
+    for (d = 0; d < DIRECTION_COUNT; d++) {
+      float e = sphera_sg_eval(g, directions[d]);
+      float p = sphera_sg_vmf_pdf(g, directions[d]);
+      float u[2] = {-1.0f, -1.0f};
+      int inverted = sphera_sg_vmf_invert(g, directions[d], u);
+      calls += 3;
+      expect_density(e);
+      expect_density(p);
+      if (inverted)
+        EXPECT(u[0] >= 0.0f && u[0] <= 1.0f && u[1] >= 0.0f && u[1] <= 1.0f);
+      else
+        EXPECT(u[0] == -1.0f && u[1] == -1.0f); /* writes nothing */
+      if (!finite3(directions[d])) EXPECT(!inverted);
+      EXPECT(!sphera_sg_vmf_invert(g, directions[d], NULL));
+      calls++;
+    }
+    for (d = 0; d < pair_count(0); d++) {
+      float u0, u1;
+      SpheraSample s;
+      pair(d, 0, &u0, &u1);
+      s = sphera_sg_vmf_sample(g, u0, u1);
+      calls++;
+      expect_sample(s);
+    }
+    for (j = 0; j < SG_COUNT; j += 3) {
+      SpheraSg product = sphera_sg_product(g, sgs[j]);
+      float inner = sphera_sg_inner_product(g, sgs[j]);
+      calls += 2;
+      EXPECT(sg_is_valid(product));
+      expect_density(inner);
+    }
+    for (j = 0; j < SPECIAL_COUNT; j++) {
+      SpheraVec3 normal = j < DIRECTION_COUNT ? directions[j] : special_vec(j + k);
+      SpheraVec3 view = directions[(j + k) % DIRECTION_COUNT];
+      float x = specials[(j * 3 + k) % SPECIAL_COUNT];
+      float vis = specials[(j + 2 * k) % SPECIAL_COUNT];
+      SpheraSg incoming = sphera_sg_incoming_radiance(g, special_vec(j * 11 + k), x);
+      SpheraSg lobe = sphera_sg_diffuse_lobe(normal);
+      SpheraSg specular = sphera_sg_specular_lobe(normal, view, x);
+      SpheraSg unnormalized = sphera_sg_specular_lobe_unnormalized(normal, view, x);
+      SpheraAsg asg = sphera_asg_ggx_lobe(normal, view, x);
+      SpheraAsg hand = sphera_asg_new(view, normal, x, vis, specials[(j + 9) % SPECIAL_COUNT]);
+      calls += 6;
+      EXPECT(sg_is_valid(incoming) && sg_is_valid(lobe) && sg_is_valid(specular) &&
+             sg_is_valid(unnormalized));
+      expect_words_finite(&asg, sizeof asg);
+      expect_words_finite(&hand, sizeof hand);
+      expect_density(sphera_sg_diffuse_shading_product(g, normal, x, vis));
+      expect_density(sphera_sg_diffuse_shading_constant_cosine(g, normal, x, vis));
+      expect_density(sphera_sg_diffuse_shading_sharp_lobe(g, normal, x, vis));
+      expect_density(sphera_sg_specular_shading(g, normal, view, x, vis, 1.0f));
+      expect_density(sphera_sg_specular_shading_sg(g, normal, view, x, 0.04f, vis));
+      expect_density(sphera_asg_eval(asg, directions[(j + 3) % DIRECTION_COUNT]));
+      expect_density(sphera_asg_eval(hand, directions[(j + 5) % DIRECTION_COUNT]));
+      expect_density(sphera_asg_integral(asg));
+      expect_density(sphera_asg_integral(hand));
+      expect_density(sphera_asg_convolve_sg(asg, g));
+      expect_density(sphera_asg_convolve_sg(hand, incoming));
+      calls += 11;
+    }
+  }
+}
+
+static SpheraVpl special_vpl(int k) {
+  SpheraVpl v;
+  v.position = k % 4 ? vec3(0.1f * (float)(k % 7), 1.0f, -0.2f * (float)(k % 3)) : special_vec(k);
+  v.normal = k % 3 ? directions[k % DIRECTION_COUNT] : special_vec(k + 1);
+  v.power = k % 5 ? vec3(1.0f, 0.5f, 0.25f) : special_vec(k + 2);
+  v.diffuse_reflectance = k % 2 ? vec3(0.5f, 0.5f, 0.5f) : special_vec(k + 3);
+  v.specular_reflectance = k % 6 ? vec3(0.04f, 0.04f, 0.04f) : special_vec(k + 4);
+  v.toward_incoming = k % 7 ? directions[(k + 1) % DIRECTION_COUNT] : special_vec(k + 5);
+  v.roughness = specials[k % SPECIAL_COUNT];
+  return v;
+}
+
+#define PYRAMID_SIZE 4
+#define PYRAMID_TEXELS 21 /* (4 · 16 − 1) / 3 */
+
+static void vsgl_suite(void) {
+  int k, j;
+  SpheraVsglAccumulator acc, other;
+  SpheraVsglTexel texel, pyramid[PYRAMID_TEXELS];
+  SpheraVsgl v;
+  SpheraVec3 origin = vec3(0.0f, 0.0f, 0.0f);
+  const uint32_t sizes[6] = {0u, 1u, 3u, 4u, 16384u, UINT32_MAX};
+  const uint32_t clusters[5] = {0u, 1u, 2u, 9u, UINT32_MAX};
+
+  /* Null pointers. */
+  EXPECT(!sphera_vsgl_accumulator_init(NULL, origin));
+  EXPECT(!sphera_vsgl_accumulator_add_vpl(NULL, NULL));
+  EXPECT(!sphera_vsgl_accumulator_add_texel(NULL, NULL));
+  EXPECT(!sphera_vsgl_accumulator_merge(NULL, NULL));
+  EXPECT(!sphera_vsgl_texel_from_vpl(NULL, origin, NULL));
+  EXPECT(vsgl_is_empty(sphera_vsgl_accumulator_finish(NULL)));
+  EXPECT(vsgl_is_empty(sphera_vsgl_fis_select(NULL, 21, 4, origin, 4, 1.0f, 8, 0.5f, 0.5f)));
+  calls += 7;
+  for (k = 0; k < 6; k++) {
+    size_t n = sphera_vsgl_pyramid_texel_count(sizes[k]);
+    calls++;
+    EXPECT(n == (sizes[k] == 1 ? 1u : sizes[k] == 4 ? 21u : sizes[k] == 16384u ? 357913941u : 0u));
+  }
+
+  /* Accumulators fed special VPLs and texels, one by one and merged. */
+  for (k = 0; k < 160; k++) {
+    SpheraVpl vpl = special_vpl(k);
+    SpheraVec3 o = k % 8 ? origin : special_vec(k);
+    int ok = sphera_vsgl_accumulator_init(&acc, o);
+    calls++;
+    /* The contract: a non-finite origin counts as the world origin. */
+    EXPECT(ok && finite3(acc.origin));
+    if (!finite3(o)) EXPECT(vec3_equal(acc.origin, origin));
+    for (j = 0; j < 9; j++) {
+      SpheraVpl w = special_vpl(k + j * 13);
+      (void)sphera_vsgl_accumulator_add_vpl(&acc, &w);
+      calls++;
+    }
+    memset(&texel, 0xff, sizeof texel);
+    ok = sphera_vsgl_texel_from_vpl(&vpl, o, &texel);
+    calls++;
+    expect_words_finite(&texel, sizeof texel);
+    (void)sphera_vsgl_accumulator_add_texel(&acc, &texel);
+    calls++;
+    expect_words_finite(&acc, sizeof acc);
+    v = sphera_vsgl_accumulator_finish(&acc);
+    calls++;
+    EXPECT(vsgl_is_finite(v));
+    EXPECT(sphera_vsgl_accumulator_init(&other, origin));
+    (void)sphera_vsgl_accumulator_add_vpl(&other, &vpl);
+    (void)sphera_vsgl_accumulator_merge(&other, &acc);
+    (void)sphera_vsgl_accumulator_merge(&other, &other);
+    calls += 4;
+    EXPECT(vsgl_is_finite(sphera_vsgl_accumulator_finish(&other)));
+    calls++;
+    /* A texel by hand: any fields. */
+    texel.diffuse_power = special_vec(k);
+    texel.specular_power = special_vec(k + 1);
+    texel.diffuse_direction = special_vec(k + 2);
+    texel.specular_direction = special_vec(k + 3);
+    texel.position = special_vec(k + 4);
+    texel.squared_distance = specials[k % SPECIAL_COUNT];
+    texel.weight = specials[(k + 1) % SPECIAL_COUNT];
+    EXPECT(sphera_vsgl_accumulator_init(&other, origin));
+    (void)sphera_vsgl_accumulator_add_texel(&other, &texel);
+    calls += 2;
+    EXPECT(vsgl_is_finite(sphera_vsgl_accumulator_finish(&other)));
+    calls++;
+  }
+
+  /* FIS on a 4×4 pyramid: a valid one, then texels with special fields; every size,
+   * count, kernel scale and random number. */
+  for (k = 0; k < 64; k++) {
+    int t, s, c, q;
+    for (t = 0; t < PYRAMID_TEXELS; t++) {
+      SpheraVpl vpl = special_vpl(t * 5 + 1);
+      vpl.position = vec3(0.1f * (float)(t % 4), 1.0f, 0.1f * (float)(t / 4));
+      vpl.power = vec3(1.0f + (float)t, 1.0f, 1.0f);
+      vpl.roughness = 0.3f;
+      if (!sphera_vsgl_texel_from_vpl(&vpl, origin, &pyramid[t]))
+        memset(&pyramid[t], 0, sizeof pyramid[t]);
+      calls++;
+    }
+    if (k > 0) {
+      /* Break one texel (the pyramid need not be consistent: no crash, finite). */
+      SpheraVsglTexel *broken = &pyramid[k % PYRAMID_TEXELS];
+      broken->weight = specials[k % SPECIAL_COUNT];
+      broken->diffuse_power = special_vec(k);
+      broken->position = special_vec(k + 1);
+      broken->squared_distance = specials[(k + 3) % SPECIAL_COUNT];
+    }
+    for (s = 0; s < 6; s++) {
+      for (c = 0; c < 5; c++) {
+        for (q = 0; q < pair_count(0); q += 4) {
+          float u0, u1;
+          pair(q, 0, &u0, &u1);
+          v = sphera_vsgl_fis_select(pyramid, PYRAMID_TEXELS, sizes[s], origin, clusters[c],
+                                     specials[(k + q) % SPECIAL_COUNT], (uint32_t)(q * 7), u0, u1);
+          calls++;
+          EXPECT(vsgl_is_finite(v));
+          if (sizes[s] != 4u && sizes[s] != 1u) EXPECT(vsgl_is_empty(v));
+          if (clusters[c] == 0u) EXPECT(vsgl_is_empty(v));
+        }
+      }
+    }
+    /* Too few texels, a bad origin. */
+    v = sphera_vsgl_fis_select(pyramid, PYRAMID_TEXELS - 1, 4, origin, 4, 1.0f, 8, 0.5f, 0.5f);
+    EXPECT(vsgl_is_empty(v));
+    v = sphera_vsgl_fis_select(pyramid, PYRAMID_TEXELS, 4, special_vec(k), 4, 1.0f, 8, 0.5f,
+                               0.5f);
+    EXPECT(vsgl_is_finite(v));
+    calls += 2;
+  }
+}
+
 static void run_all(void) {
   SpheraVec3 view = vec3(0.3f, 0.1f, 0.9f);
   EXPECT(sphera_ltc_ggx(&ltc_for_polygons, view, 0.4f));
@@ -777,6 +1227,9 @@ static void run_all(void) {
   mis_suite();
   frame_and_ltc_suite();
   sphere_suite();
+  sptd_suite();
+  sg_suite();
+  vsgl_suite();
   EXPECT(sphera_version() != NULL && sphera_version()[0] != '\0');
   (void)sphera_has_hardware_fma();
 }
