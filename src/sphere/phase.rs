@@ -161,7 +161,8 @@ pub fn sample_pivot_phase(wo: Vec3, g: f32, u: [f32; 2]) -> Sample {
 /// uniformly bright, unoccluded light has zero variance. `None` for a zero or
 /// non-finite `ω_o` or an empty cap.
 pub fn pivot_phase_in_cap(wo: Vec3, g: f32, cap: &Cap) -> Option<SptdInCap> {
-    let wo = wo.normalize_or_zero();
+    // Scaled first: a tiny `wo` has a denormal |ω_o|² and would not come out unit.
+    let wo = crate::sample::normalize_scaled(wo);
     if wo == Vec3::ZERO {
         return None;
     }

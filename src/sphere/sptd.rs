@@ -126,11 +126,11 @@ impl Sptd {
     /// The SPTD of the clamped-cosine base about `axis` (normalised here; a zero or
     /// non-finite axis becomes `z`) with pivot `pivot`.
     pub fn clamped_cosine(pivot: Vec3, axis: Vec3) -> Sptd {
-        let axis = if axis.is_finite() {
-            axis.normalize_or(Vec3::Z)
-        } else {
-            Vec3::Z
-        };
+        // Scaled by the largest component before normalising: an axis of 2e-21 has a
+        // denormal |a|², whose rounding left |a| = 1.00006 and integrals above 1
+        // (found by fuzzing). `normalize_scaled` gives 0 for zero or non-finite axes.
+        let axis = crate::sample::normalize_scaled(axis);
+        let axis = if axis == Vec3::ZERO { Vec3::Z } else { axis };
         Sptd {
             pivot: valid_pivot(pivot),
             cosine_axis: axis,
@@ -567,7 +567,7 @@ impl SptdInCap {
         if !self.cap.contains(dir) {
             return None;
         }
-        let base = transform(dir.normalize_or_zero(), self.sptd.pivot);
+        let base = transform(crate::sample::normalize_scaled(dir), self.sptd.pivot);
         match self.sptd.base {
             SptdBase::Uniform => self.image.invert(base),
             SptdBase::ClampedCosine => {

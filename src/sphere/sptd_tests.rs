@@ -404,3 +404,22 @@ fn whole_sphere_sample_pdf_is_eval_of_the_sampled_direction() {
         }
     }
 }
+
+/// Found by fuzzing: a cosine axis of 2e-21 (denormal |a|²) normalised to a length of
+/// 1.00006, and the integral over a hemisphere came out as 1.00006.
+#[test]
+fn tiny_cosine_axes_are_normalised_exactly() {
+    for axis in [
+        Vec3::new(1e-30, 2.304376e-21, 1e-30),
+        Vec3::new(1e-40, 0.0, 3e-41),
+        Vec3::new(3e38, -3e38, 1.0),
+    ] {
+        let sptd = Sptd::clamped_cosine(Vec3::ZERO, axis);
+        assert!((sptd.cosine_axis.length() - 1.0).abs() < 1e-6, "{axis:?}");
+        // With the pivot at the origin g(ω) = −ω: the cap around −a maps onto the one around a.
+        let hemisphere = Cap::from_axis_one_minus_cos(-sptd.cosine_axis, 1.0);
+        let prepared = SptdInCap::new(&sptd, &hemisphere)
+            .unwrap_or_else(|| panic!("{axis:?} {sptd:?} {hemisphere:?}"));
+        assert!(prepared.integral <= 1.0, "{}", prepared.integral);
+    }
+}

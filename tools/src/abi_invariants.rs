@@ -1569,7 +1569,7 @@ fn check_sptd_in_cap(
     let integral = unsafe { sphera_sptd_in_cap_integral(value) };
     assert!(
         integral.is_finite() && (0.0..=1.0 + 1e-5).contains(&integral),
-        "{what}: integral {integral}"
+        "{what}: integral {integral} of {value:?}"
     );
     for &probe in probes {
         // SAFETY: valid pointer.
