@@ -8,7 +8,7 @@
 
 #include "check.h"
 
-#define MAX_TOKENS 40
+#define MAX_TOKENS 48
 
 static float bits_to_float(const char *token) {
   uint32_t bits = (uint32_t)strtoul(token, NULL, 16);
@@ -41,6 +41,28 @@ static void expect_bits(const float *outputs, int n, char **tokens, int first, i
 static SpheraVec3 polygons[16][SPHERA_MAX_POLYGON_VERTICES];
 static uint32_t counts[16];
 
+static SpheraVpl vpls[16];
+
+/* Reads a vector from tokens[i..i + 3]. */
+static SpheraVec3 read3(char **tokens, int i) {
+  return vec3(bits_to_float(tokens[i]), bits_to_float(tokens[i + 1]), bits_to_float(tokens[i + 2]));
+}
+
+static void sg_outputs(SpheraSg g, float *o) {
+  o[0] = g.axis.x, o[1] = g.axis.y, o[2] = g.axis.z, o[3] = g.sharpness, o[4] = g.log_amplitude;
+}
+
+static void vec3_outputs(SpheraVec3 v, float *o) { o[0] = v.x, o[1] = v.y, o[2] = v.z; }
+
+static void vsgl_outputs(SpheraVsgl v, float *o) {
+  sg_outputs(v.diffuse, o);
+  sg_outputs(v.specular, o + 5);
+  vec3_outputs(v.diffuse_power, o + 10);
+  vec3_outputs(v.specular_power, o + 13);
+  vec3_outputs(v.mean, o + 16);
+  o[19] = v.variance;
+}
+
 static void sample_outputs(SpheraSample s, float *o) {
   o[0] = s.dir.x;
   o[1] = s.dir.y;
@@ -70,7 +92,7 @@ int main(void) {
     int n = 0;
     char *token;
     const char *kind;
-    float o[16];
+    float o[32];
     line++;
     if (buffer[0] == '#' || buffer[0] == '\n') continue;
     for (token = strtok(buffer, " \n"); token != NULL && n < MAX_TOKENS; token = strtok(NULL, " \n"))
@@ -133,6 +155,116 @@ int main(void) {
       expect_bits(o, 4, tokens, 7, line);
       continue;
     }
+    if (strcmp(kind, "sptd_in_cap") == 0) {
+      SpheraSptdInCap p;
+      SpheraSample s;
+      SpheraCap cap = sphera_cap_from_sphere(read3(tokens, 8), bits_to_float(tokens[11]));
+      sphera_sptd_in_cap_prepare(&p, read3(tokens, 2), (uint32_t)atoi(tokens[1]), read3(tokens, 5), cap);
+      s = sphera_sptd_in_cap_sample(&p, bits_to_float(tokens[12]), bits_to_float(tokens[13]));
+      sample_outputs(s, o);
+      o[4] = sphera_sptd_in_cap_pdf(&p, s.dir);
+      o[5] = sphera_sptd_in_cap_integral(&p);
+      expect_bits(o, 6, tokens, 14, line);
+      continue;
+    }
+    if (strcmp(kind, "phase_in_cap") == 0) {
+      SpheraSptdInCap p;
+      SpheraCap cap = sphera_cap_from_sphere(read3(tokens, 5), bits_to_float(tokens[8]));
+      sphera_phase_pivot_in_cap_prepare(&p, read3(tokens, 1), bits_to_float(tokens[4]), cap);
+      sample_outputs(sphera_sptd_in_cap_sample(&p, bits_to_float(tokens[9]), bits_to_float(tokens[10])), o);
+      expect_bits(o, 4, tokens, 11, line);
+      continue;
+    }
+    if (strcmp(kind, "light_sampler") == 0) {
+      SpheraSphereLightSampler p;
+      SpheraSample s;
+      sphera_sphere_light_sampler_prepare(&p, read3(tokens, 1), bits_to_float(tokens[4]),
+                                          read3(tokens, 5), bits_to_float(tokens[8]));
+      s = sphera_sphere_light_sampler_sample(&p, bits_to_float(tokens[9]), bits_to_float(tokens[10]));
+      sample_outputs(s, o);
+      o[4] = sphera_sphere_light_sampler_pdf(&p, s.dir);
+      expect_bits(o, 5, tokens, 11, line);
+      continue;
+    }
+    if (strcmp(kind, "sphere_shade") == 0) {
+      SpheraSphereLightShading shading;
+      SpheraCap light = sphera_cap_from_sphere(read3(tokens, 8), bits_to_float(tokens[11]));
+      SpheraCap cone = sphera_cap_from_axis_cos(read3(tokens, 12), bits_to_float(tokens[15]));
+      sphera_sphere_light_shading_prepare(&shading, read3(tokens, 1), bits_to_float(tokens[4]),
+                                          read3(tokens, 5));
+      vec3_outputs(sphera_sphere_light_shade(&shading, light), o);
+      vec3_outputs(sphera_sphere_light_shade_occluded(&shading, light, cone), o + 3);
+      expect_bits(o, 6, tokens, 16, line);
+      continue;
+    }
+    if (strcmp(kind, "vmf") == 0) {
+      SpheraSg g = sphera_sg_new(read3(tokens, 1), bits_to_float(tokens[4]), 1.0f);
+      sample_outputs(sphera_sg_vmf_sample(g, bits_to_float(tokens[5]), bits_to_float(tokens[6])), o);
+      expect_bits(o, 4, tokens, 7, line);
+      continue;
+    }
+    if (strcmp(kind, "sg_pair") == 0) {
+      SpheraSg a = sphera_sg_new(read3(tokens, 1), bits_to_float(tokens[4]), bits_to_float(tokens[5]));
+      SpheraSg b = sphera_sg_new(read3(tokens, 6), bits_to_float(tokens[9]), bits_to_float(tokens[10]));
+      sg_outputs(sphera_sg_product(a, b), o);
+      o[5] = sphera_sg_inner_product(a, b);
+      expect_bits(o, 6, tokens, 11, line);
+      continue;
+    }
+    if (strcmp(kind, "sg_shading") == 0) {
+      SpheraSg sg = sphera_sg_new(read3(tokens, 1), bits_to_float(tokens[4]), bits_to_float(tokens[5]));
+      SpheraVec3 normal = read3(tokens, 6), view = read3(tokens, 9);
+      float roughness = bits_to_float(tokens[12]);
+      SpheraSg incoming = sphera_sg_incoming_radiance(sg, read3(tokens, 13), bits_to_float(tokens[16]));
+      SpheraAsg asg = sphera_asg_ggx_lobe(normal, view, roughness * roughness);
+      sg_outputs(incoming, o);
+      o[5] = sphera_asg_convolve_sg(asg, incoming);
+      o[6] = sphera_sg_specular_shading(incoming, normal, view, roughness, 0.04f, 1.0f);
+      o[7] = sphera_sg_specular_shading_sg(incoming, normal, view, roughness, 0.04f, 1.0f);
+      o[8] = sphera_sg_diffuse_shading_product(incoming, normal, 0.5f, 1.0f);
+      o[9] = sphera_sg_diffuse_shading_constant_cosine(incoming, normal, 0.5f, 1.0f);
+      o[10] = sphera_sg_diffuse_shading_sharp_lobe(incoming, normal, 0.5f, 1.0f);
+      expect_bits(o, 11, tokens, 17, line);
+      continue;
+    }
+    if (strcmp(kind, "vpl") == 0) {
+      SpheraVpl *v = &vpls[atoi(tokens[1])];
+      v->position = read3(tokens, 2);
+      v->normal = read3(tokens, 5);
+      v->power = read3(tokens, 8);
+      v->diffuse_reflectance = read3(tokens, 11);
+      v->specular_reflectance = read3(tokens, 14);
+      v->toward_incoming = read3(tokens, 17);
+      v->roughness = bits_to_float(tokens[20]);
+      continue;
+    }
+    if (strcmp(kind, "vsgl_finish") == 0) {
+      SpheraVsglAccumulator acc;
+      int first = atoi(tokens[1]), count = atoi(tokens[2]), k;
+      sphera_vsgl_accumulator_init(&acc, vec3(0.0f, 0.0f, 0.0f));
+      for (k = first; k < first + count; k++) sphera_vsgl_accumulator_add_vpl(&acc, &vpls[k]);
+      vsgl_outputs(sphera_vsgl_accumulator_finish(&acc), o);
+      expect_bits(o, 20, tokens, 3, line);
+      continue;
+    }
+    if (strcmp(kind, "fis") == 0) {
+      SpheraVsglTexel pyramid[5];
+      SpheraVsglAccumulator acc;
+      SpheraVec3 origin = vec3(0.0f, 0.0f, 0.0f);
+      int k;
+      sphera_vsgl_accumulator_init(&acc, origin);
+      for (k = 0; k < 4; k++) {
+        sphera_vsgl_texel_from_vpl(&vpls[k], origin, &pyramid[k]);
+        sphera_vsgl_accumulator_add_texel(&acc, &pyramid[k]);
+      }
+      pyramid[4] = acc.sums;
+      vsgl_outputs(sphera_vsgl_fis_select(pyramid, 5, 2, origin, (uint32_t)atoi(tokens[1]),
+                                          bits_to_float(tokens[2]), (uint32_t)atoi(tokens[3]),
+                                          bits_to_float(tokens[4]), bits_to_float(tokens[5])),
+                   o);
+      expect_bits(o, 20, tokens, 6, line);
+      continue;
+    }
     /* The polygon samplers: <sampler> <id> <u0> <u1> -> dir, pdf. */
     {
       int id = atoi(tokens[1]);
@@ -193,6 +325,6 @@ int main(void) {
   }
   fclose(file);
   printf("%d records\n", records);
-  CHECK(records > 400);
+  CHECK(records > 900);
   return check_summary();
 }

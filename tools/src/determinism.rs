@@ -17,9 +17,30 @@
 //!   (clamped optimal MIS, the material of the C tests);
 //! - `ggx <roughness> <wo xyz> <u0> <u1> <dir xyz> <pdf>`, `lambert <u0> <u1> <dir xyz> <pdf>`;
 //! - `cap <center xyz> <radius> <u0> <u1> <dir xyz> <pdf>` (uniform cap sampling);
-//! - `pivot_phase` and `hg_phase <wo xyz> <g> <u0> <u1> <dir xyz> <pdf>`.
+//! - `pivot_phase` and `hg_phase <wo xyz> <g> <u0> <u1> <dir xyz> <pdf>`;
+//! - `sptd_in_cap <base> <pivot xyz> <axis xyz> <center xyz> <radius> <u0> <u1> <dir xyz>
+//!   <pdf> <pdf(dir)> <integral>` (an SPTD restricted to a sphere light's cap);
+//! - `phase_in_cap <wo xyz> <g> <center xyz> <radius> <u0> <u1> <dir xyz> <pdf>`;
+//! - `light_sampler <center xyz> <radius> <wo xyz> <roughness> <u0> <u1> <dir xyz> <pdf>
+//!   <pdf(dir)>` (the joint SPTD sampler of a sphere light);
+//! - `sphere_shade <wo xyz> <roughness> <f0 xyz> <center xyz> <radius> <cone axis xyz>
+//!   <cone cos> <shade xyz> <shade_occluded xyz>` (real-time shading);
+//! - `vmf <axis xyz> <sharpness> <u0> <u1> <dir xyz> <pdf>`;
+//! - `sg_pair <a: axis xyz sharpness amplitude> <b: …> <product: axis xyz sharpness
+//!   log_amplitude> <inner product>`;
+//! - `sg_shading <sg: axis xyz sharpness amplitude> <normal xyz> <view xyz> <roughness>
+//!   <mean xyz> <variance> <incoming: axis xyz sharpness log_amplitude> <ASG × SG>
+//!   <specular ASG> <specular SG> <diffuse product> <diffuse constant cosine>
+//!   <diffuse sharp lobe>` (the GGX ASG of α = roughness², f0 0.04, r_d 0.5, visibility 1);
+//! - `vpl <id> <position xyz> <normal xyz> <power xyz> <R_d xyz> <R_s xyz>
+//!   <toward_incoming xyz> <roughness>`: a VPL;
+//! - `vsgl_finish <first id> <count> <VSGL>`: the accumulator of VPLs first..first+count
+//!   about the origin, finished (`<VSGL>`: diffuse SG axis xyz sharpness log_amplitude,
+//!   specular SG likewise, diffuse power xyz, specular power xyz, mean xyz, variance);
+//! - `fis <cluster_count> <kernel_scale> <iterations> <u0> <u1> <VSGL>`: FIS selection on
+//!   the 2×2 pyramid of VPLs 0..4 about the origin (level 1 summed by an accumulator).
 //!
-//! To add a family (e.g. `sphera_sg_*`): a record type here and its case in the C test.
+//! To add a family: a record type here and its case in the C test.
 
 use std::fmt::Write;
 
@@ -30,6 +51,9 @@ use sphera::polygon::baselines::{
 };
 use sphera::polygon::light::{Material, PolygonLight};
 use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon};
+use sphera::sg::Sg;
+use sphera::sphere::{SphereLightSampler, SphereShadingSptd, SptdInCap};
+use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, VsglTexel};
 
 fn hex(x: f32) -> String {
     format!("{:08x}", x.to_bits())
@@ -300,5 +324,335 @@ pub fn table() -> String {
             }
         }
     }
+    sphere_records(&mut out);
+    sg_records(&mut out);
+    vsgl_records(&mut out);
     out
+}
+
+fn hex_sg(g: Sg) -> String {
+    format!(
+        "{} {} {}",
+        hex3(g.axis.into()),
+        hex(g.sharpness),
+        hex(g.log_amplitude)
+    )
+}
+
+fn hex_vsgl(v: &Vsgl) -> String {
+    format!(
+        "{} {} {} {} {} {}",
+        hex_sg(v.diffuse),
+        hex_sg(v.specular),
+        hex3(v.diffuse_power.into()),
+        hex3(v.specular_power.into()),
+        hex3(v.mean.into()),
+        hex(v.variance)
+    )
+}
+
+/// Writes `prepare`'s struct (which every prepare of the C ABI writes, also on failure).
+fn prepared<T>(prepare: impl FnOnce(*mut T) -> bool) -> T {
+    let mut value = std::mem::MaybeUninit::<T>::uninit();
+    prepare(value.as_mut_ptr());
+    // SAFETY: the C ABI's prepare functions write `out` whenever it is non-null.
+    unsafe { value.assume_init() }
+}
+
+/// Sphere lights: SPTDs in caps, the pivot phase function in a cap, the joint light
+/// sampler and real-time shading.
+fn sphere_records(out: &mut String) {
+    let spheres = [
+        (v3(0.0, 0.0, 3.0), 1.0f32),
+        (v3(2.0, 0.5, 0.4), 0.5),
+        (v3(0.2, 0.1, 0.3), 1.0),
+    ];
+    let pivots = [v3(0.0, 0.0, 0.0), v3(0.3, -0.2, 0.5), v3(-0.9, 0.1, 0.2)];
+    let axis = v3(0.0, 0.6, 0.8);
+    for base in [SPHERA_SPTD_UNIFORM, SPHERA_SPTD_CLAMPED_COSINE] {
+        for pivot in pivots {
+            for (center, radius) in spheres {
+                let cap = sphera_cap_from_sphere(center, radius);
+                // SAFETY: `out` is writable.
+                let value: SptdInCap =
+                    prepared(|o| unsafe { sphera_sptd_in_cap_prepare(o, pivot, base, axis, cap) });
+                for (u0, u1) in PAIRS {
+                    // SAFETY: prepared above.
+                    let (s, p, integral) = unsafe {
+                        let s = sphera_sptd_in_cap_sample(&value, u0, u1);
+                        let p = sphera_sptd_in_cap_pdf(&value, s.dir);
+                        (s, p, sphera_sptd_in_cap_integral(&value))
+                    };
+                    writeln!(
+                        out,
+                        "sptd_in_cap {base} {} {} {} {} {} {} {} {} {} {}",
+                        hex3(pivot),
+                        hex3(axis),
+                        hex3(center),
+                        hex(radius),
+                        hex(u0),
+                        hex(u1),
+                        hex3(s.dir),
+                        hex(s.pdf),
+                        hex(p),
+                        hex(integral)
+                    )
+                    .unwrap();
+                }
+            }
+        }
+    }
+    let views = [v3(0.0, 0.0, 1.0), v3(0.6, 0.0, 0.8), v3(0.1, -0.99, 0.05)];
+    for wo in views {
+        for g in [-0.5f32, 0.3, 0.9] {
+            let (center, radius) = spheres[(g > 0.0) as usize];
+            let cap = sphera_cap_from_sphere(center, radius);
+            // SAFETY: `out` is writable.
+            let value: SptdInCap =
+                prepared(|o| unsafe { sphera_phase_pivot_in_cap_prepare(o, wo, g, cap) });
+            for (u0, u1) in PAIRS {
+                // SAFETY: prepared above.
+                let s = unsafe { sphera_sptd_in_cap_sample(&value, u0, u1) };
+                writeln!(
+                    out,
+                    "phase_in_cap {} {} {} {} {} {} {} {}",
+                    hex3(wo),
+                    hex(g),
+                    hex3(center),
+                    hex(radius),
+                    hex(u0),
+                    hex(u1),
+                    hex3(s.dir),
+                    hex(s.pdf)
+                )
+                .unwrap();
+            }
+        }
+        for roughness in [0.05f32, 0.4, 1.0] {
+            for (center, radius) in spheres {
+                // SAFETY: `out` is writable.
+                let sampler: SphereLightSampler = prepared(|o| unsafe {
+                    sphera_sphere_light_sampler_prepare(o, center, radius, wo, roughness)
+                });
+                for (u0, u1) in PAIRS {
+                    // SAFETY: prepared above.
+                    let (s, p) = unsafe {
+                        let s = sphera_sphere_light_sampler_sample(&sampler, u0, u1);
+                        (s, sphera_sphere_light_sampler_pdf(&sampler, s.dir))
+                    };
+                    writeln!(
+                        out,
+                        "light_sampler {} {} {} {} {} {} {} {} {}",
+                        hex3(center),
+                        hex(radius),
+                        hex3(wo),
+                        hex(roughness),
+                        hex(u0),
+                        hex(u1),
+                        hex3(s.dir),
+                        hex(s.pdf),
+                        hex(p)
+                    )
+                    .unwrap();
+                }
+                let f0 = v3(0.04, 0.5, 1.0);
+                let cone_axis = v3(0.0, 0.6, 0.8);
+                let cone_cos = 0.2f32;
+                // SAFETY: `out` is writable; then valid pointers.
+                let (shade, occluded) = unsafe {
+                    let shading: SphereShadingSptd =
+                        prepared(|o| sphera_sphere_light_shading_prepare(o, wo, roughness, f0));
+                    let light = sphera_cap_from_sphere(center, radius);
+                    let cone = sphera_cap_from_axis_cos(cone_axis, cone_cos);
+                    (
+                        sphera_sphere_light_shade(&shading, light),
+                        sphera_sphere_light_shade_occluded(&shading, light, cone),
+                    )
+                };
+                writeln!(
+                    out,
+                    "sphere_shade {} {} {} {} {} {} {} {} {}",
+                    hex3(wo),
+                    hex(roughness),
+                    hex3(f0),
+                    hex3(center),
+                    hex(radius),
+                    hex3(cone_axis),
+                    hex(cone_cos),
+                    hex3(shade),
+                    hex3(occluded)
+                )
+                .unwrap();
+            }
+        }
+    }
+}
+
+/// SGs: vMF sampling, products and inner products, the ASG convolution, incoming
+/// radiance and the shading forms.
+fn sg_records(out: &mut String) {
+    let lobes = [
+        (v3(0.0, 0.0, 1.0), 0.5f32, 1.0f32),
+        (v3(0.6, 0.0, 0.8), 20.0, 3.0),
+        (v3(-0.48, 0.6, 0.64), 2000.0, 0.25),
+        (v3(0.0, 1.0, 0.0), 1e-3, 7.0),
+    ];
+    for (axis, sharpness, amplitude) in lobes {
+        let sg = sphera_sg_new(axis, sharpness, amplitude);
+        for (u0, u1) in PAIRS {
+            let s = sphera_sg_vmf_sample(sg, u0, u1);
+            writeln!(
+                out,
+                "vmf {} {} {} {} {} {}",
+                hex3(axis),
+                hex(sharpness),
+                hex(u0),
+                hex(u1),
+                hex3(s.dir),
+                hex(s.pdf)
+            )
+            .unwrap();
+        }
+        for (axis_b, sharpness_b, amplitude_b) in lobes {
+            let other = sphera_sg_new(axis_b, sharpness_b, amplitude_b);
+            writeln!(
+                out,
+                "sg_pair {} {} {} {} {} {} {} {}",
+                hex3(axis),
+                hex(sharpness),
+                hex(amplitude),
+                hex3(axis_b),
+                hex(sharpness_b),
+                hex(amplitude_b),
+                hex_sg(sphera_sg_product(sg, other)),
+                hex(sphera_sg_inner_product(sg, other))
+            )
+            .unwrap();
+        }
+        let normals = [v3(0.0, 0.0, 1.0), v3(0.0, 0.8, 0.6)];
+        let views = [v3(0.6, 0.0, 0.8), v3(-0.1, 0.2, 0.97)];
+        for (normal, view) in normals.into_iter().zip(views) {
+            for roughness in [0.1f32, 0.5] {
+                let mean = v3(0.5, -1.0, 2.0);
+                let variance = 0.3f32;
+                let incoming = sphera_sg_incoming_radiance(sg, mean, variance);
+                let asg = sphera_asg_ggx_lobe(normal, view, roughness * roughness);
+                writeln!(
+                    out,
+                    "sg_shading {} {} {} {} {} {} {} {} {} {} {} {} {} {} {}",
+                    hex3(axis),
+                    hex(sharpness),
+                    hex(amplitude),
+                    hex3(normal),
+                    hex3(view),
+                    hex(roughness),
+                    hex3(mean),
+                    hex(variance),
+                    hex_sg(incoming),
+                    hex(sphera_asg_convolve_sg(asg, incoming)),
+                    hex(sphera_sg_specular_shading(
+                        incoming, normal, view, roughness, 0.04, 1.0
+                    )),
+                    hex(sphera_sg_specular_shading_sg(
+                        incoming, normal, view, roughness, 0.04, 1.0
+                    )),
+                    hex(sphera_sg_diffuse_shading_product(
+                        incoming, normal, 0.5, 1.0
+                    )),
+                    hex(sphera_sg_diffuse_shading_constant_cosine(
+                        incoming, normal, 0.5, 1.0
+                    )),
+                    hex(sphera_sg_diffuse_shading_sharp_lobe(
+                        incoming, normal, 0.5, 1.0
+                    ))
+                )
+                .unwrap();
+            }
+        }
+    }
+}
+
+/// VSGLs: accumulators of VPLs, finished, and FIS cluster selection on a 2×2 pyramid.
+fn vsgl_records(out: &mut String) {
+    let vpls: Vec<Vpl> = (0..6)
+        .map(|k| {
+            let t = k as f32;
+            Vpl {
+                position: sphera::Vec3::new(0.3 * t - 0.5, 1.0 + 0.1 * t, -0.2 * t),
+                normal: sphera::Vec3::new(0.1 * t, 1.0, -0.05 * t),
+                power: sphera::Vec3::new(1.0 + t, 0.5, 0.25 * t),
+                diffuse_reflectance: sphera::Vec3::new(0.5, 0.4, 0.3),
+                specular_reflectance: sphera::Vec3::splat(0.04 + 0.1 * t),
+                toward_incoming: sphera::Vec3::new(0.2 * t - 0.5, 0.8, 0.3),
+                roughness: 0.05 + 0.15 * t,
+            }
+        })
+        .collect();
+    for (id, vpl) in vpls.iter().enumerate() {
+        writeln!(
+            out,
+            "vpl {id} {} {} {} {} {} {} {}",
+            hex3(vpl.position.into()),
+            hex3(vpl.normal.into()),
+            hex3(vpl.power.into()),
+            hex3(vpl.diffuse_reflectance.into()),
+            hex3(vpl.specular_reflectance.into()),
+            hex3(vpl.toward_incoming.into()),
+            hex(vpl.roughness)
+        )
+        .unwrap();
+    }
+    let origin = v3(0.0, 0.0, 0.0);
+    for (first, count) in [(0usize, 1usize), (0, 2), (1, 5), (0, 6)] {
+        // SAFETY: valid pointers throughout.
+        let vsgl = unsafe {
+            let mut acc: VsglAccumulator = prepared(|o| sphera_vsgl_accumulator_init(o, origin));
+            for vpl in &vpls[first..first + count] {
+                sphera_vsgl_accumulator_add_vpl(&mut acc, vpl);
+            }
+            sphera_vsgl_accumulator_finish(&acc)
+        };
+        writeln!(out, "vsgl_finish {first} {count} {}", hex_vsgl(&vsgl)).unwrap();
+    }
+    // The 2×2 pyramid: level 0 from VPLs 0..4, level 1 their sum.
+    // SAFETY: valid pointers throughout.
+    let pyramid: Vec<VsglTexel> = unsafe {
+        let mut level0: Vec<VsglTexel> = vpls[..4]
+            .iter()
+            .map(|vpl| prepared(|o| sphera_vsgl_texel_from_vpl(vpl, origin, o)))
+            .collect();
+        let mut acc: VsglAccumulator = prepared(|o| sphera_vsgl_accumulator_init(o, origin));
+        for texel in &level0 {
+            sphera_vsgl_accumulator_add_texel(&mut acc, texel);
+        }
+        level0.push(acc.sums);
+        level0
+    };
+    for (clusters, kernel_scale, iterations) in [(1u32, 1.0f32, 8u32), (4, 1.0, 8), (16, 0.5, 0)] {
+        for (u0, u1) in PAIRS {
+            // SAFETY: `pyramid` holds the 5 texels of a 2×2 map.
+            let vsgl = unsafe {
+                sphera_vsgl_fis_select(
+                    pyramid.as_ptr(),
+                    pyramid.len(),
+                    2,
+                    origin,
+                    clusters,
+                    kernel_scale,
+                    iterations,
+                    u0,
+                    u1,
+                )
+            };
+            writeln!(
+                out,
+                "fis {clusters} {} {iterations} {} {} {}",
+                hex(kernel_scale),
+                hex(u0),
+                hex(u1),
+                hex_vsgl(&vsgl)
+            )
+            .unwrap();
+        }
+    }
 }
