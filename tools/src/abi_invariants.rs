@@ -518,6 +518,32 @@ struct Family<T> {
     min_plane_ratio: f64,
 }
 
+impl<T> Family<T> {
+    /// A family with the strictest checks: `pdf(dir)` equal to the sample's pdf, no
+    /// horizon, no floors, asserted down to [`IN_PLANE`]; callers relax fields with
+    /// struct update syntax.
+    fn new(
+        name: &'static str,
+        prepare: unsafe extern "C" fn(*mut T, *const SpheraVec3, u32) -> bool,
+        sample: unsafe extern "C" fn(*const T, f32, f32) -> SpheraSample,
+        pdf: unsafe extern "C" fn(*const T, SpheraVec3) -> f32,
+        measure: Option<unsafe extern "C" fn(*const T) -> f32>,
+    ) -> Self {
+        Family {
+            name,
+            prepare,
+            sample,
+            pdf,
+            measure,
+            tolerance: 0.0,
+            above_horizon: false,
+            cosine_error: 0.0,
+            warp_floor: 0.0,
+            min_plane_ratio: IN_PLANE,
+        }
+    }
+}
+
 fn check_family<T: Copy>(
     family: &Family<T>,
     polygon: &DecodedPolygon,
@@ -694,24 +720,22 @@ pub fn polygon_entry_points(data: &[u8]) {
         assert_eq!(unsafe { sphera_polygon_clip(std::ptr::null_mut(), 4) }, 0);
     }
 
-    check_family(
-        &Family::<SolidAnglePolygon> {
-            name: "solid_angle",
-            prepare: sphera_solid_angle_polygon_prepare,
-            sample: sphera_solid_angle_polygon_sample,
-            pdf: sphera_solid_angle_polygon_pdf,
-            measure: Some(sphera_solid_angle_polygon_solid_angle),
-            // The pdf is the constant 1/Ω inside: the same float both ways.
-            tolerance: 0.0,
-            above_horizon: false,
-            cosine_error: 0.0,
-            warp_floor: 0.0,
-            min_plane_ratio: IN_PLANE,
-        },
-        &polygon,
-        &pairs,
-        &probes,
-    );
+    macro_rules! check {
+        ($family:expr) => {
+            check_family($family, &polygon, &pairs, &probes)
+        };
+    }
+    check!(&Family {
+        // The pdf is the constant 1/Ω inside: the same float both ways.
+        tolerance: 0.0,
+        ..Family::<SolidAnglePolygon>::new(
+            "solid_angle",
+            sphera_solid_angle_polygon_prepare,
+            sphera_solid_angle_polygon_sample,
+            sphera_solid_angle_polygon_pdf,
+            Some(sphera_solid_angle_polygon_solid_angle),
+        )
+    });
     // The inverse of solid angle sampling.
     {
         // SAFETY: valid pointers.
@@ -757,167 +781,125 @@ pub fn polygon_entry_points(data: &[u8]) {
             }
         }
     }
-    check_family(
-        &Family::<TurkPolygon> {
-            name: "turk",
-            prepare: sphera_turk_polygon_prepare,
-            sample: sphera_turk_polygon_sample,
-            pdf: sphera_turk_polygon_pdf,
-            measure: Some(sphera_turk_polygon_area),
-            // The sample's pdf is computed as `pdf(dir)` computes it, from the ray's
-            // intersection with the plane (it differed by up to 3% on far polygons
-            // before that fix, found by fuzzing).
-            tolerance: 0.0,
-            above_horizon: false,
-            cosine_error: 0.0,
-            warp_floor: 0.0,
-            min_plane_ratio: IN_PLANE,
-        },
-        &polygon,
-        &pairs,
-        &probes,
-    );
-    check_family(
-        &Family::<ArvoPolygon> {
-            name: "arvo",
-            prepare: sphera_arvo_polygon_prepare,
-            sample: sphera_arvo_polygon_sample,
-            pdf: sphera_arvo_polygon_pdf,
-            measure: Some(sphera_arvo_polygon_solid_angle),
-            tolerance: 0.0,
-            above_horizon: false,
-            cosine_error: 0.0,
-            warp_floor: 0.0,
-            // Polygons nearly a hemisphere across seen within 2e-5 of their plane
-            // (found by fuzzing: plane ratios 4e-6 to 1.8e-5, sizes within 1e-4 of π):
-            // the edges' planes, from vertices nearly antipodal, are ill-conditioned, and
-            // samples up to 0.8 rad inside got pdf(dir) = 0.
-            min_plane_ratio: 1e-4,
-        },
-        &polygon,
-        &pairs,
-        &probes,
-    );
-    check_family(
-        &Family::<HartBilinearPolygon> {
-            name: "hart_bilinear",
-            prepare: sphera_hart_bilinear_polygon_prepare,
-            sample: sphera_hart_bilinear_polygon_sample,
-            pdf: sphera_hart_bilinear_polygon_pdf,
-            measure: None,
-            tolerance: 1e-3,
-            above_horizon: true,
-            cosine_error: 0.0,
-            warp_floor: 16.0,
-            // Its pdf inverts solid angle sampling to find the primary sample and
-            // evaluates the warp there; with the shading point nearly in the polygon's
-            // plane the fan triangles are slivers whose inversion loses the primary
-            // sample (measured: 7.7% at plane ratio 3e-8), so the check needs 1e-3.
-            min_plane_ratio: 1e-3,
-        },
-        &polygon,
-        &pairs,
-        &probes,
-    );
-    check_family(
-        &Family::<HartBiquadraticPolygon> {
-            name: "hart_biquadratic",
-            prepare: sphera_hart_biquadratic_polygon_prepare,
-            sample: sphera_hart_biquadratic_polygon_sample,
-            pdf: sphera_hart_biquadratic_polygon_pdf,
-            measure: None,
-            tolerance: 1e-3,
-            above_horizon: true,
-            cosine_error: 0.0,
-            warp_floor: 16.0,
-            // Its pdf inverts solid angle sampling to find the primary sample and
-            // evaluates the warp there; with the shading point nearly in the polygon's
-            // plane the fan triangles are slivers whose inversion loses the primary
-            // sample (measured: 7.7% at plane ratio 3e-8), so the check needs 1e-3.
-            min_plane_ratio: 1e-3,
-        },
-        &polygon,
-        &pairs,
-        &probes,
-    );
-    check_family(
-        &Family::<ClippedSolidAnglePolygon> {
-            name: "clipped_solid_angle",
-            prepare: sphera_clipped_solid_angle_polygon_prepare,
-            sample: sphera_clipped_solid_angle_polygon_sample,
-            pdf: sphera_clipped_solid_angle_polygon_pdf,
-            measure: Some(sphera_clipped_solid_angle_polygon_solid_angle),
-            tolerance: 0.0,
-            above_horizon: true,
-            cosine_error: 0.0,
-            warp_floor: 0.0,
-            // Polygons nearly a hemisphere across seen within 2e-5 of their plane
-            // (found by fuzzing: plane ratios 4e-6 to 1.8e-5, sizes within 1e-4 of π):
-            // the edges' planes, from vertices nearly antipodal, are ill-conditioned, and
-            // samples up to 0.8 rad inside got pdf(dir) = 0.
-            min_plane_ratio: 1e-4,
-        },
-        &polygon,
-        &pairs,
-        &probes,
-    );
-    check_family(
-        &Family::<ProjectedSolidAnglePolygon> {
-            name: "projected",
-            prepare: sphera_projected_polygon_prepare,
-            sample: sphera_projected_polygon_sample,
-            pdf: sphera_projected_polygon_pdf,
-            measure: Some(sphera_projected_polygon_projected_solid_angle),
-            // The sample's pdf is computed as `pdf(dir)` computes it (`dir.z / Φ`, or the
-            // small-polygon warp's value through its inverse): bit for bit. Before that
-            // fix the fuzzer found differences up to 2e3 times for polygons of 1e-5 rad
-            // and below touching the horizon.
-            tolerance: 0.0,
-            above_horizon: true,
-            cosine_error: 0.0,
-            warp_floor: 0.0,
-            min_plane_ratio: GRAZING,
-        },
-        &polygon,
-        &pairs,
-        &probes,
-    );
-    check_family(
-        &Family::<ProjectedSolidAnglePolygon> {
-            name: "projected_fast",
-            prepare: sphera_projected_polygon_prepare_fast,
-            sample: sphera_projected_polygon_sample_fast,
-            pdf: sphera_projected_polygon_pdf,
-            measure: Some(sphera_projected_polygon_projected_solid_angle),
-            // The same pdf as `projected` (biased: not the density of these samples).
-            tolerance: 0.0,
-            above_horizon: true,
-            cosine_error: 0.0,
-            warp_floor: 0.0,
-            min_plane_ratio: GRAZING,
-        },
-        &polygon,
-        &pairs,
-        &probes,
-    );
-    check_family(
-        &Family::<ArvoProjectedPolygon> {
-            name: "arvo_projected",
-            prepare: sphera_arvo_projected_polygon_prepare,
-            sample: sphera_arvo_projected_polygon_sample,
-            pdf: sphera_arvo_projected_polygon_pdf,
-            measure: Some(sphera_arvo_projected_polygon_projected_solid_angle),
-            tolerance: 1e-5,
-            above_horizon: true,
-            // About 10 ulps of a unit vector's z.
-            cosine_error: 1e-6,
-            warp_floor: 0.0,
-            min_plane_ratio: GRAZING,
-        },
-        &polygon,
-        &pairs,
-        &probes,
-    );
+    check!(&Family {
+        // The sample's pdf is computed as `pdf(dir)` computes it, from the ray's
+        // intersection with the plane (it differed by up to 3% on far polygons
+        // before that fix, found by fuzzing).
+        tolerance: 0.0,
+        ..Family::<TurkPolygon>::new(
+            "turk",
+            sphera_turk_polygon_prepare,
+            sphera_turk_polygon_sample,
+            sphera_turk_polygon_pdf,
+            Some(sphera_turk_polygon_area),
+        )
+    });
+    check!(&Family {
+        // Polygons nearly a hemisphere across seen within 2e-5 of their plane
+        // (found by fuzzing: plane ratios 4e-6 to 1.8e-5, sizes within 1e-4 of π):
+        // the edges' planes, from vertices nearly antipodal, are ill-conditioned, and
+        // samples up to 0.8 rad inside got pdf(dir) = 0.
+        min_plane_ratio: 1e-4,
+        ..Family::<ArvoPolygon>::new(
+            "arvo",
+            sphera_arvo_polygon_prepare,
+            sphera_arvo_polygon_sample,
+            sphera_arvo_polygon_pdf,
+            Some(sphera_arvo_polygon_solid_angle),
+        )
+    });
+    check!(&Family {
+        tolerance: 1e-3,
+        above_horizon: true,
+        warp_floor: 16.0,
+        // Its pdf inverts solid angle sampling to find the primary sample and
+        // evaluates the warp there; with the shading point nearly in the polygon's
+        // plane the fan triangles are slivers whose inversion loses the primary
+        // sample (measured: 7.7% at plane ratio 3e-8), so the check needs 1e-3.
+        min_plane_ratio: 1e-3,
+        ..Family::<HartBilinearPolygon>::new(
+            "hart_bilinear",
+            sphera_hart_bilinear_polygon_prepare,
+            sphera_hart_bilinear_polygon_sample,
+            sphera_hart_bilinear_polygon_pdf,
+            None,
+        )
+    });
+    check!(&Family {
+        tolerance: 1e-3,
+        above_horizon: true,
+        warp_floor: 16.0,
+        // Its pdf inverts solid angle sampling to find the primary sample and
+        // evaluates the warp there; with the shading point nearly in the polygon's
+        // plane the fan triangles are slivers whose inversion loses the primary
+        // sample (measured: 7.7% at plane ratio 3e-8), so the check needs 1e-3.
+        min_plane_ratio: 1e-3,
+        ..Family::<HartBiquadraticPolygon>::new(
+            "hart_biquadratic",
+            sphera_hart_biquadratic_polygon_prepare,
+            sphera_hart_biquadratic_polygon_sample,
+            sphera_hart_biquadratic_polygon_pdf,
+            None,
+        )
+    });
+    check!(&Family {
+        above_horizon: true,
+        // Polygons nearly a hemisphere across seen within 2e-5 of their plane
+        // (found by fuzzing: plane ratios 4e-6 to 1.8e-5, sizes within 1e-4 of π):
+        // the edges' planes, from vertices nearly antipodal, are ill-conditioned, and
+        // samples up to 0.8 rad inside got pdf(dir) = 0.
+        min_plane_ratio: 1e-4,
+        ..Family::<ClippedSolidAnglePolygon>::new(
+            "clipped_solid_angle",
+            sphera_clipped_solid_angle_polygon_prepare,
+            sphera_clipped_solid_angle_polygon_sample,
+            sphera_clipped_solid_angle_polygon_pdf,
+            Some(sphera_clipped_solid_angle_polygon_solid_angle),
+        )
+    });
+    check!(&Family {
+        // The sample's pdf is computed as `pdf(dir)` computes it (`dir.z / Φ`, or the
+        // small-polygon warp's value through its inverse): bit for bit. Before that
+        // fix the fuzzer found differences up to 2e3 times for polygons of 1e-5 rad
+        // and below touching the horizon.
+        tolerance: 0.0,
+        above_horizon: true,
+        min_plane_ratio: GRAZING,
+        ..Family::<ProjectedSolidAnglePolygon>::new(
+            "projected",
+            sphera_projected_polygon_prepare,
+            sphera_projected_polygon_sample,
+            sphera_projected_polygon_pdf,
+            Some(sphera_projected_polygon_projected_solid_angle),
+        )
+    });
+    check!(&Family {
+        // The same pdf as `projected` (biased: not the density of these samples).
+        tolerance: 0.0,
+        above_horizon: true,
+        min_plane_ratio: GRAZING,
+        ..Family::<ProjectedSolidAnglePolygon>::new(
+            "projected_fast",
+            sphera_projected_polygon_prepare_fast,
+            sphera_projected_polygon_sample_fast,
+            sphera_projected_polygon_pdf,
+            Some(sphera_projected_polygon_projected_solid_angle),
+        )
+    });
+    check!(&Family {
+        tolerance: 1e-5,
+        above_horizon: true,
+        // About 10 ulps of a unit vector's z.
+        cosine_error: 1e-6,
+        min_plane_ratio: GRAZING,
+        ..Family::<ArvoProjectedPolygon>::new(
+            "arvo_projected",
+            sphera_arvo_projected_polygon_prepare,
+            sphera_arvo_projected_polygon_sample,
+            sphera_arvo_projected_polygon_pdf,
+            Some(sphera_arvo_projected_polygon_projected_solid_angle),
+        )
+    });
 }
 
 /// The LTC (lookup, density, albedo, restriction to a polygon) and the one-call
