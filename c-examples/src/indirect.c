@@ -8,52 +8,14 @@
 #include <string.h>
 #include <time.h>
 
-#if defined(__SSE__) || defined(__x86_64__)
-#include <pmmintrin.h>
-#include <xmmintrin.h>
-#define INDIRECT_SSE_CONTROL 1
-#endif
-
+#include "common.h"
 #include "indirect.h"
 
 #define PI_F 3.14159265358979f
 
 /* ---- small helpers --------------------------------------------------------------- */
 
-static double now_ms(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return 1e3 * (double)t.tv_sec + 1e-6 * (double)t.tv_nsec;
-}
-
-static void flush_to_zero(void) {
-#ifdef INDIRECT_SSE_CONTROL
-    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-#endif
-}
-
-static uint32_t cores(void) {
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    uint32_t n = 0;
-    char line[256];
-    if (f) {
-        while (fgets(line, sizeof line, f))
-            if (strncmp(line, "processor", 9) == 0) ++n;
-        fclose(f);
-    }
-    return n ? n : 1;
-}
-
-/* SplitMix64 (Steele et al. 2014). */
-static uint64_t splitmix(uint64_t *state) {
-    uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-static float uniform(uint64_t *state) { return (float)(splitmix(state) >> 40) * 0x1p-24f; }
+static float uniform(uint64_t *state) { return (float)(splitmix64(state) >> 40) * 0x1p-24f; }
 
 static SpheraVec3 sv(float3 v) {
     SpheraVec3 r = {v.x, v.y, v.z};
@@ -64,37 +26,10 @@ static float3 fv(SpheraVec3 v) { return f3(v.x, v.y, v.z); }
 
 static float lum(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
-static float3 to_world(const SpheraFrame *f, SpheraVec3 v) {
-    return f3(f->tangent.x * v.x + f->bitangent.x * v.y + f->normal.x * v.z,
-              f->tangent.y * v.x + f->bitangent.y * v.y + f->normal.y * v.z,
-              f->tangent.z * v.x + f->bitangent.z * v.y + f->normal.z * v.z);
-}
-
-static SpheraVec3 to_local(const SpheraFrame *f, float3 v) {
-    SpheraVec3 r = {f->tangent.x * v.x + f->tangent.y * v.y + f->tangent.z * v.z,
-                    f->bitangent.x * v.x + f->bitangent.y * v.y + f->bitangent.z * v.z,
-                    f->normal.x * v.x + f->normal.y * v.y + f->normal.z * v.z};
-    return r;
-}
-
 /* The nearest hit along a ray: false on a miss or a light's triangle. */
 static bool intersect(const Scene *scene, struct RTCIntersectContext *context, float3 origin,
                       float3 dir, float *t, uint32_t *triangle) {
-    struct RTCRayHit rh;
-    rh.ray.org_x = origin.x;
-    rh.ray.org_y = origin.y;
-    rh.ray.org_z = origin.z;
-    rh.ray.dir_x = dir.x;
-    rh.ray.dir_y = dir.y;
-    rh.ray.dir_z = dir.z;
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = INFINITY;
-    rh.ray.time = 0.0f;
-    rh.ray.mask = (unsigned)-1;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    struct RTCRayHit rh = make_ray_hit(origin, dir);
     rtcIntersect1(scene->rtc, context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     if (scene->triangle_light[rh.hit.primID] >= 0) return false;
@@ -109,19 +44,8 @@ static bool segment_free(const Scene *scene, struct RTCIntersectContext *context
     float3 d = f3_sub(target, origin);
     float length = f3_length(d);
     if (!(length > 2.0f * scene->ray_epsilon)) return true;
-    struct RTCRay ray;
-    ray.org_x = origin.x;
-    ray.org_y = origin.y;
-    ray.org_z = origin.z;
-    ray.dir_x = d.x / length;
-    ray.dir_y = d.y / length;
-    ray.dir_z = d.z / length;
-    ray.tnear = 0.0f;
-    ray.tfar = length - scene->ray_epsilon;
-    ray.time = 0.0f;
-    ray.mask = (unsigned)-1;
-    ray.id = 0;
-    ray.flags = 0;
+    struct RTCRay ray = make_ray(origin, f3(d.x / length, d.y / length, d.z / length),
+                                 length - scene->ray_epsilon);
     rtcOccluded1(scene->rtc, context, &ray);
     return ray.tfar >= 0.0f;
 }
@@ -192,7 +116,7 @@ static void trace_camera(const Scene *scene, uint32_t width, uint32_t height, Ca
             if (!sphera_frame_from_normal(&hit->frame, sv(normal))) continue;
             hit->position = f3_add(camera->position, f3_scale(dir, t));
             hit->origin = f3_add(hit->position, f3_scale(normal, scene->ray_epsilon));
-            hit->wo = to_local(&hit->frame, f3_scale(dir, -1.0f));
+            hit->wo = frame_to_local(&hit->frame, f3_scale(dir, -1.0f));
             hit->material = scene->triangle_material[triangle];
             hit->valid = true;
         }
@@ -208,7 +132,7 @@ typedef struct RowJob {
 
 static void *row_worker(void *argument) {
     RowJob *job = argument;
-    flush_to_zero();
+    enable_flush_to_zero();
     struct RTCIntersectContext rtc;
     rtcInitIntersectContext(&rtc);
     for (;;) {
@@ -266,7 +190,7 @@ static float3 bounce_radiance(const Scene *scene, const SpotLight *spot,
     SpheraFrame frame;
     if (!sphera_frame_from_normal(&frame, sv(normal))) return f3(0, 0, 0);
     const Material *m = &scene->materials[scene->triangle_material[triangle]];
-    float3 f = material_eval(m, to_local(&frame, f3_scale(dir, -1.0f)), to_local(&frame, l));
+    float3 f = material_eval(m, frame_to_local(&frame, f3_scale(dir, -1.0f)), frame_to_local(&frame, l));
     return f3_scale(f3_mul(f, intensity), cosine / distance2);
 }
 
@@ -284,7 +208,7 @@ static void reference_row(void *context, struct RTCIntersectContext *rtc, uint32
             float3 spec = specular_albedo(m, hit->wo);
             if (lum(spec) + lum(m->diffuse) > 0.0f) q = lum(spec) / (lum(spec) + lum(m->diffuse));
             uint64_t state = job->seed * 0xD1342543DE82EF95ull + pixel;
-            splitmix(&state);
+            splitmix64(&state);
             for (uint32_t s = 0; s < job->spp; ++s) {
                 float u0 = uniform(&state), u1 = uniform(&state);
                 SpheraSample sample = u0 < q ? sphera_ggx_sample(&m->ggx, hit->wo, u0 / q, u1)
@@ -294,7 +218,7 @@ static void reference_row(void *context, struct RTCIntersectContext *rtc, uint32
                 if (q > 0.0f) pdf += q * sphera_ggx_pdf(&m->ggx, hit->wo, sample.dir);
                 if (!(pdf > 0.0f)) continue;
                 float3 f = material_eval(m, hit->wo, sample.dir);
-                float3 dir = to_world(&hit->frame, sample.dir);
+                float3 dir = frame_to_world(&hit->frame, sample.dir);
                 float3 radiance = bounce_radiance(job->scene, job->spot, rtc, hit->origin, dir);
                 float w = sample.dir.z / pdf;
                 sum[0] += (double)(f.x * radiance.x * w);
@@ -318,11 +242,11 @@ bool indirect_render_reference(const Scene *scene, const SpotLight *spot, uint32
         *image = NULL;
         return false;
     }
-    flush_to_zero();
+    enable_flush_to_zero();
     trace_camera(scene, width, height, hits);
     double start = now_ms();
     ReferenceJob job = {scene, spot, hits, width, spp ? spp : 1, seed, *image};
-    for_each_row(threads ? threads : cores(), height, reference_row, &job);
+    for_each_row(threads ? threads : core_count(), height, reference_row, &job);
     *ms = now_ms() - start;
     free(hits);
     return true;
@@ -407,7 +331,7 @@ static void rsm_trace(const Scene *scene, const SpotLight *spot, Rsm *rsm) {
                 vpl->power = sv(f3_scale(intensity, solid_angle));
                 vpl->diffuse_reflectance = sv(m->diffuse);
                 if (sphera_frame_from_normal(&local, sv(normal)))
-                    vpl->specular_reflectance = sv(specular_albedo(m, to_local(&local, toward)));
+                    vpl->specular_reflectance = sv(specular_albedo(m, frame_to_local(&local, toward)));
                 vpl->toward_incoming = sv(toward);
                 vpl->roughness = m->roughness * m->roughness; /* GGX alpha */
                 rsm->material[k] = scene->triangle_material[triangle];
@@ -595,7 +519,7 @@ static float3 shade_vsgls(const Scene *scene, struct RTCIntersectContext *rtc,
                           const CameraHit *hit, const SpheraVsgl *vsgls, uint32_t count) {
     const Material *m = &scene->materials[hit->material];
     SpheraVec3 n = hit->frame.normal;
-    SpheraVec3 view = sv(to_world(&hit->frame, hit->wo));
+    SpheraVec3 view = sv(frame_to_world(&hit->frame, hit->wo));
     bool glossy = m->roughness > 0.0f;
     float3 sum = f3(0, 0, 0);
     for (uint32_t v = 0; v < count; ++v) {
@@ -634,14 +558,14 @@ static float3 shade_vpls(const Scene *scene, struct RTCIntersectContext *rtc,
         float d2 = f3_dot(d, d);
         if (!(d2 > 1e-8f)) continue;
         float3 l = f3_scale(d, 1.0f / sqrtf(d2));
-        SpheraVec3 wi = to_local(&hit->frame, l);
+        SpheraVec3 wi = frame_to_local(&hit->frame, l);
         float3 fx = material_eval(m, hit->wo, wi);
         if (!(lum(fx) > 0.0f)) continue;
         SpheraFrame frame;
         if (!sphera_frame_from_normal(&frame, vpl->normal)) continue;
         const Material *my = &scene->materials[rsm->material[k]];
-        SpheraVec3 out = to_local(&frame, f3_scale(l, -1.0f));
-        float3 fy = material_eval(my, to_local(&frame, fv(vpl->toward_incoming)), out);
+        SpheraVec3 out = frame_to_local(&frame, f3_scale(l, -1.0f));
+        float3 fy = material_eval(my, frame_to_local(&frame, fv(vpl->toward_incoming)), out);
         if (!(lum(fy) > 0.0f)) continue;
         float3 value = f3_scale(f3_mul(f3_mul(fx, fy), fv(vpl->power)), wi.z * out.z / d2);
         if (!segment_free(scene, rtc, hit->origin, fv(vpl->position))) continue;
@@ -691,7 +615,7 @@ bool indirect_render_vsgl(const Scene *scene, const SpotLight *spot,
     memset(result, 0, sizeof *result);
     const size_t pixels = (size_t)s->width * s->height;
     const uint32_t frames = s->frames ? s->frames : 1;
-    const uint32_t threads = s->threads ? s->threads : cores();
+    const uint32_t threads = s->threads ? s->threads : core_count();
     CameraHit *hits = malloc(sizeof(CameraHit) * pixels);
     SpheraVsgl *vsgls = malloc(sizeof(SpheraVsgl) * (s->cluster_count ? s->cluster_count : 1));
     float *image = malloc(sizeof(float) * 3 * pixels);
@@ -706,7 +630,7 @@ bool indirect_render_vsgl(const Scene *scene, const SpotLight *spot,
         free(image);
         return false;
     }
-    flush_to_zero();
+    enable_flush_to_zero();
     trace_camera(scene, s->width, s->height, hits);
     uint64_t state = s->seed * 0x9E3779B97F4A7C15ull + 0x1234567ull;
     double rmse_sum = 0.0, relmse_sum = 0.0, ratio_sum = 0.0;

@@ -8,12 +8,7 @@
 #include <string.h>
 #include <time.h>
 
-#if defined(__SSE__) || defined(__x86_64__)
-#include <pmmintrin.h>
-#include <xmmintrin.h>
-#define HAVE_SSE_CONTROL 1
-#endif
-
+#include "common.h"
 #include "techniques.h"
 #include "tracer.h"
 
@@ -42,14 +37,6 @@ typedef struct Hit {
 typedef struct Rng {
     uint64_t state;
 } Rng;
-
-/* SplitMix64 (Steele et al. 2014): a fresh, well-mixed stream per pixel and pass. */
-static uint64_t splitmix64(uint64_t *state) {
-    uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
 
 /* A float in [0, 1): the top 24 bits of a 64-bit draw times 2^-24, exact in f32. */
 static float rng_float(Rng *rng) {
@@ -127,19 +114,6 @@ static float3 brdf_sampler_eval(const BrdfSampler *b, SpheraVec3 wi) {
 
 /* ---- light sampling ----------------------------------------------------------------- */
 
-static float3 frame_to_world(const SpheraFrame *f, SpheraVec3 v) {
-    return f3(f->tangent.x * v.x + f->bitangent.x * v.y + f->normal.x * v.z,
-              f->tangent.y * v.x + f->bitangent.y * v.y + f->normal.y * v.z,
-              f->tangent.z * v.x + f->bitangent.z * v.y + f->normal.z * v.z);
-}
-
-static SpheraVec3 frame_to_local(const SpheraFrame *f, float3 v) {
-    SpheraVec3 r = {f->tangent.x * v.x + f->tangent.y * v.y + f->tangent.z * v.z,
-                    f->bitangent.x * v.x + f->bitangent.y * v.y + f->bitangent.z * v.z,
-                    f->normal.x * v.x + f->normal.y * v.y + f->normal.z * v.z};
-    return r;
-}
-
 /* The part [t0, t1] of the ray origin + t dir, t in [0, tmax], inside the medium's box
  * (slab method); false when the ray misses it or there is no medium. */
 static bool medium_segment(const Medium *m, float3 origin, float3 dir, float tmax, float *t0,
@@ -198,19 +172,7 @@ static float transmitted(const Scene *scene, struct RTCIntersectContext *context
     if (!(t > 0.0f) || !(t < INFINITY)) return 0.0f; /* parallel or behind: no hit */
     float tfar = t * (1.0f - 1e-5f) - scene->ray_epsilon;
     if (tfar <= 0.0f) return medium_transmittance(scene, origin, dir, t);
-    struct RTCRay ray;
-    ray.org_x = origin.x;
-    ray.org_y = origin.y;
-    ray.org_z = origin.z;
-    ray.dir_x = dir.x;
-    ray.dir_y = dir.y;
-    ray.dir_z = dir.z;
-    ray.tnear = 0.0f;
-    ray.tfar = tfar;
-    ray.time = 0.0f;
-    ray.mask = (unsigned)-1;
-    ray.id = 0;
-    ray.flags = 0;
+    struct RTCRay ray = make_ray(origin, dir, tfar);
     rtcOccluded1(scene->rtc, context, &ray);
     if (!(ray.tfar >= 0.0f)) return 0.0f; /* Embree sets tfar to -inf on a hit */
     return medium_transmittance(scene, origin, dir, t);
@@ -654,21 +616,7 @@ static void trace_camera_rays(const Scene *scene, uint32_t width, uint32_t heigh
             float sy = 1.0f - 2.0f * ((float)y + 0.5f) / (float)height;
             float3 dir = f3_normalize(f3_add(
                 camera->forward, f3_add(f3_scale(camera->right, sx), f3_scale(camera->up, sy))));
-            struct RTCRayHit rh;
-            rh.ray.org_x = camera->position.x;
-            rh.ray.org_y = camera->position.y;
-            rh.ray.org_z = camera->position.z;
-            rh.ray.dir_x = dir.x;
-            rh.ray.dir_y = dir.y;
-            rh.ray.dir_z = dir.z;
-            rh.ray.tnear = 0.0f;
-            rh.ray.tfar = INFINITY;
-            rh.ray.time = 0.0f;
-            rh.ray.mask = (unsigned)-1;
-            rh.ray.id = 0;
-            rh.ray.flags = 0;
-            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            struct RTCRayHit rh = make_ray_hit(camera->position, dir);
             rtcIntersect1(scene->rtc, &context, &rh);
             hit->camera_dir = dir;
             hit->transmittance = 1.0f;
@@ -716,14 +664,6 @@ typedef struct Worker {
     uint64_t samples;
 } Worker;
 
-static void enable_flush_to_zero(void) {
-#ifdef HAVE_SSE_CONTROL
-    /* Embree asks for flush-to-zero and denormals-are-zero in every rendering thread. */
-    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-#endif
-}
-
 static void *render_tiles(void *argument) {
     Worker *worker = argument;
     PassShared *shared = worker->shared;
@@ -764,24 +704,6 @@ static void *render_tiles(void *argument) {
     }
     worker->samples += samples;
     return NULL;
-}
-
-static double now_ms(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return 1e3 * (double)t.tv_sec + 1e-6 * (double)t.tv_nsec;
-}
-
-static uint32_t core_count(void) {
-    FILE *f = fopen("/proc/cpuinfo", "r");
-    uint32_t n = 0;
-    char line[256];
-    if (f) {
-        while (fgets(line, sizeof line, f))
-            if (strncmp(line, "processor", 9) == 0) ++n;
-        fclose(f);
-    }
-    return n ? n : 1;
 }
 
 void image_error(const float *image, const float *reference, uint32_t width, uint32_t height,

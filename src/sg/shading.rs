@@ -212,6 +212,23 @@ pub fn ggx_lobe_factor(normal: Vec3, view: Vec3, dir: Vec3, alpha: f32, f0: f32)
     if value.is_finite() { value } else { 0.0 }
 }
 
+/// What both specular forms share: the sanitized incoming SG, `α` and the factor
+/// `V C(ξ_in)` of the GGX lobe towards the incoming axis; `None` where that factor is
+/// not positive (the shading is 0 there).
+fn specular_factor(
+    incoming: &Sg,
+    normal: Vec3,
+    view: Vec3,
+    roughness: f32,
+    f0: f32,
+    visibility: f32,
+) -> Option<(Sg, f32, f32)> {
+    let incoming = incoming.sanitized();
+    let alpha = roughness_to_alpha(roughness);
+    let c = ggx_lobe_factor(normal, view, incoming.axis, alpha, f0) * clamp_unit(visibility);
+    (c > 0.0).then_some((incoming, alpha, c))
+}
+
 /// `V c_in C(ξ_in) ∫ G(ω, ξ_in, λ_in) Ĝ(ω) dω`: specular shading by the boxed formula of
 /// Section 4.2 with the ASG fit [`Asg::ggx_lobe`] of the GGX lobe at the shading point.
 pub fn specular_shading(
@@ -222,12 +239,11 @@ pub fn specular_shading(
     f0: f32,
     visibility: f32,
 ) -> f32 {
-    let incoming = incoming.sanitized();
-    let alpha = roughness_to_alpha(roughness);
-    let c = ggx_lobe_factor(normal, view, incoming.axis, alpha, f0) * clamp_unit(visibility);
-    if !(c > 0.0) {
+    let Some((incoming, alpha, c)) =
+        specular_factor(incoming, normal, view, roughness, f0, visibility)
+    else {
         return 0.0;
-    }
+    };
     let lobe = Asg::ggx_lobe(normal, view, alpha);
     let value = c * lobe.convolve_sg(&incoming);
     if value.is_finite() {
@@ -247,12 +263,11 @@ pub fn specular_shading_sg(
     f0: f32,
     visibility: f32,
 ) -> f32 {
-    let incoming = incoming.sanitized();
-    let alpha = roughness_to_alpha(roughness);
-    let c = ggx_lobe_factor(normal, view, incoming.axis, alpha, f0) * clamp_unit(visibility);
-    if !(c > 0.0) {
+    let Some((incoming, alpha, c)) =
+        specular_factor(incoming, normal, view, roughness, f0, visibility)
+    else {
         return 0.0;
-    }
+    };
     let lobe = specular_lobe(normal, view, alpha);
     let lobe = Sg {
         log_amplitude: libm::logf(c),
