@@ -242,10 +242,13 @@ impl LtcPolygon {
     }
 
     /// `∫_P D dω = Φ(M⁻¹P) / π`: the LTC's mass inside the polygon (Heitz 2016, the
-    /// polygon integral), in `[0, 1]`; 0 when empty.
+    /// polygon integral), in `[0, 1]`; 0 when empty. Clamped to 1: `M⁻¹P` is convex and
+    /// clipped to the upper hemisphere, so `Φ ≤ π`, but a polygon 1e5 across seen within
+    /// 1e-5 of its plane, stretched by a sharp `M⁻¹`, loses its convexity to rounding
+    /// (found by fuzzing: integrals up to 1.5).
     #[inline]
     pub fn integral(&self) -> f32 {
-        self.transformed.projected_solid_angle() * INV_PI
+        (self.transformed.projected_solid_angle() * INV_PI).min(1.0)
     }
 
     /// The LTC this polygon was prepared with.
