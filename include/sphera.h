@@ -1147,7 +1147,8 @@ bool sphera_turk_polygon_prepare(struct SpheraTurkPolygon *out,
  * Draws a direction towards a point uniformly distributed over the polygon's area from
  * the random numbers `u0`, `u1` in [0, 1) (values outside are clamped by the library).
  * The pdf is distance² / (area · |cos θ|) per steradian, with θ the angle between the
- * direction and the polygon's normal.
+ * direction and the polygon's normal, computed as `sphera_turk_polygon_pdf` computes it:
+ * equal to it bit for bit wherever that finds the direction inside the polygon.
  *
  * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty.
  * `dir` is always a finite unit vector.
@@ -1531,7 +1532,8 @@ bool sphera_projected_polygon_prepare_fast(struct SpheraProjectedSolidAnglePolyg
  * Draws a direction with density cos θ / Φ inside the polygon from the random numbers
  * `u0`, `u1` in [0, 1) (values outside, and NaN, are clamped by the library). The pdf
  * is per steradian: `dir.z / Φ` (for polygons handled by the small-polygon sampler,
- * within 1e-4 relative of it).
+ * within 1e-4 relative of it), equal to `sphera_projected_polygon_pdf(polygon, dir)` bit
+ * for bit wherever that finds the direction inside the polygon.
  *
  * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
  * and for a draw that lands exactly on the horizon (`cos θ = 0`, possible only for
@@ -1565,7 +1567,8 @@ struct SpheraSample sphera_projected_polygon_sample_fast(const struct SpheraProj
 /**
  * The density per steradian with which `sphera_projected_polygon_sample` produces the
  * direction `dir` (need not be normalised): `dir.z / Φ` inside the polygon, 0 outside
- * it, at or below the horizon, and for a zero or non-finite `dir`.
+ * it, at or below the horizon, and for a zero or non-finite `dir`. For polygons under
+ * 1e-2 rad (the small-polygon sampler) directions up to 16 ulps outside count as inside.
  *
  * Returns 0 when `polygon` is null or empty.
  *
@@ -1888,8 +1891,11 @@ bool sphera_ltc_polygon_prepare(struct SpheraLtcPolygon *out,
  * in [0, 1) (clamped by the library). The direction may lie at or below the horizon
  * (`dir.z <= 0`) where the LTC puts a little mass; the BRDF is zero there, so such a
  * sample contributes nothing, and it must not be discarded and redrawn (the pdf counts
- * it). Returns `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or empty; `dir` is
- * always a finite unit vector.
+ * it). The pdf is `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit (MIS weights rely
+ * on it). Returns `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or empty, and for
+ * the rare draw that the f32 round trip through a sharp LTC throws more than 1e-5 rad
+ * out of the polygon (0.4% of draws over the table, only for the smoothest cells); `dir`
+ * is always a finite unit vector.
  *
  * # Safety
  *
@@ -1903,7 +1909,8 @@ struct SpheraSample sphera_ltc_polygon_sample(const struct SpheraLtcPolygon *pol
 /**
  * The density of `sphera_ltc_polygon_sample` at `dir` (normalised first): `D(ω) /
  * ∫_P D` inside the polygon, 0 outside, for a null or empty `polygon`, and for zero or
- * non-finite `dir`. A sample exactly on the polygon's edge may get 0 here by rounding.
+ * non-finite `dir`. Directions up to 1e-5 rad (in the cosine's space) outside the
+ * polygon count as inside, where rounding puts samples.
  *
  * # Safety
  *
@@ -1913,8 +1920,8 @@ float sphera_ltc_polygon_pdf(const struct SpheraLtcPolygon *polygon, struct Sphe
 
 /**
  * `∫_P D dω`, the LTC's mass inside the polygon, in [0, 1]: the projected solid angle
- * of the transformed polygon over π (Heitz et al. 2016). 0 for a null or empty
- * `polygon`.
+ * of the transformed polygon over π (Heitz et al. 2016), clamped to 1. 0 for a null or
+ * empty `polygon`.
  *
  * # Safety
  *
@@ -2113,7 +2120,8 @@ float sphera_sptd_eval(struct SpheraVec3 pivot,
 
 /**
  * Draws `g(ω_i)` with `ω_i` from the base over the whole sphere; the pdf is
- * `sphera_sptd_eval`. pdf 0 only where the density underflows.
+ * `sphera_sptd_eval` at the returned direction, bit for bit. pdf 0 only where the
+ * density underflows.
  */
 struct SpheraSample sphera_sptd_sample(struct SpheraVec3 pivot,
                                        uint32_t base,
@@ -2281,7 +2289,9 @@ bool sphera_sphere_light_sampler_prepare(struct SpheraSphereLightSampler *out,
                                          float roughness);
 
 /**
- * Draws a direction in the light's cap; pdf 0 for null or a failed prepare.
+ * Draws a direction in the light's cap; its pdf is `sphera_sphere_light_sampler_pdf` at
+ * the direction, bit for bit (a draw that rounding puts just outside the cap is returned
+ * as no sample). pdf 0 for null or a failed prepare.
  *
  * # Safety
  *

@@ -221,7 +221,8 @@ pub unsafe extern "C" fn sphera_turk_polygon_prepare(
 /// Draws a direction towards a point uniformly distributed over the polygon's area from
 /// the random numbers `u0`, `u1` in [0, 1) (values outside are clamped by the library).
 /// The pdf is distance² / (area · |cos θ|) per steradian, with θ the angle between the
-/// direction and the polygon's normal.
+/// direction and the polygon's normal, computed as `sphera_turk_polygon_pdf` computes it:
+/// equal to it bit for bit wherever that finds the direction inside the polygon.
 ///
 /// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty.
 /// `dir` is always a finite unit vector.

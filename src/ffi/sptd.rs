@@ -44,7 +44,8 @@ pub extern "C" fn sphera_sptd_eval(
 }
 
 /// Draws `g(ω_i)` with `ω_i` from the base over the whole sphere; the pdf is
-/// `sphera_sptd_eval`. pdf 0 only where the density underflows.
+/// `sphera_sptd_eval` at the returned direction, bit for bit. pdf 0 only where the
+/// density underflows.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_sptd_sample(
     pivot: SpheraVec3,
@@ -304,7 +305,9 @@ pub unsafe extern "C" fn sphera_sphere_light_sampler_prepare(
     prepared.is_some()
 }
 
-/// Draws a direction in the light's cap; pdf 0 for null or a failed prepare.
+/// Draws a direction in the light's cap; its pdf is `sphera_sphere_light_sampler_pdf` at
+/// the direction, bit for bit (a draw that rounding puts just outside the cap is returned
+/// as no sample). pdf 0 for null or a failed prepare.
 ///
 /// # Safety
 ///
