@@ -64,6 +64,33 @@ impl<'a> VsglPyramid<'a> {
         (4 * size * size - 1) / 3
     }
 
+    /// Fills the coarser levels of the pyramid in place: `texels[..size²]` holds level 0
+    /// (row-major); every texel of level `l + 1` becomes the sum of its four children,
+    /// `(a + b) + (c + d)` in the order top-left, top-right, bottom-left, bottom-right.
+    /// Returns `false` (touching nothing) when `size` is not a power of two in
+    /// `1..=2^14` or `texels` holds fewer than [`Self::texel_count`] texels.
+    pub fn fill_levels(texels: &mut [VsglTexel], size: u32) -> bool {
+        let count = Self::texel_count(size);
+        if count == 0 || texels.len() < count {
+            return false;
+        }
+        let (mut start, mut side) = (0usize, size as usize);
+        while side > 1 {
+            let half = side / 2;
+            let next = start + side * side;
+            for y in 0..half {
+                for x in 0..half {
+                    let at = |i: usize, j: usize| texels[start + (2 * y + j) * side + 2 * x + i];
+                    texels[next + y * half + x] =
+                        at(0, 0).add(&at(1, 0)).add(&at(0, 1).add(&at(1, 1)));
+                }
+            }
+            start = next;
+            side = half;
+        }
+        true
+    }
+
     /// The pyramid over `texels`, or `None` when `size` is not a power of two in
     /// `1..=2^14`, `texels` holds fewer than [`Self::texel_count`] texels (extra ones
     /// are ignored) or `origin` is not finite.

@@ -7,19 +7,8 @@ use glam::Vec3;
 /// the sum of its four children.
 fn build_pyramid(level0: &[VsglTexel], size: u32) -> Vec<VsglTexel> {
     let mut texels = level0.to_vec();
-    let (mut start, mut side) = (0usize, size as usize);
-    while side > 1 {
-        let half = side / 2;
-        for y in 0..half {
-            for x in 0..half {
-                let at = |i: usize, j: usize| texels[start + (2 * y + j) * side + 2 * x + i];
-                let sum = at(0, 0).add(&at(1, 0)).add(&at(0, 1).add(&at(1, 1)));
-                texels.push(sum);
-            }
-        }
-        start += side * side;
-        side = half;
-    }
+    texels.resize(VsglPyramid::texel_count(size), VsglTexel::ZERO);
+    assert!(VsglPyramid::fill_levels(&mut texels, size));
     texels
 }
 
