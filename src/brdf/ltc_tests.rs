@@ -380,7 +380,7 @@ fn integrals_of_polygons_seen_edge_on_stay_at_most_one() {
         for i in 0..=20 {
             for j in 0..=20 {
                 let theta = 1.5 * i as f32 / 20.0;
-                let phi = 6.283 * j as f32 / 20.0;
+                let phi = core::f32::consts::TAU * j as f32 / 20.0;
                 let wo = Vec3::new(
                     theta.sin() * phi.cos(),
                     theta.sin() * phi.sin(),
