@@ -789,35 +789,44 @@ static void fill_hard_caps(void) {
   hard_cap_count++;
 }
 
+/* A prepared sampler: pdf finite, non-negative and 0 after a failed prepare or for a
+ * non-finite direction; samples valid, none after a failed prepare, and each with the
+ * pdf that PDF gives its direction, bit for bit (the contract of the SPTD and light
+ * samplers). */
+#define CHECK_SAMPLES(VALUE, OK, SAMPLE, PDF)                                              \
+  do {                                                                                     \
+    int d_, k_;                                                                            \
+    for (d_ = 0; d_ < DIRECTION_COUNT; d_++) {                                             \
+      float p_ = PDF((VALUE), directions[d_]);                                             \
+      calls++;                                                                             \
+      expect_density(p_);                                                                  \
+      if (!(OK) || !finite3(directions[d_])) EXPECT(p_ == 0.0f);                           \
+    }                                                                                      \
+    for (k_ = 0; k_ < pair_count(0); k_++) {                                               \
+      float u0_, u1_;                                                                      \
+      SpheraSample sample_;                                                                \
+      pair(k_, 0, &u0_, &u1_);                                                             \
+      sample_ = SAMPLE((VALUE), u0_, u1_);                                                 \
+      calls++;                                                                             \
+      expect_sample(sample_);                                                              \
+      if (!(OK)) EXPECT(is_no_sample(sample_));                                            \
+      if (sample_.pdf > 0.0f) {                                                            \
+        float p_ = PDF((VALUE), sample_.dir);                                              \
+        calls++;                                                                           \
+        EXPECT(memcmp(&p_, &sample_.pdf, sizeof p_) == 0);                                 \
+      }                                                                                    \
+    }                                                                                      \
+  } while (0)
+
 /* A prepared SPTD in a cap: finite, the empty sampler after a failed prepare, integral
- * in [0, 1], and samples whose pdf is pdf(dir) bit for bit (the contract). */
+ * in [0, 1], and the samples' checks. */
 static void check_sptd_in_cap(const SpheraSptdInCap *s, int ok) {
-  int k, d;
   float integral = sphera_sptd_in_cap_integral(s);
   calls++;
   expect_words_not_nan(s, sizeof *s);
   EXPECT(isfinite(integral) && integral >= 0.0f && integral <= 1.00001f);
   if (!ok) EXPECT(integral == 0.0f);
-  for (d = 0; d < DIRECTION_COUNT; d++) {
-    float p = sphera_sptd_in_cap_pdf(s, directions[d]);
-    calls++;
-    expect_density(p);
-    if (!ok || !finite3(directions[d])) EXPECT(p == 0.0f);
-  }
-  for (k = 0; k < pair_count(0); k++) {
-    float u0, u1;
-    SpheraSample sample;
-    pair(k, 0, &u0, &u1);
-    sample = sphera_sptd_in_cap_sample(s, u0, u1);
-    calls++;
-    expect_sample(sample);
-    if (!ok) EXPECT(is_no_sample(sample));
-    if (sample.pdf > 0.0f) {
-      float p = sphera_sptd_in_cap_pdf(s, sample.dir);
-      calls++;
-      EXPECT(memcmp(&p, &sample.pdf, sizeof p) == 0);
-    }
-  }
+  CHECK_SAMPLES(s, ok, sphera_sptd_in_cap_sample, sphera_sptd_in_cap_pdf);
 }
 
 static void sptd_suite(void) {
@@ -945,7 +954,6 @@ static void sptd_suite(void) {
                             : c == 2 ? vec3(0.0f, 0.0f, 0.1f) /* inside the sphere */
                                      : vec3(3.0f, 0.0f, -1.0f); /* behind */
         float radius = c == 1 ? 0.5f : x;
-        int s;
         memset(&sampler, 0xff, sizeof sampler);
         ok = sphera_sphere_light_sampler_prepare(&sampler, center, radius, wo,
                                                  specials[(j + 5) % SPECIAL_COUNT]);
@@ -953,26 +961,8 @@ static void sptd_suite(void) {
         expect_words_not_nan(&sampler, sizeof sampler);
         (void)sphera_sphere_light_sampler_uses_sptd(&sampler);
         if (!finite3(center) || !(radius > 0.0f) || !isfinite(radius)) EXPECT(!ok);
-        for (d = 0; d < DIRECTION_COUNT; d++) {
-          float p = sphera_sphere_light_sampler_pdf(&sampler, directions[d]);
-          calls++;
-          expect_density(p);
-          if (!ok || !finite3(directions[d])) EXPECT(p == 0.0f);
-        }
-        for (s = 0; s < pair_count(0); s++) {
-          float u0, u1;
-          SpheraSample sample;
-          pair(s, 0, &u0, &u1);
-          sample = sphera_sphere_light_sampler_sample(&sampler, u0, u1);
-          calls++;
-          expect_sample(sample);
-          if (!ok) EXPECT(is_no_sample(sample));
-          if (sample.pdf > 0.0f) {
-            float p = sphera_sphere_light_sampler_pdf(&sampler, sample.dir);
-            calls++;
-            EXPECT(memcmp(&p, &sample.pdf, sizeof p) == 0);
-          }
-        }
+        CHECK_SAMPLES(&sampler, ok, sphera_sphere_light_sampler_sample,
+                      sphera_sphere_light_sampler_pdf);
       }
     }
   }
