@@ -416,9 +416,10 @@ impl ProjectedSolidAnglePolygon {
         if !dir.is_finite() {
             return Sample::NONE;
         }
-        // `dir.z / Φ` as `pdf` computes it, so that `pdf(sample.dir) == sample.pdf` bit
-        // for bit wherever `pdf` finds the direction inside.
-        Sample::new_or_none(dir, crate::sample::normalize_scaled(dir).z * self.density)
+        // `dir.z / Φ` as `pdf` computes it (`unit_if_needed` leaves this `dir` as it is),
+        // so that `pdf(sample.dir) == sample.pdf` bit for bit wherever `pdf` finds the
+        // direction inside.
+        Sample::new_or_none(dir, dir.z * self.density)
     }
 
     /// `ω_z / Φ` for a direction inside the polygon (or on its boundary) and above the
@@ -433,9 +434,11 @@ impl ProjectedSolidAnglePolygon {
             return self.small.pdf_within(dir, SMALL_ROUNDING);
         }
         if self.contains(dir) {
-            // Normalised by the largest component first: a tiny `dir` (1e-45) had a
-            // length of 0 and an infinite pdf (found by the adversarial C test).
-            crate::sample::normalize_scaled(dir).z * self.density
+            // Unit directions (every sample) as they are, so that a sample's pdf is this
+            // bit for bit; others normalised by the largest component first: a tiny
+            // `dir` (1e-45) had a length of 0 and an infinite pdf (found by the
+            // adversarial C test).
+            crate::sample::unit_if_needed(dir).z * self.density
         } else {
             0.0
         }
@@ -465,7 +468,7 @@ impl ProjectedSolidAnglePolygon {
             return self.small.pdf_within(dir, tolerance);
         }
         if self.contains_within(dir, tolerance) {
-            crate::sample::normalize_scaled(dir).z * self.density
+            crate::sample::unit_if_needed(dir).z * self.density
         } else {
             0.0
         }
