@@ -112,3 +112,36 @@ fn vsgl_corpus() {
 fn sptd_corpus() {
     replay_target("sptd");
 }
+
+/// Every input kept under `fuzz/findings/<target>/` (the open findings that
+/// `docs/contract.md` lists) still breaks an invariant: one that passes has been fixed
+/// and belongs in `fuzz/regressions/`, where it is replayed.
+#[test]
+fn open_findings_are_still_open() {
+    let Ok(targets) = std::fs::read_dir(repository_root().join("fuzz").join("findings")) else {
+        return;
+    };
+    let mut fixed = Vec::new();
+    for target in targets {
+        let target = target.expect("read fuzz/findings").path();
+        let name = target.file_name().unwrap().to_string_lossy().into_owned();
+        let (_, check) = TARGETS
+            .iter()
+            .find(|(n, _)| *n == name)
+            .unwrap_or_else(|| panic!("fuzz/findings/{name} is not a fuzz target"));
+        let (count, failures) = replay(&target, *check);
+        let mut files: Vec<_> = std::fs::read_dir(&target)
+            .expect("read findings")
+            .map(|e| e.expect("entry").path().display().to_string())
+            .collect();
+        files.sort();
+        println!("{name}: {} of {count} findings still fail", failures.len());
+        fixed.extend(files.into_iter().filter(|f| !failures.contains(f)));
+    }
+    assert!(
+        fixed.is_empty(),
+        "{} findings pass now: move them to fuzz/regressions/ and update docs/contract.md:\n{}",
+        fixed.len(),
+        fixed.join("\n")
+    );
+}
