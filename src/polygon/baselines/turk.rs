@@ -163,8 +163,8 @@ impl TurkPolygon {
         // rather than from `point`: the two differ by rounding amplified by
         // `1 / cos θ_light` (found by fuzzing: 3% for far polygons), and MIS needs
         // `pdf(sample.dir) == sample.pdf`. `pdf` scales its direction by a power of two
-        // first, which `density_along` (homogeneous of degree 0, every operation scaled
-        // exactly) does not notice: bit for bit wherever `pdf` finds `dir` inside.
+        // first, which `density_along` does not notice (`|dir| / |n · dir|` is a ratio of
+        // exactly scaled values): bit for bit wherever `pdf` finds `dir` inside.
         let pdf = self.density_along(dir);
         if dir.is_finite() && pdf > 0.0 {
             Sample { dir, pdf }
@@ -173,9 +173,12 @@ impl TurkPolygon {
         }
     }
 
-    /// `|P|² / (area · |cos θ_light|)` for the point `P` where the ray along `dir` (its
-    /// largest component ±1) meets the polygon's plane; 0 where it does not (or not in
-    /// front) and where the result is not finite.
+    /// `|P|² / (area · |cos θ_light|)` for the point `P = t dir` where the ray along `dir`
+    /// meets the polygon's plane `n · P = d`, in the form
+    /// `d² (|dir| / |n · dir|)³ / area` (with `t = d / (n · dir)`, `|P| = |t| |dir|` and
+    /// `cos θ_light = |n · dir| / |dir|`): homogeneous of degree 0 in `dir`, and exactly
+    /// so under scaling by a power of two. 0 where the ray does not meet the plane in
+    /// front and where the result is not finite.
     #[inline]
     fn density_along(&self, dir: Vec3) -> f32 {
         let normal_dot = self.normal.dot(dir);
@@ -183,9 +186,8 @@ impl TurkPolygon {
         if !(t > 0.0 && t.is_finite()) {
             return 0.0;
         }
-        let point = dir * t;
-        let cos_light = normal_dot.abs() / dir.length();
-        let pdf = point.length_squared() * self.inv_area / cos_light;
+        let ratio = dir.length() / normal_dot.abs();
+        let pdf = self.plane_offset * self.plane_offset * self.inv_area * (ratio * ratio * ratio);
         if pdf.is_finite() { pdf } else { 0.0 }
     }
 
