@@ -72,7 +72,9 @@ pub(crate) fn ignore_short_edges_in_containment(
         // sin²ℓ = |n|² / (|a|² |b|²), kept as products (no division by a tiny length).
         let length2 = original[j].length_squared();
         let scale2 = a.length_squared() * b.length_squared();
-        let short = length2 <= SHORT_EDGE_SINE * SHORT_EDGE_SINE * scale2;
+        if !(length2 <= SHORT_EDGE_SINE * SHORT_EDGE_SINE * scale2) {
+            continue; // not short: the common case, decided before the rest
+        }
         let previous = original[if j == 0 { count - 1 } else { j - 1 }];
         let next = original[if j + 1 == count { 0 } else { j + 1 }];
         // sin²(δa + δb) = |p × q|² / (|p|² |q|²); reach² = sin²ℓ / sin²(δa + δb).
@@ -82,7 +84,7 @@ pub(crate) fn ignore_short_edges_in_containment(
                     * SHORT_EDGE_REACH
                     * previous.cross(next).length_squared()
                     * scale2;
-        if short && bounded {
+        if bounded {
             normals[j] = Vec3::ZERO;
         }
     }

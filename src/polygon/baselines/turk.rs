@@ -182,8 +182,9 @@ impl TurkPolygon {
     #[inline]
     fn density_along(&self, dir: Vec3) -> f32 {
         let normal_dot = self.normal.dot(dir);
-        let t = self.plane_offset / normal_dot;
-        if !(t > 0.0 && t.is_finite()) {
+        // In front (t = d / (n · dir) > 0) by signs, without the division; a NaN
+        // `normal_dot` passes here and gives a NaN pdf below, which returns 0.
+        if !(normal_dot != 0.0 && (normal_dot > 0.0) == (self.plane_offset > 0.0)) {
             return 0.0;
         }
         let ratio = dir.length() / normal_dot.abs();
