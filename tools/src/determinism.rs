@@ -139,16 +139,7 @@ pub fn table() -> String {
                 for (u0, u1) in PAIRS {
                     // SAFETY: `value` was prepared above.
                     let s = unsafe { $sample(&value, u0, u1) };
-                    writeln!(
-                        out,
-                        "{} {id} {} {} {} {}",
-                        $name,
-                        hex(u0),
-                        hex(u1),
-                        hex3(s.dir),
-                        hex(s.pdf)
-                    )
-                    .unwrap();
+                    sample_record(&mut out, format!("{} {id}", $name), u0, u1, s);
                 }
             }};
         }
@@ -255,31 +246,14 @@ pub fn table() -> String {
             for (u0, u1) in PAIRS {
                 // SAFETY: prepared above.
                 let s = unsafe { sphera_ggx_sample(&brdf, wo, u0, u1) };
-                writeln!(
-                    out,
-                    "ggx {} {} {} {} {} {}",
-                    hex(roughness),
-                    hex3(wo),
-                    hex(u0),
-                    hex(u1),
-                    hex3(s.dir),
-                    hex(s.pdf)
-                )
-                .unwrap();
+                let head = format!("ggx {} {}", hex(roughness), hex3(wo));
+                sample_record(&mut out, head, u0, u1, s);
             }
         }
     }
     for (u0, u1) in PAIRS {
         let s = sphera_lambert_sample(u0, u1);
-        writeln!(
-            out,
-            "lambert {} {} {} {}",
-            hex(u0),
-            hex(u1),
-            hex3(s.dir),
-            hex(s.pdf)
-        )
-        .unwrap();
+        sample_record(&mut out, "lambert".into(), u0, u1, s);
     }
     let spheres = [
         (v3(0.0, 0.0, 3.0), 1.0f32),
@@ -290,17 +264,8 @@ pub fn table() -> String {
         let cap = sphera_cap_from_sphere(center, radius);
         for (u0, u1) in PAIRS {
             let s = sphera_cap_sample_uniform(cap, u0, u1);
-            writeln!(
-                out,
-                "cap {} {} {} {} {} {}",
-                hex3(center),
-                hex(radius),
-                hex(u0),
-                hex(u1),
-                hex3(s.dir),
-                hex(s.pdf)
-            )
-            .unwrap();
+            let head = format!("cap {} {}", hex3(center), hex(radius));
+            sample_record(&mut out, head, u0, u1, s);
         }
     }
     for g in [-0.7f32, 0.0, 0.3, 0.95] {
@@ -309,17 +274,8 @@ pub fn table() -> String {
                 let a = sphera_phase_pivot_sample(wo, g, u0, u1);
                 let b = sphera_phase_henyey_greenstein_sample(wo, g, u0, u1);
                 for (name, s) in [("pivot_phase", a), ("hg_phase", b)] {
-                    writeln!(
-                        out,
-                        "{name} {} {} {} {} {} {}",
-                        hex3(wo),
-                        hex(g),
-                        hex(u0),
-                        hex(u1),
-                        hex3(s.dir),
-                        hex(s.pdf)
-                    )
-                    .unwrap();
+                    let head = format!("{name} {} {}", hex3(wo), hex(g));
+                    sample_record(&mut out, head, u0, u1, s);
                 }
             }
         }
@@ -328,6 +284,19 @@ pub fn table() -> String {
     sg_records(&mut out);
     vsgl_records(&mut out);
     out
+}
+
+/// A record `<head> <u0> <u1> <dir xyz> <pdf>`.
+fn sample_record(out: &mut String, head: String, u0: f32, u1: f32, s: SpheraSample) {
+    writeln!(
+        out,
+        "{head} {} {} {} {}",
+        hex(u0),
+        hex(u1),
+        hex3(s.dir),
+        hex(s.pdf)
+    )
+    .unwrap();
 }
 
 fn hex_sg(g: Sg) -> String {
@@ -413,19 +382,14 @@ fn sphere_records(out: &mut String) {
             for (u0, u1) in PAIRS {
                 // SAFETY: prepared above.
                 let s = unsafe { sphera_sptd_in_cap_sample(&value, u0, u1) };
-                writeln!(
-                    out,
-                    "phase_in_cap {} {} {} {} {} {} {} {}",
+                let head = format!(
+                    "phase_in_cap {} {} {} {}",
                     hex3(wo),
                     hex(g),
                     hex3(center),
-                    hex(radius),
-                    hex(u0),
-                    hex(u1),
-                    hex3(s.dir),
-                    hex(s.pdf)
-                )
-                .unwrap();
+                    hex(radius)
+                );
+                sample_record(out, head, u0, u1, s);
             }
         }
         for roughness in [0.05f32, 0.4, 1.0] {
@@ -501,17 +465,8 @@ fn sg_records(out: &mut String) {
         let sg = sphera_sg_new(axis, sharpness, amplitude);
         for (u0, u1) in PAIRS {
             let s = sphera_sg_vmf_sample(sg, u0, u1);
-            writeln!(
-                out,
-                "vmf {} {} {} {} {} {}",
-                hex3(axis),
-                hex(sharpness),
-                hex(u0),
-                hex(u1),
-                hex3(s.dir),
-                hex(s.pdf)
-            )
-            .unwrap();
+            let head = format!("vmf {} {}", hex3(axis), hex(sharpness));
+            sample_record(out, head, u0, u1, s);
         }
         for (axis_b, sharpness_b, amplitude_b) in lobes {
             let other = sphera_sg_new(axis_b, sharpness_b, amplitude_b);
