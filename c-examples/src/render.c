@@ -265,33 +265,33 @@ static float3 brdf_part(const Material *m, float3 wo, SpheraVec3 wi, BrdfPart pa
     return f;
 }
 
+/* One term of a two-sample balance-heuristic estimate: the sample `s` (pdf > 0, above
+ * the horizon, checked by the caller) weighted against the other technique's pdf at
+ * its direction, times `part` of the BRDF and the light's cosine-weighted radiance. */
+static float3 balance_term(const Scene *scene, struct RTCIntersectContext *context,
+                           const Hit *hit, const Light *light, SpheraSample s, float other_pdf,
+                           BrdfPart part) {
+    float w = sphera_mis_balance(s.pdf, other_pdf);
+    float3 f = brdf_part(&scene->materials[hit->material], hit->wo, s.dir, part);
+    if (!(w > 0.0f) || is_zero(f)) return f3(0, 0, 0);
+    float3 radiance = light_cosine(scene, context, hit, light, s.dir);
+    return f3_scale(f3_mul(radiance, f), w / s.pdf);
+}
+
 /* One light sample of sphere_cap_brdf for `part` of the BRDF: one uniform cap sample
  * and one sample of the material's BRDF sampler, balance heuristic. */
 static float3 sphere_cap_brdf_estimate(const Scene *scene, struct RTCIntersectContext *context,
                                        const Hit *hit, const Light *light, SpheraCap cap,
                                        const BrdfSampler *brdf, BrdfPart part, Rng *rng) {
-    const Material *m = &scene->materials[hit->material];
     float3 sum = f3(0, 0, 0);
     float u0 = rng_float(rng), u1 = rng_float(rng);
     SpheraSample a = sphera_cap_sample_uniform(cap, u0, u1);
-    if (a.pdf > 0.0f && a.dir.z > 0.0f) {
-        float w = sphera_mis_balance(a.pdf, brdf_sampler_pdf(brdf, a.dir));
-        float3 f = brdf_part(m, hit->wo, a.dir, part);
-        if (w > 0.0f && !is_zero(f)) {
-            float3 radiance = light_cosine(scene, context, hit, light, a.dir);
-            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / a.pdf));
-        }
-    }
+    if (a.pdf > 0.0f && a.dir.z > 0.0f)
+        sum = balance_term(scene, context, hit, light, a, brdf_sampler_pdf(brdf, a.dir), part);
     SpheraSample b = brdf_sampler_sample(brdf, rng_float(rng), rng_float(rng));
     float cap_pdf = b.pdf > 0.0f ? sphera_cap_pdf(cap, b.dir) : 0.0f;
-    if (cap_pdf > 0.0f && b.dir.z > 0.0f) {
-        float w = sphera_mis_balance(b.pdf, cap_pdf);
-        float3 f = brdf_part(m, hit->wo, b.dir, part);
-        if (w > 0.0f && !is_zero(f)) {
-            float3 radiance = light_cosine(scene, context, hit, light, b.dir);
-            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / b.pdf));
-        }
-    }
+    if (cap_pdf > 0.0f && b.dir.z > 0.0f)
+        sum = f3_add(sum, balance_term(scene, context, hit, light, b, cap_pdf, part));
     return sum;
 }
 
@@ -308,25 +308,14 @@ static float3 sphere_sptd_specular_estimate(const Scene *scene, struct RTCInters
     float3 sum = f3(0, 0, 0);
     float u0 = rng_float(rng), u1 = rng_float(rng);
     SpheraSample a = sphera_sphere_light_sampler_sample(sampler, u0, u1);
-    if (a.pdf > 0.0f && a.dir.z > 0.0f) {
-        float w = sphera_mis_balance(a.pdf, sphera_ggx_pdf(&m->ggx, wo, a.dir));
-        float3 f = brdf_part(m, hit->wo, a.dir, BRDF_SPECULAR);
-        if (w > 0.0f && !is_zero(f)) {
-            float3 radiance = light_cosine(scene, context, hit, light, a.dir);
-            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / a.pdf));
-        }
-    }
+    if (a.pdf > 0.0f && a.dir.z > 0.0f)
+        sum = balance_term(scene, context, hit, light, a, sphera_ggx_pdf(&m->ggx, wo, a.dir),
+                           BRDF_SPECULAR);
     float v0 = rng_float(rng), v1 = rng_float(rng);
     SpheraSample b = sphera_ggx_sample(&m->ggx, wo, v0, v1);
     float light_pdf = b.pdf > 0.0f ? sphera_sphere_light_sampler_pdf(sampler, b.dir) : 0.0f;
-    if (light_pdf > 0.0f && b.dir.z > 0.0f) {
-        float w = sphera_mis_balance(b.pdf, light_pdf);
-        float3 f = brdf_part(m, hit->wo, b.dir, BRDF_SPECULAR);
-        if (w > 0.0f && !is_zero(f)) {
-            float3 radiance = light_cosine(scene, context, hit, light, b.dir);
-            sum = f3_add(sum, f3_scale(f3_mul(radiance, f), w / b.pdf));
-        }
-    }
+    if (light_pdf > 0.0f && b.dir.z > 0.0f)
+        sum = f3_add(sum, balance_term(scene, context, hit, light, b, light_pdf, BRDF_SPECULAR));
     return sum;
 }
 
