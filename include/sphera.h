@@ -205,6 +205,12 @@ typedef struct SpheraSolidAnglePolygon {
    * Fan triangles that can be selected: up to the last one with non-zero solid angle.
    */
   uint32_t selectable_triangles;
+  /**
+   * The careful fallbacks that preparation took, as bits: 1, the compensated pair sums
+   * of a fan triangle; 2, the short-edge rule of the containment test; 0 for the fast
+   * path throughout.
+   */
+  uint32_t careful_paths;
 } SpheraSolidAnglePolygon;
 
 /**
@@ -229,18 +235,11 @@ typedef struct SpheraSample {
  */
 typedef struct SpheraTurkPolygon {
   /**
-   * The vertices relative to the shading point.
+   * The vertices relative to the shading point. (The edge planes of `pdf` are
+   * computed from them when `pdf` is called, so that `prepare`, which a renderer calls
+   * once per shading point and light, stays as lean as plain area sampling.)
    */
   SpheraVec3 vertices[SPHERA_MAX_POLYGON_VERTICES];
-  /**
-   * Normals of the planes through the shading point and each edge
-   * `v_i × (v_{i+1} - v_i)`, oriented so that the polygon lies on their positive side.
-   */
-  SpheraVec3 edge_normals[SPHERA_MAX_POLYGON_VERTICES];
-  /**
-   * Rounding slack of each edge test, per unit of `|dir|₁`.
-   */
-  float edge_tolerances[SPHERA_MAX_POLYGON_VERTICES];
   /**
    * Cumulative probabilities of the fan triangles `(v_0, v_{i+1}, v_{i+2})`; the last
    * used entry is exactly 1.
@@ -1129,10 +1128,12 @@ bool sphera_solid_angle_polygon_invert(const struct SpheraSolidAnglePolygon *pol
  * angle.
  *
  * Returns `false` when `out` is null, when `vertices` is null, when `count` lies
- * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
- * when the polygon is degenerate. Unless `out` is null, a `false` return writes the
- * empty polygon into `*out`: its samples have pdf 0, its `pdf` is 0 and its area is 0,
- * whatever `*out` held before.
+ * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite,
+ * when a vertex lies farther than about 9e18 from the shading point (so that the edge
+ * planes that `sphera_turk_polygon_pdf` computes stay finite), or when the polygon is
+ * degenerate. Unless `out` is null, a `false` return writes the empty polygon into
+ * `*out`: its samples have pdf 0, its `pdf` is 0 and its area is 0, whatever `*out`
+ * held before.
  *
  * # Safety
  *

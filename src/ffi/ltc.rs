@@ -1,7 +1,7 @@
 //! Linearly transformed cosines fitted to GGX (Heitz et al. 2016) and their sampling
 //! inside polygonal lights (Peters 2021): `sphera_ltc_*`.
 
-use super::polygon::prepare;
+use super::polygon::{by_value, prepare};
 use super::types::{SpheraSample, SpheraVec3, with_ref};
 use crate::brdf::{Ltc, LtcPolygon};
 use crate::{Sample, Vec3};
@@ -107,8 +107,7 @@ pub unsafe extern "C" fn sphera_ltc_polygon_prepare(
             out,
             vertices,
             count,
-            |v| LtcPolygon::new(ltc, v),
-            LtcPolygon::EMPTY,
+            by_value(|v| LtcPolygon::new(ltc, v), || LtcPolygon::EMPTY),
         )
     }
 }

@@ -3,34 +3,62 @@
 //!
 //! Vertices are given relative to the shading point in the local frame (z = normal),
 //! convex, in either winding, 3 to `SPHERA_MAX_POLYGON_VERTICES` of them.
+//!
+//! Every polygon `prepare` writes its result once, in place, into the caller's struct
+//! (the empty value only on failure): nothing prepared is copied.
 
 use super::types::{SpheraSample, SpheraVec3, read_polygon, with_ref};
 use crate::polygon::SolidAnglePolygon;
 use crate::polygon::baselines::{ArvoPolygon, TurkPolygon};
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 
-/// The shared body of every `prepare`: writes `new(vertices)` or `empty` into `*out`.
+/// The shared body of every `prepare`: `prepare(*out, vertices)` in place, which writes
+/// the prepared value or the empty one; bad pointers or counts hand it no vertices, which
+/// every in-place `prepare` rejects (writing the empty value). Nothing is copied but the
+/// vertices (96 bytes at most).
 ///
 /// # Safety
 ///
 /// As for the `prepare` functions: `out` null or writable, `vertices` null or pointing
-/// to `count` readable vertices.
+/// to `count` readable vertices. `T` holds only `f32` and `u32` fields (the prepared
+/// structs of the header), for which any bytes that C left in `*out` are a valid value,
+/// and every in-place `prepare` writes all that it reads back.
 #[inline(always)]
-pub(super) unsafe fn prepare<T: Copy>(
+pub(super) unsafe fn prepare<T>(
     out: *mut T,
     vertices: *const SpheraVec3,
     count: u32,
-    new: impl FnOnce(&[Vec3]) -> Option<T>,
-    empty: T,
+    prepare: impl FnOnce(&mut T, &[Vec3]) -> bool,
 ) -> bool {
-    if out.is_null() {
+    // SAFETY: `out` is null or writable memory for a `T` (the caller's contract), and
+    // every bit pattern is a valid `T` (above).
+    let Some(out) = (unsafe { out.as_mut() }) else {
         return false;
-    }
+    };
     // SAFETY: forwarded from the caller.
-    let prepared = unsafe { read_polygon(vertices, count) }.and_then(|(local, n)| new(&local[..n]));
-    // SAFETY: `out` is non-null and the caller guarantees it is writable.
-    unsafe { out.write(prepared.unwrap_or(empty)) };
-    prepared.is_some()
+    match unsafe { read_polygon(vertices, count) } {
+        Some((local, n)) => prepare(out, &local[..n]),
+        None => prepare(out, &[]),
+    }
+}
+
+/// An in-place `prepare` for a type that is prepared by value (`new` returning an
+/// `Option`): writes the value or `empty`.
+#[inline(always)]
+pub(super) fn by_value<T>(
+    new: impl FnOnce(&[Vec3]) -> Option<T>,
+    empty: impl FnOnce() -> T,
+) -> impl FnOnce(&mut T, &[Vec3]) -> bool {
+    move |out, vertices| match new(vertices) {
+        Some(prepared) => {
+            *out = prepared;
+            true
+        }
+        None => {
+            *out = empty();
+            false
+        }
+    }
 }
 
 /// Clips the convex polygon `vertices[0..count]` to the upper hemisphere (z >= 0) in
@@ -87,15 +115,7 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_prepare(
     count: u32,
 ) -> bool {
     // SAFETY: forwarded from the caller.
-    unsafe {
-        prepare(
-            out,
-            vertices,
-            count,
-            SolidAnglePolygon::new,
-            SolidAnglePolygon::EMPTY,
-        )
-    }
+    unsafe { prepare(out, vertices, count, SolidAnglePolygon::prepare) }
 }
 
 /// Draws a direction uniformly distributed in the solid angle of `polygon` from the
@@ -199,10 +219,12 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_invert(
 /// angle.
 ///
 /// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
-/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
-/// when the polygon is degenerate. Unless `out` is null, a `false` return writes the
-/// empty polygon into `*out`: its samples have pdf 0, its `pdf` is 0 and its area is 0,
-/// whatever `*out` held before.
+/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite,
+/// when a vertex lies farther than about 9e18 from the shading point (so that the edge
+/// planes that `sphera_turk_polygon_pdf` computes stay finite), or when the polygon is
+/// degenerate. Unless `out` is null, a `false` return writes the empty polygon into
+/// `*out`: its samples have pdf 0, its `pdf` is 0 and its area is 0, whatever `*out`
+/// held before.
 ///
 /// # Safety
 ///
@@ -215,7 +237,7 @@ pub unsafe extern "C" fn sphera_turk_polygon_prepare(
     count: u32,
 ) -> bool {
     // SAFETY: forwarded from the caller.
-    unsafe { prepare(out, vertices, count, TurkPolygon::new, TurkPolygon::EMPTY) }
+    unsafe { prepare(out, vertices, count, TurkPolygon::prepare) }
 }
 
 /// Draws a direction towards a point uniformly distributed over the polygon's area from
@@ -297,7 +319,14 @@ pub unsafe extern "C" fn sphera_arvo_polygon_prepare(
     count: u32,
 ) -> bool {
     // SAFETY: forwarded from the caller.
-    unsafe { prepare(out, vertices, count, ArvoPolygon::new, ArvoPolygon::EMPTY) }
+    unsafe {
+        prepare(
+            out,
+            vertices,
+            count,
+            by_value(ArvoPolygon::new, || ArvoPolygon::EMPTY),
+        )
+    }
 }
 
 /// Draws a direction uniformly distributed in the solid angle of `polygon` with Arvo's

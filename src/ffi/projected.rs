@@ -6,7 +6,7 @@
 //! convex, in either winding, 3 to `SPHERA_MAX_POLYGON_VERTICES` of them. The part
 //! below the horizon is clipped away internally.
 
-use super::polygon::prepare;
+use super::polygon::{by_value, prepare};
 use super::types::{SpheraSample, SpheraVec3, with_ref};
 use crate::Sample;
 use crate::polygon::ProjectedSolidAnglePolygon;
@@ -40,15 +40,7 @@ pub unsafe extern "C" fn sphera_projected_polygon_prepare(
     count: u32,
 ) -> bool {
     // SAFETY: forwarded from the caller.
-    unsafe {
-        prepare(
-            out,
-            vertices,
-            count,
-            ProjectedSolidAnglePolygon::new,
-            ProjectedSolidAnglePolygon::EMPTY,
-        )
-    }
+    unsafe { prepare(out, vertices, count, ProjectedSolidAnglePolygon::prepare) }
 }
 
 /// `sphera_projected_polygon_prepare` for the biased variant: the sector areas use a
@@ -72,8 +64,7 @@ pub unsafe extern "C" fn sphera_projected_polygon_prepare_fast(
             out,
             vertices,
             count,
-            ProjectedSolidAnglePolygon::new_fast_biased,
-            ProjectedSolidAnglePolygon::EMPTY,
+            ProjectedSolidAnglePolygon::prepare_fast_biased,
         )
     }
 }
@@ -187,8 +178,7 @@ pub unsafe extern "C" fn sphera_arvo_projected_polygon_prepare(
             out,
             vertices,
             count,
-            ArvoProjectedPolygon::new,
-            ArvoProjectedPolygon::EMPTY,
+            by_value(ArvoProjectedPolygon::new, || ArvoProjectedPolygon::EMPTY),
         )
     }
 }

@@ -5,7 +5,7 @@
 //! Vertices are given relative to the shading point in the local frame (z = normal),
 //! convex, in either winding, 3 to `SPHERA_MAX_POLYGON_VERTICES` of them.
 
-use super::polygon::prepare;
+use super::polygon::{by_value, prepare};
 use super::types::{SpheraSample, SpheraVec3, with_ref};
 use crate::Sample;
 use crate::polygon::ClippedSolidAnglePolygon;
@@ -42,8 +42,7 @@ pub unsafe extern "C" fn sphera_hart_bilinear_polygon_prepare(
             out,
             vertices,
             count,
-            HartBilinearPolygon::new,
-            HartBilinearPolygon::EMPTY,
+            by_value(HartBilinearPolygon::new, || HartBilinearPolygon::EMPTY),
         )
     }
 }
@@ -126,8 +125,9 @@ pub unsafe extern "C" fn sphera_hart_biquadratic_polygon_prepare(
             out,
             vertices,
             count,
-            HartBiquadraticPolygon::new,
-            HartBiquadraticPolygon::EMPTY,
+            by_value(HartBiquadraticPolygon::new, || {
+                HartBiquadraticPolygon::EMPTY
+            }),
         )
     }
 }
@@ -203,15 +203,7 @@ pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_prepare(
     count: u32,
 ) -> bool {
     // SAFETY: forwarded from the caller.
-    unsafe {
-        prepare(
-            out,
-            vertices,
-            count,
-            ClippedSolidAnglePolygon::new,
-            ClippedSolidAnglePolygon::EMPTY,
-        )
-    }
+    unsafe { prepare(out, vertices, count, ClippedSolidAnglePolygon::prepare) }
 }
 
 /// Draws a direction uniformly distributed in the solid angle of the part of `polygon`

@@ -52,20 +52,31 @@ impl ClippedSolidAnglePolygon {
     /// whatever [`SolidAnglePolygon::new`] rejects about the clipped polygon (no solid
     /// angle, for example a polygon that only touches the horizon, or a shading point in
     /// the polygon's plane).
+    ///
+    /// [`prepare`](Self::prepare) does the same in place.
+    #[must_use]
     pub fn new(vertices: &[Vec3]) -> Option<Self> {
+        let mut polygon = Self::EMPTY;
+        polygon.prepare(vertices).then_some(polygon)
+    }
+
+    /// [`new`](Self::new) in place: writes the prepared polygon into `self` and returns
+    /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false` where `new` returns
+    /// `None`.
+    pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
         let count = vertices.len();
-        if !(3..=MAX_POLYGON_VERTICES).contains(&count) {
-            return None;
-        }
         let mut local = [Vec3::ZERO; MAX_POLYGON_VERTICES];
-        rescale(vertices, &mut local)?;
-        let clipped_count = clip_to_upper_hemisphere(&mut local, count);
-        if clipped_count < 3 {
-            return None;
-        }
-        Some(Self {
-            clipped: SolidAnglePolygon::new(&local[..clipped_count])?,
-        })
+        let clipped_count = if (3..=MAX_POLYGON_VERTICES).contains(&count)
+            && rescale(vertices, &mut local).is_some()
+        {
+            clip_to_upper_hemisphere(&mut local, count)
+        } else {
+            0
+        };
+        // An empty slice (nothing left above the horizon) is rejected there and writes
+        // the empty value.
+        let clipped = if clipped_count < 3 { 0 } else { clipped_count };
+        self.clipped.prepare(&local[..clipped])
     }
 
     /// Solid angle Ω of the part of the polygon above the horizon, in steradians (0 when

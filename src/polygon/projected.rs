@@ -107,34 +107,81 @@ impl ProjectedSolidAnglePolygon {
     /// clipping (9 would result), non-finite coordinates, a polygon with nothing above the
     /// horizon, and a zero projected solid angle (for example when the shading point lies
     /// in the polygon's plane).
+    ///
+    /// [`prepare`](Self::prepare) does the same in place.
+    #[must_use]
     pub fn new(vertices: &[Vec3]) -> Option<Self> {
-        Self::prepare(vertices, AreaPrecision::Exact, true)
+        let mut polygon = Self::EMPTY;
+        polygon.prepare(vertices).then_some(polygon)
     }
 
     /// [`new`](Self::new) with a fast `atan` for the sector areas (relative error below
     /// 1.4e-4 per sector), for the biased variant [`sample_fast`](Self::sample_fast).
     /// **Biased**: the projected solid angle, and with it the pdf, is off by up to 1.4e-4
     /// relative.
+    #[must_use]
     pub fn new_fast_biased(vertices: &[Vec3]) -> Option<Self> {
-        Self::prepare(vertices, AreaPrecision::Fast, true)
+        let mut polygon = Self::EMPTY;
+        polygon.prepare_fast_biased(vertices).then_some(polygon)
     }
 
     /// The sectors of Algorithm 4 without the switch to the small-polygon sampler, for
     /// the baseline of Arvo that shares them.
     pub(crate) fn new_sectors_only(vertices: &[Vec3]) -> Option<Self> {
-        Self::prepare(vertices, AreaPrecision::Exact, false)
+        let mut polygon = Self::EMPTY;
+        polygon
+            .prepare_with(vertices, AreaPrecision::Exact, false)
+            .then_some(polygon)
     }
 
-    fn prepare(vertices: &[Vec3], precision: AreaPrecision, allow_small: bool) -> Option<Self> {
+    /// [`new`](Self::new) in place: writes the prepared polygon into `self` and returns
+    /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false` where `new` returns
+    /// `None`. Every field that sampling and `pdf` read is written, whatever `self` held
+    /// before, and the prepared value (2288 bytes) is never copied.
+    pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
+        self.prepare_with(vertices, AreaPrecision::Exact, true)
+    }
+
+    /// [`new_fast_biased`](Self::new_fast_biased) in place, as [`prepare`](Self::prepare).
+    /// **Biased.**
+    pub fn prepare_fast_biased(&mut self, vertices: &[Vec3]) -> bool {
+        self.prepare_with(vertices, AreaPrecision::Fast, true)
+    }
+
+    /// The in-place preparation: the empty value on failure.
+    fn prepare_with(
+        &mut self,
+        vertices: &[Vec3],
+        precision: AreaPrecision,
+        allow_small: bool,
+    ) -> bool {
+        let prepared = self.prepare_or_fail(vertices, precision, allow_small);
+        if !prepared {
+            *self = Self::EMPTY;
+        }
+        prepared
+    }
+
+    /// The body of [`prepare_with`](Self::prepare_with); on `false`, `self` holds partial
+    /// values.
+    #[inline(always)]
+    fn prepare_or_fail(
+        &mut self,
+        vertices: &[Vec3],
+        precision: AreaPrecision,
+        allow_small: bool,
+    ) -> bool {
         let count = vertices.len();
         if !(3..=MAX_POLYGON_VERTICES).contains(&count) {
-            return None;
+            return false;
         }
         let mut positions = [Vec3::ZERO; MAX_POLYGON_VERTICES];
-        rescale(vertices, &mut positions)?;
+        if rescale(vertices, &mut positions).is_none() {
+            return false;
+        }
         let count = clip_to_upper_hemisphere(&mut positions, count);
         if count < 3 {
-            return None;
+            return false;
         }
         // Orientation: the sign of Σ det(p0, pk, pk+1) = p0 · Σ (pk - p0) × (pk+1 - p0),
         // positive when the polygon winds counter-clockwise around the zenith seen from
@@ -146,12 +193,15 @@ impl ProjectedSolidAnglePolygon {
         }
         let orientation = area_vector.dot(positions[0]);
         if !(orientation != 0.0) {
-            return None;
+            return false;
         }
         if orientation < 0.0 {
             positions[..count].reverse();
         }
-        let mut polygon = Self::EMPTY;
+        let polygon = self;
+        polygon.selectable_sectors = 0;
+        polygon.central = 0;
+        polygon.is_small = 0;
         // Small polygons: the ellipses of nearby edges are nearly equal, and the areas
         // between them (differences of sector areas of order 1) lose about 6e-8 / s of
         // relative precision for an angular size s. Below SMALL_EXTENT the warped solid
@@ -165,20 +215,29 @@ impl ProjectedSolidAnglePolygon {
             let sin2 = p.cross(first).length_squared() / (p.length_squared() * first2);
             extent2 = extent2.max(if p.dot(first) > 0.0 { sin2 } else { 1.0 });
         }
-        let switch_to_small = |mut polygon: Self| {
-            let small = SmallPolygonCosineSampler::new(&positions[..count])?;
-            polygon.projected_solid_angle = small.projected_solid_angle();
+        // Writes the small-polygon sampler in place; the sectors are then not read.
+        let switch_to_small = |polygon: &mut Self| {
+            if !polygon.small.prepare(&positions[..count]) {
+                return false;
+            }
+            // As in the empty value: the sectors are not read in this case.
+            polygon.sectors = [EllipseSector::EMPTY; MAX_POLYGON_VERTICES];
+            polygon.sector_area = [0.0; MAX_POLYGON_VERTICES];
+            polygon.sector_start = [0.0; MAX_POLYGON_VERTICES];
+            polygon.projected_solid_angle = polygon.small.projected_solid_angle();
             polygon.density = 1.0 / polygon.projected_solid_angle;
             polygon.selectable_sectors = 1;
             polygon.is_small = 1;
-            polygon.small = small;
-            Some(polygon)
+            true
         };
         if allow_small && extent2 < SMALL_EXTENT * SMALL_EXTENT {
-            return switch_to_small(Self::EMPTY);
+            // As from the empty value: `contains` of the small case passes every edge.
+            polygon.edge_normals = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+            return switch_to_small(polygon);
         }
         // Algorithm 1 per edge; edge j runs from vertex j to vertex j + 1.
         let next = |j: usize| if j + 1 == count { 0 } else { j + 1 };
+        polygon.edge_normals = [Vec3::ZERO; MAX_POLYGON_VERTICES];
         let mut edge = [DEGENERATE; MAX_POLYGON_VERTICES];
         let mut direction = [[0.0f32; 2]; MAX_POLYGON_VERTICES];
         let mut xy_length = [0.0f32; MAX_POLYGON_VERTICES];
@@ -314,6 +373,15 @@ impl ProjectedSolidAnglePolygon {
                 polygon.sector_area[j] = polygon.sectors[j].area(true, precision).max(0.0);
             }
         }
+        // The unused slots too (no stale or NaN word is left in a prepared value, which
+        // the adversarial C test checks by filling the struct with NaN first); the
+        // small-polygon sampler is not used here.
+        for j in sectors..MAX_POLYGON_VERTICES {
+            polygon.sectors[j] = EllipseSector::EMPTY;
+            polygon.sector_area[j] = 0.0;
+            polygon.sector_start[j] = 0.0;
+        }
+        polygon.small = SmallPolygonCosineSampler::EMPTY;
         let mut total = 0.0f32;
         for j in 0..sectors {
             polygon.sector_start[j] = total;
@@ -324,7 +392,7 @@ impl ProjectedSolidAnglePolygon {
         }
         let density = 1.0 / total;
         if !(total > 0.0) || !total.is_finite() || !density.is_finite() {
-            return None;
+            return false;
         }
         // Slivers seen nearly edge-on: the inner and outer ellipses almost coincide and Φ
         // is a small difference of large areas, with a relative error of about
@@ -337,7 +405,7 @@ impl ProjectedSolidAnglePolygon {
         polygon.projected_solid_angle = total;
         polygon.density = density;
         super::ignore_short_edges_in_containment(&mut polygon.edge_normals, &positions, count);
-        Some(polygon)
+        true
     }
 
     /// Total projected solid angle `Φ = ∫ cos θ dω` of the part above the horizon, in

@@ -77,13 +77,31 @@ impl SmallPolygonCosineSampler {
     };
 
     /// Prepares a polygon that lies entirely on or above the horizon (already clipped).
+    #[must_use]
     pub fn new(vertices: &[Vec3]) -> Option<Self> {
-        let fan = SolidAnglePolygon::new(vertices)?;
         let mut sampler = Self::EMPTY;
+        sampler.prepare(vertices).then_some(sampler)
+    }
+
+    /// [`new`](Self::new) in place: writes the prepared sampler into `self` and returns
+    /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false`.
+    pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
+        let prepared = self.fan.prepare(vertices) && self.prepare_weights();
+        if !prepared {
+            *self = Self::EMPTY;
+        }
+        prepared
+    }
+
+    /// The weights of the prepared fan; `false` when no triangle can be selected.
+    #[inline(always)]
+    fn prepare_weights(&mut self) -> bool {
+        let fan = &self.fan;
         let triangles = fan.vertex_count as usize - 2;
         let z_apex = fan.vertices[0].z.max(0.0);
         let mut total = 0.0f32;
         let mut projected = 0.0f32;
+        self.selectable_triangles = 0;
         for k in 0..triangles {
             // Each triangle's own solid angle, not a difference of the running sums, which
             // would lose the precision of small triangles next to large ones.
@@ -93,23 +111,27 @@ impl SmallPolygonCosineSampler {
                 fan.vertices[k + 2].z.max(0.0),
             );
             let weight = solid_angle * (z_apex + zb + zc) * (1.0 / 3.0);
-            projected += solid_angle * mean_cosine(&fan, k, solid_angle);
-            sampler.weight[k] = weight;
-            sampler.weight_start[k] = total;
+            projected += solid_angle * mean_cosine(fan, k, solid_angle);
+            self.weight[k] = weight;
+            self.weight_start[k] = total;
             if weight > 0.0 && (k as u32) < fan.selectable_triangles {
-                sampler.selectable_triangles = k as u32 + 1;
+                self.selectable_triangles = k as u32 + 1;
             }
             total += weight;
         }
         let density = 1.0 / total;
-        if !(total > 0.0) || !density.is_finite() || sampler.selectable_triangles == 0 {
-            return None;
+        if !(total > 0.0) || !density.is_finite() || self.selectable_triangles == 0 {
+            return false;
         }
-        sampler.fan = fan;
-        sampler.projected_solid_angle = projected.max(0.0);
-        sampler.linear_integral = total;
-        sampler.density = density;
-        Some(sampler)
+        for k in triangles..MAX_TRIANGLES {
+            // The unused slots as in the empty value: no stale or NaN word is left.
+            self.weight[k] = 0.0;
+            self.weight_start[k] = 0.0;
+        }
+        self.projected_solid_angle = projected.max(0.0);
+        self.linear_integral = total;
+        self.density = density;
+        true
     }
 
     /// The projected solid angle `Φ` (within relative `O(s⁴)`).

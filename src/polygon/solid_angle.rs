@@ -62,7 +62,22 @@ pub struct SolidAnglePolygon {
     pub(crate) vertex_count: u32,
     /// Fan triangles that can be selected: up to the last one with non-zero solid angle.
     pub(crate) selectable_triangles: u32,
+    /// The careful fallbacks that preparation took, as bits: 1, the compensated pair sums
+    /// of a fan triangle; 2, the short-edge rule of the containment test; 0 for the fast
+    /// path throughout.
+    careful_paths: u32,
 }
+
+/// [`SolidAnglePolygon::careful_paths`]: a fan triangle had a nearly antipodal pair of
+/// vertices (more than 120° apart), whose sum the compensated form computed.
+///
+/// cbindgen:ignore
+pub const CAREFUL_PAIR_SUMS: u32 = 1;
+/// [`SolidAnglePolygon::careful_paths`]: an edge was short enough for the short-edge rule
+/// of the containment test to run.
+///
+/// cbindgen:ignore
+pub const CAREFUL_SHORT_EDGES: u32 = 2;
 
 impl Default for SolidAnglePolygon {
     fn default() -> Self {
@@ -187,6 +202,7 @@ impl SolidAnglePolygon {
         orientation: 1.0,
         vertex_count: 0,
         selectable_triangles: 0,
+        careful_paths: 0,
     };
 
     /// Prepares the convex polygon with the given vertices (positions relative to the
@@ -196,23 +212,54 @@ impl SolidAnglePolygon {
     /// a vertex at the shading point, and a zero (or non-representable) solid angle, for
     /// example when the shading point lies in the polygon's plane. A non-convex polygon
     /// gives a finite but meaningless result.
+    ///
+    /// [`prepare`](Self::prepare) does the same in place, without the copies of the
+    /// prepared value that returning it costs.
+    #[must_use]
     pub fn new(vertices: &[Vec3]) -> Option<SolidAnglePolygon> {
+        let mut polygon = Self::EMPTY;
+        polygon.prepare(vertices).then_some(polygon)
+    }
+
+    /// [`new`](Self::new) in place: writes the prepared polygon into `self` and returns
+    /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false` where `new` returns
+    /// `None`. Every field that sampling, `pdf` and `invert` read is written, whatever
+    /// `self` held before, and nothing is copied.
+    pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
+        let prepared = self.prepare_or_fail(vertices);
+        if !prepared {
+            *self = Self::EMPTY;
+        }
+        prepared
+    }
+
+    /// The body of [`prepare`](Self::prepare); on `false`, `self` holds partial values.
+    #[inline(always)]
+    fn prepare_or_fail(&mut self, vertices: &[Vec3]) -> bool {
         let count = vertices.len();
         if !(3..=MAX_POLYGON_VERTICES).contains(&count) {
-            return None;
+            return false;
         }
         let mut positions = [Vec3::ZERO; MAX_POLYGON_VERTICES];
-        rescale(vertices, &mut positions)?;
-        let mut polygon = Self::EMPTY;
-        let mut lengths = [0.0f32; MAX_POLYGON_VERTICES];
-        for i in 0..count {
-            lengths[i] = positions[i].length();
-            if !(lengths[i] > 0.0) {
-                return None;
-            }
-            polygon.vertices[i] = positions[i] / lengths[i];
+        if rescale(vertices, &mut positions).is_none() {
+            return false;
         }
-        let apex = polygon.vertices[0];
+        let mut lengths = [0.0f32; MAX_POLYGON_VERTICES];
+        let mut length_squares = [0.0f32; MAX_POLYGON_VERTICES];
+        for i in 0..count {
+            length_squares[i] = positions[i].length_squared();
+            lengths[i] = libm::sqrtf(length_squares[i]);
+            if !(lengths[i] > 0.0) {
+                return false;
+            }
+            // Divided, not multiplied by a reciprocal: correctly rounded unit vectors
+            // (half an ulp). With the reciprocal (one ulp) the chi-square test found a
+            // sample at u0 = 1 - 5e-7 whose direction rounded 1.5e-8 to the outer side of
+            // its edge, where `pdf` is 0; and the reciprocal of a length below 2^-128
+            // overflows.
+            self.vertices[i] = positions[i] / lengths[i];
+        }
+        let apex = self.vertices[0];
         let reflection = Householder::new(apex);
         // Reflected edge vectors from the apex: exact differences of the inputs up to one
         // rounding each, so tiny and distant polygons keep their relative precision.
@@ -223,29 +270,49 @@ impl SolidAnglePolygon {
         let triangles = count - 2;
         let mut signed_sum = 0.0f32;
         let mut total = 0.0f32;
+        let mut edge_on = true;
+        let mut careful_paths = 0;
+        self.selectable_triangles = 0;
+        let mut apex_sum = self.vertices[1] + apex;
+        let mut apex_sum_squared = apex_sum.length_squared();
         for k in 0..triangles {
             let (b, c) = (k + 1, k + 2);
             // G0 = det(v0, v1, v2) = det(p_b, p_a, p_c) / (|p_a| |p_b| |p_c|).
             let signed_g0 =
                 reflection.determinant(reflected[b], reflected[c]) / (lengths[b] * lengths[c]);
             signed_sum += signed_g0;
-            let (v0, v1, v2) = (polygon.vertices[b], apex, polygon.vertices[c]);
-            let unit_sum = |i: usize, j: usize| {
-                unit_vector_sum(positions[i], positions[j], lengths[i], lengths[j])
-            };
-            let (s01, s02, s12) = (unit_sum(b, 0), unit_sum(b, c), unit_sum(0, c));
+            let (v0, v1, v2) = (self.vertices[b], apex, self.vertices[c]);
+            // The pair sums `v_i + v_j`. Fast path: the plain sums of the rounded unit
+            // vectors. Each unit vector is off by at most about 1.5 ulp of 1 per
+            // component, so a sum of length `|s|` carries a relative error of at most
+            // about `3ε / |s| + ε/2`: for `|s|² >= 1` (the vertices at most 120°
+            // apart) at most 3.5ε, within the few ulps that the compensated sums reach
+            // and far below the figures README.md states. Only for nearly antipodal
+            // pairs (`|s|` small, where the plain sum loses its relative precision) do
+            // the compensated sums run: a shading point close to a large polygon.
+            // `apex + v_c` is the next triangle's `v_b + apex`: computed once.
+            let (mut s01, mut s02, mut s12) = (apex_sum, v0 + v2, v1 + v2);
+            let (l01, l02, l12) = (apex_sum_squared, s02.length_squared(), s12.length_squared());
+            (apex_sum, apex_sum_squared) = (s12, l12);
+            if !(l01.min(l02).min(l12) >= 1.0) {
+                let unit_sum = |i: usize, j: usize| {
+                    unit_vector_sum(positions[i], positions[j], lengths[i], lengths[j])
+                };
+                (s01, s02, s12) = (unit_sum(b, 0), unit_sum(b, c), unit_sum(0, c));
+                careful_paths |= CAREFUL_PAIR_SUMS;
+            }
             let g0 = signed_g0.abs();
-            let g2 = 0.5 * s01.length_squared();
+            edge_on &= g0 == 0.0;
             let g1_plus_g2 = denominator(v0, v1, v2, s01, s02, s12);
-            polygon.g0[k] = g0;
-            polygon.g1_plus_g2[k] = g1_plus_g2;
-            polygon.g2[k] = g2;
-            polygon.outer_sum[k] = s02;
-            polygon.start[k] = total;
+            self.g0[k] = g0;
+            self.g1_plus_g2[k] = g1_plus_g2;
+            self.g2[k] = 0.5 * s01.length_squared();
+            self.outer_sum[k] = s02;
+            self.start[k] = total;
             // Algorithm 5: A = 2 atan2(G0, G2 + G1), with G0 >= 0.
             let triangle_solid_angle = 2.0 * atan2_upper_half_plane(g0, g1_plus_g2);
             if triangle_solid_angle > 0.0 {
-                polygon.selectable_triangles = (k + 1) as u32;
+                self.selectable_triangles = (k + 1) as u32;
             }
             total += triangle_solid_angle;
         }
@@ -253,29 +320,73 @@ impl SolidAnglePolygon {
         // All determinants zero: the shading point lies in the polygon's plane. If it
         // also lies inside the polygon, van Oosterom and Strackee's formula gives 2π
         // (atan2(0, negative)) for a polygon that is seen edge-on: reject it.
-        let edge_on = polygon.g0[..triangles].iter().all(|&g0| g0 == 0.0);
         if edge_on || !(total > 0.0) || !density.is_finite() || !total.is_finite() {
-            return None;
+            return false;
         }
         // det(p_b, p_a, p_c) = -det(p_a, p_b, p_c): a positive sum means the polygon
         // winds clockwise as seen from the shading point.
         let orientation = if signed_sum > 0.0 { -1.0 } else { 1.0 };
-        for i in 0..count {
-            let next = if i + 1 == count { 0 } else { i + 1 };
-            // p_i × p_next = p_i × (p_next - p_i): the edge vector is exact up to one
-            // rounding and nearly orthogonal to p_i, so no cancellation occurs.
-            let edge = positions[next] - positions[i];
-            polygon.edge_normals[i] = positions[i].cross(edge) * orientation;
+        let mut maybe_short = false;
+        for i in 0..MAX_POLYGON_VERTICES {
+            // Unused slots get zero normals, which every direction passes.
+            self.edge_normals[i] = if i < count {
+                let next = if i + 1 == count { 0 } else { i + 1 };
+                // p_i × p_next = p_i × (p_next - p_i): the edge vector is exact up to one
+                // rounding and nearly orthogonal to p_i, so no cancellation occurs.
+                let edge = positions[next] - positions[i];
+                let normal = positions[i].cross(edge);
+                // The first test of `ignore_short_edges_in_containment` (sin² of the
+                // edge's length against SHORT_EDGE_SINE²), on the same values: the
+                // common polygon has no short edge and skips it.
+                maybe_short |= !(normal.length_squared()
+                    > super::SHORT_EDGE_SINE
+                        * super::SHORT_EDGE_SINE
+                        * (length_squares[i] * length_squares[next]));
+                normal * orientation
+            } else {
+                Vec3::ZERO
+            };
         }
         // An edge a few ulps long (a vertex that clipping put a few ulps from its
         // neighbour) has a plane of rounding noise, which cut away up to 0.03 rad of the
         // polygon from `contains` (found by fuzzing); it is left out of the test.
-        super::ignore_short_edges_in_containment(&mut polygon.edge_normals, &positions, count);
-        polygon.solid_angle = total;
-        polygon.density = density;
-        polygon.orientation = orientation;
-        polygon.vertex_count = count as u32;
-        Some(polygon)
+        if maybe_short {
+            super::ignore_short_edges_in_containment(&mut self.edge_normals, &positions, count);
+            careful_paths |= CAREFUL_SHORT_EDGES;
+        }
+        self.careful_paths = careful_paths;
+        // The unused slots as in the empty value: no stale or NaN word is left in a
+        // prepared value (the adversarial C test fills it with NaN first).
+        for i in count..MAX_POLYGON_VERTICES {
+            self.vertices[i] = Vec3::Z;
+        }
+        for k in triangles..MAX_TRIANGLES {
+            self.g0[k] = 0.0;
+            self.g1_plus_g2[k] = 0.0;
+            self.g2[k] = 0.0;
+            self.outer_sum[k] = Vec3::ZERO;
+            self.start[k] = 0.0;
+        }
+        self.solid_angle = total;
+        self.density = density;
+        self.orientation = orientation;
+        self.vertex_count = count as u32;
+        true
+    }
+
+    /// Which careful fallbacks preparation took, as a set of bits: [`CAREFUL_PAIR_SUMS`]
+    /// and [`CAREFUL_SHORT_EDGES`]; 0 for the common, well-conditioned polygon, which
+    /// takes the fast path throughout (and for the empty polygon).
+    ///
+    /// The fast path sums unit vertex directions plainly; it is taken for every fan
+    /// triangle whose three pairwise sums have `|v_i + v_j|² >= 1` (vertices at most 120°
+    /// apart), where the plain sum's relative error is at most about 3.5ε against the
+    /// compensated sum's 2ε. The containment test's short-edge rule runs only when an edge
+    /// is shorter than about 1.5e-5 rad.
+    #[inline]
+    #[must_use]
+    pub fn careful_paths(&self) -> u32 {
+        self.careful_paths
     }
 
     /// Total solid angle Ω of the polygon in steradians (0 when empty).

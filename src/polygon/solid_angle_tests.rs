@@ -487,3 +487,63 @@ fn directions_are_unit_for_vertices_at_the_poles() {
         );
     }
 }
+
+/// Which inputs take the fast path and which the careful fallbacks (and that the
+/// fallbacks are what keeps the hard cases accurate: their accuracy is asserted by the
+/// hard-case tests above, which all run through them).
+#[test]
+fn ordinary_polygons_take_the_fast_path_and_hard_ones_the_careful_fallbacks() {
+    use super::{CAREFUL_PAIR_SUMS, CAREFUL_SHORT_EDGES};
+    let mut rng = Rng::new(501);
+    let mut fast = 0;
+    for n in 3..=8 {
+        for _ in 0..50 {
+            let center = Vec3::new(
+                rng.uniform_f32() - 0.5,
+                rng.uniform_f32() - 0.5,
+                1.0 + rng.uniform_f32(),
+            );
+            let normal = Vec3::new(rng.uniform_f32() - 0.5, rng.uniform_f32() - 0.5, 1.0);
+            let (radius, aspect) = (0.3 + rng.uniform_f32(), 0.3 + 0.7 * rng.uniform_f32());
+            let v = ellipse_polygon(&mut rng, n, center, normal, radius, aspect);
+            let polygon = SolidAnglePolygon::new(&v).expect("valid polygon");
+            fast += (polygon.careful_paths() == 0) as u32;
+        }
+    }
+    // Polygons of radius 0.3-1.3 at distance 1-2 from the shading point: vertices at
+    // most about 110° apart, so every one takes the fast path.
+    assert_eq!(
+        fast, 300,
+        "fast path taken by {fast} of 300 ordinary polygons"
+    );
+    // A quad 2 × 2 at 1e-6 above the shading point: its fan diagonal passes over the
+    // shading point, whose opposite vertices are nearly antipodal.
+    let near = [
+        Vec3::new(-1.0, -1.0, 1e-6),
+        Vec3::new(1.0, -1.0, 1e-6),
+        Vec3::new(1.0, 1.0, 1e-6),
+        Vec3::new(-1.0, 1.0, 1e-6),
+    ];
+    let polygon = SolidAnglePolygon::new(&near).expect("valid polygon");
+    assert_eq!(
+        polygon.careful_paths() & CAREFUL_PAIR_SUMS,
+        CAREFUL_PAIR_SUMS
+    );
+    let exact = reference_solid_angle(&near);
+    assert!(
+        ((polygon.solid_angle() as f64 - exact) / exact).abs() < 1e-6,
+        "{} vs {exact}",
+        polygon.solid_angle()
+    );
+    // Two vertices 1e-7 apart (as clipping can leave them): the short-edge rule runs.
+    let short = [
+        Vec3::new(0.0, 0.0, 1.0),
+        Vec3::new(0.5, 0.0, 1.0),
+        Vec3::new(0.5, 1e-7, 1.0),
+        Vec3::new(0.0, 0.5, 1.0),
+    ];
+    let polygon = SolidAnglePolygon::new(&short).expect("valid polygon");
+    assert_eq!(polygon.careful_paths(), CAREFUL_SHORT_EDGES);
+    // A failed prepare reports no path.
+    assert_eq!(SolidAnglePolygon::EMPTY.careful_paths(), 0);
+}

@@ -489,16 +489,17 @@ fn arvo_accuracy_table() {
         "## Accuracy per decade of solid angle: solid angle sampling and Arvo 1995 (random triangles and quads)\n"
     );
     println!(
-        "Relative error of Ω against f64 (median / max over 200 polygons) and the fraction of 400 samples per polygon whose f64 ray misses the polygon.\n"
+        "Relative error of Ω against f64 (median / max over 200 polygons), the fraction of 400 samples per polygon whose f64 ray misses the polygon, and the fraction of polygons whose preparation took the fast path throughout (`careful_paths() == 0`).\n"
     );
     println!(
-        "| Ω | ours: median err | ours: max err | Arvo: median err | Arvo: max err | ours: outside | Arvo: outside |"
+        "| Ω | ours: median err | ours: max err | Arvo: median err | Arvo: max err | ours: outside | Arvo: outside | ours: fast path |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
     let mut rng = Rng(7);
     for decade in (-10..=0).rev() {
         let (mut ours, mut arvo) = (Vec::new(), Vec::new());
         let (mut ours_out, mut arvo_out, mut total) = (0u64, 0u64, 0u64);
+        let mut fast_path = 0usize;
         while ours.len() < 200 {
             // A polygon of about the target solid angle, at least three times its own
             // size away; kept only when its exact Ω falls into the decade.
@@ -521,6 +522,7 @@ fn arvo_accuracy_table() {
                 continue;
             };
             ours.push((a.solid_angle() as f64 - exact).abs() / exact);
+            fast_path += (a.careful_paths() == 0) as usize;
             arvo.push((b.solid_angle() as f64 - exact).abs() / exact);
             for _ in 0..400 {
                 let u = [rng.uniform(), rng.uniform()];
@@ -532,9 +534,10 @@ fn arvo_accuracy_table() {
         let (om, _, ox) = percentiles(&mut ours);
         let (am, _, ax) = percentiles(&mut arvo);
         println!(
-            "| 1e{decade} | {om:.1e} | {ox:.1e} | {am:.1e} | {ax:.1e} | {:.1e} | {:.1e} |",
+            "| 1e{decade} | {om:.1e} | {ox:.1e} | {am:.1e} | {ax:.1e} | {:.1e} | {:.1e} | {:.1}% |",
             ours_out as f64 / total as f64,
-            arvo_out as f64 / total as f64
+            arvo_out as f64 / total as f64,
+            100.0 * fast_path as f64 / ours.len() as f64
         );
     }
     println!();

@@ -448,7 +448,9 @@ pub fn cone_distance(vertices: &[SpheraVec3], dir: SpheraVec3) -> f64 {
 /// `write` must initialise the value through its pointer (every `prepare` of the C ABI
 /// does when the pointer is non-null).
 unsafe fn prepared<T>(write: impl FnOnce(*mut T) -> bool) -> (T, bool) {
-    let mut out = MaybeUninit::<T>::uninit();
+    // Zeroed, as a C caller's fresh struct often is: an in-place `prepare` writes every
+    // field that sampling reads, but not the unused slots of its arrays.
+    let mut out = MaybeUninit::<T>::zeroed();
     let ok = write(out.as_mut_ptr());
     // SAFETY: the caller guarantees that `write` initialised it.
     (unsafe { out.assume_init() }, ok)

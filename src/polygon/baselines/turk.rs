@@ -23,13 +23,10 @@ const EDGE_TOLERANCE: f32 = 16.0 * f32::EPSILON;
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct TurkPolygon {
-    /// The vertices relative to the shading point.
+    /// The vertices relative to the shading point. (The edge planes of `pdf` are
+    /// computed from them when `pdf` is called, so that `prepare`, which a renderer calls
+    /// once per shading point and light, stays as lean as plain area sampling.)
     vertices: [Vec3; MAX_POLYGON_VERTICES],
-    /// Normals of the planes through the shading point and each edge
-    /// `v_i × (v_{i+1} - v_i)`, oriented so that the polygon lies on their positive side.
-    edge_normals: [Vec3; MAX_POLYGON_VERTICES],
-    /// Rounding slack of each edge test, per unit of `|dir|₁`.
-    edge_tolerances: [f32; MAX_POLYGON_VERTICES],
     /// Cumulative probabilities of the fan triangles `(v_0, v_{i+1}, v_{i+2})`; the last
     /// used entry is exactly 1.
     cdf: [f32; MAX_FAN_TRIANGLES],
@@ -46,8 +43,6 @@ impl TurkPolygon {
     /// The polygon that samples nothing.
     pub const EMPTY: Self = Self {
         vertices: [Vec3::ZERO; MAX_POLYGON_VERTICES],
-        edge_normals: [Vec3::ZERO; MAX_POLYGON_VERTICES],
-        edge_tolerances: [0.0; MAX_POLYGON_VERTICES],
         cdf: [1.0; MAX_FAN_TRIANGLES],
         normal: Vec3::Z,
         plane_offset: 0.0,
@@ -59,74 +54,94 @@ impl TurkPolygon {
     /// Prepares a convex planar polygon (3 to 8 vertices relative to the shading point,
     /// either winding). Returns None for a bad vertex count, a non-finite coordinate, a
     /// zero (or overflowing) area, or a plane through the shading point.
+    ///
+    /// [`prepare`](Self::prepare) does the same in place.
+    #[must_use]
     pub fn new(vertices: &[Vec3]) -> Option<Self> {
+        let mut polygon = Self::EMPTY;
+        polygon.prepare(vertices).then_some(polygon)
+    }
+
+    /// [`new`](Self::new) in place: writes the prepared polygon into `self` and returns
+    /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false` where `new` returns
+    /// `None`. Every field that `sample` and `pdf` read is written, whatever `self` held.
+    pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
+        let prepared = self.prepare_or_fail(vertices);
+        if !prepared {
+            *self = Self::EMPTY;
+        }
+        prepared
+    }
+
+    /// The body of [`prepare`](Self::prepare); on `false`, `self` holds partial values.
+    #[inline(always)]
+    fn prepare_or_fail(&mut self, vertices: &[Vec3]) -> bool {
         let count = vertices.len();
-        if !(3..=MAX_POLYGON_VERTICES).contains(&count) || !vertices.iter().all(|v| v.is_finite()) {
-            return None;
+        if !(3..=MAX_POLYGON_VERTICES).contains(&count) {
+            return false;
+        }
+        let mut finite = true;
+        for v in vertices {
+            finite &= v.is_finite();
+        }
+        if !finite {
+            return false;
         }
         let v0 = vertices[0];
-        // Twice the (vector) areas of the fan triangles.
-        let mut doubled = [0.0f32; MAX_FAN_TRIANGLES];
+        // Twice the (vector) areas of the fan triangles, summed up in `cdf` first.
         let mut normal_sum = Vec3::ZERO;
+        let mut total = 0.0f32;
         for i in 0..count - 2 {
             let c = (vertices[i + 1] - v0).cross(vertices[i + 2] - v0);
             normal_sum += c;
-            doubled[i] = c.length();
+            total += c.length();
+            self.cdf[i] = total;
         }
         let doubled_area = normal_sum.length();
         let area = 0.5 * doubled_area;
-        let normal = normal_sum.try_normalize()?;
-        if !(area > 0.0 && area.is_finite()) {
-            return None;
+        let Some(normal) = normal_sum.try_normalize() else {
+            return false;
+        };
+        if !(area > 0.0 && area.is_finite() && total > 0.0 && total.is_finite()) {
+            return false;
         }
         // Plane offset (the mean over the vertices) and the polygon's extent.
         let mut offset_sum = 0.0;
-        let mut extent = 0.0f32;
+        let mut extent_squared = 0.0f32;
         for v in vertices {
             offset_sum += normal.dot(*v);
-            extent = extent.max(v.length());
+            extent_squared = extent_squared.max(v.length_squared());
         }
         let plane_offset = offset_sum / count as f32;
-        // A plane through the origin within the rounding of the input.
+        let extent = libm::sqrtf(extent_squared);
+        // A plane through the origin within the rounding of the input. The extent bound
+        // keeps the edge planes of `pdf`, `v_i × (v_(i+1) - v_i)` with components up to
+        // `4 extent²`, finite.
         if plane_offset.abs() <= 8.0 * f32::EPSILON * extent
             || !plane_offset.is_finite()
-            || !extent.is_finite()
+            || !(extent_squared <= 0.25 * f32::MAX)
         {
-            return None;
+            return false;
         }
-        let mut polygon = Self::EMPTY;
-        polygon.count = count as u32;
-        polygon.vertices[..count].copy_from_slice(vertices);
-        polygon.normal = normal;
-        polygon.plane_offset = plane_offset;
-        polygon.area = area;
-        polygon.inv_area = 1.0 / area;
-        // Fan triangle probabilities by area.
-        let total: f32 = doubled[..count - 2].iter().sum();
-        if !(total > 0.0 && total.is_finite()) {
-            return None;
+        self.count = count as u32;
+        self.vertices[..count].copy_from_slice(vertices);
+        self.normal = normal;
+        self.plane_offset = plane_offset;
+        self.area = area;
+        self.inv_area = 1.0 / area;
+        // Fan triangle probabilities by area: the running sums over their total.
+        let inverse_total = 1.0 / total;
+        for cdf in &mut self.cdf[..count - 3] {
+            *cdf = (*cdf * inverse_total).min(1.0);
         }
-        let mut running = 0.0;
-        for (cdf, doubled) in polygon.cdf.iter_mut().zip(&doubled[..count - 2]) {
-            running += doubled;
-            *cdf = (running / total).min(1.0);
+        // The unused slots as in the empty value: no stale or NaN word is left.
+        for cdf in &mut self.cdf[count - 3..] {
+            *cdf = 1.0;
         }
-        polygon.cdf[count - 3] = 1.0;
-        // Edge planes through the origin: dir · (v_i × e_i) has the sign of the plane
-        // offset for directions inside the polygon.
-        let orientation = if plane_offset > 0.0 { 1.0 } else { -1.0 };
-        for i in 0..count {
-            let v = vertices[i];
-            let edge = vertices[(i + 1) % count] - v;
-            polygon.edge_normals[i] = orientation * v.cross(edge);
-            polygon.edge_tolerances[i] = EDGE_TOLERANCE * v.length() * edge.length();
+        for v in &mut self.vertices[count..] {
+            *v = Vec3::ZERO;
         }
-        if !polygon.edge_tolerances.iter().all(|t| t.is_finite())
-            || !polygon.edge_normals.iter().all(|n| n.is_finite())
-        {
-            return None;
-        }
-        Some(polygon)
+        true
     }
 
     /// Draws a direction towards a point uniform in the polygon's area.
@@ -212,12 +227,21 @@ impl TurkPolygon {
         // `density_along` scale exactly with it, so the result is that of `dir` itself.
         let biased_exponent = (largest.to_bits() >> 23) & 0xFF;
         let dir = dir * f32::from_bits(254u32.saturating_sub(biased_exponent).max(1) << 23);
-        // Edge sign tests (either winding: the edge normals are oriented in `new`).
+        // Edge planes through the origin: dir · (v_i × e_i) has the sign of the plane
+        // offset for directions inside the polygon (either winding). The rounding slack
+        // of a test is only needed where the plain test fails: directions inside (every
+        // sample, and most MIS queries) pass every edge without it.
+        let orientation = if self.plane_offset > 0.0 { 1.0 } else { -1.0 };
         let slack = dir.abs().element_sum();
         for i in 0..count {
-            let side = dir.dot(self.edge_normals[i]);
-            if side < -self.edge_tolerances[i] * slack || side.is_nan() {
-                return 0.0;
+            let v = self.vertices[i];
+            let edge = self.vertices[if i + 1 == count { 0 } else { i + 1 }] - v;
+            let side = dir.dot(orientation * v.cross(edge));
+            if !(side >= 0.0) {
+                let tolerance = EDGE_TOLERANCE * v.length() * edge.length();
+                if side < -tolerance * slack || side.is_nan() {
+                    return 0.0;
+                }
             }
         }
         self.density_along(dir)
