@@ -241,8 +241,8 @@ typedef struct SpheraTurkPolygon {
    */
   SpheraVec3 vertices[SPHERA_MAX_POLYGON_VERTICES];
   /**
-   * Cumulative probabilities of the fan triangles `(v_0, v_{i+1}, v_{i+2})`; the last
-   * used entry is exactly 1.
+   * Running sums of twice the areas of the fan triangles `(v_0, v_{i+1}, v_{i+2})`
+   * (the unused entries repeat the total).
    */
   float cdf[(SPHERA_MAX_POLYGON_VERTICES - 2)];
   /**
@@ -1053,7 +1053,7 @@ uint32_t sphera_polygon_clip(struct SpheraVec3 *vertices, uint32_t count);
  * # Safety
  *
  * `out` must be null or point to writable memory for one `SpheraSolidAnglePolygon`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s.
+ * `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
  */
 bool sphera_solid_angle_polygon_prepare(struct SpheraSolidAnglePolygon *out,
                                         const struct SpheraVec3 *vertices,
@@ -1129,7 +1129,7 @@ bool sphera_solid_angle_polygon_invert(const struct SpheraSolidAnglePolygon *pol
  *
  * Returns `false` when `out` is null, when `vertices` is null, when `count` lies
  * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite,
- * when a vertex lies farther than about 9e18 from the shading point (so that the edge
+ * when a coordinate exceeds about 1e18 (2^60) (so that the edge
  * planes that `sphera_turk_polygon_pdf` computes stay finite), or when the polygon is
  * degenerate. Unless `out` is null, a `false` return writes the empty polygon into
  * `*out`: its samples have pdf 0, its `pdf` is 0 and its area is 0, whatever `*out`
@@ -1138,7 +1138,7 @@ bool sphera_solid_angle_polygon_invert(const struct SpheraSolidAnglePolygon *pol
  * # Safety
  *
  * `out` must be null or point to writable memory for one `SpheraTurkPolygon`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s.
+ * `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
  */
 bool sphera_turk_polygon_prepare(struct SpheraTurkPolygon *out,
                                  const struct SpheraVec3 *vertices,
@@ -1201,7 +1201,7 @@ float sphera_turk_polygon_area(const struct SpheraTurkPolygon *polygon);
  * # Safety
  *
  * `out` must be null or point to writable memory for one `SpheraArvoPolygon`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s.
+ * `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
  */
 bool sphera_arvo_polygon_prepare(struct SpheraArvoPolygon *out,
                                  const struct SpheraVec3 *vertices,
@@ -1318,7 +1318,7 @@ const char *sphera_version(void);
  * # Safety
  *
  * `out` must be null or point to writable memory for one `SpheraHartBilinearPolygon`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s.
+ * `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
  */
 bool sphera_hart_bilinear_polygon_prepare(struct SpheraHartBilinearPolygon *out,
                                           const struct SpheraVec3 *vertices,
@@ -1436,7 +1436,7 @@ float sphera_hart_biquadratic_polygon_pdf(const struct SpheraHartBiquadraticPoly
  *
  * `out` must be null or point to writable memory for one
  * `SpheraClippedSolidAnglePolygon`; `vertices` must be null or point to `count`
- * readable `SpheraVec3`s.
+ * readable `SpheraVec3`s that do not overlap `*out`.
  */
 bool sphera_clipped_solid_angle_polygon_prepare(struct SpheraClippedSolidAnglePolygon *out,
                                                 const struct SpheraVec3 *vertices,
@@ -1508,7 +1508,7 @@ float sphera_clipped_solid_angle_polygon_solid_angle(const struct SpheraClippedS
  *
  * `out` must be null or point to writable memory for one
  * `SpheraProjectedSolidAnglePolygon`; `vertices` must be null or point to `count`
- * readable `SpheraVec3`s.
+ * readable `SpheraVec3`s that do not overlap `*out`.
  */
 bool sphera_projected_polygon_prepare(struct SpheraProjectedSolidAnglePolygon *out,
                                       const struct SpheraVec3 *vertices,
@@ -1602,7 +1602,7 @@ float sphera_projected_polygon_projected_solid_angle(const struct SpheraProjecte
  * # Safety
  *
  * `out` must be null or point to writable memory for one `SpheraArvoProjectedPolygon`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s.
+ * `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
  */
 bool sphera_arvo_projected_polygon_prepare(struct SpheraArvoProjectedPolygon *out,
                                            const struct SpheraVec3 *vertices,
@@ -1880,7 +1880,7 @@ struct SpheraVec3 sphera_ltc_specular_albedo(const struct SpheraLtc *ltc, struct
  *
  * `out` must be null or point to writable memory for one `SpheraLtcPolygon`; `ltc`
  * must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`; `vertices` must
- * be null or point to `count` readable `SpheraVec3`s.
+ * be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
  */
 bool sphera_ltc_polygon_prepare(struct SpheraLtcPolygon *out,
                                 const struct SpheraLtc *ltc,

@@ -84,7 +84,7 @@ pub unsafe extern "C" fn sphera_ltc_specular_albedo(ltc: *const Ltc, f0: SpheraV
 ///
 /// `out` must be null or point to writable memory for one `SpheraLtcPolygon`; `ltc`
 /// must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`; `vertices` must
-/// be null or point to `count` readable `SpheraVec3`s.
+/// be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ltc_polygon_prepare(
     out: *mut LtcPolygon,

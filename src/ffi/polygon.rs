@@ -36,10 +36,27 @@ pub(super) unsafe fn prepare<T>(
         return false;
     };
     // SAFETY: forwarded from the caller.
-    match unsafe { read_polygon(vertices, count) } {
-        Some((local, n)) => prepare(out, &local[..n]),
-        None => prepare(out, &[]),
+    prepare(out, unsafe { polygon_slice(vertices, count) })
+}
+
+/// The `count` vertices at `vertices` as a slice, read in place (the 96 bytes of a copy
+/// are a tenth of a lean prepare), or an empty slice when `vertices` is null or `count`
+/// lies outside `3..=SPHERA_MAX_POLYGON_VERTICES`.
+///
+/// # Safety
+///
+/// When non-null and `count` is in range, `vertices` must point to `count` readable,
+/// initialised `SpheraVec3`s that nothing writes while the slice lives (the header: they
+/// must not overlap `*out`).
+#[inline(always)]
+unsafe fn polygon_slice<'a>(vertices: *const SpheraVec3, count: u32) -> &'a [Vec3] {
+    let count = count as usize;
+    if vertices.is_null() || !(3..=MAX_POLYGON_VERTICES).contains(&count) {
+        return &[];
     }
+    // SAFETY: `SpheraVec3` and `Vec3` have the same layout (asserted in `types.rs`), and
+    // the caller guarantees `count` readable elements that nothing writes meanwhile.
+    unsafe { core::slice::from_raw_parts(vertices.cast::<Vec3>(), count) }
 }
 
 /// An in-place `prepare` for a type that is prepared by value (`new` returning an
@@ -107,7 +124,7 @@ pub unsafe extern "C" fn sphera_polygon_clip(vertices: *mut SpheraVec3, count: u
 /// # Safety
 ///
 /// `out` must be null or point to writable memory for one `SpheraSolidAnglePolygon`;
-/// `vertices` must be null or point to `count` readable `SpheraVec3`s.
+/// `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_solid_angle_polygon_prepare(
     out: *mut SolidAnglePolygon,
@@ -220,7 +237,7 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_invert(
 ///
 /// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
 /// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite,
-/// when a vertex lies farther than about 9e18 from the shading point (so that the edge
+/// when a coordinate exceeds about 1e18 (2^60) (so that the edge
 /// planes that `sphera_turk_polygon_pdf` computes stay finite), or when the polygon is
 /// degenerate. Unless `out` is null, a `false` return writes the empty polygon into
 /// `*out`: its samples have pdf 0, its `pdf` is 0 and its area is 0, whatever `*out`
@@ -229,7 +246,7 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_invert(
 /// # Safety
 ///
 /// `out` must be null or point to writable memory for one `SpheraTurkPolygon`;
-/// `vertices` must be null or point to `count` readable `SpheraVec3`s.
+/// `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_turk_polygon_prepare(
     out: *mut TurkPolygon,
@@ -311,7 +328,7 @@ pub unsafe extern "C" fn sphera_turk_polygon_area(polygon: *const TurkPolygon) -
 /// # Safety
 ///
 /// `out` must be null or point to writable memory for one `SpheraArvoPolygon`;
-/// `vertices` must be null or point to `count` readable `SpheraVec3`s.
+/// `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_arvo_polygon_prepare(
     out: *mut ArvoPolygon,

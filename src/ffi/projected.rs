@@ -32,7 +32,7 @@ use crate::polygon::baselines::ArvoProjectedPolygon;
 ///
 /// `out` must be null or point to writable memory for one
 /// `SpheraProjectedSolidAnglePolygon`; `vertices` must be null or point to `count`
-/// readable `SpheraVec3`s.
+/// readable `SpheraVec3`s that do not overlap `*out`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_prepare(
     out: *mut ProjectedSolidAnglePolygon,
@@ -165,7 +165,7 @@ pub unsafe extern "C" fn sphera_projected_polygon_projected_solid_angle(
 /// # Safety
 ///
 /// `out` must be null or point to writable memory for one `SpheraArvoProjectedPolygon`;
-/// `vertices` must be null or point to `count` readable `SpheraVec3`s.
+/// `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_arvo_projected_polygon_prepare(
     out: *mut ArvoProjectedPolygon,

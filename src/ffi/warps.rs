@@ -29,7 +29,7 @@ use crate::polygon::baselines::{HartBilinearPolygon, HartBiquadraticPolygon};
 /// # Safety
 ///
 /// `out` must be null or point to writable memory for one `SpheraHartBilinearPolygon`;
-/// `vertices` must be null or point to `count` readable `SpheraVec3`s.
+/// `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_hart_bilinear_polygon_prepare(
     out: *mut HartBilinearPolygon,
@@ -195,7 +195,7 @@ pub unsafe extern "C" fn sphera_hart_biquadratic_polygon_pdf(
 ///
 /// `out` must be null or point to writable memory for one
 /// `SpheraClippedSolidAnglePolygon`; `vertices` must be null or point to `count`
-/// readable `SpheraVec3`s.
+/// readable `SpheraVec3`s that do not overlap `*out`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_prepare(
     out: *mut ClippedSolidAnglePolygon,

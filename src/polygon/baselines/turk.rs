@@ -27,8 +27,8 @@ pub struct TurkPolygon {
     /// computed from them when `pdf` is called, so that `prepare`, which a renderer calls
     /// once per shading point and light, stays as lean as plain area sampling.)
     vertices: [Vec3; MAX_POLYGON_VERTICES],
-    /// Cumulative probabilities of the fan triangles `(v_0, v_{i+1}, v_{i+2})`; the last
-    /// used entry is exactly 1.
+    /// Running sums of twice the areas of the fan triangles `(v_0, v_{i+1}, v_{i+2})`
+    /// (the unused entries repeat the total).
     cdf: [f32; MAX_FAN_TRIANGLES],
     /// Unit normal of the polygon's plane.
     normal: Vec3,
@@ -74,69 +74,62 @@ impl TurkPolygon {
     }
 
     /// The body of [`prepare`](Self::prepare); on `false`, `self` holds partial values.
+    ///
+    /// As lean as plain area sampling: the vertices are copied and the fan computed; no
+    /// square root per vertex. A NaN or
+    /// infinite coordinate needs no test of its own: every vertex belongs to a fan
+    /// triangle, whose cross product then has a NaN or infinite component (∞ · 0 and
+    /// ∞ − ∞ are NaN), so the normal cannot be normalised.
     #[inline(always)]
     fn prepare_or_fail(&mut self, vertices: &[Vec3]) -> bool {
         let count = vertices.len();
         if !(3..=MAX_POLYGON_VERTICES).contains(&count) {
             return false;
         }
-        let mut finite = true;
-        for v in vertices {
-            finite &= v.is_finite();
-        }
-        if !finite {
-            return false;
-        }
+        self.vertices[..count].copy_from_slice(vertices);
         let v0 = vertices[0];
-        // Twice the (vector) areas of the fan triangles, summed up in `cdf` first.
+        // Twice the (vector) areas of the fan triangles, summed up in `cdf`.
         let mut normal_sum = Vec3::ZERO;
         let mut total = 0.0f32;
+        // The largest coordinate of the vectors from v0 to the other vertices.
+        let mut reach = (vertices[1] - v0).abs().max_element();
         for i in 0..count - 2 {
-            let c = (vertices[i + 1] - v0).cross(vertices[i + 2] - v0);
+            let b = vertices[i + 2] - v0;
+            reach = reach.max(b.abs().max_element());
+            let c = (vertices[i + 1] - v0).cross(b);
             normal_sum += c;
             total += c.length();
             self.cdf[i] = total;
         }
         let doubled_area = normal_sum.length();
+        let normal = normal_sum * (1.0 / doubled_area);
         let area = 0.5 * doubled_area;
-        let Some(normal) = normal_sum.try_normalize() else {
-            return false;
-        };
-        if !(area > 0.0 && area.is_finite() && total > 0.0 && total.is_finite()) {
-            return false;
-        }
-        // Plane offset (the mean over the vertices) and the polygon's extent.
-        let mut offset_sum = 0.0;
-        let mut extent_squared = 0.0f32;
-        for v in vertices {
-            offset_sum += normal.dot(*v);
-            extent_squared = extent_squared.max(v.length_squared());
-        }
-        let plane_offset = offset_sum / count as f32;
-        let extent = libm::sqrtf(extent_squared);
-        // A plane through the origin within the rounding of the input. The extent bound
-        // keeps the edge planes of `pdf`, `v_i × (v_(i+1) - v_i)` with components up to
-        // `4 extent²`, finite.
-        if plane_offset.abs() <= 8.0 * f32::EPSILON * extent
-            || !plane_offset.is_finite()
-            || !(extent_squared <= 0.25 * f32::MAX)
+        // Signed distance of the plane from the shading point, from the first vertex:
+        // rounded by about 4ε |v0| (the normal's rounding and the dot product's).
+        let plane_offset = normal.dot(v0);
+        // Rejected: a zero, overflowing or NaN area; a plane through the shading point
+        // within 8ε |v0| (bounded by 8√3 ε times v0's largest coordinate, which cannot
+        // overflow as |v0|² can); a coordinate beyond 2^60 (|v0|∞ + reach bounds every
+        // vertex's), past which the edge planes of `pdf`, `v_i × (v_(i+1) - v_i)`, and
+        // their dot products with a direction of components below 2 could overflow.
+        let largest = v0.abs().max_element();
+        if !(area > 0.0
+            && area.is_finite()
+            && total.is_finite()
+            && normal.is_finite()
+            && largest + reach <= 1.152_921_5e18
+            && plane_offset.abs() > (8.0 * 1.732_050_8 * f32::EPSILON) * largest)
         {
             return false;
         }
         self.count = count as u32;
-        self.vertices[..count].copy_from_slice(vertices);
         self.normal = normal;
         self.plane_offset = plane_offset;
         self.area = area;
         self.inv_area = 1.0 / area;
-        // Fan triangle probabilities by area: the running sums over their total.
-        let inverse_total = 1.0 / total;
-        for cdf in &mut self.cdf[..count - 3] {
-            *cdf = (*cdf * inverse_total).min(1.0);
-        }
         // The unused slots as in the empty value: no stale or NaN word is left.
-        for cdf in &mut self.cdf[count - 3..] {
-            *cdf = 1.0;
+        for cdf in &mut self.cdf[count - 2..] {
+            *cdf = total;
         }
         for v in &mut self.vertices[count..] {
             *v = Vec3::ZERO;
@@ -156,12 +149,13 @@ impl TurkPolygon {
         );
         // Choose a fan triangle by area, then reuse u0 within it.
         let triangles = count - 2;
+        let target = u0 * self.cdf[triangles - 1];
         let mut i = 0;
-        while i + 1 < triangles && u0 >= self.cdf[i] {
+        while i + 1 < triangles && target >= self.cdf[i] {
             i += 1;
         }
         let low = if i == 0 { 0.0 } else { self.cdf[i - 1] };
-        let a = ((u0 - low) / (self.cdf[i] - low)).min(1.0);
+        let a = ((target - low) / (self.cdf[i] - low)).min(1.0);
         // Turk's mapping: P = (1 - √a) A + √a (1 - b) B + √a b C.
         let (p0, p1, p2) = (self.vertices[0], self.vertices[i + 1], self.vertices[i + 2]);
         let s = libm::sqrtf(a);
@@ -304,6 +298,33 @@ mod tests {
                 assert!(report.worst_pdf_mismatch < 1e-3, "{what}");
             }
         }
+    }
+
+    /// The bound that keeps `pdf`'s edge planes finite. Long slivers have a finite area
+    /// however long their edges are: one 2e25 long and 1e-7 wide has edge planes
+    /// `v × e` of 2e45, which overflow, and is rejected; one 2e17 long is accepted and
+    /// sampled consistently.
+    #[test]
+    fn turk_rejects_coordinates_beyond_2_to_the_60() {
+        let sliver = |length: f32, width: f32, height: f32| {
+            [
+                Vec3::new(-length, 0.0, height),
+                Vec3::new(length, 0.0, height),
+                Vec3::new(length, width, height),
+                Vec3::new(-length, width, height),
+            ]
+        };
+        let far = sliver(1e25, 1e-7, 1e20);
+        assert!(!far[0].cross(far[1] - far[0]).is_finite());
+        assert!(TurkPolygon::new(&far).is_none());
+        let turk = TurkPolygon::new(&sliver(1e17, 1.0, 1e12)).expect("within the bound");
+        let mut rng = Rng::new(5);
+        for _ in 0..1000 {
+            let s = turk.sample([rng.uniform_f32(), rng.uniform_f32()]);
+            assert!(s.pdf > 0.0 && s.pdf.is_finite(), "{s:?}");
+            assert_eq!(turk.pdf(s.dir), s.pdf, "{s:?}");
+        }
+        assert_eq!(turk.pdf(Vec3::new(0.0, -1.0, 1.0)), 0.0);
     }
 
     #[test]
