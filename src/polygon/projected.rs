@@ -241,10 +241,17 @@ impl ProjectedSolidAnglePolygon {
         let mut edge = [DEGENERATE; MAX_POLYGON_VERTICES];
         let mut direction = [[0.0f32; 2]; MAX_POLYGON_VERTICES];
         let mut xy_length = [0.0f32; MAX_POLYGON_VERTICES];
+        let mut maybe_short = false;
         for j in 0..count {
             let (u, normal) = ellipse_from_edge(positions[j], positions[next(j)]);
             edge[j] = u;
             polygon.edge_normals[j] = normal;
+            // The first test of `ignore_short_edges_in_containment` on the same values:
+            // the common polygon has no short edge and skips it.
+            maybe_short |= !(normal.length_squared()
+                > super::SHORT_EDGE_SINE
+                    * super::SHORT_EDGE_SINE
+                    * (positions[j].length_squared() * positions[next(j)].length_squared()));
             direction[j] = unit_direction(positions[j]);
             xy_length[j] = dot2(direction[j], [positions[j].x, positions[j].y]);
         }
@@ -404,7 +411,9 @@ impl ProjectedSolidAnglePolygon {
         }
         polygon.projected_solid_angle = total;
         polygon.density = density;
-        super::ignore_short_edges_in_containment(&mut polygon.edge_normals, &positions, count);
+        if maybe_short {
+            super::ignore_short_edges_in_containment(&mut polygon.edge_normals, &positions, count);
+        }
         true
     }
 
