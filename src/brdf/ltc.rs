@@ -225,20 +225,35 @@ impl LtcPolygon {
     /// where [`ProjectedSolidAnglePolygon::new`] does for the transformed polygon: bad
     /// counts or coordinates, nothing of it where the LTC lives (`(M⁻¹ω)_z > 0`), or the
     /// shading point in its plane.
+    ///
+    /// [`prepare`](Self::prepare) does the same in place.
+    #[must_use]
     pub fn new(ltc: &Ltc, vertices: &[Vec3]) -> Option<Self> {
+        let mut polygon = Self::EMPTY;
+        polygon.prepare(ltc, vertices).then_some(polygon)
+    }
+
+    /// [`new`](Self::new) in place: writes the prepared polygon into `self` once and
+    /// returns `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false`.
+    pub fn prepare(&mut self, ltc: &Ltc, vertices: &[Vec3]) -> bool {
         let count = vertices.len();
-        if !(3..=MAX_POLYGON_VERTICES).contains(&count) || !plane_misses_origin(vertices) {
-            return None;
-        }
         let mut transformed = [Vec3::ZERO; MAX_POLYGON_VERTICES];
-        for (t, v) in transformed.iter_mut().zip(vertices) {
-            *t = ltc.to_cosine_space(*v);
+        let accepted = (3..=MAX_POLYGON_VERTICES).contains(&count) && plane_misses_origin(vertices);
+        if accepted {
+            for (t, v) in transformed.iter_mut().zip(vertices) {
+                *t = ltc.to_cosine_space(*v);
+            }
         }
-        let transformed = ProjectedSolidAnglePolygon::new(&transformed[..count])?;
-        Some(LtcPolygon {
-            ltc: *ltc,
-            transformed,
-        })
+        // An empty slice (rejected input) makes the projected prepare write its empty
+        // value.
+        let count = if accepted { count } else { 0 };
+        if self.transformed.prepare(&transformed[..count]) {
+            self.ltc = *ltc;
+            true
+        } else {
+            self.ltc = Ltc::IDENTITY;
+            false
+        }
     }
 
     /// `∫_P D dω = Φ(M⁻¹P) / π`: the LTC's mass inside the polygon (Heitz 2016, the

@@ -1,7 +1,7 @@
 //! Linearly transformed cosines fitted to GGX (Heitz et al. 2016) and their sampling
 //! inside polygonal lights (Peters 2021): `sphera_ltc_*`.
 
-use super::polygon::{by_value, prepare};
+use super::polygon::prepare;
 use super::types::{SpheraSample, SpheraVec3, with_ref};
 use crate::brdf::{Ltc, LtcPolygon};
 use crate::{Sample, Vec3};
@@ -103,12 +103,9 @@ pub unsafe extern "C" fn sphera_ltc_polygon_prepare(
     let ltc = unsafe { &*ltc };
     // SAFETY: forwarded from the caller.
     unsafe {
-        prepare(
-            out,
-            vertices,
-            count,
-            by_value(|v| LtcPolygon::new(ltc, v), || LtcPolygon::EMPTY),
-        )
+        prepare(out, vertices, count, |out: &mut LtcPolygon, v: &[Vec3]| {
+            out.prepare(ltc, v)
+        })
     }
 }
 

@@ -59,25 +59,6 @@ unsafe fn polygon_slice<'a>(vertices: *const SpheraVec3, count: u32) -> &'a [Vec
     unsafe { core::slice::from_raw_parts(vertices.cast::<Vec3>(), count) }
 }
 
-/// An in-place `prepare` for a type that is prepared by value (`new` returning an
-/// `Option`): writes the value or `empty`.
-#[inline(always)]
-pub(super) fn by_value<T>(
-    new: impl FnOnce(&[Vec3]) -> Option<T>,
-    empty: impl FnOnce() -> T,
-) -> impl FnOnce(&mut T, &[Vec3]) -> bool {
-    move |out, vertices| match new(vertices) {
-        Some(prepared) => {
-            *out = prepared;
-            true
-        }
-        None => {
-            *out = empty();
-            false
-        }
-    }
-}
-
 /// Clips the convex polygon `vertices[0..count]` to the upper hemisphere (z >= 0) in
 /// place and returns the new vertex count: 0 when nothing of the polygon lies above the
 /// horizon, otherwise 3 to `SPHERA_MAX_POLYGON_VERTICES`. Vertices created by the clip
@@ -336,14 +317,7 @@ pub unsafe extern "C" fn sphera_arvo_polygon_prepare(
     count: u32,
 ) -> bool {
     // SAFETY: forwarded from the caller.
-    unsafe {
-        prepare(
-            out,
-            vertices,
-            count,
-            by_value(ArvoPolygon::new, || ArvoPolygon::EMPTY),
-        )
-    }
+    unsafe { prepare(out, vertices, count, ArvoPolygon::prepare) }
 }
 
 /// Draws a direction uniformly distributed in the solid angle of `polygon` with Arvo's

@@ -6,7 +6,7 @@
 //! convex, in either winding, 3 to `SPHERA_MAX_POLYGON_VERTICES` of them. The part
 //! below the horizon is clipped away internally.
 
-use super::polygon::{by_value, prepare};
+use super::polygon::prepare;
 use super::types::{SpheraSample, SpheraVec3, with_ref};
 use crate::Sample;
 use crate::polygon::ProjectedSolidAnglePolygon;
@@ -173,14 +173,7 @@ pub unsafe extern "C" fn sphera_arvo_projected_polygon_prepare(
     count: u32,
 ) -> bool {
     // SAFETY: forwarded from the caller.
-    unsafe {
-        prepare(
-            out,
-            vertices,
-            count,
-            by_value(ArvoProjectedPolygon::new, || ArvoProjectedPolygon::EMPTY),
-        )
-    }
+    unsafe { prepare(out, vertices, count, ArvoProjectedPolygon::prepare) }
 }
 
 /// Draws a direction with density cos θ / Φ by Arvo's method from `u0`, `u1` in [0, 1)

@@ -5,7 +5,7 @@
 //! Vertices are given relative to the shading point in the local frame (z = normal),
 //! convex, in either winding, 3 to `SPHERA_MAX_POLYGON_VERTICES` of them.
 
-use super::polygon::{by_value, prepare};
+use super::polygon::prepare;
 use super::types::{SpheraSample, SpheraVec3, with_ref};
 use crate::Sample;
 use crate::polygon::ClippedSolidAnglePolygon;
@@ -37,14 +37,7 @@ pub unsafe extern "C" fn sphera_hart_bilinear_polygon_prepare(
     count: u32,
 ) -> bool {
     // SAFETY: forwarded from the caller.
-    unsafe {
-        prepare(
-            out,
-            vertices,
-            count,
-            by_value(HartBilinearPolygon::new, || HartBilinearPolygon::EMPTY),
-        )
-    }
+    unsafe { prepare(out, vertices, count, HartBilinearPolygon::prepare) }
 }
 
 /// Draws a direction with the bilinear warp from the random numbers `u0`, `u1` in
@@ -120,16 +113,7 @@ pub unsafe extern "C" fn sphera_hart_biquadratic_polygon_prepare(
     count: u32,
 ) -> bool {
     // SAFETY: forwarded from the caller.
-    unsafe {
-        prepare(
-            out,
-            vertices,
-            count,
-            by_value(HartBiquadraticPolygon::new, || {
-                HartBiquadraticPolygon::EMPTY
-            }),
-        )
-    }
+    unsafe { prepare(out, vertices, count, HartBiquadraticPolygon::prepare) }
 }
 
 /// Draws a direction with the biquadratic warp from the random numbers `u0`, `u1` in

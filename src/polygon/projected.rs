@@ -125,13 +125,10 @@ impl ProjectedSolidAnglePolygon {
         polygon.prepare_fast_biased(vertices).then_some(polygon)
     }
 
-    /// The sectors of Algorithm 4 without the switch to the small-polygon sampler, for
-    /// the baseline of Arvo that shares them.
-    pub(crate) fn new_sectors_only(vertices: &[Vec3]) -> Option<Self> {
-        let mut polygon = Self::EMPTY;
-        polygon
-            .prepare_with(vertices, AreaPrecision::Exact, false)
-            .then_some(polygon)
+    /// The sectors of Algorithm 4 without the switch to the small-polygon sampler, in
+    /// place, for the baseline of Arvo that shares them.
+    pub(crate) fn prepare_sectors_only(&mut self, vertices: &[Vec3]) -> bool {
+        self.prepare_with(vertices, AreaPrecision::Exact, false)
     }
 
     /// [`new`](Self::new) in place: writes the prepared polygon into `self` and returns

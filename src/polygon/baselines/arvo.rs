@@ -111,10 +111,30 @@ impl ArvoPolygon {
     /// Prepares a convex planar polygon (3 to 8 vertices relative to the shading point,
     /// either winding). Returns None for a bad vertex count, a non-finite coordinate, a
     /// zero area, a plane through the shading point, or a zero (Girard) solid angle.
+    ///
+    /// [`prepare`](Self::prepare) does the same in place.
+    #[must_use]
     pub fn new(vertices: &[Vec3]) -> Option<Self> {
+        let mut polygon = Self::EMPTY;
+        polygon.prepare(vertices).then_some(polygon)
+    }
+
+    /// [`new`](Self::new) in place: writes the prepared polygon into `self` and returns
+    /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false`.
+    pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
+        let prepared = self.prepare_or_fail(vertices);
+        if !prepared {
+            *self = Self::EMPTY;
+        }
+        prepared
+    }
+
+    /// The body of [`prepare`](Self::prepare); on `false`, `self` holds partial values.
+    #[inline(always)]
+    fn prepare_or_fail(&mut self, vertices: &[Vec3]) -> bool {
         let count = vertices.len();
         if !(3..=MAX_POLYGON_VERTICES).contains(&count) || !vertices.iter().all(|v| v.is_finite()) {
-            return None;
+            return false;
         }
         // Scale into [-1, 1] so that neither the plane test nor the normalisation below
         // overflows or underflows (the directions do not depend on the scale).
@@ -122,7 +142,7 @@ impl ArvoPolygon {
             .iter()
             .fold(0.0f32, |m, v| m.max(v.abs().max_element()));
         if largest <= 0.0 || !largest.is_finite() {
-            return None;
+            return false;
         }
         let mut scaled = [Vec3::ZERO; MAX_POLYGON_VERTICES];
         for (s, v) in scaled.iter_mut().zip(vertices) {
@@ -134,7 +154,9 @@ impl ArvoPolygon {
         for i in 1..count - 1 {
             normal_sum += (scaled[i] - scaled[0]).cross(scaled[i + 1] - scaled[0]);
         }
-        let normal = normal_sum.try_normalize()?;
+        let Some(normal) = normal_sum.try_normalize() else {
+            return false;
+        };
         let mut offset_sum = 0.0;
         let mut extent = 0.0f32;
         for v in scaled {
@@ -143,11 +165,14 @@ impl ArvoPolygon {
         }
         let plane_offset = offset_sum / count as f32;
         if plane_offset.abs() <= 8.0 * f32::EPSILON * extent || !plane_offset.is_finite() {
-            return None;
+            return false;
         }
-        let mut polygon = Self::EMPTY;
+        let polygon = self;
         for (unit, v) in polygon.vertices.iter_mut().zip(scaled) {
-            *unit = v.try_normalize()?;
+            let Some(direction) = v.try_normalize() else {
+                return false;
+            };
+            *unit = direction;
         }
         let unit = polygon.vertices;
         // Edge planes, oriented by the side of the plane the shading point is on.
@@ -176,7 +201,7 @@ impl ArvoPolygon {
             total += area;
         }
         if !(total > 0.0 && total.is_finite()) {
-            return None;
+            return false;
         }
         let mut running = 0.0;
         for i in 0..count - 2 {
@@ -184,10 +209,24 @@ impl ArvoPolygon {
             polygon.cdf[i] = (running / total).min(1.0);
         }
         polygon.cdf[count - 3] = 1.0;
+        // The unused slots as in the empty value: no stale or NaN word is left.
+        for i in count..MAX_POLYGON_VERTICES {
+            polygon.vertices[i] = Vec3::ZERO;
+            polygon.edge_normals[i] = Vec3::ZERO;
+        }
+        for i in count - 2..MAX_FAN_TRIANGLES {
+            polygon.towards_c[i] = Vec3::ZERO;
+            polygon.areas[i] = 0.0;
+            polygon.alpha[i] = 0.0;
+            polygon.cos_alpha[i] = 1.0;
+            polygon.sin_alpha[i] = 0.0;
+            polygon.sin_alpha_cos_c[i] = 0.0;
+            polygon.cdf[i] = 1.0;
+        }
         polygon.solid_angle = total;
         polygon.inv_solid_angle = 1.0 / total;
         polygon.count = count as u32;
-        Some(polygon)
+        true
     }
 
     /// Draws a direction uniform in the polygon's solid angle (up to Arvo's rounding).

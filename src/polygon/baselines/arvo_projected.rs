@@ -48,16 +48,31 @@ impl ArvoProjectedPolygon {
 
     /// Prepares the polygon (same input and rejections as
     /// [`ProjectedSolidAnglePolygon::new`], but without the small-polygon alternative).
+    #[must_use]
     pub fn new(vertices: &[Vec3]) -> Option<Self> {
-        let sectors = ProjectedSolidAnglePolygon::new_sectors_only(vertices)?;
         let mut polygon = Self::EMPTY;
-        for j in 0..sectors.selectable_sectors as usize {
-            let (s0, s1) = (sectors.sectors[j].s0, sectors.sectors[j].s1);
-            polygon.sector_angle[j] =
-                crate::math::atan2_upper_half_plane(det2(s0, s1).max(0.0), dot2(s0, s1));
+        polygon.prepare(vertices).then_some(polygon)
+    }
+
+    /// [`new`](Self::new) in place: writes the prepared polygon into `self` and returns
+    /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false` (2320 bytes, written
+    /// once).
+    pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
+        if !self.sectors.prepare_sectors_only(vertices) {
+            self.sector_angle = [0.0; MAX_POLYGON_VERTICES];
+            return false;
         }
-        polygon.sectors = sectors;
-        Some(polygon)
+        let selectable = self.sectors.selectable_sectors as usize;
+        for j in 0..MAX_POLYGON_VERTICES {
+            let (s0, s1) = (self.sectors.sectors[j].s0, self.sectors.sectors[j].s1);
+            // Unused slots 0, as in the empty value.
+            self.sector_angle[j] = if j < selectable {
+                crate::math::atan2_upper_half_plane(det2(s0, s1).max(0.0), dot2(s0, s1))
+            } else {
+                0.0
+            };
+        }
+        true
     }
 
     /// The projected solid angle `Φ` in steradians (0 when empty).

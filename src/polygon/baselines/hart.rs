@@ -257,22 +257,30 @@ impl HartBilinearPolygon {
     /// Returns `None` when [`SolidAnglePolygon::new`] does, and when the largest
     /// density (four times the mean) would overflow. A polygon at or below the horizon
     /// is prepared (see the module documentation).
+    #[must_use]
     pub fn new(vertices: &[Vec3]) -> Option<Self> {
-        let solid_angle = SolidAnglePolygon::new(vertices)?;
-        let inv_solid_angle = 1.0 / solid_angle.solid_angle();
-        if !(4.0 * inv_solid_angle).is_finite() {
-            return None;
+        let mut polygon = Self::EMPTY;
+        polygon.prepare(vertices).then_some(polygon)
+    }
+
+    /// [`new`](Self::new) in place: writes the prepared warp into `self` and returns
+    /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false`.
+    pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
+        let prepared = self.solid_angle.prepare(vertices) && {
+            let inv_solid_angle = 1.0 / self.solid_angle.solid_angle();
+            let mut corners = [0.0f32; 4];
+            for (k, corner) in corners.iter_mut().enumerate() {
+                let u = [(k & 1) as f32, (k >> 1) as f32].map(|x| x.min(ONE_MINUS_ULP));
+                *corner = cosine_at(&self.solid_angle, u);
+            }
+            self.corners = normalise_to_mean_one(corners);
+            self.inv_solid_angle = inv_solid_angle;
+            (4.0 * inv_solid_angle).is_finite()
+        };
+        if !prepared {
+            *self = Self::EMPTY;
         }
-        let mut corners = [0.0f32; 4];
-        for (k, corner) in corners.iter_mut().enumerate() {
-            let u = [(k & 1) as f32, (k >> 1) as f32].map(|x| x.min(ONE_MINUS_ULP));
-            *corner = cosine_at(&solid_angle, u);
-        }
-        Some(Self {
-            solid_angle,
-            corners: normalise_to_mean_one(corners),
-            inv_solid_angle,
-        })
+        prepared
     }
 
     /// The end values of the marginal density of `u'_0`, `(1 - x) a + x b`.
@@ -400,26 +408,39 @@ impl HartBiquadraticPolygon {
     /// Returns `None` when [`SolidAnglePolygon::new`] does, and when the largest
     /// possible density (nine times the mean) would overflow. A polygon at or below the
     /// horizon is prepared (see the module documentation).
+    #[must_use]
     pub fn new(vertices: &[Vec3]) -> Option<Self> {
-        let solid_angle = SolidAnglePolygon::new(vertices)?;
-        let inv_solid_angle = 1.0 / solid_angle.solid_angle();
-        if !(9.0 * inv_solid_angle).is_finite() {
-            return None;
-        }
-        let mut values = [0.0f32; 9];
-        for j in 0..3 {
-            for i in 0..3 {
-                values[i + 3 * j] =
-                    cosine_at(&solid_angle, [BIQUADRATIC_GRID[i], BIQUADRATIC_GRID[j]]);
+        let mut polygon = Self::EMPTY;
+        polygon.prepare(vertices).then_some(polygon)
+    }
+
+    /// [`new`](Self::new) in place: writes the prepared warp into `self` and returns
+    /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false`.
+    pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
+        let prepared = self.solid_angle.prepare(vertices) && {
+            let inv_solid_angle = 1.0 / self.solid_angle.solid_angle();
+            let mut values = [0.0f32; 9];
+            for j in 0..3 {
+                for i in 0..3 {
+                    values[i + 3 * j] = cosine_at(
+                        &self.solid_angle,
+                        [BIQUADRATIC_GRID[i], BIQUADRATIC_GRID[j]],
+                    );
+                }
             }
+            self.fit(inv_solid_angle, values);
+            (9.0 * inv_solid_angle).is_finite()
+        };
+        if !prepared {
+            *self = Self::EMPTY;
         }
-        Some(Self::fit(solid_angle, inv_solid_angle, values))
+        prepared
     }
 
     /// The warp through the values `values[i + 3 j]` at the grid points
     /// `(BIQUADRATIC_GRID[i], BIQUADRATIC_GRID[j])`: interpolating Bernstein control
     /// points, clamped to be non-negative, normalised to mean 1.
-    fn fit(solid_angle: SolidAnglePolygon, inv_solid_angle: f32, values: [f32; 9]) -> Self {
+    fn fit(&mut self, inv_solid_angle: f32, values: [f32; 9]) {
         // Interpolate along u'_0 (rows), then along u'_1 (columns).
         let mut controls = [0.0f32; 9];
         for j in 0..3 {
@@ -438,12 +459,9 @@ impl HartBiquadraticPolygon {
         for (i, m) in marginal.iter_mut().enumerate() {
             *m = (controls[i] + controls[i + 3] + controls[i + 6]) * (1.0 / 3.0);
         }
-        Self {
-            solid_angle,
-            controls,
-            marginal,
-            inv_solid_angle,
-        }
+        self.controls = controls;
+        self.marginal = marginal;
+        self.inv_solid_angle = inv_solid_angle;
     }
 
     /// Control points of the density along `u'_1` at `u'_0 = x` (unnormalised

@@ -702,7 +702,11 @@ fn biquadratic_density_stays_non_negative_when_the_interpolant_is_not() {
         [0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
         [1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.3],
     ] {
-        let warp = HartBiquadraticPolygon::fit(solid_angle, inv, values);
+        let mut warp = HartBiquadraticPolygon {
+            solid_angle,
+            ..HartBiquadraticPolygon::EMPTY
+        };
+        warp.fit(inv, values);
         assert!(warp.controls.iter().all(|&c| c >= 0.0));
         let mut lowest = f32::INFINITY;
         mean_over_square(|u| {
