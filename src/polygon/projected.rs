@@ -414,6 +414,15 @@ impl ProjectedSolidAnglePolygon {
         true
     }
 
+    /// Whether preparation handed the polygon to the small-polygon sampler (warped solid
+    /// angle sampling, for polygons below [`SMALL_EXTENT`] across and for slivers whose
+    /// sector areas cancel) instead of the sectors of Algorithm 4.
+    #[inline]
+    #[must_use]
+    pub fn uses_small_polygon_sampler(&self) -> bool {
+        self.is_small != 0
+    }
+
     /// Total projected solid angle `Φ = ∫ cos θ dω` of the part above the horizon, in
     /// steradians (0 when empty).
     #[inline]

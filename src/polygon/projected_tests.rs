@@ -837,3 +837,23 @@ fn zz_debug_horizon() {
         );
     }
 }
+
+/// Which polygons projected preparation hands to the small-polygon sampler: one below
+/// `SMALL_EXTENT` across does, an ordinary one does not, and both are tested for accuracy
+/// by the tests above (the paths' results are checked, not only the switch).
+#[test]
+fn small_polygons_take_the_small_polygon_path_and_ordinary_ones_the_sectors() {
+    let square = |half: f32| {
+        [
+            Vec3::new(0.3 - half, 0.2 - half, 1.0),
+            Vec3::new(0.3 + half, 0.2 - half, 1.0),
+            Vec3::new(0.3 + half, 0.2 + half, 1.0),
+            Vec3::new(0.3 - half, 0.2 + half, 1.0),
+        ]
+    };
+    let ordinary = ProjectedSolidAnglePolygon::new(&square(0.2)).expect("valid polygon");
+    assert!(!ordinary.uses_small_polygon_sampler());
+    let tiny = ProjectedSolidAnglePolygon::new(&square(1e-5)).expect("valid polygon");
+    assert!(tiny.uses_small_polygon_sampler());
+    assert!(!ProjectedSolidAnglePolygon::EMPTY.uses_small_polygon_sampler());
+}
