@@ -29,6 +29,16 @@ pub use clipped_solid_angle::ClippedSolidAnglePolygon;
 pub use projected::ProjectedSolidAnglePolygon;
 pub use solid_angle::SolidAnglePolygon;
 
+/// The end of every in-place `prepare`: keeps the value that preparation completed, or
+/// writes `empty` over what a failed preparation left half-written. Returns `prepared`.
+#[inline(always)]
+pub(crate) fn keep_or_empty<T>(value: &mut T, prepared: bool, empty: T) -> bool {
+    if !prepared {
+        *value = empty;
+    }
+    prepared
+}
+
 /// Edges shorter than this (the sine of the angle between their endpoints) may be left
 /// out of the containment test: 2⁻¹⁶ ≈ 1.5e-5 rad.
 const SHORT_EDGE_SINE: f32 = 1.0 / 65_536.0;

@@ -153,10 +153,7 @@ impl ProjectedSolidAnglePolygon {
         allow_small: bool,
     ) -> bool {
         let prepared = self.prepare_or_fail(vertices, precision, allow_small);
-        if !prepared {
-            *self = Self::EMPTY;
-        }
-        prepared
+        super::keep_or_empty(self, prepared, Self::EMPTY)
     }
 
     /// The body of [`prepare_with`](Self::prepare_with); on `false`, `self` holds partial

@@ -87,10 +87,7 @@ impl SmallPolygonCosineSampler {
     /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false`.
     pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
         let prepared = self.fan.prepare(vertices) && self.prepare_weights();
-        if !prepared {
-            *self = Self::EMPTY;
-        }
-        prepared
+        super::keep_or_empty(self, prepared, Self::EMPTY)
     }
 
     /// The weights of the prepared fan; `false` when no triangle can be selected.

@@ -227,10 +227,7 @@ impl SolidAnglePolygon {
     /// `self` held before, and nothing is copied.
     pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
         let prepared = self.prepare_or_fail(vertices);
-        if !prepared {
-            *self = Self::EMPTY;
-        }
-        prepared
+        super::keep_or_empty(self, prepared, Self::EMPTY)
     }
 
     /// The body of [`prepare`](Self::prepare); on `false`, `self` holds partial values.

@@ -54,19 +54,29 @@ fn assert_uniform_in_solid_angle(
     report
 }
 
+/// A random convex polygon of `n` vertices on an ellipse of radius `radius_min` plus up to
+/// `radius_span`, centred 1 to 2 above the shading point within ±0.5 sideways, its plane
+/// tilted at random.
+fn random_polygon_above(rng: &mut Rng, n: usize, radius_min: f32, radius_span: f32) -> Vec<Vec3> {
+    let center = Vec3::new(
+        rng.uniform_f32() - 0.5,
+        rng.uniform_f32() - 0.5,
+        1.0 + rng.uniform_f32(),
+    );
+    let normal = Vec3::new(rng.uniform_f32() - 0.5, rng.uniform_f32() - 0.5, 1.0);
+    let (radius, aspect) = (
+        radius_min + radius_span * rng.uniform_f32(),
+        0.3 + 0.7 * rng.uniform_f32(),
+    );
+    ellipse_polygon(rng, n, center, normal, radius, aspect)
+}
+
 #[test]
 fn samples_follow_the_uniform_density_on_polygons_of_3_to_8_vertices_in_both_windings() {
     let mut rng = Rng::new(100);
     for n in 3..=8 {
         for trial in 0..3 {
-            let center = Vec3::new(
-                rng.uniform_f32() - 0.5,
-                rng.uniform_f32() - 0.5,
-                1.0 + rng.uniform_f32(),
-            );
-            let normal = Vec3::new(rng.uniform_f32() - 0.5, rng.uniform_f32() - 0.5, 1.0);
-            let (radius, aspect) = (0.3 + rng.uniform_f32(), 0.3 + 0.7 * rng.uniform_f32());
-            let v = ellipse_polygon(&mut rng, n, center, normal, radius, aspect);
+            let v = random_polygon_above(&mut rng, n, 0.3, 1.0);
             assert_uniform_in_solid_angle(
                 &v,
                 400_000,
@@ -498,14 +508,7 @@ fn ordinary_polygons_take_the_fast_path_and_hard_ones_the_careful_fallbacks() {
     let mut fast = 0;
     for n in 3..=8 {
         for _ in 0..50 {
-            let center = Vec3::new(
-                rng.uniform_f32() - 0.5,
-                rng.uniform_f32() - 0.5,
-                1.0 + rng.uniform_f32(),
-            );
-            let normal = Vec3::new(rng.uniform_f32() - 0.5, rng.uniform_f32() - 0.5, 1.0);
-            let (radius, aspect) = (0.2 + 0.7 * rng.uniform_f32(), 0.3 + 0.7 * rng.uniform_f32());
-            let v = ellipse_polygon(&mut rng, n, center, normal, radius, aspect);
+            let v = random_polygon_above(&mut rng, n, 0.2, 0.7);
             let polygon = SolidAnglePolygon::new(&v).expect("valid polygon");
             fast += (polygon.careful_paths() == 0) as u32;
         }

@@ -123,10 +123,7 @@ impl ArvoPolygon {
     /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false`.
     pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
         let prepared = self.prepare_or_fail(vertices);
-        if !prepared {
-            *self = Self::EMPTY;
-        }
-        prepared
+        crate::polygon::keep_or_empty(self, prepared, Self::EMPTY)
     }
 
     /// The body of [`prepare`](Self::prepare); on `false`, `self` holds partial values.

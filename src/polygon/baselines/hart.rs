@@ -277,10 +277,7 @@ impl HartBilinearPolygon {
             self.inv_solid_angle = inv_solid_angle;
             (4.0 * inv_solid_angle).is_finite()
         };
-        if !prepared {
-            *self = Self::EMPTY;
-        }
-        prepared
+        crate::polygon::keep_or_empty(self, prepared, Self::EMPTY)
     }
 
     /// The end values of the marginal density of `u'_0`, `(1 - x) a + x b`.
@@ -431,10 +428,7 @@ impl HartBiquadraticPolygon {
             self.fit(inv_solid_angle, values);
             (9.0 * inv_solid_angle).is_finite()
         };
-        if !prepared {
-            *self = Self::EMPTY;
-        }
-        prepared
+        crate::polygon::keep_or_empty(self, prepared, Self::EMPTY)
     }
 
     /// The warp through the values `values[i + 3 j]` at the grid points

@@ -67,10 +67,7 @@ impl TurkPolygon {
     /// `None`. Every field that `sample` and `pdf` read is written, whatever `self` held.
     pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
         let prepared = self.prepare_or_fail(vertices);
-        if !prepared {
-            *self = Self::EMPTY;
-        }
-        prepared
+        crate::polygon::keep_or_empty(self, prepared, Self::EMPTY)
     }
 
     /// The body of [`prepare`](Self::prepare); on `false`, `self` holds partial values.
