@@ -1046,9 +1046,10 @@ uint32_t sphera_polygon_clip(struct SpheraVec3 *vertices, uint32_t count);
  *
  * Returns `false` when `out` is null, when `vertices` is null, when `count` lies
  * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
- * when the polygon subtends no solid angle. Unless `out` is null, a `false` return
- * writes the empty polygon into `*out`: its samples have pdf 0, its `pdf` is 0 and its
- * solid angle is 0, whatever `*out` held before.
+ * when the polygon subtends no solid angle, in particular when its vertices lie exactly
+ * in a plane through the shading point (decided exactly, at any tilt). Unless `out` is
+ * null, a `false` return writes the empty polygon into `*out`: its samples have pdf 0,
+ * its `pdf` is 0 and its solid angle is 0, whatever `*out` held before.
  *
  * # Safety
  *
@@ -1194,9 +1195,10 @@ float sphera_turk_polygon_area(const struct SpheraTurkPolygon *polygon);
  *
  * Returns `false` when `out` is null, when `vertices` is null, when `count` lies
  * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
- * when the polygon subtends no solid angle. Unless `out` is null, a `false` return
- * writes the empty polygon into `*out`: its samples have pdf 0, its `pdf` is 0 and its
- * solid angle is 0, whatever `*out` held before.
+ * when the polygon subtends no solid angle, in particular when its vertices lie exactly
+ * in a plane through the shading point (decided exactly, at any tilt). Unless `out` is
+ * null, a `false` return writes the empty polygon into `*out`: its samples have pdf 0,
+ * its `pdf` is 0 and its solid angle is 0, whatever `*out` held before.
  *
  * # Safety
  *

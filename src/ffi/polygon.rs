@@ -98,9 +98,10 @@ pub unsafe extern "C" fn sphera_polygon_clip(vertices: *mut SpheraVec3, count: u
 ///
 /// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
 /// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
-/// when the polygon subtends no solid angle. Unless `out` is null, a `false` return
-/// writes the empty polygon into `*out`: its samples have pdf 0, its `pdf` is 0 and its
-/// solid angle is 0, whatever `*out` held before.
+/// when the polygon subtends no solid angle, in particular when its vertices lie exactly
+/// in a plane through the shading point (decided exactly, at any tilt). Unless `out` is
+/// null, a `false` return writes the empty polygon into `*out`: its samples have pdf 0,
+/// its `pdf` is 0 and its solid angle is 0, whatever `*out` held before.
 ///
 /// # Safety
 ///
@@ -302,9 +303,10 @@ pub unsafe extern "C" fn sphera_turk_polygon_area(polygon: *const TurkPolygon) -
 ///
 /// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
 /// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
-/// when the polygon subtends no solid angle. Unless `out` is null, a `false` return
-/// writes the empty polygon into `*out`: its samples have pdf 0, its `pdf` is 0 and its
-/// solid angle is 0, whatever `*out` held before.
+/// when the polygon subtends no solid angle, in particular when its vertices lie exactly
+/// in a plane through the shading point (decided exactly, at any tilt). Unless `out` is
+/// null, a `false` return writes the empty polygon into `*out`: its samples have pdf 0,
+/// its `pdf` is 0 and its solid angle is 0, whatever `*out` held before.
 ///
 /// # Safety
 ///

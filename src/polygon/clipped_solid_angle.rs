@@ -68,6 +68,8 @@ impl ClippedSolidAnglePolygon {
         let mut local = [Vec3::ZERO; MAX_POLYGON_VERTICES];
         let clipped_count = if (3..=MAX_POLYGON_VERTICES).contains(&count)
             && rescale(vertices, &mut local).is_some()
+            // Before clipping, whose rounded horizon vertices would leave the plane.
+            && !super::lies_in_a_plane_through_the_shading_point(&local[..count])
         {
             clip_to_upper_hemisphere(&mut local, count)
         } else {

@@ -39,6 +39,39 @@ pub(crate) fn keep_or_empty<T>(value: &mut T, prepared: bool, empty: T) -> bool 
     prepared
 }
 
+/// A bound on the rounding noise of a fan determinant computed in `f32` from edge
+/// vectors, relative to `|e_b|∞ |e_c|∞` (times `|p_0|∞` for the triple product): 64ε.
+/// Each edge vector `p_i - p_0` is rounded by ε/2 per component, and a cross product,
+/// dot product or Householder reflection of them adds a few ε of `|e|∞` per component
+/// (with `|e| <= √3 |e|∞`); the sum of these terms stays below 62ε. A determinant below
+/// this bound cannot be told from zero by the plain computation, so
+/// [`determinant_is_exactly_zero`](crate::math::determinant_is_exactly_zero) decides.
+pub(crate) const FAN_DETERMINANT_NOISE: f32 = 64.0 * f32::EPSILON;
+
+/// Whether the polygon lies exactly in a plane through the shading point (its solid
+/// angle and projected solid angle are then 0; rounding would make them noise). Cheap
+/// for the common polygon: the first fan triangle whose plain determinant exceeds
+/// [`FAN_DETERMINANT_NOISE`] answers `false`; only polygons within the noise of such a
+/// plane run the exact test on every fan triangle. `positions` as rescaled (a power of
+/// two times the input: exact), 3 or more of them.
+pub(crate) fn lies_in_a_plane_through_the_shading_point(positions: &[Vec3]) -> bool {
+    let apex = positions[0];
+    let apex_extent = apex.abs().max_element();
+    for pair in positions[1..].windows(2) {
+        let (b, c) = (pair[0] - apex, pair[1] - apex);
+        // det(p0, pb, pc) = (pb - p0) × (pc - p0) · p0.
+        let det = b.cross(c).dot(apex);
+        let bound =
+            FAN_DETERMINANT_NOISE * b.abs().max_element() * c.abs().max_element() * apex_extent;
+        if !(det.abs() <= bound) {
+            return false;
+        }
+    }
+    positions[1..]
+        .windows(2)
+        .all(|pair| crate::math::determinant_is_exactly_zero(apex, pair[0], pair[1]))
+}
+
 /// Edges shorter than this (the sine of the angle between their endpoints) may be left
 /// out of the containment test: 2⁻¹⁶ ≈ 1.5e-5 rad.
 const SHORT_EDGE_SINE: f32 = 1.0 / 65_536.0;

@@ -106,7 +106,7 @@ impl ProjectedSolidAnglePolygon {
     /// Returns `None` for fewer than 3 or more than 8 vertices, 8 vertices that need
     /// clipping (9 would result), non-finite coordinates, a polygon with nothing above the
     /// horizon, and a zero projected solid angle (for example when the shading point lies
-    /// in the polygon's plane).
+    /// in the polygon's plane, decided exactly for vertices exactly in such a plane).
     ///
     /// [`prepare`](Self::prepare) does the same in place.
     #[must_use]
@@ -170,7 +170,9 @@ impl ProjectedSolidAnglePolygon {
             return false;
         }
         let mut positions = [Vec3::ZERO; MAX_POLYGON_VERTICES];
-        if rescale(vertices, &mut positions).is_none() {
+        if rescale(vertices, &mut positions).is_none()
+            || super::lies_in_a_plane_through_the_shading_point(&positions[..count])
+        {
             return false;
         }
         let count = clip_to_upper_hemisphere(&mut positions, count);

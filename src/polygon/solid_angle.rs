@@ -22,7 +22,10 @@
 //! both windings, duplicate vertices (as clipping can produce), 3 to 8 vertices.
 
 use crate::Sample;
-use crate::math::{atan2_upper_half_plane, difference_of_products, dot_precise};
+use crate::math::{
+    atan2_upper_half_plane, determinant_is_exactly_zero, difference_of_products_unless_cancelling,
+    dot_precise,
+};
 use crate::sample::{ONE_MINUS_ULP, clamp_random, select_piece};
 use crate::{MAX_POLYGON_VERTICES, Vec3};
 
@@ -95,17 +98,21 @@ impl Default for SolidAnglePolygon {
 /// (`E = 0`) the factor is `2^127`, still exact; `E` is at most 254 for finite values
 /// and the factor's exponent is kept at least 1 (a normal number).
 pub(crate) fn rescale(vertices: &[Vec3], out: &mut [Vec3; MAX_POLYGON_VERTICES]) -> Option<()> {
-    let mut largest = 0.0f32;
+    // Bit trick: with the sign bit cleared, IEEE-754 bit patterns order as unsigned
+    // integers in the order of the magnitudes they encode, and +inf (0x7f80_0000) and
+    // every NaN (above it) have the largest patterns. One integer maximum over the
+    // cleared patterns therefore gives the largest magnitude and, in the same pass,
+    // whether any coordinate is not finite (no early exit, no separate finiteness test).
+    let mut largest_bits = 0u32;
     for v in vertices {
-        largest = largest.max(v.abs().max_element());
-        if !v.is_finite() {
-            return None;
+        for c in v.to_array() {
+            largest_bits = largest_bits.max(c.to_bits() & 0x7fff_ffff);
         }
     }
-    if largest == 0.0 {
+    if largest_bits == 0 || largest_bits >= 0x7f80_0000 {
         return None;
     }
-    let biased_exponent = (largest.to_bits() >> 23) & 0xFF;
+    let biased_exponent = largest_bits >> 23;
     let factor = f32::from_bits(254u32.saturating_sub(biased_exponent).max(1) << 23);
     for (o, v) in out.iter_mut().zip(vertices) {
         *o = *v * factor;
@@ -148,7 +155,7 @@ impl Householder {
     /// expanding along it leaves the 2×2 determinant).
     #[inline(always)]
     fn determinant(&self, x: [f32; 2], y: [f32; 2]) -> f32 {
-        self.sigma * difference_of_products(x[0], y[1], x[1], y[0])
+        self.sigma * difference_of_products_unless_cancelling(x[0], y[1], x[1], y[0])
     }
 }
 
@@ -171,12 +178,9 @@ fn unit_vector_sum(p: Vec3, q: Vec3, length_p: f32, length_q: f32) -> Vec3 {
 /// a form without cancellation. Near-flat triangles of almost π steradians, where the
 /// naive sum of dot products loses everything, have exactly one such pair.
 #[inline(always)]
-fn denominator(v0: Vec3, v1: Vec3, v2: Vec3, s01: Vec3, s02: Vec3, s12: Vec3) -> f32 {
-    let (l01, l02, l12) = (
-        s01.length_squared(),
-        s02.length_squared(),
-        s12.length_squared(),
-    );
+fn denominator(v0: Vec3, v1: Vec3, v2: Vec3, sums: [Vec3; 3], length_squares: [f32; 3]) -> f32 {
+    let [s01, s02, s12] = sums;
+    let [l01, l02, l12] = length_squares;
     if l02 <= l01 && l02 <= l12 {
         0.5 * l02 + v1.dot(s02)
     } else if l12 <= l01 {
@@ -261,8 +265,11 @@ impl SolidAnglePolygon {
         // Reflected edge vectors from the apex: exact differences of the inputs up to one
         // rounding each, so tiny and distant polygons keep their relative precision.
         let mut reflected = [[0.0f32; 2]; MAX_POLYGON_VERTICES];
+        let mut edge_extent = [0.0f32; MAX_POLYGON_VERTICES];
         for i in 1..count {
-            reflected[i] = reflection.reflect_yz(positions[i] - positions[0]);
+            let edge = positions[i] - positions[0];
+            reflected[i] = reflection.reflect_yz(edge);
+            edge_extent[i] = edge.abs().max_element();
         }
         let triangles = count - 2;
         let mut signed_sum = 0.0f32;
@@ -275,8 +282,17 @@ impl SolidAnglePolygon {
         for k in 0..triangles {
             let (b, c) = (k + 1, k + 2);
             // G0 = det(v0, v1, v2) = det(p_b, p_a, p_c) / (|p_a| |p_b| |p_c|).
-            let signed_g0 =
-                reflection.determinant(reflected[b], reflected[c]) / (lengths[b] * lengths[c]);
+            let mut det = reflection.determinant(reflected[b], reflected[c]);
+            // A triangle exactly in a plane through the shading point has G0 = 0, which
+            // the reflection's rounding would turn into noise (and a polygon in such a
+            // plane into a tiny light with a huge pdf): below the noise bound, the exact
+            // test decides.
+            if det.abs() <= super::FAN_DETERMINANT_NOISE * edge_extent[b] * edge_extent[c]
+                && determinant_is_exactly_zero(positions[0], positions[b], positions[c])
+            {
+                det = 0.0;
+            }
+            let signed_g0 = det / (lengths[b] * lengths[c]);
             signed_sum += signed_g0;
             let (v0, v1, v2) = (self.vertices[b], apex, self.vertices[c]);
             // The pair sums `v_i + v_j`. Fast path: the plain sums of the rounded unit
@@ -292,21 +308,27 @@ impl SolidAnglePolygon {
             // point close to a large polygon) do the compensated sums run.
             // `apex + v_c` is the next triangle's `v_b + apex`: computed once.
             let (mut s01, mut s02, mut s12) = (apex_sum, v0 + v2, v1 + v2);
-            let (l01, l02, l12) = (apex_sum_squared, s02.length_squared(), s12.length_squared());
+            let (mut l01, mut l02, mut l12) =
+                (apex_sum_squared, s02.length_squared(), s12.length_squared());
             (apex_sum, apex_sum_squared) = (s12, l12);
             if !(l01.min(l02).min(l12) >= 2.0) {
                 let unit_sum = |i: usize, j: usize| {
                     unit_vector_sum(positions[i], positions[j], lengths[i], lengths[j])
                 };
                 (s01, s02, s12) = (unit_sum(b, 0), unit_sum(b, c), unit_sum(0, c));
+                (l01, l02, l12) = (
+                    s01.length_squared(),
+                    s02.length_squared(),
+                    s12.length_squared(),
+                );
                 careful_paths |= CAREFUL_PAIR_SUMS;
             }
             let g0 = signed_g0.abs();
             edge_on &= g0 == 0.0;
-            let g1_plus_g2 = denominator(v0, v1, v2, s01, s02, s12);
+            let g1_plus_g2 = denominator(v0, v1, v2, [s01, s02, s12], [l01, l02, l12]);
             self.g0[k] = g0;
             self.g1_plus_g2[k] = g1_plus_g2;
-            self.g2[k] = 0.5 * s01.length_squared();
+            self.g2[k] = 0.5 * l01;
             self.outer_sum[k] = s02;
             self.start[k] = total;
             // Algorithm 5: A = 2 atan2(G0, G2 + G1), with G0 >= 0.
@@ -555,7 +577,19 @@ impl SolidAnglePolygon {
         for j in 2..count - 1 {
             k += (orientation * w.dot(apex.cross(self.vertices[j])) > 0.0) as usize;
         }
-        let k = k.min(self.selectable_triangles as usize - 1);
+        let mut k = k.min(self.selectable_triangles as usize - 1);
+        // A fan triangle of zero solid angle (a vertex that clipping repeated) has no
+        // inside: a direction assigned to it lies on a diagonal it shares with a
+        // neighbour, which sampling would have used (`select_piece` skips empty pieces).
+        // Inverting in the empty triangle gave ξ1 = 0 there, and the small-polygon
+        // sampler's pdf of such a direction twice its value (issue 16, 9).
+        if self.g0[k] == 0.0 {
+            if k + 1 < self.selectable_triangles as usize && self.g0[k + 1] > 0.0 {
+                k += 1;
+            } else if k > 0 && self.g0[k - 1] > 0.0 {
+                k -= 1;
+            }
+        }
         let (v0, v1, v2) = (self.vertices[k + 1], apex, self.vertices[k + 2]);
         // v2' is where the great circle through the apex and w meets the edge v0 v2.
         let mut new_vertex = crate::math::cross_precise(v1, w)

@@ -408,8 +408,13 @@ fn accuracy_per_decade_of_solid_angle() {
         let max = *errors.last().unwrap();
         let fraction = outside as f64 / total as f64;
         std::println!("1e{decade:<4} {median:14.2e} {max:12.2e} {fraction:16.2e}");
+        // What README.md states for this test (issue 16, 9: it asserted 1e-5 and 1e-4
+        // while README claimed 1e-7): medians 7e-8 to 1.1e-7, maxima 6e-7 to 4e-6. The
+        // maxima exceed the report table's 7e-7 because these triangles are seen from as
+        // close as 0.5 units with random normals, some nearly edge-on, where Ω is
+        // ill-conditioned in the rounding of the unit vertex directions.
         assert!(
-            median < 1e-5 && max < 1e-4,
+            median < 1.5e-7 && max < 5e-6,
             "decade {decade}: median {median}, max {max}"
         );
         // f32 unit vectors are spaced ~6e-8 apart, so samples within that distance of
@@ -549,4 +554,96 @@ fn ordinary_polygons_take_the_fast_path_and_hard_ones_the_careful_fallbacks() {
     assert_eq!(polygon.careful_paths(), CAREFUL_SHORT_EDGES);
     // A failed prepare reports no path.
     assert_eq!(SolidAnglePolygon::EMPTY.careful_paths(), 0);
+}
+
+/// Issue 16 (2): a polygon exactly in a plane through the shading point has solid angle
+/// and projected solid angle 0. Every family rejects it (or samples nothing): planes
+/// through the point at any tilt, the horizon plane around and beside it, vertical planes.
+/// The coordinates are dyadic, so the inputs lie in the plane exactly. The same polygons
+/// moved off the plane by 5% of their distance are accepted by every family, so the
+/// test fails if a family rejects everything.
+#[test]
+fn polygons_in_planes_through_the_shading_point_get_no_samples_in_any_family() {
+    use crate::polygon::baselines::*;
+    use crate::polygon::*;
+    let mut rng = Rng::new(5);
+    let u = [[0.3, 0.6], [0.9, 0.1], [0.05, 0.95]];
+    for i in 0..3000 {
+        let kind = i % 6;
+        let count = 3 + rng.below(6) as usize;
+        let (cx, cy) = (
+            1.0 + 3.0 * rng.uniform_f32(),
+            -1.0 + 2.0 * rng.uniform_f32(),
+        );
+        let r = 0.5 + rng.uniform_f32();
+        let dyadic = |x: f32| (x * 1024.0).round() / 1024.0;
+        let in_plane = |offset: f32| -> Vec<Vec3> {
+            (0..count)
+                .map(|j| {
+                    let a = j as f32 / count as f32 * core::f32::consts::TAU;
+                    let (s, t) = (dyadic(cx + r * a.cos()), dyadic(cy + r * a.sin()));
+                    let (s0, t0) = (dyadic(r * a.cos()), dyadic(r * a.sin()));
+                    match kind {
+                        0 => Vec3::new(s, t, -s - t + offset),  // x + y + z = 0
+                        1 => Vec3::new(offset, s, t),           // x = 0
+                        2 => Vec3::new(s, 2.0 * s + offset, t), // y = 2x
+                        3 => Vec3::new(s, t, 0.5 * s - 0.25 * t + offset), // z = x/2 - y/4
+                        4 => Vec3::new(s0, t0, offset),         // horizon, around
+                        _ => Vec3::new(s, t, offset),           // horizon, beside
+                    }
+                })
+                .collect()
+        };
+        for (offset, expect_light) in [(0.0, false), (0.05 * (cx + r), true)] {
+            let v = in_plane(offset);
+            let check = |name: &str, prepared: bool, sample: &dyn Fn([f32; 2]) -> Sample| {
+                let got_light = prepared && u.iter().any(|&u| sample(u).pdf > 0.0);
+                // Off the plane, the horizon-plane polygons lie above it: all
+                // families see them; the others straddle or lie above the horizon, which
+                // the unclipped families (and Turk, for a polygon facing away) may reject.
+                if expect_light {
+                    if kind >= 4 {
+                        assert!(
+                            got_light,
+                            "{name}, kind {kind}, off the plane: no light {v:?}"
+                        );
+                    }
+                } else {
+                    assert!(!got_light, "{name}, kind {kind}: samples of {v:?}");
+                }
+            };
+            let p = SolidAnglePolygon::new(&v);
+            check("solid angle", p.is_some(), &|u| {
+                p.as_ref().unwrap().sample(u)
+            });
+            let p = ClippedSolidAnglePolygon::new(&v);
+            check("clipped", p.is_some(), &|u| p.as_ref().unwrap().sample(u));
+            let p = TurkPolygon::new(&v);
+            check("Turk", p.is_some(), &|u| p.as_ref().unwrap().sample(u));
+            let p = ArvoPolygon::new(&v);
+            check("Arvo", p.is_some(), &|u| p.as_ref().unwrap().sample(u));
+            let p = HartBilinearPolygon::new(&v);
+            check("Hart bilinear", p.is_some(), &|u| {
+                p.as_ref().unwrap().sample(u)
+            });
+            let p = HartBiquadraticPolygon::new(&v);
+            check("Hart biquadratic", p.is_some(), &|u| {
+                p.as_ref().unwrap().sample(u)
+            });
+            let p = ProjectedSolidAnglePolygon::new(&v);
+            check("projected", p.is_some(), &|u| p.as_ref().unwrap().sample(u));
+            let mut p = ProjectedSolidAnglePolygon::EMPTY;
+            let ok = p.prepare_fast_biased(&v);
+            check("projected fast", ok, &|u| p.sample(u));
+            let p = ArvoProjectedPolygon::new(&v);
+            check("Arvo projected", p.is_some(), &|u| {
+                p.as_ref().unwrap().sample(u)
+            });
+            let ltc = crate::brdf::ltc::Ltc::IDENTITY;
+            let p = crate::brdf::ltc::LtcPolygon::new(&ltc, &v);
+            check("LTC polygon", p.is_some(), &|u| {
+                p.as_ref().unwrap().sample(u)
+            });
+        }
+    }
 }
