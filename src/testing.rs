@@ -189,6 +189,22 @@ pub fn solid_angle_polygon_f64(vertices: &[D3]) -> f64 {
         .sum()
 }
 
+/// `∫_P f(ω) dω` over a convex planar polygon by the midpoint rule on the `n²` cells per
+/// fan triangle of [`PolygonCells`] (each cell's exact solid angle times `f` at the
+/// direction of its centroid): relative error `O(1/n²)` for smooth `f`. f64 throughout,
+/// independent of every sampler.
+pub fn integrate_over_polygon_f64(vertices: &[Vec3], n: usize, f: impl Fn(D3) -> f64) -> f64 {
+    let p: Vec<D3> = vertices.iter().map(|&x| d3(x)).collect();
+    PolygonCells::new(&p, n)
+        .cells
+        .iter()
+        .map(|c| {
+            let centroid = scale(add(add(c[0], c[1]), c[2]), 1.0 / 3.0);
+            solid_angle_triangle_f64(c[0], c[1], c[2]) * f(normalize(centroid))
+        })
+        .sum()
+}
+
 /// A convex planar polygon split into small planar triangles: each fan triangle of the
 /// polygon is cut into `n²` triangles on a barycentric grid. Directions are located in
 /// a cell by intersecting their ray with the polygon's plane (f64).

@@ -742,14 +742,14 @@ fn projected_accuracy_table() {
 }
 
 // ---------------------------------------------------------------------------------------
-// 4. Variance of the unoccluded diffuse estimate
+// 4. Variance of the unoccluded diffuse estimate of a varying emission
 
 const VARIANCE_CONFIGURATIONS: usize = 1000;
 const VARIANCE_SAMPLES: usize = 1024;
 const ESTIMATE_SAMPLES: usize = 16;
 
 /// Per configuration: the variance of the mean of `ESTIMATE_SAMPLES` samples of
-/// `ω_z / pdf` over Φ² (from the variance of `VARIANCE_SAMPLES` single samples), and the
+/// `f(ω) ω_z / pdf` over I² (from the variance of `VARIANCE_SAMPLES` single samples), and the
 /// relative error of the mean of all samples; `None` where the polygon is not prepared.
 type Variances = Vec<Option<(f64, f64)>>;
 type VarianceOf = fn(&[(Vec<Vec3>, f64)], &[[f32; 2]]) -> Variances;
@@ -763,13 +763,14 @@ fn measure_variance<T: Technique>(
 ) -> Variances {
     configurations
         .iter()
-        .map(|(v, projected)| {
+        .map(|(v, integral)| {
             let prepared = T::prepare(v)?;
             let (mut sum, mut sum2) = (0.0f64, 0.0f64);
             for &u in us {
                 let s = prepared.sample(u);
                 let x = if s.pdf > 0.0 {
-                    (s.dir.z.max(0.0) / s.pdf) as f64
+                    let dir = [s.dir.x as f64, s.dir.y as f64, s.dir.z as f64];
+                    emission(dir) * s.dir.z.max(0.0) as f64 / s.pdf as f64
                 } else {
                     0.0
                 };
@@ -780,11 +781,19 @@ fn measure_variance<T: Technique>(
             let mean = sum / n;
             let variance = (sum2 - sum * mean).max(0.0) / (n - 1.0);
             Some((
-                variance / ESTIMATE_SAMPLES as f64 / (projected * projected),
-                (mean - projected).abs() / projected,
+                variance / ESTIMATE_SAMPLES as f64 / (integral * integral),
+                (mean - integral).abs() / integral,
             ))
         })
         .collect()
+}
+
+/// The emission of the variance table's light, `f(ω) = 1/4 + ω_x²`: not constant, so
+/// that no technique's estimate is constant by the formula of its own pdf (with a
+/// constant emission, `ω_z / pdf` is identically Φ for projected sampling: a zero
+/// variance that measures nothing; issue 16, 9).
+fn emission(w: D3) -> f64 {
+    0.25 + w[0] * w[0]
 }
 
 fn variance_table() {
@@ -809,7 +818,10 @@ fn variance_table() {
                 let clipped = reference::clip_to_upper_hemisphere(&to_d3(&v));
                 let projected = reference::projected_solid_angle(&clipped);
                 if projected > 1e-6 {
-                    break (v, projected);
+                    let integral = reference::integrate_over_polygon(&clipped, 32, |w| {
+                        emission(w) * w[2].max(0.0)
+                    });
+                    break (v, integral);
                 }
             }
         })
@@ -829,13 +841,15 @@ fn variance_table() {
     let used: Vec<usize> = (0..configurations.len())
         .filter(|&i| results.iter().all(|(_, r)| r[i].is_some()))
         .collect();
-    println!("## Variance of the unoccluded diffuse estimate ({ESTIMATE_SAMPLES} samples)\n");
     println!(
-        "Estimator of Φ = ∫ cos θ dω: (1/{ESTIMATE_SAMPLES}) Σ max(ω_z, 0) / pdf. Relative variance Var / Φ² (Φ in f64; mean over all configurations, over those fully above the horizon and those crossing it, median, max) per configuration from {VARIANCE_SAMPLES} samples, over {} random configurations (3 to 7 vertices, angular radius about 0.1 to 1 rad, random orientation and aspect, {crossing} crossing the horizon) that every technique prepared. Bias: |mean of all {VARIANCE_SAMPLES} samples − Φ| / Φ, for the techniques with variance a sampling error of about √(16 Var / Φ² / {VARIANCE_SAMPLES}). The biased variant returns the pdf ω_z / Φ of the exact distribution, so its estimate is the constant Φ of its fast `atan`: no variance, only that bias.\n",
+        "## Variance of the unoccluded diffuse estimate of a varying emission ({ESTIMATE_SAMPLES} samples)\n"
+    );
+    println!(
+        "Estimator of I = ∫ f(ω) cos θ dω with the emission f(ω) = 1/4 + ω_x²: (1/{ESTIMATE_SAMPLES}) Σ f(ω) max(ω_z, 0) / pdf. Relative variance Var / I² (I in f64 by the midpoint rule on 32² cells per fan triangle of the clipped polygon; mean over all configurations, over those fully above the horizon and those crossing it, median, max) per configuration from {VARIANCE_SAMPLES} samples, over {} random configurations (3 to 7 vertices, angular radius about 0.1 to 1 rad, random orientation and aspect, {crossing} crossing the horizon) that every technique prepared. Bias: |mean of all {VARIANCE_SAMPLES} samples − I| / I, a sampling error of about √(16 Var / I² / {VARIANCE_SAMPLES}) for every technique (the biased variant adds its own). The emission is not constant, so the estimate is not constant for any technique: with f = 1, projected sampling's f cos θ / pdf would be Φ by the formula of its pdf.\n",
         used.len()
     );
     println!(
-        "| technique | mean Var / Φ² | above the horizon | crossing it | median | max | mean / solid angle's | mean bias | max bias |"
+        "| technique | mean Var / I² | above the horizon | crossing it | median | max | mean / solid angle's | mean bias | max bias |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     let is_crossing = |i: usize| configurations[i].0.iter().any(|p| p.z < 0.0);

@@ -285,13 +285,28 @@ fn fitter_transformation_and_density_match_their_definitions() {
     }
 }
 
-/// Upper bounds of the L1 distance ∫ |D − f̂| dω (in [0, 2]) by region, with a margin of
-/// about 10 % over the committed table's values (summarised in its documentation).
+/// Upper bounds of the L1 distance ∫ |D − f̂| dω (in [0, 2]) per cell by region, with a
+/// margin of about 10 % over the committed table's largest values (summarised in its
+/// documentation: 0.487 for j ≤ 44, 1.553 for j ≤ 62, 1.970 in column 63). Near grazing
+/// the largest cell errors approach the largest possible distance, 2, so these bounds
+/// say little there; [`l1_mean_bound`] bounds the regions' means, which do, and the
+/// documentation check below pins every summarised figure to four decimals.
 fn l1_bound(_i: usize, j: usize) -> f64 {
     match j {
         0..=44 => 0.55,
         45..=62 => 1.7,
-        _ => 2.0,
+        _ => 1.99,
+    }
+}
+
+/// Upper bounds of the mean L1 distance over the columns `columns`: the committed
+/// table's means (0.2467 for j ≤ 44, 0.6198 for 45 ≤ j ≤ 62, 0.9256 for column 63) plus
+/// 5 %.
+fn l1_mean_bound(columns: core::ops::RangeInclusive<usize>) -> f64 {
+    match *columns.start() {
+        0 => 0.26,
+        45 => 0.65,
+        _ => 0.97,
     }
 }
 
@@ -311,6 +326,18 @@ fn fit_errors_are_bounded_and_documented() {
         );
     }
     assert!(mean < 0.4, "mean L1 {mean}");
+    for columns in [0..=44, 45..=62, 63..=63] {
+        let region: Vec<f64> = (0..l1.len())
+            .filter(|k| columns.contains(&(k % N)))
+            .map(|k| l1[k])
+            .collect();
+        let region_mean = region.iter().sum::<f64>() / region.len() as f64;
+        let bound = l1_mean_bound(columns.clone());
+        assert!(
+            region_mean <= bound,
+            "columns {columns:?}: mean L1 {region_mean} above {bound}"
+        );
+    }
     // Narrow lobes seen from the normal have the SPTD's own shape.
     assert!(l1[0] < 1e-3, "(0, 0): L1 {}", l1[0]);
     // The whole file, documentation included, is what the generator renders for these

@@ -2,7 +2,7 @@
 //! (`SphereShadingSptd`, Dupuy et al. 2017 Eq. 19) against the f64 Monte Carlo reference
 //! of `sphera_tools::sphere_shading_error`, on the part of the grid where the paper's
 //! approximation is good (lights in the mirror direction, views up to 30°, r ≤ 0.5) and
-//! loosely everywhere, so that a regression of the fit or of the pivoted-cap pipeline
+//! everywhere against the measured maxima, so that a regression of the fit or of the pivoted-cap pipeline
 //! shows. The full table is `docs/sphere-shading-error.md`.
 use sphera::Vec3;
 use sphera::sphere::Cap;
@@ -37,11 +37,32 @@ fn shading_error_stays_within_the_measured_bounds() {
             // Measured: at most 4.7e-2 over all sizes (the table's 0°/30° columns).
             assert!(relative < 0.06, "{what}");
         }
-        if c.direction == "mirror" {
-            // Measured: at most 0.88 (r = 0.5 at 80°).
-            assert!(relative < 0.95, "{what}");
-        }
+        // Every cell against the largest relative error measured over the roughnesses
+        // for its light direction and view angle, plus 15% (issue 16, 9: one bound of
+        // 0.95 for all mirror cells let most of them regress unseen).
+        let bound = 1.15 * measured_maximum(c.direction, c.view_degrees);
+        assert!(
+            relative <= bound,
+            "{what}: relative error {relative} above {bound}"
+        );
         checked += 1;
     }
     assert_eq!(checked, 80);
+}
+
+/// The largest relative error over roughness 0.1 to 1 measured for a light direction and
+/// view angle (radius 0.25 at distance 2; `docs/sphere-shading-error.md` has every cell).
+fn measured_maximum(direction: &str, view_degrees: f64) -> f64 {
+    let by_view = match direction {
+        "mirror" => [0.3512, 0.0360, 0.4388, 0.7747],
+        "mirror, 20° lower" => [0.1496, 0.3307, 0.6661, 0.7620],
+        "45° in azimuth" => [0.3512, 0.2141, 0.9586, 1.9592],
+        "overhead" => [0.3512, 0.3656, 0.7453, 0.9691],
+        other => panic!("no measured bound for the light direction {other:?}"),
+    };
+    let column = [0.0, 30.0, 60.0, 80.0]
+        .iter()
+        .position(|&v| v == view_degrees)
+        .unwrap_or_else(|| panic!("no measured bound for the view angle {view_degrees}"));
+    by_view[column]
 }
