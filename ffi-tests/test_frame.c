@@ -1,6 +1,8 @@
 /* C ABI tests of shading frames (sphera_frame_*) and sphera_has_hardware_fma. */
 #include "check.h"
 
+#include <string.h>
+
 static int is_identity(const SpheraFrame *f) {
   return vec3_equal(f->tangent, vec3(1.0f, 0.0f, 0.0f)) &&
          vec3_equal(f->bitangent, vec3(0.0f, 1.0f, 0.0f)) &&
@@ -93,7 +95,8 @@ int main(void) {
 #endif
   }
 
-  /* ---- version: "MAJOR.MINOR.PATCH", static and NUL-terminated ---- */
+  /* ---- version: "MAJOR.MINOR.PATCH", then "+fma" exactly in the FMA build; static and
+   * NUL-terminated ---- */
   {
     const char *version = sphera_version();
     unsigned major, minor, patch;
@@ -101,7 +104,11 @@ int main(void) {
     CHECK(version != NULL);
     printf("sphera_version() = %s\n", version ? version : "(null)");
     CHECK(version && sscanf(version, "%u.%u.%u%n", &major, &minor, &patch, &consumed) == 3);
-    CHECK(version && version[consumed] == '\0');
+    if (sphera_has_hardware_fma()) {
+      CHECK(version && strcmp(version + consumed, "+fma") == 0);
+    } else {
+      CHECK(version && version[consumed] == '\0');
+    }
     CHECK(sphera_version() == version);
   }
 

@@ -105,6 +105,12 @@
 #define SPHERA_SG_DIFFUSE_LOBE_SHARPNESS 2.292504
 
 /**
+ * The most refinement iterations a decentral sample runs (the iteration converges
+ * cubically; the default runs 2 or 3): larger requests are clamped.
+ */
+#define MAX_REFINEMENT_ITERATIONS 8
+
+/**
  * The base distribution that the pivot transforms.
  */
 enum SpheraSptdBase
@@ -832,9 +838,12 @@ typedef struct SpheraSphereLightSampler {
    */
   struct SpheraSptdInCap sptd;
   /**
-   * Whether the SPTD is used (else uniform sampling of `sptd.cap`).
+   * 1 when the SPTD is used, 0 for uniform sampling of `sptd.cap` (any other value,
+   * from a corrupted struct, counts as 1). A `u32`, not a `bool`: a `bool` left three
+   * padding bytes that a C caller copying the struct reads uninitialised (issue 16, 7;
+   * valgrind flagged the adversarial C test).
    */
-  bool uses_sptd;
+  uint32_t uses_sptd;
 } SpheraSphereLightSampler;
 
 /**
@@ -877,16 +886,36 @@ typedef struct SpheraVsglTexel {
 /**
  * Sums VPLs, mip texels or other accumulators into one VSGL. Allocation-free and
  * `Copy`; the sums are relative to `origin`, a point the caller picks near the VPLs.
+ *
+ * Compensated: each field's running sum is kept as the triple (`sums`, `compensation`,
+ * `second_compensation`): the rounded sum, the sum of the rounding errors of its
+ * additions (each exact by Knuth's TwoSum, and summed by TwoSum too), and the sum of
+ * that sum's rounding errors. This is Ogita, Rump and Oishi's SumK with K = 3, applied
+ * online: for the non-negative sums (powers, weights, squared distances) the relative
+ * error after `n` additions is at most about `ε + (n ε)³` (ε = 2⁻²³), where plain `f32`
+ * sums drift by up to `n ε`. Measured: a million identical VPLs added one by one give
+ * the VSGL of one VPL, the mean within 1.1e-7 of its distance and the powers within
+ * 2.1e-7 (plain sums: a mean 3e-2 off and a spread of 11% of the distance; with one
+ * level of compensation, 3e-5 and 5e-5; tested).
  */
 typedef struct SpheraVsglAccumulator {
   /**
-   * The sums so far.
+   * The sums so far, rounded.
    */
   struct SpheraVsglTexel sums;
   /**
    * The reference point `o` of the sums.
    */
   SpheraVec3 origin;
+  /**
+   * The rounding errors of the additions into `sums`: the sums to full precision are
+   * `sums + compensation`.
+   */
+  struct SpheraVsglTexel compensation;
+  /**
+   * The rounding errors of the additions into `compensation`.
+   */
+  struct SpheraVsglTexel second_compensation;
 } SpheraVsglAccumulator;
 
 /**
@@ -1295,9 +1324,13 @@ struct SpheraVec3 sphera_frame_to_world(const struct SpheraFrame *frame, struct 
 bool sphera_has_hardware_fma(void);
 
 /**
- * The library's version as a NUL-terminated string, e.g. `"0.1.0"` (the `version` of
- * its `Cargo.toml`). The pointer is to static storage: never free it. Renderers put it
- * in cache keys of images computed with the library.
+ * The library's version and build as a NUL-terminated string: the `version` of its
+ * `Cargo.toml` (`MAJOR.MINOR.PATCH`), followed by `+fma` in a build that uses hardware
+ * fused multiply-add (`sphera_has_hardware_fma()`), e.g. `"0.1.0"` or `"0.1.0+fma"`.
+ * The two builds give results that differ in the last bits (the determinism table,
+ * `ffi-tests/determinism_table.txt`, records the default build), so a cache of images
+ * or values computed with the library must key on this whole string, not on the
+ * version alone. The pointer is to static storage: never free it.
  */
 const char *sphera_version(void);
 

@@ -66,12 +66,20 @@ pub extern "C" fn sphera_has_hardware_fma() -> bool {
     HAS_HARDWARE_FMA
 }
 
-/// The library's version as a NUL-terminated string, e.g. `"0.1.0"` (the `version` of
-/// its `Cargo.toml`). The pointer is to static storage: never free it. Renderers put it
-/// in cache keys of images computed with the library.
+/// The library's version and build as a NUL-terminated string: the `version` of its
+/// `Cargo.toml` (`MAJOR.MINOR.PATCH`), followed by `+fma` in a build that uses hardware
+/// fused multiply-add (`sphera_has_hardware_fma()`), e.g. `"0.1.0"` or `"0.1.0+fma"`.
+/// The two builds give results that differ in the last bits (the determinism table,
+/// `ffi-tests/determinism_table.txt`, records the default build), so a cache of images
+/// or values computed with the library must key on this whole string, not on the
+/// version alone. The pointer is to static storage: never free it.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_version() -> *const core::ffi::c_char {
     // `concat!` appends the terminating NUL at compile time, so the bytes form a
     // valid C string with no interior NUL (a version string has none).
-    concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast()
+    #[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+    let version = concat!(env!("CARGO_PKG_VERSION"), "+fma\0");
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "fma")))]
+    let version = concat!(env!("CARGO_PKG_VERSION"), "\0");
+    version.as_ptr().cast()
 }

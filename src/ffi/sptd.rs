@@ -349,5 +349,5 @@ pub unsafe extern "C" fn sphera_sphere_light_sampler_uses_sptd(
     sampler: *const SphereLightSampler,
 ) -> bool {
     // SAFETY: forwarded from the caller.
-    unsafe { with_ref(sampler, false, |s| s.uses_sptd) }
+    unsafe { with_ref(sampler, false, |s| s.uses_sptd()) }
 }

@@ -11,5 +11,5 @@ pub use bits::{copy_sign, is_sign_negative, sign_mask, with_sign_of_product};
 pub use frame::{Frame, orthonormal_basis};
 pub use products::{
     HAS_HARDWARE_FMA, cross_precise, determinant_is_exactly_zero, difference_of_products,
-    difference_of_products_unless_cancelling, dot_precise, fma, two_product,
+    difference_of_products_unless_cancelling, dot_precise, fma, two_product, two_sum,
 };

@@ -143,7 +143,7 @@ pub fn dot_precise(a: Vec3, b: Vec3) -> f32 {
 
 /// Knuth's TwoSum: `s = fl(a + b)` and `s + e == a + b` exactly.
 #[inline(always)]
-fn two_sum(a: f32, b: f32) -> (f32, f32) {
+pub fn two_sum(a: f32, b: f32) -> (f32, f32) {
     let s = a + b;
     let bb = s - a;
     let e = (a - (s - bb)) + (b - bb);

@@ -389,7 +389,8 @@ impl EllipseSector {
     /// A.3 replace the quad's edges by the tangents of the ellipses at the current
     /// direction; the error shrinks cubically (Proposition 6).
     ///
-    /// Returns the point and `ω_z²` (see [`point_between_ellipses`]).
+    /// Returns the point and `ω_z²` (see [`point_between_ellipses`]), or `None` where
+    /// the iteration ends on a zero or non-finite direction.
     #[inline(always)]
     pub(crate) fn sample_between(
         &self,
@@ -397,7 +398,7 @@ impl EllipseSector {
         fraction: f32,
         xi1: f32,
         iterations: u32,
-    ) -> (Vec2, f32) {
+    ) -> Option<(Vec2, f32)> {
         let (ui, uo) = (self.inner, self.outer);
         // References, not copies: copying the arrays to the stack and reading them back
         // shifted by one element defeats store-to-load forwarding.
@@ -514,7 +515,10 @@ fn towards(w: Vec2, h: Vec2) -> Vec2 {
 /// The point along the direction `w` at relative radius² `xi1` between the inner and
 /// the outer ellipse (uniform in area along the ray), given `|w|²`, `u_i · w` and `u_o · w`, and
 /// its `ω_z² = 1 - |p|²`, computed as `(1 - ξ1) (u_i·w)² / wᵀC_iw + ξ1 (u_o·w)² / wᵀC_ow`
-/// without the cancellation of `1 - |p|²` near the rim of the disk.
+/// without the cancellation of `1 - |p|²` near the rim of the disk. `None` for a zero or
+/// non-finite direction: this is the decentral case, whose polygon does not contain the
+/// zenith, so falling back to it (as before issue 16) put a sample with pdf `1/Φ`
+/// outside the polygon.
 #[inline(always)]
 pub(crate) fn point_between_ellipses(
     w: Vec2,
@@ -522,15 +526,15 @@ pub(crate) fn point_between_ellipses(
     length2: f32,
     uiw: f32,
     uow: f32,
-) -> (Vec2, f32) {
+) -> Option<(Vec2, f32)> {
     let (qi, qo) = (length2 + uiw * uiw, length2 + uow * uow);
     let radius2 = (1.0 - xi1) / qi + xi1 / qo;
     let z2 = (1.0 - xi1) * (uiw * uiw / qi) + xi1 * (uow * uow / qo);
     let scale = libm::sqrtf(radius2);
-    if scale.is_finite() && z2.is_finite() {
-        (scale2(w, scale), z2)
+    if scale.is_finite() && z2.is_finite() && length2 > 0.0 {
+        Some((scale2(w, scale), z2))
     } else {
-        ([0.0, 0.0], 1.0)
+        None
     }
 }
 
@@ -563,5 +567,31 @@ impl Coordinates {
             inner_dot: alpha * ti[0] + beta * ti[1],
             outer_dot: alpha * to[0] + beta * to[1],
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 16 (7): a zero or non-finite direction at the end of the decentral iteration
+    /// gives no point, where it used to give the zenith (pdf `1/Φ`), which lies outside
+    /// every decentral polygon. An ordinary direction gives its point between the
+    /// ellipses, with `|p|² + ω_z² = 1`.
+    #[test]
+    fn a_degenerate_direction_between_the_ellipses_gives_no_point() {
+        assert_eq!(point_between_ellipses([0.0, 0.0], 0.5, 0.0, 0.0, 0.0), None);
+        assert_eq!(
+            point_between_ellipses([f32::NAN, 0.0], 0.5, f32::NAN, 0.1, 0.2),
+            None
+        );
+        assert_eq!(
+            point_between_ellipses([1.0, 0.0], 0.5, 1.0, f32::INFINITY, 0.2),
+            None
+        );
+        let w = [0.6, 0.8];
+        let (p, z2) = point_between_ellipses(w, 0.5, 1.0, 0.3, 1.5).expect("a point");
+        assert!((p[0] * p[0] + p[1] * p[1] + z2 - 1.0).abs() < 1e-6);
+        assert!(p[0] > 0.0 && p[1] > 0.0 && z2 > 0.0 && z2 < 1.0);
     }
 }

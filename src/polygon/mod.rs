@@ -39,6 +39,14 @@ pub(crate) fn keep_or_empty<T>(value: &mut T, prepared: bool, empty: T) -> bool 
     prepared
 }
 
+/// A count read from a prepared value, clamped to `max`: a value corrupted by a caller's
+/// bug (outside the contract) must not index out of bounds (an abort across the C ABI)
+/// or loop without bound; it may give a wrong result (issue 16, 6).
+#[inline(always)]
+pub(crate) fn stored_count(count: u32, max: usize) -> usize {
+    (count as usize).min(max)
+}
+
 /// A bound on the rounding noise of a fan determinant computed in `f32` from edge
 /// vectors, relative to `|e_b|∞ |e_c|∞` (times `|p_0|∞` for the triple product): 64ε.
 /// Each edge vector `p_i - p_0` is rounded by ε/2 per component, and a cross product,

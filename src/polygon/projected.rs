@@ -49,6 +49,10 @@ pub const REFINEMENT_ITERATIONS: u32 = 1;
 /// the iteration may meet near the solution (supplement A.3).
 const ITERATION_MARGIN: f32 = 1e-5;
 
+/// The most refinement iterations a decentral sample runs (the iteration converges
+/// cubically; the default runs 2 or 3): larger requests are clamped.
+pub const MAX_REFINEMENT_ITERATIONS: u32 = 8;
+
 /// A convex polygon prepared for projected solid angle sampling: the first part of
 /// Algorithm 4 (ellipses paired with sectors, sector areas).
 #[repr(C)]
@@ -447,7 +451,8 @@ impl ProjectedSolidAnglePolygon {
     }
 
     /// [`sample`](Self::sample) with the given number of refinement iterations in the
-    /// decentral case (0 is [`sample_fast`](Self::sample_fast)).
+    /// decentral case (0 is [`sample_fast`](Self::sample_fast)), at most
+    /// [`MAX_REFINEMENT_ITERATIONS`] (larger counts are clamped).
     pub fn sample_with_iterations(&self, u: [f32; 2], iterations: u32) -> Sample {
         self.sample_impl(u, iterations, false)
     }
@@ -477,16 +482,23 @@ impl ProjectedSolidAnglePolygon {
         let sector_area = self.sector_area[k];
         let local = (target - self.sector_start[k]).max(0.0).min(sector_area);
         let sector = &self.sectors[k];
-        let (point, z2) = if self.central != 0 {
-            sector.sample_central(local, u1)
+        let point_and_z2 = if self.central != 0 {
+            Some(sector.sample_central(local, u1))
         } else {
             let fraction = local / sector_area;
+            // Both counts clamped: `extra_iterations` is a 0/1 flag, and a corrupted
+            // prepared value (or a huge argument) must not loop without bound (issue 16,
+            // 6). Convergence is cubic: more than MAX_REFINEMENT_ITERATIONS changes no bit.
             let iterations = if (ITERATION_MARGIN..=1.0 - ITERATION_MARGIN).contains(&fraction) {
-                iterations + extra_iterations as u32 * sector.extra_iterations
+                iterations.min(MAX_REFINEMENT_ITERATIONS)
+                    + extra_iterations as u32 * sector.extra_iterations.min(1)
             } else {
                 0
             };
             sector.sample_between(local, fraction, u1, iterations)
+        };
+        let Some((point, z2)) = point_and_z2 else {
+            return Sample::NONE;
         };
         let dir = Vec3::new(point[0], point[1], libm::sqrtf(z2.max(0.0)));
         // In a sector of nearly π (a large polygon seen nearly edge-on, crossing the

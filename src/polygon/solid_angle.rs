@@ -569,22 +569,23 @@ impl SolidAnglePolygon {
         }
         let w = crate::sample::normalize_scaled(dir);
         let apex = self.vertices[0];
-        let count = self.vertex_count as usize;
+        let count = super::stored_count(self.vertex_count, MAX_POLYGON_VERTICES);
+        let selectable = super::stored_count(self.selectable_triangles, MAX_TRIANGLES);
         // Diagonal j runs from the apex to vertex j; w is on the inner side of diagonal
         // k + 1 and the outer side of diagonal k + 2 when it lies in fan triangle k.
         let orientation = self.orientation;
         let mut k = 0usize;
-        for j in 2..count - 1 {
+        for j in 2..count.saturating_sub(1) {
             k += (orientation * w.dot(apex.cross(self.vertices[j])) > 0.0) as usize;
         }
-        let mut k = k.min(self.selectable_triangles as usize - 1);
+        let mut k = k.min(selectable.saturating_sub(1));
         // A fan triangle of zero solid angle (a vertex that clipping repeated) has no
         // inside: a direction assigned to it lies on a diagonal it shares with a
         // neighbour, which sampling would have used (`select_piece` skips empty pieces).
         // Inverting in the empty triangle gave ξ1 = 0 there, and the small-polygon
         // sampler's pdf of such a direction twice its value (issue 16, 9).
         if self.g0[k] == 0.0 {
-            if k + 1 < self.selectable_triangles as usize && self.g0[k + 1] > 0.0 {
+            if k + 1 < selectable && self.g0[k + 1] > 0.0 {
                 k += 1;
             } else if k > 0 && self.g0[k - 1] > 0.0 {
                 k -= 1;

@@ -647,3 +647,64 @@ fn polygons_in_planes_through_the_shading_point_get_no_samples_in_any_family() {
         }
     }
 }
+
+/// Issue 16 (7): samples at `u` on the edges of `[0, 1)²` (0 and 1 - ulp), for quads at
+/// scales from 1e-30 to 1e38. They miss the polygon by at most 8e-7 rad (measured: 5.6e-7
+/// at scale 1, 7.8e-7 at 1e20, 6.3e-7 at 1e38), more than the 1.3e-7 of random `u` that
+/// docs/contract.md used to state for every sample: asserted below 1e-6, as the contract
+/// now says.
+#[test]
+fn samples_at_the_edges_of_u_stay_within_1e_6_rad_at_every_scale() {
+    let mut rng = Rng::new(9);
+    let ulp_below_one = crate::sample::ONE_MINUS_ULP;
+    let mut worst = [0.0f64; 4];
+    for _ in 0..2000 {
+        let center = rng.unit_vector_f32();
+        let center = Vec3::new(center.x, center.y, center.z.abs() + 0.1) * 2.0;
+        let normal = center + rng.unit_vector_f32();
+        let radius = 0.5 + rng.uniform_f32();
+        let v = ellipse_polygon(&mut rng, 4, center, normal, radius, 0.7);
+        for (si, scale) in [1.0f32, 1e20, 1e38, 1e-30].iter().enumerate() {
+            let w: Vec<Vec3> = v.iter().map(|&p| p * *scale).collect();
+            let Some(p) = SolidAnglePolygon::new(&w) else {
+                continue;
+            };
+            let d: Vec<D3> = w.iter().map(|&x| d3(x)).collect();
+            let sign = if dot(d[0], cross(d[1], d[2])) > 0.0 {
+                1.0
+            } else {
+                -1.0
+            };
+            for u in [
+                [0.0, 0.0],
+                [0.0, ulp_below_one],
+                [ulp_below_one, 0.0],
+                [ulp_below_one, ulp_below_one],
+                [0.5, ulp_below_one],
+                [ulp_below_one, 0.5],
+                [0.0, 0.5],
+            ] {
+                let s = p.sample(u);
+                if s.pdf == 0.0 {
+                    continue;
+                }
+                let dir = normalize(d3(s.dir));
+                let mut out = 0.0f64;
+                for i in 0..d.len() {
+                    let n = normalize(cross(d[i], d[(i + 1) % d.len()]));
+                    let side = sign * dot(dir, n);
+                    out = out.max(-side);
+                }
+                if out > worst[si] {
+                    worst[si] = out;
+                }
+            }
+        }
+    }
+    assert!(
+        worst.iter().all(|&w| w < 1e-6),
+        "worst outside by scale 1, 1e20, 1e38, 1e-30: {worst:?}"
+    );
+    // The edges of u reach the polygon's boundary: the misses are rounding, not zero.
+    assert!(worst.iter().all(|&w| w > 0.0));
+}

@@ -79,6 +79,17 @@ fn one_minus_dot(a: crate::Vec3, b: crate::Vec3) -> f32 {
 /// antipodal axes, which the complement brings close together) cannot occur with an
 /// overlap, so `|a₁ − a₂|²/2` never has to resolve `2 − t_d`.
 pub fn cap_intersection_solid_angle(a: &Cap, b: &Cap) -> f32 {
+    // The caps in a canonical order (by `t`, then by the axes' bits), so that the
+    // rounding is the same either way round: Ω(a ∩ b) = Ω(b ∩ a) bit for bit.
+    let key = |c: &Cap| {
+        (
+            c.one_minus_cos.to_bits(),
+            c.axis.x.to_bits(),
+            c.axis.y.to_bits(),
+            c.axis.z.to_bits(),
+        )
+    };
+    let (a, b) = if key(a) <= key(b) { (a, b) } else { (b, a) };
     let (t1, t2) = (a.one_minus_cos, b.one_minus_cos);
     if !(t1 > 0.0) || !(t2 > 0.0) {
         return 0.0;
@@ -116,7 +127,26 @@ fn at_most_hemispheres(a1: crate::Vec3, t1: f32, a2: crate::Vec3, t2: f32) -> f3
     let sin2_d = (td * (2.0 - td)).max(0.0);
     let n1 = t1 + td - t2 - t1 * td;
     let n2 = t2 + td - t1 - t2 * td;
-    let y = libm::sqrtf((sin2_1 * sin2_d - n1 * n1).max(0.0));
+    // Y² = sin²θ₁ sin²d − N₁², the Gram determinant of (a₁, a₂, P). Where the two terms
+    // nearly cancel (Y² below half of them: a tiny cap across a large one's boundary,
+    // where both are of order 1 and Y of the order of the tiny cap) their difference
+    // has lost its precision, and the spherical Heron formula
+    // Y² = 4 sin s sin(s − θ₁) sin(s − θ₂) sin(s − d), s = (θ₁ + θ₂ + d)/2, computes it
+    // from the sides' differences instead (issue 16, 4: the plain form gave the whole
+    // tiny cap or 0, 85% off). All four factors are non-negative in the lens case.
+    let gram = sin2_1 * sin2_d;
+    let plain = gram - n1 * n1;
+    let y2 = if plain >= 0.5 * gram {
+        plain
+    } else {
+        let s = 0.5 * (theta1 + theta2 + d);
+        let half_gap = |x: f32| libm::sinf((0.5 * x).max(0.0));
+        4.0 * libm::sinf(s).max(0.0)
+            * half_gap(theta2 + d - theta1)
+            * half_gap(theta1 + d - theta2)
+            * half_gap(theta1 + theta2 - d)
+    };
+    let y = libm::sqrtf(y2.max(0.0));
     let phi1 = libm::atan2f(y, n1);
     let phi2 = libm::atan2f(y, n2);
     let excess = 2.0 * libm::atan2f(y, 4.0 - td - t1 - t2);

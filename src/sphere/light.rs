@@ -142,8 +142,11 @@ impl SphereShadingSptd {
 pub struct SphereLightSampler {
     /// The SPTD in the light's cap (its `cap` is the light's cap).
     pub sptd: SptdInCap,
-    /// Whether the SPTD is used (else uniform sampling of `sptd.cap`).
-    pub uses_sptd: bool,
+    /// 1 when the SPTD is used, 0 for uniform sampling of `sptd.cap` (any other value,
+    /// from a corrupted struct, counts as 1). A `u32`, not a `bool`: a `bool` left three
+    /// padding bytes that a C caller copying the struct reads uninitialised (issue 16, 7;
+    /// valgrind flagged the adversarial C test).
+    uses_sptd: u32,
 }
 
 impl SphereLightSampler {
@@ -152,8 +155,16 @@ impl SphereLightSampler {
     /// cbindgen:ignore
     pub const EMPTY: SphereLightSampler = SphereLightSampler {
         sptd: SptdInCap::EMPTY,
-        uses_sptd: false,
+        uses_sptd: 0,
     };
+
+    /// Whether the SPTD is used (else uniform sampling of the light's cap, for caps
+    /// whose pivoted image is below 1e-3 sr).
+    #[inline]
+    #[must_use]
+    pub fn uses_sptd(&self) -> bool {
+        self.uses_sptd != 0
+    }
 
     /// Prepares sampling of the sphere (center relative to the shading point, radius)
     /// for a GGX surface with roughness `r = √α` seen from `wo`. `None` when the cap is
@@ -180,7 +191,10 @@ impl SphereLightSampler {
             // sampled directly below.
             _ => (SptdInCap::new(&Sptd::uniform(Vec3::ZERO), &cap)?, false),
         };
-        Some(SphereLightSampler { sptd, uses_sptd })
+        Some(SphereLightSampler {
+            sptd,
+            uses_sptd: uses_sptd as u32,
+        })
     }
 
     /// Draws a direction in the light's cap; `pdf(sample.dir) == sample.pdf` bit for bit
@@ -190,7 +204,7 @@ impl SphereLightSampler {
     /// containment test said outside).
     #[inline]
     pub fn sample(&self, u: [f32; 2]) -> Sample {
-        if self.uses_sptd {
+        if self.uses_sptd() {
             self.sptd.sample(u)
         } else {
             let s = self.sptd.cap.sample_uniform(u);
@@ -201,7 +215,7 @@ impl SphereLightSampler {
     /// The density of [`SphereLightSampler::sample`] at `dir`: 0 outside the cap.
     #[inline]
     pub fn pdf(&self, dir: Vec3) -> f32 {
-        if self.uses_sptd {
+        if self.uses_sptd() {
             self.sptd.pdf(dir)
         } else {
             self.sptd.cap.pdf(dir)

@@ -160,7 +160,7 @@ fn joint_sptd_and_brdf_sampling_is_unbiased_and_beats_uniform_cap_sampling_in_th
                 let sampler = SphereLightSampler::new(center, radius, wo, roughness).unwrap();
                 let pivoted = pivot_cap(&cap, GgxPivot::lookup(wo, roughness).unwrap().pivot);
                 assert_eq!(
-                    sampler.uses_sptd,
+                    sampler.uses_sptd(),
                     pivoted.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE
                 );
                 let reference = reference_integral(wo, roughness, &cap);
@@ -217,7 +217,7 @@ fn small_pivoted_caps_fall_back_to_uniform_cap_sampling() {
     let wo = view(60.0);
     let center = Vec3::new(0.5, 0.2, 0.3) * 1000.0;
     let sampler = SphereLightSampler::new(center, 1.0, wo, 0.2).unwrap();
-    assert!(!sampler.uses_sptd);
+    assert!(!sampler.uses_sptd());
     let cap = Cap::from_sphere(center, 1.0);
     let s = sampler.sample([0.3, 0.7]);
     assert!(cap.contains(s.dir));
@@ -225,7 +225,7 @@ fn small_pivoted_caps_fall_back_to_uniform_cap_sampling() {
     assert_eq!(sampler.pdf(s.dir), s.pdf);
     // The same light in the mirror direction is pivoted.
     let sampler = SphereLightSampler::new(mirror(wo) * 1000.0, 1.0, wo, 0.2).unwrap();
-    assert!(sampler.uses_sptd);
+    assert!(sampler.uses_sptd());
 }
 
 #[test]
@@ -321,7 +321,7 @@ fn sample_pdf_is_the_pdf_of_the_sampled_direction() {
         let Some(sampler) = SphereLightSampler::new(center, radius, wo, rng.uniform_f32()) else {
             continue;
         };
-        fallbacks += u32::from(!sampler.uses_sptd);
+        fallbacks += u32::from(!sampler.uses_sptd());
         let mut us: std::vec::Vec<[f32; 2]> = (0..20)
             .map(|_| [rng.uniform_f32(), rng.uniform_f32()])
             .collect();
@@ -350,5 +350,16 @@ fn sample_pdf_is_the_pdf_of_the_sampled_direction() {
     assert!(
         (dropped as f64) < 1e-3 * drawn as f64,
         "{dropped} of {drawn}"
+    );
+}
+
+/// Issue 16 (7): no padding in the sampler (a `bool` field left three bytes that C
+/// callers copying the struct read uninitialised): its size is the sum of its fields'.
+#[test]
+fn the_sphere_light_sampler_has_no_padding() {
+    let sampler = SphereLightSampler::EMPTY;
+    assert_eq!(
+        core::mem::size_of::<SphereLightSampler>(),
+        core::mem::size_of_val(&sampler.sptd) + core::mem::size_of_val(&sampler.uses_sptd)
     );
 }

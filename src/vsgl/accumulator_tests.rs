@@ -501,3 +501,48 @@ fn invalid_or_overflowing_texels_are_rejected() {
     let v = tiny.finish();
     assert!(v.mean.is_finite() && v.variance.is_finite());
 }
+
+/// Issue 16 (7): a million identical VPLs added one by one. Plain f32 running sums drift
+/// once the total dwarfs each term (they gave a spread σ of 11% of the VPL's distance and
+/// a mean off by 6e-3); with the doubly compensated sums the VSGL is that of one VPL:
+/// mean within 1e-6 of the VPL's distance (measured 1.1e-7), no spread, the powers a
+/// million times one VPL's within 1e-6 (measured 2.1e-7).
+#[test]
+fn a_million_identical_vpls_added_one_by_one_give_the_vsgl_of_one() {
+    let vpl = Vpl {
+        position: Vec3::new(1.3, -0.7, 2.9),
+        normal: Vec3::new(0.0, 0.0, -1.0),
+        power: Vec3::new(0.3, 0.5, 0.7),
+        diffuse_reflectance: Vec3::splat(0.6),
+        specular_reflectance: Vec3::splat(0.1),
+        toward_incoming: Vec3::new(0.2, 0.1, -0.9).normalize(),
+        roughness: 0.3,
+    };
+    let mut accumulator = VsglAccumulator::new(Vec3::ZERO);
+    let mut single = VsglAccumulator::new(Vec3::ZERO);
+    assert!(single.add_vpl(&vpl));
+    let n = 1_000_000;
+    for _ in 0..n {
+        assert!(accumulator.add_vpl(&vpl));
+    }
+    let (many, one) = (accumulator.finish(), single.finish());
+    let distance = vpl.position.length();
+    assert!(
+        (many.mean - vpl.position).length() <= 1e-6 * distance,
+        "mean {} against {}",
+        many.mean,
+        vpl.position
+    );
+    assert!(
+        many.variance.sqrt() <= 1e-3 * distance,
+        "spread σ = {}",
+        many.variance.sqrt()
+    );
+    let power = one.diffuse_power * n as f32;
+    assert!(
+        ((many.diffuse_power - power) / power).abs().max_element() <= 1e-6,
+        "{} against {power}",
+        many.diffuse_power
+    );
+    assert!((many.diffuse.sharpness - one.diffuse.sharpness).abs() <= 1e-4 * one.diffuse.sharpness);
+}

@@ -228,7 +228,7 @@ impl ArvoPolygon {
 
     /// Draws a direction uniform in the polygon's solid angle (up to Arvo's rounding).
     pub fn sample(&self, u: [f32; 2]) -> Sample {
-        let count = self.count as usize;
+        let count = crate::polygon::stored_count(self.count, MAX_POLYGON_VERTICES);
         if count < 3 {
             return Sample::NONE;
         }
@@ -278,7 +278,7 @@ impl ArvoPolygon {
     /// the normalised vertices), 0 outside and for NaN or zero directions. `dir` need
     /// not be normalised.
     pub fn pdf(&self, dir: Vec3) -> f32 {
-        let count = self.count as usize;
+        let count = crate::polygon::stored_count(self.count, MAX_POLYGON_VERTICES);
         if count < 3 || !dir.is_finite() || dir == Vec3::ZERO {
             return 0.0;
         }

@@ -91,7 +91,10 @@ impl ArvoProjectedPolygon {
         let target = u0 * sectors.projected_solid_angle;
         let k = select_piece(&sectors.sector_start, sectors.selectable_sectors, target);
         let area = sectors.sector_area[k];
-        let local = (target - sectors.sector_start[k]).clamp(0.0, area);
+        // `max(0).min(b)` rather than `clamp(0, b)`, here and below: `clamp` panics (an
+        // abort across the C ABI) when a bound read from a corrupted value is NaN or
+        // negative (issue 16, 6); `min` and `max` return a number.
+        let local = (target - sectors.sector_start[k]).max(0.0).min(area);
         let central = sectors.central != 0;
         let sector = &sectors.sectors[k];
         let s0 = sector.s0;
@@ -118,12 +121,12 @@ impl ArvoProjectedPolygon {
         // Cubic Hermite guess for the inverse function, slopes in units of the fraction t.
         let t = local / area;
         let limit = 3.0 * h;
-        let m0 = (area / slope(s0)).clamp(0.0, limit);
-        let m1 = (area / slope(sector.s1)).clamp(0.0, limit);
+        let m0 = (area / slope(s0)).max(0.0).min(limit);
+        let m1 = (area / slope(sector.s1)).max(0.0).min(limit);
         let (t2, t3) = (t * t, t * t * t);
         let guess = (t3 - 2.0 * t2 + t) * m0 + (3.0 * t2 - 2.0 * t3) * h + (t3 - t2) * m1;
         let mut phi = if guess.is_finite() {
-            guess.clamp(0.0, h)
+            guess.max(0.0).min(h)
         } else {
             t * h
         };
@@ -133,7 +136,7 @@ impl ArvoProjectedPolygon {
             if !step.is_finite() {
                 break;
             }
-            phi = (phi - step).clamp(0.0, h);
+            phi = (phi - step).max(0.0).min(h);
             if step.abs() <= 1e-7 * h {
                 break;
             }
@@ -145,7 +148,10 @@ impl ArvoProjectedPolygon {
             let z2 = ((1.0 - u1) + o * o) / q;
             (scale2(e, libm::sqrtf(u1 / q)), z2)
         } else {
-            point_between_ellipses(e, u1, dot2(e, e), i, o)
+            let Some(point_and_z2) = point_between_ellipses(e, u1, dot2(e, e), i, o) else {
+                return Sample::NONE;
+            };
+            point_and_z2
         };
         let dir = Vec3::new(point[0], point[1], libm::sqrtf(z2.max(0.0)));
         if !dir.is_finite() {

@@ -136,7 +136,7 @@ impl TurkPolygon {
 
     /// Draws a direction towards a point uniform in the polygon's area.
     pub fn sample(&self, u: [f32; 2]) -> Sample {
-        let count = self.count as usize;
+        let count = crate::polygon::stored_count(self.count, MAX_POLYGON_VERTICES);
         if count < 3 {
             return Sample::NONE;
         }
@@ -207,7 +207,7 @@ impl TurkPolygon {
     /// sampled on an edge count as inside; otherwise the ray's intersection with the
     /// polygon's plane gives `|P|² / (area · |cos θ_light|)`.
     pub fn pdf(&self, dir: Vec3) -> f32 {
-        let count = self.count as usize;
+        let count = crate::polygon::stored_count(self.count, MAX_POLYGON_VERTICES);
         let largest = dir.abs().max_element();
         if count < 3 || !(largest > 0.0 && largest.is_finite()) {
             return 0.0;
