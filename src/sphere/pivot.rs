@@ -68,12 +68,21 @@ pub(crate) fn valid_pivot(pivot: Vec3) -> Vec3 {
     }
 }
 
-/// `g(ω)` for a unit `dir` and a valid pivot.
+/// `g(ω)` for a unit `dir` and a valid pivot, as `r_p − (1 − |r_p|²)(ω − r_p)/|ω − r_p|²`
+/// with `1 − |r_p|² = (1 − ρ)(1 + ρ)`, `ρ = |r_p|`.
+///
+/// Equal in exact arithmetic to `ω − 2(1 − ω·r_p)(ω − r_p)/|ω − r_p|²` (the second
+/// intersection of the line with the sphere), but the rounding of the step is relative to
+/// `|g − r_p|` instead of to 2, and `1 − |r_p|²` does not cancel: `g(g(ω))` comes back
+/// to within 1.2e-5 rad of `ω` for `|r_p| ≤ 0.99` where the other form was 4e-5 off
+/// (issue 16, 4; the round trip's conditioning, `(1 + ρ)/(1 − ρ) = 199` times the
+/// rounding of a unit vector, is 1.2e-5 there).
 #[inline(always)]
 pub(crate) fn transform(dir: Vec3, pivot: Vec3) -> Vec3 {
     let e = dir - pivot;
-    let s = 2.0 * (1.0 - dir.dot(pivot)) / e.length_squared();
-    (dir - e * s).normalize_or(-dir)
+    let rho = pivot.length();
+    let scale = (1.0 - rho) * (1.0 + rho) / e.length_squared();
+    (pivot - e * scale).normalize_or(-dir)
 }
 
 /// The pivot transformation `g(ω; r_p)` (Eq. 2): the second intersection with the
@@ -100,12 +109,14 @@ pub fn pivot_jacobian(dir: Vec3, pivot: Vec3) -> f32 {
     ratio * ratio
 }
 
-/// `g` in the 2D plane of a cap's axis (x) and the pivot (y ≥ 0), for a unit `w`.
+/// `g` in the 2D plane of a cap's axis (x) and the pivot (y ≥ 0), for a unit `w`, in the
+/// form of [`transform`].
 #[inline(always)]
 fn transform_2d(w: Vec2, pivot: Vec2) -> Vec2 {
     let e = w - pivot;
-    let s = 2.0 * (1.0 - w.dot(pivot)) / e.length_squared();
-    (w - e * s).normalize_or(-w)
+    let rho = pivot.length();
+    let scale = (1.0 - rho) * (1.0 + rho) / e.length_squared();
+    (pivot - e * scale).normalize_or(-w)
 }
 
 /// The counterclockwise angle from `a` to `b` in `[0, 2π)`.
