@@ -264,14 +264,31 @@ impl ArvoPolygon {
             z * b + sqrt_clamped(1.0 - z * z) * (c_hat - c_hat.dot(b) * b).normalize_or_zero();
         // Far, tiny triangles lose the unit length to about 1e-5 (found by fuzzing).
         let dir = crate::sample::unit_if_needed(dir);
-        if dir.is_finite() {
-            Sample {
-                dir,
-                pdf: self.inv_solid_angle,
-            }
-        } else {
-            Sample::NONE
+        // No sample where Arvo's f32 construction put the direction outside the polygon
+        // by more than the rounding of a unit vector (issue 16, 5: 29% of the samples of
+        // a 1e-6 sr polygon, far outside). A baseline keeps its algorithm's weaknesses
+        // but must not lie about its density: the sample's pdf is `pdf(dir)`, whose
+        // edge tests allow the rounding of an edge (see `within_edge_slack`). Arvo's
+        // construction misses by more even on ordinary polygons at the edges of `u`
+        // (2.1e-6 rad at u0 = 1 - ulp on an octagon): such draws are no sample.
+        if !dir.is_finite() {
+            return Sample::NONE;
         }
+        Sample::new_or_none(dir, self.pdf(dir))
+    }
+
+    /// Whether the unit `dir` lies inside every edge plane or outside by at most the
+    /// rounding: 4 ulps of a unit vector (2.4e-7 rad) plus the rounding of the edge
+    /// normal `v_i × v_{i+1}` itself (2ε absolute in `dir · n`, which is `2ε / |n|` in
+    /// angle for an edge of length `|n|`). False for NaN.
+    fn within_edge_slack(&self, dir: Vec3) -> bool {
+        const ANGLE: f32 = 2.0 * f32::EPSILON;
+        const ABSOLUTE: f32 = 2.0 * f32::EPSILON;
+        let count = crate::polygon::stored_count(self.count, MAX_POLYGON_VERTICES);
+        self.edge_normals[..count]
+            .iter()
+            .all(|normal| dir.dot(*normal) >= -(ANGLE * normal.length() + ABSOLUTE))
+            && dir.is_finite()
     }
 
     /// `1 / solid_angle` for directions inside the polygon (edge-plane sign tests with
@@ -282,13 +299,11 @@ impl ArvoPolygon {
         if count < 3 || !dir.is_finite() || dir == Vec3::ZERO {
             return 0.0;
         }
-        for normal in &self.edge_normals[..count] {
-            let side = dir.dot(*normal);
-            if side < 0.0 || side.is_nan() {
-                return 0.0;
-            }
+        if self.within_edge_slack(crate::sample::normalize_scaled(dir)) {
+            self.inv_solid_angle
+        } else {
+            0.0
         }
-        self.inv_solid_angle
     }
 
     /// The polygon's solid angle, the sum of its fan triangles' Girard areas.
@@ -374,7 +389,17 @@ mod tests {
                 if must_pass {
                     assert!(report.p_value > CHI_SQUARE_ALPHA, "{what}");
                 }
-                assert_eq!(report.non_finite, 0, "{what}");
+                // Draws that Arvo's f32 construction puts outside by more than the
+                // rounding are no sample (issue 16, 5): none on moderate polygons, and
+                // no more than the share allowed outside on oblique and grazing ones.
+                if name == "moderate" {
+                    assert_eq!(report.non_finite, 0, "{what}");
+                } else {
+                    assert!(
+                        (report.non_finite as f64) < outside_fraction * report.samples as f64,
+                        "{what}"
+                    );
+                }
                 assert!(
                     (report.outside as f64) < outside_fraction * report.samples as f64,
                     "{what}"
@@ -464,11 +489,13 @@ mod tests {
             let samples = 200_000;
             for _ in 0..samples {
                 let s = arvo.sample([rng.uniform_f32(), rng.uniform_f32()]);
-                assert_eq!(s.pdf, expected, "{name}");
+                // Exactly 1/Ω, or no sample where Arvo's construction put the direction
+                // outside by more than the rounding (issue 16, 5); the sample's pdf is
+                // `pdf(dir)` either way.
+                assert!(s.pdf == expected || s.pdf == 0.0, "{name}: {s:?}");
                 assert!((s.dir.length() - 1.0).abs() < 1e-5, "{name}: {s:?}");
-                let p = arvo.pdf(s.dir);
-                // Exactly 1/Ω, or 0 for a sample that rounding put outside an edge.
-                assert!(p == expected || p == 0.0, "{name}: {p} vs {expected}");
+                let p = if s.pdf > 0.0 { arvo.pdf(s.dir) } else { 0.0 };
+                assert_eq!(p, s.pdf, "{name}");
                 rejected += (p == 0.0) as u64;
                 // Scaling by powers of two is exact: the pdf must not change.
                 assert_eq!(arvo.pdf(s.dir * 4.0), p, "{name}");
@@ -479,8 +506,11 @@ mod tests {
             } else {
                 samples / 100
             };
-            println!("arvo {name}: {rejected} of {samples} samples have pdf(dir) = 0");
-            assert!(rejected <= allowed, "{name}: {rejected} samples with pdf 0");
+            println!("arvo {name}: {rejected} of {samples} draws are no sample");
+            assert!(
+                rejected <= allowed,
+                "{name}: {rejected} draws without a sample"
+            );
         }
     }
 
@@ -515,17 +545,26 @@ mod tests {
             let arvo = ArvoPolygon::new(&vertices).unwrap();
             let mut rng = Rng::new(seed);
             let mut estimate = Estimate::default();
+            let mut dropped = 0u32;
             for _ in 0..200_000 {
                 let s = arvo.sample([rng.uniform_f32(), rng.uniform_f32()]);
-                assert!(s.pdf > 0.0);
-                estimate.add(s.dir.z as f64 / s.pdf as f64);
+                // A draw that Arvo's construction put outside is no sample (issue 16,
+                // 5) and contributes 0: never on moderate polygons.
+                if s.pdf > 0.0 {
+                    estimate.add(s.dir.z as f64 / s.pdf as f64);
+                } else {
+                    assert!(!name.contains("moderate"), "{name}: no sample");
+                    dropped += 1;
+                    estimate.add(0.0);
+                }
             }
             let reference = projected_solid_angle_polygon_f64(&vertices);
-            // The relative term covers the error of Girard's solid angle (1/pdf).
+            // The relative term covers the error of Girard's solid angle (1/pdf) and the
+            // energy of the dropped draws.
             let relative = if name.contains("moderate") {
                 2e-5
             } else {
-                3e-3
+                3e-3 + dropped as f64 / 200_000.0
             };
             estimate.assert_mean_is(reference, 5.0, relative, &format!("arvo {name}"));
         }
@@ -589,12 +628,17 @@ mod tests {
             for &u0 in &edge {
                 for &u1 in &edge {
                     let s = arvo.sample([u0, u1]);
-                    assert!(s.dir.is_finite() && s.pdf > 0.0, "{name} {u0} {u1}: {s:?}");
+                    // A draw at the edges of u may be no sample (issue 16, 5: Arvo's
+                    // construction misses by 2e-6 rad there); its pdf is `pdf(dir)`.
+                    assert!(s.dir.is_finite(), "{name} {u0} {u1}: {s:?}");
+                    assert_eq!(s.pdf, if s.pdf > 0.0 { arvo.pdf(s.dir) } else { 0.0 });
                     assert!(
                         (s.dir.length() - 1.0).abs() < 1e-5,
                         "{name} {u0} {u1}: {s:?}"
                     );
-                    assert_eq!(s.pdf, 1.0 / arvo.solid_angle());
+                    if s.pdf > 0.0 {
+                        assert_eq!(s.pdf, 1.0 / arvo.solid_angle());
+                    }
                 }
             }
         }
