@@ -262,6 +262,13 @@ typedef struct SpheraTurkPolygon {
   float area;
   float inv_area;
   uint32_t count;
+  /**
+   * 1 when `sample` tests its directions against the edge planes (polygons whose
+   * extent from the first vertex is below half its distance: there the slack of
+   * `pdf` is a fraction of the polygon's size, below the rounding of a sample next to
+   * an edge), else 0 (larger polygons, where the slack of 16 ulps covers it).
+   */
+  uint32_t checks_samples;
 } SpheraTurkPolygon;
 
 /**

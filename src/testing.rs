@@ -205,6 +205,140 @@ pub fn integrate_over_polygon_f64(vertices: &[Vec3], n: usize, f: impl Fn(D3) ->
         .sum()
 }
 
+/// `∫ pdf(ω) dω` over the directions near a convex polygon (all its vertices in front of
+/// their mean direction `c`), by quadrature in the gnomonic plane tangent at `c`:
+/// directions `c + x t + y b`, `dω = dx dy / |(x, y, 1)|³`. The `y` range (the polygon's
+/// extent plus a margin of 20% on each side) is cut at the vertices' `y`, each piece
+/// integrated by 16-point Gauss–Legendre; on each row the interval where `pdf > 0` is
+/// found by bisection (60 steps) from the exact chord's midpoint outwards to the margin,
+/// and `pdf · dω` integrated over it by 16-point Gauss–Legendre. So a `pdf` whose support
+/// reaches outside the polygon, or has holes at its edges, shows as an integral off 1;
+/// the quadrature itself is accurate to about 1e-9 for the smooth densities of the
+/// polygon samplers. Returns the integral and the largest distance (in the plane, where
+/// it is the angle to first order) by which the support reaches outside the exact
+/// polygon.
+pub fn integrate_pdf_near_polygon(vertices: &[Vec3], pdf: impl Fn(Vec3) -> f32) -> (f64, f64) {
+    let v: Vec<D3> = vertices.iter().map(|&p| d3(p)).collect();
+    let mut c = [0.0; 3];
+    for p in &v {
+        c = add(c, normalize(*p));
+    }
+    let c = normalize(c);
+    let (t, b) = frame_f64(c);
+    let xy: Vec<(f64, f64)> = v
+        .iter()
+        .map(|p| (dot(*p, t) / dot(*p, c), dot(*p, b) / dot(*p, c)))
+        .collect();
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for &(x, y) in &xy {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    let size = (x1 - x0).max(y1 - y0);
+    let (left_limit, right_limit) = (x0 - 0.2 * size, x1 + 0.2 * size);
+    let dir = |x: f64, y: f64| {
+        let d: [f64; 3] = core::array::from_fn(|i| c[i] + x * t[i] + y * b[i]);
+        Vec3::new(d[0] as f32, d[1] as f32, d[2] as f32)
+    };
+    let jacobian = |x: f64, y: f64| (x * x + y * y + 1.0).powf(-1.5);
+    // The exact polygon's chord at `y`: the intersections of the horizontal line with
+    // the edges.
+    let chord = |y: f64| {
+        let (mut lo, mut hi) = (f64::MAX, f64::MIN);
+        for i in 0..xy.len() {
+            let (a, e) = (xy[i], xy[(i + 1) % xy.len()]);
+            if (a.1 - y) * (e.1 - y) <= 0.0 && a.1 != e.1 {
+                let x = a.0 + (y - a.1) / (e.1 - a.1) * (e.0 - a.0);
+                (lo, hi) = (lo.min(x), hi.max(x));
+            }
+        }
+        (lo, hi)
+    };
+    let (nodes, weights) = gauss_legendre_16();
+    let mut cuts: Vec<f64> = xy.iter().map(|&(_, y)| y).collect();
+    cuts.push(y0 - 0.2 * size);
+    cuts.push(y1 + 0.2 * size);
+    cuts.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    let (mut integral, mut reach) = (0.0f64, 0.0f64);
+    for piece in cuts.windows(2) {
+        let (ya, yb) = (piece[0], piece[1]);
+        if yb <= ya {
+            continue;
+        }
+        for k in 0..16 {
+            let y = 0.5 * (ya + yb) + 0.5 * (yb - ya) * nodes[k];
+            let (lo, hi) = chord(y);
+            // The start: the chord's midpoint, or (outside the polygon's y range) a scan
+            // for any direction with pdf > 0.
+            let start = if lo <= hi {
+                Some(0.5 * (lo + hi))
+            } else {
+                (0..=256)
+                    .map(|j| left_limit + (right_limit - left_limit) * j as f64 / 256.0)
+                    .find(|&x| pdf(dir(x, y)) > 0.0)
+            };
+            let Some(start) = start.filter(|&x| pdf(dir(x, y)) > 0.0) else {
+                continue;
+            };
+            let edge = |outside: f64| {
+                let (mut inside, mut outside) = (start, outside);
+                for _ in 0..60 {
+                    let mid = 0.5 * (inside + outside);
+                    if pdf(dir(mid, y)) > 0.0 {
+                        inside = mid;
+                    } else {
+                        outside = mid;
+                    }
+                }
+                inside
+            };
+            let (xl, xr) = (edge(left_limit), edge(right_limit));
+            if lo <= hi {
+                reach = reach.max(lo - xl).max(xr - hi);
+            } else {
+                reach = reach.max((y0 - y).max(y - y1));
+            }
+            let mut row = 0.0;
+            for m in 0..16 {
+                let x = 0.5 * (xl + xr) + 0.5 * (xr - xl) * nodes[m];
+                row += weights[m] * pdf(dir(x, y)) as f64 * jacobian(x, y);
+            }
+            integral += 0.5 * (yb - ya) * weights[k] * 0.5 * (xr - xl) * row;
+        }
+    }
+    (integral, reach)
+}
+
+/// The nodes and weights of the 16-point Gauss–Legendre rule on [-1, 1].
+pub fn gauss_legendre_16() -> ([f64; 16], [f64; 16]) {
+    const X: [f64; 8] = [
+        0.095_012_509_837_637_44,
+        0.281_603_550_779_258_9,
+        0.458_016_777_657_227_4,
+        0.617_876_244_402_643_8,
+        0.755_404_408_355_003,
+        0.865_631_202_387_831_8,
+        0.944_575_023_073_232_6,
+        0.989_400_934_991_649_9,
+    ];
+    const W: [f64; 8] = [
+        0.189_450_610_455_068_5,
+        0.182_603_415_044_923_6,
+        0.169_156_519_395_002_5,
+        0.149_595_988_816_576_7,
+        0.124_628_971_255_533_9,
+        0.095_158_511_682_492_8,
+        0.062_253_523_938_647_9,
+        0.027_152_459_411_754_1,
+    ];
+    let mut nodes = [0.0; 16];
+    let mut weights = [0.0; 16];
+    for i in 0..8 {
+        (nodes[7 - i], weights[7 - i]) = (-X[i], W[i]);
+        (nodes[8 + i], weights[8 + i]) = (X[i], W[i]);
+    }
+    (nodes, weights)
+}
+
 /// A convex planar polygon split into small planar triangles: each fan triangle of the
 /// polygon is cut into `n²` triangles on a barycentric grid. Directions are located in
 /// a cell by intersecting their ray with the polygon's plane (f64).
