@@ -596,7 +596,6 @@ mod tests {
 #[cfg(test)]
 mod pdf_support_tests {
     use super::*;
-    use crate::polygon::SolidAnglePolygon;
     use crate::testing::*;
 
     fn scaled_quad(size: f32, tilt: f32) -> [Vec3; 4] {
