@@ -88,6 +88,11 @@ KNOWN_FAILURES = {
                       "formula (alpha + beta + gamma - pi) cancels for the 1e-7 sr distant "
                       "light: its solid angle, hence its pdf, is off by tens of percent "
                       "(README: accuracy per decade of solid angle).",
+    ("hard", "arvo_projected"): "Arvo's projected sampling in f32 puts most draws for the "
+                                "1e-7 sr distant light outside it; since issue 16 such "
+                                "draws are no sample (the baseline no longer claims a "
+                                "density there), so its estimate misses their energy "
+                                "(header: unreliable below about 2e-3 rad across).",
 }
 COLOURS = ("#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b",
            "#e377c2", "#7f7f7f", "#bcbd22", "#17becf")
@@ -117,6 +122,29 @@ class TracerError(Exception):
     """A tracer run that failed: the message holds its command line and stderr."""
 
 
+# The largest value of each setting: a larger (or infinite) budget would never finish.
+SETTING_LIMITS = {"width": 16384, "height": 16384, "ref_spp": 1 << 20, "spp": 1 << 20,
+                  "budget_ms": 86400e3}
+
+
+def setting_type(name):
+    """The argparse type of a setting: a finite number in (0, SETTING_LIMITS[name]], an
+    int where the default is one; anything else is an error with a message (not a
+    traceback, not a run without end)."""
+    kind = type(FULL[name])
+
+    def parse(text):
+        try:
+            value = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"not a {kind.__name__}: {text!r}")
+        if not (math.isfinite(value) and 0 < value <= SETTING_LIMITS[name]):
+            raise argparse.ArgumentTypeError(
+                f"must be finite, positive and at most {SETTING_LIMITS[name]:g}: {text!r}")
+        return value
+    return parse
+
+
 def parse_args(argv):
     """Command-line options; settings default to FULL or QUICK."""
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -132,11 +160,13 @@ def parse_args(argv):
                     help="leave out the VSGL one-bounce indirect section")
     ap.add_argument("--threads", type=int, help="passed to the tracer")
     for name in FULL:
-        ap.add_argument("--" + name.replace("_", "-"), type=type(FULL[name]))
+        ap.add_argument("--" + name.replace("_", "-"), type=setting_type(name))
     args = ap.parse_args(argv)
     base = QUICK if args.quick else FULL
     args.settings = {k: base[k] if getattr(args, k) is None else getattr(args, k) for k in FULL}
     args.scenes = [s for s in args.scenes.split(",") if s]
+    if not args.scenes:
+        ap.error("--scenes names no scene (a comma-separated list of --list-scenes names)")
     args.ref_spp_by_scene = {} if args.quick or args.ref_spp is not None else FULL_REF_SPP
     return args
 
@@ -573,4 +603,9 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except OSError as error:
+        # An unwritable --out (or a full disk): a message, not a traceback.
+        print(f"report: {error.strerror or error}: {error.filename or ''}", file=sys.stderr)
+        sys.exit(1)

@@ -5,8 +5,10 @@
 #define SPHERA_TRACER_COMMON_H
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -20,6 +22,27 @@
 
 #include "sphera.h"
 #include "vec3.h"
+
+/* A command-line number: the whole of `text` a finite decimal number in [lo, hi]
+ * (strtod; "nan", "inf", "1e300" outside the range, "abc", "" and "1x" are rejected, so
+ * that a bad value is an error, never a silent 0 or a run without end). */
+static inline bool parse_number(const char *text, double lo, double hi, double *out) {
+    char *end;
+    double v;
+    if (!text || *text == '\0') return false;
+    v = strtod(text, &end);
+    if (*end != '\0' || !isfinite(v) || v < lo || v > hi) return false;
+    *out = v;
+    return true;
+}
+
+/* `v` as a JSON number, or `null` where it is not finite (JSON has no NaN or ∞). */
+static inline void print_json_number(FILE *out, double v) {
+    if (isfinite(v))
+        fprintf(out, "%.9g", v);
+    else
+        fputs("null", out);
+}
 
 /* Milliseconds on the monotonic clock. */
 static inline double now_ms(void) {

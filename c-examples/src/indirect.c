@@ -751,7 +751,11 @@ int indirect_main(int argc, char **argv) {
         else if (strcmp(a, "--reference") == 0) reference_path = v;
         else if (strcmp(a, "--out-pfm") == 0) pfm = v;
         else if (strcmp(a, "--out-png") == 0) png = v;
-        else if (strcmp(a, "--exposure") == 0) exposure = (float)atof(v);
+        else if (strcmp(a, "--exposure") == 0) {
+            double stops = 0.0;
+            ok = parse_number(v, -64.0, 64.0, &stops);
+            exposure = (float)stops;
+        }
         else ok = false;
         if (!ok) fprintf(stderr, "sphera-trace: indirect: bad option or value: %s %s\n", a, v);
         ++i;
@@ -820,14 +824,25 @@ int indirect_main(int argc, char **argv) {
                    r.ms_per_frame, r.ms_rsm, r.ms_clustering, r.ms_shading, r.vpl_count,
                    r.rsm_luminance, r.cluster_luminance, r.empty_clusters, r.mean[0], r.mean[1],
                    r.mean[2]);
-            if (reference)
-                printf(", \"rmse\": %.9g, \"relmse\": %.9g, \"mean_ratio\": %.9g", r.rmse,
-                       r.relmse, r.mean_ratio);
+            if (reference) {
+                printf(", \"rmse\": ");
+                print_json_number(stdout, r.rmse);
+                printf(", \"relmse\": ");
+                print_json_number(stdout, r.relmse);
+                printf(", \"mean_ratio\": ");
+                print_json_number(stdout, r.mean_ratio);
+            }
             printf("}\n");
         }
     }
-    if (status == 0 && pfm && !write_pfm(pfm, image, s.width, s.height)) status = 1;
-    if (status == 0 && png && !write_png(png, image, s.width, s.height, exposure)) status = 1;
+    if (status == 0 && pfm && !write_pfm(pfm, image, s.width, s.height)) {
+        fprintf(stderr, "sphera-trace: indirect: cannot write %s\n", pfm);
+        status = 1;
+    }
+    if (status == 0 && png && !write_png(png, image, s.width, s.height, exposure)) {
+        fprintf(stderr, "sphera-trace: indirect: cannot write %s\n", png);
+        status = 1;
+    }
     free(image);
     free(reference);
     scene_destroy(&scene);

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "common.h"
 #include "indirect.h"
 #include "tracer.h"
 
@@ -109,8 +110,8 @@ int main(int argc, char **argv) {
         } else if (strcmp(arg, "--spp") == 0) {
             ok = parse_uint(value, &settings.passes) && settings.passes > 0;
         } else if (strcmp(arg, "--time-ms") == 0) {
-            settings.time_budget_ms = atof(value);
-            ok = settings.time_budget_ms > 0.0;
+            /* At most a day: a larger budget (or inf) would never finish. */
+            ok = parse_number(value, 1e-3, 86400e3, &settings.time_budget_ms);
         } else if (strcmp(arg, "--light-samples") == 0) {
             ok = parse_uint(value, &settings.light_samples) && settings.light_samples > 0;
         } else if (strcmp(arg, "--threads") == 0) {
@@ -132,12 +133,19 @@ int main(int argc, char **argv) {
         } else if (strcmp(arg, "--obj") == 0) {
             obj_path = value;
         } else if (strcmp(arg, "--obj-scale") == 0) {
-            obj_scale = (float)atof(value);
-            ok = obj_scale > 0.0f;
+            double scale = 1.0;
+            ok = parse_number(value, 1e-20, 1e20, &scale) && scale > 0.0;
+            obj_scale = (float)scale;
         } else if (strcmp(arg, "--obj-offset") == 0) {
-            ok = sscanf(value, "%f,%f,%f", &obj_offset.x, &obj_offset.y, &obj_offset.z) == 3;
+            int consumed = 0;
+            ok = sscanf(value, "%f,%f,%f%n", &obj_offset.x, &obj_offset.y, &obj_offset.z,
+                        &consumed) == 3 &&
+                 value[consumed] == '\0' && isfinite(obj_offset.x) && isfinite(obj_offset.y) &&
+                 isfinite(obj_offset.z);
         } else if (strcmp(arg, "--exposure") == 0) {
-            exposure = (float)atof(value);
+            double stops = 0.0;
+            ok = parse_number(value, -64.0, 64.0, &stops);
+            exposure = (float)stops;
         } else {
             ok = false;
         }
@@ -150,6 +158,10 @@ int main(int argc, char **argv) {
         if (takes_value) ++i;
     }
 
+    if (curve_path && !reference_path) {
+        fprintf(stderr, "sphera-trace: --curve needs --reference (its errors are against it)\n");
+        return 2;
+    }
     int technique = technique_from_name(technique_name);
     if (technique < 0) {
         fprintf(stderr, "sphera-trace: unknown technique '%s' (see --list-techniques)\n",
@@ -215,7 +227,13 @@ int main(int argc, char **argv) {
            1e6 * result.time_ms / samples, (unsigned long long)result.samples, result.mean[0],
            result.mean[1], result.mean[2], result.mean_stderr[0], result.mean_stderr[1],
            result.mean_stderr[2], result.variance_of_mean);
-    if (reference) printf(", \"rmse\": %.9g, \"relmse\": %.9g", result.rmse, result.relmse);
+    if (reference) {
+        /* null where the reference holds NaN or ∞ pixels: JSON has no NaN. */
+        printf(", \"rmse\": ");
+        print_json_number(stdout, result.rmse);
+        printf(", \"relmse\": ");
+        print_json_number(stdout, result.relmse);
+    }
     printf("}\n");
     render_result_free(&result);
     scene_destroy(&scene);

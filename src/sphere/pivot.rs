@@ -24,9 +24,11 @@
 //! cap's full aperture `2ψ'`, which exceeds `π` exactly when the image is wider than
 //! a hemisphere, where Eq. 6–7 return the complement of the true image. This happens
 //! for wide caps under a weak pivot (near the origin `g` is close to the antipodal
-//! map, which preserves the aperture), and for caps that contain `r_p/|r_p|`, the
+//! map, which preserves the aperture), and for some caps that contain `r_p/|r_p|`, the
 //! point nearest to the pivot, whose neighbourhood `g` magnifies by
-//! `((1 + |r_p|)/(1 − |r_p|))²` (its image contains `−r_p/|r_p|`).
+//! `((1 + |r_p|)/(1 − |r_p|))²` (its image contains `−r_p/|r_p|`). Containing that
+//! point is not sufficient: a small cap around it under a moderate pivot has a small
+//! image; the arc length `L` decides.
 //!
 //! The implementation measures the two halves `g(ω₁) → g(ω_c)` and `g(ω_c) → g(ω₂)` with `atan2` of 2D cross and dot
 //! products in that plane, and rotates `g(ω₁)` by `L/2` to get the axis; the stored

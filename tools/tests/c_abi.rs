@@ -294,6 +294,92 @@ fn run_tracer_test(name: &str) {
     }
 }
 
+/// Issue 16 (8): the tracer's command line (`c-examples/src/main.c`, built with the
+/// tracer's sources): every bad value gets a message and exit status 2 (an infinite or
+/// huge time budget ran without end, a NaN or non-numeric exposure was read as a black
+/// image or 0, `--curve` without `--reference` wrote only a header); a NaN reference
+/// pixel gives `"rmse": null`, which is JSON, not `nan`; the indirect scene says why it
+/// exits 1 on an unwritable output.
+#[test]
+fn tracer_command_line_rejects_bad_values() {
+    let root = repository_root();
+    let program = output_dir().join("sphera-trace-cli");
+    let mut command = compiler(false);
+    command
+        .args(C_FLAGS)
+        .arg("-I")
+        .arg(root.join("include"))
+        .arg("-I")
+        .arg(root.join("c-examples").join("src"))
+        .arg(root.join("c-examples").join("src").join("main.c"));
+    for source in TRACER_SOURCES {
+        command.arg(root.join("c-examples").join("src").join(source));
+    }
+    command
+        .arg(static_library())
+        .args(["-lembree3", "-lpng", "-lpthread", "-lm", "-o"])
+        .arg(&program);
+    if let Err(message) = run(&mut command) {
+        panic!("the tracer does not compile and link:\n{message}");
+    }
+    let small = ["--width", "8", "--height", "8", "--spp", "1", "--quiet"];
+    for bad in [
+        vec!["--time-ms", "inf"],
+        vec!["--time-ms", "1e300"],
+        vec!["--exposure", "nan"],
+        vec!["--exposure", "abc"],
+        vec!["--obj-scale", "inf"],
+        vec!["--curve", "curve.csv"],
+        vec!["--scene", "indirect", "--exposure", "nan"],
+    ] {
+        let output = Command::new(&program)
+            .args(&bad)
+            .args(small)
+            .output()
+            .expect("run");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{bad:?}: {stderr}");
+        assert!(
+            stderr.contains("sphera-trace"),
+            "{bad:?}: no message: {stderr}"
+        );
+    }
+    // A reference with a NaN pixel: the errors are not finite, printed as null.
+    let reference = output_dir().join("nan-reference.pfm");
+    let mut pfm = b"PF\n8 8\n-1.0\n".to_vec();
+    for i in 0..8 * 8 * 3 {
+        let value: f32 = if i == 7 { f32::NAN } else { 0.5 };
+        pfm.extend_from_slice(&value.to_le_bytes());
+    }
+    std::fs::write(&reference, pfm).expect("write the reference");
+    let output = Command::new(&program)
+        .args(small)
+        .arg("--reference")
+        .arg(&reference)
+        .output()
+        .expect("run");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{stdout} {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(
+        stdout.contains("\"rmse\": null") && !stdout.contains("nan"),
+        "{stdout}"
+    );
+    let output = Command::new(&program)
+        .args([
+            "--scene", "indirect", "--width", "16", "--height", "16", "--quiet",
+        ])
+        .args(["--out-png", "/proc/sphera-cannot-write-here/x.png"])
+        .output()
+        .expect("run");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("cannot write"), "no message: {stderr}");
+}
+
 #[test]
 fn test_tracer_end_to_end() {
     run_tracer_test("test_tracer_end_to_end");

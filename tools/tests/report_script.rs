@@ -78,3 +78,46 @@ fn quick_report_check_fails_on_a_biased_mean() {
         "{stdout}"
     );
 }
+
+/// Issue 16 (8): every bad argument gets a message and a non-zero exit, never a
+/// traceback, a run without end or a silent success: infinite and huge budgets, a
+/// non-number, an empty scene list, an unwritable output directory.
+#[test]
+fn bad_arguments_get_a_message_and_a_non_zero_exit() {
+    let root = repository_root();
+    let mock = root.join("c-examples").join("mock_tracer.py");
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("report-bad-arguments");
+    let out = out.to_string_lossy().into_owned();
+    for bad in [
+        vec!["--budget-ms", "inf"],
+        vec!["--budget-ms", "1e300"],
+        vec!["--budget-ms", "abc"],
+        vec!["--spp", "0"],
+        vec!["--scenes", ""],
+        vec!["--out", "/proc/sphera-cannot-write-here/report"],
+    ] {
+        let mut command = Command::new("python3");
+        command
+            .arg(root.join("c-examples").join("report.py"))
+            .args(["--quick", "--no-indirect", "--tracer"])
+            .arg(format!("python3 {}", mock.display()));
+        if bad[0] != "--out" {
+            command.args(["--out", &out]);
+        }
+        let output = command
+            .args(&bad)
+            .output()
+            .expect("run python3 c-examples/report.py");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            !output.status.success(),
+            "{bad:?} succeeded:\n{}",
+            describe(&output)
+        );
+        assert!(
+            !stderr.contains("Traceback"),
+            "{bad:?} printed a traceback:\n{stderr}"
+        );
+        assert!(!stderr.trim().is_empty(), "{bad:?} printed no message");
+    }
+}
