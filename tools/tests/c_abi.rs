@@ -260,9 +260,10 @@ fn test_determinism() {
     run_c_test("test_determinism");
 }
 
-/// Compiles `ffi-tests/<name>.c` with the tracer's sources, links `libsphera.a`, Embree
-/// 3, libpng and pthreads, runs it and asserts that it exits with status 0.
-fn run_tracer_test(name: &str) {
+/// Compiles `main` with the tracer's sources into the program `name`, linking
+/// `libsphera.a`, Embree 3, libpng and pthreads; panics with the compiler's output when
+/// that fails.
+fn build_with_tracer(name: &str, main: &Path) -> PathBuf {
     let root = repository_root();
     let program = output_dir().join(name);
     let mut command = compiler(false);
@@ -274,7 +275,7 @@ fn run_tracer_test(name: &str) {
         .arg(root.join("c-examples").join("src"))
         .arg("-I")
         .arg(root.join("ffi-tests"))
-        .arg(root.join("ffi-tests").join(format!("{name}.c")));
+        .arg(main);
     for source in TRACER_SOURCES {
         command.arg(root.join("c-examples").join("src").join(source));
     }
@@ -284,10 +285,18 @@ fn run_tracer_test(name: &str) {
         .arg(&program);
     if let Err(message) = run(&mut command) {
         panic!(
-            "{name}.c does not compile and link (Embree 3 and libpng must be installed: \
+            "{name} does not compile and link (Embree 3 and libpng must be installed: \
              bash c-examples/install-deps.sh):\n{message}"
         );
     }
+    program
+}
+
+/// Compiles `ffi-tests/<name>.c` with the tracer's sources, runs it and asserts that it
+/// exits with status 0.
+fn run_tracer_test(name: &str) {
+    let root = repository_root();
+    let program = build_with_tracer(name, &root.join("ffi-tests").join(format!("{name}.c")));
     match run(&mut Command::new(&program)) {
         Ok(output) => println!("{name}.c:\n{output}"),
         Err(message) => panic!("{name}.c failed:\n{message}"),
@@ -303,25 +312,10 @@ fn run_tracer_test(name: &str) {
 #[test]
 fn tracer_command_line_rejects_bad_values() {
     let root = repository_root();
-    let program = output_dir().join("sphera-trace-cli");
-    let mut command = compiler(false);
-    command
-        .args(C_FLAGS)
-        .arg("-I")
-        .arg(root.join("include"))
-        .arg("-I")
-        .arg(root.join("c-examples").join("src"))
-        .arg(root.join("c-examples").join("src").join("main.c"));
-    for source in TRACER_SOURCES {
-        command.arg(root.join("c-examples").join("src").join(source));
-    }
-    command
-        .arg(static_library())
-        .args(["-lembree3", "-lpng", "-lpthread", "-lm", "-o"])
-        .arg(&program);
-    if let Err(message) = run(&mut command) {
-        panic!("the tracer does not compile and link:\n{message}");
-    }
+    let program = build_with_tracer(
+        "sphera-trace-cli",
+        &root.join("c-examples").join("src").join("main.c"),
+    );
     let small = ["--width", "8", "--height", "8", "--spp", "1", "--quiet"];
     for bad in [
         vec!["--time-ms", "inf"],
