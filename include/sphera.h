@@ -560,6 +560,11 @@ typedef struct SpheraProjectedSolidAnglePolygon {
    */
   uint32_t is_small;
   /**
+   * The slack of `pdf` in the small case (radians; 0 otherwise): see
+   * `SmallPolygonCosineSampler::tolerance`.
+   */
+  float small_tolerance;
+  /**
    * The exact alternative for small polygons (empty otherwise).
    */
   struct SpheraSmallPolygonCosineSampler small;

@@ -77,6 +77,9 @@ pub struct ProjectedSolidAnglePolygon {
     pub(crate) central: u32,
     /// 1 when the polygon is smaller than [`SMALL_EXTENT`] and `small` samples it.
     is_small: u32,
+    /// The slack of `pdf` in the small case (radians; 0 otherwise): see
+    /// `SmallPolygonCosineSampler::tolerance`.
+    small_tolerance: f32,
     /// The exact alternative for small polygons (empty otherwise).
     small: SmallPolygonCosineSampler,
 }
@@ -100,6 +103,7 @@ impl ProjectedSolidAnglePolygon {
         selectable_sectors: 0,
         central: 0,
         is_small: 0,
+        small_tolerance: 0.0,
         small: SmallPolygonCosineSampler::EMPTY,
     };
 
@@ -202,6 +206,7 @@ impl ProjectedSolidAnglePolygon {
         polygon.selectable_sectors = 0;
         polygon.central = 0;
         polygon.is_small = 0;
+        polygon.small_tolerance = 0.0;
         // Small polygons: the ellipses of nearby edges are nearly equal, and the areas
         // between them (differences of sector areas of order 1) lose about 6e-8 / s of
         // relative precision for an angular size s. Below SMALL_EXTENT the warped solid
@@ -228,6 +233,7 @@ impl ProjectedSolidAnglePolygon {
             polygon.density = 1.0 / polygon.projected_solid_angle;
             polygon.selectable_sectors = 1;
             polygon.is_small = 1;
+            polygon.small_tolerance = polygon.small.tolerance(SMALL_ROUNDING);
             true
         };
         if allow_small && extent2 < SMALL_EXTENT * SMALL_EXTENT {
@@ -473,6 +479,37 @@ impl ProjectedSolidAnglePolygon {
             // the horizon (found by fuzzing: up to 2e3 times; 2 times for u0 = 0 where a
             // clipped vertex repeats). MIS needs `pdf(sample.dir) == sample.pdf`.
             let s = self.small.sample(u0, u1);
+            let tolerance = self.small_tolerance.min(SMALL_ROUNDING);
+            let pdf = self.small.pdf_within(s.dir, tolerance);
+            if pdf > 0.0 || s.pdf == 0.0 {
+                return Sample::new_or_none(s.dir, pdf);
+            }
+            // Rounding put the direction outside by more than the slack, which is a
+            // small fraction of the polygon's width (issue 16, 1): pulled towards the
+            // polygon's inner direction by 2^-20, 2^-14, 2^-8, then 2^-4 of the way
+            // until inside (then the inner direction itself), so that the sample keeps
+            // `pdf(dir) == pdf`.
+            let inner = self.small.inner_direction();
+            let mut pull = 1.0 / 1_048_576.0;
+            for _ in 0..4 {
+                let dir = (s.dir * (1.0 - pull) + inner * pull).normalize_or(inner);
+                let pdf = self.small.pdf_within(dir, tolerance);
+                if pdf > 0.0 {
+                    return Sample { dir, pdf };
+                }
+                pull = if pull < 1.0 / 1024.0 {
+                    pull * 64.0
+                } else {
+                    pull * 16.0
+                };
+            }
+            // A polygon that f32 directions barely resolve: its inner direction, or (where
+            // even that fails the tight test) the direction with the 16-ulp slack of
+            // before, which the LTC polygon's own `pdf` (slack 1e-5 rad) accepts.
+            let pdf = self.small.pdf_within(inner, tolerance);
+            if pdf > 0.0 {
+                return Sample { dir: inner, pdf };
+            }
             return Sample::new_or_none(s.dir, self.small.pdf_within(s.dir, SMALL_ROUNDING));
         }
         let target = u0 * self.projected_solid_angle;
@@ -520,12 +557,15 @@ impl ProjectedSolidAnglePolygon {
     /// horizon, 0 otherwise. `dir` need not be normalised; a zero or non-finite `dir`
     /// gives 0. For polygons below [`SMALL_EXTENT`](super::small_projected::SMALL_EXTENT)
     /// (handled by the small-polygon sampler) it is that sampler's `ℓ / Φ̃` through the
-    /// inverse of its warp, and directions up to 16 ulps (1.9e-6 rad) outside count as
-    /// inside, where rounding puts samples of polygons that small.
+    /// inverse of its warp, and directions outside by at most the smaller of 16 ulps
+    /// (1.9e-6 rad) and 2e-5 of the polygon's width count as inside (samples that
+    /// rounding puts farther out are pulled inside by `sample`).
     #[inline]
     pub fn pdf(&self, dir: Vec3) -> f32 {
         if self.is_small != 0 {
-            return self.small.pdf_within(dir, SMALL_ROUNDING);
+            return self
+                .small
+                .pdf_within(dir, self.small_tolerance.min(SMALL_ROUNDING));
         }
         if self.contains(dir) {
             // Unit directions (every sample) as they are, so that a sample's pdf is this
