@@ -36,6 +36,20 @@ impl Sample {
     }
 }
 
+/// The fractions of the way towards a point inside a light by which a sample that
+/// rounding put just outside (where the light's `pdf` is 0) is pulled in, one after the
+/// other until inside: 2⁻²⁰, 2⁻¹⁴, 2⁻⁸ and 2⁻⁴ of the way, then the inner point itself,
+/// for lights too small for `f32` directions to resolve. Only such samples move, and they
+/// keep `pdf(sample.dir) == sample.pdf` (issue 16: small caps, Turk's and projected
+/// sampling's small polygons).
+pub(crate) const INWARD_PULLS: [f32; 5] = [
+    1.0 / 1_048_576.0,
+    1.0 / 16_384.0,
+    1.0 / 256.0,
+    1.0 / 16.0,
+    1.0,
+];
+
 /// `dir` unchanged when `| |dir|² - 1 | <= 2e-6` (every direction a sampler computes
 /// accurately, bit for bit), otherwise `dir / |dir|`, scaled by its largest component
 /// first so that the squares neither underflow into denormals nor overflow; a zero or

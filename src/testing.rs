@@ -205,6 +205,21 @@ pub fn integrate_over_polygon_f64(vertices: &[Vec3], n: usize, f: impl Fn(D3) ->
         .sum()
 }
 
+/// `count` random-number pairs for a sampler test: first the 16 pairs of the edges and
+/// middle of `[0, 1)` (0, 1e-7, 0.5, 1 − ulp in each coordinate), then uniform ones.
+pub fn random_numbers_with_edges(rng: &mut Rng, count: usize) -> Vec<[f32; 2]> {
+    let edges = [0.0, 1e-7, 0.5, crate::sample::ONE_MINUS_ULP];
+    (0..count)
+        .map(|k| {
+            if k < 16 {
+                [edges[k % 4], edges[k / 4]]
+            } else {
+                [rng.uniform_f32(), rng.uniform_f32()]
+            }
+        })
+        .collect()
+}
+
 /// `∫ pdf(ω) dω` over the directions near a convex polygon (all its vertices in front of
 /// their mean direction `c`), by quadrature in the gnomonic plane tangent at `c`:
 /// directions `c + x t + y b`, `dω = dx dy / |(x, y, 1)|³`. The `y` range (the polygon's

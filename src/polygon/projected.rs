@@ -486,29 +486,18 @@ impl ProjectedSolidAnglePolygon {
             }
             // Rounding put the direction outside by more than the slack, which is a
             // small fraction of the polygon's width (issue 16, 1): pulled towards the
-            // polygon's inner direction by 2^-20, 2^-14, 2^-8, then 2^-4 of the way
-            // until inside (then the inner direction itself), so that the sample keeps
-            // `pdf(dir) == pdf`.
+            // polygon's inner direction until inside (`INWARD_PULLS`), or (where even that
+            // fails the tight test, for polygons that f32 directions barely resolve) the
+            // direction with the 16-ulp slack of before, which the LTC polygon's own
+            // `pdf` (slack 1e-5 rad) accepts.
             let inner = self.small.inner_direction();
-            let mut pull = 1.0 / 1_048_576.0;
-            for _ in 0..4 {
+            let pulled = crate::sample::INWARD_PULLS.iter().find_map(|&pull| {
                 let dir = (s.dir * (1.0 - pull) + inner * pull).normalize_or(inner);
                 let pdf = self.small.pdf_within(dir, tolerance);
-                if pdf > 0.0 {
-                    return Sample { dir, pdf };
-                }
-                pull = if pull < 1.0 / 1024.0 {
-                    pull * 64.0
-                } else {
-                    pull * 16.0
-                };
-            }
-            // A polygon that f32 directions barely resolve: its inner direction, or (where
-            // even that fails the tight test) the direction with the 16-ulp slack of
-            // before, which the LTC polygon's own `pdf` (slack 1e-5 rad) accepts.
-            let pdf = self.small.pdf_within(inner, tolerance);
-            if pdf > 0.0 {
-                return Sample { dir: inner, pdf };
+                (pdf > 0.0).then_some(Sample { dir, pdf })
+            });
+            if let Some(sample) = pulled {
+                return sample;
             }
             return Sample::new_or_none(s.dir, self.small.pdf_within(s.dir, SMALL_ROUNDING));
         }

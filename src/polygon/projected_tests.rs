@@ -932,13 +932,7 @@ fn the_small_polygon_pdf_integrates_to_one_and_every_sample_has_its_pdf() {
             (integral - 1.0).abs() < tolerance,
             "{name}: ∫ pdf = {integral}"
         );
-        let edges = [0.0, 1e-7, 0.5, crate::sample::ONE_MINUS_ULP];
-        for k in 0..20_000 {
-            let u = if k < 16 {
-                [edges[k % 4], edges[k / 4]]
-            } else {
-                [rng.uniform_f32(), rng.uniform_f32()]
-            };
+        for u in random_numbers_with_edges(&mut rng, 20_000) {
             let s = p.sample(u);
             assert!(s.pdf > 0.0, "{name} at {u:?}: no sample");
             assert_eq!(s.pdf.to_bits(), p.pdf(s.dir).to_bits(), "{name} at {u:?}");

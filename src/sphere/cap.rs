@@ -29,7 +29,7 @@
 
 use crate::Sample;
 use crate::math::orthonormal_basis;
-use crate::sample::{ONE_MINUS_ULP, clamp_random};
+use crate::sample::{INWARD_PULLS, ONE_MINUS_ULP, clamp_random};
 use core::f32::consts::{PI, TAU};
 use glam::Vec3;
 
@@ -233,31 +233,14 @@ impl Cap {
         }
         // Rounding put a sample from the rim just outside (for small caps the rounding
         // of a unit vector, 6e-8, is a large part of the radius: 10 of 16 draws at
-        // u0 = 1 - 1e-5 for a 1e-7 sr cap), where `pdf` is 0 (issue 16, 4). Pulled
-        // towards the axis by 2^-20 of its angle, then 2^-14, 2^-8 and 2^-4, until
-        // inside; a cap too small for any of these (below about 1e-6 rad, which `f32`
-        // directions do not resolve) gets its axis. Only samples that rounding put
-        // outside move, and they keep `pdf(dir) == pdf`.
-        let mut pull = 1.0 / 1_048_576.0;
-        for _ in 0..4 {
-            let pulled = (dir * (1.0 - pull) + self.axis * pull).normalize_or(self.axis);
-            if self.contains(pulled) {
-                return Sample { dir: pulled, pdf };
-            }
-            pull = if pull < 1.0 / 1024.0 {
-                pull * 64.0
-            } else {
-                pull * 16.0
-            };
-        }
-        if self.contains(self.axis) {
-            Sample {
-                dir: self.axis,
-                pdf,
-            }
-        } else {
-            Sample::NONE
-        }
+        // u0 = 1 - 1e-5 for a 1e-7 sr cap), where `pdf` is 0 (issue 16, 4): pulled
+        // towards the axis until inside (`INWARD_PULLS`; a cap below about 1e-6 rad,
+        // which `f32` directions do not resolve, gets its axis).
+        INWARD_PULLS
+            .iter()
+            .map(|&pull| (dir * (1.0 - pull) + self.axis * pull).normalize_or(self.axis))
+            .find(|&pulled| self.contains(pulled))
+            .map_or(Sample::NONE, |dir| Sample { dir, pdf })
     }
 
     /// `1 / Ω`, or 0 when the cap is empty or `1/Ω` is not finite.
