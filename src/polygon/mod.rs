@@ -111,7 +111,7 @@ const SHORT_EDGE_REACH: f32 = 16.0 * SHORT_EDGE_SINE;
 /// [`SHORT_EDGE_REACH`] (neighbours nearly antiparallel: the sharp end of a sliver).
 pub(crate) fn ignore_short_edges_in_containment(
     normals: &mut [Vec3; MAX_POLYGON_VERTICES],
-    positions: &[Vec3; MAX_POLYGON_VERTICES],
+    positions: &[Vec3],
     count: usize,
 ) {
     let original = *normals;

@@ -97,7 +97,7 @@ impl Default for SolidAnglePolygon {
 /// while the result stays normal, so the polygon's shape is unchanged. For subnormal `m`
 /// (`E = 0`) the factor is `2^127`, still exact; `E` is at most 254 for finite values
 /// and the factor's exponent is kept at least 1 (a normal number).
-pub(crate) fn rescale(vertices: &[Vec3], out: &mut [Vec3; MAX_POLYGON_VERTICES]) -> Option<()> {
+pub(crate) fn rescale(vertices: &[Vec3], out: &mut [Vec3]) -> Option<()> {
     // Bit trick: with the sign bit cleared, IEEE-754 bit patterns order as unsigned
     // integers in the order of the magnitudes they encode, and +inf (0x7f80_0000) and
     // every NaN (above it) have the largest patterns. One integer maximum over the
@@ -241,12 +241,13 @@ impl SolidAnglePolygon {
         if !(3..=MAX_POLYGON_VERTICES).contains(&count) {
             return false;
         }
-        let mut positions = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+        // One slot more than vertices: the edge loop below reads the first vertex again.
+        let mut positions = [Vec3::ZERO; MAX_POLYGON_VERTICES + 1];
         if rescale(vertices, &mut positions).is_none() {
             return false;
         }
         let mut lengths = [0.0f32; MAX_POLYGON_VERTICES];
-        let mut length_squares = [0.0f32; MAX_POLYGON_VERTICES];
+        let mut length_squares = [0.0f32; MAX_POLYGON_VERTICES + 1];
         for i in 0..count {
             length_squares[i] = positions[i].length_squared();
             lengths[i] = libm::sqrtf(length_squares[i]);
@@ -349,25 +350,26 @@ impl SolidAnglePolygon {
         // winds clockwise as seen from the shading point.
         let orientation = if signed_sum > 0.0 { -1.0 } else { 1.0 };
         let mut maybe_short = false;
-        for i in 0..MAX_POLYGON_VERTICES {
-            // Unused slots get zero normals, which every direction passes.
-            self.edge_normals[i] = if i < count {
-                let next = if i + 1 == count { 0 } else { i + 1 };
-                // p_i × p_next = p_i × (p_next - p_i): the edge vector is exact up to one
-                // rounding and nearly orthogonal to p_i, so no cancellation occurs.
-                let edge = positions[next] - positions[i];
-                let normal = positions[i].cross(edge);
-                // The first test of `ignore_short_edges_in_containment` (sin² of the
-                // edge's length against SHORT_EDGE_SINE²), on the same values: the
-                // common polygon has no short edge and skips it.
-                maybe_short |= !(normal.length_squared()
-                    > super::SHORT_EDGE_SINE
-                        * super::SHORT_EDGE_SINE
-                        * (length_squares[i] * length_squares[next]));
-                normal * orientation
-            } else {
-                Vec3::ZERO
-            };
+        // Edge i runs from vertex i to vertex i + 1; the slot after the last vertex holds
+        // the first, so the loop needs no wrap-around test.
+        positions[count] = positions[0];
+        length_squares[count] = length_squares[0];
+        for i in 0..count {
+            // p_i × p_(i+1) = p_i × (p_(i+1) - p_i): the edge vector is exact up to one
+            // rounding and nearly orthogonal to p_i, so no cancellation occurs.
+            let normal = positions[i].cross(positions[i + 1] - positions[i]);
+            // The first test of `ignore_short_edges_in_containment` (sin² of the edge's
+            // length against SHORT_EDGE_SINE²), on the same values: the common polygon has
+            // no short edge and skips it.
+            maybe_short |= !(normal.length_squared()
+                > super::SHORT_EDGE_SINE
+                    * super::SHORT_EDGE_SINE
+                    * (length_squares[i] * length_squares[i + 1]));
+            self.edge_normals[i] = normal * orientation;
+        }
+        // Unused slots get zero normals, which every direction passes.
+        for normal in &mut self.edge_normals[count..] {
+            *normal = Vec3::ZERO;
         }
         // An edge a few ulps long (a vertex that clipping put a few ulps from its
         // neighbour) has a plane of rounding noise, which cut away up to 0.03 rad of the
