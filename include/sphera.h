@@ -443,6 +443,11 @@ typedef struct SpheraEllipseSector {
    */
   float inverse_root_det_difference;
   /**
+   * `σ = ±1`, the sign of `u_i · u_o`: the ellipse of `u` is that of `-u`, and two
+   * nearly coincident ellipses have `u_o ≈ σ u_i` (see [`area_between`](Self::area_between)).
+   */
+  float coincidence_sign;
+  /**
    * The directions `b_0 = s0, b_1, b_2, b_3, b_4 = s1` (unit vectors at equal angles)
    * that bound the quads of the initial guess.
    */
@@ -472,10 +477,10 @@ typedef struct SpheraEllipseSector {
    */
   float cosine;
   /**
-   * 1 when `|u| > 1` for one of the ellipses: the area between them then uses the
-   * direct form (see [`area_between`](Self::area_between)).
+   * How [`area_between`](Self::area_between) computes the area between the ellipses:
+   * [`DIFFERENCE_FORM`], [`DIRECT_FORM`] or [`QUADRATURE_FORM`].
    */
-  uint32_t direct_form;
+  uint32_t area_form;
   /**
    * Refinement iterations that the unbiased sampler adds in this sector: 1 where the
    * sector is ill-conditioned (its outer ellipse's area exceeds 200 times the area
@@ -1584,9 +1589,12 @@ bool sphera_projected_polygon_prepare_fast(struct SpheraProjectedSolidAnglePolyg
 /**
  * Draws a direction with density cos θ / Φ inside the polygon from the random numbers
  * `u0`, `u1` in [0, 1) (values outside, and NaN, are clamped by the library). The pdf
- * is per steradian: `dir.z / Φ` (for polygons handled by the small-polygon sampler,
- * within 1e-4 relative of it), equal to `sphera_projected_polygon_pdf(polygon, dir)` bit
- * for bit wherever that finds the direction inside the polygon.
+ * is per steradian, `dir.z / Φ`, equal to `sphera_projected_polygon_pdf(polygon, dir)`
+ * bit for bit wherever that finds the direction inside the polygon. For polygons under
+ * 1e-2 rad (the small-polygon sampler) the draws follow `dir.z / Φ` within 0.2 s²
+ * relative (2e-5; s is the polygon's angular size). Where a polygon crosses the horizon,
+ * its clipped part is accurate to the f32 rounding of the horizon points: Φ within about
+ * 6e-8 / w relative for a clipped part w radians wide (solid angle over perimeter).
  *
  * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
  * and for a draw that lands exactly on the horizon (`cos θ = 0`, possible only for
@@ -1621,7 +1629,8 @@ struct SpheraSample sphera_projected_polygon_sample_fast(const struct SpheraProj
  * The density per steradian with which `sphera_projected_polygon_sample` produces the
  * direction `dir` (need not be normalised): `dir.z / Φ` inside the polygon, 0 outside
  * it, at or below the horizon, and for a zero or non-finite `dir`. For polygons under
- * 1e-2 rad (the small-polygon sampler) directions up to 16 ulps outside count as inside.
+ * 1e-2 rad (the small-polygon sampler) directions outside by at most the smaller of 16
+ * ulps (1.9e-6 rad) and 2e-5 of the polygon's width count as inside.
  *
  * Returns 0 when `polygon` is null or empty.
  *

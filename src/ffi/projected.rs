@@ -71,9 +71,12 @@ pub unsafe extern "C" fn sphera_projected_polygon_prepare_fast(
 
 /// Draws a direction with density cos θ / Φ inside the polygon from the random numbers
 /// `u0`, `u1` in [0, 1) (values outside, and NaN, are clamped by the library). The pdf
-/// is per steradian: `dir.z / Φ` (for polygons handled by the small-polygon sampler,
-/// within 1e-4 relative of it), equal to `sphera_projected_polygon_pdf(polygon, dir)` bit
-/// for bit wherever that finds the direction inside the polygon.
+/// is per steradian, `dir.z / Φ`, equal to `sphera_projected_polygon_pdf(polygon, dir)`
+/// bit for bit wherever that finds the direction inside the polygon. For polygons under
+/// 1e-2 rad (the small-polygon sampler) the draws follow `dir.z / Φ` within 0.2 s²
+/// relative (2e-5; s is the polygon's angular size). Where a polygon crosses the horizon,
+/// its clipped part is accurate to the f32 rounding of the horizon points: Φ within about
+/// 6e-8 / w relative for a clipped part w radians wide (solid angle over perimeter).
 ///
 /// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
 /// and for a draw that lands exactly on the horizon (`cos θ = 0`, possible only for
@@ -124,7 +127,8 @@ pub unsafe extern "C" fn sphera_projected_polygon_sample_fast(
 /// The density per steradian with which `sphera_projected_polygon_sample` produces the
 /// direction `dir` (need not be normalised): `dir.z / Φ` inside the polygon, 0 outside
 /// it, at or below the horizon, and for a zero or non-finite `dir`. For polygons under
-/// 1e-2 rad (the small-polygon sampler) directions up to 16 ulps outside count as inside.
+/// 1e-2 rad (the small-polygon sampler) directions outside by at most the smaller of 16
+/// ulps (1.9e-6 rad) and 2e-5 of the polygon's width count as inside.
 ///
 /// Returns 0 when `polygon` is null or empty.
 ///

@@ -2,6 +2,8 @@
 //! document, section A.1).
 use glam::Vec3;
 
+use crate::MAX_POLYGON_VERTICES;
+
 use super::clip_generated::clip_generated;
 
 /// Clips the convex polygon `vertices[..count]` (local frame, z = normal) to the
@@ -20,12 +22,12 @@ use super::clip_generated::clip_generated;
 ///   untouched.
 /// - Otherwise the result is what Sutherland–Hodgman clipping gives: every above vertex,
 ///   and for every edge between an above vertex `a` and a non-above vertex `b` the point
-///   `b + (a - b) * (b.z / (b.z - a.z))` with its `z` set to exactly `0.0`, in the same
-///   cyclic order (winding) as the input. The output may start at any cyclic shift.
-///   Entries past the returned count are unspecified; the first vertex is not repeated.
-/// - The point is anchored at the non-above vertex, so a vertex with `z == 0` next to an
-///   above vertex comes out exactly (its x and y bit for bit unless they are signed
-///   zeros, its z as `+0.0`).
+///   where it meets `z = 0`, `(a.z b - b.z a) / (a.z - b.z)` (each coordinate to about 3
+///   ulps of itself) with its `z` set to exactly `0.0`, in the same cyclic order
+///   (winding) as the input. The output may start at any cyclic shift. Entries past the
+///   returned count are unspecified; the first vertex is not repeated.
+/// - A vertex with `z == 0` next to an above vertex comes out exactly (its x and y bit
+///   for bit unless they are signed zeros, its z as `+0.0`).
 /// - A polygon touching the horizon from above at a single vertex (both neighbours above,
 ///   that vertex at `z == 0`) yields that vertex twice (two exactly equal consecutive
 ///   vertices, a zero-length edge); the samplers tolerate it.
@@ -57,6 +59,88 @@ pub fn clip_to_upper_hemisphere(vertices: &mut [Vec3; 8], count: usize) -> usize
     clip_generated(vertices, count as u32 | above << 3)
 }
 
+/// For each edge `k` of a clipped polygon (from `clipped[k]` to `clipped[k + 1]`), two
+/// points whose plane through the origin is the edge's, in the edge's direction: the
+/// endpoints of the input edge it lies on, or for an edge along the horizon (between two
+/// points with `z = 0`) its own endpoints.
+///
+/// Why: a horizon point is rounded to `f32`, which tilts the plane of an edge through it
+/// by about `ε / (the edge's angular length)` and with it the edge's ellipse. For a thin
+/// clipped polygon standing on the horizon that moved Φ by up to 5e-4 (issue 16, 3); the
+/// plane of the input edge, whose endpoints are exact, has no such error. The input
+/// edges are found by matching the output against Sutherland–Hodgman's sequence (every
+/// above vertex, and a horizon point where an edge crosses) at the cyclic shift where the
+/// above vertices agree bit for bit; without such a shift (which the contract of
+/// [`clip_to_upper_hemisphere`] rules out) every edge keeps its own endpoints, and so
+/// does an edge shorter than the short-edge rule's length (about 1.5e-5 rad).
+pub(crate) fn clipped_edge_planes(
+    input: &[Vec3],
+    clipped: &[Vec3],
+) -> [[Vec3; 2]; MAX_POLYGON_VERTICES] {
+    let (n, m) = (input.len(), clipped.len());
+    let mut planes = [[Vec3::ZERO; 2]; MAX_POLYGON_VERTICES];
+    for k in 0..m {
+        planes[k] = [clipped[k], clipped[if k + 1 == m { 0 } else { k + 1 }]];
+    }
+    if n > MAX_POLYGON_VERTICES || m > MAX_POLYGON_VERTICES || input.iter().all(|v| v.z > 0.0) {
+        return planes;
+    }
+    // Sutherland–Hodgman's output: the input vertex it is (if above) and the input edge
+    // that the following edge lies on (None: along the horizon).
+    let mut vertex = [None; MAX_POLYGON_VERTICES];
+    let mut source = [None; MAX_POLYGON_VERTICES];
+    let mut length = 0;
+    for i in 0..n {
+        let j = if i + 1 == n { 0 } else { i + 1 };
+        let (above, next_above) = (input[i].z > 0.0, input[j].z > 0.0);
+        let mut push = |v: Option<usize>, s: Option<(usize, usize)>| {
+            if length < MAX_POLYGON_VERTICES {
+                (vertex[length], source[length]) = (v, s);
+            }
+            length += 1;
+        };
+        if above {
+            push(Some(i), Some((i, j)));
+        }
+        if above != next_above {
+            // Leaving: the horizon point is followed by the horizon; entering: by input
+            // edge i up to vertex j.
+            push(None, if above { None } else { Some((i, j)) });
+        }
+    }
+    if length != m {
+        return planes;
+    }
+    let same = |a: Vec3, b: Vec3| a.to_array().map(f32::to_bits) == b.to_array().map(f32::to_bits);
+    let shift = (0..m).find(|&s| {
+        (0..m).all(|k| {
+            let out = clipped[(k + s) % m];
+            match vertex[k] {
+                Some(i) => same(out, input[i]),
+                None => out.z == 0.0,
+            }
+        })
+    });
+    if let Some(s) = shift {
+        for (k, &source) in source.iter().enumerate().take(m) {
+            let slot = (k + s) % m;
+            let [a, b] = planes[slot];
+            // An edge that clipping made shorter than the short-edge rule's length (a
+            // horizon point a few ulps from the vertex it was clipped next to) keeps its
+            // own, degenerate plane, which the samplers treat as such; the input edge's
+            // plane would put a real ellipse on an edge that has no length.
+            let long = a.cross(b).length_squared()
+                > super::SHORT_EDGE_SINE
+                    * super::SHORT_EDGE_SINE
+                    * (a.length_squared() * b.length_squared());
+            if let (Some((i, j)), true) = (source, long) {
+                planes[slot] = [input[i], input[j]];
+            }
+        }
+    }
+    planes
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -70,8 +154,8 @@ mod tests {
         sources: [usize; 2],
     }
 
-    /// Independent f64 Sutherland–Hodgman clipping with the same strict rule and the same
-    /// anchored horizon point; `None` if no vertex is above or the output exceeds 8.
+    /// Independent f64 Sutherland–Hodgman clipping with the same strict rule; `None` if no
+    /// vertex is above or the output exceeds 8.
     fn reference(input: &[Vec3]) -> Option<Vec<RefVertex>> {
         let n = input.len();
         let p: Vec<D3> = input
@@ -384,6 +468,66 @@ mod tests {
         vertices[1] = Vec3::new(0.0, 1.0, -1.0);
         vertices[2] = Vec3::new(-1.0, 0.0, -1.0);
         assert_eq!(clip_to_upper_hemisphere(&mut vertices, 3), 0);
+    }
+
+    /// Issue 16 (3): a clipped edge that passes close to the shading point (endpoints
+    /// 5 to 1000 times farther away than where it meets the horizon) gets its horizon
+    /// point to a few ulps of each of the point's own coordinates; the anchored form
+    /// `b + (a - b) t` was off by an ulp of the far endpoint, up to 500 ulps of the point.
+    #[test]
+    fn horizon_points_are_accurate_to_a_few_ulps_of_themselves() {
+        let mut rng = Rng::new(16);
+        let mut worst = 0.0f64;
+        for _ in 0..20_000 {
+            // A point q on the horizon, and the edge through it along a random direction
+            // with a component away from the horizon, reaching far out on both sides.
+            let q = [
+                rng.signed_log_uniform(-1.0, 0.0),
+                rng.signed_log_uniform(-1.0, 0.0),
+            ];
+            let d = [
+                rng.uniform() - 0.5,
+                rng.uniform() - 0.5,
+                0.2 + rng.uniform(),
+            ];
+            let (far_above, far_below) = (rng.log_uniform(1.5, 3.0), rng.log_uniform(1.5, 3.0));
+            let point = |s: f64| {
+                Vec3::new(
+                    (q[0] + s * d[0]) as f32,
+                    (q[1] + s * d[1]) as f32,
+                    (s * d[2]) as f32,
+                )
+            };
+            let (above, below) = (point(far_above), point(-far_below));
+            let input = [above, below, Vec3::new(below.x + 1.0, below.y, below.z)];
+            let (count, got) = clip(&input);
+            let expected = reference(&input).expect("a clipped triangle");
+            assert_eq!(count, expected.len());
+            // The horizon point on the edge from `above` to `below` (sources 0 and 1).
+            let reference_point = expected
+                .iter()
+                .find(|e| e.sources == [0, 1])
+                .expect("the edge is clipped")
+                .point;
+            let got_point = got[..count]
+                .iter()
+                .min_by(|a, b| {
+                    let distance = |g: &Vec3| {
+                        (g.x as f64 - reference_point[0]).abs()
+                            + (g.y as f64 - reference_point[1]).abs()
+                    };
+                    distance(a).total_cmp(&distance(b))
+                })
+                .expect("vertices");
+            assert_eq!(got_point.z, 0.0);
+            for k in 0..2 {
+                let ulp = (reference_point[k].abs() * f32::EPSILON as f64).max(1e-37);
+                let error = (got_point[k] as f64 - reference_point[k]).abs() / ulp;
+                worst = worst.max(error);
+            }
+        }
+        assert!(worst <= 3.0, "worst error {worst} ulps");
+        assert!(worst > 0.0, "the comparison is exact only by chance");
     }
 
     #[test]

@@ -44,6 +44,9 @@ pub struct EllipseSector {
     pub(crate) root_det_difference: f32,
     /// `1/k_o - 1/k_i = (|u_i|² - |u_o|²) / ((k_i + k_o) k_i k_o)`.
     pub(crate) inverse_root_det_difference: f32,
+    /// `σ = ±1`, the sign of `u_i · u_o`: the ellipse of `u` is that of `-u`, and two
+    /// nearly coincident ellipses have `u_o ≈ σ u_i` (see [`area_between`](Self::area_between)).
+    pub(crate) coincidence_sign: f32,
     /// The directions `b_0 = s0, b_1, b_2, b_3, b_4 = s1` (unit vectors at equal angles)
     /// that bound the quads of the initial guess.
     pub(crate) quarters: [[f32; 2]; 5],
@@ -59,14 +62,23 @@ pub struct EllipseSector {
     pub(crate) outer_radius: [f32; 5],
     /// `s0 · s1`.
     pub(crate) cosine: f32,
-    /// 1 when `|u| > 1` for one of the ellipses: the area between them then uses the
-    /// direct form (see [`area_between`](Self::area_between)).
-    pub(crate) direct_form: u32,
+    /// How [`area_between`](Self::area_between) computes the area between the ellipses:
+    /// [`DIFFERENCE_FORM`], [`DIRECT_FORM`] or [`QUADRATURE_FORM`].
+    pub(crate) area_form: u32,
     /// Refinement iterations that the unbiased sampler adds in this sector: 1 where the
     /// sector is ill-conditioned (its outer ellipse's area exceeds 200 times the area
     /// between the ellipses), where rounding makes the first iteration's result less
     /// reliable; 0 elsewhere.
     pub(crate) extra_iterations: u32,
+}
+
+/// Where a direction of the safeguarded iteration lies (see [`EllipseSector::locate`]).
+#[derive(Clone, Copy, PartialEq)]
+enum Location {
+    Inside,
+    Beside,
+    Below,
+    Above,
 }
 
 /// Which `atan` the areas use.
@@ -98,6 +110,33 @@ fn atan2_positive(y: f32, x: f32, precision: AreaPrecision) -> f32 {
     }
 }
 
+/// The largest `|u_o - σ u_i|² / min(|u_i|², |u_o|²)` for which two ellipses count as
+/// nearly coincident and their area difference takes the difference form of
+/// [`EllipseSector::area_between`] also when `|u| > 1`.
+const COINCIDENCE: f32 = 1.0;
+
+/// [`EllipseSector::area_form`]: the difference form of [`EllipseSector::area_between`],
+/// for ellipses close to the unit circle or to each other.
+pub(crate) const DIFFERENCE_FORM: u32 = 0;
+/// [`EllipseSector::area_form`]: the direct form, a difference of the two ellipses' areas.
+pub(crate) const DIRECT_FORM: u32 = 1;
+/// [`EllipseSector::area_form`]: Gauss–Legendre quadrature of the integrand, for a
+/// narrow sector next to where a thin ellipse touches the unit circle.
+pub(crate) const QUADRATURE_FORM: u32 = 2;
+
+/// The quadrature form applies where `|u · s| <= QUADRATURE_MAX_DOT` for both ellipses
+/// at both ends of the sector ...
+const QUADRATURE_MAX_DOT: f32 = 0.0625;
+/// ... and the sector's angle is at most about 25° (`s0 · s1 >= 0.9`).
+const QUADRATURE_MIN_COSINE: f32 = 0.9;
+
+/// The 4-point Gauss–Legendre rule on `[0, 1]`: nodes `(1 ∓ √(3/7 ± 2/7 √(6/5))) / 2`
+/// and weights `(18 ± √30) / 72`.
+#[allow(clippy::excessive_precision)] // the nodes as derived
+const GAUSS_LEGENDRE_4_NODES: [f32; 4] = [0.069_431_844, 0.330_009_48, 0.669_990_52, 0.930_568_16];
+#[allow(clippy::excessive_precision)]
+const GAUSS_LEGENDRE_4_WEIGHTS: [f32; 4] = [0.173_927_42, 0.326_072_58, 0.326_072_58, 0.173_927_42];
+
 /// `1 / √(|s|² + t²)` with `t = u · s`: the factor `λ` that puts `λ s` on the ellipse.
 #[inline(always)]
 fn ellipse_radius(length2: f32, t: f32) -> f32 {
@@ -118,6 +157,7 @@ impl EllipseSector {
         outer_root_det: 1.0,
         root_det_difference: 0.0,
         inverse_root_det_difference: 0.0,
+        coincidence_sign: 1.0,
         quarters: [[0.0; 2]; 5],
         quarter_det: 0.0,
         inner_quarter_dots: [0.0; 5],
@@ -125,7 +165,7 @@ impl EllipseSector {
         inner_radius: [0.0; 5],
         outer_radius: [0.0; 5],
         cosine: 1.0,
-        direct_form: 0,
+        area_form: DIFFERENCE_FORM,
         extra_iterations: 0,
     };
 
@@ -219,6 +259,16 @@ impl EllipseSector {
         let radii = |t: [f32; 5]| t.map(|t| ellipse_radius(1.0, t));
         let (ki, ko) = (libm::sqrtf(1.0 + ui2), libm::sqrtf(1.0 + uo2));
         let finite = |x: f32| if x.is_finite() { x } else { 0.0 };
+        // |u_i|² - |u_o|² = -(u_o - σ u_i) · (u_o + σ u_i): the first factor is exact up to
+        // one rounding per component, so the difference keeps its relative precision when
+        // the ellipses nearly coincide (where `ui2 - uo2` would cancel).
+        let sigma = copy_sign(1.0, dot2(inner, outer));
+        let delta = [outer[0] - sigma * inner[0], outer[1] - sigma * inner[1]];
+        let length_difference = finite(-dot2(
+            delta,
+            [outer[0] + sigma * inner[0], outer[1] + sigma * inner[1]],
+        ));
+        let coincident = dot2(delta, delta) <= COINCIDENCE * uo2.min(ui2);
         Self {
             s0,
             s1,
@@ -230,8 +280,9 @@ impl EllipseSector {
             outer_dots,
             inner_root_det: ki,
             outer_root_det: ko,
-            root_det_difference: finite(-(ui2 - uo2) / (ki + ko)),
-            inverse_root_det_difference: finite((ui2 - uo2) / ((ki + ko) * ki * ko)),
+            root_det_difference: finite(-length_difference / (ki + ko)),
+            inverse_root_det_difference: finite(length_difference / ((ki + ko) * ki * ko)),
+            coincidence_sign: sigma,
             quarters: boundaries,
             quarter_det: det2(s0, b1),
             inner_quarter_dots,
@@ -239,8 +290,46 @@ impl EllipseSector {
             inner_radius: radii(inner_quarter_dots),
             outer_radius: radii(outer_quarter_dots),
             cosine: dot2(s0, s1),
-            direct_form: (ui2 > 1.0 || uo2 > 1.0) as u32,
+            area_form: if dot2(s0, s1) >= QUADRATURE_MIN_COSINE
+                && inner_dots[0].abs().max(inner_dots[1].abs()) <= QUADRATURE_MAX_DOT
+                && outer_dots[0].abs().max(outer_dots[1].abs()) <= QUADRATURE_MAX_DOT
+            {
+                QUADRATURE_FORM
+            } else if (ui2 <= 1.0 && uo2 <= 1.0) || coincident {
+                DIFFERENCE_FORM
+            } else {
+                DIRECT_FORM
+            },
             extra_iterations: 0,
+        }
+    }
+
+    /// Where `c` lies against the bracket `[x_lo, x_hi]` of chord parameters, widened by
+    /// 1 % of its width so that rounding noise of a converged step is not mistaken for an
+    /// overshoot: [`Location::Beside`] for a direction within the widened bracket but
+    /// (by at most that margin) outside the sector.
+    #[inline(always)]
+    fn locate(&self, c: &Coordinates, x_lo: f32, x_hi: f32) -> Location {
+        let sum = c.alpha + c.beta;
+        let margin = 0.01 * (x_hi - x_lo);
+        if !(sum > 0.0) || c.beta < (x_lo - margin) * sum {
+            Location::Below
+        } else if c.beta > (x_hi + margin) * sum {
+            Location::Above
+        } else if c.alpha < 0.0 || c.beta < 0.0 {
+            Location::Beside
+        } else {
+            Location::Inside
+        }
+    }
+
+    /// `c` moved onto the nearer end of the sector (`α` or `β` set to 0).
+    #[inline(always)]
+    fn clamped(&self, c: Coordinates) -> Coordinates {
+        if c.alpha < 0.0 {
+            Coordinates::new(self, 0.0, 1.0)
+        } else {
+            Coordinates::new(self, 1.0, 0.0)
         }
     }
 
@@ -275,34 +364,38 @@ impl EllipseSector {
     }
 
     /// The area between the two ellipses from `s0` to a direction `w` with
-    /// `det(s0, w) = det`, `s0 · w = dot`, `u_i · w = ti` and `u_o · w = to`.
+    /// `det(s0, w) = det`, `s0 · w = dot`, `u_i · w = ti`, `u_o · w = to` and
+    /// `difference = u_o · w - σ u_i · w` (computed by linearity from the sector's
+    /// constants, see [`Coordinates`]).
     ///
-    /// With `θ_l = atan2(k_l det, x_l)`, `x_l = dot + (u_l · s0)(u_l · w)` and
+    /// With `θ_l = atan2(k_l det, x_l)`, `x_l = dot + P_l`, `P_l = (u_l · s0)(u_l · w)` and
     /// `k_l = √|C_l|`, the ellipse areas are `θ_l / (2 k_l)` (Equation (1)), and
     ///
     /// `A_o - A_i = ½ ((θ_o - θ_i) / k_o + θ_i (1/k_o - 1/k_i))`,
     ///
     /// where `θ_o - θ_i = arg(z_o z̄_i)` for `z_l = x_l + i k_l det`:
     /// `Re = x_o x_i + k_o k_i det²`, `Im = det (k_o x_i - k_i x_o)` with
-    /// `k_o x_i - k_i x_o = (k_o - k_i) dot + k_o t_i0 t_i - k_i t_o0 t_o` and
-    /// `k_o - k_i = -(|u_i|² - |u_o|²) / (k_o + k_i)`, and
-    /// `1/k_o - 1/k_i = (|u_i|² - |u_o|²) / ((k_i + k_o) k_i k_o)`. For ellipses close to
-    /// the unit circle (a polygon near the horizon) both terms are of the order of `|u|²`
-    /// and computed without the cancellation of subtracting two areas of order one. Two
-    /// `atan`s, like the direct form `θ_o / (2 k_o) - θ_i / (2 k_i)`, which is used instead
-    /// when one of the ellipses is far from the unit circle (`|u| > 1`): there the two
-    /// terms of the difference form can cancel.
+    /// `k_o x_i - k_i x_o = (k_o - k_i) x_i + k_i (P_i - P_o)`. Both `k_o - k_i` and
+    /// `1/k_o - 1/k_i` come from `|u_o|² - |u_i|² = (u_o - σ u_i) · (u_o + σ u_i)`, and with
+    /// `d_l = u_o · s_l - σ u_i · s_l` (`d_0` at `s0`, `d` at `w`),
+    /// `P_i - P_o = -σ ((u_i · s0) d + d_0 (u_i · w)) - d_0 d`: no difference of two
+    /// nearly equal terms is formed. This difference form is accurate in two cases where
+    /// the direct form `θ_o / (2 k_o) - θ_i / (2 k_i)` subtracts areas of order one:
+    /// - ellipses close to the unit circle (a polygon near the horizon): every term is of
+    ///   the order of `|u|²`;
+    /// - nearly coincident ellipses, `|u_o - σ u_i|² <= COINCIDENCE · |u|²` (a sliver
+    ///   seen nearly edge-on, the two long edges of a thin polygon standing on the horizon
+    ///   found by issue 16, 3): every term is of the order of `u_o - σ u_i`, and the
+    ///   relative error of the area is that of the inputs `d_l` rather than that of the
+    ///   ellipses' areas amplified by their ratio to the difference (up to 2e4).
+    ///
+    /// Elsewhere (an ellipse with `|u| > 1` and the other not close to it) the direct form
+    /// is used: there the two terms of the difference form can cancel.
     #[inline(always)]
-    pub(crate) fn area_between(
-        &self,
-        det: f32,
-        dot: f32,
-        ti: f32,
-        to: f32,
-        precision: AreaPrecision,
-    ) -> f32 {
-        let det = det.max(0.0);
-        if self.direct_form != 0 || is_degenerate(self.outer) || is_degenerate(self.inner) {
+    pub(crate) fn area_between(&self, w: &Coordinates, precision: AreaPrecision) -> f32 {
+        let (dot, ti, to) = (w.dot, w.inner_dot, w.outer_dot);
+        let det = w.det.max(0.0);
+        if is_degenerate(self.outer) || is_degenerate(self.inner) || self.area_form == DIRECT_FORM {
             // The direct form: better when the ellipses differ much (then the two terms
             // of the difference form cancel instead).
             let area = |u: Vec2, k: f32, t0: f32, t: f32| {
@@ -315,15 +408,68 @@ impl EllipseSector {
             return area(self.outer, self.outer_root_det, self.outer_dots[0], to)
                 - area(self.inner, self.inner_root_det, self.inner_dots[0], ti);
         }
+        if self.area_form == QUADRATURE_FORM {
+            return self.area_by_quadrature(w);
+        }
+        let difference = w.dot_difference;
         let (ki, ko) = (self.inner_root_det, self.outer_root_det);
-        let (ti_ti0, to_to0) = (self.inner_dots[0] * ti, self.outer_dots[0] * to);
-        let (xi, xo) = (dot + ti_ti0, dot + to_to0);
-        let cross = self.root_det_difference * dot + ko * ti_ti0 - ki * to_to0;
+        let sigma = self.coincidence_sign;
+        let (ti0, to0) = (self.inner_dots[0], self.outer_dots[0]);
+        let d0 = to0 - sigma * ti0;
+        let xi = dot + ti0 * ti;
+        let xo = dot + to0 * to;
+        let products_difference = -sigma * (ti0 * difference + d0 * ti) - d0 * difference;
+        let cross = self.root_det_difference * xi + ki * products_difference;
         let re = xo * xi + ko * ki * det * det;
         let im = det * cross;
-        let difference = atan2_signed(im, re, precision);
+        let angle_difference = atan2_signed(im, re, precision);
         let theta_i = atan2_positive(ki * det, xi, precision);
-        0.5 * (difference / ko + theta_i * self.inverse_root_det_difference)
+        0.5 * (angle_difference / ko + theta_i * self.inverse_root_det_difference)
+    }
+
+    /// The quadrature form of [`area_between`](Self::area_between): along the chord
+    /// `v(x) = (1 - x) s0 + x w`, `x ∈ [0, 1]`, the area element is
+    /// `½ (r_o² - r_i²) dφ` with `r_l² = |v|² / (|v|² + (u_l · v)²)` and
+    /// `dφ = det(s0, w) / |v|² dx`, so the area is
+    ///
+    /// `½ det(s0, w) ∫₀¹ -d(x) (t_o(x) + σ t_i(x)) / ((|v|² + t_i²)(|v|² + t_o²)) dx`
+    ///
+    /// with `t_l(x) = u_l · v(x)` and `d(x) = t_o(x) - σ t_i(x)`, all linear in `x` and
+    /// accurate (so the integrand, `t_i² - t_o²` factored, has no cancellation). For a
+    /// sector of at most 60° in which `|t_l| <= 1/16` at both ends (a narrow sector
+    /// beside the point where a thin ellipse touches the unit circle, as at the vertex on
+    /// the horizon of an edge that rises steeply from it; issue 16, 3), the integrand
+    /// is a smooth rational function and the 4-point Gauss–Legendre rule reaches f32
+    /// precision, where both closed forms subtract areas up to 1e4 times larger than
+    /// the result.
+    #[inline(always)]
+    fn area_by_quadrature(&self, w: &Coordinates) -> f32 {
+        let length2 = w.length2;
+        // The chord to the unit direction of w: the same area (it is homogeneous in w),
+        // and a parameterization as uniform in angle as for the whole sector (w from the
+        // iteration is up to 8 times longer than s0, which crowded the nodes near s0).
+        if !(length2 > 0.0) {
+            return 0.0;
+        }
+        let scale = 1.0 / libm::sqrtf(length2);
+        let (det, dot, ti, to, difference) = (
+            w.det.max(0.0) * scale,
+            w.dot * scale,
+            w.inner_dot * scale,
+            w.outer_dot * scale,
+            w.dot_difference * scale,
+        );
+        let sigma = self.coincidence_sign;
+        let (ti0, to0) = (self.inner_dots[0], self.outer_dots[0]);
+        let d0 = to0 - sigma * ti0;
+        let mut sum = 0.0f32;
+        for (x, weight) in GAUSS_LEGENDRE_4_NODES.iter().zip(GAUSS_LEGENDRE_4_WEIGHTS) {
+            let y = 1.0 - x;
+            let (a, b, d) = (y * ti0 + x * ti, y * to0 + x * to, y * d0 + x * difference);
+            let v2 = y * y + 2.0 * x * y * dot + x * x;
+            sum += weight * (-d * (b + sigma * a)) / ((v2 + a * a) * (v2 + b * b));
+        }
+        0.5 * det * sum
     }
 
     /// The whole sector's area (between the ellipses, or inside the outer one in the
@@ -333,13 +479,8 @@ impl EllipseSector {
         if central {
             self.outer_area(self.det, dot, self.outer_dots[1], precision)
         } else {
-            self.area_between(
-                self.det,
-                dot,
-                self.inner_dots[1],
-                self.outer_dots[1],
-                precision,
-            )
+            // The direction s1: det(s0, s1), s0 · s1, |s1|² = 1 and the dot products at s1.
+            self.area_between(&Coordinates::new(self, 0.0, 1.0), precision)
         }
     }
 
@@ -457,11 +598,38 @@ impl EllipseSector {
             solve_homogeneous_quadratic(qxx, qxy_plus_qyx, qyy),
             bisector,
         );
-        let mut c = self.coordinates(normalize_magnitude(w));
+        // Safeguard: every direction evaluated bounds the wanted one by the sign of its
+        // residual, which keeps a bracket `[x_lo, x_hi]` of chord parameters
+        // `x = β / (α + β)` (where the ray crosses the chord from s0 to s1). A step beyond
+        // the far end of the bracket is replaced by the bracket's midpoint; a step back
+        // past the current direction (rounding noise once converged) by the current
+        // direction. Where the ellipses touch at an end of the sector (a steep edge rising
+        // from a vertex on the horizon: the region between them narrows to a point there)
+        // the area's derivative vanishes and the unguarded step overshot (issue 16, 3:
+        // samples up to 0.06 rad outside the polygon after two iterations).
+        let (mut x_lo, mut x_hi) = (0.0f32, 1.0f32);
+        let guess = self.coordinates(normalize_magnitude(w));
+        let mut c = match self.locate(&guess, x_lo, x_hi) {
+            Location::Inside => guess,
+            Location::Beside => self.clamped(guess),
+            // An initial guess far outside the sector (found for issue 17, 1: a sector of
+            // 1.7e-4 rad whose inner ellipse is nearly degenerate, |u| = 326, put it 0.012
+            // rad outside, and the iteration did not return): the direction at the
+            // chord parameter equal to the area fraction instead, inside the sector.
+            Location::Below | Location::Above => {
+                let x = fraction.max(0.0).min(1.0);
+                Coordinates::new(self, 1.0 - x, x)
+            }
+        };
         for _ in 0..iterations {
             // Residual A_δ = A - (area between the ellipses from s0 to w).
-            let residual = area
-                - self.area_between(c.det, c.dot, c.inner_dot, c.outer_dot, AreaPrecision::Exact);
+            let residual = area - self.area_between(&c, AreaPrecision::Exact);
+            let x = c.chord();
+            if residual > 0.0 {
+                x_lo = x_lo.max(x);
+            } else {
+                x_hi = x_hi.min(x);
+            }
             // T = R w (C_i w - C_o w)ᵀ - 2 A_δ (C_i w)(C_o w)ᵀ (supplement A.3).
             let w = c.w;
             let (wi, wo) = (
@@ -479,7 +647,18 @@ impl EllipseSector {
                 solve_homogeneous_quadratic(txx, txy_plus_tyx, tyy),
                 bisector,
             );
-            c = self.coordinates(normalize_magnitude(next));
+            let proposal = self.coordinates(normalize_magnitude(next));
+            c = match self.locate(&proposal, x_lo, x_hi) {
+                Location::Inside => proposal,
+                Location::Beside => self.clamped(proposal),
+                // Back past the current direction, which is the bound on that side.
+                Location::Below if residual > 0.0 => c,
+                Location::Above if residual <= 0.0 => c,
+                Location::Below | Location::Above => {
+                    let x = 0.5 * (x_lo + x_hi);
+                    Coordinates::new(self, 1.0 - x, x)
+                }
+            };
         }
         point_between_ellipses(c.w, xi1, c.length2, c.inner_dot, c.outer_dot)
     }
@@ -546,26 +725,47 @@ pub(crate) fn point_between_ellipses(
 /// all precision for a thin ellipse (large `u`) and `w` nearly orthogonal to `u`.
 #[derive(Clone, Copy)]
 pub(crate) struct Coordinates {
+    pub alpha: f32,
+    pub beta: f32,
     pub w: Vec2,
     pub det: f32,
     pub dot: f32,
     pub length2: f32,
     pub inner_dot: f32,
     pub outer_dot: f32,
+    /// `u_o · w - σ u_i · w` by linearity from its values at `s0` and `s1`, accurate
+    /// where the two ellipses nearly coincide and the two dot products nearly cancel.
+    pub dot_difference: f32,
 }
 
 impl Coordinates {
+    /// The chord parameter `β / (α + β)` of the direction: where the ray along `w`
+    /// crosses the chord from `s0` to `s1` (0 when `α + β` is not positive).
+    #[inline(always)]
+    fn chord(&self) -> f32 {
+        let x = self.beta / (self.alpha + self.beta);
+        if x.is_finite() {
+            x.max(0.0).min(1.0)
+        } else {
+            0.0
+        }
+    }
+
     #[inline(always)]
     fn new(sector: &EllipseSector, alpha: f32, beta: f32) -> Self {
         let (s0, s1, cosine) = (sector.s0, sector.s1, sector.cosine);
         let (ti, to) = (sector.inner_dots, sector.outer_dots);
         Self {
+            alpha,
+            beta,
             w: add2(scale2(s0, alpha), scale2(s1, beta)),
             det: beta * sector.det,
             dot: alpha + beta * cosine,
             length2: alpha * alpha + beta * beta + 2.0 * alpha * beta * cosine,
             inner_dot: alpha * ti[0] + beta * ti[1],
             outer_dot: alpha * to[0] + beta * to[1],
+            dot_difference: alpha * (to[0] - sector.coincidence_sign * ti[0])
+                + beta * (to[1] - sector.coincidence_sign * ti[1]),
         }
     }
 }
@@ -573,6 +773,7 @@ impl Coordinates {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testing::Rng;
 
     /// Issue 16 (7): a zero or non-finite direction at the end of the decentral iteration
     /// gives no point, where it used to give the zenith (pdf `1/Φ`), which lies outside
@@ -593,5 +794,147 @@ mod tests {
         let (p, z2) = point_between_ellipses(w, 0.5, 1.0, 0.3, 1.5).expect("a point");
         assert!((p[0] * p[0] + p[1] * p[1] + z2 - 1.0).abs() < 1e-6);
         assert!(p[0] > 0.0 && p[1] > 0.0 && z2 > 0.0 && z2 < 1.0);
+    }
+
+    /// The area between two ellipses over `[from, from + width]` in f64, from the f32
+    /// ellipses and the exact directions: `θ_o / (2 k_o) - θ_i / (2 k_i)`.
+    fn area_between_f64(ui: Vec2, uo: Vec2, from: f64, width: f64) -> f64 {
+        let (e0, e1) = (
+            [from.cos(), from.sin()],
+            [(from + width).cos(), (from + width).sin()],
+        );
+        let area = |u: Vec2| {
+            let u = [u[0] as f64, u[1] as f64];
+            let k = (1.0 + u[0] * u[0] + u[1] * u[1]).sqrt();
+            let (t0, t1) = (u[0] * e0[0] + u[1] * e0[1], u[0] * e1[0] + u[1] * e1[1]);
+            (k * width.sin()).atan2(width.cos() + t0 * t1) / (2.0 * k)
+        };
+        area(uo) - area(ui)
+    }
+
+    /// A sector from `from` to `from + width` between `ui` and `uo` as the polygon builds
+    /// it (accurate `det` and dot products from the exact directions), or `None` unless
+    /// the inner ellipse lies inside the outer one throughout (a sector of a polygon).
+    fn nested_sector(ui: Vec2, uo: Vec2, from: f64, width: f64) -> Option<EllipseSector> {
+        let to = from + width;
+        let nested = (0..=16).all(|j| {
+            let phi = from + width * j as f64 / 16.0;
+            let t = |u: Vec2| u[0] as f64 * phi.cos() + u[1] as f64 * phi.sin();
+            t(ui).powi(2) >= t(uo).powi(2)
+        });
+        let direction = |phi: f64| [phi.cos() as f32, phi.sin() as f32];
+        let dot = |u: Vec2, phi: f64| (u[0] as f64 * phi.cos() + u[1] as f64 * phi.sin()) as f32;
+        nested.then(|| {
+            EllipseSector::new(
+                direction(from),
+                direction(to),
+                width.sin() as f32,
+                ui,
+                [dot(ui, from), dot(ui, to)],
+                uo,
+                [dot(uo, from), dot(uo, to)],
+            )
+        })
+    }
+
+    fn whole_area(sector: &EllipseSector) -> f32 {
+        sector.area(false, AreaPrecision::Exact)
+    }
+
+    /// Issue 16 (3): the area between two nearly coincident ellipses (`|u| > 1`, the two
+    /// long edges of a thin polygon) takes the difference form, whose error is within
+    /// 2e-4 plus 4 times the relative error that rounding the inputs `u · s` to f32
+    /// implies, where the direct form's subtraction of areas up to 1e4 times larger
+    /// exceeds that bound (here 6 times).
+    #[test]
+    fn nearly_coincident_ellipses_keep_the_relative_precision_of_their_area() {
+        let mut rng = Rng::new(11);
+        let (mut worst, mut worst_direct, mut tested) = (0.0f64, 0.0f64, 0);
+        while tested < 20_000 {
+            let ui = [
+                rng.signed_log_uniform(0.0, 1.5) as f32,
+                rng.signed_log_uniform(-2.0, 1.5) as f32,
+            ];
+            let norm = ((ui[0] * ui[0] + ui[1] * ui[1]) as f64).sqrt();
+            // |u_o - σ u_i|² / |u|² between 1e-6 and 1 (the difference form's range).
+            let relative = rng.log_uniform(-3.0, -0.15);
+            let (sigma, angle) = (
+                if rng.below(2) == 0 { 1.0 } else { -1.0 },
+                rng.uniform() * 6.3,
+            );
+            let uo = [
+                sigma * ui[0] + (relative * norm * angle.cos()) as f32,
+                sigma * ui[1] + (relative * norm * angle.sin()) as f32,
+            ];
+            let (from, width) = (rng.uniform() * 6.3, rng.log_uniform(-4.0, 0.49));
+            let Some(mut sector) = nested_sector(ui, uo, from, width) else {
+                continue;
+            };
+            let length2 = |u: Vec2| (u[0] as f64).powi(2) + (u[1] as f64).powi(2);
+            let delta = [uo[0] - sigma * ui[0], uo[1] - sigma * ui[1]];
+            let ratio = length2(delta) / length2(ui).min(length2(uo));
+            if sector.area_form == QUADRATURE_FORM || ratio > 0.99 * COINCIDENCE as f64 {
+                continue;
+            }
+            assert_eq!(sector.area_form, DIFFERENCE_FORM, "{ui:?} {uo:?}");
+            tested += 1;
+            let exact = area_between_f64(ui, uo, from, width);
+            // The inputs' own rounding: the dot products u · s are known to ε/2 relative,
+            // and the area is proportional to their small differences d.
+            let (ti, to) = (sector.inner_dots, sector.outer_dots);
+            let d = |j: usize| (to[j] as f64 - sigma as f64 * ti[j] as f64).abs();
+            let t_sum = ti[0].abs() + ti[1].abs() + to[0].abs() + to[1].abs();
+            let input_error = f32::EPSILON as f64 * t_sum as f64 / (d(0) + d(1));
+            let bound = 2e-4 + 4.0 * input_error;
+            let error = |got: f32| (got as f64 - exact).abs() / exact / bound;
+            worst = worst.max(error(whole_area(&sector)));
+            sector.area_form = DIRECT_FORM;
+            worst_direct = worst_direct.max(error(whole_area(&sector)));
+        }
+        // In units of the bound 2e-4 + 4 × the inputs' relative error.
+        assert!(worst <= 1.0, "difference form: {worst:e}");
+        assert!(worst_direct > 3.0, "direct form: {worst_direct:e}");
+    }
+
+    /// Issue 16 (3): a narrow sector beside the point where a thin ellipse touches the unit
+    /// circle or a nearly circular ellipse (a steep edge rising from a vertex on the
+    /// horizon) takes the quadrature form: within 1e-4 of the f64 area where both
+    /// closed forms lost everything.
+    #[test]
+    fn sectors_next_to_a_tangency_are_integrated_by_quadrature() {
+        let mut rng = Rng::new(12);
+        let (mut worst, mut worst_closed, mut tested) = (0.0f64, 0.0f64, 0);
+        while tested < 20_000 {
+            let a = rng.log_uniform(-1.0, 2.0);
+            let angle = rng.uniform() * core::f64::consts::TAU;
+            let ui = [(a * angle.cos()) as f32, (a * angle.sin()) as f32];
+            // Near the direction perpendicular to u_i, where |u_i · e| is small.
+            let tangent = angle + core::f64::consts::FRAC_PI_2;
+            let from = tangent + (rng.uniform() - 0.5) * 0.12 / a;
+            let width = (rng.log_uniform(-3.0, 0.0) * 0.0625 / a).min(0.4);
+            let uo = match rng.below(2) {
+                0 => [0.0, 0.0],
+                _ => {
+                    let (b, c) = (rng.log_uniform(-3.0, -1.5), rng.uniform() * 6.3);
+                    [(b * c.cos()) as f32, (b * c.sin()) as f32]
+                }
+            };
+            let Some(mut sector) = nested_sector(ui, uo, from, width) else {
+                continue;
+            };
+            if sector.area_form != QUADRATURE_FORM {
+                continue;
+            }
+            tested += 1;
+            let exact = area_between_f64(ui, uo, from, width);
+            let error = |got: f32| (got as f64 - exact).abs() / exact;
+            worst = worst.max(error(whole_area(&sector)));
+            for form in [DIRECT_FORM, DIFFERENCE_FORM] {
+                sector.area_form = form;
+                worst_closed = worst_closed.max(error(whole_area(&sector)));
+            }
+        }
+        assert!(worst <= 1e-4, "quadrature form: {worst:e}");
+        assert!(worst_closed > 0.1, "closed forms: {worst_closed:e}");
     }
 }

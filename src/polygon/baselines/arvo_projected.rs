@@ -110,12 +110,14 @@ impl ArvoProjectedPolygon {
             0.5 * (1.0 / (1.0 + o * o) - inner)
         };
         let area_to = |e: [f32; 2]| {
-            let (i, o) = sector.dots(e);
             let (det, dot) = (det2(s0, e), dot2(s0, e));
             if central {
-                sector.outer_area(det, dot, o, AreaPrecision::Exact)
+                sector.outer_area(det, dot, sector.dots(e).1, AreaPrecision::Exact)
             } else {
-                sector.area_between(det, dot, i, o, AreaPrecision::Exact)
+                // The coordinates of e, with its det and dot from e itself as before.
+                let mut c = sector.coordinates(e);
+                (c.det, c.dot) = (det, dot);
+                sector.area_between(&c, AreaPrecision::Exact)
             }
         };
         // Cubic Hermite guess for the inverse function, slopes in units of the fraction t.
