@@ -323,6 +323,29 @@ pub fn integrate_pdf_near_polygon(vertices: &[Vec3], pdf: impl Fn(Vec3) -> f32) 
     (integral, reach)
 }
 
+/// Issue 16 (1): `∫ pdf dω` over the sphere near the polygon (by
+/// [`integrate_pdf_near_polygon`]) within `tolerance` of 1, and every sample (at random
+/// `u` and at the edges of `u`) drawn with `pdf > 0` and `pdf(dir) == pdf` bit for bit.
+pub fn assert_pdf_integrates_to_one_and_samples_have_their_pdf(
+    name: &str,
+    vertices: &[Vec3],
+    tolerance: f64,
+    rng: &mut Rng,
+    sample: impl Fn([f32; 2]) -> crate::Sample,
+    pdf: impl Fn(Vec3) -> f32,
+) {
+    let (integral, _) = integrate_pdf_near_polygon(vertices, &pdf);
+    assert!(
+        (integral - 1.0).abs() < tolerance,
+        "{name}: ∫ pdf = {integral}"
+    );
+    for u in random_numbers_with_edges(rng, 20_000) {
+        let s = sample(u);
+        assert!(s.pdf > 0.0, "{name} at {u:?}: no sample");
+        assert_eq!(s.pdf.to_bits(), pdf(s.dir).to_bits(), "{name} at {u:?}");
+    }
+}
+
 /// The nodes and weights of the 16-point Gauss–Legendre rule on [-1, 1].
 pub fn gauss_legendre_16() -> ([f64; 16], [f64; 16]) {
     const X: [f64; 8] = [

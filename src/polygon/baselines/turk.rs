@@ -614,20 +614,14 @@ mod pdf_support_tests {
             ("8e-10 sr", scaled_quad(1.6e-5, 0.1), 1e-3),
         ] {
             let turk = TurkPolygon::new(&v).unwrap();
-            let (integral, _) = integrate_pdf_near_polygon(&v, |d| turk.pdf(d));
-            assert!(
-                (integral - 1.0).abs() < tolerance,
-                "{name}: ∫ pdf = {integral}"
+            assert_pdf_integrates_to_one_and_samples_have_their_pdf(
+                name,
+                &v,
+                tolerance,
+                &mut rng,
+                |u| turk.sample(u),
+                |d| turk.pdf(d),
             );
-            for u in random_numbers_with_edges(&mut rng, 20_000) {
-                let s = turk.sample(u);
-                assert!(s.pdf > 0.0, "{name} at {u:?}: no sample");
-                assert_eq!(
-                    s.pdf.to_bits(),
-                    turk.pdf(s.dir).to_bits(),
-                    "{name} at {u:?}"
-                );
-            }
         }
     }
 }
