@@ -226,13 +226,20 @@ pub fn random_numbers_with_edges(rng: &mut Rng, count: usize) -> Vec<[f32; 2]> {
 /// extent plus a margin of 20% on each side) is cut at the vertices' `y`, each piece
 /// integrated by 16-point Gauss–Legendre; on each row the interval where `pdf > 0` is
 /// found by bisection (60 steps) from the exact chord's midpoint outwards to the margin,
-/// and `pdf · dω` integrated over it by 16-point Gauss–Legendre. So a `pdf` whose support
+/// and `pdf · dω` integrated over it by 16-point Gauss–Legendre. For densities that vary
+/// sharply across the polygon (a GGX lobe much narrower than the light), each piece and
+/// each row's support are split into `subdivisions` equal parts (1: none), each
+/// integrated so. So a `pdf` whose support
 /// reaches outside the polygon, or has holes at its edges, shows as an integral off 1;
 /// the quadrature itself is accurate to about 1e-9 for the smooth densities of the
 /// polygon samplers. Returns the integral and the largest distance (in the plane, where
 /// it is the angle to first order) by which the support reaches outside the exact
 /// polygon.
-pub fn integrate_pdf_near_polygon(vertices: &[Vec3], pdf: impl Fn(Vec3) -> f32) -> (f64, f64) {
+pub fn integrate_pdf_near_polygon(
+    vertices: &[Vec3],
+    subdivisions: usize,
+    pdf: impl Fn(Vec3) -> f32,
+) -> (f64, f64) {
     let v: Vec<D3> = vertices.iter().map(|&p| d3(p)).collect();
     let mut c = [0.0; 3];
     for p in &v {
@@ -274,8 +281,17 @@ pub fn integrate_pdf_near_polygon(vertices: &[Vec3], pdf: impl Fn(Vec3) -> f32) 
     cuts.push(y1 + 0.2 * size);
     cuts.sort_by(|a, b| a.partial_cmp(b).unwrap());
     let (mut integral, mut reach) = (0.0f64, 0.0f64);
-    for piece in cuts.windows(2) {
-        let (ya, yb) = (piece[0], piece[1]);
+    let pieces: Vec<(f64, f64)> = cuts
+        .windows(2)
+        .flat_map(|piece| {
+            let (ya, yb) = (piece[0], piece[1]);
+            (0..subdivisions).map(move |j| {
+                let step = (yb - ya) / subdivisions as f64;
+                (ya + step * j as f64, ya + step * (j + 1) as f64)
+            })
+        })
+        .collect();
+    for &(ya, yb) in &pieces {
         if yb <= ya {
             continue;
         }
@@ -313,11 +329,15 @@ pub fn integrate_pdf_near_polygon(vertices: &[Vec3], pdf: impl Fn(Vec3) -> f32) 
                 reach = reach.max((y0 - y).max(y - y1));
             }
             let mut row = 0.0;
-            for m in 0..16 {
-                let x = 0.5 * (xl + xr) + 0.5 * (xr - xl) * nodes[m];
-                row += weights[m] * pdf(dir(x, y)) as f64 * jacobian(x, y);
+            let step = (xr - xl) / subdivisions as f64;
+            for j in 0..subdivisions {
+                let (xa, xb) = (xl + step * j as f64, xl + step * (j + 1) as f64);
+                for m in 0..16 {
+                    let x = 0.5 * (xa + xb) + 0.5 * (xb - xa) * nodes[m];
+                    row += weights[m] * pdf(dir(x, y)) as f64 * jacobian(x, y) * 0.5 * (xb - xa);
+                }
             }
-            integral += 0.5 * (yb - ya) * weights[k] * 0.5 * (xr - xl) * row;
+            integral += 0.5 * (yb - ya) * weights[k] * row;
         }
     }
     (integral, reach)
@@ -334,7 +354,23 @@ pub fn assert_pdf_integrates_to_one_and_samples_have_their_pdf(
     sample: impl Fn([f32; 2]) -> crate::Sample,
     pdf: impl Fn(Vec3) -> f32,
 ) {
-    let (integral, _) = integrate_pdf_near_polygon(vertices, &pdf);
+    assert_peaked_pdf_integrates_to_one_and_samples_have_their_pdf(
+        name, vertices, 1, tolerance, rng, sample, pdf,
+    );
+}
+
+/// [`assert_pdf_integrates_to_one_and_samples_have_their_pdf`] with the quadrature of
+/// [`integrate_pdf_near_polygon`] split into `subdivisions` per dimension.
+pub fn assert_peaked_pdf_integrates_to_one_and_samples_have_their_pdf(
+    name: &str,
+    vertices: &[Vec3],
+    subdivisions: usize,
+    tolerance: f64,
+    rng: &mut Rng,
+    sample: impl Fn([f32; 2]) -> crate::Sample,
+    pdf: impl Fn(Vec3) -> f32,
+) {
+    let (integral, _) = integrate_pdf_near_polygon(vertices, subdivisions, &pdf);
     assert!(
         (integral - 1.0).abs() < tolerance,
         "{name}: ∫ pdf = {integral}"

@@ -40,6 +40,14 @@ const INV_PI: f32 = core::f32::consts::FRAC_1_PI;
 /// most grazing cells).
 const ROUND_TRIP_TOLERANCE: f32 = 1e-5;
 
+/// The largest slack of `pdf`, as a fraction of the transformed polygon's width
+/// `Φ' / P'` (its projected solid angle over its perimeter, both in the cosine's space):
+/// the band of that width around the boundary holds at most this fraction of the
+/// density's mass, so `∫ pdf dω` stays within it of 1 (issue 16, 1: the fixed 1e-5 rad
+/// alone gave `∫ pdf = 1.044` at 1e-6 sr and 1.010 for a quad seen at 85° with
+/// roughness 0.05). The same fraction as the projected small-polygon path's.
+const TOLERANCE_PER_WIDTH: f32 = 2e-5;
+
 /// A linearly transformed cosine in the local shading frame (z = normal).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -201,6 +209,32 @@ fn plane_misses_origin(vertices: &[Vec3]) -> bool {
     offset > 8.0 * f32::EPSILON * normal.length() * first.length()
 }
 
+/// The slack of [`LtcPolygon::pdf`] in the cosine's space for the transformed polygon
+/// `M⁻¹P` (unclipped vertices) of projected solid angle `Φ'` (after clipping): the
+/// smaller of `ROUND_TRIP_TOLERANCE` and `TOLERANCE_PER_WIDTH · Φ' / P'`, with `P'` the
+/// perimeter of the unclipped transformed polygon in radians (chords of its unit
+/// vertices; clipping a convex polygon does not lengthen its boundary, so `P'` bounds
+/// the clipped one's). A band of width `τ` along the clipped boundary has a mass of at
+/// most `τ · P' · max ω'_z / Φ' <= TOLERANCE_PER_WIDTH` under the density `ω'_z / Φ'`,
+/// and `∫ pdf dω` over the sphere equals that over the cosine's space (the pdf carries
+/// the exact Jacobian of `M`).
+fn round_trip_tolerance(transformed: &[Vec3], projected_solid_angle: f32) -> f32 {
+    let count = transformed.len();
+    let mut perimeter = 0.0f32;
+    for i in 0..count {
+        let next = if i + 1 == count { 0 } else { i + 1 };
+        let a = crate::sample::normalize_scaled(transformed[i]);
+        let b = crate::sample::normalize_scaled(transformed[next]);
+        perimeter += (b - a).length();
+    }
+    let width = projected_solid_angle / perimeter;
+    if width.is_finite() {
+        ROUND_TRIP_TOLERANCE.min(TOLERANCE_PER_WIDTH * width)
+    } else {
+        ROUND_TRIP_TOLERANCE
+    }
+}
+
 /// An LTC restricted to a convex polygon: projected solid angle sampling of the polygon
 /// transformed by `M⁻¹`, mapped back by `M` (Peters 2021, Sec. 5).
 #[repr(C)]
@@ -209,6 +243,10 @@ pub struct LtcPolygon {
     ltc: Ltc,
     /// The transformed polygon `M⁻¹P`, clipped to its horizon.
     transformed: ProjectedSolidAnglePolygon,
+    /// How far (radians, in the cosine's space) outside the transformed polygon `pdf`
+    /// continues the density: the smaller of `ROUND_TRIP_TOLERANCE` and
+    /// `TOLERANCE_PER_WIDTH` of the polygon's width (0 when empty).
+    tolerance: f32,
 }
 
 impl LtcPolygon {
@@ -218,6 +256,7 @@ impl LtcPolygon {
     pub const EMPTY: LtcPolygon = LtcPolygon {
         ltc: Ltc::IDENTITY,
         transformed: ProjectedSolidAnglePolygon::EMPTY,
+        tolerance: 0.0,
     };
 
     /// Prepares `ltc` restricted to the convex polygon with the given vertices (relative
@@ -249,9 +288,17 @@ impl LtcPolygon {
         let count = if accepted { count } else { 0 };
         if self.transformed.prepare(&transformed[..count]) {
             self.ltc = *ltc;
+            // Never tighter than the transformed polygon's own `pdf`, which accepts its
+            // samples within its slack (the small-polygon path's, bounded the same way).
+            self.tolerance = round_trip_tolerance(
+                &transformed[..count],
+                self.transformed.projected_solid_angle(),
+            )
+            .max(self.transformed.pdf_slack());
             true
         } else {
             self.ltc = Ltc::IDENTITY;
+            self.tolerance = 0.0;
             false
         }
     }
@@ -283,38 +330,60 @@ impl LtcPolygon {
     /// trip `ω' → M ω' → M⁻¹(…)`, which loses up to `ε · cond(M)` in `ω'` and is far
     /// larger than f32 rounding where `ω'` is near the transformed horizon or where
     /// `M` is ill-conditioned (found by fuzzing: 0.1–35%). A direction that the round
-    /// trip throws out of the transformed polygon by more than `ROUND_TRIP_TOLERANCE`
-    /// (1e-5 rad) is dropped (`Sample::NONE`): measured in
-    /// `sample_pdf_is_the_pdf_of_the_sampled_direction`, below 1% of the samples, all
-    /// for the sharpest LTCs (`|M⁻¹|` entries of 1e2 to 1e4).
+    /// trip throws out of the transformed polygon by more than the slack of `pdf` (see
+    /// there) is pulled towards an inner direction of the transformed polygon, in the
+    /// cosine's space, by the fractions of `INWARD_PULLS` until `pdf` accepts it (a
+    /// bias confined to a band of the round trip's rounding along the boundary); where
+    /// even the inner direction fails (polygons that the round trip cannot resolve) the
+    /// sample is dropped (`Sample::NONE`).
     pub fn sample(&self, u: [f32; 2]) -> Sample {
         let s = self.transformed.sample(u);
         if !(s.pdf > 0.0) {
             return Sample::NONE;
         }
-        let w = self.ltc.from_cosine_space(s.dir);
-        let length = w.length();
-        let dir = w / length;
-        // `length` is finite and positive for a finite unit `s.dir` and invertible `M`,
-        // unless `M` is so large that `w` overflows; `pdf` then sees a non-finite or
-        // zero direction and returns 0.
-        let pdf = self.pdf(dir);
-        if !(pdf > 0.0) {
+        let through_m = |w_cosine: Vec3| {
+            let w = self.ltc.from_cosine_space(w_cosine);
+            // `|w|` is finite and positive for a finite unit direction and invertible
+            // `M`, unless `M` is so large that `w` overflows; `pdf` then sees a
+            // non-finite or zero direction and returns 0.
+            let dir = w / w.length();
+            Sample {
+                dir,
+                pdf: self.pdf(dir),
+            }
+        };
+        let sample = through_m(s.dir);
+        if sample.pdf > 0.0 {
+            return sample;
+        }
+        // Rare: only samples within the round trip's rounding of the boundary get here,
+        // so the inner direction (the transformed polygon's sample at the middle of the
+        // unit square) is drawn only then.
+        let inner = self.transformed.sample([0.5, 0.5]);
+        if !(inner.pdf > 0.0) {
             return Sample::NONE;
         }
-        Sample { dir, pdf }
+        crate::sample::INWARD_PULLS
+            .iter()
+            .map(|&pull| {
+                through_m((s.dir * (1.0 - pull) + inner.dir * pull).normalize_or(inner.dir))
+            })
+            .find(|pulled| pulled.pdf > 0.0)
+            .unwrap_or(Sample::NONE)
     }
 
     /// The density of [`sample`](Self::sample) at `dir`: `D(ω) / ∫_P D` inside the
     /// polygon (computed as the transformed polygon's `ω'_z / Φ'` times the Jacobian
-    /// `|det M⁻¹| / ‖M⁻¹ω‖³`), 0 outside. The polygon counts as reaching
-    /// `ROUND_TRIP_TOLERANCE` (1e-5 rad, in the cosine's space) beyond its edges, where
-    /// rounding may put samples: there the formula is continued. `dir` is normalised
-    /// first; zero or non-finite gives 0.
+    /// `|det M⁻¹| / ‖M⁻¹ω‖³`), 0 outside. The transformed polygon counts as reaching a
+    /// slack `τ` beyond its edges (in the cosine's space), where the round trip's
+    /// rounding may put samples: there the formula is continued. `τ` is the smaller of
+    /// 1e-5 rad and 2e-5 of the transformed polygon's width `Φ' / P'`, so that
+    /// `∫ pdf dω` stays within 2e-5 of 1 (measured by quadrature in the tests). `dir`
+    /// is normalised first; zero or non-finite gives 0.
     pub fn pdf(&self, dir: Vec3) -> f32 {
         let w = self.ltc.to_cosine_space(dir.normalize_or_zero());
         let length = w.length();
-        let p = self.transformed.pdf_within(w, ROUND_TRIP_TOLERANCE);
+        let p = self.transformed.pdf_within(w, self.tolerance);
         if !(p > 0.0) || !(length > 0.0) {
             return 0.0;
         }

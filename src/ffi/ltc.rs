@@ -114,10 +114,12 @@ pub unsafe extern "C" fn sphera_ltc_polygon_prepare(
 /// (`dir.z <= 0`) where the LTC puts a little mass; the BRDF is zero there, so such a
 /// sample contributes nothing, and it must not be discarded and redrawn (the pdf counts
 /// it). The pdf is `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit (MIS weights rely
-/// on it). Returns `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or empty, and for
-/// the rare draw that the f32 round trip through a sharp LTC throws more than 1e-5 rad
-/// out of the polygon (0.4% of draws over the table, only for the smoothest cells); `dir`
-/// is always a finite unit vector.
+/// on it). A draw that the f32 round trip through the LTC's matrix throws outside the
+/// polygon (by more than the slack of `sphera_ltc_polygon_pdf`) is pulled towards the
+/// polygon's inside until the pdf accepts it: a bias confined to a band of that rounding
+/// along the boundary. Returns `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or
+/// empty, and where even the pulled draw is rejected (a polygon smaller than the round
+/// trip's rounding); `dir` is always a finite unit vector.
 ///
 /// # Safety
 ///
@@ -139,8 +141,11 @@ pub unsafe extern "C" fn sphera_ltc_polygon_sample(
 
 /// The density of `sphera_ltc_polygon_sample` at `dir` (normalised first): `D(ω) /
 /// ∫_P D` inside the polygon, 0 outside, for a null or empty `polygon`, and for zero or
-/// non-finite `dir`. Directions up to 1e-5 rad (in the cosine's space) outside the
-/// polygon count as inside, where rounding puts samples.
+/// non-finite `dir`. Directions outside the polygon by at most a slack (in the LTC's
+/// cosine space, where the polygon is transformed by the inverse matrix) count as
+/// inside, where rounding puts samples: the smaller of 1e-5 rad and 2e-5 of the
+/// transformed polygon's width (projected solid angle over perimeter), so that the pdf
+/// integrates to 1 within 2e-5 over the sphere.
 ///
 /// # Safety
 ///

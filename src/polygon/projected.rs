@@ -577,7 +577,7 @@ impl ProjectedSolidAnglePolygon {
     #[inline]
     pub fn pdf(&self, dir: Vec3) -> f32 {
         if self.is_small != 0 {
-            return self.small_pdf_within(dir, self.small_tolerance.min(SMALL_ROUNDING));
+            return self.small_pdf_within(dir, self.pdf_slack());
         }
         if self.contains(dir) {
             // Unit directions (every sample) as they are, so that a sample's pdf is this
@@ -605,6 +605,17 @@ impl ProjectedSolidAnglePolygon {
             inside &= n.dot(dir) >= -tolerance * n.length() * length;
         }
         inside
+    }
+
+    /// The slack of [`pdf`](Self::pdf) in radians: how far outside the polygon a
+    /// direction still gets the density (0 but for the small-polygon path).
+    #[inline]
+    pub(crate) fn pdf_slack(&self) -> f32 {
+        if self.is_small != 0 {
+            self.small_tolerance.min(SMALL_ROUNDING)
+        } else {
+            0.0
+        }
     }
 
     /// [`pdf`](Self::pdf) extended to directions outside the polygon by at most
