@@ -89,9 +89,21 @@ const SHORT_EDGE_SINE: f32 = 1.0 / 65_536.0;
 /// is the edge, at most 3.7e-9 sr).
 const SHORT_EDGE_REACH: f32 = 16.0 * SHORT_EDGE_SINE;
 
+/// How far (radians) leaving a short edge out may extend any polygon, however small:
+/// 4e-7, below the rounding of an `f32` unit direction (about 5e-7 rad at the worst).
+/// Beyond it the reach is limited to [`SHORT_EDGE_REACH_PER_LENGTH`] of the polygon's
+/// longest edge (issue 16, 1: with the fixed [`SHORT_EDGE_REACH`], `pdf` of a solid
+/// angle sampler was non-zero 6e-6 rad outside a polygon 2e-5 rad across).
+const SHORT_EDGE_ROUNDING_REACH: f32 = 4e-7;
+
+/// The reach allowed beyond [`SHORT_EDGE_ROUNDING_REACH`], per unit of the polygon's
+/// longest edge: 5e-5, so 1e-4 of the polygon's angular radius at the most (the radius
+/// is at least half the longest edge).
+const SHORT_EDGE_REACH_PER_LENGTH: f32 = 5e-5;
+
 /// Drops from the containment test (sets the normal to 0, which passes) every edge
 /// whose endpoints are closer than [`SHORT_EDGE_SINE`] where that extends the region by
-/// at most [`SHORT_EDGE_REACH`].
+/// at most the reach allowed (below).
 ///
 /// Why: a vertex carries a rounding error of about `ε |p|`, which tilts the plane of an
 /// edge of angular length `ℓ` by about `ε / ℓ`. Where clipping puts a horizon point next
@@ -108,13 +120,31 @@ const SHORT_EDGE_REACH: f32 = 16.0 * SHORT_EDGE_SINE;
 /// endpoints, that triangle's height is `ℓ sin δa sin δb / sin(δa + δb)`: at most `ℓ`
 /// when `δa + δb < 90°`, and at most `ℓ / sin(δa + δb)` otherwise, where `δa + δb` is
 /// the angle between the neighbours' normals. The edge is kept where that bound exceeds
-/// [`SHORT_EDGE_REACH`] (neighbours nearly antiparallel: the sharp end of a sliver).
+/// the reach allowed: the smaller of [`SHORT_EDGE_REACH`] and
+/// [`SHORT_EDGE_ROUNDING_REACH`] plus [`SHORT_EDGE_REACH_PER_LENGTH`] times the longest
+/// edge (neighbours nearly
+/// antiparallel, the sharp end of a sliver, and every edge of a polygon so small that
+/// the fixed reach would be a large part of it, keep their planes).
 pub(crate) fn ignore_short_edges_in_containment(
     normals: &mut [Vec3; MAX_POLYGON_VERTICES],
     positions: &[Vec3],
     count: usize,
 ) {
     let original = *normals;
+    // sin² of the longest edge (the careful path only: divisions are affordable here).
+    let mut longest2 = 0.0f32;
+    for j in 0..count {
+        let (a, b) = (
+            positions[j],
+            positions[if j + 1 == count { 0 } else { j + 1 }],
+        );
+        let sine2 = original[j].length_squared() / (a.length_squared() * b.length_squared());
+        if sine2 > longest2 {
+            longest2 = sine2;
+        }
+    }
+    let reach = SHORT_EDGE_REACH
+        .min(SHORT_EDGE_ROUNDING_REACH + SHORT_EDGE_REACH_PER_LENGTH * libm::sqrtf(longest2));
     for j in 0..count {
         let (a, b) = (
             positions[j],
@@ -129,12 +159,12 @@ pub(crate) fn ignore_short_edges_in_containment(
         let previous = original[if j == 0 { count - 1 } else { j - 1 }];
         let next = original[if j + 1 == count { 0 } else { j + 1 }];
         // sin²(δa + δb) = |p × q|² / (|p|² |q|²); reach² = sin²ℓ / sin²(δa + δb).
-        let bounded = previous.dot(next) > 0.0
-            || length2 * previous.length_squared() * next.length_squared()
-                <= SHORT_EDGE_REACH
-                    * SHORT_EDGE_REACH
-                    * previous.cross(next).length_squared()
-                    * scale2;
+        let bounded = if previous.dot(next) > 0.0 {
+            length2 <= reach * reach * scale2
+        } else {
+            length2 * previous.length_squared() * next.length_squared()
+                <= reach * reach * previous.cross(next).length_squared() * scale2
+        };
         if bounded {
             normals[j] = Vec3::ZERO;
         }

@@ -708,3 +708,59 @@ fn samples_at_the_edges_of_u_stay_within_1e_6_rad_at_every_scale() {
     // The edges of u reach the polygon's boundary: the misses are rounding, not zero.
     assert!(worst.iter().all(|&w| w > 0.0));
 }
+
+/// Issue 16 (1): on polygons of about 1e-9 sr (angular radius 3e-6 to 4e-5 rad, 3 to 8
+/// vertices, so that every edge is shorter than the short-edge rule's 1.5e-5 rad), `pdf`
+/// is 0 for directions farther outside an edge than the rounding of an `f32` direction
+/// (5e-7 rad) plus 1e-4 of the angular radius: checked at 21 points beyond every edge, at
+/// 1.5 times that distance. With the rule's fixed reach of 2.4e-4 rad, `pdf` reached up
+/// to 2.4e-5 rad outside such polygons and `∫ pdf dω` was up to 3.1; the quadrature's
+/// `∫ pdf dω` must now stay within the mass of the allowed band (`P · bound / Ω`; these
+/// polygons are only 10 to 300 `f32` ulps of a direction across).
+#[test]
+fn tiny_polygons_keep_their_pdf_inside() {
+    let mut rng = Rng::new(164);
+    let mut short = 0;
+    for trial in 0..120 {
+        let n = 3 + trial % 6;
+        let v = random_polygon_above(&mut rng, n, 1.5e-5, 3e-5);
+        let polygon = SolidAnglePolygon::new(&v).expect("prepared");
+        short += (polygon.careful_paths() & CAREFUL_SHORT_EDGES != 0) as usize;
+        let vd: Vec<D3> = v.iter().map(|&p| normalize(d3(p))).collect();
+        let mut c = [0.0; 3];
+        for p in &vd {
+            c = add(c, *p);
+        }
+        let c = normalize(c);
+        let radius = vd.iter().map(|p| norm(sub(*p, c))).fold(0.0, f64::max);
+        let bound = 5e-7 + 1e-4 * radius;
+        let sigma = (1..n - 1)
+            .map(|k| dot(vd[0], cross(sub(vd[k], vd[0]), sub(vd[k + 1], vd[0]))))
+            .sum::<f64>()
+            .signum();
+        let mut perimeter = 0.0;
+        for i in 0..n {
+            let (a, b) = (vd[i], vd[(i + 1) % n]);
+            perimeter += norm(sub(b, a));
+            let outward = scale(normalize(cross(a, sub(b, a))), -sigma);
+            for s in 0..=20 {
+                let t = s as f64 / 20.0;
+                let on_edge = normalize(add(scale(a, 1.0 - t), scale(b, t)));
+                let d = normalize(add(on_edge, scale(outward, 1.5 * bound)));
+                let dir = Vec3::new(d[0] as f32, d[1] as f32, d[2] as f32);
+                assert_eq!(
+                    polygon.pdf(dir),
+                    0.0,
+                    "trial {trial}: {t} along edge {i}: {v:?}"
+                );
+            }
+        }
+        let (integral, _) = integrate_pdf_near_polygon(&v, 1, |d| polygon.pdf(d));
+        let band = perimeter * bound / polygon.solid_angle() as f64;
+        assert!(
+            (integral - 1.0).abs() <= band,
+            "trial {trial}: ∫ pdf = {integral}, band {band}: {v:?}"
+        );
+    }
+    assert!(short > 60, "{short} polygons took the short-edge rule");
+}
