@@ -69,7 +69,31 @@ pub struct SolidAnglePolygon {
     /// of a fan triangle; 2, the short-edge rule of the containment test; 0 for the fast
     /// path throughout.
     careful_paths: u32,
+    /// 1 when the polygon is so narrow that the slack of `pdf` may be below the rounding
+    /// of a sampled direction, so that `sample` tests its direction (see
+    /// [`SAMPLE_CHECK_WIDTH`]); 0 otherwise.
+    checks_samples: u32,
 }
+
+/// How far outside an edge (radians, approximately) `pdf` still finds a direction inside,
+/// at the most: 16 ulps of a unit vector, above the rounding of a sampled direction on an
+/// edge (a few ulps; the statistical tests assert below 5e-7 rad).
+const EDGE_ROUNDING: f32 = 16.0 * f32::EPSILON;
+
+/// The slack of `pdf` as a fraction of the polygon's width `Ω / P` (solid angle over
+/// perimeter), where that is below [`EDGE_ROUNDING`]: a band of that width around the
+/// boundary holds at most this fraction of the polygon, so `∫ pdf dω` stays within it of
+/// 1 (issue 16, 1), and `pdf` is 0 farther outside than 4e-5 of the angular radius.
+const SLACK_PER_WIDTH: f32 = 2e-5;
+
+/// `sample` tests its direction against `pdf` (and pulls a direction that rounding put
+/// outside back in) when some edge is longer than `Ω / SAMPLE_CHECK_WIDTH`: the
+/// polygon's width `Ω / P` may then be below `SAMPLE_CHECK_WIDTH / n` (as `P <= n ℓ_max`),
+/// and the slack `2e-5 Ω / P` below 5e-7 rad (`n <= 8`). Wider polygons have a slack of
+/// at least 5e-7 rad, above the rounding of their samples (a few ulps: the statistical
+/// tests assert below 5e-7 rad, and `every_sample_has_its_pdf_at_any_size` checks the
+/// edges of `u`), and skip the test.
+const SAMPLE_CHECK_WIDTH: f32 = 0.2;
 
 /// [`SolidAnglePolygon::careful_paths`]: a fan triangle had a pair of vertices more than
 /// 90° apart, whose sum the compensated form computed.
@@ -207,6 +231,7 @@ impl SolidAnglePolygon {
         vertex_count: 0,
         selectable_triangles: 0,
         careful_paths: 0,
+        checks_samples: 0,
     };
 
     /// Prepares the convex polygon with the given vertices (positions relative to the
@@ -350,6 +375,10 @@ impl SolidAnglePolygon {
         // winds clockwise as seen from the shading point.
         let orientation = if signed_sum > 0.0 { -1.0 } else { 1.0 };
         let mut maybe_short = false;
+        let mut narrow = false;
+        // Ω² · SAMPLE_CHECK_WIDTH⁻²: an edge with sin²ℓ above it is longer than
+        // Ω / SAMPLE_CHECK_WIDTH.
+        let long_edge_sine2 = total * total * (1.0 / (SAMPLE_CHECK_WIDTH * SAMPLE_CHECK_WIDTH));
         // Edge i runs from vertex i to vertex i + 1; the slot after the last vertex holds
         // the first, so the loop needs no wrap-around test.
         positions[count] = positions[0];
@@ -358,15 +387,19 @@ impl SolidAnglePolygon {
             // p_i × p_(i+1) = p_i × (p_(i+1) - p_i): the edge vector is exact up to one
             // rounding and nearly orthogonal to p_i, so no cancellation occurs.
             let normal = positions[i].cross(positions[i + 1] - positions[i]);
+            // sin²ℓ = |n|² / (|p_i|² |p_(i+1)|²), kept as products (no division).
+            let (normal2, scale2) = (
+                normal.length_squared(),
+                length_squares[i] * length_squares[i + 1],
+            );
             // The first test of `ignore_short_edges_in_containment` (sin² of the edge's
             // length against SHORT_EDGE_SINE²), on the same values: the common polygon has
             // no short edge and skips it.
-            maybe_short |= !(normal.length_squared()
-                > super::SHORT_EDGE_SINE
-                    * super::SHORT_EDGE_SINE
-                    * (length_squares[i] * length_squares[i + 1]));
+            maybe_short |= !(normal2 > super::SHORT_EDGE_SINE * super::SHORT_EDGE_SINE * scale2);
+            narrow |= !(normal2 <= long_edge_sine2 * scale2);
             self.edge_normals[i] = normal * orientation;
         }
+        self.checks_samples = narrow as u32;
         // Unused slots get zero normals, which every direction passes.
         for normal in &mut self.edge_normals[count..] {
             *normal = Vec3::ZERO;
@@ -481,14 +514,32 @@ impl SolidAnglePolygon {
         if !dir.is_finite() {
             return Sample::NONE;
         }
+        // `pdf` finds directions inside up to a slack that, for narrow polygons, may be
+        // below the rounding of a direction sampled next to an edge (issue 16, 1): there
+        // the direction is tested, and one that rounding put outside is pulled towards
+        // the fan triangle's centroid until inside (`INWARD_PULLS`), so that
+        // `pdf(sample.dir) == sample.pdf` for every sample.
+        if self.checks_samples != 0 && !self.contains(dir) {
+            let centroid = (v0 + v1 + self.vertices[k + 2]).normalize_or(v1);
+            return crate::sample::INWARD_PULLS
+                .iter()
+                .map(|&pull| (dir * (1.0 - pull) + centroid * pull).normalize_or(centroid))
+                .find(|&pulled| self.contains(pulled))
+                .map_or(Sample::NONE, |dir| Sample {
+                    dir,
+                    pdf: self.density,
+                });
+        }
         Sample {
             dir,
             pdf: self.density,
         }
     }
 
-    /// `1 / Ω` for a direction inside the polygon (or on its boundary), 0 outside. `dir`
-    /// need not be normalised; a zero or non-finite `dir` gives 0.
+    /// `1 / Ω` for a direction inside the polygon (or on its boundary, or outside it by at
+    /// most the smaller of 16 ulps (1.9e-6 rad) and 2e-5 of the polygon's width `Ω / P`,
+    /// where rounding puts samples drawn next to an edge), 0 outside. `dir` need not be
+    /// normalised; a zero or non-finite `dir` gives 0.
     #[inline]
     pub fn pdf(&self, dir: Vec3) -> f32 {
         if self.contains(dir) {
@@ -498,17 +549,37 @@ impl SolidAnglePolygon {
         }
     }
 
-    /// Whether the ray along `dir` passes through the polygon (boundary included).
+    /// Whether the ray along `dir` passes through the polygon (boundary included), or
+    /// outside it by at most the slack of [`pdf`](Self::pdf).
     #[inline]
     pub fn contains(&self, dir: Vec3) -> bool {
         // A non-finite `dir` is outside (found by fuzzing: (0, 0, ∞) passed every edge
         // test with an infinite dot product and got the density 1 / Ω).
-        let mut inside = self.vertex_count > 0 && dir.is_finite() && dir.length_squared() > 0.0;
+        let valid = self.vertex_count > 0 && dir.is_finite() && dir.length_squared() > 0.0;
+        let mut inside = true;
         for i in 0..MAX_POLYGON_VERTICES {
             // Unused slots hold zero normals, whose dot product 0 passes.
             inside &= self.edge_normals[i].dot(dir) >= 0.0;
         }
-        inside
+        // Directions inside (every MIS query of a direction in the light) pass the plain
+        // test; only those outside or within rounding of the boundary pay for the slack.
+        valid && (inside || self.contains_with_slack(dir))
+    }
+
+    /// [`contains_within`](Self::contains_within) with the slack of [`pdf`](Self::pdf):
+    /// the smaller of [`EDGE_ROUNDING`] and [`SLACK_PER_WIDTH`] of the width `Ω / P`,
+    /// with the perimeter `P` from the chords of the unit vertex directions.
+    #[cold]
+    fn contains_with_slack(&self, dir: Vec3) -> bool {
+        let count = super::stored_count(self.vertex_count, MAX_POLYGON_VERTICES);
+        let mut perimeter = 0.0f32;
+        for i in 0..count {
+            let next = if i + 1 == count { 0 } else { i + 1 };
+            perimeter += (self.vertices[next] - self.vertices[i]).length();
+        }
+        // `min` returns the number where the width is NaN (a corrupted value).
+        let slack = EDGE_ROUNDING.min(SLACK_PER_WIDTH * (self.solid_angle / perimeter));
+        self.contains_within(dir, slack)
     }
 
     /// Whether `dir` lies inside the polygon or outside by at most `tolerance` radians
