@@ -217,6 +217,12 @@ typedef struct SpheraSolidAnglePolygon {
    * path throughout.
    */
   uint32_t careful_paths;
+  /**
+   * 1 when the polygon is so narrow that the slack of `pdf` may be below the rounding
+   * of a sampled direction (an edge longer than 5 Ω), so that `sample` tests its
+   * direction; 0 otherwise.
+   */
+  uint32_t checks_samples;
 } SpheraSolidAnglePolygon;
 
 /**
@@ -1132,7 +1138,10 @@ struct SpheraSample sphera_solid_angle_polygon_sample(const struct SpheraSolidAn
 /**
  * The density per steradian with which `sphera_solid_angle_polygon_sample` produces
  * the direction `dir` (need not be normalised): 1 / solid angle inside the polygon
- * (boundary included), 0 outside it.
+ * (boundary included, and up to a slack outside it where rounding puts samples drawn
+ * next to an edge: the smaller of 16 ulps, 1.9e-6 rad, and 2e-5 of the polygon's width,
+ * solid angle over perimeter), 0 outside it. Every sample's pdf is this function's
+ * value at its direction, bit for bit.
  *
  * Returns 0 when `polygon` is null or empty, and for a zero or non-finite `dir`.
  *

@@ -70,8 +70,8 @@ pub struct SolidAnglePolygon {
     /// path throughout.
     careful_paths: u32,
     /// 1 when the polygon is so narrow that the slack of `pdf` may be below the rounding
-    /// of a sampled direction, so that `sample` tests its direction (see
-    /// [`SAMPLE_CHECK_WIDTH`]); 0 otherwise.
+    /// of a sampled direction (an edge longer than 5 Ω), so that `sample` tests its
+    /// direction; 0 otherwise.
     checks_samples: u32,
 }
 
