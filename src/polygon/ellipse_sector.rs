@@ -68,7 +68,8 @@ pub struct EllipseSector {
     /// Refinement iterations that the unbiased sampler adds in this sector: 1 where the
     /// sector is ill-conditioned (its outer ellipse's area exceeds 200 times the area
     /// between the ellipses), where rounding makes the first iteration's result less
-    /// reliable; 0 elsewhere.
+    /// reliable, or where its ellipses touch or nearly touch at an end
+    /// ([`end_shape`](Self::end_shape) below 1); 0 elsewhere.
     pub(crate) extra_iterations: u32,
 }
 
@@ -513,6 +514,47 @@ impl EllipseSector {
         (scale2(w, libm::sqrtf(xi1 / norm)), z2)
     }
 
+    /// The shape of the region between the ellipses next to the end `s1` (or `s0`) of
+    /// the sector, where the ellipses meet (the polygon's vertex at an azimuthal end):
+    /// `c = a Δ / w(Δ)`, the width's slope `a` at the end times the end quad's angle `Δ`
+    /// over the width at the quad's other boundary (see
+    /// [`towards_a_tangency`](Self::towards_a_tangency)). `c >= 1` where the ellipses
+    /// cross at a good angle (the width grows linearly or slower), `c = 0` where they touch (a
+    /// vertex on the horizon), in between just above the horizon. NaN where the
+    /// ellipses do not meet at that end (the region has a width there) or one is
+    /// degenerate.
+    #[inline(always)]
+    pub(crate) fn end_shape(&self, at_s1: bool) -> f32 {
+        let (end, quarter) = if at_s1 { (1, 3) } else { (0, 1) };
+        let s = if at_s1 { self.s1 } else { self.s0 };
+        if is_degenerate(self.inner) || is_degenerate(self.outer) {
+            return f32::NAN;
+        }
+        // s' = ±R s, pointing into the sector.
+        let into = scale2(rotate(s), if at_s1 { -1.0 } else { 1.0 });
+        let (ti, to) = (self.inner_dots[end], self.outer_dots[end]);
+        let width_at = |ti: f32, to: f32| {
+            0.5 * (ti.abs() - to.abs()) * (ti.abs() + to.abs())
+                / ((1.0 + ti * ti) * (1.0 + to * to))
+        };
+        let (bi, bo) = (
+            self.inner_quarter_dots[quarter],
+            self.outer_quarter_dots[quarter],
+        );
+        let width = width_at(bi, bo);
+        // Only where the ellipses meet at the end (the quad is a triangle): elsewhere the
+        // region has a width there, and the quad's trapezoid is the right shape.
+        if !(width_at(ti, to).abs() <= 1e-3 * width) {
+            return f32::NAN;
+        }
+        let (dti, dto) = (dot2(self.inner, into), dot2(self.outer, into));
+        let t2 = 1.0 + 0.5 * (ti * ti + to * to);
+        let slope = (ti * dti - to * dto) / (t2 * t2);
+        let angle =
+            atan2_upper_half_plane(self.quarter_det.max(0.0), dot2(s, self.quarters[quarter]));
+        slope * angle / width
+    }
+
     /// The area to hand the quad at an end of the sector (`measured`, signed as in
     /// [`sample_between`](Self::sample_between): from `s0` positive, from `s1` negative;
     /// `quad` the quad's whole measure), corrected for the shape of the region next to
@@ -542,36 +584,9 @@ impl EllipseSector {
     /// to `F⁻¹(f)²`, the triangle's share at the same `x`.
     #[inline(always)]
     fn towards_a_tangency(&self, at_s1: bool, measured: f32, quad: f32) -> f32 {
-        let (end, quarter) = if at_s1 { (1, 3) } else { (0, 1) };
-        let s = if at_s1 { self.s1 } else { self.s0 };
-        if is_degenerate(self.inner) || is_degenerate(self.outer) || !(quad > 0.0) {
-            return measured;
-        }
-        // s' = ±R s, pointing into the sector.
-        let into = scale2(rotate(s), if at_s1 { -1.0 } else { 1.0 });
-        let (ti, to) = (self.inner_dots[end], self.outer_dots[end]);
-        let width_at = |ti: f32, to: f32| {
-            0.5 * (ti.abs() - to.abs()) * (ti.abs() + to.abs())
-                / ((1.0 + ti * ti) * (1.0 + to * to))
-        };
-        let (bi, bo) = (
-            self.inner_quarter_dots[quarter],
-            self.outer_quarter_dots[quarter],
-        );
-        let width = width_at(bi, bo);
-        // Only where the ellipses meet at the end (the quad is a triangle): elsewhere the
-        // region has a width there, and the quad's trapezoid is the right shape.
-        if !(width_at(ti, to).abs() <= 1e-3 * width) {
-            return measured;
-        }
-        let (dti, dto) = (dot2(self.inner, into), dot2(self.outer, into));
-        let t2 = 1.0 + 0.5 * (ti * ti + to * to);
-        let slope = (ti * dti - to * dto) / (t2 * t2);
-        let angle =
-            atan2_upper_half_plane(self.quarter_det.max(0.0), dot2(s, self.quarters[quarter]));
-        let c = slope * angle / width;
-        // Crossing ellipses (c >= 1), and NaN: the triangle as it is.
-        if !(c < 1.0) {
+        let c = self.end_shape(at_s1);
+        // Crossing ellipses (c >= 1), no apex at this end, and NaN: the triangle as it is.
+        if !(c < 1.0) || !(quad > 0.0) {
             return measured;
         }
         let c = c.max(0.0);

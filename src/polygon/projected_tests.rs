@@ -1245,3 +1245,67 @@ fn samples_reach_a_vertex_on_the_horizon_at_an_azimuthal_end() {
         }
     }
 }
+
+/// Issue 17 (2), the inversion itself: next to a vertex on or just above the horizon at
+/// the polygon's azimuthal end (the triangle and the quad of
+/// `samples_reach_a_vertex_on_the_horizon_at_an_azimuthal_end`, the vertex raised by up
+/// to z = 0.03, 0.054 rad), the sampled azimuth is within 1e-5 rad of an f64 inversion of the azimuthal
+/// CDF, for shares of 1e-4 to 5e-2 of Φ from that end. Before: up to 3e-3 rad (on the
+/// horizon) and 1.2e-3 rad (3e-3 above it); with the end quad's shape but one iteration,
+/// 2.3e-4 rad at 0.03 above it (a steep edge, |u| = 28, beside the vertex).
+#[test]
+fn azimuths_next_to_a_vertex_on_the_horizon_match_an_f64_inversion() {
+    let mut worst = 0.0f64;
+    for height in [0.0f32, 1e-3, 3e-3, 1e-2, 3e-2] {
+        let vertex = Vec3::new(0.168, 0.529, height);
+        // The vertex last in azimuth, and first.
+        let polygons = [
+            (
+                vec![
+                    vertex,
+                    Vec3::new(0.829_795_24, -0.127_557_4, 2.358_892_2),
+                    Vec3::new(0.549_432_46, 0.434_447, 2.669_451_5),
+                ],
+                true,
+            ),
+            (
+                vec![
+                    vertex,
+                    Vec3::new(-0.312_202_45, 0.785_774_6, 0.114_630_16),
+                    Vec3::new(-0.839_88, -0.307_665_26, 1.680_311_6),
+                    Vec3::new(-0.285_615_38, -0.706_340_6, 1.655_068_2),
+                ],
+                false,
+            ),
+        ];
+        for (vertices, vertex_last) in &polygons {
+            let polygon = ProjectedSolidAnglePolygon::new(vertices).expect("a valid polygon");
+            assert!(polygon.central == 0 && !polygon.uses_small_polygon_sampler());
+            let p = clip_d3(&to_d3(vertices), [0.0, 0.0, 1.0]);
+            let base = p[0][1].atan2(p[0][0]);
+            let relative = |q: &D3| {
+                let a = q[1].atan2(q[0]) - base;
+                (a + core::f64::consts::PI).rem_euclid(core::f64::consts::TAU)
+                    - core::f64::consts::PI
+            };
+            let lo = p.iter().map(relative).fold(f64::MAX, f64::min) + base;
+            let hi = p.iter().map(relative).fold(f64::MIN, f64::max) + base;
+            let total = projected_solid_angle_d3(&p).abs();
+            for share in [1e-4f32, 5e-4, 1e-3, 2e-3, 5e-3, 1e-2, 2e-2, 5e-2] {
+                let u0 = if *vertex_last { 1.0 - share } else { share };
+                let expected = azimuth_of_area(&p, lo, hi, u0 as f64 * total);
+                for u1 in [0.0, 0.5, 0.99] {
+                    let s = polygon.sample([u0, u1]);
+                    let got = (s.dir.y as f64).atan2(s.dir.x as f64);
+                    let error = (got - expected).abs();
+                    assert!(
+                        error <= 1e-5,
+                        "height {height}, u {u0} {u1}: azimuth {got} vs {expected} (f64)"
+                    );
+                    worst = worst.max(error);
+                }
+            }
+        }
+    }
+    assert!(worst > 0.0);
+}
