@@ -1249,8 +1249,8 @@ fn samples_reach_a_vertex_on_the_horizon_at_an_azimuthal_end() {
 /// Issue 17 (2), the inversion itself: next to a vertex on or just above the horizon at
 /// the polygon's azimuthal end (the triangle and the quad of
 /// `samples_reach_a_vertex_on_the_horizon_at_an_azimuthal_end`, the vertex raised by up
-/// to z = 0.03, 0.054 rad), the sampled azimuth is within 1e-5 rad of an f64 inversion of the azimuthal
-/// CDF, for shares of 1e-4 to 5e-2 of Φ from that end. Before: up to 3e-3 rad (on the
+/// to z = 0.03, 0.054 rad), the sampled azimuth is within 1e-5 rad of an f64 inversion
+/// of the azimuthal CDF, for shares of 1e-4 to 5e-2 of Φ from that end. Before: up to 3e-3 rad (on the
 /// horizon) and 1.2e-3 rad (3e-3 above it); with the end quad's shape but one iteration,
 /// 2.3e-4 rad at 0.03 above it (a steep edge, |u| = 28, beside the vertex).
 #[test]
