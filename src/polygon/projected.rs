@@ -41,7 +41,8 @@ use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 /// the report's error table: forward error 2.4e-6 rad after one, 1.5e-6 after two) for
 /// 60% of the cost. Sectors whose outer ellipse's area exceeds 200 times the sector's
 /// area (ill-conditioned, near the polygon's azimuthal ends or the horizon) get a second
-/// iteration. [`sample_with_iterations`](ProjectedSolidAnglePolygon::sample_with_iterations)
+/// iteration, and so do sectors whose ellipses touch or nearly touch at an end (a vertex
+/// on or just above the horizon at the polygon's azimuthal end; issue 17, 2). [`sample_with_iterations`](ProjectedSolidAnglePolygon::sample_with_iterations)
 /// takes any count.
 pub const REFINEMENT_ITERATIONS: u32 = 1;
 
@@ -388,7 +389,13 @@ impl ProjectedSolidAnglePolygon {
                 );
                 outer_sum += outer_area;
                 let area = sector.area(false, precision).max(0.0);
-                sector.extra_iterations = (outer_area > 200.0 * area) as u32;
+                // Also where the ellipses touch or nearly touch at an end of the sector (a
+                // vertex on or just above the horizon at the polygon's azimuthal end, issue
+                // 17, 2): the shape of the region there is modelled in the initial guess,
+                // but a steep edge beside it (|u| of 28) left up to 2.3e-4 rad after one
+                // iteration 0.05 rad above the horizon, 3e-6 after two.
+                let touching = sector.end_shape(false) < 1.0 || sector.end_shape(true) < 1.0;
+                sector.extra_iterations = (outer_area > 200.0 * area || touching) as u32;
                 polygon.sector_area[j] = area;
             }
         } else {
