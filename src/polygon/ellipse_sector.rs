@@ -71,6 +71,10 @@ pub struct EllipseSector {
     /// reliable, or where its ellipses touch or nearly touch at an end
     /// ([`end_shape`](Self::end_shape) below 1); 0 elsewhere.
     pub(crate) extra_iterations: u32,
+    /// The ends where the ellipses touch or nearly touch ([`end_shape`](Self::end_shape)
+    /// below 1), as bits: 1 for `s0`, 2 for `s1`; 0 elsewhere. Set by preparation, so that
+    /// only samples in such an end quad pay for its shape (issue 17, 2).
+    pub(crate) touching_ends: u32,
 }
 
 /// Where a direction of the safeguarded iteration lies (see [`EllipseSector::locate`]).
@@ -168,6 +172,7 @@ impl EllipseSector {
         cosine: 1.0,
         area_form: DIFFERENCE_FORM,
         extra_iterations: 0,
+        touching_ends: 0,
     };
 
     /// A sector of the central case: from `s0` to `s1` (unit vectors, accurate
@@ -302,6 +307,7 @@ impl EllipseSector {
                 DIRECT_FORM
             },
             extra_iterations: 0,
+            touching_ends: 0,
         }
     }
 
@@ -671,7 +677,10 @@ impl EllipseSector {
         let k = j + second_half as usize;
         let h = j + 1 - second_half as usize;
         let measured = if second_half { x - quads[j] } else { x };
-        let measured = if j == 0 || j == 3 {
+        // Only the end quads of sectors whose ellipses touch there (flagged by
+        // preparation) pay for the shape's correction.
+        let end_bit = (j == 0) as u32 | (((j == 3) as u32) << 1);
+        let measured = if self.touching_ends & end_bit != 0 {
             self.towards_a_tangency(j == 3, measured, quads[j])
         } else {
             measured

@@ -394,7 +394,9 @@ impl ProjectedSolidAnglePolygon {
                 // 17, 2): the shape of the region there is modelled in the initial guess,
                 // but a steep edge beside it (|u| of 28) left up to 2.3e-4 rad after one
                 // iteration 0.05 rad above the horizon, 3e-6 after two.
-                let touching = sector.end_shape(false) < 1.0 || sector.end_shape(true) < 1.0;
+                sector.touching_ends = (sector.end_shape(false) < 1.0) as u32
+                    | (((sector.end_shape(true) < 1.0) as u32) << 1);
+                let touching = sector.touching_ends != 0;
                 sector.extra_iterations = (outer_area > 200.0 * area || touching) as u32;
                 polygon.sector_area[j] = area;
             }

@@ -457,6 +457,46 @@ impl SolidAnglePolygon {
     /// pdf is `1 / Ω`, or 0 (with a finite direction) for an empty polygon.
     #[inline]
     pub fn sample(&self, u: [f32; 2]) -> Sample {
+        let sample = self.sample_unchecked(u);
+        // `pdf` finds directions inside up to a slack that, for narrow polygons, may be
+        // below the rounding of a direction sampled next to an edge (issue 16, 1): there
+        // the direction is tested, and one that rounding put outside is pulled towards
+        // the polygon's centroid until inside (`INWARD_PULLS`), so that
+        // `pdf(sample.dir) == sample.pdf` for every sample.
+        if self.checks_samples != 0 && sample.pdf > 0.0 && !self.contains(sample.dir) {
+            return self.pulled_inside(sample.dir);
+        }
+        sample
+    }
+
+    /// `dir` (a sample just outside) pulled towards the centroid of the unit vertex
+    /// directions (inside: the polygon is convex) by the fractions of `INWARD_PULLS` until
+    /// [`contains`](Self::contains) accepts it, with the density `1 / Ω`; no sample where
+    /// even the centroid is rejected.
+    #[cold]
+    fn pulled_inside(&self, dir: Vec3) -> Sample {
+        let count = super::stored_count(self.vertex_count, MAX_POLYGON_VERTICES);
+        let mut sum = Vec3::ZERO;
+        for v in &self.vertices[..count] {
+            sum += *v;
+        }
+        let centroid = sum.normalize_or(self.vertices[0]);
+        crate::sample::INWARD_PULLS
+            .iter()
+            .map(|&pull| (dir * (1.0 - pull) + centroid * pull).normalize_or(centroid))
+            .find(|&pulled| self.contains(pulled))
+            .map_or(Sample::NONE, |dir| Sample {
+                dir,
+                pdf: self.density,
+            })
+    }
+
+    /// [`sample`](Self::sample) without the test of narrow polygons' samples: the
+    /// direction of Algorithm 5 as computed, which rounding may put just outside `pdf`'s
+    /// support. For the warps that map their own density through it (Hart et al.), whose
+    /// `pdf` inverts the direction and must see it where it was drawn.
+    #[inline]
+    pub(crate) fn sample_unchecked(&self, u: [f32; 2]) -> Sample {
         if self.selectable_triangles == 0 {
             return Sample::NONE;
         }
@@ -513,22 +553,6 @@ impl SolidAnglePolygon {
         let dir = crate::sample::unit_if_needed(dir);
         if !dir.is_finite() {
             return Sample::NONE;
-        }
-        // `pdf` finds directions inside up to a slack that, for narrow polygons, may be
-        // below the rounding of a direction sampled next to an edge (issue 16, 1): there
-        // the direction is tested, and one that rounding put outside is pulled towards
-        // the fan triangle's centroid until inside (`INWARD_PULLS`), so that
-        // `pdf(sample.dir) == sample.pdf` for every sample.
-        if self.checks_samples != 0 && !self.contains(dir) {
-            let centroid = (v0 + v1 + self.vertices[k + 2]).normalize_or(v1);
-            return crate::sample::INWARD_PULLS
-                .iter()
-                .map(|&pull| (dir * (1.0 - pull) + centroid * pull).normalize_or(centroid))
-                .find(|&pulled| self.contains(pulled))
-                .map_or(Sample::NONE, |dir| Sample {
-                    dir,
-                    pdf: self.density,
-                });
         }
         Sample {
             dir,
@@ -599,7 +623,20 @@ impl SolidAnglePolygon {
     /// The random numbers `u` for which [`sample`](Self::sample) returns `dir` (up to
     /// rounding), or `None` when `dir` is outside the polygon or the polygon is empty.
     pub fn invert(&self, dir: Vec3) -> Option<[f32; 2]> {
-        let (k, local, u1) = self.invert_in_triangle(dir)?;
+        self.invert_from(self.invert_in_triangle(dir)?)
+    }
+
+    /// [`invert`](Self::invert) for directions strictly inside (the plain edge test,
+    /// without `pdf`'s slack), as [`sample_unchecked`](Self::sample_unchecked) draws
+    /// them: for the warps whose `pdf` evaluates their density at the inverted primary
+    /// sample (Hart et al.), which a direction outside would only reach clamped.
+    pub(crate) fn invert_strictly_inside(&self, dir: Vec3) -> Option<[f32; 2]> {
+        self.invert_from(self.invert_in_triangle_within(dir, 0.0)?)
+    }
+
+    /// The random numbers from a fan triangle, the solid angle from its first edge and
+    /// `u1`, clamped into `[0, 1 - ulp]`.
+    fn invert_from(&self, (k, local, u1): (usize, f32, f32)) -> Option<[f32; 2]> {
         let u0 = (self.start[k] + local) / self.solid_angle;
         let clamp = |x: f32| {
             if x.is_finite() {

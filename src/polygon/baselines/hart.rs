@@ -35,7 +35,7 @@
 //! These are *approximations* of cosine-weighted sampling, i.e. baselines: the density
 //! is a low-order polynomial in the primary square, not proportional to the cosine.
 //! Estimators stay unbiased because `sample` reports the density it used and `pdf`
-//! computes the same density (through [`SolidAnglePolygon::invert`]).
+//! computes the same density (through the inverse of solid angle sampling).
 //!
 //! Below the horizon. Polygons are not clipped: solid angle sampling covers the whole
 //! polygon, and the warp's density in the part below the horizon is whatever the
@@ -65,7 +65,8 @@ const NEWTON_STEPS: u32 = 24;
 /// The cosine `max(dir.z, 0)` of the direction that solid angle sampling produces for
 /// the primary point `u`.
 fn cosine_at(polygon: &SolidAnglePolygon, u: [f32; 2]) -> f32 {
-    let sample = polygon.sample(u);
+    // The direction of the primary point itself, not pulled inside (as `finish` draws).
+    let sample = polygon.sample_unchecked(u);
     if sample.pdf > 0.0 {
         // `max` maps NaN to 0 (the direction is finite anyway).
         sample.dir.z.max(0.0)
@@ -92,7 +93,9 @@ fn normalise_to_mean_one<const N: usize>(values: [f32; N]) -> [f32; N] {
 /// module documentation), or the density vanishes.
 #[inline(always)]
 fn finish(polygon: &SolidAnglePolygon, warped: [f32; 2], density: f32, inv_omega: f32) -> Sample {
-    let sample = polygon.sample(warped);
+    // As drawn (no pull inside for narrow polygons): `pdf` inverts the direction to the
+    // primary sample, which a pulled direction would not give back.
+    let sample = polygon.sample_unchecked(warped);
     let pdf = density * inv_omega;
     if sample.pdf > 0.0 && sample.dir.z > 0.0 && pdf > 0.0 && pdf.is_finite() {
         Sample {
@@ -332,7 +335,7 @@ impl HartBilinearPolygon {
     /// non-finite directions, and when the polygon is empty.
     #[inline]
     pub fn pdf(&self, dir: Vec3) -> f32 {
-        match upper_direction(dir).and_then(|dir| self.solid_angle.invert(dir)) {
+        match upper_direction(dir).and_then(|dir| self.solid_angle.invert_strictly_inside(dir)) {
             Some(warped) => self.warp_density(warped) * self.inv_solid_angle,
             None => 0.0,
         }
@@ -342,7 +345,9 @@ impl HartBilinearPolygon {
     /// rounding), or `None` when `dir.z <= 0`, `dir` is outside the polygon, or the
     /// polygon is empty.
     pub fn invert(&self, dir: Vec3) -> Option<[f32; 2]> {
-        let [x, y] = self.solid_angle.invert(upper_direction(dir)?)?;
+        let [x, y] = self
+            .solid_angle
+            .invert_strictly_inside(upper_direction(dir)?)?;
         let (a, b) = self.marginal();
         let (c, d) = self.conditional(x);
         Some([
@@ -502,7 +507,7 @@ impl HartBiquadraticPolygon {
     /// non-finite directions, and when the polygon is empty.
     #[inline]
     pub fn pdf(&self, dir: Vec3) -> f32 {
-        match upper_direction(dir).and_then(|dir| self.solid_angle.invert(dir)) {
+        match upper_direction(dir).and_then(|dir| self.solid_angle.invert_strictly_inside(dir)) {
             Some(warped) => self.warp_density(warped) * self.inv_solid_angle,
             None => 0.0,
         }
@@ -512,7 +517,9 @@ impl HartBiquadraticPolygon {
     /// rounding), or `None` when `dir.z <= 0`, `dir` is outside the polygon, or the
     /// polygon is empty.
     pub fn invert(&self, dir: Vec3) -> Option<[f32; 2]> {
-        let [x, y] = self.solid_angle.invert(upper_direction(dir)?)?;
+        let [x, y] = self
+            .solid_angle
+            .invert_strictly_inside(upper_direction(dir)?)?;
         Some([
             clamp_unit(quadratic_cdf(x, self.marginal)),
             clamp_unit(quadratic_cdf(y, self.conditional(x))),
