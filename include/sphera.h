@@ -804,7 +804,8 @@ typedef struct SpheraSptdInCap {
    */
   SpheraVec3 ellipse;
   /**
-   * Unit tangent of the base axis pointing to the image cap's axis.
+   * Unit tangent of the base axis pointing to the image cap's axis (any unit
+   * tangent when the two axes coincide to rounding: the ellipse is then a circle).
    */
   SpheraVec3 e1;
 } SpheraSptdInCap;
