@@ -2666,7 +2666,11 @@ float sphera_asg_eval(struct SpheraAsg asg, struct SpheraVec3 dir);
 float sphera_asg_integral(struct SpheraAsg asg);
 
 /**
- * `∫ G Ĝ dω` for an SG and an ASG by the boxed formula of Section 4.2.
+ * `∫ G Ĝ dω` for an SG `c e^{λ(ω·ξ − 1)}` and an ASG by the boxed formula of Section
+ * 4.2, `c π Ĝ(ξ; η_x ν/(η_x + ν), η_y ν/(η_y + ν)) / √((η_x + ν)(η_y + ν))` with
+ * `ν = λ/2`, except that the factor `1/√((η_x + ν)(η_y + ν))` is capped at 1 (where
+ * `(η_x + ν)(η_y + ν) < 1`), as `sphera_asg_integral` caps at `a π`: the result is at
+ * most `c a π`. 0 when the SG's axis lies at or behind the ASG's horizon (`ξ·z ≤ 0`).
  */
 float sphera_asg_convolve_sg(struct SpheraAsg asg, struct SpheraSg sg);
 
