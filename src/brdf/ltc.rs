@@ -148,7 +148,10 @@ impl Ltc {
     /// sphere, for a unit `dir` (a non-unit `dir` is normalised; zero or non-finite
     /// gives 0).
     pub fn density(&self, dir: Vec3) -> f32 {
-        let w = self.to_cosine_space(dir.normalize_or_zero());
+        let Some(dir) = super::unit(dir) else {
+            return 0.0;
+        };
+        let w = self.to_cosine_space(dir);
         let length2 = w.length_squared();
         if !(w.z > 0.0) || !(length2 < f32::INFINITY) {
             return 0.0;
@@ -312,7 +315,10 @@ impl LtcPolygon {
     /// rounding may put samples: there the formula is continued. `dir` is normalised
     /// first; zero or non-finite gives 0.
     pub fn pdf(&self, dir: Vec3) -> f32 {
-        let w = self.ltc.to_cosine_space(dir.normalize_or_zero());
+        let Some(dir) = super::unit(dir) else {
+            return 0.0;
+        };
+        let w = self.ltc.to_cosine_space(dir);
         let length = w.length();
         let p = self.transformed.pdf_within(w, ROUND_TRIP_TOLERANCE);
         if !(p > 0.0) || !(length > 0.0) {

@@ -150,11 +150,11 @@ impl Sptd {
     /// The density `D(ω) = D_std(g(ω)) J(ω)` (Eq. 8) at `dir` (normalised here); 0 for a
     /// zero or non-finite `dir`.
     pub fn eval(&self, dir: Vec3) -> f32 {
-        let length = dir.length();
-        if !(length > 0.0) || !length.is_finite() {
+        // The shared helper: `dir / |dir|` overflowed or underflowed for lengths of 2¹⁰⁰
+        // and 2⁻¹⁰⁰ (issue 17, 5).
+        let Some(dir) = crate::math::unit(dir) else {
             return 0.0;
-        }
-        let dir = dir / length;
+        };
         self.base_density(transform(dir, self.pivot)) * jacobian(dir, self.pivot)
     }
 
@@ -564,7 +564,7 @@ impl SptdInCap {
             return 0.0;
         }
         // `unit` leaves the samplers' (unit) directions unchanged, bit for bit.
-        let Some(dir) = crate::brdf::unit(dir) else {
+        let Some(dir) = crate::math::unit(dir) else {
             return 0.0;
         };
         let base = transform(dir, self.sptd.pivot);
