@@ -491,9 +491,16 @@ typedef struct SpheraEllipseSector {
    * Refinement iterations that the unbiased sampler adds in this sector: 1 where the
    * sector is ill-conditioned (its outer ellipse's area exceeds 200 times the area
    * between the ellipses), where rounding makes the first iteration's result less
-   * reliable; 0 elsewhere.
+   * reliable, or where its ellipses touch or nearly touch at an end
+   * ([`end_shape`](Self::end_shape) below 1); 0 elsewhere.
    */
   uint32_t extra_iterations;
+  /**
+   * The ends where the ellipses touch or nearly touch ([`end_shape`](Self::end_shape)
+   * below 1), as bits: 1 for `s0`, 2 for `s1`; 0 elsewhere. Set by preparation, so that
+   * only samples in such an end quad pay for its shape (issue 17, 2).
+   */
+  uint32_t touching_ends;
 } SpheraEllipseSector;
 
 /**
@@ -816,7 +823,8 @@ typedef struct SpheraSptdInCap {
    */
   SpheraVec3 ellipse;
   /**
-   * Unit tangent of the base axis pointing to the image cap's axis.
+   * Unit tangent of the base axis pointing to the image cap's axis (any unit
+   * tangent when the two axes coincide to rounding: the ellipse is then a circle).
    */
   SpheraVec3 e1;
 } SpheraSptdInCap;
@@ -2086,9 +2094,14 @@ struct SpheraVec3 sphera_polygon_light_unshadowed(const struct SpheraPolygonLigh
 
 /**
  * The pivot phase function `1/(4π) ((1 − g²)/(1 + g² − 2g mu))²` (Eq. 25), per
- * steradian. Always finite.
+ * steradian, with `1 − g² = (1 − g)(1 + g)` and the denominator as a sum of
+ * non-negative terms (relative error about 1e-6 up to |g| = 1 − 2⁻²⁰). `g` is clamped
+ * to [−(1 − 2⁻²⁰), 1 − 2⁻²⁰] (NaN counts as 0): beyond, the function is that of
+ * ±(1 − 2⁻²⁰), whose peak at mu = ±1 is 2⁴⁰/π ≈ 3.5e11 per steradian. `mu` is clamped
+ * to [−1, 1]. Always finite.
  */
-float sphera_phase_pivot(float mu, float g);
+float sphera_phase_pivot(float mu,
+                         float g);
 
 /**
  * The Henyey–Greenstein phase function `1/(4π) (1 − g²)/(1 + g² − 2g mu)^(3/2)`
@@ -2680,7 +2693,11 @@ float sphera_asg_eval(struct SpheraAsg asg, struct SpheraVec3 dir);
 float sphera_asg_integral(struct SpheraAsg asg);
 
 /**
- * `∫ G Ĝ dω` for an SG and an ASG by the boxed formula of Section 4.2.
+ * `∫ G Ĝ dω` for an SG `c e^{λ(ω·ξ − 1)}` and an ASG by the boxed formula of Section
+ * 4.2, `c π Ĝ(ξ; η_x ν/(η_x + ν), η_y ν/(η_y + ν)) / √((η_x + ν)(η_y + ν))` with
+ * `ν = λ/2`, except that the factor `1/√((η_x + ν)(η_y + ν))` is capped at 1 (where
+ * `(η_x + ν)(η_y + ν) < 1`), as `sphera_asg_integral` caps at `a π`: the result is at
+ * most `c a π`. 0 when the SG's axis lies at or behind the ASG's horizon (`ξ·z ≤ 0`).
  */
 float sphera_asg_convolve_sg(struct SpheraAsg asg, struct SpheraSg sg);
 

@@ -34,6 +34,9 @@ pub(crate) mod testing;
 #[cfg(all(test, target_arch = "x86_64"))]
 mod float_environment_tests;
 
+#[cfg(test)]
+mod direction_scale_tests;
+
 pub use glam::Vec3;
 pub use sample::Sample;
 

@@ -51,32 +51,28 @@ pub(crate) const INWARD_PULLS: [f32; 5] = [
 ];
 
 /// `dir` unchanged when `| |dir|² - 1 | <= 2e-6` (every direction a sampler computes
-/// accurately, bit for bit), otherwise `dir / |dir|`, scaled by its largest component
-/// first so that the squares neither underflow into denormals nor overflow; a zero or
-/// non-finite `dir` comes back non-finite or zero, for the caller's "no sample" test.
-/// The samplers use it where an ill-conditioned construction can lose the unit length
-/// (found by fuzzing; see the callers).
+/// accurately, bit for bit), otherwise `dir / |dir|` by the shared helper
+/// [`crate::math::normalize_by_largest`] (scaled by its largest component first so that
+/// the squares neither underflow into denormals nor overflow); a zero or non-finite
+/// `dir` comes back non-finite, for the caller's "no sample" test. The samplers use it
+/// where an ill-conditioned construction can lose the unit length (found by fuzzing;
+/// see the callers).
 #[inline(always)]
 pub(crate) fn unit_if_needed(dir: Vec3) -> Vec3 {
     let length_squared = dir.length_squared();
     if (length_squared - 1.0).abs() <= 2e-6 {
         return dir;
     }
-    let scaled = dir / dir.abs().max_element();
-    scaled * (1.0 / libm::sqrtf(scaled.length_squared()))
+    crate::math::normalize_by_largest(dir).unwrap_or(Vec3::NAN)
 }
 
-/// `v / |v|`, scaled by its largest component first so that tiny vectors (whose
-/// squares are denormal, e.g. 5e-22) and huge ones normalise to full precision; zero
-/// for a zero or non-finite `v` (found by fuzzing: a view or phase direction of length
-/// 5e-22 normalised to length 0.99986).
+/// `v / |v|` by the shared helper [`crate::math::normalize_by_largest`] (tiny vectors,
+/// whose squares are denormal, e.g. 5e-22, and huge ones normalise to full precision);
+/// zero for a zero or non-finite `v` (found by fuzzing: a view or phase direction of
+/// length 5e-22 normalised to length 0.99986).
 #[inline(always)]
 pub(crate) fn normalize_scaled(v: Vec3) -> Vec3 {
-    let largest = v.abs().max_element();
-    if !(largest > 0.0 && largest.is_finite()) {
-        return Vec3::ZERO;
-    }
-    (v / largest).normalize_or_zero()
+    crate::math::normalize_by_largest(v).unwrap_or(Vec3::ZERO)
 }
 
 /// The largest `f32` below one.

@@ -156,7 +156,10 @@ impl Ltc {
     /// sphere, for a unit `dir` (a non-unit `dir` is normalised; zero or non-finite
     /// gives 0).
     pub fn density(&self, dir: Vec3) -> f32 {
-        let w = self.to_cosine_space(dir.normalize_or_zero());
+        let Some(dir) = super::unit(dir) else {
+            return 0.0;
+        };
+        let w = self.to_cosine_space(dir);
         let length2 = w.length_squared();
         if !(w.z > 0.0) || !(length2 < f32::INFINITY) {
             return 0.0;
@@ -381,7 +384,10 @@ impl LtcPolygon {
     /// `∫ pdf dω` stays within 2e-5 of 1 (measured by quadrature in the tests). `dir`
     /// is normalised first; zero or non-finite gives 0.
     pub fn pdf(&self, dir: Vec3) -> f32 {
-        let w = self.ltc.to_cosine_space(dir.normalize_or_zero());
+        let Some(dir) = super::unit(dir) else {
+            return 0.0;
+        };
+        let w = self.ltc.to_cosine_space(dir);
         let length = w.length();
         let p = self.transformed.pdf_within(w, self.tolerance);
         if !(p > 0.0) || !(length > 0.0) {

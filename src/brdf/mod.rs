@@ -27,33 +27,8 @@ pub use ltc::{Ltc, LtcPolygon};
 
 use crate::Vec3;
 
-/// How far `|v|²` may lie from 1 for `v` to be taken as a unit vector unchanged. A
-/// direction normalised in `f32` has `|v|²` within a few ulp (~4e-7) of 1; taking
-/// such a vector as it is (instead of normalising it again) makes [`unit`] idempotent,
-/// so that a sampler's returned direction evaluates to bit-identical densities when it
-/// is passed back to `pdf`.
-const UNIT_TOLERANCE: f32 = 1e-6;
-
-/// `v / |v|`, or `None` when `v` is zero or not finite. A vector whose squared length
-/// lies within [`UNIT_TOLERANCE`] of 1 is returned unchanged. Others are first divided
-/// by their largest absolute coordinate, so that neither `|v|²` overflows for huge
-/// vectors nor underflows for tiny (even subnormal) ones.
-#[inline(always)]
-pub(crate) fn unit(v: Vec3) -> Option<Vec3> {
-    if (v.length_squared() - 1.0).abs() <= UNIT_TOLERANCE {
-        // NaN fails the comparison above; an infinity gives |v|² = inf.
-        return Some(v);
-    }
-    if !v.is_finite() {
-        return None;
-    }
-    let largest = v.x.abs().max(v.y.abs()).max(v.z.abs());
-    if !(largest > 0.0) {
-        return None;
-    }
-    let scaled = v / largest;
-    Some(scaled / scaled.length())
-}
+/// A direction argument as a unit vector (the shared helper, see [`crate::math::unit`]).
+pub(crate) use crate::math::unit;
 
 /// The coordinates of the fitted tables (LTC, pivot) for a view `wo` (local frame, need
 /// not be normalised) and roughness `r = √α`: `(x, y, cos φ, sin φ)` with
@@ -62,6 +37,9 @@ pub(crate) fn unit(v: Vec3) -> Option<Vec3> {
 /// normal). `None` when `wo` is not finite, zero, or at or below the horizon.
 #[inline]
 pub(crate) fn table_coordinates(wo: Vec3, roughness: f32) -> Option<(f32, f32, f32, f32)> {
+    // Normalised by the shared helper first: `wo.length()` overflowed for views of
+    // length 1e20 and underflowed for 2⁻¹⁰⁰ (issue 17, 5); a unit `wo` stays as it is.
+    let wo = unit(wo)?;
     let length = wo.length();
     let cos_theta = wo.z / length;
     if !(cos_theta > 0.0) || !(length < f32::INFINITY) {
@@ -109,28 +87,4 @@ pub(crate) fn table_bilinear<const K: usize>(
         out[k] = low + fx * (high - low);
     }
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn unit_normalises_rejects_and_is_idempotent() {
-        assert_eq!(unit(Vec3::ZERO), None);
-        assert_eq!(unit(Vec3::new(f32::NAN, 0.0, 1.0)), None);
-        assert_eq!(unit(Vec3::new(0.0, f32::INFINITY, 1.0)), None);
-        assert_eq!(unit(Vec3::new(0.0, 0.0, f32::NEG_INFINITY)), None);
-        for v in [
-            Vec3::new(3.0, -4.0, 12.0),
-            Vec3::new(1e30, 2e30, -2e30),
-            Vec3::new(1e-40, 0.0, 1e-40),
-            Vec3::new(f32::MAX, f32::MAX, f32::MAX),
-        ] {
-            let u = unit(v).unwrap();
-            assert!((u.length() - 1.0).abs() < 1e-6, "{v} -> {u}");
-            assert!(u.dot(v) > 0.0);
-            assert_eq!(unit(u), Some(u), "not idempotent for {v}");
-        }
-    }
 }

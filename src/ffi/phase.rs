@@ -7,7 +7,11 @@ use super::types::{SpheraSample, SpheraVec3};
 use crate::sphere::phase;
 
 /// The pivot phase function `1/(4π) ((1 − g²)/(1 + g² − 2g mu))²` (Eq. 25), per
-/// steradian. Always finite.
+/// steradian, with `1 − g² = (1 − g)(1 + g)` and the denominator as a sum of
+/// non-negative terms (relative error about 1e-6 up to |g| = 1 − 2⁻²⁰). `g` is clamped
+/// to [−(1 − 2⁻²⁰), 1 − 2⁻²⁰] (NaN counts as 0): beyond, the function is that of
+/// ±(1 − 2⁻²⁰), whose peak at mu = ±1 is 2⁴⁰/π ≈ 3.5e11 per steradian. `mu` is clamped
+/// to [−1, 1]. Always finite.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_phase_pivot(mu: f32, g: f32) -> f32 {
     phase::pivot_phase(mu, g)

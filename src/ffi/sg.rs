@@ -253,7 +253,11 @@ pub extern "C" fn sphera_asg_integral(asg: Asg) -> f32 {
     asg.sanitized().integral()
 }
 
-/// `∫ G Ĝ dω` for an SG and an ASG by the boxed formula of Section 4.2.
+/// `∫ G Ĝ dω` for an SG `c e^{λ(ω·ξ − 1)}` and an ASG by the boxed formula of Section
+/// 4.2, `c π Ĝ(ξ; η_x ν/(η_x + ν), η_y ν/(η_y + ν)) / √((η_x + ν)(η_y + ν))` with
+/// `ν = λ/2`, except that the factor `1/√((η_x + ν)(η_y + ν))` is capped at 1 (where
+/// `(η_x + ν)(η_y + ν) < 1`), as `sphera_asg_integral` caps at `a π`: the result is at
+/// most `c a π`. 0 when the SG's axis lies at or behind the ASG's horizon (`ξ·z ≤ 0`).
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_asg_convolve_sg(asg: Asg, sg: Sg) -> f32 {
     asg.sanitized().convolve_sg(&sg.sanitized())

@@ -1,10 +1,12 @@
 //! Numerics shared by every technique: error-free products, a stable cross product,
-//! `atan` forms for arguments of known sign, orthonormal frames and `f32` bit helpers.
+//! `atan` forms for arguments of known sign, orthonormal frames, `f32` bit helpers and the
+//! normalisation of direction arguments.
 
 mod atan;
 mod bits;
 mod frame;
 mod products;
+mod unit;
 
 pub use atan::{atan_fast_nonneg, atan2_upper_half_plane};
 pub use bits::{copy_sign, is_sign_negative, sign_mask, with_sign_of_product};
@@ -13,3 +15,4 @@ pub use products::{
     HAS_HARDWARE_FMA, cross_precise, determinant_is_exactly_zero, difference_of_products,
     difference_of_products_unless_cancelling, dot_precise, fma, two_product, two_sum,
 };
+pub(crate) use unit::{normalize_by_largest, unit};

@@ -162,8 +162,10 @@ impl Asg {
     }
 
     /// `∫ G Ĝ dω` by the boxed formula of Section 4.2 (`ν = λ/2`, see the module
-    /// documentation), the SG amplitude applied in log space. 0 when the SG's axis lies
-    /// at or behind the ASG's horizon (`ξ·z ≤ 0`).
+    /// documentation), the SG amplitude applied in log space, with the factor
+    /// `1/√((η_x + ν)(η_y + ν))` capped at 1 (as [`Asg::integral`] caps at `a π`), so
+    /// the result is at most `c a π`. 0 when the SG's axis lies at or behind the ASG's
+    /// horizon (`ξ·z ≤ 0`).
     pub fn convolve_sg(&self, sg: &Sg) -> f32 {
         let nu = 0.5 * sg.sharpness;
         let (ex, ey) = (self.eta_x + nu, self.eta_y + nu);

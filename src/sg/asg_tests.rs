@@ -156,3 +156,39 @@ fn bad_input_gives_finite_values() {
         }
     }
 }
+
+/// Issue 17, 7: the convolution caps the factor `1/√((η_x + ν)(η_y + ν))` at 1 (the bound
+/// `∫ G Ĝ ≤ c a π`), which the header did not say. The behaviour, and that the header's
+/// documentation of `sphera_asg_convolve_sg` states it.
+#[test]
+fn convolution_caps_its_normalisation_factor_at_one_as_the_header_says() {
+    let (c, a) = (0.7f32, 1.5f32);
+    let axis = Vec3::new(0.3, -0.2, 1.0).normalize();
+    let (ex, ey, lambda) = (0.1f32, 0.4, 0.2);
+    let asg = Asg::new(Vec3::X, Vec3::Z, ex, ey, a);
+    let sg = Sg::new(axis, lambda, c);
+    let nu = 0.5 * lambda as f64;
+    let (sx, sy) = (ex as f64 + nu, ey as f64 + nu);
+    assert!(sx * sy < 1.0);
+    let (px, py, pz) = (axis.x as f64, axis.y as f64, axis.z as f64);
+    let capped = c as f64
+        * a as f64
+        * core::f64::consts::PI
+        * pz
+        * (-(ex as f64 * nu / sx) * px * px - (ey as f64 * nu / sy) * py * py).exp();
+    let value = asg.convolve_sg(&sg) as f64;
+    assert!(
+        (value - capped).abs() <= 1e-5 * capped,
+        "{value} vs {capped}"
+    );
+    assert!(value <= (c * a) as f64 * core::f64::consts::PI);
+    // The boxed formula without the cap would be 1/√(sx sy) = 3.5 times larger.
+    assert!(value * 3.0 < capped / (sx * sy).sqrt());
+    let header = include_str!("../../include/sphera.h");
+    let end = header.find("sphera_asg_convolve_sg(").expect("declared");
+    let doc = &header[header[..end].rfind("/**").expect("documented")..end];
+    assert!(
+        doc.contains("capped at 1") && doc.contains("most `c a π`"),
+        "the header does not say that the factor is capped: {doc}"
+    );
+}

@@ -113,11 +113,9 @@ pub(crate) fn exp_finite(x: f32) -> f32 {
     libm::expf(x.min(MAX_LOG_AMPLITUDE)).min(f32::MAX)
 }
 
-/// A unit vector along `v`, or `None` for a zero or non-finite `v`.
-#[inline(always)]
-pub(crate) fn unit_or_none(v: Vec3) -> Option<Vec3> {
-    crate::brdf::unit(v)
-}
+/// A unit vector along `v`, or `None` for a zero or non-finite `v`: the shared helper
+/// [`crate::math::unit`].
+pub(crate) use crate::math::unit as unit_or_none;
 
 /// `A(λ) = ∫ e^{λ(ω·ξ − 1)} dω = 2π/λ (1 − e^{−2λ})` (Section 2), evaluated as
 /// `−2π expm1(−2λ)/λ`: `4π` at `λ = 0` (and the limit as `λ → 0`), `2π/λ` to full

@@ -177,11 +177,8 @@ impl Cap {
     /// `|ω − axis|² / 2`; `None` for a non-finite or zero `dir`.
     #[inline]
     fn one_minus_cos_of(&self, dir: Vec3) -> Option<f32> {
-        let length = dir.length();
-        if !(length > 0.0) || !length.is_finite() {
-            return None;
-        }
-        Some(0.5 * (dir / length - self.axis).length_squared())
+        let unit = crate::math::unit(dir)?;
+        Some(0.5 * (unit - self.axis).length_squared())
     }
 
     /// Whether `dir` (any non-zero finite vector) points into the cap (boundary
@@ -195,11 +192,11 @@ impl Cap {
         if self.one_minus_cos >= 2.0 {
             return dir.is_finite() && dir != Vec3::ZERO;
         }
-        let length = dir.length();
-        if !(length > 0.0) || !length.is_finite() {
+        // The shared helper: `dir / |dir|` overflowed or underflowed for long and short
+        // directions (issue 17, 5).
+        let Some(unit) = crate::math::unit(dir) else {
             return false;
-        }
-        let unit = dir / length;
+        };
         if self.one_minus_cos > 1.0 {
             // Wider than a hemisphere: the boundary is near the antipode, where
             // `|ω − a|²/2` is close to 2 and has lost the absolute precision that the

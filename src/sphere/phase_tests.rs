@@ -230,3 +230,75 @@ fn tiny_directions_give_unit_samples() {
         }
     }
 }
+
+/// Issue 17, 4: near `|g| = 1`, `1 − g²` from the rounded `g²` cancelled, so the pivot
+/// phase function (squared) and Henyey–Greenstein were off by `ε/(1 − |g|)` everywhere:
+/// 1.7e-4 at `g = ±0.99983`, and `∫f − 1 = −1.3e-5` at `g = ±0.999`.
+#[test]
+fn phase_functions_near_unit_anisotropy_match_eq_25_and_26_and_integrate_to_one() {
+    let (nodes, weights) = gauss_legendre_16();
+    let limit = 1.0 - 1.0 / 1_048_576.0;
+    for g in [0.999f32, -0.999, 0.99983, -0.99983, limit, -limit] {
+        // Eq. 25 and 26 in f64 as functions of the distance x = 1 − sign(g) μ from the
+        // peak, with 1 + g² − 2gμ = (1 − |g|)² + 2|g| x (no cancellation) and 1 − g²
+        // exact in f64 for an f32 g.
+        let (gd, a) = (g as f64, g.abs() as f64);
+        let one_minus_g2 = 1.0 - gd * gd;
+        let den = |x: f64| (1.0 - a) * (1.0 - a) + 2.0 * a * x;
+        let pivot_ref = |x: f64| (one_minus_g2 / den(x)).powi(2) / (4.0 * core::f64::consts::PI);
+        let hg_ref = |x: f64| one_minus_g2 / den(x).powf(1.5) / (4.0 * core::f64::consts::PI);
+        // Nodes graded towards the peak: x = w (e^t − 1) with w = (1 − |g|)²/(2|g|) the
+        // peak's width, so that f dx ∝ e^{−t} dt is smooth; 16-point Gauss–Legendre on
+        // panels of 1/2 in t.
+        let w = (1.0 - a) * (1.0 - a) / (2.0 * a);
+        let t_max = (2.0 / w + 1.0).ln();
+        let panels = (2.0 * t_max).ceil() as usize;
+        let (mut integral, mut reference_integral, mut worst_pivot, mut worst_hg) =
+            (0.0, 0.0, 0.0f64, 0.0f64);
+        for panel in 0..panels {
+            let (t0, t1) = (
+                t_max * panel as f64 / panels as f64,
+                t_max * (panel + 1) as f64 / panels as f64,
+            );
+            for (node, weight) in nodes.iter().zip(weights) {
+                let t = 0.5 * (t0 + t1) + 0.5 * (t1 - t0) * node;
+                let x = w * t.exp_m1();
+                let dx = w * t.exp() * 0.5 * (t1 - t0) * weight;
+                // f32's μ steps by 6e-8 near ±1, coarser than the peaks of g = 0.99983 and
+                // 1 − 2⁻²⁰: each node takes f32's value at the nearest f32 μ relative to
+                // the reference there, so that the sum is ∫ f_ref · (f/f_ref) and measures
+                // the normalisation of the f32 function however fine its peak.
+                let mu = (gd.signum() * (1.0 - x)) as f32;
+                let x32 = 1.0 - gd.signum() * mu as f64;
+                let ratio = pivot_phase(mu, g) as f64 / pivot_ref(x32);
+                worst_pivot = worst_pivot.max((ratio - 1.0).abs());
+                worst_hg =
+                    worst_hg.max((henyey_greenstein(mu, g) as f64 / hg_ref(x32) - 1.0).abs());
+                integral += 2.0 * core::f64::consts::PI * pivot_ref(x) * ratio * dx;
+                reference_integral += 2.0 * core::f64::consts::PI * pivot_ref(x) * dx;
+            }
+        }
+        for mu in [-1.0f32, 0.0, 1.0] {
+            let x = 1.0 - gd.signum() * mu as f64;
+            worst_pivot = worst_pivot.max((pivot_phase(mu, g) as f64 / pivot_ref(x) - 1.0).abs());
+        }
+        assert!(
+            (reference_integral - 1.0).abs() < 1e-9,
+            "g = {g}: the quadrature gives {reference_integral}"
+        );
+        assert!(
+            worst_pivot <= 2e-6,
+            "g = {g}: pivot relative error {worst_pivot:e}"
+        );
+        assert!(worst_hg <= 2e-6, "g = {g}: HG relative error {worst_hg:e}");
+        assert!(
+            (integral - 1.0).abs() <= 1e-5,
+            "g = {g}: ∫f − 1 = {:e}",
+            integral - 1.0
+        );
+        eprintln!(
+            "g = {g}: pivot {worst_pivot:e}, HG {worst_hg:e}, ∫f − 1 = {:e}",
+            integral - 1.0
+        );
+    }
+}

@@ -91,23 +91,21 @@ pub(crate) fn transform(dir: Vec3, pivot: Vec3) -> Vec3 {
 /// unit sphere of the line from `dir` (normalised here) through `pivot`. See the
 /// module documentation for invalid pivots; a zero or non-finite `dir` gives `+z`.
 pub fn pivot_transform(dir: Vec3, pivot: Vec3) -> Vec3 {
-    let length = dir.length();
-    if !(length > 0.0) || !length.is_finite() {
+    let Some(dir) = crate::math::unit(dir) else {
         return Vec3::Z;
-    }
-    transform(dir / length, valid_pivot(pivot))
+    };
+    transform(dir, valid_pivot(pivot))
 }
 
 /// The Jacobian `|dg/dω| = ((1 − |r_p|²) / |ω − r_p|²)²` (Eq. 4) at a unit `dir`
 /// (normalised here): the ratio of the solid angle of `g(dω)` to that of `dω`. Zero
 /// for a zero or non-finite `dir`.
 pub fn pivot_jacobian(dir: Vec3, pivot: Vec3) -> f32 {
-    let length = dir.length();
-    if !(length > 0.0) || !length.is_finite() {
+    let Some(dir) = crate::math::unit(dir) else {
         return 0.0;
-    }
+    };
     let pivot = valid_pivot(pivot);
-    let ratio = (1.0 - pivot.length_squared()) / (dir / length - pivot).length_squared();
+    let ratio = (1.0 - pivot.length_squared()) / (dir - pivot).length_squared();
     ratio * ratio
 }
 

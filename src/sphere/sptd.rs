@@ -150,11 +150,11 @@ impl Sptd {
     /// The density `D(ω) = D_std(g(ω)) J(ω)` (Eq. 8) at `dir` (normalised here); 0 for a
     /// zero or non-finite `dir`.
     pub fn eval(&self, dir: Vec3) -> f32 {
-        let length = dir.length();
-        if !(length > 0.0) || !length.is_finite() {
+        // The shared helper: `dir / |dir|` overflowed or underflowed for lengths of 2¹⁰⁰
+        // and 2⁻¹⁰⁰ (issue 17, 5).
+        let Some(dir) = crate::math::unit(dir) else {
             return 0.0;
-        }
-        let dir = dir / length;
+        };
         self.base_density(transform(dir, self.pivot)) * jacobian(dir, self.pivot)
     }
 
@@ -419,7 +419,8 @@ pub struct SptdInCap {
     /// For the clamped-cosine base: `(x, y, z)` = the projected ellipse's center offset
     /// `cos θ sin β`, its semi-axes `sin θ cos β` (along `e1`) and `sin θ`.
     ellipse: Vec3,
-    /// Unit tangent of the base axis pointing to the image cap's axis.
+    /// Unit tangent of the base axis pointing to the image cap's axis (any unit
+    /// tangent when the two axes coincide to rounding: the ellipse is then a circle).
     e1: Vec3,
 }
 
@@ -467,12 +468,22 @@ impl SptdInCap {
             if !(image.one_minus_cos <= 1.0) || !(cos_beta >= sin_theta) || !(cos_beta > 0.0) {
                 return None;
             }
-            let tangential = image.axis - a * cos_beta;
-            let sin_beta = tangential.length();
-            prepared.e1 = if sin_beta > 0.0 {
-                tangential / sin_beta
+            // The tangential part of the image's axis in a basis (t, b) of the plane ⊥ a:
+            // `c − a (c·a)` is rounding noise, not perpendicular to `a`, when `c` is
+            // within ~1e-5 rad of `a` (issue 17, 3: normalised into `e1`, it tilted the
+            // ellipse out of the plane; samples bunched and were dropped), while
+            // `(c·t, c·b)` has an absolute error of a few ulps and any combination of `t`
+            // and `b` is perpendicular to `a`. Where `sin β` is that noise, the ellipse
+            // is a circle (semi-axes `sin θ` and `sin θ cos β`, `1 − cos β ≈ sin²β/2`)
+            // centred within ulps of `a`, so its orientation does not matter.
+            let (t, b) = orthonormal_basis(a);
+            let (x, y) = (image.axis.dot(t), image.axis.dot(b));
+            let sin_beta = libm::sqrtf(x * x + y * y);
+            // (Below 1e-18 the squares can be denormal and `sin β` inaccurate.)
+            prepared.e1 = if sin_beta > 1e-18 {
+                t * (x / sin_beta) + b * (y / sin_beta)
             } else {
-                orthonormal_basis(a).0
+                t
             };
             prepared.ellipse = Vec3::new(
                 (1.0 - image.one_minus_cos) * sin_beta,
@@ -553,7 +564,7 @@ impl SptdInCap {
             return 0.0;
         }
         // `unit` leaves the samplers' (unit) directions unchanged, bit for bit.
-        let Some(dir) = crate::brdf::unit(dir) else {
+        let Some(dir) = crate::math::unit(dir) else {
             return 0.0;
         };
         let base = transform(dir, self.sptd.pivot);

@@ -102,8 +102,8 @@ impl VsglTexel {
     /// non-finite position, normal, direction or roughness, a zero normal or direction,
     /// or sums that overflow `f32`. A VPL without power gives the zero texel.
     pub fn from_vpl(vpl: &Vpl, origin: Vec3) -> Option<VsglTexel> {
-        let normal = vpl.normal.try_normalize()?;
-        let toward_incoming = vpl.toward_incoming.try_normalize()?;
+        let normal = crate::math::unit(vpl.normal)?;
+        let toward_incoming = crate::math::unit(vpl.toward_incoming)?;
         if !vpl.position.is_finite() || !vpl.roughness.is_finite() || !origin.is_finite() {
             return None;
         }
