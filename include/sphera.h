@@ -171,6 +171,14 @@ typedef struct SpheraSolidAnglePolygon {
    */
   SpheraVec3 edge_normals[SPHERA_MAX_POLYGON_VERTICES];
   /**
+   * For the narrowest polygons (`checks_samples == 2`), the rounding errors of `edge_normals`: the
+   * exact plane of edge `i` is `edge_normals[i] + edge_residuals[i]` to about ε², so
+   * that the inside test carries no rotation of ε per edge (which moved the boundary
+   * of polygons of 1e-9 sr by a few percent of an ulp, systematically: `∫ pdf dω`
+   * was 1.00043 at 8e-10 sr). Zero otherwise.
+   */
+  SpheraVec3 edge_residuals[SPHERA_MAX_POLYGON_VERTICES];
+  /**
    * `G0 = |det(v0, v1, v2)|` per fan triangle.
    */
   float g0[(SPHERA_MAX_POLYGON_VERTICES - 2)];
@@ -220,7 +228,9 @@ typedef struct SpheraSolidAnglePolygon {
   /**
    * 1 when the polygon is so narrow that the slack of `pdf` may be below the rounding
    * of a sampled direction (an edge longer than 5 Ω), so that `sample` tests its
-   * direction; 0 otherwise.
+   * direction; 2 when it is narrower still (an edge longer than 50 Ω), so that the
+   * inside test also takes the exact edge planes and a compensated dot product; 0
+   * otherwise.
    */
   uint32_t checks_samples;
 } SpheraSolidAnglePolygon;
@@ -272,7 +282,9 @@ typedef struct SpheraTurkPolygon {
    * 1 when `sample` tests its directions against the edge planes (polygons whose
    * extent from the first vertex is below half its distance: there the slack of
    * `pdf` is a fraction of the polygon's size, below the rounding of a sample next to
-   * an edge), else 0 (larger polygons, where the slack of 16 ulps covers it).
+   * an edge), 2 when the extent is also below 1/128 of the distance (there the inside
+   * test takes the exact edge planes and a compensated dot product as well), else 0
+   * (larger polygons, where the slack of 16 ulps covers it).
    */
   uint32_t checks_samples;
 } SpheraTurkPolygon;

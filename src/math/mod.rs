@@ -12,7 +12,8 @@ pub use atan::{atan_fast_nonneg, atan2_upper_half_plane};
 pub use bits::{copy_sign, is_sign_negative, sign_mask, with_sign_of_product};
 pub use frame::{Frame, orthonormal_basis};
 pub use products::{
-    HAS_HARDWARE_FMA, cross_precise, determinant_is_exactly_zero, difference_of_products,
-    difference_of_products_unless_cancelling, dot_precise, fma, two_product, two_sum,
+    HAS_HARDWARE_FMA, cross_precise, cross_with_residual, determinant_is_exactly_zero,
+    difference_of_products, difference_of_products_unless_cancelling, dot_precise, fma,
+    two_product, two_sum,
 };
 pub(crate) use unit::{normalize_by_largest, unit};

@@ -129,6 +129,25 @@ pub fn cross_precise(a: Vec3, b: Vec3) -> Vec3 {
     )
 }
 
+/// The cross product `a × b` as an unevaluated sum `hi + lo` of two vectors, accurate to
+/// about ε² relative to `|a| |b|` per component: each component's two products split
+/// exactly by [`two_product`], their difference by [`two_sum`], and the rounding errors
+/// gathered into `lo`. For planes that must not carry the ε rotation of a rounded normal
+/// (the edges of polygons a few hundred ulps across).
+#[inline(always)]
+pub fn cross_with_residual(a: Vec3, b: Vec3) -> (Vec3, Vec3) {
+    let component = |p: f32, q: f32, r: f32, s: f32| {
+        let (p1, e1) = two_product(p, q);
+        let (p2, e2) = two_product(r, s);
+        let (difference, error) = two_sum(p1, -p2);
+        two_sum(difference, error + (e1 - e2))
+    };
+    let (x, ex) = component(a.y, b.z, a.z, b.y);
+    let (y, ey) = component(a.z, b.x, a.x, b.z);
+    let (z, ez) = component(a.x, b.y, a.y, b.x);
+    (Vec3::new(x, y, z), Vec3::new(ex, ey, ez))
+}
+
 /// A compensated dot product (Ogita, Rump and Oishi's Dot2): as accurate as if it was
 /// computed in twice the working precision and then rounded.
 #[inline(always)]

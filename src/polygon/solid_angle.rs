@@ -44,6 +44,12 @@ pub struct SolidAnglePolygon {
     /// Edge plane normals `± p_i × p_(i+1)` (not normalised), oriented so that directions
     /// inside the polygon have non-negative dot products with all of them.
     edge_normals: [Vec3; MAX_POLYGON_VERTICES],
+    /// For the narrowest polygons (`checks_samples == 2`), the rounding errors of `edge_normals`: the
+    /// exact plane of edge `i` is `edge_normals[i] + edge_residuals[i]` to about ε², so
+    /// that the inside test carries no rotation of ε per edge (which moved the boundary
+    /// of polygons of 1e-9 sr by a few percent of an ulp, systematically: `∫ pdf dω`
+    /// was 1.00043 at 8e-10 sr). Zero otherwise.
+    edge_residuals: [Vec3; MAX_POLYGON_VERTICES],
     /// `G0 = |det(v0, v1, v2)|` per fan triangle.
     pub(crate) g0: [f32; MAX_TRIANGLES],
     /// `G1 + G2 = 1 + v0·v1 + v0·v2 + v1·v2` per fan triangle (see [`denominator`]).
@@ -71,7 +77,9 @@ pub struct SolidAnglePolygon {
     careful_paths: u32,
     /// 1 when the polygon is so narrow that the slack of `pdf` may be below the rounding
     /// of a sampled direction (an edge longer than 5 Ω), so that `sample` tests its
-    /// direction; 0 otherwise.
+    /// direction; 2 when it is narrower still (an edge longer than 50 Ω), so that the
+    /// inside test also takes the exact edge planes and a compensated dot product; 0
+    /// otherwise.
     checks_samples: u32,
 }
 
@@ -94,6 +102,13 @@ const SLACK_PER_WIDTH: f32 = 2e-5;
 /// tests assert below 5e-7 rad, and `every_sample_has_its_pdf_at_any_size` checks the
 /// edges of `u`), and skip the test.
 const SAMPLE_CHECK_WIDTH: f32 = 0.2;
+
+/// The inside test takes the exact edge planes and a compensated dot product
+/// (`checks_samples == 2`) when some edge is longer than `Ω / PRECISE_PLANE_WIDTH`: the
+/// width may then be below 2.5e-3 rad, where the plain test's systematic shift of up to
+/// an ulp per edge (6e-8 rad) would be 2.4e-5 of the polygon and more (`∫ pdf dω`
+/// 1.00043 at 8e-10 sr).
+const PRECISE_PLANE_WIDTH: f32 = 0.02;
 
 /// [`SolidAnglePolygon::careful_paths`]: a fan triangle had a pair of vertices more than
 /// 90° apart, whose sum the compensated form computed.
@@ -220,6 +235,7 @@ impl SolidAnglePolygon {
     pub const EMPTY: Self = Self {
         vertices: [Vec3::Z; MAX_POLYGON_VERTICES],
         edge_normals: [Vec3::ZERO; MAX_POLYGON_VERTICES],
+        edge_residuals: [Vec3::ZERO; MAX_POLYGON_VERTICES],
         g0: [0.0; MAX_TRIANGLES],
         g1_plus_g2: [0.0; MAX_TRIANGLES],
         g2: [0.0; MAX_TRIANGLES],
@@ -375,10 +391,12 @@ impl SolidAnglePolygon {
         // winds clockwise as seen from the shading point.
         let orientation = if signed_sum > 0.0 { -1.0 } else { 1.0 };
         let mut maybe_short = false;
-        let mut narrow = false;
+        let (mut narrow, mut narrowest) = (false, false);
         // Ω² · SAMPLE_CHECK_WIDTH⁻²: an edge with sin²ℓ above it is longer than
         // Ω / SAMPLE_CHECK_WIDTH.
         let long_edge_sine2 = total * total * (1.0 / (SAMPLE_CHECK_WIDTH * SAMPLE_CHECK_WIDTH));
+        let longest_edge_sine2 =
+            total * total * (1.0 / (PRECISE_PLANE_WIDTH * PRECISE_PLANE_WIDTH));
         // Edge i runs from vertex i to vertex i + 1; the slot after the last vertex holds
         // the first, so the loop needs no wrap-around test.
         positions[count] = positions[0];
@@ -397,9 +415,21 @@ impl SolidAnglePolygon {
             // no short edge and skips it.
             maybe_short |= !(normal2 > super::SHORT_EDGE_SINE * super::SHORT_EDGE_SINE * scale2);
             narrow |= !(normal2 <= long_edge_sine2 * scale2);
+            narrowest |= !(normal2 <= longest_edge_sine2 * scale2);
             self.edge_normals[i] = normal * orientation;
         }
-        self.checks_samples = narrow as u32;
+        self.checks_samples = narrow as u32 + narrowest as u32;
+        // The narrowest polygons: the edge planes to about ε² (see `edge_residuals`), in
+        // place of the rounded ones; the others keep zero residuals.
+        self.edge_residuals = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+        if narrowest {
+            for i in 0..count {
+                let (normal, residual) =
+                    crate::math::cross_with_residual(positions[i], positions[i + 1] - positions[i]);
+                self.edge_normals[i] = normal * orientation;
+                self.edge_residuals[i] = residual * orientation;
+            }
+        }
         // Unused slots get zero normals, which every direction passes.
         for normal in &mut self.edge_normals[count..] {
             *normal = Vec3::ZERO;
@@ -409,6 +439,12 @@ impl SolidAnglePolygon {
         // polygon from `contains` (found by fuzzing); it is left out of the test.
         if maybe_short {
             super::ignore_short_edges_in_containment(&mut self.edge_normals, &positions, count);
+            // A dropped edge passes every direction: its residual goes too.
+            for (residual, normal) in self.edge_residuals.iter_mut().zip(&self.edge_normals) {
+                if *normal == Vec3::ZERO {
+                    *residual = Vec3::ZERO;
+                }
+            }
             careful_paths |= CAREFUL_SHORT_EDGES;
         }
         self.careful_paths = careful_paths;
@@ -581,9 +617,15 @@ impl SolidAnglePolygon {
         // test with an infinite dot product and got the density 1 / Ω).
         let valid = self.vertex_count > 0 && dir.is_finite() && dir.length_squared() > 0.0;
         let mut inside = true;
-        for i in 0..MAX_POLYGON_VERTICES {
-            // Unused slots hold zero normals, whose dot product 0 passes.
-            inside &= self.edge_normals[i].dot(dir) >= 0.0;
+        if self.checks_samples >= 2 {
+            for i in 0..MAX_POLYGON_VERTICES {
+                // Unused slots hold zero normals, whose dot product 0 passes.
+                inside &= self.edge_side(i, dir) >= 0.0;
+            }
+        } else {
+            for i in 0..MAX_POLYGON_VERTICES {
+                inside &= self.edge_normals[i].dot(dir) >= 0.0;
+            }
         }
         // Directions inside (every MIS query of a direction in the light) pass the plain
         // test; only those outside or within rounding of the boundary pay for the slack.
@@ -613,11 +655,26 @@ impl SolidAnglePolygon {
     pub fn contains_within(&self, dir: Vec3, tolerance: f32) -> bool {
         let length = dir.length();
         let mut inside = self.vertex_count > 0 && dir.is_finite() && length > 0.0;
-        for n in &self.edge_normals {
+        for i in 0..MAX_POLYGON_VERTICES {
             // Unused slots hold zero normals, whose dot product 0 passes.
-            inside &= n.dot(dir) >= -tolerance * n.length() * length;
+            let n = self.edge_normals[i];
+            inside &= self.edge_side(i, dir) >= -tolerance * n.length() * length;
         }
         inside
+    }
+
+    /// `dir` against the plane of edge `i`: `(n_i + r_i) · dir`, positive inside. For the
+    /// narrowest polygons (`checks_samples == 2`) with the residual `r_i` and a compensated dot
+    /// product: near the boundary the three terms of `n_i · dir` nearly cancel, and their
+    /// rounding, correlated along an edge, moved the boundary of a polygon of 8e-10 sr
+    /// systematically (`∫ pdf dω` 0.99966 with exact planes and a plain dot product).
+    #[inline(always)]
+    fn edge_side(&self, i: usize, dir: Vec3) -> f32 {
+        if self.checks_samples >= 2 {
+            crate::math::dot_precise(self.edge_normals[i], dir) + self.edge_residuals[i].dot(dir)
+        } else {
+            self.edge_normals[i].dot(dir)
+        }
     }
 
     /// The random numbers `u` for which [`sample`](Self::sample) returns `dir` (up to
