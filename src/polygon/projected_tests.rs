@@ -907,16 +907,7 @@ fn small_polygons_take_the_small_polygon_path_and_ordinary_ones_the_sectors() {
 /// sample with `pdf(dir) == pdf`, at random `u` and at its edges.
 #[test]
 fn the_small_polygon_pdf_integrates_to_one_and_every_sample_has_its_pdf() {
-    let quad = |size: f32| {
-        let c = Vec3::new(0.2, -0.1, 1.0);
-        let (t, b) = (Vec3::new(1.0, 0.0, -0.2), Vec3::new(0.0, 1.0, 0.1));
-        [
-            c + size * (-1.0 * t - 0.8 * b),
-            c + size * (0.9 * t - 1.0 * b),
-            c + size * (1.0 * t + 0.7 * b),
-            c + size * (-0.8 * t + 1.0 * b),
-        ]
-    };
+    let quad = |size: f32| scaled_quad(size, 0.1);
     let mut rng = Rng::new(62);
     for (name, size, tolerance) in [
         ("2e-5 sr", 2e-3f32, 1e-4),

@@ -775,25 +775,15 @@ fn tiny_polygons_keep_their_pdf_inside() {
 /// others do not; those of 1e-4 sr and below also the exact planes.
 #[test]
 fn every_sample_has_its_pdf_at_any_size() {
-    let quad = |size: f32, tilt: f32| {
-        let c = Vec3::new(0.2, -0.1, 1.0);
-        let (t, b) = (Vec3::new(1.0, 0.0, -0.2), Vec3::new(0.0, 1.0, tilt));
-        [
-            c + size * (-1.0 * t - 0.8 * b),
-            c + size * (0.9 * t - 1.0 * b),
-            c + size * (1.0 * t + 0.7 * b),
-            c + size * (-0.8 * t + 1.0 * b),
-        ]
-    };
     let mut rng = Rng::new(61);
     for (name, v, tolerance, checks) in [
-        ("1.4 sr", quad(3.0, 0.1), 1e-4, false),
-        ("0.3 sr", quad(0.3, 0.1), 1e-4, false),
-        ("sliver", quad(0.1, 0.9), 1e-4, true),
-        ("1e-2 sr", quad(5e-2, 0.1), 1e-4, true),
-        ("1e-4 sr", quad(5e-3, 0.1), 1e-4, true),
-        ("1e-6 sr", quad(5e-4, 0.1), 1e-4, true),
-        ("8e-10 sr", quad(1.6e-5, 0.1), 1e-4, true),
+        ("1.4 sr", scaled_quad(3.0, 0.1), 1e-4, false),
+        ("0.3 sr", scaled_quad(0.3, 0.1), 1e-4, false),
+        ("sliver", scaled_quad(0.1, 0.9), 1e-4, true),
+        ("1e-2 sr", scaled_quad(5e-2, 0.1), 1e-4, true),
+        ("1e-4 sr", scaled_quad(5e-3, 0.1), 1e-4, true),
+        ("1e-6 sr", scaled_quad(5e-4, 0.1), 1e-4, true),
+        ("8e-10 sr", scaled_quad(1.6e-5, 0.1), 1e-4, true),
     ] {
         let p = SolidAnglePolygon::new(&v).unwrap();
         assert_eq!(p.checks_samples != 0, checks, "{name}");

@@ -598,17 +598,6 @@ mod pdf_support_tests {
     use super::*;
     use crate::testing::*;
 
-    fn scaled_quad(size: f32, tilt: f32) -> [Vec3; 4] {
-        let c = Vec3::new(0.2, -0.1, 1.0);
-        let (t, b) = (Vec3::new(1.0, 0.0, -0.2), Vec3::new(0.0, 1.0, tilt));
-        [
-            c + size * (-1.0 * t - 0.8 * b),
-            c + size * (0.9 * t - 1.0 * b),
-            c + size * (1.0 * t + 0.7 * b),
-            c + size * (-0.8 * t + 1.0 * b),
-        ]
-    }
-
     /// Issue 16 (1): `∫ pdf dω` by quadrature (`integrate_pdf_near_polygon`) within 1e-4 of
     /// 1 for an ordinary quad, a 1e-6 sr quad and a sliver seen at a grazing angle (the
     /// slack of 16 ulps gave 1.011 at 1e-6 sr), also at 8e-10 sr (measured 3.7e-5; 4.3e-4
