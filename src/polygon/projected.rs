@@ -361,6 +361,7 @@ impl ProjectedSolidAnglePolygon {
             sectors = count - 1;
             let mut inner = first_inner;
             let mut outer = 0usize;
+            let mut all_empty_before = true;
             for j in 0..sectors {
                 let (a, b) = (order[j] as usize, order[j + 1] as usize);
                 let e = vertex_edge[a];
@@ -394,11 +395,23 @@ impl ProjectedSolidAnglePolygon {
                 // 17, 2): the shape of the region there is modelled in the initial guess,
                 // but a steep edge beside it (|u| of 28) left up to 2.3e-4 rad after one
                 // iteration 0.05 rad above the horizon, 3e-6 after two.
-                sector.touching_ends = (sector.end_shape(false) < 1.0) as u32
-                    | (((sector.end_shape(true) < 1.0) as u32) << 1);
-                let touching = sector.touching_ends != 0;
+                // Only the polygon's azimuthal ends have a vertex on both ellipses: the
+                // first sector's s0 and the last one's s1, past the empty sectors of a
+                // vertex that clipping repeated (det 0). Elsewhere the region has a width
+                // at the sector's ends, and the test (two divisions, an arc tangent at a
+                // meeting point) is not made; the last end is tested after the loop.
+                let touching = all_empty_before && sector.end_shape(false) < 1.0;
+                all_empty_before &= sector.det == 0.0;
+                sector.touching_ends = touching as u32;
                 sector.extra_iterations = (outer_area > 200.0 * area || touching) as u32;
                 polygon.sector_area[j] = area;
+            }
+            if let Some(last) = (0..sectors).rev().find(|&j| polygon.sectors[j].det != 0.0) {
+                let sector = &mut polygon.sectors[last];
+                if sector.end_shape(true) < 1.0 {
+                    sector.touching_ends |= 2;
+                    sector.extra_iterations = 1;
+                }
             }
         } else {
             // Central case: sector j reaches from the origin to the ellipse of edge j,
