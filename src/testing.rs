@@ -910,6 +910,20 @@ pub fn run_polygon_sampler(
     }
 }
 
+/// The quad of the pdf-support tests (issue 16, 1): centred on (0.2, -0.1, 1), of
+/// half-size `size`, its plane tilted by `tilt` (0.1: nearly facing the shading point,
+/// 0.9: a sliver seen at a grazing angle).
+pub fn scaled_quad(size: f32, tilt: f32) -> [Vec3; 4] {
+    let c = Vec3::new(0.2, -0.1, 1.0);
+    let (t, b) = (Vec3::new(1.0, 0.0, -0.2), Vec3::new(0.0, 1.0, tilt));
+    [
+        c + size * (-1.0 * t - 0.8 * b),
+        c + size * (0.9 * t - 1.0 * b),
+        c + size * (1.0 * t + 0.7 * b),
+        c + size * (-0.8 * t + 1.0 * b),
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -955,18 +969,4 @@ mod tests {
         assert!(cells.locate([3.0, 0.0, 1.0]).is_none());
         assert!(cells.locate([0.0, 0.0, -1.0]).is_none());
     }
-}
-
-/// The quad of the pdf-support tests (issue 16, 1): centred on (0.2, -0.1, 1), of
-/// half-size `size`, its plane tilted by `tilt` (0.1: nearly facing the shading point,
-/// 0.9: a sliver seen at a grazing angle).
-pub fn scaled_quad(size: f32, tilt: f32) -> [Vec3; 4] {
-    let c = Vec3::new(0.2, -0.1, 1.0);
-    let (t, b) = (Vec3::new(1.0, 0.0, -0.2), Vec3::new(0.0, 1.0, tilt));
-    [
-        c + size * (-1.0 * t - 0.8 * b),
-        c + size * (0.9 * t - 1.0 * b),
-        c + size * (1.0 * t + 0.7 * b),
-        c + size * (-0.8 * t + 1.0 * b),
-    ]
 }
