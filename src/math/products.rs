@@ -116,7 +116,7 @@ pub fn difference_of_products_unless_cancelling(a: f32, b: f32, c: f32, d: f32) 
 }
 
 /// 2⁻¹⁰⁰: below it [`difference_of_products_unless_cancelling`] takes the careful form.
-const MIN_PLAIN_DIFFERENCE: f32 = 7.888_609_e-31;
+pub(crate) const MIN_PLAIN_DIFFERENCE: f32 = 7.888_609_e-31;
 
 /// The cross product `a × b` with every component computed by
 /// [`difference_of_products`], so nearly parallel inputs keep their relative accuracy.

@@ -28,6 +28,7 @@ use crate::math::{
 };
 use crate::sample::{ONE_MINUS_ULP, clamp_random, select_piece};
 use crate::{MAX_POLYGON_VERTICES, Vec3};
+use glam::{BVec4A, Vec4};
 
 /// The most fan triangles a polygon has.
 pub(crate) const MAX_TRIANGLES: usize = MAX_POLYGON_VERTICES - 2;
@@ -229,6 +230,292 @@ fn denominator(v0: Vec3, v1: Vec3, v2: Vec3, sums: [Vec3; 3], length_squares: [f
     }
 }
 
+/// The lanes of the per-vertex, per-triangle and per-edge work of preparation: glam's
+/// [`Vec4`], four `f32` at a time (see [`crate::math::sqrt4`]).
+const LANES: usize = 4;
+
+/// Slots of the structure-of-arrays working set: up to 8 vertices, the copy of the first
+/// that closes the polygon, and what the last lanes of the fan read (up to slot
+/// `LANES + 2 + 3 = 9`), in whole lanes.
+const SLOTS: usize = 3 * LANES;
+
+/// Four consecutive slots from `start` as lanes.
+#[inline(always)]
+fn load(values: &[f32; SLOTS], start: usize) -> Vec4 {
+    Vec4::from_slice(&values[start..start + LANES])
+}
+
+/// Writes four lanes into consecutive slots from `start`.
+#[inline(always)]
+fn store(lanes: Vec4, values: &mut [f32; SLOTS], start: usize) {
+    lanes.write_to_slice(&mut values[start..start + LANES]);
+}
+
+/// Bits `first..first + 4` of a lane mask, for the lanes below `end`: lane `j` stands
+/// for slot `first + j`.
+#[inline(always)]
+fn lane_bits(mask: BVec4A, first: usize, end: usize) -> u32 {
+    let in_range = if end > first {
+        (1u32 << (end - first).min(LANES)) - 1
+    } else {
+        0
+    };
+    (mask.bitmask() & in_range) << first
+}
+
+/// A polygon's per-vertex values in structure-of-arrays form: slot `i` holds vertex `i`,
+/// and every slot from `count` on holds vertex 0 again, so that slot `count` closes the
+/// polygon for the edges, and lanes past the polygon compute, from a valid vertex,
+/// finite values that the masks then leave out. Each value is rounded as the scalar form
+/// named beside it rounds it.
+struct VertexLanes {
+    /// The rescaled positions `p_i`.
+    position: [[f32; SLOTS]; 3],
+    /// `|p_i|²`, as `Vec3::length_squared`.
+    length_squared: [f32; SLOTS],
+    /// `|p_i|`.
+    length: [f32; SLOTS],
+    /// `p_i / |p_i|`, correctly rounded per component (divided, not multiplied by a
+    /// reciprocal).
+    unit: [[f32; SLOTS]; 3],
+    /// The y and z components of `H (p_i - p_0)`, as `Householder::reflect_yz`.
+    reflected: [[f32; SLOTS]; 2],
+    /// `|p_i - p_0|∞`, the scale of the fan determinants' rounding noise.
+    extent: [f32; SLOTS],
+}
+
+impl VertexLanes {
+    /// Every slot 0; only lanes that the masks leave out read a slot that `fill` and
+    /// `reflect_edges` do not write.
+    const ZERO: VertexLanes = VertexLanes {
+        position: [[0.0; SLOTS]; 3],
+        length_squared: [0.0; SLOTS],
+        length: [0.0; SLOTS],
+        unit: [[0.0; SLOTS]; 3],
+        reflected: [[0.0; SLOTS]; 2],
+        extent: [0.0; SLOTS],
+    };
+
+    /// Positions, lengths and unit directions of the vertices, in place (no copy of
+    /// the working set); `false` when one has length 0 (a vertex at the shading point,
+    /// or one whose squared length underflows).
+    #[inline(always)]
+    fn fill(&mut self, positions: &[Vec3; MAX_POLYGON_VERTICES + 1], count: usize) -> bool {
+        let lanes = self;
+        for slot in 0..(count + 1).next_multiple_of(LANES) {
+            let p = positions[if slot < count { slot } else { 0 }];
+            lanes.position[0][slot] = p.x;
+            lanes.position[1][slot] = p.y;
+            lanes.position[2][slot] = p.z;
+        }
+        let mut nonzero = true;
+        // The lanes of slots `0..=count` (the last closes the polygon); the slots above
+        // stay 0 and only lanes that the masks leave out read them.
+        for first in (0..=count).step_by(LANES) {
+            let [x, y, z] = [0, 1, 2].map(|c| load(&lanes.position[c], first));
+            let length_squared = (x * x + y * y) + z * z;
+            let length = crate::math::sqrt4(length_squared);
+            nonzero &= length.cmpgt(Vec4::ZERO).all();
+            store(length_squared, &mut lanes.length_squared, first);
+            store(length, &mut lanes.length, first);
+            store(x / length, &mut lanes.unit[0], first);
+            store(y / length, &mut lanes.unit[1], first);
+            store(z / length, &mut lanes.unit[2], first);
+        }
+        nonzero
+    }
+
+    /// The unit direction towards vertex `i`.
+    #[inline(always)]
+    fn unit(&self, i: usize) -> Vec3 {
+        Vec3::new(self.unit[0][i], self.unit[1][i], self.unit[2][i])
+    }
+
+    /// Fills `reflected` and `extent`: the edge vectors `p_i - p_0` (exact differences of
+    /// the inputs up to one rounding each, so that tiny and distant polygons keep their
+    /// relative precision) through the reflection.
+    #[inline(always)]
+    fn reflect_edges(&mut self, reflection: &Householder, count: usize) {
+        let [x0, y0, z0] = [0, 1, 2].map(|c| Vec4::splat(self.position[c][0]));
+        let [hx, hy, hz] = reflection.h.to_array().map(Vec4::splat);
+        for first in (0..=count).step_by(LANES) {
+            let [x, y, z] = [0, 1, 2].map(|c| load(&self.position[c], first));
+            let (ex, ey, ez) = (x - x0, y - y0, z - z0);
+            let twice_projection = Vec4::splat(2.0) * ((hx * ex + hy * ey) + hz * ez);
+            store(ey - hy * twice_projection, &mut self.reflected[0], first);
+            store(ez - hz * twice_projection, &mut self.reflected[1], first);
+            store(
+                ex.abs().max(ey.abs().max(ez.abs())),
+                &mut self.extent,
+                first,
+            );
+        }
+    }
+}
+
+/// van Oosterom and Strackee's terms of the fan triangles, four triangles at a time,
+/// rounded as the scalar forms beside them; triangle `k` is `(v_(k+1), apex, v_(k+2))`.
+#[derive(Default)]
+struct FanLanes {
+    /// `det(v0, v1, v2)` with its sign (as `Householder::determinant`, over the product
+    /// of the two vertices' lengths).
+    signed_g0: [f32; 2 * LANES],
+    /// `G1 + G2` from the shortest pair sum (as `denominator`).
+    g1_plus_g2: [f32; 2 * LANES],
+    /// `G2 = |v0 + v1|² / 2`.
+    g2: [f32; 2 * LANES],
+    /// `v0 + v2`.
+    outer_sum: [Vec3; 2 * LANES],
+    /// Bit `k`: triangle `k`'s determinant is within the rounding noise of zero, so the
+    /// exact test decides whether it is zero.
+    maybe_flat: u32,
+    /// Bit `k`: triangle `k` has two vertices more than 90° apart (`|v_i + v_j|² < 2`),
+    /// whose sum the compensated form must compute.
+    wide_pairs: u32,
+}
+
+impl FanLanes {
+    /// The four fan triangles from triangle `first` on (of `triangles`).
+    #[inline(always)]
+    fn compute(
+        &mut self,
+        lanes: &VertexLanes,
+        reflection: &Householder,
+        apex: Vec3,
+        first: usize,
+        triangles: usize,
+    ) {
+        let (b, c) = (first + 1, first + 2);
+        let [rb, rc] = [b, c].map(|i| [0, 1].map(|r| load(&lanes.reflected[r], i)));
+        // G0 = det(v0, v1, v2) = det(p_b, p_a, p_c) / (|p_a| |p_b| |p_c|).
+        let triangle = Vec4::new(0.0, 1.0, 2.0, 3.0) + Vec4::splat(first as f32);
+        let needed = triangle.cmplt(Vec4::splat(triangles as f32));
+        let det = crate::math::difference_of_products_unless_cancelling4(
+            rb[0], rc[1], rb[1], rc[0], needed,
+        ) * Vec4::splat(reflection.sigma);
+        let noise = Vec4::splat(super::FAN_DETERMINANT_NOISE)
+            * load(&lanes.extent, b)
+            * load(&lanes.extent, c);
+        self.maybe_flat |= lane_bits(det.abs().cmple(noise), first, triangles);
+        let signed_g0 = det / (load(&lanes.length, b) * load(&lanes.length, c));
+        store_lanes(signed_g0, &mut self.signed_g0, first);
+        let [bx, by, bz] = [0, 1, 2].map(|c| load(&lanes.unit[c], b));
+        let [cx, cy, cz] = [0, 1, 2].map(|k| load(&lanes.unit[k], c));
+        let [ax, ay, az] = apex.to_array().map(Vec4::splat);
+        let (s01x, s01y, s01z) = (bx + ax, by + ay, bz + az);
+        let (s02x, s02y, s02z) = (bx + cx, by + cy, bz + cz);
+        let (s12x, s12y, s12z) = (ax + cx, ay + cy, az + cz);
+        let l01 = (s01x * s01x + s01y * s01y) + s01z * s01z;
+        let l02 = (s02x * s02x + s02y * s02y) + s02z * s02z;
+        let l12 = (s12x * s12x + s12y * s12y) + s12z * s12z;
+        self.wide_pairs |= lane_bits(
+            l01.min(l02).min(l12).cmplt(Vec4::splat(2.0)),
+            first,
+            triangles,
+        );
+        // `denominator`, its three candidates and the choice of the shortest pair sum.
+        let half = Vec4::splat(0.5);
+        let d02 = half * l02 + ((ax * s02x + ay * s02y) + az * s02z);
+        let d12 = half * l12 + ((bx * s12x + by * s12y) + bz * s12z);
+        let d01 = half * l01 + ((cx * s01x + cy * s01y) + cz * s01z);
+        let g1_plus_g2 = Vec4::select(
+            l02.cmple(l01) & l02.cmple(l12),
+            d02,
+            Vec4::select(l12.cmple(l01), d12, d01),
+        );
+        store_lanes(g1_plus_g2, &mut self.g1_plus_g2, first);
+        store_lanes(half * l01, &mut self.g2, first);
+        let (s02x, s02y, s02z) = (s02x.to_array(), s02y.to_array(), s02z.to_array());
+        for j in 0..LANES {
+            self.outer_sum[first + j] = Vec3::new(s02x[j], s02y[j], s02z[j]);
+        }
+    }
+}
+
+/// Writes four lanes into `values[first..first + 4]`.
+#[inline(always)]
+fn store_lanes(lanes: Vec4, values: &mut [f32; 2 * LANES], first: usize) {
+    lanes.write_to_slice(&mut values[first..first + LANES]);
+}
+
+/// [`EdgeLanes::compute`]: an edge short enough for the short-edge rule to look at it.
+const EDGE_MAYBE_SHORT: u32 = 1;
+/// An edge longer than `Ω / SAMPLE_CHECK_WIDTH`.
+const EDGE_NARROW: u32 = 2;
+/// An edge longer than `Ω / PRECISE_PLANE_WIDTH`.
+const EDGE_NARROWEST: u32 = 4;
+
+/// The edge planes four edges at a time, with the tests on their lengths.
+struct EdgeLanes {
+    /// `sin²` of an edge `Ω / SAMPLE_CHECK_WIDTH` long (as `Ω²` over the square).
+    long_edge_sine2: f32,
+    /// `sin²` of an edge `Ω / PRECISE_PLANE_WIDTH` long.
+    longest_edge_sine2: f32,
+    /// The polygon's winding, which orients the normals inwards.
+    orientation: f32,
+    count: usize,
+}
+
+impl EdgeLanes {
+    /// The oriented normals of edges `first..first + 4` into `normals` (lanes past the
+    /// polygon get zero vectors from the repeated first vertex), and the flags of the
+    /// lengths of those that exist.
+    #[inline(always)]
+    fn compute(
+        &self,
+        lanes: &VertexLanes,
+        first: usize,
+        normals: &mut [Vec3; MAX_POLYGON_VERTICES],
+    ) -> u32 {
+        let [px, py, pz] = [0, 1, 2].map(|c| load(&lanes.position[c], first));
+        let [qx, qy, qz] = [0, 1, 2].map(|c| load(&lanes.position[c], first + 1));
+        // p_i × p_(i+1) = p_i × (p_(i+1) - p_i): the edge vector is exact up to one
+        // rounding and nearly orthogonal to p_i, so no cancellation occurs (the
+        // components in the order of `Vec3::cross`).
+        let (dx, dy, dz) = (qx - px, qy - py, qz - pz);
+        let nx = py * dz - dy * pz;
+        let ny = pz * dx - dz * px;
+        let nz = px * dy - dx * py;
+        // sin²ℓ = |n|² / (|p_i|² |p_(i+1)|²), kept as products (no division).
+        let normal2 = (nx * nx + ny * ny) + nz * nz;
+        let scale2 = load(&lanes.length_squared, first) * load(&lanes.length_squared, first + 1);
+        // The first test of `ignore_short_edges_in_containment` (sin² of the edge's
+        // length against SHORT_EDGE_SINE²), on the same values: the common polygon has
+        // no short edge and skips it.
+        let short_sine2 = Vec4::splat(super::SHORT_EDGE_SINE * super::SHORT_EDGE_SINE);
+        let mut flags = 0;
+        if lane_bits(normal2.cmple(short_sine2 * scale2), first, self.count) != 0 {
+            flags |= EDGE_MAYBE_SHORT;
+        }
+        if lane_bits(
+            normal2.cmpgt(Vec4::splat(self.long_edge_sine2) * scale2),
+            first,
+            self.count,
+        ) != 0
+        {
+            flags |= EDGE_NARROW;
+        }
+        if lane_bits(
+            normal2.cmpgt(Vec4::splat(self.longest_edge_sine2) * scale2),
+            first,
+            self.count,
+        ) != 0
+        {
+            flags |= EDGE_NARROWEST;
+        }
+        let orientation = Vec4::splat(self.orientation);
+        let (nx, ny, nz) = (
+            (nx * orientation).to_array(),
+            (ny * orientation).to_array(),
+            (nz * orientation).to_array(),
+        );
+        for j in 0..LANES {
+            normals[first + j] = Vec3::new(nx[j], ny[j], nz[j]);
+        }
+        flags
+    }
+}
+
 impl SolidAnglePolygon {
     /// The state of a polygon that could not be prepared: samples have `pdf == 0`,
     /// `pdf()` is 0 and the solid angle is 0.
@@ -287,91 +574,83 @@ impl SolidAnglePolygon {
         if rescale(vertices, &mut positions).is_none() {
             return false;
         }
-        let mut lengths = [0.0f32; MAX_POLYGON_VERTICES];
-        let mut length_squares = [0.0f32; MAX_POLYGON_VERTICES + 1];
+        positions[count] = positions[0];
+        // The per-vertex work four vertices at a time (see `VertexLanes`), rounded as the
+        // scalar forms round it: divided, not multiplied by a reciprocal, so that unit
+        // vectors are correctly rounded (half an ulp). With the reciprocal (one ulp) the
+        // chi-square test found a sample at u0 = 1 - 5e-7 whose direction rounded 1.5e-8
+        // to the outer side of its edge, where `pdf` was 0; and the reciprocal of a length
+        // below 2^-128 overflows.
+        let mut lanes = VertexLanes::ZERO;
+        if !lanes.fill(&positions, count) {
+            return false;
+        }
         for i in 0..count {
-            length_squares[i] = positions[i].length_squared();
-            lengths[i] = libm::sqrtf(length_squares[i]);
-            if !(lengths[i] > 0.0) {
-                return false;
-            }
-            // Divided, not multiplied by a reciprocal: correctly rounded unit vectors
-            // (half an ulp). With the reciprocal (one ulp) the chi-square test found a
-            // sample at u0 = 1 - 5e-7 whose direction rounded 1.5e-8 to the outer side of
-            // its edge, where `pdf` is 0; and the reciprocal of a length below 2^-128
-            // overflows.
-            self.vertices[i] = positions[i] / lengths[i];
+            self.vertices[i] = lanes.unit(i);
         }
         let apex = self.vertices[0];
         let reflection = Householder::new(apex);
-        // Reflected edge vectors from the apex: exact differences of the inputs up to one
-        // rounding each, so tiny and distant polygons keep their relative precision.
-        let mut reflected = [[0.0f32; 2]; MAX_POLYGON_VERTICES];
-        let mut edge_extent = [0.0f32; MAX_POLYGON_VERTICES];
-        for i in 1..count {
-            let edge = positions[i] - positions[0];
-            reflected[i] = reflection.reflect_yz(edge);
-            edge_extent[i] = edge.abs().max_element();
-        }
+        lanes.reflect_edges(&reflection, count);
         let triangles = count - 2;
-        let mut signed_sum = 0.0f32;
-        let mut total = 0.0f32;
-        let mut edge_on = true;
+        let mut fan = FanLanes::default();
+        fan.compute(&lanes, &reflection, apex, 0, triangles);
+        if triangles > LANES {
+            fan.compute(&lanes, &reflection, apex, LANES, triangles);
+        }
+        // The rare triangles that the lanes flagged, in the scalar careful forms.
         let mut careful_paths = 0;
-        self.selectable_triangles = 0;
-        let mut apex_sum = self.vertices[1] + apex;
-        let mut apex_sum_squared = apex_sum.length_squared();
         for k in 0..triangles {
             let (b, c) = (k + 1, k + 2);
-            // G0 = det(v0, v1, v2) = det(p_b, p_a, p_c) / (|p_a| |p_b| |p_c|).
-            let mut det = reflection.determinant(reflected[b], reflected[c]);
             // A triangle exactly in a plane through the shading point has G0 = 0, which
             // the reflection's rounding would turn into noise (and a polygon in such a
             // plane into a tiny light with a huge pdf): below the noise bound, the exact
             // test decides.
-            if det.abs() <= super::FAN_DETERMINANT_NOISE * edge_extent[b] * edge_extent[c]
+            if fan.maybe_flat & (1 << k) != 0
                 && determinant_is_exactly_zero(positions[0], positions[b], positions[c])
             {
-                det = 0.0;
+                fan.signed_g0[k] = 0.0;
             }
-            let signed_g0 = det / (lengths[b] * lengths[c]);
-            signed_sum += signed_g0;
-            let (v0, v1, v2) = (self.vertices[b], apex, self.vertices[c]);
-            // The pair sums `v_i + v_j`. Fast path: the plain sums of the rounded unit
-            // vectors. Each unit vector is off by at most half an ulp of 1 per component
-            // (correctly rounded division), so a sum of length `|s|` carries a relative
-            // error of at most about `ε / |s| + ε/2`: for `|s|² >= 2` (the vertices at
-            // most 90° apart) at most 1.2ε, against the compensated sums' ε/2. The
-            // bound was chosen by measurement: with `|s|² >= 1` (120°) the largest
+            // The pair sums `v_i + v_j`. Fast path (the lanes): the plain sums of the
+            // rounded unit vectors. Each unit vector is off by at most half an ulp of 1 per
+            // component (correctly rounded division), so a sum of length `|s|` carries a
+            // relative error of at most about `ε / |s| + ε/2`: for `|s|² >= 2` (the
+            // vertices at most 90° apart) at most 1.2ε, against the compensated sums' ε/2.
+            // The bound was chosen by measurement: with `|s|² >= 1` (120°) the largest
             // error of Ω at 1 sr in the report's accuracy table grew from 6.4e-7 to
             // 7.8e-7; with 90° every row stays as README.md states it but for 1e-8 sr
             // (max 5.2e-7 against 4.9e-7). Only for pairs farther apart (up to nearly
             // antipodal, where the plain sum loses its relative precision: a shading
             // point close to a large polygon) do the compensated sums run.
-            // `apex + v_c` is the next triangle's `v_b + apex`: computed once.
-            let (mut s01, mut s02, mut s12) = (apex_sum, v0 + v2, v1 + v2);
-            let (mut l01, mut l02, mut l12) =
-                (apex_sum_squared, s02.length_squared(), s12.length_squared());
-            (apex_sum, apex_sum_squared) = (s12, l12);
-            if !(l01.min(l02).min(l12) >= 2.0) {
+            if fan.wide_pairs & (1 << k) != 0 {
                 let unit_sum = |i: usize, j: usize| {
-                    unit_vector_sum(positions[i], positions[j], lengths[i], lengths[j])
+                    unit_vector_sum(positions[i], positions[j], lanes.length[i], lanes.length[j])
                 };
-                (s01, s02, s12) = (unit_sum(b, 0), unit_sum(b, c), unit_sum(0, c));
-                (l01, l02, l12) = (
+                let (s01, s02, s12) = (unit_sum(b, 0), unit_sum(b, c), unit_sum(0, c));
+                let (l01, l02, l12) = (
                     s01.length_squared(),
                     s02.length_squared(),
                     s12.length_squared(),
                 );
+                let (v0, v1, v2) = (self.vertices[b], apex, self.vertices[c]);
+                fan.g1_plus_g2[k] = denominator(v0, v1, v2, [s01, s02, s12], [l01, l02, l12]);
+                fan.g2[k] = 0.5 * l01;
+                fan.outer_sum[k] = s02;
                 careful_paths |= CAREFUL_PAIR_SUMS;
             }
-            let g0 = signed_g0.abs();
+        }
+        let mut signed_sum = 0.0f32;
+        let mut total = 0.0f32;
+        let mut edge_on = true;
+        self.selectable_triangles = 0;
+        for k in 0..triangles {
+            let g0 = fan.signed_g0[k].abs();
+            signed_sum += fan.signed_g0[k];
             edge_on &= g0 == 0.0;
-            let g1_plus_g2 = denominator(v0, v1, v2, [s01, s02, s12], [l01, l02, l12]);
+            let g1_plus_g2 = fan.g1_plus_g2[k];
             self.g0[k] = g0;
             self.g1_plus_g2[k] = g1_plus_g2;
-            self.g2[k] = 0.5 * l01;
-            self.outer_sum[k] = s02;
+            self.g2[k] = fan.g2[k];
+            self.outer_sum[k] = fan.outer_sum[k];
             self.start[k] = total;
             // Algorithm 5: A = 2 atan2(G0, G2 + G1), with G0 >= 0.
             let triangle_solid_angle = 2.0 * atan2_upper_half_plane(g0, g1_plus_g2);
@@ -390,34 +669,22 @@ impl SolidAnglePolygon {
         // det(p_b, p_a, p_c) = -det(p_a, p_b, p_c): a positive sum means the polygon
         // winds clockwise as seen from the shading point.
         let orientation = if signed_sum > 0.0 { -1.0 } else { 1.0 };
-        let mut maybe_short = false;
-        let (mut narrow, mut narrowest) = (false, false);
         // Ω² · SAMPLE_CHECK_WIDTH⁻²: an edge with sin²ℓ above it is longer than
         // Ω / SAMPLE_CHECK_WIDTH.
-        let long_edge_sine2 = total * total * (1.0 / (SAMPLE_CHECK_WIDTH * SAMPLE_CHECK_WIDTH));
-        let longest_edge_sine2 =
-            total * total * (1.0 / (PRECISE_PLANE_WIDTH * PRECISE_PLANE_WIDTH));
-        // Edge i runs from vertex i to vertex i + 1; the slot after the last vertex holds
-        // the first, so the loop needs no wrap-around test.
-        positions[count] = positions[0];
-        length_squares[count] = length_squares[0];
-        for i in 0..count {
-            // p_i × p_(i+1) = p_i × (p_(i+1) - p_i): the edge vector is exact up to one
-            // rounding and nearly orthogonal to p_i, so no cancellation occurs.
-            let normal = positions[i].cross(positions[i + 1] - positions[i]);
-            // sin²ℓ = |n|² / (|p_i|² |p_(i+1)|²), kept as products (no division).
-            let (normal2, scale2) = (
-                normal.length_squared(),
-                length_squares[i] * length_squares[i + 1],
-            );
-            // The first test of `ignore_short_edges_in_containment` (sin² of the edge's
-            // length against SHORT_EDGE_SINE²), on the same values: the common polygon has
-            // no short edge and skips it.
-            maybe_short |= !(normal2 > super::SHORT_EDGE_SINE * super::SHORT_EDGE_SINE * scale2);
-            narrow |= !(normal2 <= long_edge_sine2 * scale2);
-            narrowest |= !(normal2 <= longest_edge_sine2 * scale2);
-            self.edge_normals[i] = normal * orientation;
+        let edges = EdgeLanes {
+            long_edge_sine2: total * total * (1.0 / (SAMPLE_CHECK_WIDTH * SAMPLE_CHECK_WIDTH)),
+            longest_edge_sine2: total * total * (1.0 / (PRECISE_PLANE_WIDTH * PRECISE_PLANE_WIDTH)),
+            orientation,
+            count,
+        };
+        // Edge i runs from vertex i to vertex i + 1 (slot `count` holds the first vertex
+        // again, so the lanes need no wrap-around).
+        let mut flags = edges.compute(&lanes, 0, &mut self.edge_normals);
+        if count > LANES {
+            flags |= edges.compute(&lanes, LANES, &mut self.edge_normals);
         }
+        let maybe_short = flags & EDGE_MAYBE_SHORT != 0;
+        let (narrow, narrowest) = (flags & EDGE_NARROW != 0, flags & EDGE_NARROWEST != 0);
         self.checks_samples = narrow as u32 + narrowest as u32;
         // The narrowest polygons: the edge planes to about ε² (see `edge_residuals`), in
         // place of the rounded ones; the others keep zero residuals.

@@ -1,0 +1,143 @@
+//! Four `f32` lanes at a time, for the per-vertex and per-fan-triangle work of polygon
+//! preparation: glam's [`Vec4`] (SSE2 registers on x86-64, plain arrays elsewhere).
+//!
+//! Every function here rounds each lane exactly as its scalar counterpart in
+//! [`products`](super::products) does (the same operations in the same order, each
+//! correctly rounded in IEEE arithmetic whether one lane or four compute it), so a
+//! prepared value is the same bit for bit on every target and whether a lane or the
+//! scalar fallback computed it.
+
+use glam::{BVec4A, Vec4};
+
+/// `sqrt` of each lane, correctly rounded (one `sqrtps` on x86-64, where glam computes
+/// the lanes one by one).
+#[inline(always)]
+#[must_use]
+pub fn sqrt4(v: Vec4) -> Vec4 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "sse2"))]
+    {
+        use core::arch::x86_64::_mm_sqrt_ps;
+        // SAFETY: SSE2 is enabled for this compilation (a baseline of x86-64).
+        Vec4::from(unsafe { _mm_sqrt_ps(v.into()) })
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
+    {
+        Vec4::new(
+            libm::sqrtf(v.x),
+            libm::sqrtf(v.y),
+            libm::sqrtf(v.z),
+            libm::sqrtf(v.w),
+        )
+    }
+}
+
+/// Veltkamp's split of each lane, as [`products::split`](super::products).
+#[cfg(not(all(target_arch = "x86_64", target_feature = "fma")))]
+#[inline(always)]
+fn split4(a: Vec4) -> (Vec4, Vec4) {
+    let t = Vec4::splat(4097.0) * a;
+    let high = t - (t - a);
+    (high, a - high)
+}
+
+/// [`difference_of_products`](super::difference_of_products) lane by lane.
+#[inline(always)]
+#[must_use]
+pub fn difference_of_products4(a: Vec4, b: Vec4, c: Vec4, d: Vec4) -> Vec4 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "fma"))]
+    {
+        // Kahan's algorithm, as the scalar form (glam's `mul_add` is `vfmadd` here).
+        let w = c * d;
+        let error = (-c).mul_add(d, w);
+        let f = a.mul_add(b, -w);
+        f + error
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "fma")))]
+    {
+        let two_product = |x: Vec4, y: Vec4| {
+            let p = x * y;
+            let (xh, xl) = split4(x);
+            let (yh, yl) = split4(y);
+            (p, ((xh * yh - p) + xh * yl + xl * yh) + xl * yl)
+        };
+        let (p1, e1) = two_product(a, b);
+        let (p2, e2) = two_product(c, d);
+        (p1 - p2) + (e1 - e2)
+    }
+}
+
+/// [`difference_of_products_unless_cancelling`](super::difference_of_products_unless_cancelling)
+/// lane by lane: the plain difference in the lanes whose products cannot cancel, the
+/// error-free form in the others (computed for all four lanes only when one of the lanes
+/// in `needed` needs it; the other lanes may hold anything, NaN included).
+#[inline(always)]
+#[must_use]
+pub fn difference_of_products_unless_cancelling4(
+    a: Vec4,
+    b: Vec4,
+    c: Vec4,
+    d: Vec4,
+    needed: BVec4A,
+) -> Vec4 {
+    let (p1, p2) = (a * b, c * d);
+    let plain = p1 - p2;
+    let plain_is_accurate: BVec4A = (p1.abs() + p2.abs()).cmple(plain.abs())
+        & plain
+            .abs()
+            .cmpge(Vec4::splat(super::products::MIN_PLAIN_DIFFERENCE));
+    if (plain_is_accurate | !needed).all() {
+        plain
+    } else {
+        Vec4::select(
+            plain_is_accurate,
+            plain,
+            difference_of_products4(a, b, c, d),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::{difference_of_products, difference_of_products_unless_cancelling};
+    use crate::testing::Rng;
+
+    /// The lanes round as the scalar forms, bit for bit, on cancelling and
+    /// non-cancelling products, tiny and huge magnitudes.
+    #[test]
+    fn lanes_round_as_the_scalar_forms() {
+        let mut rng = Rng::new(5);
+        let mut careful_lanes = 0;
+        for _ in 0..50_000 {
+            let mut draw = || rng.signed_log_uniform(-40.0, 30.0) as f32;
+            let (a, b, c) = (
+                Vec4::new(draw(), draw(), draw(), draw()),
+                Vec4::new(draw(), draw(), draw(), draw()),
+                Vec4::new(draw(), draw(), draw(), draw()),
+            );
+            // d close to a b / c in two lanes, so that the products nearly cancel there.
+            let mut d = Vec4::new(draw(), draw(), draw(), draw());
+            d.x = a.x * b.x / c.x * (1.0 + 1e-6);
+            d.z = a.z * b.z / c.z;
+            let (plain, careful) = (
+                difference_of_products_unless_cancelling4(a, b, c, d, BVec4A::splat(true)),
+                difference_of_products4(a, b, c, d),
+            );
+            for lane in 0..4 {
+                let (a, b, c, d) = (a[lane], b[lane], c[lane], d[lane]);
+                let scalar = difference_of_products_unless_cancelling(a, b, c, d);
+                assert_eq!(plain[lane].to_bits(), scalar.to_bits(), "{a} {b} {c} {d}");
+                let scalar = difference_of_products(a, b, c, d);
+                assert_eq!(careful[lane].to_bits(), scalar.to_bits(), "{a} {b} {c} {d}");
+                careful_lanes += (plain[lane] != a * b - c * d) as u32;
+            }
+            let v = Vec4::new(draw().abs(), draw().abs(), 0.0, draw().abs());
+            let roots = sqrt4(v);
+            for lane in 0..4 {
+                assert_eq!(roots[lane].to_bits(), libm::sqrtf(v[lane]).to_bits());
+            }
+        }
+        // The careful form ran in some lanes (the test covers both).
+        assert!(careful_lanes > 1000, "{careful_lanes}");
+    }
+}
