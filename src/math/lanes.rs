@@ -9,6 +9,16 @@
 
 use glam::{BVec4A, Vec4};
 
+/// The number of lanes: four `f32` in one SSE register.
+pub(crate) const LANES: usize = 4;
+
+/// The first slot of each lane group covering slots `0..end`: `0, 4, 8, …` (as
+/// `(0..end).step_by(LANES)`, whose general stride costs a division and more per loop).
+#[inline(always)]
+pub(crate) fn lane_starts(end: usize) -> impl Iterator<Item = usize> {
+    (0..end.div_ceil(LANES)).map(|group| group * LANES)
+}
+
 /// `sqrt` of each lane, correctly rounded (one `sqrtps` on x86-64, where glam computes
 /// the lanes one by one).
 #[inline(always)]
@@ -64,6 +74,18 @@ pub fn difference_of_products4(a: Vec4, b: Vec4, c: Vec4, d: Vec4) -> Vec4 {
         let (p2, e2) = two_product(c, d);
         (p1 - p2) + (e1 - e2)
     }
+}
+
+/// [`cross_precise`](super::cross_precise) of four pairs of vectors, given as their x,
+/// y and z lanes.
+#[inline(always)]
+#[must_use]
+pub fn cross_precise4(a: [Vec4; 3], b: [Vec4; 3]) -> [Vec4; 3] {
+    [
+        difference_of_products4(a[1], b[2], a[2], b[1]),
+        difference_of_products4(a[2], b[0], a[0], b[2]),
+        difference_of_products4(a[0], b[1], a[1], b[0]),
+    ]
 }
 
 /// [`difference_of_products_unless_cancelling`](super::difference_of_products_unless_cancelling)
@@ -130,6 +152,16 @@ mod tests {
                 let scalar = difference_of_products(a, b, c, d);
                 assert_eq!(careful[lane].to_bits(), scalar.to_bits(), "{a} {b} {c} {d}");
                 careful_lanes += (plain[lane] != a * b - c * d) as u32;
+            }
+            let crosses = cross_precise4([a, b, c], [d, b, a]);
+            for lane in 0..4 {
+                let scalar = crate::math::cross_precise(
+                    glam::Vec3::new(a[lane], b[lane], c[lane]),
+                    glam::Vec3::new(d[lane], b[lane], a[lane]),
+                );
+                for (component, lanes) in crosses.iter().enumerate() {
+                    assert_eq!(lanes[lane].to_bits(), scalar[component].to_bits());
+                }
             }
             let v = Vec4::new(draw().abs(), draw().abs(), 0.0, draw().abs());
             let roots = sqrt4(v);

@@ -12,7 +12,10 @@ mod unit;
 pub use atan::{atan_fast_nonneg, atan2_upper_half_plane};
 pub use bits::{copy_sign, is_sign_negative, sign_mask, with_sign_of_product};
 pub use frame::{Frame, orthonormal_basis};
-pub(crate) use lanes::{difference_of_products_unless_cancelling4, sqrt4};
+pub(crate) use lanes::{
+    LANES, cross_precise4, difference_of_products_unless_cancelling4, difference_of_products4,
+    lane_starts, sqrt4,
+};
 pub use products::{
     HAS_HARDWARE_FMA, cross_precise, cross_with_residual, determinant_is_exactly_zero,
     difference_of_products, difference_of_products_unless_cancelling, dot_precise, fma,

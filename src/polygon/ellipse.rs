@@ -17,8 +17,8 @@
 //! as outer, and every area within it is zero (rule 2).
 
 use crate::Vec3;
+use crate::math::is_sign_negative;
 use crate::math::{atan2_upper_half_plane, difference_of_products};
-use crate::math::{cross_precise, is_sign_negative};
 
 /// A vector in the plane of the unit disk.
 pub(crate) type Vec2 = [f32; 2];
@@ -103,11 +103,20 @@ pub(crate) fn quadratic_form(u: Vec2, a: Vec2, b: Vec2) -> f32 {
 /// the sign bit of `u_x = |n_x| / n_z` is that of `n_z`: multiplying by the sign of `n_x`
 /// makes `u_x`'s sign bit `sign(n_z)`, also when `n_x` is a zero of either sign. `n_z = ±0`
 /// gives [`DEGENERATE`].
+#[cfg(test)]
 #[inline(always)]
 pub(crate) fn ellipse_from_edge(p: Vec3, q: Vec3) -> (Vec2, Vec3) {
-    let n = cross_precise(p, q);
+    let n = crate::math::cross_precise(p, q);
+    (ellipse_from_normal(n), n)
+}
+
+/// [`ellipse_from_edge`] from the plane normal `n = p × q` computed by the caller (as
+/// [`cross_precise`] computes it; the projected sampler computes four edges' normals at
+/// a time).
+#[inline(always)]
+pub(crate) fn ellipse_from_normal(n: Vec3) -> Vec2 {
     if n.z == 0.0 {
-        return (DEGENERATE, n);
+        return DEGENERATE;
     }
     let inverse = 1.0 / n.z;
     let x = n.x.abs() * inverse;
@@ -115,7 +124,7 @@ pub(crate) fn ellipse_from_edge(p: Vec3, q: Vec3) -> (Vec2, Vec3) {
     // Clamp the magnitudes (NaN cannot occur: n is finite and n_z is not zero). `min`
     // keeps the sign bit of `x` by working on the magnitude and copying the sign back.
     let clamp = |c: f32| crate::math::copy_sign(c.abs().min(ELLIPSE_LIMIT), c);
-    ([clamp(x), clamp(y)], n)
+    [clamp(x), clamp(y)]
 }
 
 /// Algorithm 2 (`solve_homogeneous_quadratic`, Blinn 2006): a non-zero `w` with

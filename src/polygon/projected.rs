@@ -24,16 +24,17 @@
 
 use super::clip::{clip_to_upper_hemisphere, clipped_edge_planes};
 use super::ellipse::{
-    DEGENERATE, det2, dot2, ellipse_area, ellipse_from_edge, is_degenerate, is_inner,
+    DEGENERATE, det2, dot2, ellipse_area, ellipse_from_normal, is_degenerate, is_inner,
     unit_direction,
 };
 use super::ellipse_sector::{AreaPrecision, EllipseSector};
 use super::small_projected::{SLIVER_EXTENT2, SMALL_EXTENT, SmallPolygonCosineSampler};
 use super::solid_angle::rescale;
 use super::sorting_networks::sort_bitonic;
-use crate::math::{copy_sign, difference_of_products};
+use crate::math::{LANES, copy_sign, cross_precise4, difference_of_products4, lane_starts};
 use crate::sample::{clamp_random, select_piece};
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
+use glam::Vec4;
 
 /// Refinement iterations of the unbiased sampler. Algorithm 3 takes two from an initial
 /// guess by two quads; here the initial guess comes from four quads (about four times
@@ -89,6 +90,40 @@ impl Default for ProjectedSolidAnglePolygon {
     fn default() -> Self {
         Self::EMPTY
     }
+}
+
+/// `det(s_a, s_b)` of the unit directions of the vertex pairs `(a, b)` of the sectors,
+/// from the positions, four at a time (bit for bit as
+/// [`difference_of_products`](crate::math::difference_of_products) over the product of
+/// the lengths `|p_xy|`); 0 where a vertex lies on the z axis (`xy_length` 0, whose 0 / 0
+/// gave a NaN det; found by fuzzing).
+#[inline(always)]
+fn sector_determinants(
+    positions: &[Vec3; MAX_POLYGON_VERTICES],
+    xy_length: &[f32; MAX_POLYGON_VERTICES],
+    pairs: &[(usize, usize)],
+) -> [f32; 2 * LANES] {
+    // Columns: x_a, y_b, y_a, x_b, |p_a,xy|, |p_b,xy|; lanes past the sectors stay 0.
+    let mut columns = [[0.0f32; 2 * LANES]; 6];
+    for (j, &(a, b)) in pairs.iter().enumerate() {
+        let (pa, pb) = (positions[a], positions[b]);
+        columns[0][j] = pa.x;
+        columns[1][j] = pb.y;
+        columns[2][j] = pa.y;
+        columns[3][j] = pb.x;
+        columns[4][j] = xy_length[a];
+        columns[5][j] = xy_length[b];
+    }
+    let mut dets = [0.0f32; 2 * LANES];
+    for first in lane_starts(pairs.len()) {
+        let [xa, yb, ya, xb, la, lb] = columns
+            .each_ref()
+            .map(|c| Vec4::from_slice(&c[first..first + LANES]));
+        let det = difference_of_products4(xa, yb, ya, xb) / (la * lb);
+        Vec4::select(det.is_finite_mask(), det, Vec4::ZERO)
+            .write_to_slice(&mut dets[first..first + LANES]);
+    }
+    dets
 }
 
 impl ProjectedSolidAnglePolygon {
@@ -234,11 +269,27 @@ impl ProjectedSolidAnglePolygon {
         // (no square roots; a vertex in the opposite half-space counts as far away).
         let first = positions[0];
         let first2 = first.length_squared();
-        let mut extent2 = 0.0f32;
-        for p in &positions[1..count] {
-            let sin2 = p.cross(first).length_squared() / (p.length_squared() * first2);
-            extent2 = extent2.max(if p.dot(first) > 0.0 { sin2 } else { 1.0 });
+        // Four vertices at a time, each lane rounded as the scalar
+        // `p.cross(first).length_squared() / (p.length_squared() * first2)`; lanes past
+        // the polygon hold the first vertex again (sin² 0), and a NaN (a vertex whose
+        // squared length underflows) counts as 0, as `f32::max` leaves it out.
+        let mut others = [[0.0f32; 2 * LANES]; 3];
+        for (c, column) in others.iter_mut().enumerate() {
+            for (slot, value) in column.iter_mut().enumerate() {
+                *value = positions[if slot + 1 < count { slot + 1 } else { 0 }][c];
+            }
         }
+        let [fx, fy, fz] = first.to_array().map(Vec4::splat);
+        let mut largest = Vec4::ZERO;
+        for start in lane_starts(count - 1) {
+            let [x, y, z] = others.each_ref().map(|c| Vec4::from_slice(&c[start..start + LANES]));
+            let (cx, cy, cz) = (y * fz - fy * z, z * fx - fz * x, x * fy - fx * y);
+            let sin2 = ((cx * cx + cy * cy) + cz * cz) / (((x * x + y * y) + z * z) * first2);
+            let ahead = ((x * fx + y * fy) + z * fz).cmpgt(Vec4::ZERO);
+            let sin2 = Vec4::select(ahead, sin2, Vec4::ONE);
+            largest = largest.max(Vec4::select(sin2.is_nan_mask(), Vec4::ZERO, sin2));
+        }
+        let extent2 = largest.max_element();
         // Writes the small-polygon sampler in place; the sectors are then not read.
         let switch_to_small = |polygon: &mut Self| {
             if !polygon.small.prepare(&positions[..count]) {
@@ -267,13 +318,36 @@ impl ProjectedSolidAnglePolygon {
         let mut direction = [[0.0f32; 2]; MAX_POLYGON_VERTICES];
         let mut xy_length = [0.0f32; MAX_POLYGON_VERTICES];
         let mut maybe_short = false;
-        for j in 0..count {
-            let [pa, pb] = if was_clipped {
+        let edge_ends = |j: usize| {
+            if was_clipped {
                 planes[j]
             } else {
                 [positions[j], positions[next(j)]]
-            };
-            let (u, normal) = ellipse_from_edge(pa, pb);
+            }
+        };
+        // The edge planes n = p_a × p_b, four edges at a time, bit for bit as
+        // `cross_precise` (each component's two products split error-free: without
+        // hardware FMA the bulk of this preparation's arithmetic).
+        let mut ends = [[[0.0f32; 2 * LANES]; 3]; 2];
+        for j in 0..count {
+            for (end, p) in edge_ends(j).into_iter().enumerate() {
+                for (c, value) in p.to_array().into_iter().enumerate() {
+                    ends[end][c][j] = value;
+                }
+            }
+        }
+        let mut normals = [[0.0f32; 2 * LANES]; 3];
+        for first in lane_starts(count) {
+            let load = |values: &[f32; 2 * LANES]| Vec4::from_slice(&values[first..first + LANES]);
+            let n = cross_precise4(ends[0].each_ref().map(load), ends[1].each_ref().map(load));
+            for (c, lanes) in n.iter().enumerate() {
+                lanes.write_to_slice(&mut normals[c][first..first + LANES]);
+            }
+        }
+        for j in 0..count {
+            let [pa, pb] = edge_ends(j);
+            let normal = Vec3::new(normals[0][j], normals[1][j], normals[2][j]);
+            let u = ellipse_from_normal(normal);
             edge[j] = u;
             polygon.edge_normals[j] = normal;
             // The first test of `ignore_short_edges_in_containment` on the same values:
@@ -317,14 +391,6 @@ impl ProjectedSolidAnglePolygon {
             let t = sigma * normal_dot / (n.z * xy_length[c]);
             if t.is_finite() { t } else { 0.0 }
         };
-        // det(s_a, s_b) from the positions; 0 where a vertex lies on the z axis
-        // (xy_length 0, whose 0 / 0 gave a NaN det; found by fuzzing).
-        let sector_det = |a: usize, b: usize| {
-            let (pa, pb) = (positions[a], positions[b]);
-            let det =
-                difference_of_products(pa.x, pb.y, pa.y, pb.x) / (xy_length[a] * xy_length[b]);
-            if det.is_finite() { det } else { 0.0 }
-        };
         // Algorithm 4, first part: each vertex is associated with the ellipse that leaves
         // it counter-clockwise: its own edge if that edge is outer, else the previous edge.
         // The inner ellipse of the first sector is the inner edge that ends at the
@@ -359,6 +425,11 @@ impl ProjectedSolidAnglePolygon {
             };
             sort_bitonic(&mut order, count, less);
             sectors = count - 1;
+            let mut pairs = [(0usize, 0usize); MAX_POLYGON_VERTICES];
+            for j in 0..sectors {
+                pairs[j] = (order[j] as usize, order[j + 1] as usize);
+            }
+            let sector_det = sector_determinants(&positions, &xy_length, &pairs[..sectors]);
             let mut inner = first_inner;
             let mut outer = 0usize;
             let mut all_empty_before = true;
@@ -374,7 +445,7 @@ impl ProjectedSolidAnglePolygon {
                 polygon.sectors[j] = EllipseSector::new(
                     direction[a],
                     direction[b],
-                    sector_det(a, b),
+                    sector_det[j],
                     edge[inner],
                     [edge_dot(inner, a), edge_dot(inner, b)],
                     edge[outer],
@@ -418,6 +489,11 @@ impl ProjectedSolidAnglePolygon {
             // which passes through both of the sector's vertices.
             polygon.central = 1;
             sectors = count;
+            let mut pairs = [(0usize, 0usize); MAX_POLYGON_VERTICES];
+            for (j, pair) in pairs[..count].iter_mut().enumerate() {
+                *pair = (j, next(j));
+            }
+            let sector_det = sector_determinants(&positions, &xy_length, &pairs[..count]);
             #[allow(clippy::needless_range_loop)] // j indexes several arrays and vertices
             for j in 0..count {
                 let (a, b) = (j, next(j));
@@ -426,7 +502,7 @@ impl ProjectedSolidAnglePolygon {
                 polygon.sectors[j] = EllipseSector::new_central(
                     direction[a],
                     direction[b],
-                    sector_det(a, b),
+                    sector_det[j],
                     edge[j],
                     [edge_dot(j, a), edge_dot(j, b)],
                 );

@@ -23,8 +23,8 @@
 
 use crate::Sample;
 use crate::math::{
-    atan2_upper_half_plane, determinant_is_exactly_zero, difference_of_products_unless_cancelling,
-    dot_precise,
+    LANES, atan2_upper_half_plane, determinant_is_exactly_zero,
+    difference_of_products_unless_cancelling, dot_precise, lane_starts,
 };
 use crate::sample::{ONE_MINUS_ULP, clamp_random, select_piece};
 use crate::{MAX_POLYGON_VERTICES, Vec3};
@@ -230,10 +230,6 @@ fn denominator(v0: Vec3, v1: Vec3, v2: Vec3, sums: [Vec3; 3], length_squares: [f
     }
 }
 
-/// The lanes of the per-vertex, per-triangle and per-edge work of preparation: glam's
-/// [`Vec4`], four `f32` at a time (see [`crate::math::sqrt4`]).
-const LANES: usize = 4;
-
 /// Slots of the structure-of-arrays working set: up to 8 vertices, the copy of the first
 /// that closes the polygon, and what the last lanes of the fan read (up to slot
 /// `LANES + 2 + 3 = 9`), in whole lanes.
@@ -311,7 +307,7 @@ impl VertexLanes {
         let mut nonzero = true;
         // The lanes of slots `0..=count` (the last closes the polygon); the slots above
         // stay 0 and only lanes that the masks leave out read them.
-        for first in (0..=count).step_by(LANES) {
+        for first in lane_starts(count + 1) {
             let [x, y, z] = [0, 1, 2].map(|c| load(&lanes.position[c], first));
             let length_squared = (x * x + y * y) + z * z;
             let length = crate::math::sqrt4(length_squared);
@@ -338,7 +334,7 @@ impl VertexLanes {
     fn reflect_edges(&mut self, reflection: &Householder, count: usize) {
         let [x0, y0, z0] = [0, 1, 2].map(|c| Vec4::splat(self.position[c][0]));
         let [hx, hy, hz] = reflection.h.to_array().map(Vec4::splat);
-        for first in (0..=count).step_by(LANES) {
+        for first in lane_starts(count + 1) {
             let [x, y, z] = [0, 1, 2].map(|c| load(&self.position[c], first));
             let (ex, ey, ez) = (x - x0, y - y0, z - z0);
             let twice_projection = Vec4::splat(2.0) * ((hx * ex + hy * ey) + hz * ez);
