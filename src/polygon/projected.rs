@@ -329,6 +329,7 @@ impl ProjectedSolidAnglePolygon {
         // `cross_precise` (each component's two products split error-free: without
         // hardware FMA the bulk of this preparation's arithmetic).
         let mut ends = [[[0.0f32; 2 * LANES]; 3]; 2];
+        #[allow(clippy::needless_range_loop)] // j indexes the innermost arrays
         for j in 0..count {
             for (end, p) in edge_ends(j).into_iter().enumerate() {
                 for (c, value) in p.to_array().into_iter().enumerate() {
