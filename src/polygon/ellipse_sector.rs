@@ -510,7 +510,9 @@ impl EllipseSector {
     pub(crate) fn sample_central(&self, area: f32, xi1: f32) -> (Vec2, f32) {
         let (u, s0, t0) = (self.outer, self.s0, self.outer_dots[0]);
         let k = self.outer_root_det;
-        let (sin, cos) = libm::sincosf(2.0 * k * area);
+        // 2 k area is the sector's angle in the circle's coordinates up to `area`: in
+        // [0, π] (the sector's area is atan2_upper_half_plane / (2 k)).
+        let (sin, cos) = crate::math::sin_cos_0_to_pi(2.0 * k * area);
         let c_s0 = add2(s0, scale2(u, t0));
         let w = add2(scale2(s0, cos * k), scale2(rotate(c_s0), sin));
         let uw = cos * k * t0 + sin * det2(s0, u);

@@ -828,7 +828,7 @@ impl SolidAnglePolygon {
         // factors are known to full relative precision, it stays accurate when v0 and v2
         // are nearly antipodal (a shading point just above a large polygon), where
         // G0 and G1 + G2 are both tiny and G1 alone would be off by an ulp of 1.
-        let (sin_half, cos_half) = libm::sincosf(0.5 * local);
+        let (sin_half, cos_half) = crate::math::sin_cos_0_to_pi(0.5 * local);
         let r = v0 * (g0 * cos_half - g1_plus_g2 * sin_half) + self.outer_sum[k] * (g2 * sin_half);
         let new_vertex = r * (2.0 * v0.dot(r) / r.length_squared()) - v0;
         // Uniform in solid angle along the arc from the apex v1 to v2': the cosine to

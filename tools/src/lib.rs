@@ -12,6 +12,7 @@ pub mod abi_invariants;
 pub mod bench;
 pub mod clipping_generator;
 pub mod determinism;
+pub mod fast_function_fitter;
 pub mod header;
 pub mod ltc_fitter;
 pub mod pivot_fitter;
