@@ -118,6 +118,44 @@ pub fn difference_of_products_unless_cancelling4(
     }
 }
 
+/// `horner` of the scalar forms, lane by lane: one multiplication and one addition per
+/// coefficient, each rounded, never fused.
+#[inline(always)]
+fn horner4<const N: usize>(s: Vec4, c: &[f32; N]) -> Vec4 {
+    let mut acc = Vec4::splat(c[N - 1]);
+    let mut i = N - 1;
+    while i > 0 {
+        i -= 1;
+        acc = acc * s + Vec4::splat(c[i]);
+    }
+    acc
+}
+
+/// [`atan2_upper_half_plane`](super::atan2_upper_half_plane) lane by lane (the same
+/// four cases, chosen by masks instead of branches): `atan2(y, x)` for `y >= 0`, 0 for
+/// `0 / 0` and NaN lanes.
+#[inline(always)]
+#[must_use]
+pub fn atan2_upper_half_plane4(y: Vec4, x: Vec4) -> Vec4 {
+    use core::f32::consts::{FRAC_PI_2, PI};
+    let a = x.abs();
+    let steep = y.cmpgt(a);
+    let numerator = Vec4::select(steep, a, y);
+    let denominator = Vec4::select(steep, y, a);
+    let t = numerator / denominator;
+    let s = t * t;
+    let p = t + (t * s) * horner4(s, &super::fast_functions_generated::ATAN_UNIT);
+    let positive = x.cmpgt(Vec4::ZERO);
+    let half_pi = Vec4::splat(FRAC_PI_2);
+    let angle = Vec4::select(
+        steep,
+        Vec4::select(positive, half_pi - p, half_pi + p),
+        Vec4::select(positive, p, Vec4::splat(PI) - p),
+    );
+    // `maxps` returns its second operand where a lane is NaN: 0, as `f32::max` gives.
+    angle.max(Vec4::ZERO)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -167,6 +205,22 @@ mod tests {
             let roots = sqrt4(v);
             for lane in 0..4 {
                 assert_eq!(roots[lane].to_bits(), libm::sqrtf(v[lane]).to_bits());
+            }
+        }
+        for _ in 0..20_000 {
+            let mut draw = || rng.signed_log_uniform(-30.0, 30.0) as f32;
+            let x = Vec4::new(draw(), draw(), 0.0, draw());
+            let y = Vec4::new(draw().abs(), 0.0, 0.0, f32::NAN);
+            let angles = atan2_upper_half_plane4(y, x);
+            for lane in 0..4 {
+                let scalar = crate::math::atan2_upper_half_plane(y[lane], x[lane]);
+                assert_eq!(
+                    angles[lane].to_bits(),
+                    scalar.to_bits(),
+                    "{} {}",
+                    y[lane],
+                    x[lane]
+                );
             }
         }
         // The careful form ran in some lanes (the test covers both).

@@ -15,8 +15,8 @@ pub use atan::{atan_fast_nonneg, atan_unit, atan2_upper_half_plane};
 pub use bits::{copy_sign, is_sign_negative, sign_mask, with_sign_of_product};
 pub use frame::{Frame, orthonormal_basis};
 pub(crate) use lanes::{
-    LANES, cross_precise4, difference_of_products_unless_cancelling4, difference_of_products4,
-    lane_starts, sqrt4,
+    LANES, atan2_upper_half_plane4, cross_precise4, difference_of_products_unless_cancelling4,
+    difference_of_products4, lane_starts, sqrt4,
 };
 pub use products::{
     HAS_HARDWARE_FMA, cross_precise, cross_with_residual, determinant_is_exactly_zero,

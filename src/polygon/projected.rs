@@ -282,7 +282,9 @@ impl ProjectedSolidAnglePolygon {
         let [fx, fy, fz] = first.to_array().map(Vec4::splat);
         let mut largest = Vec4::ZERO;
         for start in lane_starts(count - 1) {
-            let [x, y, z] = others.each_ref().map(|c| Vec4::from_slice(&c[start..start + LANES]));
+            let [x, y, z] = others
+                .each_ref()
+                .map(|c| Vec4::from_slice(&c[start..start + LANES]));
             let (cx, cy, cz) = (y * fz - fy * z, z * fx - fz * x, x * fy - fx * y);
             let sin2 = ((cx * cx + cy * cy) + cz * cz) / (((x * x + y * y) + z * z) * first2);
             let ahead = ((x * fx + y * fy) + z * fz).cmpgt(Vec4::ZERO);

@@ -634,6 +634,18 @@ impl SolidAnglePolygon {
                 careful_paths |= CAREFUL_PAIR_SUMS;
             }
         }
+        // Algorithm 5: A = 2 atan2(G0, G2 + G1), with G0 >= 0, four triangles at a time
+        // (bit for bit as `triangle_solid_angle` computes it again when sampling).
+        let mut angles = [0.0f32; 2 * LANES];
+        for first in lane_starts(triangles) {
+            let lanes = |values: &[f32; 2 * LANES]| Vec4::from_slice(&values[first..first + LANES]);
+            let angle = Vec4::splat(2.0)
+                * crate::math::atan2_upper_half_plane4(
+                    lanes(&fan.signed_g0).abs(),
+                    lanes(&fan.g1_plus_g2),
+                );
+            angle.write_to_slice(&mut angles[first..first + LANES]);
+        }
         let mut signed_sum = 0.0f32;
         let mut total = 0.0f32;
         let mut edge_on = true;
@@ -648,8 +660,7 @@ impl SolidAnglePolygon {
             self.g2[k] = fan.g2[k];
             self.outer_sum[k] = fan.outer_sum[k];
             self.start[k] = total;
-            // Algorithm 5: A = 2 atan2(G0, G2 + G1), with G0 >= 0.
-            let triangle_solid_angle = 2.0 * atan2_upper_half_plane(g0, g1_plus_g2);
+            let triangle_solid_angle = angles[k];
             if triangle_solid_angle > 0.0 {
                 self.selectable_triangles = (k + 1) as u32;
             }
