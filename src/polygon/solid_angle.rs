@@ -650,6 +650,7 @@ impl SolidAnglePolygon {
         let mut total = 0.0f32;
         let mut edge_on = true;
         self.selectable_triangles = 0;
+        #[allow(clippy::needless_range_loop)] // k indexes the fan's arrays and the struct's
         for k in 0..triangles {
             let g0 = fan.signed_g0[k].abs();
             signed_sum += fan.signed_g0[k];
