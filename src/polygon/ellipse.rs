@@ -26,7 +26,7 @@ pub(crate) type Vec2 = [f32; 2];
 /// The largest magnitude kept for a component of `u`. Beyond it the ellipse is thinner
 /// than `2^-40` and the areas it bounds are below every rounding error of the areas that
 /// matter, while `1 + |u|²` and the products of the sampling step stay far from overflow.
-const ELLIPSE_LIMIT: f32 = (1u64 << 40) as f32;
+pub(crate) const ELLIPSE_LIMIT: f32 = (1u64 << 40) as f32;
 
 /// The marker of a degenerate ellipse (a great circle through the zenith).
 pub(crate) const DEGENERATE: Vec2 = [f32::INFINITY, 0.0];

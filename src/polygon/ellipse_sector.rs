@@ -178,6 +178,7 @@ impl EllipseSector {
     /// A sector of the central case: from `s0` to `s1` (unit vectors, accurate
     /// `det = det(s0, s1)`) inside the ellipse `outer` with its accurate dot products
     /// with `s0` and `s1`. Only what the closed-form sampling needs is computed.
+    #[cfg(test)]
     pub(crate) fn new_central(
         s0: Vec2,
         s1: Vec2,
@@ -185,18 +186,42 @@ impl EllipseSector {
         outer: Vec2,
         outer_dots: [f32; 2],
     ) -> Self {
+        let inverse = 1.0 / det2(s0, s1);
+        Self::new_central_with(
+            [s0, s1],
+            det,
+            outer,
+            outer_dots,
+            libm::sqrtf(1.0 + dot2(outer, outer)),
+            dot2(s0, s1),
+            if inverse.is_finite() { inverse } else { 0.0 },
+        )
+    }
+
+    /// [`new_central`](Self::new_central) with the values that it computes given: the
+    /// outer ellipse's `√|C| = sqrt(1 + |u|²)`, `s0 · s1` and `1 / det(s0, s1)` (0 where
+    /// that is not finite), which the projected sampler computes for four sectors at a
+    /// time.
+    #[allow(clippy::too_many_arguments)] // the sector's fields, each named
+    #[inline(always)]
+    pub(crate) fn new_central_with(
+        [s0, s1]: [Vec2; 2],
+        det: f32,
+        outer: Vec2,
+        outer_dots: [f32; 2],
+        outer_root_det: f32,
+        cosine: f32,
+        inverse_basis: f32,
+    ) -> Self {
         Self {
             s0,
             s1,
             det,
             outer,
             outer_dots,
-            outer_root_det: libm::sqrtf(1.0 + dot2(outer, outer)),
-            cosine: dot2(s0, s1),
-            inverse_basis: {
-                let inverse = 1.0 / det2(s0, s1);
-                if inverse.is_finite() { inverse } else { 0.0 }
-            },
+            outer_root_det,
+            cosine,
+            inverse_basis,
             ..Self::EMPTY
         }
     }

@@ -497,19 +497,70 @@ impl ProjectedSolidAnglePolygon {
                 *pair = (j, next(j));
             }
             let sector_det = sector_determinants(&positions, &xy_length, &pairs[..count]);
+            // Per sector, four at a time and bit for bit as `EllipseSector::new_central`
+            // and `area` compute them one by one: the outer ellipse's √|C|, s0 · s1,
+            // 1 / det(s0, s1) and (exact areas) the area of Equation (1).
+            // Columns: s0, s1, u, u · s0, u · s1, det; lanes past the sectors stay 0.
+            let mut columns = [[0.0f32; 2 * LANES]; 9];
+            #[allow(clippy::needless_range_loop)] // j indexes several arrays and vertices
+            for j in 0..count {
+                let (a, b) = (j, next(j));
+                let values = [
+                    direction[a][0],
+                    direction[a][1],
+                    direction[b][0],
+                    direction[b][1],
+                    edge[j][0],
+                    edge[j][1],
+                    edge_dot(j, a),
+                    edge_dot(j, b),
+                    sector_det[j],
+                ];
+                for (column, value) in columns.iter_mut().zip(values) {
+                    column[j] = value;
+                }
+            }
+            let mut sector_values = [[0.0f32; 2 * LANES]; 4];
+            for first in lane_starts(count) {
+                let [s0x, s0y, s1x, s1y, ux, uy, t0, t1, det] = columns
+                    .each_ref()
+                    .map(|c| Vec4::from_slice(&c[first..first + LANES]));
+                let root_det = crate::math::sqrt4(Vec4::ONE + (ux * ux + uy * uy));
+                let cosine = s0x * s1x + s0y * s1y;
+                let inverse = Vec4::ONE / difference_of_products4(s0x, s1y, s0y, s1x);
+                let inverse = Vec4::select(inverse.is_finite_mask(), inverse, Vec4::ZERO);
+                let x = (cosine + t0 * t1) / root_det;
+                let area = crate::math::atan2_upper_half_plane4(det.max(Vec4::ZERO), x)
+                    * (Vec4::splat(0.5) / root_det);
+                // `is_degenerate`: not |u_x| <= the limit (NaN included).
+                let proper = ux.abs().cmple(Vec4::splat(super::ellipse::ELLIPSE_LIMIT));
+                let area = Vec4::select(proper, area, Vec4::ZERO).max(Vec4::ZERO);
+                for (values, lanes) in sector_values
+                    .iter_mut()
+                    .zip([root_det, cosine, inverse, area])
+                {
+                    lanes.write_to_slice(&mut values[first..first + LANES]);
+                }
+            }
+            let [root_det, cosine, inverse_basis, area] = sector_values;
             #[allow(clippy::needless_range_loop)] // j indexes several arrays and vertices
             for j in 0..count {
                 let (a, b) = (j, next(j));
                 // Built in place: building it on the stack and copying it whole after
                 // using it stalls store-to-load forwarding.
-                polygon.sectors[j] = EllipseSector::new_central(
-                    direction[a],
-                    direction[b],
+                polygon.sectors[j] = EllipseSector::new_central_with(
+                    [direction[a], direction[b]],
                     sector_det[j],
                     edge[j],
-                    [edge_dot(j, a), edge_dot(j, b)],
+                    [columns[6][j], columns[7][j]],
+                    root_det[j],
+                    cosine[j],
+                    inverse_basis[j],
                 );
-                polygon.sector_area[j] = polygon.sectors[j].area(true, precision).max(0.0);
+                polygon.sector_area[j] = match precision {
+                    AreaPrecision::Exact => area[j],
+                    AreaPrecision::Fast => polygon.sectors[j].area(true, precision).max(0.0),
+                };
             }
         }
         // The unused slots too (no stale or NaN word is left in a prepared value, which
