@@ -177,34 +177,13 @@ impl EllipseSector {
 
     /// A sector of the central case: from `s0` to `s1` (unit vectors, accurate
     /// `det = det(s0, s1)`) inside the ellipse `outer` with its accurate dot products
-    /// with `s0` and `s1`. Only what the closed-form sampling needs is computed.
-    #[cfg(test)]
-    pub(crate) fn new_central(
-        s0: Vec2,
-        s1: Vec2,
-        det: f32,
-        outer: Vec2,
-        outer_dots: [f32; 2],
-    ) -> Self {
-        let inverse = 1.0 / det2(s0, s1);
-        Self::new_central_with(
-            [s0, s1],
-            det,
-            outer,
-            outer_dots,
-            libm::sqrtf(1.0 + dot2(outer, outer)),
-            dot2(s0, s1),
-            if inverse.is_finite() { inverse } else { 0.0 },
-        )
-    }
-
-    /// [`new_central`](Self::new_central) with the values that it computes given: the
-    /// outer ellipse's `√|C| = sqrt(1 + |u|²)`, `s0 · s1` and `1 / det(s0, s1)` (0 where
+    /// with `s0` and `s1`. Only what the closed-form sampling needs is set, from the
+    /// values given: the outer ellipse's `√|C| = sqrt(1 + |u|²)`, `s0 · s1` and `1 / det(s0, s1)` (0 where
     /// that is not finite), which the projected sampler computes for four sectors at a
     /// time.
     #[allow(clippy::too_many_arguments)] // the sector's fields, each named
     #[inline(always)]
-    pub(crate) fn new_central_with(
+    pub(crate) fn new_central(
         [s0, s1]: [Vec2; 2],
         det: f32,
         outer: Vec2,

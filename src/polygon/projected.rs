@@ -548,7 +548,7 @@ impl ProjectedSolidAnglePolygon {
                 let (a, b) = (j, next(j));
                 // Built in place: building it on the stack and copying it whole after
                 // using it stalls store-to-load forwarding.
-                polygon.sectors[j] = EllipseSector::new_central_with(
+                polygon.sectors[j] = EllipseSector::new_central(
                     [direction[a], direction[b]],
                     sector_det[j],
                     edge[j],
