@@ -351,17 +351,13 @@ impl VertexLanes {
 
 /// van Oosterom and Strackee's terms of the fan triangles, four triangles at a time,
 /// rounded as the scalar forms beside them; triangle `k` is `(v_(k+1), apex, v_(k+2))`.
+/// `G1 + G2`, `G2` and `v0 + v2` go straight into the prepared polygon; the signed
+/// determinants and the flags of the triangles that need a careful form stay here.
 #[derive(Default)]
 struct FanLanes {
     /// `det(v0, v1, v2)` with its sign (as `Householder::determinant`, over the product
     /// of the two vertices' lengths).
     signed_g0: [f32; 2 * LANES],
-    /// `G1 + G2` from the shortest pair sum (as `denominator`).
-    g1_plus_g2: [f32; 2 * LANES],
-    /// `G2 = |v0 + v1|² / 2`.
-    g2: [f32; 2 * LANES],
-    /// `v0 + v2`.
-    outer_sum: [Vec3; 2 * LANES],
     /// Bit `k`: triangle `k`'s determinant is within the rounding noise of zero, so the
     /// exact test decides whether it is zero.
     maybe_flat: u32,
@@ -375,6 +371,7 @@ impl FanLanes {
     #[inline(always)]
     fn compute(
         &mut self,
+        polygon: &mut SolidAnglePolygon,
         lanes: &VertexLanes,
         reflection: &Householder,
         apex: Vec3,
@@ -419,11 +416,11 @@ impl FanLanes {
             d02,
             Vec4::select(l12.cmple(l01), d12, d01),
         );
-        store_lanes(g1_plus_g2, &mut self.g1_plus_g2, first);
-        store_lanes(half * l01, &mut self.g2, first);
+        store_triangle_lanes(g1_plus_g2, &mut polygon.g1_plus_g2, first);
+        store_triangle_lanes(half * l01, &mut polygon.g2, first);
         let (s02x, s02y, s02z) = (s02x.to_array(), s02y.to_array(), s02z.to_array());
-        for j in 0..LANES {
-            self.outer_sum[first + j] = Vec3::new(s02x[j], s02y[j], s02z[j]);
+        for j in 0..LANES.min(MAX_TRIANGLES - first) {
+            polygon.outer_sum[first + j] = Vec3::new(s02x[j], s02y[j], s02z[j]);
         }
     }
 }
@@ -432,6 +429,19 @@ impl FanLanes {
 #[inline(always)]
 fn store_lanes(lanes: Vec4, values: &mut [f32; 2 * LANES], first: usize) {
     lanes.write_to_slice(&mut values[first..first + LANES]);
+}
+
+/// Writes the lanes of triangles `first..first + 4` that exist into a per-triangle array
+/// of the prepared polygon (`first` is a constant where this is inlined, so the test
+/// is made at compile time).
+#[inline(always)]
+fn store_triangle_lanes(lanes: Vec4, values: &mut [f32; MAX_TRIANGLES], first: usize) {
+    if first + LANES <= MAX_TRIANGLES {
+        lanes.write_to_slice(&mut values[first..first + LANES]);
+    } else {
+        let end = MAX_TRIANGLES - first;
+        values[first..].copy_from_slice(&lanes.to_array()[..end]);
+    }
 }
 
 /// [`EdgeLanes::compute`]: an edge short enough for the short-edge rule to look at it.
@@ -589,9 +599,9 @@ impl SolidAnglePolygon {
         lanes.reflect_edges(&reflection, count);
         let triangles = count - 2;
         let mut fan = FanLanes::default();
-        fan.compute(&lanes, &reflection, apex, 0, triangles);
+        fan.compute(self, &lanes, &reflection, apex, 0, triangles);
         if triangles > LANES {
-            fan.compute(&lanes, &reflection, apex, LANES, triangles);
+            fan.compute(self, &lanes, &reflection, apex, LANES, triangles);
         }
         // The rare triangles that the lanes flagged, in the scalar careful forms.
         let mut careful_paths = 0;
@@ -628,44 +638,46 @@ impl SolidAnglePolygon {
                     s12.length_squared(),
                 );
                 let (v0, v1, v2) = (self.vertices[b], apex, self.vertices[c]);
-                fan.g1_plus_g2[k] = denominator(v0, v1, v2, [s01, s02, s12], [l01, l02, l12]);
-                fan.g2[k] = 0.5 * l01;
-                fan.outer_sum[k] = s02;
+                self.g1_plus_g2[k] = denominator(v0, v1, v2, [s01, s02, s12], [l01, l02, l12]);
+                self.g2[k] = 0.5 * l01;
+                self.outer_sum[k] = s02;
                 careful_paths |= CAREFUL_PAIR_SUMS;
             }
         }
         // Algorithm 5: A = 2 atan2(G0, G2 + G1), with G0 >= 0, four triangles at a time
         // (bit for bit as `triangle_solid_angle` computes it again when sampling).
+        // Bits of the triangles with G0 = 0 and of those with a positive solid angle.
+        let (mut flat, mut positive) = (0u32, 0u32);
         let mut angles = [0.0f32; 2 * LANES];
-        for first in lane_starts(triangles) {
-            let lanes = |values: &[f32; 2 * LANES]| Vec4::from_slice(&values[first..first + LANES]);
-            let angle = Vec4::splat(2.0)
-                * crate::math::atan2_upper_half_plane4(
-                    lanes(&fan.signed_g0).abs(),
-                    lanes(&fan.g1_plus_g2),
-                );
+        let mut write_angles = |first: usize| {
+            let g0 = Vec4::from_slice(&fan.signed_g0[first..first + LANES]).abs();
+            let g1_plus_g2 = if first == 0 {
+                Vec4::from_slice(&self.g1_plus_g2[..LANES])
+            } else {
+                let mut values = [0.0; LANES];
+                values[..MAX_TRIANGLES - LANES].copy_from_slice(&self.g1_plus_g2[LANES..]);
+                Vec4::from_array(values)
+            };
+            let angle = Vec4::splat(2.0) * crate::math::atan2_upper_half_plane4(g0, g1_plus_g2);
             angle.write_to_slice(&mut angles[first..first + LANES]);
+            store_triangle_lanes(g0, &mut self.g0, first);
+            flat |= lane_bits(g0.cmpeq(Vec4::ZERO), first, triangles);
+            positive |= lane_bits(angle.cmpgt(Vec4::ZERO), first, triangles);
+        };
+        write_angles(0);
+        if triangles > LANES {
+            write_angles(LANES);
         }
+        // All determinants zero (below).
+        let edge_on = flat == (1u32 << triangles) - 1;
+        // Fan triangles up to the last one with a positive solid angle are selectable.
+        self.selectable_triangles = u32::BITS - positive.leading_zeros();
         let mut signed_sum = 0.0f32;
         let mut total = 0.0f32;
-        let mut edge_on = true;
-        self.selectable_triangles = 0;
-        #[allow(clippy::needless_range_loop)] // k indexes the fan's arrays and the struct's
         for k in 0..triangles {
-            let g0 = fan.signed_g0[k].abs();
             signed_sum += fan.signed_g0[k];
-            edge_on &= g0 == 0.0;
-            let g1_plus_g2 = fan.g1_plus_g2[k];
-            self.g0[k] = g0;
-            self.g1_plus_g2[k] = g1_plus_g2;
-            self.g2[k] = fan.g2[k];
-            self.outer_sum[k] = fan.outer_sum[k];
             self.start[k] = total;
-            let triangle_solid_angle = angles[k];
-            if triangle_solid_angle > 0.0 {
-                self.selectable_triangles = (k + 1) as u32;
-            }
-            total += triangle_solid_angle;
+            total += angles[k];
         }
         let density = 1.0 / total;
         // All determinants zero: the shading point lies in the polygon's plane. If it
