@@ -674,6 +674,7 @@ impl SolidAnglePolygon {
         self.selectable_triangles = u32::BITS - positive.leading_zeros();
         let mut signed_sum = 0.0f32;
         let mut total = 0.0f32;
+        #[allow(clippy::needless_range_loop)] // k indexes the fan's and the polygon's arrays
         for k in 0..triangles {
             signed_sum += fan.signed_g0[k];
             self.start[k] = total;
