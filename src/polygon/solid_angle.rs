@@ -138,6 +138,17 @@ impl Default for SolidAnglePolygon {
 /// (`E = 0`) the factor is `2^127`, still exact; `E` is at most 254 for finite values
 /// and the factor's exponent is kept at least 1 (a normal number).
 pub(crate) fn rescale(vertices: &[Vec3], out: &mut [Vec3]) -> Option<()> {
+    let factor = rescale_factor(vertices)?;
+    for (o, v) in out.iter_mut().zip(vertices) {
+        *o = *v * factor;
+    }
+    Some(())
+}
+
+/// The power of two by which [`rescale`] multiplies, or `None` when all coordinates are
+/// zero or any is not finite.
+#[inline(always)]
+pub(crate) fn rescale_factor(vertices: &[Vec3]) -> Option<f32> {
     // Bit trick: with the sign bit cleared, IEEE-754 bit patterns order as unsigned
     // integers in the order of the magnitudes they encode, and +inf (0x7f80_0000) and
     // every NaN (above it) have the largest patterns. One integer maximum over the
@@ -153,11 +164,9 @@ pub(crate) fn rescale(vertices: &[Vec3], out: &mut [Vec3]) -> Option<()> {
         return None;
     }
     let biased_exponent = largest_bits >> 23;
-    let factor = f32::from_bits(254u32.saturating_sub(biased_exponent).max(1) << 23);
-    for (o, v) in out.iter_mut().zip(vertices) {
-        *o = *v * factor;
-    }
-    Some(())
+    Some(f32::from_bits(
+        254u32.saturating_sub(biased_exponent).max(1) << 23,
+    ))
 }
 
 /// The Householder reflection `H = I - 2 h hᵀ` that maps the unit vector `apex` onto
@@ -292,23 +301,33 @@ impl VertexLanes {
         extent: [0.0; SLOTS],
     };
 
-    /// Positions, lengths and unit directions of the vertices, in place (no copy of
-    /// the working set); `false` when one has length 0 (a vertex at the shading point,
-    /// or one whose squared length underflows).
+    /// Positions (the input times the power of two `factor` of [`rescale`]), lengths and
+    /// unit directions of the vertices, in place (no copy of the working set); `false`
+    /// when one has length 0 (a vertex at the shading point, or one whose squared length
+    /// underflows).
     #[inline(always)]
-    fn fill(&mut self, positions: &[Vec3; MAX_POLYGON_VERTICES + 1], count: usize) -> bool {
+    fn fill(&mut self, vertices: &[Vec3], factor: f32, count: usize) -> bool {
         let lanes = self;
-        for slot in 0..(count + 1).next_multiple_of(LANES) {
-            let p = positions[if slot < count { slot } else { 0 }];
-            lanes.position[0][slot] = p.x;
-            lanes.position[1][slot] = p.y;
-            lanes.position[2][slot] = p.z;
+        let end = (count + 1).next_multiple_of(LANES);
+        for (slot, v) in vertices.iter().enumerate() {
+            lanes.position[0][slot] = v.x;
+            lanes.position[1][slot] = v.y;
+            lanes.position[2][slot] = v.z;
         }
+        for slot in count..end {
+            for c in 0..3 {
+                lanes.position[c][slot] = lanes.position[c][0];
+            }
+        }
+        let factor = Vec4::splat(factor);
         let mut nonzero = true;
         // The lanes of slots `0..=count` (the last closes the polygon); the slots above
         // stay 0 and only lanes that the masks leave out read them.
         for first in lane_starts(count + 1) {
-            let [x, y, z] = [0, 1, 2].map(|c| load(&lanes.position[c], first));
+            let [x, y, z] = [0, 1, 2].map(|c| load(&lanes.position[c], first) * factor);
+            store(x, &mut lanes.position[0], first);
+            store(y, &mut lanes.position[1], first);
+            store(z, &mut lanes.position[2], first);
             let length_squared = (x * x + y * y) + z * z;
             let length = crate::math::sqrt4(length_squared);
             nonzero &= length.cmpgt(Vec4::ZERO).all();
@@ -319,6 +338,16 @@ impl VertexLanes {
             store(z / length, &mut lanes.unit[2], first);
         }
         nonzero
+    }
+
+    /// The (rescaled) position of vertex `i`; slot `count` is vertex 0 again.
+    #[inline(always)]
+    fn position(&self, i: usize) -> Vec3 {
+        Vec3::new(
+            self.position[0][i],
+            self.position[1][i],
+            self.position[2][i],
+        )
     }
 
     /// The unit direction towards vertex `i`.
@@ -575,12 +604,9 @@ impl SolidAnglePolygon {
         if !(3..=MAX_POLYGON_VERTICES).contains(&count) {
             return false;
         }
-        // One slot more than vertices: the edge loop below reads the first vertex again.
-        let mut positions = [Vec3::ZERO; MAX_POLYGON_VERTICES + 1];
-        if rescale(vertices, &mut positions).is_none() {
+        let Some(factor) = rescale_factor(vertices) else {
             return false;
-        }
-        positions[count] = positions[0];
+        };
         // The per-vertex work four vertices at a time (see `VertexLanes`), rounded as the
         // scalar forms round it: divided, not multiplied by a reciprocal, so that unit
         // vectors are correctly rounded (half an ulp). With the reciprocal (one ulp) the
@@ -588,7 +614,7 @@ impl SolidAnglePolygon {
         // to the outer side of its edge, where `pdf` was 0; and the reciprocal of a length
         // below 2^-128 overflows.
         let mut lanes = VertexLanes::ZERO;
-        if !lanes.fill(&positions, count) {
+        if !lanes.fill(vertices, factor, count) {
             return false;
         }
         for i in 0..count {
@@ -612,7 +638,11 @@ impl SolidAnglePolygon {
             // plane into a tiny light with a huge pdf): below the noise bound, the exact
             // test decides.
             if fan.maybe_flat & (1 << k) != 0
-                && determinant_is_exactly_zero(positions[0], positions[b], positions[c])
+                && determinant_is_exactly_zero(
+                    lanes.position(0),
+                    lanes.position(b),
+                    lanes.position(c),
+                )
             {
                 fan.signed_g0[k] = 0.0;
             }
@@ -629,7 +659,8 @@ impl SolidAnglePolygon {
             // point close to a large polygon) do the compensated sums run.
             if fan.wide_pairs & (1 << k) != 0 {
                 let unit_sum = |i: usize, j: usize| {
-                    unit_vector_sum(positions[i], positions[j], lanes.length[i], lanes.length[j])
+                    let (p, q) = (lanes.position(i), lanes.position(j));
+                    unit_vector_sum(p, q, lanes.length[i], lanes.length[j])
                 };
                 let (s01, s02, s12) = (unit_sum(b, 0), unit_sum(b, c), unit_sum(0, c));
                 let (l01, l02, l12) = (
@@ -712,8 +743,10 @@ impl SolidAnglePolygon {
         self.edge_residuals = [Vec3::ZERO; MAX_POLYGON_VERTICES];
         if narrowest {
             for i in 0..count {
-                let (normal, residual) =
-                    crate::math::cross_with_residual(positions[i], positions[i + 1] - positions[i]);
+                let (normal, residual) = crate::math::cross_with_residual(
+                    lanes.position(i),
+                    lanes.position(i + 1) - lanes.position(i),
+                );
                 self.edge_normals[i] = normal * orientation;
                 self.edge_residuals[i] = residual * orientation;
             }
@@ -726,6 +759,8 @@ impl SolidAnglePolygon {
         // neighbour) has a plane of rounding noise, which cut away up to 0.03 rad of the
         // polygon from `contains` (found by fuzzing); it is left out of the test.
         if maybe_short {
+            let positions: [Vec3; MAX_POLYGON_VERTICES + 1] =
+                core::array::from_fn(|i| lanes.position(i));
             super::ignore_short_edges_in_containment(&mut self.edge_normals, &positions, count);
             // A dropped edge passes every direction: its residual goes too.
             for (residual, normal) in self.edge_residuals.iter_mut().zip(&self.edge_normals) {
