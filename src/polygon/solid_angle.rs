@@ -631,7 +631,8 @@ impl SolidAnglePolygon {
         }
         // The rare triangles that the lanes flagged, in the scalar careful forms.
         let mut careful_paths = 0;
-        for k in 0..triangles {
+        let flagged = fan.maybe_flat | fan.wide_pairs;
+        for k in (0..triangles).filter(|&k| flagged & (1 << k) != 0) {
             let (b, c) = (k + 1, k + 2);
             // A triangle exactly in a plane through the shading point has G0 = 0, which
             // the reflection's rounding would turn into noise (and a polygon in such a
