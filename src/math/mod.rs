@@ -20,8 +20,8 @@ pub(crate) use lanes::{
 };
 pub use products::{
     HAS_HARDWARE_FMA, cross_precise, cross_with_residual, determinant_is_exactly_zero,
-    difference_of_products, difference_of_products_unless_cancelling, dot_precise, fma,
-    two_product, two_sum,
+    difference_of_products, difference_of_products_sign, difference_of_products_unless_cancelling,
+    dot_precise, fma, two_product, two_sum,
 };
 pub use sin_cos::sin_cos_0_to_pi;
 pub(crate) use unit::{normalize_by_largest, unit};

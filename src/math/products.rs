@@ -115,6 +115,27 @@ pub fn difference_of_products_unless_cancelling(a: f32, b: f32, c: f32, d: f32) 
     }
 }
 
+/// A number with the sign of the exact `a * b - c * d` (and 0 exactly when it is 0): the
+/// plain difference where its sign is certain, otherwise
+/// [`difference_of_products`] (for comparisons, which need only the sign).
+///
+/// `fl(fl(ab) - fl(cd))` has the sign of `fl(ab) - fl(cd)`, which differs from the exact
+/// difference by at most `u (|ab| + |cd|)` (`u = ε/2`, each product rounded once). So
+/// where `|plain| > ε (|fl(ab)| + |fl(cd)|)` (twice that bound, which covers the
+/// rounding of the test's own terms) the sign is the exact one, and the careful form,
+/// within 2 ulps of the exact value, has it too: both give the same comparisons. Below
+/// 2⁻¹⁰⁰, where the products' rounding may be subnormal, the careful form runs.
+#[inline(always)]
+pub fn difference_of_products_sign(a: f32, b: f32, c: f32, d: f32) -> f32 {
+    let (p1, p2) = (a * b, c * d);
+    let plain = p1 - p2;
+    if plain.abs() > f32::EPSILON * (p1.abs() + p2.abs()) && plain.abs() >= MIN_PLAIN_DIFFERENCE {
+        plain
+    } else {
+        difference_of_products(a, b, c, d)
+    }
+}
+
 /// 2⁻¹⁰⁰: below it [`difference_of_products_unless_cancelling`] takes the careful form.
 pub(crate) const MIN_PLAIN_DIFFERENCE: f32 = 7.888_609_e-31;
 
@@ -255,6 +276,50 @@ mod tests {
         let (c, d) = (1.000_000_2f32, 1.000_000_1f32 + 1.2e-7);
         let exact = a as f64 * b as f64 - c as f64 * d as f64;
         assert!(ulps_between(difference_of_products(a, b, c, d), exact) <= 2.0);
+    }
+
+    /// The sign of the exact difference (f64 products of `f32` are exact), on both
+    /// branches: independent products (plain), products a few ulps apart and exactly equal
+    /// ones (careful), and products whose difference is just above the plain branch's
+    /// threshold.
+    #[test]
+    fn difference_of_products_sign_is_the_exact_sign() {
+        let mut rng = Rng::new(23);
+        let (mut plain_taken, mut careful_taken) = (0u32, 0u32);
+        for i in 0..300_000 {
+            let a = rng.signed_log_uniform(-6.0, 6.0) as f32;
+            let b = rng.signed_log_uniform(-6.0, 6.0) as f32;
+            let (c, d) = match i % 4 {
+                0 => (
+                    rng.signed_log_uniform(-6.0, 6.0) as f32,
+                    rng.signed_log_uniform(-6.0, 6.0) as f32,
+                ),
+                1 => (
+                    f32::from_bits((a.to_bits() as i64 + rng.below(9) as i64 - 4) as u32),
+                    f32::from_bits((b.to_bits() as i64 + rng.below(9) as i64 - 4) as u32),
+                ),
+                2 => (b, a),
+                _ => {
+                    // c d = a b (1 + k ε) for a few k: differences near the threshold.
+                    let k = rng.below(7) as f32 - 3.0;
+                    (a * (1.0 + k * f32::EPSILON), b)
+                }
+            };
+            let exact = a as f64 * b as f64 - c as f64 * d as f64;
+            let got = difference_of_products_sign(a, b, c, d);
+            assert_eq!(
+                got.partial_cmp(&0.0),
+                exact.partial_cmp(&0.0),
+                "{a} {b} {c} {d}: {got} against {exact}"
+            );
+            let (p1, p2) = (a * b, c * d);
+            if got == p1 - p2 && got != difference_of_products(a, b, c, d) {
+                plain_taken += 1;
+            } else {
+                careful_taken += 1;
+            }
+        }
+        assert!(plain_taken > 1000 && careful_taken > 1000, "{plain_taken} {careful_taken}");
     }
 
     /// The stated bound, ε relative, on both branches: independent products (the plain

@@ -24,7 +24,7 @@
 
 use super::clip::{clip_to_upper_hemisphere, clipped_edge_planes};
 use super::ellipse::{
-    DEGENERATE, det2, dot2, ellipse_area, ellipse_from_normal, is_degenerate, is_inner,
+    DEGENERATE, dot2, ellipse_area, ellipse_from_normal, is_degenerate, is_inner,
     unit_direction,
 };
 use super::ellipse_sector::{AreaPrecision, EllipseSector};
@@ -423,7 +423,10 @@ impl ProjectedSolidAnglePolygon {
             };
             let degenerate = |k: u8| is_degenerate(edge[vertex_edge[k as usize]]);
             let less = |a: &u8, b: &u8| {
-                let d = det2(xy(*a), xy(*b));
+                // Only the sign of det(p_a,xy, p_b,xy) matters: the careful form only
+                // where the plain one may have it wrong.
+                let ([ax, ay], [bx, by]) = (xy(*a), xy(*b));
+                let d = crate::math::difference_of_products_sign(ax, by, ay, bx);
                 d > 0.0 || (d == 0.0 && degenerate(*a) && !degenerate(*b))
             };
             sort_bitonic(&mut order, count, less);
