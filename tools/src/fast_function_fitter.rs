@@ -83,7 +83,7 @@ pub fn problems() -> [Problem; 3] {
             f: libm::atan,
             fixed: atan_fixed,
             first_power: 3,
-            count: 8,
+            count: 9,
         },
         Problem {
             name: "SIN_QUARTER",
@@ -148,19 +148,21 @@ fn solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
             .expect("non-empty");
         a.swap(col, pivot);
         b.swap(col, pivot);
-        for row in col + 1..n {
-            let factor = a[row][col] / a[col][col];
-            for k in col..n {
-                a[row][k] -= factor * a[col][k];
+        let (upper, lower) = a.split_at_mut(col + 1);
+        let pivot_row = &upper[col];
+        for (offset, row) in lower.iter_mut().enumerate() {
+            let factor = row[col] / pivot_row[col];
+            for (x, p) in row[col..].iter_mut().zip(&pivot_row[col..]) {
+                *x -= factor * p;
             }
-            b[row] -= factor * b[col];
+            b[col + 1 + offset] -= factor * b[col];
         }
     }
     let mut x = vec![0.0; n];
     for row in (0..n).rev() {
         let mut sum = b[row];
-        for k in row + 1..n {
-            sum -= a[row][k] * x[k];
+        for (ak, xk) in a[row][row + 1..].iter().zip(&x[row + 1..]) {
+            sum -= ak * xk;
         }
         x[row] = sum / a[row][row];
     }
