@@ -12,7 +12,8 @@ use core::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 const HALF_PI_LO: f32 = (core::f64::consts::FRAC_PI_2 - FRAC_PI_2 as f64) as f32;
 /// `π - PI` (about -8.74e-8, exactly `2 HALF_PI_LO` as `PI = 2 FRAC_PI_2`).
 const PI_LO: f32 = (core::f64::consts::PI - PI as f64) as f32;
-/// The `f32` nearest 3π/4: above it the angle is reduced to `π - x`.
+/// 3π/4 to within an ulp: above it the angle is reduced to `π - x`, below it to
+/// `x - π/2`, both then within π/4 (plus an ulp, which the polynomials cover).
 const THREE_PI_4: f32 = 3.0 * FRAC_PI_4;
 
 /// `(sin x, cos x)` for `x` in `[0, π]` (clamped into `[0, PI]`; NaN gives NaN).
@@ -62,7 +63,7 @@ pub fn sin_cos_0_to_pi(x: f32) -> (f32, f32) {
     let w = 1.0 - half;
     // sin(r + r_lo) = sin r + r_lo cos r and cos(r + r_lo) = cos r - r_lo sin r to
     // within r_lo² (below 2^-48): `w` and `r` stand in for cos r and sin r in the small
-    // terms (errors below a hundredth of an ulp).
+    // terms (errors below 0.05 ulp).
     let sin_r = r + ((r * s) * horner(s, &SIN_QUARTER) + r_lo * w);
     let cos_r = w + ((((1.0 - w) - half) + (s * s) * horner(s, &COS_QUARTER)) - r_lo * r);
     if low {
