@@ -12,7 +12,8 @@ use core::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 const HALF_PI_LO: f32 = (core::f64::consts::FRAC_PI_2 - FRAC_PI_2 as f64) as f32;
 /// `π - PI` (about -8.74e-8, exactly `2 HALF_PI_LO` as `PI = 2 FRAC_PI_2`).
 const PI_LO: f32 = (core::f64::consts::PI - PI as f64) as f32;
-/// The `f32` nearest 3π/4: above it the angle is reduced to `π - x`.
+/// 3π/4 to within an ulp: above it the angle is reduced to `π - x`, below it to
+/// `x - π/2`, both then within π/4 (plus an ulp, which the polynomials cover).
 const THREE_PI_4: f32 = 3.0 * FRAC_PI_4;
 
 /// `(sin x, cos x)` for `x` in `[0, π]` (clamped into `[0, PI]`; NaN gives NaN).
@@ -21,36 +22,50 @@ const THREE_PI_4: f32 = 3.0 * FRAC_PI_4;
 /// `x < π/4`: `r = x`, `(sin r, cos r)`; `x <= 3π/4`: `r = x - π/2`, `(cos r, -sin r)`;
 /// above: `r = π - x`, `(sin r, -cos r)`. Both differences are exact before the low
 /// part of the two-float constant is subtracted (Sterbenz: `x` is within a factor two
-/// of `FRAC_PI_2`, resp. `PI`), so `r` is the correctly rounded reduced angle, and
-/// every output that tends to zero (`sin` at 0 and π, `cos` at π/2) comes from
+/// of `FRAC_PI_2`, resp. `PI`), so `r` is the correctly rounded reduced angle, and its
+/// rounding error is kept as `r_lo` for a first-order correction; every output that tends to zero (`sin` at 0 and π, `cos` at π/2) comes from
 /// `sin r ≈ r` and keeps its relative precision. `sin r = r + r³ P(r²)` and
 /// `cos r = 1 - r²/2 + r⁴ Q(r²)` (degrees 7 and 8) are fitted by
 /// `tools/src/fast_function_fitter.rs` (relative errors of the `f32` coefficients 4e-9
 /// and 1.2e-10) and evaluated by Horner's rule without fused multiply-add, so `+fma`
-/// builds give the same bits.
+/// builds give the same bits; `1 - r²/2` is compensated (its rounding error added back).
 ///
 /// Measured over every `f32` in `[0, PI]` (the exhaustive test below) against `f64`
 /// `sin` and `cos` of the same `f32` (note that `sin(PI) = -8.74e-8`): absolute error at
-/// most 7.8e-8 for `sin` and 8.6e-8 for `cos` (0.65 and 0.72 `f32::EPSILON`), at most
-/// 1.39 ulps of the correctly rounded `sin` and 1.49 ulps of `cos` everywhere, tiny
+/// most 4.7e-8 for `sin` and 4.8e-8 for `cos` (0.39 and 0.40 `f32::EPSILON`), at most
+/// 0.78 ulp of the correctly rounded `sin` and 0.80 ulp of `cos` everywhere, tiny
 /// values included (`sin x = x` below 2^-12, `cos x` near π/2 is `-sin(x - π/2)`).
 #[inline(always)]
 pub fn sin_cos_0_to_pi(x: f32) -> (f32, f32) {
     let x = x.clamp(0.0, PI);
     let low = x < FRAC_PI_4;
     let high = x > THREE_PI_4;
-    let r = if low {
-        x
+    // The reduced angle r + r_lo: `a` is exact (Sterbenz), `r` the rounded sum with the
+    // low part of the constant, and `r_lo` its rounding error, exact by Fast2Sum (`a` is 0
+    // or a multiple of an ulp of `x`, at least 6e-8, so |a| >= |low part|).
+    let (r, r_lo) = if low {
+        (x, 0.0)
     } else if high {
-        (PI - x) + PI_LO
+        let a = PI - x;
+        let r = a + PI_LO;
+        (r, PI_LO - (r - a))
     } else {
-        (x - FRAC_PI_2) - HALF_PI_LO
+        let a = x - FRAC_PI_2;
+        let r = a - HALF_PI_LO;
+        (r, (a - r) - HALF_PI_LO)
     };
     let s = r * r;
-    let sin_r = r + (r * s) * horner(s, &SIN_QUARTER);
-    // 1 - s/2 + s² Q(s) as 1 + s (-1/2 + s Q(s)): the only rounding of order one is the
-    // last addition's.
-    let cos_r = 1.0 + s * (-0.5 + s * horner(s, &COS_QUARTER));
+    // 1 - s/2 + s² Q(s): `half = s/2` is exact and `w = 1 - half` is rounded; as
+    // `half <= 0.31`, `1 - w` is exact (Sterbenz) and `(1 - w) - half` is the rounding
+    // error of `w` exactly (Fast2Sum), which is added back with the small s² Q(s), so that
+    // only the last addition rounds at the order of one.
+    let half = 0.5 * s;
+    let w = 1.0 - half;
+    // sin(r + r_lo) = sin r + r_lo cos r and cos(r + r_lo) = cos r - r_lo sin r to
+    // within r_lo² (below 2^-48): `w` and `r` stand in for cos r and sin r in the small
+    // terms (errors below 0.05 ulp).
+    let sin_r = r + ((r * s) * horner(s, &SIN_QUARTER) + r_lo * w);
+    let cos_r = w + ((((1.0 - w) - half) + (s * s) * horner(s, &COS_QUARTER)) - r_lo * r);
     if low {
         (sin_r, cos_r)
     } else if high {
@@ -85,10 +100,10 @@ mod tests {
 
     fn assert_bounds(sin_errors: Errors, cos_errors: Errors) {
         // The documented bounds.
-        assert!(sin_errors.absolute <= 7.8e-8, "sin {sin_errors:?}");
-        assert!(cos_errors.absolute <= 8.6e-8, "cos {cos_errors:?}");
-        assert!(sin_errors.ulps <= 1.39, "sin {sin_errors:?}");
-        assert!(cos_errors.ulps <= 1.49, "cos {cos_errors:?}");
+        assert!(sin_errors.absolute <= 4.7e-8, "sin {sin_errors:?}");
+        assert!(cos_errors.absolute <= 4.8e-8, "cos {cos_errors:?}");
+        assert!(sin_errors.ulps <= 0.78, "sin {sin_errors:?}");
+        assert!(cos_errors.ulps <= 0.80, "cos {cos_errors:?}");
     }
 
     #[test]
