@@ -6,43 +6,32 @@
 
 use super::fast_functions_generated::ATAN_UNIT;
 use super::horner;
-use core::f32::consts::{FRAC_PI_2, PI};
+use core::f32::consts::FRAC_PI_2;
 
-/// `atan2(y, x)` for `y >= 0`, in `[0, π]`, from one [`atan_unit`] of the ratio of the
-/// smaller to the larger of `y` and `|x|`:
+/// `atan2(y, x)` for `y >= 0`, in `[0, π]`, built from one `atan` of a non-negative
+/// ratio no larger than one in magnitude where it matters:
+/// `x > 0`: `atan(y / x)`; otherwise `π/2 + atan(-x / y)`.
 ///
-/// | case | angle |
-/// |---|---|
-/// | `x > 0`, `y <= x` | `atan(y / x)` |
-/// | `x > 0`, `y > x` | `π/2 - atan(x / y)` |
-/// | `x <= 0`, `y > -x` | `π/2 + atan(-x / y)` |
-/// | `x <= 0`, `y <= -x` | `π - atan(y / -x)` |
+/// Both ratios are computed with one rounding, and `atan` has condition number at most
+/// one, so the result is as accurate as the library `atan` (below 0.85 ulp over `[0, 1]`,
+/// measured). Returns 0 for `y == x == 0` and for NaN input, so that degenerate geometry
+/// never yields NaN.
 ///
-/// The ratio is rounded once and `atan` has condition number at most one, so the
-/// arc tangent is off by at most 1.12 ulps of itself (see [`atan_unit`]). Where a constant is
-/// added the result is at least `π/4`, so neither the constant's own rounding
-/// (`f32` π/2 and π are within 0.37 ulp of the true values) nor the final rounding
-/// loses relative accuracy. Measured: at most 1.3 `f32::EPSILON` (1.54e-7) relative to
-/// the `f64` `atan2` (the dense test of directions below).
-///
-/// Returns 0 for `y == x == 0` and for NaN input, so that degenerate geometry never
-/// yields NaN.
+/// This stays on `libm::atanf` (issue 15, 4): with the fitted [`atan_unit`] in its place
+/// (1.12 ulps; 0.9 with an argument reduction to `|r| <= 0.44` and two-float constants),
+/// the largest relative error of Φ per decade in README's side-by-side accuracy table
+/// grew from 2.3e-7 to 2.9e-7 at 1 sr and from 8.8e-7 to 9.8e-7 at 0.1 sr (sums and
+/// differences of sector areas, whose arc tangents' errors then add), and the
+/// solid-angle maximum near the hemisphere from 1.4e-7 to 1.5e-7. The issue asks for no
+/// accuracy figure to get worse; `atanf` costs about 30 instructions a call.
 #[inline(always)]
 pub fn atan2_upper_half_plane(y: f32, x: f32) -> f32 {
-    let a = x.abs();
-    // `y > |x|`: the angle is within π/4 of π/2 and the ratio is inverted. False for
-    // NaN input, which then reaches `atan_unit` as the NaN ratio.
-    let steep = y > a;
-    let (numerator, denominator) = if steep { (a, y) } else { (y, a) };
-    // In [0, 1], or NaN for 0/0, ∞/∞ and NaN input.
-    let p = atan_unit(numerator / denominator);
-    let angle = match (steep, x > 0.0) {
-        (false, true) => p,
-        (true, true) => FRAC_PI_2 - p,
-        (true, false) => FRAC_PI_2 + p,
-        (false, false) => PI - p,
+    let angle = if x > 0.0 {
+        libm::atanf(y / x)
+    } else {
+        FRAC_PI_2 + libm::atanf(-x / y)
     };
-    // NaN maps to 0 (IEEE maxNum returns the number).
+    // 0/0 and NaN inputs give NaN; `max` maps it to 0 (IEEE maxNum returns the number).
     angle.max(0.0)
 }
 
@@ -60,6 +49,9 @@ pub fn atan2_upper_half_plane(y: f32, x: f32) -> f32 {
 /// raises `atan` by less than an ulp, rounding noise of about an ulp can exceed it). No fused multiply-add is used (Rust never contracts
 /// `a * b + c`), so `+fma` builds give the same bits. Outside `[0, 1]` the result is
 /// unspecified (finite for finite input up to about 1e4).
+///
+/// The exact samplers keep `libm::atanf` (see [`atan2_upper_half_plane`] for the
+/// measurement); this is for callers whose budget allows 1.12 ulps.
 #[inline(always)]
 pub fn atan_unit(t: f32) -> f32 {
     let s = t * t;

@@ -118,42 +118,18 @@ pub fn difference_of_products_unless_cancelling4(
     }
 }
 
-/// `horner` of the scalar forms, lane by lane: one multiplication and one addition per
-/// coefficient, each rounded, never fused.
-#[inline(always)]
-fn horner4<const N: usize>(s: Vec4, c: &[f32; N]) -> Vec4 {
-    let mut acc = Vec4::splat(c[N - 1]);
-    let mut i = N - 1;
-    while i > 0 {
-        i -= 1;
-        acc = acc * s + Vec4::splat(c[i]);
-    }
-    acc
-}
-
-/// [`atan2_upper_half_plane`](super::atan2_upper_half_plane) lane by lane (the same
-/// four cases, chosen by masks instead of branches): `atan2(y, x)` for `y >= 0`, 0 for
-/// `0 / 0` and NaN lanes.
+/// [`atan2_upper_half_plane`](super::atan2_upper_half_plane) of each lane: the scalar
+/// form lane by lane (`libm::atanf` stays scalar: see there why), so that every lane is
+/// the same bits as the scalar call that sampling makes again.
 #[inline(always)]
 #[must_use]
 pub fn atan2_upper_half_plane4(y: Vec4, x: Vec4) -> Vec4 {
-    use core::f32::consts::{FRAC_PI_2, PI};
-    let a = x.abs();
-    let steep = y.cmpgt(a);
-    let numerator = Vec4::select(steep, a, y);
-    let denominator = Vec4::select(steep, y, a);
-    let t = numerator / denominator;
-    let s = t * t;
-    let p = t + (t * s) * horner4(s, &super::fast_functions_generated::ATAN_UNIT);
-    let positive = x.cmpgt(Vec4::ZERO);
-    let half_pi = Vec4::splat(FRAC_PI_2);
-    let angle = Vec4::select(
-        steep,
-        Vec4::select(positive, half_pi - p, half_pi + p),
-        Vec4::select(positive, p, Vec4::splat(PI) - p),
-    );
-    // `maxps` returns its second operand where a lane is NaN: 0, as `f32::max` gives.
-    angle.max(Vec4::ZERO)
+    Vec4::new(
+        super::atan2_upper_half_plane(y.x, x.x),
+        super::atan2_upper_half_plane(y.y, x.y),
+        super::atan2_upper_half_plane(y.z, x.z),
+        super::atan2_upper_half_plane(y.w, x.w),
+    )
 }
 
 #[cfg(test)]

@@ -319,7 +319,10 @@ mod tests {
                 careful_taken += 1;
             }
         }
-        assert!(plain_taken > 1000 && careful_taken > 1000, "{plain_taken} {careful_taken}");
+        assert!(
+            plain_taken > 1000 && careful_taken > 1000,
+            "{plain_taken} {careful_taken}"
+        );
     }
 
     /// The stated bound, ε relative, on both branches: independent products (the plain

@@ -24,8 +24,7 @@
 
 use super::clip::{clip_to_upper_hemisphere, clipped_edge_planes};
 use super::ellipse::{
-    DEGENERATE, dot2, ellipse_area, ellipse_from_normal, is_degenerate, is_inner,
-    unit_direction,
+    DEGENERATE, dot2, ellipse_area, ellipse_from_normal, is_degenerate, is_inner, unit_direction,
 };
 use super::ellipse_sector::{AreaPrecision, EllipseSector};
 use super::small_projected::{SLIVER_EXTENT2, SMALL_EXTENT, SmallPolygonCosineSampler};
