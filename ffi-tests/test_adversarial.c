@@ -628,7 +628,7 @@ static void frame_and_ltc_suite(void) {
 
 static int cap_is_valid(SpheraCap c) {
   return finite3(c.axis) && unit3(c.axis) && c.one_minus_cos >= 0.0f && c.one_minus_cos <= 2.0f &&
-         c.cos >= -1.0f && c.cos <= 1.0f && c.sin2 >= 0.0f && c.sin2 <= 1.0f;
+         c.one_plus_cos >= 0.0f && c.one_plus_cos <= 2.0f && c.sin2 >= 0.0f && c.sin2 <= 1.0f;
 }
 
 static void check_cap(SpheraCap cap, int full) {
@@ -691,7 +691,7 @@ static void sphere_suite(void) {
     /* A cap built by hand, any fields. */
     hand.axis = v;
     hand.one_minus_cos = x;
-    hand.cos = specials[(k * 3) % SPECIAL_COUNT];
+    hand.one_plus_cos = specials[(k * 3) % SPECIAL_COUNT];
     hand.sin2 = specials[(k * 5) % SPECIAL_COUNT];
     check_cap(hand, 0);
     if (cap_count < 64) caps[cap_count++] = hand;
@@ -784,7 +784,7 @@ static void fill_hard_caps(void) {
   hard_caps[hard_cap_count++] = sphera_cap_from_axis_cos(vec3(0, 1, 0), nextafterf(1.0f, 0.0f));
   hard_caps[hard_cap_count].axis = vec3(NAN, 0.0f, 1.0f); /* by hand, broken */
   hard_caps[hard_cap_count].one_minus_cos = INFINITY;
-  hard_caps[hard_cap_count].cos = NAN;
+  hard_caps[hard_cap_count].one_plus_cos = NAN;
   hard_caps[hard_cap_count].sin2 = -1.0f;
   hard_cap_count++;
 }

@@ -4,7 +4,7 @@
 static const double PI_D = 3.14159265358979323846;
 
 static int cap_is_finite(SpheraCap c) {
-  return vec3_is_finite(c.axis) && isfinite(c.one_minus_cos) && isfinite(c.cos) &&
+  return vec3_is_finite(c.axis) && isfinite(c.one_minus_cos) && isfinite(c.one_plus_cos) &&
          isfinite(c.sin2) && c.one_minus_cos >= 0.0f && c.one_minus_cos <= 2.0f;
 }
 
@@ -68,6 +68,22 @@ static void check_intersections(void) {
             1e-5);
   CHECK_REL(sphera_cap_intersection_solid_angle_oat_sander(a, c), 2.0 * PI_D * 0.5, 1e-6);
   CHECK(sphera_cap_intersection_solid_angle_oat_sander(a, b) > 0.0f);
+  {
+    /* Issue 17 (6): a cap wider than a hemisphere keeps its hole 1 + cos (exact here)
+     * in one_plus_cos, through the ABI's sanitisation. A cap around the hole, twice its
+     * size, meets the wide cap in a ring of 2 pi ((1 - cos_small) - (1 + cos_wide));
+     * from one_minus_cos near 2 the hole was only known to ulp(2), 3.6e-4 of it. */
+    const float cos_wide = -0.99967f, cos_small = 0.99934f;
+    SpheraCap wide = sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, 1.0f), cos_wide);
+    SpheraCap small = sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, -1.0f), cos_small);
+    double hole = 1.0 + (double)cos_wide;
+    CHECK(wide.one_plus_cos == 1.0f + cos_wide);
+    CHECK(wide.one_minus_cos == 2.0f - wide.one_plus_cos);
+    CHECK_REL(sphera_cap_intersection_solid_angle(wide, small),
+              2.0 * PI_D * ((1.0 - (double)cos_small) - hole), 1e-5);
+    CHECK_REL(sphera_cap_intersection_solid_angle(small, wide),
+              2.0 * PI_D * ((1.0 - (double)cos_small) - hole), 1e-5);
+  }
 }
 
 static void check_pivot(void) {
@@ -112,7 +128,7 @@ static void check_bad_input(void) {
       CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf) && s.pdf >= 0.0f);
       garbage.axis = v;
       garbage.one_minus_cos = bad[k];
-      garbage.cos = bad[i];
+      garbage.one_plus_cos = bad[i];
       garbage.sin2 = bad[k];
       CHECK(isfinite(sphera_cap_solid_angle(garbage)));
       CHECK(sphera_cap_solid_angle(garbage) >= 0.0f);

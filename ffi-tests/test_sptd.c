@@ -144,7 +144,7 @@ static void check_bad_input(void) {
       unsigned base = (unsigned)(i % 3); /* 2 is not a base: uniform */
       garbage.axis = v;
       garbage.one_minus_cos = bad[k];
-      garbage.cos = bad[i];
+      garbage.one_plus_cos = bad[i];
       garbage.sin2 = bad[k];
       CHECK(isfinite(sphera_sptd_eval(v, base, v, v)));
       s = sphera_sptd_sample(v, base, v, bad[i], bad[k]);

@@ -762,8 +762,12 @@ typedef struct SpheraLightSample {
 } SpheraLightSample;
 
 /**
- * A spherical cap `{ω : ω·axis ≥ cos}` with `1 − cos` stored to full relative
- * precision.
+ * A spherical cap `{ω : ω·axis ≥ cos θ}` with `1 − cos θ` and `1 + cos θ` both stored
+ * to full relative precision: the smaller of the two is authoritative and the other
+ * is `2 −` it. A cap built by hand is made valid by every function that takes it: from
+ * `one_minus_cos`, except that a cap wider than a hemisphere keeps an `one_plus_cos`
+ * that agrees with `2 − one_minus_cos` to `2⁻²²` (and recomputes `one_minus_cos` from
+ * it).
  */
 typedef struct SpheraCap {
   /**
@@ -772,13 +776,16 @@ typedef struct SpheraCap {
   SpheraVec3 axis;
   /**
    * `1 − cos θ` in `[0, 2]`: 0 for an empty cap, 1 for a hemisphere, 2 for the whole
-   * sphere.
+   * sphere. Authoritative for caps up to a hemisphere (`one_minus_cos ≤ 1`).
    */
   float one_minus_cos;
   /**
-   * `cos θ` in `[−1, 1]`.
+   * `1 + cos θ = 2 − one_minus_cos` in `[0, 2]`, the size of the cap's hole: 2 for an
+   * empty cap, 0 for the whole sphere. Authoritative for caps wider than a hemisphere
+   * (`one_minus_cos > 1`), whose hole it keeps to full relative precision (near 2,
+   * `one_minus_cos` keeps only `ulp(2)` of it).
    */
-  float cos;
+  float one_plus_cos;
   /**
    * `sin²θ = (1 − cos θ)(1 + cos θ)` in `[0, 1]`.
    */
@@ -2161,7 +2168,8 @@ struct SpheraCap sphera_cap_from_sphere(struct SpheraVec3 center, float radius);
 
 /**
  * The cap around `axis` (normalised) with `cos θ = cos_theta` (clamped to [-1, 1]); the
- * empty cap for a non-finite or zero axis or a NaN `cos_theta`.
+ * empty cap for a non-finite or zero axis or a NaN `cos_theta`. The smaller of
+ * `1 ∓ cos θ` is exact: a cap wider than a hemisphere keeps its hole `1 + cos θ`.
  */
 struct SpheraCap sphera_cap_from_axis_cos(struct SpheraVec3 axis, float cos_theta);
 

@@ -117,6 +117,66 @@ pub fn pivot_transform_f64(r: D3, p: D3) -> D3 {
     core::array::from_fn(|i| (rp * e[i] - num0[i]) / den)
 }
 
+/// The image `g(C)` of a cap `(axis, 1 − cos θ)` under the pivot, in f64 and
+/// independently of `pivot_cap`: Eq. 6–7 on the two boundary points in the plane of the
+/// axis and the pivot (Eq. 2 literally), which give the cap `(m, χ)` through them with
+/// `χ ≤ π/2`; the image is that cap when it contains `g(axis)`, else its complement
+/// `(−m, π − χ)`. Returns `(axis, 1 − cos ψ', 1 + cos ψ')`, each to f64 relative
+/// precision (`1 − cos χ = sin²χ / (1 + cos χ)` from the chord).
+pub fn pivot_image_f64(axis: D3, t: f64, pivot: D3) -> (D3, f64, f64) {
+    // Normalised in f64 first: an f32 unit axis is 6e-8 off unit length, which is as
+    // large as the pivot's component across an axis that points at it.
+    let axis = normalize(axis);
+    let across: D3 = core::array::from_fn(|i| pivot[i] - axis[i] * dot(pivot, axis));
+    let u = if norm(across) > 1e-12 {
+        normalize(across)
+    } else {
+        frame_f64(axis).0
+    };
+    let (c, s) = (1.0 - t, (t * (2.0 - t)).sqrt());
+    let w1: D3 = core::array::from_fn(|i| axis[i] * c - u[i] * s);
+    let w2: D3 = core::array::from_fn(|i| axis[i] * c + u[i] * s);
+    let (g1, g2) = (
+        pivot_transform_f64(w1, pivot),
+        pivot_transform_f64(w2, pivot),
+    );
+    let gc = pivot_transform_f64(axis, pivot);
+    let m = normalize(add(g1, g2));
+    let chord = sub(g1, g2);
+    let small = 0.25 * dot(chord, chord) / (1.0 + 0.5 * norm(add(g1, g2)));
+    let e = sub(gc, m);
+    if 0.5 * dot(e, e) <= small {
+        (m, small, 2.0 - small)
+    } else {
+        (scale(m, -1.0), 2.0 - small, small)
+    }
+}
+
+/// The solid angle of the intersection of two caps `(axis, 1 − cos, 1 + cos)` in f64,
+/// by the spherical-triangle form with `acos` (Eq. 36 of the paper, Tovchigrechko and
+/// Vakser), not the Gauss–Bonnet form of `cap_intersection_solid_angle`.
+pub fn cap_intersection_f64(a: (D3, f64, f64), b: (D3, f64, f64)) -> f64 {
+    use core::f64::consts::PI;
+    let angle = |t: f64, h: f64| 2.0 * (0.5 * t).sqrt().atan2((0.5 * h).sqrt());
+    let (ta, tb) = (angle(a.1, a.2), angle(b.1, b.2));
+    let d = 2.0 * (0.5 * norm(sub(a.0, b.0))).atan2(0.5 * norm(add(a.0, b.0)));
+    if d >= ta + tb {
+        return 0.0;
+    }
+    if d <= (ta - tb).abs() {
+        return 2.0 * PI * a.1.min(b.1);
+    }
+    if d >= 2.0 * PI - ta - tb {
+        return 2.0 * PI * (a.1 + b.1) - 4.0 * PI;
+    }
+    let (ca, cb, cd) = (ta.cos(), tb.cos(), d.cos());
+    let (sa, sb, sd) = (ta.sin(), tb.sin(), d.sin());
+    let gamma = ((cd - ca * cb) / (sa * sb)).clamp(-1.0, 1.0).acos();
+    let phi_a = ((cb - cd * ca) / (sd * sa)).clamp(-1.0, 1.0).acos();
+    let phi_b = ((ca - cd * cb) / (sd * sb)).clamp(-1.0, 1.0).acos();
+    2.0 * (PI - gamma - ca * phi_a - cb * phi_b)
+}
+
 /// A direction of the cap (axis `a`) at `1 − cos = t` and azimuth `phi`, in f64.
 pub fn cap_point(a: D3, t: f64, phi: f64) -> D3 {
     let (u, v) = frame_f64(a);

@@ -4,8 +4,10 @@
 //! Caps are passed by value. A cap built by hand in C may hold anything: every
 //! function first makes it valid (`Cap::sanitized`: a non-finite or zero axis or a NaN
 //! `one_minus_cos` is the empty cap; otherwise the axis is normalised,
-//! `one_minus_cos` clamped to [0, 2] and `cos`, `sin2` recomputed from it), so outputs
-//! are always finite.
+//! `one_minus_cos` clamped to [0, 2] and `one_plus_cos`, `sin2` recomputed from it,
+//! except that a cap wider than a hemisphere keeps an `one_plus_cos` that agrees with
+//! `2 − one_minus_cos` to 2⁻²², its hole to full precision, and takes `one_minus_cos`
+//! from it), so outputs are always finite.
 
 use super::types::{SpheraSample, SpheraVec3};
 use crate::sphere::{
@@ -25,7 +27,8 @@ pub extern "C" fn sphera_cap_from_sphere(center: SpheraVec3, radius: f32) -> Cap
 }
 
 /// The cap around `axis` (normalised) with `cos θ = cos_theta` (clamped to [-1, 1]); the
-/// empty cap for a non-finite or zero axis or a NaN `cos_theta`.
+/// empty cap for a non-finite or zero axis or a NaN `cos_theta`. The smaller of
+/// `1 ∓ cos θ` is exact: a cap wider than a hemisphere keeps its hole `1 + cos θ`.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_cap_from_axis_cos(axis: SpheraVec3, cos_theta: f32) -> Cap {
     Cap::from_axis_cos(axis.into(), cos_theta)

@@ -10,14 +10,24 @@
 //! relative precision for tiny caps: `1 − cos θ` evaluated by subtraction in `f32`
 //! rounds to zero below `sin²θ ≈ 1e-7` (and is only a few bits accurate near 1e-6),
 //! while the quotient is accurate to a few ulps down to `sin²θ` at the bottom of the
-//! normal range. Every other quantity (solid angle, sampling, containment, inversion)
-//! is derived from `t` without forming `1 − cos` again:
+//! normal range. It also stores the complement `h = 1 + cos θ = 2 − t`, the size of
+//! the cap's hole, to full relative precision: a cap wider than a hemisphere has `t`
+//! near 2, where `f32` keeps only `ulp(2) = 2.4e-7` of `h` (issue 17, 6: the pivot
+//! image of a light, 3.116 rad wide with a hole `h = 3.3e-4`, lost 4e-4 of its hole
+//! and shading with a bent cone 3.7e-4 of its value). Of the two, the smaller one
+//! (at most 1) is the authoritative value and the other is `2 −` it, rounded once;
+//! both are then accurate to a few ulps. Every other quantity (solid angle, sampling,
+//! containment, inversion) is derived from `t` and `h` without forming `1 ± cos`
+//! again:
 //!
 //! - sampling: `t' = u₀ t` is uniform in `[0, t]` (uniform in solid angle, since
-//!   `dΩ = d(1 − cos) dφ`), and the direction is built from `sin θ' = √(t'(2 − t'))`,
-//!   `cos θ' = 1 − t'`, `φ = 2π u₁`;
-//! - containment and inversion: for unit vectors `|ω − a|² = 2 (1 − ω·a)`, which gives
-//!   `1 − cos` of a direction without cancellation.
+//!   `dΩ = d(1 − cos) dφ`), and the direction is built from `sin θ' = √(t' h')`,
+//!   `cos θ' = 1 − t'`, `φ = 2π u₁`, where `h' = 1 + cos θ' = 2 − t'` is formed as
+//!   `h + (1 − u₀) t` when `t' > 1` (`1 − u₀` is exact there), so that samples near
+//!   a small hole are placed relative to the hole's size, not to `ulp(2)`;
+//! - containment and inversion: for unit vectors `|ω − a|² = 2 (1 − ω·a)` and
+//!   `|ω + a|² = 2 (1 + ω·a)`, which give `1 ∓ cos` of a direction without
+//!   cancellation; wide caps compare the direction's `1 + ω·a` with `h`.
 //!
 //! Hard cases: tiny caps (`sin²θ` down to 1e-12 and below), caps wider than a
 //! hemisphere (`θ > π/2`, `cos θ < 0`), the whole sphere (shading point inside the
@@ -33,18 +43,25 @@ use crate::sample::{INWARD_PULLS, ONE_MINUS_ULP, clamp_random};
 use core::f32::consts::{PI, TAU};
 use glam::Vec3;
 
-/// A spherical cap `{ω : ω·axis ≥ cos}` with `1 − cos` stored to full relative
-/// precision.
+/// A spherical cap `{ω : ω·axis ≥ cos θ}` with `1 − cos θ` and `1 + cos θ` both stored
+/// to full relative precision: the smaller of the two is authoritative and the other
+/// is `2 −` it. A cap built by hand is made valid by every function that takes it: from
+/// `one_minus_cos`, except that a cap wider than a hemisphere keeps an `one_plus_cos`
+/// that agrees with `2 − one_minus_cos` to `2⁻²²` (and recomputes `one_minus_cos` from
+/// it).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cap {
     /// Unit axis (direction of the cap's center).
     pub axis: Vec3,
     /// `1 − cos θ` in `[0, 2]`: 0 for an empty cap, 1 for a hemisphere, 2 for the whole
-    /// sphere.
+    /// sphere. Authoritative for caps up to a hemisphere (`one_minus_cos ≤ 1`).
     pub one_minus_cos: f32,
-    /// `cos θ` in `[−1, 1]`.
-    pub cos: f32,
+    /// `1 + cos θ = 2 − one_minus_cos` in `[0, 2]`, the size of the cap's hole: 2 for an
+    /// empty cap, 0 for the whole sphere. Authoritative for caps wider than a hemisphere
+    /// (`one_minus_cos > 1`), whose hole it keeps to full relative precision (near 2,
+    /// `one_minus_cos` keeps only `ulp(2)` of it).
+    pub one_plus_cos: f32,
     /// `sin²θ = (1 − cos θ)(1 + cos θ)` in `[0, 1]`.
     pub sin2: f32,
 }
@@ -73,7 +90,7 @@ impl Cap {
     pub const EMPTY: Cap = Cap {
         axis: Vec3::Z,
         one_minus_cos: 0.0,
-        cos: 1.0,
+        one_plus_cos: 2.0,
         sin2: 0.0,
     };
 
@@ -83,7 +100,7 @@ impl Cap {
     pub const WHOLE_SPHERE: Cap = Cap {
         axis: Vec3::Z,
         one_minus_cos: 2.0,
-        cos: -1.0,
+        one_plus_cos: 0.0,
         sin2: 0.0,
     };
 
@@ -114,57 +131,117 @@ impl Cap {
         let sin = r / d;
         let sin2 = sin * sin;
         let cos = libm::sqrtf((d - r) * (d + r)) / d;
+        // `cos ≥ 0`: the cap is at most a hemisphere, `1 + cos θ` has no cancellation.
         Cap {
             axis,
             one_minus_cos: (sin2 / (1.0 + cos)).min(1.0),
-            cos,
+            one_plus_cos: 1.0 + cos,
             sin2,
         }
     }
 
     /// The cap around `axis` (normalised here) with `cos θ = cos` (clamped to
-    /// `[−1, 1]`). [`Cap::EMPTY`] for a non-finite or zero axis or a NaN `cos`. Tiny caps
-    /// lose precision in `1 − cos`; prefer [`Cap::from_axis_one_minus_cos`] for them.
+    /// `[−1, 1]`). [`Cap::EMPTY`] for a non-finite or zero axis or a NaN `cos`. The
+    /// smaller of `1 ∓ cos` is exact (Sterbenz), so a wide cap keeps its hole `1 + cos`
+    /// exactly; tiny caps and tiny holes below `ulp(1)` are not representable through
+    /// `cos`: prefer [`Cap::from_axis_one_minus_cos`] and
+    /// [`Cap::from_axis_one_plus_cos`] for them.
     pub fn from_axis_cos(axis: Vec3, cos: f32) -> Cap {
         if cos.is_nan() {
             return Cap::EMPTY;
         }
         let cos = cos.max(-1.0).min(1.0);
-        Cap::from_axis_one_minus_cos(axis, 1.0 - cos)
+        if cos >= 0.0 {
+            Cap::from_axis_one_minus_cos(axis, 1.0 - cos)
+        } else {
+            Cap::from_axis_one_plus_cos(axis, 1.0 + cos)
+        }
     }
 
     /// The cap around `axis` (normalised here) with `1 − cos θ = one_minus_cos`
     /// (clamped to `[0, 2]`). [`Cap::EMPTY`] for a non-finite or zero axis or a NaN
-    /// `one_minus_cos`.
+    /// `one_minus_cos`. Caps wider than a hemisphere get their hole `2 − one_minus_cos`
+    /// only to `ulp(2)`; prefer [`Cap::from_axis_one_plus_cos`] for them.
     pub fn from_axis_one_minus_cos(axis: Vec3, one_minus_cos: f32) -> Cap {
+        if one_minus_cos.is_nan() {
+            return Cap::EMPTY;
+        }
+        let t = one_minus_cos.max(0.0).min(2.0);
+        Cap::with_sides(axis, t, 2.0 - t)
+    }
+
+    /// The cap around `axis` (normalised here) with `1 + cos θ = one_plus_cos` (clamped to
+    /// `[0, 2]`): the complement form, which keeps the hole of a cap wider than a
+    /// hemisphere to full relative precision. [`Cap::EMPTY`] for a non-finite or zero
+    /// axis or a NaN `one_plus_cos`.
+    pub fn from_axis_one_plus_cos(axis: Vec3, one_plus_cos: f32) -> Cap {
+        if one_plus_cos.is_nan() {
+            return Cap::EMPTY;
+        }
+        let h = one_plus_cos.max(0.0).min(2.0);
+        Cap::with_sides(axis, 2.0 - h, h)
+    }
+
+    /// The cap with `1 − cos θ = t`, `1 + cos θ = h` (`t + h = 2` to rounding, both in
+    /// `[0, 2]`): the smaller one is kept and the other recomputed from it (one
+    /// rounding), and `sin²θ = t h` is the product of two accurate factors.
+    #[inline(always)]
+    fn with_sides(axis: Vec3, t: f32, h: f32) -> Cap {
         // Normalised by the largest component first: a huge axis overflowed `length`,
         // and a tiny one (components of 1e-23) normalised through denormal squares to
         // length 1.006 (found by fuzzing).
         let unit = crate::sample::normalize_scaled(axis);
-        if unit == Vec3::ZERO || one_minus_cos.is_nan() {
+        if unit == Vec3::ZERO {
             return Cap::EMPTY;
         }
-        let t = one_minus_cos.max(0.0).min(2.0);
+        let (t, h) = if t <= 1.0 { (t, 2.0 - t) } else { (2.0 - h, h) };
         Cap {
             axis: unit,
             one_minus_cos: t,
-            cos: 1.0 - t,
-            sin2: (t * (2.0 - t)).max(0.0),
+            one_plus_cos: h,
+            sin2: (t * h).max(0.0).min(1.0),
         }
     }
 
     /// This cap with every field made valid: a non-finite or zero axis or a NaN
     /// `one_minus_cos` gives [`Cap::EMPTY`]; otherwise the axis is normalised,
-    /// `one_minus_cos` clamped to `[0, 2]`, and `cos` and `sin2` recomputed from it. Used
-    /// by the C ABI, where a caller may build a cap by hand.
+    /// `one_minus_cos` clamped to `[0, 2]`, and `one_plus_cos` and `sin2` recomputed
+    /// from it, except that a cap wider than a hemisphere (`one_minus_cos > 1`) keeps
+    /// its `one_plus_cos` (clamped to `[0, 1]`) when that agrees with
+    /// `2 − one_minus_cos` to `2⁻²²` (the rounding of `one_minus_cos` near 2), and
+    /// `one_minus_cos` is recomputed from it: the hole's precision survives the trip
+    /// through C, and a cap built by hand with a stale `one_plus_cos` still gets the
+    /// cap that its `one_minus_cos` says. Idempotent. Used by the C ABI, where a caller
+    /// may build a cap by hand.
     pub fn sanitized(self) -> Cap {
-        Cap::from_axis_one_minus_cos(self.axis, self.one_minus_cos)
+        let (t, h) = (self.one_minus_cos, self.one_plus_cos);
+        // `2 − t` is exact for `t ∈ [1, 2]` (Sterbenz); NaN or infinite `h` fail the test.
+        if t > 1.0 && t <= 2.0 && ((2.0 - t) - h).abs() <= 1.0 / 4_194_304.0 {
+            return Cap::from_axis_one_plus_cos(self.axis, h.max(0.0).min(1.0));
+        }
+        Cap::from_axis_one_minus_cos(self.axis, t)
     }
 
-    /// The half-angle `θ = 2 asin(√(t/2))` (accurate for tiny caps, unlike `acos`).
+    /// `cos θ`, from the authoritative one of `1 ∓ cos θ` (exact for both).
+    #[inline]
+    pub fn cos(&self) -> f32 {
+        if self.one_minus_cos <= 1.0 {
+            1.0 - self.one_minus_cos
+        } else {
+            self.one_plus_cos - 1.0
+        }
+    }
+
+    /// The half-angle `θ = 2 asin(√(t/2))` (accurate for tiny caps, unlike `acos`), and
+    /// `π − 2 asin(√(h/2))` for caps wider than a hemisphere.
     #[inline]
     pub fn half_angle(&self) -> f32 {
-        2.0 * libm::asinf(libm::sqrtf((0.5 * self.one_minus_cos).max(0.0).min(1.0)))
+        let half_chord = |x: f32| 2.0 * libm::asinf(libm::sqrtf((0.5 * x).max(0.0).min(1.0)));
+        if self.one_minus_cos <= 1.0 {
+            half_chord(self.one_minus_cos)
+        } else {
+            PI - half_chord(self.one_plus_cos)
+        }
     }
 
     /// The solid angle `2π (1 − cos θ)`, in `[0, 4π]`.
@@ -202,8 +279,8 @@ impl Cap {
             // `|ω − a|²/2` is close to 2 and has lost the absolute precision that the
             // excluded disk needs (found by fuzzing: a sample 2e-4 rad inside a cap with
             // `1 − cos θ = 2 − ulp` was outside). Compared in the complement instead:
-            // `1 + ω·a = |ω + a|²/2 >= 1 + cos θ = 2 − (1 − cos θ)`, which is exact.
-            0.5 * (unit + self.axis).length_squared() >= 2.0 - self.one_minus_cos
+            // `1 + ω·a = |ω + a|²/2 >= 1 + cos θ`, the stored hole.
+            0.5 * (unit + self.axis).length_squared() >= self.one_plus_cos
         } else {
             0.5 * (unit - self.axis).length_squared() <= self.one_minus_cos
         }
@@ -218,12 +295,21 @@ impl Cap {
         if pdf == 0.0 {
             return Sample::NONE;
         }
-        let t = clamp_random(u[0]) * self.one_minus_cos;
+        let u0 = clamp_random(u[0]);
+        let t = u0 * self.one_minus_cos;
+        // `1 + cos θ' = 2 − t'`; past the hemisphere (`t' > 1`, so `u₀ > 1/2` and
+        // `1 − u₀` is exact) as `h + (1 − u₀) t`, which resolves a small hole.
+        let (one_plus, cos) = if t > 1.0 {
+            let h = self.one_plus_cos + (1.0 - u0) * self.one_minus_cos;
+            (h, h - 1.0)
+        } else {
+            (2.0 - t, 1.0 - t)
+        };
         let phi = TAU * clamp_random(u[1]);
-        let sin = libm::sqrtf((t * (2.0 - t)).max(0.0));
+        let sin = libm::sqrtf((t * one_plus).max(0.0));
         let (sin_phi, cos_phi) = libm::sincosf(phi);
         let (tangent, bitangent) = orthonormal_basis(self.axis);
-        let dir = tangent * (sin * cos_phi) + bitangent * (sin * sin_phi) + self.axis * (1.0 - t);
+        let dir = tangent * (sin * cos_phi) + bitangent * (sin * sin_phi) + self.axis * cos;
         let dir = dir.normalize_or(self.axis);
         if self.contains(dir) {
             return Sample { dir, pdf };
@@ -261,13 +347,22 @@ impl Cap {
     }
 
     /// The random numbers that [`Cap::sample_uniform`] maps to `dir`:
-    /// `u₀ = (1 − dir·axis) / (1 − cos θ)`, `u₁ = φ / 2π`; `None` outside the cap.
+    /// `u₀ = (1 − dir·axis) / (1 − cos θ)`, `u₁ = φ / 2π`; `None` outside the cap. Past
+    /// the hemisphere, `1 − u₀ = ((1 + dir·axis) − (1 + cos θ)) / (1 − cos θ)` from the
+    /// complement (the inverse of the sampling's `h + (1 − u₀) t`).
     pub fn invert(&self, dir: Vec3) -> Option<[f32; 2]> {
         if !self.contains(dir) || self.uniform_pdf() == 0.0 {
             return None;
         }
         let t = self.one_minus_cos_of(dir)?;
-        let u0 = (t / self.one_minus_cos).min(ONE_MINUS_ULP);
+        let u0 = if t > 1.0 {
+            let unit = crate::math::unit(dir)?;
+            let h = 0.5 * (unit + self.axis).length_squared();
+            1.0 - (h - self.one_plus_cos).max(0.0) / self.one_minus_cos
+        } else {
+            t / self.one_minus_cos
+        };
+        let u0 = u0.max(0.0).min(ONE_MINUS_ULP);
         let (tangent, bitangent) = orthonormal_basis(self.axis);
         let mut phi = libm::atan2f(dir.dot(bitangent), dir.dot(tangent));
         if phi < 0.0 {

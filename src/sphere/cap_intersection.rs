@@ -73,17 +73,19 @@ fn one_minus_dot(a: crate::Vec3, b: crate::Vec3) -> f32 {
 /// The exact solid angle of `a ∩ b` (see the module documentation). The caps must be
 /// valid (unit axes, `one_minus_cos` in `[0, 2]`; see [`Cap::sanitized`]).
 ///
-/// A cap wider than a hemisphere is replaced by its complement `(−axis, 2 − t)`
-/// (`2 − t` is exact for `t ∈ [1, 2]`): `Ω(C₁ ∩ C₂) = Ω₂ − Ω(C̄₁ ∩ C₂)`. The lens
+/// A cap wider than a hemisphere is replaced by its complement `(−axis, 1 + cos θ)`,
+/// with the stored hole `1 + cos θ` (issue 17, 6: `2 − t` is exact for `t ∈ [1, 2]`,
+/// but `t` itself kept only `ulp(2)` of a small hole): `Ω(C₁ ∩ C₂) = Ω₂ − Ω(C̄₁ ∩ C₂)`. The lens
 /// formula then only sees caps up to a hemisphere, where `t_d` near 2 (nearly
 /// antipodal axes, which the complement brings close together) cannot occur with an
 /// overlap, so `|a₁ − a₂|²/2` never has to resolve `2 − t_d`.
 pub fn cap_intersection_solid_angle(a: &Cap, b: &Cap) -> f32 {
-    // The caps in a canonical order (by `t`, then by the axes' bits), so that the
-    // rounding is the same either way round: Ω(a ∩ b) = Ω(b ∩ a) bit for bit.
+    // The caps in a canonical order (by `t`, then by the hole and the axes' bits), so
+    // that the rounding is the same either way round: Ω(a ∩ b) = Ω(b ∩ a) bit for bit.
     let key = |c: &Cap| {
         (
             c.one_minus_cos.to_bits(),
+            c.one_plus_cos.to_bits(),
             c.axis.x.to_bits(),
             c.axis.y.to_bits(),
             c.axis.z.to_bits(),
@@ -91,18 +93,18 @@ pub fn cap_intersection_solid_angle(a: &Cap, b: &Cap) -> f32 {
     };
     let (a, b) = if key(a) <= key(b) { (a, b) } else { (b, a) };
     let (t1, t2) = (a.one_minus_cos, b.one_minus_cos);
+    let (h1, h2) = (a.one_plus_cos, b.one_plus_cos);
     if !(t1 > 0.0) || !(t2 > 0.0) {
         return 0.0;
     }
     let omega = |t: f32| 2.0 * PI * t;
     let result = match (t1 > 1.0, t2 > 1.0) {
         (false, false) => at_most_hemispheres(a.axis, t1, b.axis, t2),
-        (true, false) => omega(t2) - at_most_hemispheres(-a.axis, 2.0 - t1, b.axis, t2),
-        (false, true) => omega(t1) - at_most_hemispheres(a.axis, t1, -b.axis, 2.0 - t2),
+        (true, false) => omega(t2) - at_most_hemispheres(-a.axis, h1, b.axis, t2),
+        (false, true) => omega(t1) - at_most_hemispheres(a.axis, t1, -b.axis, h2),
         (true, true) => {
             // C₁ ∩ C₂ is the complement of C̄₁ ∪ C̄₂.
-            4.0 * PI - omega(2.0 - t1) - omega(2.0 - t2)
-                + at_most_hemispheres(-a.axis, 2.0 - t1, -b.axis, 2.0 - t2)
+            4.0 * PI - omega(h1) - omega(h2) + at_most_hemispheres(-a.axis, h1, -b.axis, h2)
         }
     };
     let low = (omega(t1) + omega(t2) - 4.0 * PI).max(0.0);

@@ -56,7 +56,8 @@ fn solid_angle_matches_f64_for_tiny_to_huge_caps_and_scaled_coordinates() {
         let omega_ref = 2.0 * core::f64::consts::PI * reference;
         assert!((omega - omega_ref).abs() <= 3e-6 * omega_ref);
         assert!((cap.axis.length() - 1.0).abs() < 1e-6);
-        assert!((cap.cos as f64 - (1.0 - reference)).abs() < 1e-6);
+        assert!((cap.cos() as f64 - (1.0 - reference)).abs() < 1e-6);
+        assert!((cap.one_plus_cos as f64 - (2.0 - reference)).abs() < 1e-6);
     }
     assert!(worst > 0.0, "the test compared nothing");
 }
@@ -118,14 +119,14 @@ fn from_axis_cos_and_sanitized_handle_garbage() {
     let garbage = Cap {
         axis: Vec3::new(f32::NAN, 1.0, 0.0),
         one_minus_cos: 7.0,
-        cos: f32::INFINITY,
+        one_plus_cos: f32::INFINITY,
         sin2: -3.0,
     };
     assert_eq!(garbage.sanitized(), Cap::EMPTY);
     let big = Cap {
         axis: Vec3::new(3e38, 3e38, 0.0),
         one_minus_cos: 7.0,
-        cos: 0.0,
+        one_plus_cos: 0.0,
         sin2: 0.0,
     }
     .sanitized();

@@ -363,3 +363,72 @@ fn the_sphere_light_sampler_has_no_padding() {
         core::mem::size_of_val(&sampler.sptd) + core::mem::size_of_val(&sampler.uses_sptd)
     );
 }
+
+/// Issue 17 (6): at a grazing view (cos θo = 0.025, r = 0.074, |r_p| = 0.996) a light
+/// of 0.31 rad around the pivot's direction has an image of 3.116 rad whose hole is
+/// `1 + cos ψ' = 3.3e-4`; stored as `1 − cos ψ'` near 2 it kept only `ulp(2)` of the
+/// hole (up to 3.6e-4 of it). A bent cone that lets through a sliver of the light, 0.03
+/// to 0.2 rad deep, has an image that covers the hole and a thin ring around it, so the
+/// shading is `Ω(g(V)) − 2π h` and inherits that error, amplified by the ring's
+/// thinness. Lights of 200 sizes (every rounding of the hole), bent cones around the
+/// normal and tilted away from the light; the reference is the f64 image and
+/// intersection of the same f32 inputs (`testing::pivot_image_f64`,
+/// `testing::cap_intersection_f64`).
+///
+/// Worst relative errors by reach (0.03, 0.1, 0.2 rad), measured: cones around the
+/// normal 2.7e-3, 5.4e-4, 1.1e-4 before the fix, 1.2e-5, 9.9e-6, 9.5e-6 after; tilted
+/// cones 2.9e-3, 6.1e-4, 1.5e-4 before, 2.8e-4, 8.7e-5, 4.9e-5 after, where what is
+/// left is the cone's own image in f32 (its `1 − cos` 2–4e-5 and its axis 3e-7 rad off,
+/// from image points near the pivot's direction that `g` computes to an absolute
+/// `1e-7`), which the ring's thinness amplifies as it does the hole's error.
+#[test]
+fn occlusion_of_a_light_whose_image_is_nearly_the_whole_sphere() {
+    let cos_o = 0.025f32;
+    let wo = Vec3::new((1.0 - cos_o * cos_o).sqrt(), 0.0, cos_o);
+    let shading = SphereShadingSptd::new(wo, 0.074, Vec3::ONE).unwrap();
+    let fit = shading.fit;
+    assert!((fit.pivot.length() - 0.996).abs() < 1e-3);
+    let pivot = d3(fit.pivot);
+    let direction = fit.pivot.normalize();
+    const REACHES: [f32; 3] = [0.03, 0.1, 0.2];
+    // Bounds by reach: cones around the normal, tilted cones.
+    const AROUND_THE_NORMAL: [f64; 3] = [2.5e-5, 2e-5, 2e-5];
+    const TILTED: [f64; 3] = [4e-4, 1.3e-4, 7e-5];
+    let mut worst = [[0.0f64; 3]; 2];
+    for k in 0..200 {
+        let light = Cap::from_sphere(direction * 10.0, 3.079 + 2e-5 * k as f32);
+        let light_image = pivot_image_f64(d3(light.axis), light.one_minus_cos as f64, pivot);
+        let width = 2.0
+            * (0.5 * light_image.1)
+                .sqrt()
+                .atan2((0.5 * light_image.2).sqrt());
+        assert!((width - 3.116).abs() < 1e-3, "{light_image:?}");
+        assert!((light_image.2 - 3.3e-4).abs() < 1e-5, "{light_image:?}");
+        for tilt in [0.0f32, 0.3, 0.6, 1.0] {
+            let axis = Vec3::new(tilt.sin(), 0.0, tilt.cos());
+            for (r, reach) in REACHES.into_iter().enumerate() {
+                let half_angle = direction.dot(axis).acos() - light.half_angle() + reach;
+                let cone = Cap::from_axis_cos(axis, half_angle.cos());
+                let cone_image = pivot_image_f64(d3(cone.axis), cone.one_minus_cos as f64, pivot);
+                let expected = fit.albedo as f64 * cap_intersection_f64(light_image, cone_image)
+                    / (4.0 * core::f64::consts::PI);
+                let value = shading.shade_occluded(&light, &cone).x as f64;
+                let error = (value - expected).abs() / expected;
+                let (kind, bound) = if tilt == 0.0 {
+                    (0, AROUND_THE_NORMAL[r])
+                } else {
+                    (1, TILTED[r])
+                };
+                worst[kind][r] = worst[kind][r].max(error);
+                assert!(
+                    error < bound,
+                    "light {light:?} cone {cone:?}: {value:e} vs {expected:e} ({error:e})"
+                );
+            }
+        }
+    }
+    println!(
+        "worst relative errors by reach {REACHES:?}: around the normal {:?}, tilted {:?}",
+        worst[0], worst[1]
+    );
+}

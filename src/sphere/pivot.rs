@@ -31,8 +31,13 @@
 //! image; the arc length `L` decides.
 //!
 //! The implementation measures the two halves `g(ω₁) → g(ω_c)` and `g(ω_c) → g(ω₂)` with `atan2` of 2D cross and dot
-//! products in that plane, and rotates `g(ω₁)` by `L/2` to get the axis; the stored
-//! `1 − cos ψ' = 2 sin²(ψ'/2)`.
+//! products in that plane, and rotates `g(ω₁)` by `L/2` to get the axis. An image up to
+//! a hemisphere (`L ≤ π`) stores `1 − cos ψ' = 2 sin²(L/4)`. A wider image stores its
+//! hole `1 + cos ψ' = 2 cos²(L/4) = 2 sin²(L̄/4)` from the complementary arc
+//! `L̄ = 2π − L`, the arc `g(ω₂) → g(ω₁)` (counterclockwise) measured directly with
+//! its own `atan2` (issue 17, 6): `L` near `2π` is known only to `ulp(2π)`, and
+//! `2 − (1 − cos ψ')` only to `ulp(2)`, while a hole of 3.3e-4 (`L̄ = 0.051`) is
+//! resolved to the rounding of the two image points, a few 1e-6 of it.
 //!
 //! Degenerate cases: a cap axis parallel to the pivot (any plane through the axis
 //! works; a fixed tangent is used); the pivot at the origin (`g(ω) = −ω`, the
@@ -152,7 +157,7 @@ pub fn pivot_cap(cap: &Cap, pivot: Vec3) -> Cap {
     };
     let p = Vec2::new(along, across.min(MAX_PIVOT_LENGTH));
     let sin = libm::sqrtf(cap.sin2.max(0.0).min(1.0));
-    let cos = 1.0 - cap.one_minus_cos;
+    let cos = cap.cos();
     // ω₁ below, ω₂ above the axis: ω₁ → ω_c → ω₂ is counterclockwise.
     let g1 = transform_2d(Vec2::new(cos, -sin), p);
     let g2 = transform_2d(Vec2::new(cos, sin), p);
@@ -175,8 +180,19 @@ pub fn pivot_cap(cap: &Cap, pivot: Vec3) -> Cap {
         g1.x * sin_half + g1.y * cos_half,
     );
     let axis = cap.axis * axis_2d.x + tangent * axis_2d.y;
-    let s = libm::sinf(0.5 * half);
-    Cap::from_axis_one_minus_cos(axis, 2.0 * s * s)
+    if half <= 0.5 * PI {
+        let s = libm::sinf(0.5 * half);
+        return Cap::from_axis_one_minus_cos(axis, 2.0 * s * s);
+    }
+    // Wider than a hemisphere: the hole from the complementary arc g(ω₂) → g(ω₁), which
+    // is `2π − L` in exact arithmetic. Where the hole is below the rounding of the image
+    // points, that arc can come out as a turn minus a tiny angle: no hole then.
+    let mut rest = ccw_angle(g2, g1);
+    if rest > PI {
+        rest = if rest > 1.5 * PI { 0.0 } else { PI };
+    }
+    let s = libm::sinf(0.25 * rest);
+    Cap::from_axis_one_plus_cos(axis, 2.0 * s * s)
 }
 
 #[cfg(test)]

@@ -229,7 +229,7 @@ pub fn clamped_cosine_over_cap(cap: &Cap, a: Vec3) -> f32 {
         return 0.0;
     }
     let cos_beta = cap.axis.dot(a).max(-1.0).min(1.0);
-    let cos = 1.0 - cap.one_minus_cos;
+    let cos = cap.cos();
     let s = libm::sqrtf((cap.sin2 - cos_beta * cos_beta).max(0.0));
     let phi0 = libm::atan2f(s, cos * cos_beta);
     let psi0 = libm::atan2f(s, cos);
@@ -259,8 +259,7 @@ fn same_circle(p: &Cap, q: &Cap) -> Option<bool> {
     let t_d = 0.5 * (p.axis - q.axis).length_squared();
     if t_d <= TOLERANCE && (p.one_minus_cos - q.one_minus_cos).abs() <= TOLERANCE {
         Some(true)
-    } else if t_d >= 2.0 - TOLERANCE && (p.one_minus_cos + q.one_minus_cos - 2.0).abs() <= TOLERANCE
-    {
+    } else if t_d >= 2.0 - TOLERANCE && (p.one_minus_cos - q.one_plus_cos).abs() <= TOLERANCE {
         Some(false)
     } else {
         None
@@ -273,13 +272,13 @@ fn same_circle(p: &Cap, q: &Cap) -> Option<bool> {
 /// A point `ω(φ) = cos θᵢ cᵢ + sin θᵢ (cos φ t + sin φ b)` lies in `j` iff
 /// `A cos(φ − ψ) ≥ K` with `A cos ψ = sin θᵢ (t·cⱼ)`, `A sin ψ = sin θᵢ (b·cⱼ)` and
 /// `K = cos θⱼ − cos θᵢ (cᵢ·cⱼ) = tᵢ + t_d − tⱼ − tᵢ t_d` (the `t = 1 − cos` forms, as
-/// in the two-cap intersection, so that tiny caps do not cancel).
+/// in the two-cap intersection, so that tiny caps do not cancel; see [`crossing_k`]).
 fn arc_inside(ci: &Cap, t: Vec3, b: Vec3, sin_i: f32, cj: &Cap) -> Option<Arc> {
     if cj.one_minus_cos >= 2.0 {
         return Some(Arc::FULL);
     }
     let t_d = (0.5 * (ci.axis - cj.axis).length_squared()).min(2.0);
-    let k = ci.one_minus_cos + t_d - cj.one_minus_cos - ci.one_minus_cos * t_d;
+    let k = crossing_k(ci, cj, t_d);
     let x = sin_i * t.dot(cj.axis);
     let y = sin_i * b.dot(cj.axis);
     let a = libm::sqrtf(x * x + y * y);
@@ -295,7 +294,7 @@ fn arc_inside(ci: &Cap, t: Vec3, b: Vec3, sin_i: f32, cj: &Cap) -> Option<Arc> {
     // `sin²θⱼ sin²d − Kⱼ² = sin²θⱼ − cos²d` does not).
     let sin2_d = t_d * (2.0 - t_d);
     let y2 = if cj.one_minus_cos < ci.one_minus_cos {
-        let kj = cj.one_minus_cos + t_d - ci.one_minus_cos - cj.one_minus_cos * t_d;
+        let kj = crossing_k(cj, ci, t_d);
         cj.sin2 * sin2_d - kj * kj
     } else {
         (a - k) * (a + k)
@@ -310,6 +309,19 @@ fn arc_inside(ci: &Cap, t: Vec3, b: Vec3, sin_i: f32, cj: &Cap) -> Option<Arc> {
         start,
         length: 2.0 * half,
     })
+}
+
+/// `K = cos θⱼ − cos θᵢ cos d` for `t_d = 1 − cos d`: `tᵢ + t_d − tⱼ − tᵢ t_d`, except
+/// when both caps are wider than a hemisphere, where `tᵢ − tⱼ` would keep only `ulp(2)`
+/// of two small holes and `cos θⱼ − cos θᵢ = hⱼ − hᵢ` with the stored `h = 1 + cos θ`
+/// (issue 17, 6): `K = (hⱼ − hᵢ) + t_d cos θᵢ`.
+#[inline(always)]
+fn crossing_k(ci: &Cap, cj: &Cap, t_d: f32) -> f32 {
+    if ci.one_minus_cos > 1.0 && cj.one_minus_cos > 1.0 {
+        (cj.one_plus_cos - ci.one_plus_cos) + t_d * ci.cos()
+    } else {
+        ci.one_minus_cos + t_d - cj.one_minus_cos - ci.one_minus_cos * t_d
+    }
 }
 
 /// The intersection of two circular arcs: up to two arcs.
@@ -353,7 +365,7 @@ pub fn clamped_cosine_over_caps(a_cap: &Cap, b_cap: &Cap, a: Vec3) -> f32 {
         }
         let (t, b) = orthonormal_basis(ci.axis);
         let sin_i = libm::sqrtf(ci.sin2.max(0.0));
-        let cos_i = 1.0 - ci.one_minus_cos;
+        let cos_i = ci.cos();
         // The arcs of circle i inside every other cap: at most two after the first
         // intersection of two arcs, and the intersection of two arcs has at most two
         // pieces; four slots leave room for rounding at the seams.

@@ -1140,19 +1140,21 @@ fn decode_cap(input: &mut Input) -> Cap {
         _ => Cap {
             axis: input.vec3().into(),
             one_minus_cos: input.float(),
-            cos: input.float(),
+            one_plus_cos: input.float(),
             sin2: input.float(),
         },
     }
 }
 
 /// Whether a cap made by a constructor is valid: finite fields, unit axis (or the empty
-/// cap), `one_minus_cos` in [0, 2] and consistent `cos`, `sin2`.
+/// cap), `one_minus_cos` and `one_plus_cos` in [0, 2] adding up to 2 (to rounding), and
+/// `sin2` in [0, 1].
 fn assert_cap_valid(cap: &Cap, what: &str) {
     assert_words_finite(cap, what);
     assert!(
         (0.0..=2.0).contains(&cap.one_minus_cos)
-            && (-1.0..=1.0).contains(&cap.cos)
+            && (0.0..=2.0).contains(&cap.one_plus_cos)
+            && (cap.one_minus_cos + cap.one_plus_cos - 2.0).abs() <= 1e-6
             && (0.0..=1.0).contains(&cap.sin2),
         "{what}: cap out of range {cap:?}"
     );
@@ -1175,7 +1177,7 @@ pub fn sphere_entry_points(data: &[u8]) {
     let wo = input.vec3();
 
     for (cap, name) in [(a, "cap a"), (b, "cap b")] {
-        let clean = sphera_cap_from_axis_cos(cap.axis.into(), cap.cos);
+        let clean = sphera_cap_from_axis_cos(cap.axis.into(), cap.one_plus_cos - 1.0);
         assert_cap_valid(&clean, name);
         let omega = sphera_cap_solid_angle(cap);
         assert!(

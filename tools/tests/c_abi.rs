@@ -607,6 +607,10 @@ fn struct_layouts_match_rust() {
             "offsetof(SpheraCap, one_minus_cos)",
             offset_of!(Cap, one_minus_cos),
         ),
+        (
+            "offsetof(SpheraCap, one_plus_cos)",
+            offset_of!(Cap, one_plus_cos),
+        ),
         ("offsetof(SpheraCap, sin2)", offset_of!(Cap, sin2)),
         ("sizeof(SpheraSptdInCap)", size_of::<SptdInCap>()),
         ("alignof(SpheraSptdInCap)", align_of::<SptdInCap>()),
