@@ -118,18 +118,19 @@ pub fn difference_of_products_unless_cancelling4(
     }
 }
 
-/// [`atan2_upper_half_plane`](super::atan2_upper_half_plane) of each lane: the scalar
-/// form lane by lane (`libm::atanf` stays scalar: see there why), so that every lane is
-/// the same bits as the scalar call that sampling makes again.
+/// [`atan2_upper_half_plane`](super::atan2_upper_half_plane) of the first `lanes` lanes
+/// (the others 0): the scalar form lane by lane (`libm::atanf` stays scalar: see there
+/// why), so that every lane is the same bits as the scalar call, and lanes past a
+/// polygon's triangles or sectors cost nothing.
 #[inline(always)]
 #[must_use]
-pub fn atan2_upper_half_plane4(y: Vec4, x: Vec4) -> Vec4 {
-    Vec4::new(
-        super::atan2_upper_half_plane(y.x, x.x),
-        super::atan2_upper_half_plane(y.y, x.y),
-        super::atan2_upper_half_plane(y.z, x.z),
-        super::atan2_upper_half_plane(y.w, x.w),
-    )
+pub fn atan2_upper_half_plane4(y: Vec4, x: Vec4, lanes: usize) -> Vec4 {
+    let (y, x) = (y.to_array(), x.to_array());
+    let mut angles = [0.0f32; LANES];
+    for (lane, angle) in angles.iter_mut().enumerate().take(lanes) {
+        *angle = super::atan2_upper_half_plane(y[lane], x[lane]);
+    }
+    Vec4::from_array(angles)
 }
 
 #[cfg(test)]
@@ -187,9 +188,14 @@ mod tests {
             let mut draw = || rng.signed_log_uniform(-30.0, 30.0) as f32;
             let x = Vec4::new(draw(), draw(), 0.0, draw());
             let y = Vec4::new(draw().abs(), 0.0, 0.0, f32::NAN);
-            let angles = atan2_upper_half_plane4(y, x);
+            let used = rng.below(5) as usize;
+            let angles = atan2_upper_half_plane4(y, x, used);
             for lane in 0..4 {
-                let scalar = crate::math::atan2_upper_half_plane(y[lane], x[lane]);
+                let scalar = if lane < used {
+                    crate::math::atan2_upper_half_plane(y[lane], x[lane])
+                } else {
+                    0.0
+                };
                 assert_eq!(
                     angles[lane].to_bits(),
                     scalar.to_bits(),

@@ -532,8 +532,9 @@ impl ProjectedSolidAnglePolygon {
                 let inverse = Vec4::ONE / difference_of_products4(s0x, s1y, s0y, s1x);
                 let inverse = Vec4::select(inverse.is_finite_mask(), inverse, Vec4::ZERO);
                 let x = (cosine + t0 * t1) / root_det;
-                let area = crate::math::atan2_upper_half_plane4(det.max(Vec4::ZERO), x)
-                    * (Vec4::splat(0.5) / root_det);
+                let area =
+                    crate::math::atan2_upper_half_plane4(det.max(Vec4::ZERO), x, count - first)
+                        * (Vec4::splat(0.5) / root_det);
                 // `is_degenerate`: not |u_x| <= the limit (NaN included).
                 let proper = ux.abs().cmple(Vec4::splat(super::ellipse::ELLIPSE_LIMIT));
                 let area = Vec4::select(proper, area, Vec4::ZERO).max(Vec4::ZERO);

@@ -690,7 +690,8 @@ impl SolidAnglePolygon {
                 values[..MAX_TRIANGLES - LANES].copy_from_slice(&self.g1_plus_g2[LANES..]);
                 Vec4::from_array(values)
             };
-            let angle = Vec4::splat(2.0) * crate::math::atan2_upper_half_plane4(g0, g1_plus_g2);
+            let angle = Vec4::splat(2.0)
+                * crate::math::atan2_upper_half_plane4(g0, g1_plus_g2, triangles - first);
             angle.write_to_slice(&mut angles[first..first + LANES]);
             store_triangle_lanes(g0, &mut self.g0, first);
             flat |= lane_bits(g0.cmpeq(Vec4::ZERO), first, triangles);
