@@ -19,6 +19,19 @@ pub(crate) fn lane_starts(end: usize) -> impl Iterator<Item = usize> {
     (0..end.div_ceil(LANES)).map(|group| group * LANES)
 }
 
+/// The four slots of `values` from `first` as lanes (one home for the lanes' loads).
+#[inline(always)]
+#[must_use]
+pub(crate) fn load4(values: &[f32], first: usize) -> Vec4 {
+    Vec4::from_slice(&values[first..first + LANES])
+}
+
+/// Writes four lanes into the slots of `values` from `first`.
+#[inline(always)]
+pub(crate) fn store4(lanes: Vec4, values: &mut [f32], first: usize) {
+    lanes.write_to_slice(&mut values[first..first + LANES]);
+}
+
 /// `sqrt` of each lane, correctly rounded (one `sqrtps` on x86-64, where glam computes
 /// the lanes one by one).
 #[inline(always)]

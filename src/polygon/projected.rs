@@ -30,7 +30,9 @@ use super::ellipse_sector::{AreaPrecision, EllipseSector};
 use super::small_projected::{SLIVER_EXTENT2, SMALL_EXTENT, SmallPolygonCosineSampler};
 use super::solid_angle::rescale;
 use super::sorting_networks::sort_bitonic;
-use crate::math::{LANES, copy_sign, cross_precise4, difference_of_products4, lane_starts};
+use crate::math::{
+    LANES, copy_sign, cross_precise4, difference_of_products4, lane_starts, load4, store4,
+};
 use crate::sample::{clamp_random, select_piece};
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 use glam::Vec4;
@@ -115,12 +117,13 @@ fn sector_determinants(
     }
     let mut dets = [0.0f32; 2 * LANES];
     for first in lane_starts(pairs.len()) {
-        let [xa, yb, ya, xb, la, lb] = columns
-            .each_ref()
-            .map(|c| Vec4::from_slice(&c[first..first + LANES]));
+        let [xa, yb, ya, xb, la, lb] = columns.each_ref().map(|c| load4(c, first));
         let det = difference_of_products4(xa, yb, ya, xb) / (la * lb);
-        Vec4::select(det.is_finite_mask(), det, Vec4::ZERO)
-            .write_to_slice(&mut dets[first..first + LANES]);
+        store4(
+            Vec4::select(det.is_finite_mask(), det, Vec4::ZERO),
+            &mut dets,
+            first,
+        );
     }
     dets
 }
@@ -281,9 +284,7 @@ impl ProjectedSolidAnglePolygon {
         let [fx, fy, fz] = first.to_array().map(Vec4::splat);
         let mut largest = Vec4::ZERO;
         for start in lane_starts(count - 1) {
-            let [x, y, z] = others
-                .each_ref()
-                .map(|c| Vec4::from_slice(&c[start..start + LANES]));
+            let [x, y, z] = others.each_ref().map(|c| load4(c, start));
             let (cx, cy, cz) = (y * fz - fy * z, z * fx - fz * x, x * fy - fx * y);
             let sin2 = ((cx * cx + cy * cy) + cz * cz) / (((x * x + y * y) + z * z) * first2);
             let ahead = ((x * fx + y * fy) + z * fz).cmpgt(Vec4::ZERO);
@@ -340,10 +341,10 @@ impl ProjectedSolidAnglePolygon {
         }
         let mut normals = [[0.0f32; 2 * LANES]; 3];
         for first in lane_starts(count) {
-            let load = |values: &[f32; 2 * LANES]| Vec4::from_slice(&values[first..first + LANES]);
+            let load = |values: &[f32; 2 * LANES]| load4(values, first);
             let n = cross_precise4(ends[0].each_ref().map(load), ends[1].each_ref().map(load));
             for (c, lanes) in n.iter().enumerate() {
-                lanes.write_to_slice(&mut normals[c][first..first + LANES]);
+                store4(*lanes, &mut normals[c], first);
             }
         }
         for j in 0..count {
@@ -524,9 +525,8 @@ impl ProjectedSolidAnglePolygon {
             }
             let mut sector_values = [[0.0f32; 2 * LANES]; 4];
             for first in lane_starts(count) {
-                let [s0x, s0y, s1x, s1y, ux, uy, t0, t1, det] = columns
-                    .each_ref()
-                    .map(|c| Vec4::from_slice(&c[first..first + LANES]));
+                let [s0x, s0y, s1x, s1y, ux, uy, t0, t1, det] =
+                    columns.each_ref().map(|c| load4(c, first));
                 let root_det = crate::math::sqrt4(Vec4::ONE + (ux * ux + uy * uy));
                 let cosine = s0x * s1x + s0y * s1y;
                 let inverse = Vec4::ONE / difference_of_products4(s0x, s1y, s0y, s1x);
@@ -542,7 +542,7 @@ impl ProjectedSolidAnglePolygon {
                     .iter_mut()
                     .zip([root_det, cosine, inverse, area])
                 {
-                    lanes.write_to_slice(&mut values[first..first + LANES]);
+                    store4(lanes, values, first);
                 }
             }
             let [root_det, cosine, inverse_basis, area] = sector_values;

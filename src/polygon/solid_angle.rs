@@ -24,7 +24,7 @@
 use crate::Sample;
 use crate::math::{
     LANES, atan2_upper_half_plane, determinant_is_exactly_zero,
-    difference_of_products_unless_cancelling, dot_precise, lane_starts,
+    difference_of_products_unless_cancelling, dot_precise, lane_starts, load4, store4,
 };
 use crate::sample::{ONE_MINUS_ULP, clamp_random, select_piece};
 use crate::{MAX_POLYGON_VERTICES, Vec3};
@@ -244,18 +244,6 @@ fn denominator(v0: Vec3, v1: Vec3, v2: Vec3, sums: [Vec3; 3], length_squares: [f
 /// `LANES + 2 + 3 = 9`), in whole lanes.
 const SLOTS: usize = 3 * LANES;
 
-/// Four consecutive slots from `start` as lanes.
-#[inline(always)]
-fn load(values: &[f32; SLOTS], start: usize) -> Vec4 {
-    Vec4::from_slice(&values[start..start + LANES])
-}
-
-/// Writes four lanes into consecutive slots from `start`.
-#[inline(always)]
-fn store(lanes: Vec4, values: &mut [f32; SLOTS], start: usize) {
-    lanes.write_to_slice(&mut values[start..start + LANES]);
-}
-
 /// Bits `first..first + 4` of a lane mask, for the lanes below `end`: lane `j` stands
 /// for slot `first + j`.
 #[inline(always)]
@@ -324,18 +312,18 @@ impl VertexLanes {
         // The lanes of slots `0..=count` (the last closes the polygon); the slots above
         // stay 0 and only lanes that the masks leave out read them.
         for first in lane_starts(count + 1) {
-            let [x, y, z] = [0, 1, 2].map(|c| load(&lanes.position[c], first) * factor);
-            store(x, &mut lanes.position[0], first);
-            store(y, &mut lanes.position[1], first);
-            store(z, &mut lanes.position[2], first);
+            let [x, y, z] = [0, 1, 2].map(|c| load4(&lanes.position[c], first) * factor);
+            store4(x, &mut lanes.position[0], first);
+            store4(y, &mut lanes.position[1], first);
+            store4(z, &mut lanes.position[2], first);
             let length_squared = (x * x + y * y) + z * z;
             let length = crate::math::sqrt4(length_squared);
             nonzero &= length.cmpgt(Vec4::ZERO).all();
-            store(length_squared, &mut lanes.length_squared, first);
-            store(length, &mut lanes.length, first);
-            store(x / length, &mut lanes.unit[0], first);
-            store(y / length, &mut lanes.unit[1], first);
-            store(z / length, &mut lanes.unit[2], first);
+            store4(length_squared, &mut lanes.length_squared, first);
+            store4(length, &mut lanes.length, first);
+            store4(x / length, &mut lanes.unit[0], first);
+            store4(y / length, &mut lanes.unit[1], first);
+            store4(z / length, &mut lanes.unit[2], first);
         }
         nonzero
     }
@@ -364,12 +352,12 @@ impl VertexLanes {
         let [x0, y0, z0] = [0, 1, 2].map(|c| Vec4::splat(self.position[c][0]));
         let [hx, hy, hz] = reflection.h.to_array().map(Vec4::splat);
         for first in lane_starts(count + 1) {
-            let [x, y, z] = [0, 1, 2].map(|c| load(&self.position[c], first));
+            let [x, y, z] = [0, 1, 2].map(|c| load4(&self.position[c], first));
             let (ex, ey, ez) = (x - x0, y - y0, z - z0);
             let twice_projection = Vec4::splat(2.0) * ((hx * ex + hy * ey) + hz * ez);
-            store(ey - hy * twice_projection, &mut self.reflected[0], first);
-            store(ez - hz * twice_projection, &mut self.reflected[1], first);
-            store(
+            store4(ey - hy * twice_projection, &mut self.reflected[0], first);
+            store4(ez - hz * twice_projection, &mut self.reflected[1], first);
+            store4(
                 ex.abs().max(ey.abs().max(ez.abs())),
                 &mut self.extent,
                 first,
@@ -408,7 +396,7 @@ impl FanLanes {
         triangles: usize,
     ) {
         let (b, c) = (first + 1, first + 2);
-        let [rb, rc] = [b, c].map(|i| [0, 1].map(|r| load(&lanes.reflected[r], i)));
+        let [rb, rc] = [b, c].map(|i| [0, 1].map(|r| load4(&lanes.reflected[r], i)));
         // G0 = det(v0, v1, v2) = det(p_b, p_a, p_c) / (|p_a| |p_b| |p_c|).
         let triangle = Vec4::new(0.0, 1.0, 2.0, 3.0) + Vec4::splat(first as f32);
         let needed = triangle.cmplt(Vec4::splat(triangles as f32));
@@ -416,13 +404,13 @@ impl FanLanes {
             rb[0], rc[1], rb[1], rc[0], needed,
         ) * Vec4::splat(reflection.sigma);
         let noise = Vec4::splat(super::FAN_DETERMINANT_NOISE)
-            * load(&lanes.extent, b)
-            * load(&lanes.extent, c);
+            * load4(&lanes.extent, b)
+            * load4(&lanes.extent, c);
         self.maybe_flat |= lane_bits(det.abs().cmple(noise), first, triangles);
-        let signed_g0 = det / (load(&lanes.length, b) * load(&lanes.length, c));
-        store_lanes(signed_g0, &mut self.signed_g0, first);
-        let [bx, by, bz] = [0, 1, 2].map(|c| load(&lanes.unit[c], b));
-        let [cx, cy, cz] = [0, 1, 2].map(|k| load(&lanes.unit[k], c));
+        let signed_g0 = det / (load4(&lanes.length, b) * load4(&lanes.length, c));
+        store4(signed_g0, &mut self.signed_g0, first);
+        let [bx, by, bz] = [0, 1, 2].map(|c| load4(&lanes.unit[c], b));
+        let [cx, cy, cz] = [0, 1, 2].map(|k| load4(&lanes.unit[k], c));
         let [ax, ay, az] = apex.to_array().map(Vec4::splat);
         let (s01x, s01y, s01z) = (bx + ax, by + ay, bz + az);
         let (s02x, s02y, s02z) = (bx + cx, by + cy, bz + cz);
@@ -454,19 +442,13 @@ impl FanLanes {
     }
 }
 
-/// Writes four lanes into `values[first..first + 4]`.
-#[inline(always)]
-fn store_lanes(lanes: Vec4, values: &mut [f32; 2 * LANES], first: usize) {
-    lanes.write_to_slice(&mut values[first..first + LANES]);
-}
-
 /// Writes the lanes of triangles `first..first + 4` that exist into a per-triangle array
 /// of the prepared polygon (`first` is a constant where this is inlined, so the test
 /// is made at compile time).
 #[inline(always)]
 fn store_triangle_lanes(lanes: Vec4, values: &mut [f32; MAX_TRIANGLES], first: usize) {
     if first + LANES <= MAX_TRIANGLES {
-        lanes.write_to_slice(&mut values[first..first + LANES]);
+        store4(lanes, values, first);
     } else {
         let end = MAX_TRIANGLES - first;
         values[first..].copy_from_slice(&lanes.to_array()[..end]);
@@ -502,8 +484,8 @@ impl EdgeLanes {
         first: usize,
         normals: &mut [Vec3; MAX_POLYGON_VERTICES],
     ) -> u32 {
-        let [px, py, pz] = [0, 1, 2].map(|c| load(&lanes.position[c], first));
-        let [qx, qy, qz] = [0, 1, 2].map(|c| load(&lanes.position[c], first + 1));
+        let [px, py, pz] = [0, 1, 2].map(|c| load4(&lanes.position[c], first));
+        let [qx, qy, qz] = [0, 1, 2].map(|c| load4(&lanes.position[c], first + 1));
         // p_i × p_(i+1) = p_i × (p_(i+1) - p_i): the edge vector is exact up to one
         // rounding and nearly orthogonal to p_i, so no cancellation occurs (the
         // components in the order of `Vec3::cross`).
@@ -513,31 +495,28 @@ impl EdgeLanes {
         let nz = px * dy - dx * py;
         // sin²ℓ = |n|² / (|p_i|² |p_(i+1)|²), kept as products (no division).
         let normal2 = (nx * nx + ny * ny) + nz * nz;
-        let scale2 = load(&lanes.length_squared, first) * load(&lanes.length_squared, first + 1);
+        let scale2 = load4(&lanes.length_squared, first) * load4(&lanes.length_squared, first + 1);
         // The first test of `ignore_short_edges_in_containment` (sin² of the edge's
         // length against SHORT_EDGE_SINE²), on the same values: the common polygon has
         // no short edge and skips it.
         let short_sine2 = Vec4::splat(super::SHORT_EDGE_SINE * super::SHORT_EDGE_SINE);
-        let mut flags = 0;
-        if lane_bits(normal2.cmple(short_sine2 * scale2), first, self.count) != 0 {
-            flags |= EDGE_MAYBE_SHORT;
-        }
-        if lane_bits(
-            normal2.cmpgt(Vec4::splat(self.long_edge_sine2) * scale2),
-            first,
-            self.count,
-        ) != 0
-        {
-            flags |= EDGE_NARROW;
-        }
-        if lane_bits(
-            normal2.cmpgt(Vec4::splat(self.longest_edge_sine2) * scale2),
-            first,
-            self.count,
-        ) != 0
-        {
-            flags |= EDGE_NARROWEST;
-        }
+        let count = self.count;
+        let flag = |mask: BVec4A, bit: u32| {
+            if lane_bits(mask, first, count) != 0 {
+                bit
+            } else {
+                0
+            }
+        };
+        let flags = flag(normal2.cmple(short_sine2 * scale2), EDGE_MAYBE_SHORT)
+            | flag(
+                normal2.cmpgt(Vec4::splat(self.long_edge_sine2) * scale2),
+                EDGE_NARROW,
+            )
+            | flag(
+                normal2.cmpgt(Vec4::splat(self.longest_edge_sine2) * scale2),
+                EDGE_NARROWEST,
+            );
         let orientation = Vec4::splat(self.orientation);
         let (nx, ny, nz) = (
             (nx * orientation).to_array(),
@@ -701,9 +680,9 @@ impl SolidAnglePolygon {
         let (mut flat, mut positive) = (0u32, 0u32);
         let mut angles = [0.0f32; 2 * LANES];
         let mut write_angles = |first: usize| {
-            let g0 = Vec4::from_slice(&fan.signed_g0[first..first + LANES]).abs();
+            let g0 = load4(&fan.signed_g0, first).abs();
             let g1_plus_g2 = if first == 0 {
-                Vec4::from_slice(&self.g1_plus_g2[..LANES])
+                load4(&self.g1_plus_g2, 0)
             } else {
                 let mut values = [0.0; LANES];
                 values[..MAX_TRIANGLES - LANES].copy_from_slice(&self.g1_plus_g2[LANES..]);
@@ -711,7 +690,7 @@ impl SolidAnglePolygon {
             };
             let angle = Vec4::splat(2.0)
                 * crate::math::atan2_upper_half_plane4(g0, g1_plus_g2, triangles - first);
-            angle.write_to_slice(&mut angles[first..first + LANES]);
+            store4(angle, &mut angles, first);
             store_triangle_lanes(g0, &mut self.g0, first);
             flat |= lane_bits(g0.cmpeq(Vec4::ZERO), first, triangles);
             positive |= lane_bits(angle.cmpgt(Vec4::ZERO), first, triangles);
