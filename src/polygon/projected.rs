@@ -33,7 +33,7 @@ use super::sorting_networks::sort_bitonic;
 use crate::math::{
     LANES, copy_sign, cross_precise4, difference_of_products4, lane_starts, load4, store4,
 };
-use crate::sample::{clamp_random, select_piece};
+use crate::sample::{clamp_random, pad_unselectable, select_piece};
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 use glam::Vec4;
 
@@ -572,7 +572,6 @@ impl ProjectedSolidAnglePolygon {
         for j in sectors..MAX_POLYGON_VERTICES {
             polygon.sectors[j] = EllipseSector::EMPTY;
             polygon.sector_area[j] = 0.0;
-            polygon.sector_start[j] = 0.0;
         }
         polygon.small = SmallPolygonCosineSampler::EMPTY;
         let mut total = 0.0f32;
@@ -583,6 +582,7 @@ impl ProjectedSolidAnglePolygon {
             }
             total += polygon.sector_area[j];
         }
+        pad_unselectable(&mut polygon.sector_start, polygon.selectable_sectors);
         let density = 1.0 / total;
         if !(total > 0.0) || !total.is_finite() || !density.is_finite() {
             return false;
@@ -684,7 +684,7 @@ impl ProjectedSolidAnglePolygon {
         let target = u0 * self.projected_solid_angle;
         // The sector: the number of sectors (among all but the last selectable) that start
         // at or before the target. `<=` skips sectors of zero area.
-        let k = select_piece(&self.sector_start, self.selectable_sectors, target);
+        let k = select_piece(&self.sector_start, target);
         let sector_area = self.sector_area[k];
         let local = (target - self.sector_start[k]).max(0.0).min(sector_area);
         let sector = &self.sectors[k];
@@ -712,10 +712,9 @@ impl ProjectedSolidAnglePolygon {
         // disagree: found by fuzzing, |dir| = 1.117. Renormalise such a direction (the
         // test leaves every direction with | |dir|² - 1 | <= 2e-6 bit for bit as it was);
         // its pdf is then `dir.z / Φ` of the direction returned, as `pdf` gives.
-        let dir = crate::sample::unit_if_needed(dir);
-        if !dir.is_finite() {
+        let Some(dir) = crate::sample::unit_if_needed_or_none(dir) else {
             return Sample::NONE;
-        }
+        };
         // `dir.z / Φ` as `pdf` computes it (`unit_if_needed` leaves this `dir` as it is),
         // so that `pdf(sample.dir) == sample.pdf` bit for bit wherever `pdf` finds the
         // direction inside.

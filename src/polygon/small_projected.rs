@@ -29,7 +29,7 @@
 //! closed form per triangle (see `mean_cosine`), to relative `O(s⁴)`.
 
 use super::solid_angle::{MAX_TRIANGLES, SolidAnglePolygon};
-use crate::sample::select_piece;
+use crate::sample::{pad_unselectable, select_piece};
 use crate::{Sample, Vec3};
 
 /// The angular extent (sine of the largest angle between the first vertex and another)
@@ -125,8 +125,8 @@ impl SmallPolygonCosineSampler {
         for k in triangles..MAX_TRIANGLES {
             // The unused slots as in the empty value: no stale or NaN word is left.
             self.weight[k] = 0.0;
-            self.weight_start[k] = 0.0;
         }
+        pad_unselectable(&mut self.weight_start, self.selectable_triangles);
         self.projected_solid_angle = projected.max(0.0);
         self.linear_integral = total;
         self.density = density;
@@ -198,7 +198,7 @@ impl SmallPolygonCosineSampler {
             return Sample::NONE;
         }
         let target = u0 * self.linear_integral;
-        let k = select_piece(&self.weight_start, self.selectable_triangles, target);
+        let k = select_piece(&self.weight_start, target);
         let xi = ((target - self.weight_start[k]) / self.weight[k]).clamp(0.0, 1.0);
         let (za, zb, zc) = self.cosines(k);
         // The linear marginal in a (pbrt's stable form of the quadratic's root).

@@ -59,7 +59,9 @@ pub struct SolidAnglePolygon {
     g2: [f32; MAX_TRIANGLES],
     /// `v0 + v2` per fan triangle, accurate even when `v0 ≈ -v2`.
     outer_sum: [Vec3; MAX_TRIANGLES],
-    /// Solid angle of the fan triangles before triangle `k`.
+    /// Solid angle of the fan triangles before triangle `k`; `+∞` from the first triangle
+    /// that cannot be selected on, which
+    /// [`select_piece`](crate::sample::select_piece) then skips.
     pub(crate) start: [f32; MAX_TRIANGLES],
     /// Total solid angle Ω in steradians (0 when empty).
     pub(crate) solid_angle: f32,
@@ -708,7 +710,12 @@ impl SolidAnglePolygon {
         #[allow(clippy::needless_range_loop)] // k indexes the fan's and the polygon's arrays
         for k in 0..triangles {
             signed_sum += fan.signed_g0[k];
-            self.start[k] = total;
+            // `+∞` past the selectable triangles, which `select_piece` then skips.
+            self.start[k] = if (k as u32) < self.selectable_triangles {
+                total
+            } else {
+                f32::INFINITY
+            };
             total += angles[k];
         }
         let density = 1.0 / total;
@@ -781,7 +788,7 @@ impl SolidAnglePolygon {
             self.g1_plus_g2[k] = 0.0;
             self.g2[k] = 0.0;
             self.outer_sum[k] = Vec3::ZERO;
-            self.start[k] = 0.0;
+            self.start[k] = f32::INFINITY;
         }
         self.solid_angle = total;
         self.density = density;
@@ -863,7 +870,7 @@ impl SolidAnglePolygon {
         let target = u0 * self.solid_angle;
         // Fan triangle k: the number of triangles (among all but the last selectable)
         // that end at or before the target. `<=` skips triangles of zero solid angle.
-        let k = select_piece(&self.start, self.selectable_triangles, target);
+        let k = select_piece(&self.start, target);
         let local = (target - self.start[k]).max(0.0);
         self.sample_in_triangle(k, local, u1)
     }
@@ -909,10 +916,9 @@ impl SolidAnglePolygon {
         // ulp, so t and with it |dir| can be off by up to about 1e-3 (found by fuzzing:
         // |dir| = 0.99957); renormalise then. The test leaves every other direction
         // (|dir|² within 2e-6 of 1) bit for bit as it was.
-        let dir = crate::sample::unit_if_needed(dir);
-        if !dir.is_finite() {
+        let Some(dir) = crate::sample::unit_if_needed_or_none(dir) else {
             return Sample::NONE;
-        }
+        };
         Sample {
             dir,
             pdf: self.density,

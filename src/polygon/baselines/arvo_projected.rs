@@ -89,7 +89,7 @@ impl ArvoProjectedPolygon {
         }
         let (u0, u1) = (clamp_random(u[0]), clamp_random(u[1]));
         let target = u0 * sectors.projected_solid_angle;
-        let k = select_piece(&sectors.sector_start, sectors.selectable_sectors, target);
+        let k = select_piece(&sectors.sector_start, target);
         let area = sectors.sector_area[k];
         // `max(0).min(b)` rather than `clamp(0, b)`, here and below: `clamp` panics (an
         // abort across the C ABI) when a bound read from a corrupted value is NaN or
