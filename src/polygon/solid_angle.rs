@@ -861,7 +861,7 @@ impl SolidAnglePolygon {
     /// direction of Algorithm 5 as computed, which rounding may put just outside `pdf`'s
     /// support. For the warps that map their own density through it (Hart et al.), whose
     /// `pdf` inverts the direction and must see it where it was drawn.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn sample_unchecked(&self, u: [f32; 2]) -> Sample {
         if self.selectable_triangles == 0 {
             return Sample::NONE;

@@ -50,6 +50,19 @@ pub struct TurkPolygon {
     checks_samples: u32,
 }
 
+/// `point / |point|`: |P|² of a far polygon overflows (and of a near one underflows):
+/// found by fuzzing, non-unit directions. Normalised by the largest component there;
+/// zero for a zero or non-finite `point`.
+#[inline(always)]
+fn to_unit(point: Vec3) -> Vec3 {
+    let distance_squared = point.length_squared();
+    if distance_squared > 1e-30 && distance_squared < 1e30 {
+        point * (1.0 / libm::sqrtf(distance_squared))
+    } else {
+        crate::sample::normalize_scaled(point)
+    }
+}
+
 impl TurkPolygon {
     /// The polygon that samples nothing.
     pub const EMPTY: Self = Self {
@@ -78,7 +91,14 @@ impl TurkPolygon {
     /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false` where `new` returns
     /// `None`. Every field that `sample` and `pdf` read is written, whatever `self` held.
     pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
-        let prepared = self.prepare_or_fail(vertices);
+        // Triangles and quads with the count a constant (the copy, the fan and the
+        // unused slots unrolled); 5 to 8 vertices share one body.
+        let prepared = match vertices.len() {
+            3 => self.prepare_or_fail(vertices, 3),
+            4 => self.prepare_or_fail(vertices, 4),
+            count @ 5..=MAX_POLYGON_VERTICES => self.prepare_or_fail(vertices, count),
+            _ => false,
+        };
         crate::polygon::keep_or_empty(self, prepared, Self::EMPTY)
     }
 
@@ -90,11 +110,8 @@ impl TurkPolygon {
     /// triangle, whose cross product then has a NaN or infinite component (∞ · 0 and
     /// ∞ − ∞ are NaN), so the normal cannot be normalised.
     #[inline(always)]
-    fn prepare_or_fail(&mut self, vertices: &[Vec3]) -> bool {
-        let count = vertices.len();
-        if !(3..=MAX_POLYGON_VERTICES).contains(&count) {
-            return false;
-        }
+    fn prepare_or_fail(&mut self, vertices: &[Vec3], count: usize) -> bool {
+        let vertices = &vertices[..count];
         self.vertices[..count].copy_from_slice(vertices);
         let v0 = vertices[0];
         // Twice the (vector) areas of the fan triangles, summed up in `cdf`.
@@ -122,10 +139,11 @@ impl TurkPolygon {
         // vertex's), past which the edge planes of `pdf`, `v_i × (v_(i+1) - v_i)`, and
         // their dot products with a direction of components below 2 could overflow.
         let largest = v0.abs().max_element();
+        // (`normal` is then finite too: each component of `normal_sum` is at most its
+        // finite length, `doubled_area`.)
         if !(area > 0.0
-            && area.is_finite()
-            && total.is_finite()
-            && normal.is_finite()
+            && area <= f32::MAX
+            && total <= f32::MAX
             && largest + reach <= 1.152_921_5e18
             && plane_offset.abs() > (8.0 * 1.732_050_8 * f32::EPSILON) * largest)
         {
@@ -161,26 +179,19 @@ impl TurkPolygon {
         // Choose a fan triangle by area, then reuse u0 within it.
         let triangles = count - 2;
         let target = u0 * self.cdf[triangles - 1];
+        // The number of fan triangles that end at or before the target, branch-free (the
+        // unused entries repeat the total, above the target), at most the last triangle.
         let mut i = 0;
-        while i + 1 < triangles && target >= self.cdf[i] {
-            i += 1;
+        for end in &self.cdf[..MAX_FAN_TRIANGLES - 1] {
+            i += (*end <= target) as usize;
         }
+        let i = i.min(triangles - 1);
         let low = if i == 0 { 0.0 } else { self.cdf[i - 1] };
         let a = ((target - low) / (self.cdf[i] - low)).min(1.0);
         // Turk's mapping: P = (1 - √a) A + √a (1 - b) B + √a b C.
         let (p0, p1, p2) = (self.vertices[0], self.vertices[i + 1], self.vertices[i + 2]);
         let s = libm::sqrtf(a);
         let point = p0 + s * ((p1 - p0) + u1 * (p2 - p1));
-        // |P|² of a far polygon overflows (and of a near one underflows): found by
-        // fuzzing, non-unit directions. Normalised by the largest component there.
-        let to_unit = |point: Vec3| {
-            let distance_squared = point.length_squared();
-            if distance_squared > 1e-30 && distance_squared < 1e30 {
-                point * (1.0 / libm::sqrtf(distance_squared))
-            } else {
-                crate::sample::normalize_scaled(point)
-            }
-        };
         let mut dir = to_unit(point);
         // `pdf` is 0 outside the polygon up to a slack of a small fraction of the
         // polygon's size (issue 16, 1), and rounding can put a point sampled next to an
@@ -188,12 +199,7 @@ impl TurkPolygon {
         // have the slack of 16 ulps and skip the test). Such a point is pulled towards
         // the fan triangle's centroid until inside (`INWARD_PULLS`).
         if self.checks_samples != 0 && !self.contains_scaled(dir, count) {
-            let centroid = (p0 + p1 + p2) * (1.0 / 3.0);
-            match crate::sample::INWARD_PULLS
-                .iter()
-                .map(|&pull| to_unit(point + (centroid - point) * pull))
-                .find(|&pulled| self.contains_scaled(pulled, count))
-            {
+            match self.pulled_inside(point, (p0 + p1 + p2) * (1.0 / 3.0), count) {
                 Some(pulled) => dir = pulled,
                 None => return Sample::NONE,
             }
@@ -201,32 +207,50 @@ impl TurkPolygon {
         // The pdf as `pdf(dir)` computes it, from the ray's intersection with the plane
         // rather than from `point`: the two differ by rounding amplified by
         // `1 / cos θ_light` (found by fuzzing: 3% for far polygons), and MIS needs
-        // `pdf(sample.dir) == sample.pdf`. `pdf` scales its direction by a power of two
-        // first, which `density_along` does not notice (`|dir| / |n · dir|` is a ratio of
-        // exactly scaled values): bit for bit wherever `pdf` finds `dir` inside.
-        let pdf = self.density_along(dir);
-        if dir.is_finite() && pdf > 0.0 {
-            Sample { dir, pdf }
-        } else {
-            Sample::NONE
-        }
+        // `pdf(sample.dir) == sample.pdf`. `pdf` passes a unit direction to
+        // `density_along` as it is (and scales others by a power of two, which
+        // `|dir| / |n · dir|` does not notice): bit for bit wherever `pdf` finds `dir`
+        // inside.
+        // `dir` is finite here (a unit vector, or zero where `point` was not finite), so
+        // a positive pdf, finite by `density_along`, makes a sample.
+        Sample::new_or_none(dir, self.density_along(dir))
+    }
+
+    /// `point` (a sample just outside `pdf`'s support) pulled towards `centroid` (inside)
+    /// by the fractions of `INWARD_PULLS` until `pdf` finds it inside, as a unit vector.
+    #[cold]
+    #[inline(never)]
+    fn pulled_inside(&self, point: Vec3, centroid: Vec3, count: usize) -> Option<Vec3> {
+        crate::sample::INWARD_PULLS
+            .iter()
+            .map(|&pull| to_unit(point + (centroid - point) * pull))
+            .find(|&pulled| self.contains_scaled(pulled, count))
     }
 
     /// `|P|² / (area · |cos θ_light|)` for the point `P = t dir` where the ray along `dir`
     /// meets the polygon's plane `n · P = d`, in the form
     /// `d² (|dir| / |n · dir|)³ / area` (with `t = d / (n · dir)`, `|P| = |t| |dir|` and
-    /// `cos θ_light = |n · dir| / |dir|`): homogeneous of degree 0 in `dir`, and exactly
-    /// so under scaling by a power of two. 0 where the ray does not meet the plane in
-    /// front and where the result is not finite.
-    #[inline]
+    /// `cos θ_light = |n · dir| / |dir|`): homogeneous of degree 0 in `dir`. `|dir|` is
+    /// taken as exactly 1 where `|dir|²` is within 2e-6 of 1 (every sample's direction:
+    /// a relative change of the density below 3e-6, and no square root on the sample's
+    /// path); other lengths scale exactly under powers of two. 0 where the ray does not
+    /// meet the plane in front and where the result is not finite.
+    #[inline(always)]
     fn density_along(&self, dir: Vec3) -> f32 {
-        let normal_dot = self.normal.dot(dir);
-        // In front (t = d / (n · dir) > 0) by signs, without the division; a NaN
-        // `normal_dot` passes here and gives a NaN pdf below, which returns 0.
-        if !(normal_dot != 0.0 && (normal_dot > 0.0) == (self.plane_offset > 0.0)) {
+        // In front (t = d / (n · dir) > 0) when `n · dir` has the sign of `d`: the
+        // product with ±1 (`copysign`, exact, so no underflow to zero) is positive.
+        // NaN fails the test.
+        let facing = self.normal.dot(dir) * 1.0f32.copysign(self.plane_offset);
+        if !(facing > 0.0) {
             return 0.0;
         }
-        let ratio = dir.length() / normal_dot.abs();
+        let length_squared = dir.length_squared();
+        let length = if (length_squared - 1.0).abs() <= 2e-6 {
+            1.0
+        } else {
+            libm::sqrtf(length_squared)
+        };
+        let ratio = length / facing;
         let pdf = self.plane_offset * self.plane_offset * self.inv_area * (ratio * ratio * ratio);
         if pdf.is_finite() { pdf } else { 0.0 }
     }
@@ -250,11 +274,14 @@ impl TurkPolygon {
         // trick of the polygon samplers' rescaling. Every test below and
         // `density_along` scale exactly with it, so the result is that of `dir` itself.
         let biased_exponent = (largest.to_bits() >> 23) & 0xFF;
-        let dir = dir * f32::from_bits(254u32.saturating_sub(biased_exponent).max(1) << 23);
-        if !self.contains_scaled(dir, count) {
+        let scaled = dir * f32::from_bits(254u32.saturating_sub(biased_exponent).max(1) << 23);
+        if !self.contains_scaled(scaled, count) {
             return 0.0;
         }
-        self.density_along(dir)
+        // A unit direction (a sample's) as it is, so that its density is the sample's
+        // bit for bit (`density_along` takes its length as 1); others scaled.
+        let unit = (dir.length_squared() - 1.0).abs() <= 2e-6;
+        self.density_along(if unit { dir } else { scaled })
     }
 
     /// Whether the ray along `dir` (largest component in `[1, 2)`, or a unit vector)
