@@ -42,7 +42,7 @@ import time
 
 import indirect_report
 
-SCENES = ("cornell", "polygons", "polygons@8", "hard", "glossy", "spheres")  # name@K: K per light
+SCENES = ("cornell", "polygons", "polygons@8", "hard", "glossy", "spheres", "slab")  # name@K: K per light
 # The techniques that combine two samples by MIS (BRDF or LTC sampling with projected
 # solid angle sampling) matter on glossy surfaces: they run on the `glossy` scene, with
 # the light samplers they are built from; the other scenes compare the light samplers.
@@ -50,8 +50,9 @@ MIS_TECHNIQUES = ("brdf_balance", "brdf_power", "ltc_weighted", "ltc_clamped", "
 GLOSSY_TECHNIQUES = ("area", "solid_angle", "projected") + MIS_TECHNIQUES
 # Sphere lights have their own samplers; they run on the `spheres` scene only.
 SPHERE_TECHNIQUES = ("sphere_cap", "sphere_cap_brdf", "sphere_sptd", "sphere_realtime")
-# In-scattering in a medium: the `slab` scene (not in SCENES: --scenes slab), against
-# uniform cap sampling.
+# In-scattering in a medium: the `slab` scene, the pivot phase function restricted to
+# the light's cap (Dupuy et al. 2017, Sec. 6.2) beside its baseline, Henyey-Greenstein
+# sampling with uniform cap sampling by MIS, against uniform cap sampling.
 MEDIUM_TECHNIQUES = ("medium_pivot", "medium_hg_cap")
 SLAB_TECHNIQUES = ("sphere_cap",) + MEDIUM_TECHNIQUES
 # The baseline of the speed-up column: area sampling, or on `spheres` and `slab` uniform
