@@ -856,6 +856,8 @@ static void sptd_suite(void) {
   EXPECT(vec3_equal(sphera_sphere_light_shade(NULL, hard_caps[3]), vec3(0, 0, 0)));
   EXPECT(vec3_equal(sphera_sphere_light_shade_occluded(NULL, hard_caps[3], hard_caps[7]),
                     vec3(0, 0, 0)));
+  EXPECT(vec3_equal(sphera_sphere_light_shade_occluded_separable(NULL, hard_caps[3], hard_caps[7]),
+                    vec3(0, 0, 0)));
   EXPECT(!sphera_sphere_light_sampler_prepare(NULL, vec3(0, 0, 2), 0.5f, directions[1], 0.5f));
   EXPECT(is_no_sample(sphera_sphere_light_sampler_sample(NULL, 0.5f, 0.5f)));
   EXPECT(sphera_sphere_light_sampler_pdf(NULL, directions[0]) == 0.0f);
@@ -941,6 +943,11 @@ static void sptd_suite(void) {
           SpheraVec3 v = c2 == 0 ? sphera_sphere_light_shade(&shading, hard_caps[c])
                                  : sphera_sphere_light_shade_occluded(&shading, hard_caps[c],
                                                                       hard_caps[c2]);
+          SpheraVec3 w = sphera_sphere_light_shade_occluded_separable(&shading, hard_caps[c],
+                                                                      hard_caps[c2]);
+          EXPECT(finite3(w) && w.x >= 0.0f && w.y >= 0.0f && w.z >= 0.0f && w.x <= 1.00001f &&
+                 w.y <= 1.00001f && w.z <= 1.00001f);
+          if (!ok) EXPECT(vec3_equal(w, vec3(0, 0, 0)));
           calls++;
           EXPECT(finite3(v) && v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f && v.x <= 1.00001f &&
                  v.y <= 1.00001f && v.z <= 1.00001f);

@@ -70,6 +70,12 @@ static void check_sphere_light(void) {
   CHECK(value.x > 0.0f && value.x <= fit.albedo && value.x == value.z);
   CHECK(vec3_equal(sphera_sphere_light_shade_occluded(&shading, light, horizon), value));
   CHECK(sphera_sphere_light_shade_occluded(&shading, light, away).x == 0.0f);
+  /* The separable baseline (Eq. 21-22): the unoccluded value for the hemisphere, none
+   * for a cone away from the light and the lobe. */
+  CHECK(fabsf(sphera_sphere_light_shade_occluded_separable(&shading, light, horizon).x - value.x) <=
+        1e-6f * value.x);
+  CHECK(sphera_sphere_light_shade_occluded_separable(&shading, light, away).x >= 0.0f);
+  CHECK(sphera_sphere_light_shade_occluded_separable(&shading, light, away).x <= value.x);
 
   CHECK(sphera_sphere_light_sampler_prepare(&sampler, mirror, 0.5f, wo, 0.3f));
   CHECK(sphera_sphere_light_sampler_uses_sptd(&sampler));
@@ -122,6 +128,7 @@ static void check_bad_input(void) {
   CHECK(!sphera_sphere_light_shading_prepare(NULL, vec3(0, 0, 1), 0.5f, vec3(1, 1, 1)));
   CHECK(vec3_equal(sphera_sphere_light_shade(NULL, cap), vec3(0, 0, 0)));
   CHECK(vec3_equal(sphera_sphere_light_shade_occluded(NULL, cap, cap), vec3(0, 0, 0)));
+  CHECK(vec3_equal(sphera_sphere_light_shade_occluded_separable(NULL, cap, cap), vec3(0, 0, 0)));
   CHECK(!sphera_sphere_light_sampler_prepare(NULL, vec3(0, 0, 3), 1.0f, vec3(0, 0, 1), 0.5f));
   CHECK(sphera_sphere_light_sampler_sample(NULL, 0.5f, 0.5f).pdf == 0.0f);
   CHECK(sphera_sphere_light_sampler_pdf(NULL, vec3(0, 0, 1)) == 0.0f);
@@ -161,6 +168,7 @@ static void check_bad_input(void) {
       sphera_sphere_light_shading_prepare(&shading, v, bad[k], v);
       CHECK(vec3_is_finite(sphera_sphere_light_shade(&shading, garbage)));
       CHECK(vec3_is_finite(sphera_sphere_light_shade_occluded(&shading, cap, garbage)));
+      CHECK(vec3_is_finite(sphera_sphere_light_shade_occluded_separable(&shading, garbage, garbage)));
       sphera_sphere_light_sampler_prepare(&sampler, v, bad[k], v, bad[i]);
       s = sphera_sphere_light_sampler_sample(&sampler, bad[i], bad[k]);
       CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf));

@@ -195,7 +195,9 @@ typedef struct SpheraSolidAnglePolygon {
    */
   SpheraVec3 outer_sum[(SPHERA_MAX_POLYGON_VERTICES - 2)];
   /**
-   * Solid angle of the fan triangles before triangle `k`.
+   * Solid angle of the fan triangles before triangle `k`; `+∞` from the first triangle
+   * that cannot be selected on, which
+   * [`select_piece`](crate::sample::select_piece) then skips.
    */
   float start[(SPHERA_MAX_POLYGON_VERTICES - 2)];
   /**
@@ -2387,6 +2389,22 @@ struct SpheraVec3 sphera_sphere_light_shade(const struct SpheraSphereLightShadin
 struct SpheraVec3 sphera_sphere_light_shade_occluded(const struct SpheraSphereLightShading *shading,
                                                      struct SpheraCap light,
                                                      struct SpheraCap visibility);
+
+/**
+ * Specular occlusion by the separable approximation (Eq. 21–22, BIASED; the baseline
+ * of `sphera_sphere_light_shade_occluded`): the unoccluded shading
+ * `sphera_sphere_light_shade` times the fraction of the BRDF lobe inside the bent cone,
+ * `Ω(g(V) ∩ g(H)) / Ω(g(H))`. It lets light through a cone that holds the lobe but not
+ * the light (shadow leaking). Equals `sphera_sphere_light_shade` for the hemisphere
+ * `(0, 0, 1)`, `cos θ = 0`. Zero for a null pointer.
+ *
+ * # Safety
+ *
+ * As for `sphera_sphere_light_shade`.
+ */
+struct SpheraVec3 sphera_sphere_light_shade_occluded_separable(const struct SpheraSphereLightShading *shading,
+                                                               struct SpheraCap light,
+                                                               struct SpheraCap visibility);
 
 /**
  * Prepares joint BRDF–light sampling of a sphere light (Section 6.1): the fitted SPTD

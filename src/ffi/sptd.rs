@@ -277,6 +277,31 @@ pub unsafe extern "C" fn sphera_sphere_light_shade_occluded(
     .into()
 }
 
+/// Specular occlusion by the separable approximation (Eq. 21–22, BIASED; the baseline
+/// of `sphera_sphere_light_shade_occluded`): the unoccluded shading
+/// `sphera_sphere_light_shade` times the fraction of the BRDF lobe inside the bent cone,
+/// `Ω(g(V) ∩ g(H)) / Ω(g(H))`. It lets light through a cone that holds the lobe but not
+/// the light (shadow leaking). Equals `sphera_sphere_light_shade` for the hemisphere
+/// `(0, 0, 1)`, `cos θ = 0`. Zero for a null pointer.
+///
+/// # Safety
+///
+/// As for `sphera_sphere_light_shade`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_sphere_light_shade_occluded_separable(
+    shading: *const SphereShadingSptd,
+    light: Cap,
+    visibility: Cap,
+) -> SpheraVec3 {
+    // SAFETY: forwarded from the caller.
+    unsafe {
+        with_ref(shading, Vec3::ZERO, |s| {
+            s.shade_occluded_separable(&light, &visibility)
+        })
+    }
+    .into()
+}
+
 /// Prepares joint BRDF–light sampling of a sphere light (Section 6.1): the fitted SPTD
 /// restricted to the light's cap, or uniform cap sampling when the pivoted cap is
 /// smaller than 1e-3 sr (`sphera_sphere_light_sampler_uses_sptd` tells which). Combine

@@ -16,7 +16,10 @@
 //! Oat and Sander's approximation, which fails for the image of `H`, often wider than a
 //! hemisphere). **Specular occlusion** (Section 5.4, Eq. 23) replaces `H` by a bent cone
 //! `V` (the visibility cap): `L · albedo · Ω(g(C) ∩ g(V)) / 4π`, the triple product of
-//! BRDF, light and visibility; for an unoccluded point `V = H` and both agree. The
+//! BRDF, light and visibility; for an unoccluded point `V = H` and both agree. Its
+//! baseline, the separable approximation of Eq. 21–22
+//! ([`SphereShadingSptd::shade_occluded_separable`]), multiplies the unoccluded shading
+//! by the fraction of the BRDF lobe inside the cone. The
 //! Fresnel factor is the LTC table's Schlick-weighted albedo ([`Ltc::specular_albedo`]),
 //! so the result is RGB.
 //!
@@ -130,6 +133,29 @@ impl SphereShadingSptd {
         let image = pivot_cap(&light.sanitized(), self.fit.pivot);
         let visible = pivot_cap(&visibility.sanitized(), self.fit.pivot);
         self.specular_albedo * (cap_intersection_solid_angle(&image, &visible) * (0.25 / PI))
+    }
+
+    /// Specular occlusion by the separable approximation that Eq. 23 improves on
+    /// (Eq. 21–22; the baseline of [`shade_occluded`](Self::shade_occluded)):
+    /// `L_o ≈ (V_f / f̄) · L_f`, the unoccluded shading `L_f` of
+    /// [`shade`](Self::shade) times the fraction of the BRDF lobe inside the bent cone,
+    /// `V_f / f̄ = ∫_{V ∩ H} D / ∫_H D = Ω(g(V) ∩ g(H)) / Ω(g(H))`, the same SPTD `D`
+    /// standing for `f cos θ` in both factors, so that the two methods differ only in
+    /// the separation. It neglects the correlation of visibility and light: a bent cone
+    /// that holds most of the lobe but not the light lets the light through (shadow
+    /// leaking, the paper's Fig. 11 d). Equals `shade` for `V = H`.
+    pub fn shade_occluded_separable(&self, light: &Cap, visibility: &Cap) -> Vec3 {
+        let visible = pivot_cap(&visibility.sanitized(), self.fit.pivot);
+        let lobe = self.horizon_image.solid_angle();
+        let inside = cap_intersection_solid_angle(&visible, &self.horizon_image);
+        // `lobe > 0` for every prepared value (the image of H is at least a hemisphere's
+        // worth of the pivoted sphere); the test keeps a hand-made one finite.
+        let fraction = if lobe > 0.0 {
+            (inside / lobe).min(1.0)
+        } else {
+            0.0
+        };
+        self.shade(light) * fraction
     }
 }
 

@@ -1743,6 +1743,10 @@ pub fn sptd_entry_points(data: &[u8]) {
             sphera_sphere_light_shade_occluded(std::ptr::null(), a, b),
             zero
         );
+        assert_eq!(
+            sphera_sphere_light_shade_occluded_separable(std::ptr::null(), a, b),
+            zero
+        );
         let (shading, ok) = prepared::<SphereShadingSptd>(|out| {
             sphera_sphere_light_shading_prepare(out, wo, roughness, f0)
         });
@@ -1752,6 +1756,10 @@ pub fn sptd_entry_points(data: &[u8]) {
             (
                 sphera_sphere_light_shade_occluded(&shading, a, b),
                 "shade occluded",
+            ),
+            (
+                sphera_sphere_light_shade_occluded_separable(&shading, a, b),
+                "shade occluded separable",
             ),
         ] {
             let v = to_f64(value);

@@ -5,7 +5,8 @@
 //! roughness, view angle, light size and distance, and light direction. Also the two
 //! variants the paper discusses: the unclipped integral `Ω(g(C))/4π` (light leaking below
 //! the horizon) and the horizon clipping with Oat and Sander's approximation of the
-//! two-cap solid angle (Eq. 37–38), and specular occlusion with a bent cone (Eq. 23)
+//! two-cap solid angle (Eq. 37–38), and specular occlusion with a bent cone (Eq. 23, and
+//! its separable baseline, Eq. 21–22)
 //! against the reference with the cone as the exact visibility.
 //!
 //! The table: `cargo run --release -p sphera-tools --bin sphere_shading_error >
