@@ -122,6 +122,7 @@ def main():
     ap.add_argument("--curve")
     ap.add_argument("--out-pfm")
     ap.add_argument("--out-png")
+    ap.add_argument("--out-error-png")
     ap.add_argument("--exposure", type=float, default=0.0)
     ap.add_argument("--list-scenes", action="store_true")
     ap.add_argument("--list-techniques", action="store_true")
@@ -193,6 +194,14 @@ def main():
         write_pfm(a.out_pfm, w, h, img)
     if a.out_png:
         write_png(a.out_png, w, h, img, a.exposure)
+    if a.out_error_png:
+        if not a.reference:
+            print("sphera-trace: --out-error-png needs --reference", file=sys.stderr)
+            return 2
+        # As sphera-trace: the mean error over the channels, x 4, red brighter, blue darker.
+        err = [sum(p) - sum(q) for p, q in zip(img, ref)]
+        write_png(a.out_error_png, w, h, [(4 * e / 3, 0.0, -4 * e / 3) for e in err],
+                  a.exposure)
     print(f"{a.technique}: {passes} passes", file=sys.stderr)
     print(json.dumps(out))
     return 0

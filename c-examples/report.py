@@ -42,7 +42,8 @@ import time
 
 import indirect_report
 
-SCENES = ("cornell", "polygons", "polygons@8", "hard", "glossy", "spheres", "slab")  # name@K: K per light
+SCENES = ("cornell", "polygons", "polygons@8", "hard", "glossy", "spheres", "slab",
+          "occlusion")  # name@K: K per light
 # The techniques that combine two samples by MIS (BRDF or LTC sampling with projected
 # solid angle sampling) matter on glossy surfaces: they run on the `glossy` scene, with
 # the light samplers they are built from; the other scenes compare the light samplers.
@@ -57,7 +58,12 @@ MEDIUM_TECHNIQUES = ("medium_pivot", "medium_hg_cap")
 SLAB_TECHNIQUES = ("sphere_cap",) + MEDIUM_TECHNIQUES
 # The baseline of the speed-up column: area sampling, or on `spheres` and `slab` uniform
 # cap sampling.
-SCENE_BASELINE = {"spheres": "sphere_cap", "slab": "sphere_cap"}
+# Specular occlusion (Dupuy et al. 2017, Sec. 5.4): the `occlusion` scene, the SPTD's
+# triple product in a traced bent cone (Eq. 23) against the separable approximation
+# (Eq. 21-22), beside the ray-traced estimators.
+OCCLUSION_TECHNIQUES = ("sphere_cap", "sphere_cap_brdf", "sphere_realtime",
+                        "sphere_occlusion", "sphere_occlusion_separable")
+SCENE_BASELINE = {"spheres": "sphere_cap", "slab": "sphere_cap", "occlusion": "sphere_cap"}
 
 
 def techniques_for(scene, techs):
@@ -69,8 +75,11 @@ def techniques_for(scene, techs):
         return [t for t in techs if t[0] in SPHERE_TECHNIQUES]
     if name == "slab":
         return [t for t in techs if t[0] in SLAB_TECHNIQUES]
+    if name == "occlusion":
+        return [t for t in techs if t[0] in OCCLUSION_TECHNIQUES]
     return [t for t in techs
-            if t[0] not in MIS_TECHNIQUES + SPHERE_TECHNIQUES + MEDIUM_TECHNIQUES]
+            if t[0] not in MIS_TECHNIQUES + SPHERE_TECHNIQUES + MEDIUM_TECHNIQUES
+            + OCCLUSION_TECHNIQUES]
 FULL = {"width": 256, "height": 192, "ref_spp": 512, "spp": 16, "budget_ms": 1500.0}
 QUICK = {"width": 64, "height": 48, "ref_spp": 128, "spp": 4, "budget_ms": 150.0}
 # Full mode without --ref-spp: scenes whose reference technique is efficient enough for
@@ -288,7 +297,8 @@ def render_scene(tracer, key_base, spec, techs, s, out, common):
     for tech, biased in techs:
         stem = os.path.join(out, f"{file_name(spec)}-{tech}")
         eq = run_json(tracer, base + ["--technique", tech, "--spp", s["spp"],
-                                      "--out-png", stem + "-spp.png"])
+                                      "--out-png", stem + "-spp.png",
+                                      "--out-error-png", stem + "-spp-error.png"])
         budget = s["budget_ms"]  # an integer where it is one: the tracer may parse it so
         budget = int(budget) if budget == int(budget) else budget
         tm = run_json(tracer, base + ["--technique", tech, "--time-ms", budget,
@@ -446,13 +456,18 @@ def write_html(path, info, results, s):
         low = [f'<div class="label">equal samples<br>({s["spp"]} passes)</div>']
         low += [figure(f"{sc}-{r['tech']}-spp.png",
                        f"{r['tech']}: RMSE {r['rmse_spp']:.3g}", width) for r in rows]
+        low += [f'<div class="label">error &times;4<br>({s["spp"]} passes)</div>']
+        low += [figure(f"{sc}-{r['tech']}-spp-error.png",
+                       f"{r['tech']}: image − reference", width) for r in rows]
         parts += [f"<h2>{html.escape(sc)}</h2>", html_table(rows)]
         parts += [f"<p><b>{html.escape(t)}</b>: {html.escape(why)}</p>"
                   for (scene, t), why in KNOWN_FAILURES.items() if scene == res["name"]]
         parts += [
                   f'<p><img src="rmse-{html.escape(sc)}.svg" alt="RMSE against time"></p>',
                   f"<p>Top: reference, then each technique after {s['budget_ms']:g} ms; "
-                  f"bottom: each technique after {s['spp']} passes.</p>",
+                  f"middle: each technique after {s['spp']} passes; bottom: the error of "
+                  f"the middle row, (image &minus; reference) &times; 4 averaged over the "
+                  f"channels, red where brighter, blue where darker.</p>",
                   f'<div class="grid" style="grid-template-columns: repeat({len(top)}, '
                   f'{width}px)">' + "".join(top + low) + "</div>"]
     style = ("body{font-family:sans-serif;margin:2em;max-width:100%}"

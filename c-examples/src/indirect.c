@@ -11,7 +11,6 @@
 #include "common.h"
 #include "indirect.h"
 
-#define PI_F 3.14159265358979f
 
 /* ---- small helpers --------------------------------------------------------------- */
 

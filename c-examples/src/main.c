@@ -27,6 +27,8 @@ static void usage(FILE *out) {
             "  --out-pfm FILE          the mean image (PFM)\n"
             "  --out-variance-pfm FILE per-pixel variance of the mean (PFM)\n"
             "  --out-png FILE          the mean image as 8-bit sRGB PNG, scaled by 2^exposure\n"
+            "  --out-error-png FILE    with --reference: the error image (image - reference,\n"
+            "                          mean of the channels, x 2^exposure x 4; red brighter, blue darker)\n"
             "  --exposure E            in stops; default 0\n"
             "  --obj FILE              add the triangles of a simple OBJ file (white Lambert)\n"
             "  --obj-scale S --obj-offset X,Y,Z   its placement; default 1 and 0,0,0\n"
@@ -56,6 +58,7 @@ static bool parse_uint(const char *text, uint32_t *out) {
 int main(int argc, char **argv) {
     const char *scene_name = "cornell", *technique_name = "projected";
     const char *reference_path = NULL, *curve_path = NULL, *pfm_path = NULL, *png_path = NULL;
+    const char *error_png_path = NULL;
     const char *variance_path = NULL;
     RenderSettings settings = {0};
     settings.width = 256;
@@ -130,6 +133,8 @@ int main(int argc, char **argv) {
             variance_path = value;
         } else if (strcmp(arg, "--out-png") == 0) {
             png_path = value;
+        } else if (strcmp(arg, "--out-error-png") == 0) {
+            error_png_path = value;
         } else if (strcmp(arg, "--obj") == 0) {
             obj_path = value;
         } else if (strcmp(arg, "--obj-scale") == 0) {
@@ -160,6 +165,10 @@ int main(int argc, char **argv) {
 
     if (curve_path && !reference_path) {
         fprintf(stderr, "sphera-trace: --curve needs --reference (its errors are against it)\n");
+        return 2;
+    }
+    if (error_png_path && !reference_path) {
+        fprintf(stderr, "sphera-trace: --out-error-png needs --reference\n");
         return 2;
     }
     int technique = technique_from_name(technique_name);
@@ -213,6 +222,11 @@ int main(int argc, char **argv) {
     }
     if (png_path && !write_png(png_path, result.image, settings.width, settings.height, exposure)) {
         fprintf(stderr, "sphera-trace: cannot write %s\n", png_path);
+        ok = false;
+    }
+    if (error_png_path && !write_error_png(error_png_path, result.image, reference, settings.width,
+                                           settings.height, exposure)) {
+        fprintf(stderr, "sphera-trace: cannot write %s\n", error_png_path);
         ok = false;
     }
     double samples = result.samples ? (double)result.samples : 1.0;

@@ -13,7 +13,6 @@
 #include "tracer.h"
 
 #define TILE 16
-#define PI_F 3.14159265358979f
 
 /* What a camera ray found, computed once per pixel. */
 typedef struct Hit {
@@ -367,6 +366,76 @@ static float3 sphere_realtime_estimate(const Scene *scene, struct RTCIntersectCo
     return sum;
 }
 
+/* The rays per shading point that estimate the bent cone of sphere_occlusion and
+ * sphere_occlusion_separable: one per cell of a grid of BENT_CONE_ROWS x
+ * BENT_CONE_COLUMNS cells of equal solid angle over the hemisphere, the grid shifted by
+ * one random offset per shading point (stratified, so the visible fraction varies by
+ * little; the shift turns the steps of a fixed grid, rings on the floor, into noise
+ * that the passes average). */
+#define BENT_CONE_ROWS 8
+#define BENT_CONE_COLUMNS 16
+
+/* The bent cone at `hit` (Landis 2002; the visibility of Dupuy et al. 2017, Sec. 5.4),
+ * in the local frame: the cone about the mean unoccluded direction whose solid angle
+ * is the unoccluded part of the hemisphere, 1 - cos = the fraction of rays (uniform in
+ * solid angle) that nothing blocks (lights are not occluders; rays run to infinity).
+ * False when every ray is blocked. Its rays are not counted as light samples. */
+static bool bent_cone(const Scene *scene, struct RTCIntersectContext *context, const Hit *hit,
+                      Rng *rng, SpheraCap *cone) {
+    float sum[3] = {0.0f, 0.0f, 0.0f};
+    int visible = 0;
+    const float shift_z = rng_float(rng), shift_phi = rng_float(rng);
+    for (int i = 0; i < BENT_CONE_ROWS; ++i) {
+        for (int j = 0; j < BENT_CONE_COLUMNS; ++j) {
+            /* z uniform in (0, 1] and the azimuth in [0, 2π): uniform in solid angle. */
+            float z = 1.0f - ((float)i + shift_z) / (float)BENT_CONE_ROWS;
+            float phi = 2.0f * PI_F * ((float)j + shift_phi) / (float)BENT_CONE_COLUMNS;
+            float r = sqrtf(fmaxf(1.0f - z * z, 0.0f));
+            SpheraVec3 d = {r * cosf(phi), r * sinf(phi), z};
+            struct RTCRay ray = make_ray(hit->origin, frame_to_world(&hit->frame, d), INFINITY);
+            rtcOccluded1(scene->rtc, context, &ray);
+            if (ray.tfar >= 0.0f) { /* Embree sets tfar to -inf on a hit */
+                sum[0] += d.x;
+                sum[1] += d.y;
+                sum[2] += d.z;
+                ++visible;
+            }
+        }
+    }
+    if (visible == 0) return false;
+    SpheraVec3 axis = {sum[0], sum[1], sum[2]};
+    float fraction = (float)visible / (float)(BENT_CONE_ROWS * BENT_CONE_COLUMNS);
+    *cone = sphera_cap_from_axis_cos(axis, 1.0f - fraction);
+    return true;
+}
+
+/* One light sample of sphere_occlusion or sphere_occlusion_separable (BIASED): the
+ * Lambert layer as in sphere_cap (one uniform cap sample and its shadow ray), plus the
+ * GGX layer as L * S, where S is the SPTD's specular occlusion of the light's cap by
+ * the bent cone `cone` (Eq. 23, sphera_sphere_light_shade_occluded) or its separable
+ * baseline (Eq. 21-22, sphera_sphere_light_shade_occluded_separable). No shadow ray for
+ * the GGX layer: the bent cone stands for the visibility. */
+static float3 sphere_occlusion_estimate(const Scene *scene, struct RTCIntersectContext *context,
+                                        const Hit *hit, const Light *light, SpheraCap cap,
+                                        const SpheraSphereLightShading *shading,
+                                        const SpheraCap *cone, bool separable, Rng *rng,
+                                        uint64_t *samples) {
+    const Material *m = &scene->materials[hit->material];
+    float3 sum = f3(0, 0, 0);
+    float u0 = rng_float(rng), u1 = rng_float(rng);
+    SpheraSample a = sphera_cap_sample_uniform(cap, u0, u1);
+    *samples += 1;
+    if (a.pdf > 0.0f && a.dir.z > 0.0f) {
+        float visible = unoccluded(scene, context, hit, light, frame_to_world(&hit->frame, a.dir));
+        sum = f3_scale(f3_mul(light->radiance, brdf_diffuse(m)), visible * a.dir.z / a.pdf);
+    }
+    if (!shading || !cone) return sum;
+    SpheraVec3 specular = separable
+                              ? sphera_sphere_light_shade_occluded_separable(shading, cap, *cone)
+                              : sphera_sphere_light_shade_occluded(shading, cap, *cone);
+    return f3_add(sum, f3_mul(light->radiance, to_float3(specular)));
+}
+
 /* The reflected radiance from a sphere light, k samples: uniform cap sampling, or (for
  * sphere_cap_brdf) one cap and one BRDF sample per light sample with the balance
  * heuristic. sphere_sptd (and the reference, whose variance is lowest with it) splits
@@ -379,7 +448,7 @@ static float3 sphere_realtime_estimate(const Scene *scene, struct RTCIntersectCo
 static float3 shade_sphere(const Scene *scene, struct RTCIntersectContext *context,
                            const Hit *hit, const Light *light, Technique technique, uint32_t k,
                            const BrdfSampler *brdf, const SpheraSphereLightShading *shading,
-                           Rng *rng, uint64_t *samples) {
+                           const SpheraCap *cone, Rng *rng, uint64_t *samples) {
     float3 centre = f3_sub(light->center, hit->position);
     SpheraVec3 local = frame_to_local(&hit->frame, centre);
     SpheraCap cap = sphera_cap_from_sphere(local, light->radius);
@@ -390,6 +459,13 @@ static float3 shade_sphere(const Scene *scene, struct RTCIntersectContext *conte
         for (uint32_t s = 0; s < k; ++s)
             sum = f3_add(sum, sphere_realtime_estimate(scene, context, hit, light, cap, shading,
                                                        rng, samples));
+        return f3_scale(sum, 1.0f / (float)k);
+    }
+    if (technique == TECHNIQUE_SPHERE_OCCLUSION || technique == TECHNIQUE_SPHERE_OCCLUSION_SEPARABLE) {
+        bool separable = technique == TECHNIQUE_SPHERE_OCCLUSION_SEPARABLE;
+        for (uint32_t s = 0; s < k; ++s)
+            sum = f3_add(sum, sphere_occlusion_estimate(scene, context, hit, light, cap, shading,
+                                                        cone, separable, rng, samples));
         return f3_scale(sum, 1.0f / (float)k);
     }
     SpheraSphereLightSampler sampler;
@@ -449,15 +525,22 @@ static float3 shade(const Scene *scene, struct RTCIntersectContext *context, con
     /* sphere_realtime: the SPTD shading depends on the view and the material only */
     SpheraSphereLightShading shading;
     const SpheraSphereLightShading *sphere_shading = NULL;
-    if (technique == TECHNIQUE_SPHERE_REALTIME && m->roughness > 0.0f &&
+    bool occlusion = technique == TECHNIQUE_SPHERE_OCCLUSION ||
+                     technique == TECHNIQUE_SPHERE_OCCLUSION_SEPARABLE;
+    if ((technique == TECHNIQUE_SPHERE_REALTIME || occlusion) && m->roughness > 0.0f &&
         sphera_sphere_light_shading_prepare(&shading, point.wo, m->roughness, point.material.f0))
         sphere_shading = &shading;
+    /* sphere_occlusion*: the bent cone, once per shading point with a GGX layer */
+    SpheraCap cone;
+    const SpheraCap *bent = NULL;
+    if (occlusion && sphere_shading && bent_cone(scene, context, hit, rng, &cone))
+        bent = &cone;
     float3 sum = f3(0, 0, 0);
     for (uint32_t l = 0; l < scene->light_count; ++l) {
         const Light *light = &scene->lights[l];
         if (light->radius > 0.0f) {
             sum = f3_add(sum, shade_sphere(scene, context, hit, light, technique, k, &brdf,
-                                           sphere_shading, rng, samples));
+                                           sphere_shading, bent, rng, samples));
             continue;
         }
         /* One-sided lights: nothing reaches points behind the light's plane. */

@@ -22,7 +22,10 @@ const SceneInfo scene_info[] = {
     {"glossy", "three GGX floor strips of roughness 0.1, 0.3 and 0.6 under a quad, a pentagon "
                "and a triangle light, with a wall casting shadows across them"},
     {"slab", "a thin slab of single-scattering medium (HG, g = 0.85) over part of a Lambert "
-             "floor, lit by one sphere light behind it (not in the report's default list)"},
+             "floor, lit by one sphere light behind it"},
+    {"occlusion", "a GGX floor at the bottom of a round well, reflecting a sphere light that "
+                  "the well's wall partly hides (specular occlusion, Dupuy et al. 2017 "
+                  "Sec. 5.4)"},
 };
 const uint32_t scene_count = sizeof scene_info / sizeof scene_info[0];
 
@@ -360,6 +363,36 @@ static bool build_slab(Builder *b, float aspect) {
     return ok;
 }
 
+/* Specular occlusion (Dupuy et al. 2017, Sec. 5.4, Fig. 11): a GGX floor (roughness
+ * 0.35, nearly no Lambert layer) at the bottom of a round well (radius 2 m, walls
+ * 1.6 m high, 32 facets), whose visibility from the floor is the well's opening: a cone
+ * about the normal at the centre, much as a bent cone has it, and less so towards the
+ * wall. A sphere light above and behind the well is reflected in its floor and hidden
+ * by the wall from the floor's back part: the highlight is partly occluded. */
+#define WELL_FACETS 32
+static bool build_occlusion(Builder *b, float aspect) {
+    Scene *s = b->scene;
+    add_material(s, f3(0, 0, 0), f3(0, 0, 0), 0);
+    uint32_t glossy = add_material(s, f3(0.03f, 0.03f, 0.03f), f3(0.6f, 0.6f, 0.6f), 0.35f);
+    uint32_t matte = add_material(s, f3(0.4f, 0.4f, 0.4f), f3(0, 0, 0), 0);
+    bool ok = add_quad(b, f3(-8, 0, -8), f3(-8, 0, 8), f3(8, 0, 8), f3(8, 0, -8), glossy);
+    const float radius = 2.0f, height = 1.6f;
+    for (int i = 0; ok && i < WELL_FACETS; ++i) {
+        float a0 = 2.0f * PI_F * (float)i / WELL_FACETS;
+        float a1 = 2.0f * PI_F * (float)(i + 1) / WELL_FACETS;
+        float3 p0 = f3(radius * cosf(a0), 0, radius * sinf(a0));
+        float3 p1 = f3(radius * cosf(a1), 0, radius * sinf(a1));
+        ok = add_quad(b, p0, p1, f3_add(p1, f3(0, height, 0)), f3_add(p0, f3(0, height, 0)),
+                      matte);
+    }
+    ok = ok && add_sphere_light(b, f3(0.0f, 3.5f, -4.0f), 0.6f, f3(16, 14, 12));
+    /* Seen about 45° from the floor's normal, where the SPTD fit is good (its error
+     * table: a few percent up to 60°), so that the images compare the occlusion. */
+    set_camera(s, f3(0, 4.5f, 4.5f), f3(0, 0.0f, -0.5f), 45.0f, aspect);
+    s->ray_epsilon = 2e-4f;
+    return ok;
+}
+
 /* A 6 m room (open towards the camera) lit only by the spot light of indirect.c,
  * which shines down onto a GGX floor and the red left wall: their first bounce lights
  * the rest of the room, glossily off the floor. No polygon light: render it with
@@ -472,6 +505,7 @@ bool scene_create_with_obj(Scene *s, const char *name, float aspect, const char 
     else if (strcmp(name, "glossy") == 0) ok = build_glossy(&b, aspect);
     else if (strcmp(name, "spheres") == 0) ok = build_spheres(&b, aspect);
     else if (strcmp(name, "slab") == 0) ok = build_slab(&b, aspect);
+    else if (strcmp(name, "occlusion") == 0) ok = build_occlusion(&b, aspect);
     else if (strcmp(name, "indirect") == 0) ok = build_indirect(&b, aspect);
     else {
         fprintf(stderr, "sphera-trace: unknown scene '%s' (see --list-scenes)\n", name);

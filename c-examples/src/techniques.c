@@ -38,6 +38,14 @@ const TechniqueInfo technique_info[TECHNIQUE_COUNT] = {
      "sphere lights: GGX layer by SPTD shading (Dupuy et al. 2017, Eq. 19, biased) times the "
      "visibility of one shadow ray uniform in the cap above the horizon; Lambert layer as in "
      "sphere_cap"},
+    {"sphere_occlusion", true,
+     "sphere lights: GGX layer by specular occlusion with SPTDs (Dupuy et al. 2017, Eq. 23, "
+     "biased) in a bent cone traced at the shading point (128 rays); Lambert layer as in "
+     "sphere_cap"},
+    {"sphere_occlusion_separable", true,
+     "sphere lights: GGX layer by the separable specular occlusion of Eq. 21-22 (unoccluded "
+     "SPTD shading times the lobe's fraction in the bent cone; biased), same bent cone; "
+     "Lambert layer as in sphere_cap"},
     {"medium_pivot", false,
      "medium in-scattering from sphere lights: one sample of the pivot phase function fitted to "
      "HG (Eq. 27-28), restricted to the light's cap (Section 6.2); surfaces as sphere_cap_brdf"},
@@ -95,6 +103,8 @@ bool technique_prepare(Technique technique, PreparedLight *out, const SpheraVec3
     case TECHNIQUE_SPHERE_CAP_BRDF:
     case TECHNIQUE_SPHERE_SPTD:
     case TECHNIQUE_SPHERE_REALTIME:
+    case TECHNIQUE_SPHERE_OCCLUSION:
+    case TECHNIQUE_SPHERE_OCCLUSION_SEPARABLE:
     case TECHNIQUE_MEDIUM_PIVOT:
     case TECHNIQUE_MEDIUM_HG_CAP:
         return sphera_projected_polygon_prepare(&out->u.projected, vertices, count);
@@ -137,6 +147,8 @@ SpheraSample technique_sample(Technique technique, const PreparedLight *p, float
     case TECHNIQUE_SPHERE_CAP_BRDF:
     case TECHNIQUE_SPHERE_SPTD:
     case TECHNIQUE_SPHERE_REALTIME:
+    case TECHNIQUE_SPHERE_OCCLUSION:
+    case TECHNIQUE_SPHERE_OCCLUSION_SEPARABLE:
     case TECHNIQUE_MEDIUM_PIVOT:
     case TECHNIQUE_MEDIUM_HG_CAP: return sphera_projected_polygon_sample(&p->u.projected, u0, u1);
     case TECHNIQUE_PROJECTED_FAST:

@@ -47,6 +47,8 @@ typedef enum Technique {
     TECHNIQUE_SPHERE_CAP_BRDF,     /* one cap and one BRDF sample, balance heuristic */
     TECHNIQUE_SPHERE_SPTD,         /* GGX layer: one SPTD light and one VNDF sample, balance */
     TECHNIQUE_SPHERE_REALTIME,     /* biased: Eq. 19 SPTD shading x one-ray visibility */
+    TECHNIQUE_SPHERE_OCCLUSION,    /* biased: Eq. 23 SPTD shading in a traced bent cone */
+    TECHNIQUE_SPHERE_OCCLUSION_SEPARABLE, /* biased: its separable baseline, Eq. 21-22 */
     /* In-scattering in a medium (sphere lights; elsewhere as sphere_cap_brdf): */
     TECHNIQUE_MEDIUM_PIVOT,        /* the pivot phase function sampled in the light's cap */
     TECHNIQUE_MEDIUM_HG_CAP,       /* one HG and one uniform cap sample, balance heuristic */
@@ -190,5 +192,11 @@ float *read_pfm(const char *path, uint32_t *width, uint32_t *height);
 /* 8-bit sRGB PNG of image * 2^exposure. */
 bool write_png(const char *path, const float *image, uint32_t width, uint32_t height,
                float exposure);
+/* 8-bit PNG of the error against `reference`, per pixel the mean over the channels of
+ * (image - reference) * 2^exposure * ERROR_IMAGE_GAIN: red where the image is brighter,
+ * blue where darker, black where they agree. */
+#define ERROR_IMAGE_GAIN 4.0f
+bool write_error_png(const char *path, const float *image, const float *reference,
+                     uint32_t width, uint32_t height, float exposure);
 
 #endif

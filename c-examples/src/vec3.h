@@ -4,6 +4,9 @@
 
 #include <math.h>
 
+/* π in single precision, for the whole tracer. */
+#define PI_F 3.14159265358979f
+
 typedef struct float3 {
     float x, y, z;
 } float3;
