@@ -105,8 +105,11 @@
 #define SPHERA_SG_DIFFUSE_LOBE_SHARPNESS 2.292504
 
 /**
- * The most refinement iterations a decentral sample runs (the iteration converges
- * cubically; the default runs 2 or 3): larger requests are clamped.
+ * The most refinement iterations a decentral sample runs (the default runs 1 or 2):
+ * larger requests are clamped. The iteration converges cubically (supplement A.5,
+ * Proposition 6; a test beside the iteration measures the order in f64), so from the initial guess's error of a few
+ * hundredths of a radian two or three iterations reach f32 precision, and 8 leave ample
+ * room for slow starts (Proposition 6 is local).
  */
 #define MAX_REFINEMENT_ITERATIONS 8
 
