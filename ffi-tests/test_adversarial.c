@@ -1061,6 +1061,9 @@ static void sg_suite(void) {
       SpheraSg specular = sphera_sg_specular_lobe(normal, view, x);
       SpheraSg unnormalized = sphera_sg_specular_lobe_unnormalized(normal, view, x);
       SpheraAsg asg = sphera_asg_ggx_lobe(normal, view, x);
+      SpheraSg beckmann = sphera_sg_beckmann_lobe(normal, view, x);
+      SpheraSg beckmann_unnormalized = sphera_sg_beckmann_lobe_unnormalized(normal, view, x);
+      SpheraAsg beckmann_asg = sphera_asg_beckmann_lobe(normal, view, x);
       SpheraAsg hand = sphera_asg_new(view, normal, x, vis, specials[(j + 9) % SPECIAL_COUNT]);
       calls += 6;
       EXPECT(sg_is_valid(incoming) && sg_is_valid(lobe) && sg_is_valid(specular) &&
@@ -1072,6 +1075,12 @@ static void sg_suite(void) {
       expect_density(sphera_sg_diffuse_shading_sharp_lobe(g, normal, x, vis));
       expect_density(sphera_sg_specular_shading(g, normal, view, x, vis, 1.0f));
       expect_density(sphera_sg_specular_shading_sg(g, normal, view, x, 0.04f, vis));
+      EXPECT(sg_is_valid(beckmann) && sg_is_valid(beckmann_unnormalized));
+      expect_words_finite(&beckmann_asg, sizeof beckmann_asg);
+      expect_density(sphera_sg_beckmann_specular_shading(g, normal, view, x, vis, 1.0f));
+      expect_density(sphera_sg_beckmann_specular_shading_sg(g, normal, view, x, 0.04f, vis));
+      expect_density(sphera_asg_convolve_sg(beckmann_asg, g));
+      calls += 6;
       expect_density(sphera_asg_eval(asg, directions[(j + 3) % DIRECTION_COUNT]));
       expect_density(sphera_asg_eval(hand, directions[(j + 5) % DIRECTION_COUNT]));
       expect_density(sphera_asg_integral(asg));

@@ -105,8 +105,11 @@
 #define SPHERA_SG_DIFFUSE_LOBE_SHARPNESS 2.292504
 
 /**
- * The most refinement iterations a decentral sample runs (the iteration converges
- * cubically; the default runs 2 or 3): larger requests are clamped.
+ * The most refinement iterations a decentral sample runs (the default runs 1 or 2):
+ * larger requests are clamped. The iteration converges cubically (supplement A.5,
+ * Proposition 6; a test beside the iteration measures the order in f64), so from the initial guess's error of a few
+ * hundredths of a radian two or three iterations reach f32 precision, and 8 leave ample
+ * room for slow starts (Proposition 6 is local).
  */
 #define MAX_REFINEMENT_ITERATIONS 8
 
@@ -2645,6 +2648,22 @@ struct SpheraSg sphera_sg_specular_lobe_unnormalized(struct SpheraVec3 normal,
                                                      float alpha);
 
 /**
+ * The Beckmann specular lobe of Eq. 2 without `R_s`: the paper's `λ_h = 2/α²` holds
+ * for Beckmann as for GGX, so this is `sphera_sg_specular_lobe` with the same `α`
+ * (Beckmann's roughness); the lobes differ in their error (README's SG error table).
+ */
+struct SpheraSg sphera_sg_beckmann_lobe(struct SpheraVec3 normal,
+                                        struct SpheraVec3 toward_incoming,
+                                        float alpha);
+
+/**
+ * As `sphera_sg_beckmann_lobe` with amplitude 1 (the warped unnormalised NDF).
+ */
+struct SpheraSg sphera_sg_beckmann_lobe_unnormalized(struct SpheraVec3 normal,
+                                                     struct SpheraVec3 toward_incoming,
+                                                     float alpha);
+
+/**
  * The incoming radiance SG of a VSGL (Eq. 6–7): `lobe` holds `c_v` (amplitude),
  * `ξ_v` and `λ_v`; `mean` is the positional mean relative to the shading point,
  * `variance` the positional variance. A variance of 0 (or NaN, or negative) is a point
@@ -2708,6 +2727,29 @@ float sphera_sg_specular_shading_sg(struct SpheraSg incoming,
                                     float visibility);
 
 /**
+ * Beckmann specular shading: as `sphera_sg_specular_shading` with Beckmann's NDF and
+ * Smith term (`α = roughness²` is Beckmann's `α`); the ASG fit is
+ * `sphera_asg_beckmann_lobe`.
+ */
+float sphera_sg_beckmann_specular_shading(struct SpheraSg incoming,
+                                          struct SpheraVec3 normal,
+                                          struct SpheraVec3 view,
+                                          float roughness,
+                                          float f0,
+                                          float visibility);
+
+/**
+ * As `sphera_sg_beckmann_specular_shading` with the isotropic SG fit of Eq. 2
+ * (`sphera_sg_beckmann_lobe_unnormalized`) instead of the ASG.
+ */
+float sphera_sg_beckmann_specular_shading_sg(struct SpheraSg incoming,
+                                             struct SpheraVec3 normal,
+                                             struct SpheraVec3 view,
+                                             float roughness,
+                                             float f0,
+                                             float visibility);
+
+/**
  * The ASG `amplitude · max(ω·z, 0) · exp(−η_x (ω·x)² − η_y (ω·y)²)` with `z`
  * normalised, `x` made orthogonal to it and `y = z × x`; bandwidths clamped to
  * [0, SPHERA_SG_MAX_SHARPNESS], amplitude to [0, FLT_MAX] (NaN to 0). The zero ASG for
@@ -2745,6 +2787,14 @@ float sphera_asg_convolve_sg(struct SpheraAsg asg, struct SpheraSg sg);
  * incidence and `η_y = 1/(4α² cos²θ_o)` across it. The zero ASG for invalid vectors.
  */
 struct SpheraAsg sphera_asg_ggx_lobe(struct SpheraVec3 normal, struct SpheraVec3 view, float alpha);
+
+/**
+ * The ASG fit (amplitude 1) of Beckmann's warped unnormalised NDF at a shading point:
+ * built from the same `λ_h = 2/α²`, so the same ASG as `sphera_asg_ggx_lobe`.
+ */
+struct SpheraAsg sphera_asg_beckmann_lobe(struct SpheraVec3 normal,
+                                          struct SpheraVec3 view,
+                                          float alpha);
 
 #ifdef __cplusplus
 }  // extern "C"

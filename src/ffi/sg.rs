@@ -12,12 +12,14 @@
 use super::types::{SpheraSample, SpheraVec3};
 use crate::sg::asg::Asg;
 use crate::sg::lobes::{
-    DIFFUSE_LOBE_SHARPNESS, diffuse_lobe_normalized, specular_lobe, specular_lobe_normalized,
+    DIFFUSE_LOBE_SHARPNESS, beckmann_lobe, beckmann_lobe_normalized, diffuse_lobe_normalized,
+    specular_lobe, specular_lobe_normalized,
 };
 use crate::sg::sg::{MAX_SHARPNESS, Sg, sg_integral};
 use crate::sg::shading::{
-    diffuse_shading_constant_cosine, diffuse_shading_product, diffuse_shading_sharp_lobe,
-    incoming_radiance, specular_shading, specular_shading_sg,
+    beckmann_specular_shading, beckmann_specular_shading_sg, diffuse_shading_constant_cosine,
+    diffuse_shading_product, diffuse_shading_sharp_lobe, incoming_radiance, specular_shading,
+    specular_shading_sg,
 };
 use crate::sg::vmf::{vmf_invert, vmf_pdf, vmf_sample};
 
@@ -134,6 +136,28 @@ pub extern "C" fn sphera_sg_specular_lobe_unnormalized(
     specular_lobe(normal.into(), toward_incoming.into(), alpha)
 }
 
+/// The Beckmann specular lobe of Eq. 2 without `R_s`: the paper's `λ_h = 2/α²` holds
+/// for Beckmann as for GGX, so this is `sphera_sg_specular_lobe` with the same `α`
+/// (Beckmann's roughness); the lobes differ in their error (README's SG error table).
+#[unsafe(no_mangle)]
+pub extern "C" fn sphera_sg_beckmann_lobe(
+    normal: SpheraVec3,
+    toward_incoming: SpheraVec3,
+    alpha: f32,
+) -> Sg {
+    beckmann_lobe_normalized(normal.into(), toward_incoming.into(), alpha)
+}
+
+/// As `sphera_sg_beckmann_lobe` with amplitude 1 (the warped unnormalised NDF).
+#[unsafe(no_mangle)]
+pub extern "C" fn sphera_sg_beckmann_lobe_unnormalized(
+    normal: SpheraVec3,
+    toward_incoming: SpheraVec3,
+    alpha: f32,
+) -> Sg {
+    beckmann_lobe(normal.into(), toward_incoming.into(), alpha)
+}
+
 /// The incoming radiance SG of a VSGL (Eq. 6–7): `lobe` holds `c_v` (amplitude),
 /// `ξ_v` and `λ_v`; `mean` is the positional mean relative to the shading point,
 /// `variance` the positional variance. A variance of 0 (or NaN, or negative) is a point
@@ -225,6 +249,49 @@ pub extern "C" fn sphera_sg_specular_shading_sg(
     )
 }
 
+/// Beckmann specular shading: as `sphera_sg_specular_shading` with Beckmann's NDF and
+/// Smith term (`α = roughness²` is Beckmann's `α`); the ASG fit is
+/// `sphera_asg_beckmann_lobe`.
+#[unsafe(no_mangle)]
+pub extern "C" fn sphera_sg_beckmann_specular_shading(
+    incoming: Sg,
+    normal: SpheraVec3,
+    view: SpheraVec3,
+    roughness: f32,
+    f0: f32,
+    visibility: f32,
+) -> f32 {
+    beckmann_specular_shading(
+        &incoming,
+        normal.into(),
+        view.into(),
+        roughness,
+        f0,
+        visibility,
+    )
+}
+
+/// As `sphera_sg_beckmann_specular_shading` with the isotropic SG fit of Eq. 2
+/// (`sphera_sg_beckmann_lobe_unnormalized`) instead of the ASG.
+#[unsafe(no_mangle)]
+pub extern "C" fn sphera_sg_beckmann_specular_shading_sg(
+    incoming: Sg,
+    normal: SpheraVec3,
+    view: SpheraVec3,
+    roughness: f32,
+    f0: f32,
+    visibility: f32,
+) -> f32 {
+    beckmann_specular_shading_sg(
+        &incoming,
+        normal.into(),
+        view.into(),
+        roughness,
+        f0,
+        visibility,
+    )
+}
+
 /// The ASG `amplitude · max(ω·z, 0) · exp(−η_x (ω·x)² − η_y (ω·y)²)` with `z`
 /// normalised, `x` made orthogonal to it and `y = z × x`; bandwidths clamped to
 /// [0, SPHERA_SG_MAX_SHARPNESS], amplitude to [0, FLT_MAX] (NaN to 0). The zero ASG for
@@ -269,4 +336,15 @@ pub extern "C" fn sphera_asg_convolve_sg(asg: Asg, sg: Sg) -> f32 {
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_asg_ggx_lobe(normal: SpheraVec3, view: SpheraVec3, alpha: f32) -> Asg {
     Asg::ggx_lobe(normal.into(), view.into(), alpha)
+}
+
+/// The ASG fit (amplitude 1) of Beckmann's warped unnormalised NDF at a shading point:
+/// built from the same `λ_h = 2/α²`, so the same ASG as `sphera_asg_ggx_lobe`.
+#[unsafe(no_mangle)]
+pub extern "C" fn sphera_asg_beckmann_lobe(
+    normal: SpheraVec3,
+    view: SpheraVec3,
+    alpha: f32,
+) -> Asg {
+    Asg::beckmann_lobe(normal.into(), view.into(), alpha)
 }

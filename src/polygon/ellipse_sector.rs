@@ -1056,4 +1056,187 @@ mod tests {
         assert!(worst <= 1e-4, "quadrature form: {worst:e}");
         assert!(worst_closed > 0.1, "closed forms: {worst_closed:e}");
     }
+
+    /// The sector inversion in f64, written from the supplement independently of the f32
+    /// code above, for [`the_sector_inversion_converges_cubically`].
+    mod inversion_f64 {
+        pub type V = [f64; 2];
+
+        pub fn direction(phi: f64) -> V {
+            [phi.cos(), phi.sin()]
+        }
+
+        fn dot(a: V, b: V) -> f64 {
+            a[0] * b[0] + a[1] * b[1]
+        }
+
+        /// `C w` for the ellipse `C = I + u uᵀ`.
+        fn apply(u: V, w: V) -> V {
+            let t = dot(u, w);
+            [w[0] + t * u[0], w[1] + t * u[1]]
+        }
+
+        /// The area of the ellipse `pᵀ C p <= 1` from `s0` counter-clockwise to `w`
+        /// (Definition 4): `atan2(√|C| det(s0, w), s0ᵀ C w) / (2 √|C|)`, `|C| = 1 + |u|²`.
+        fn ellipse_area(u: V, s0: V, w: V) -> f64 {
+            let k = (1.0 + dot(u, u)).sqrt();
+            let det = s0[0] * w[1] - s0[1] * w[0];
+            (k * det).atan2(dot(s0, apply(u, w))) / (2.0 * k)
+        }
+
+        /// The area between the inner ellipse `ui` and the outer one `uo` from `s0` to `w`.
+        pub fn area(ui: V, uo: V, s0: V, w: V) -> f64 {
+            ellipse_area(uo, s0, w) - ellipse_area(ui, s0, w)
+        }
+
+        /// `x` or `-x`, as the angle nearest to `phi` (the iteration's directions are
+        /// projective).
+        fn angle_near(x: V, phi: f64) -> f64 {
+            let mut angle = x[1].atan2(x[0]);
+            while angle - phi > core::f64::consts::FRAC_PI_2 {
+                angle -= core::f64::consts::PI;
+            }
+            while angle - phi < -core::f64::consts::FRAC_PI_2 {
+                angle += core::f64::consts::PI;
+            }
+            angle
+        }
+
+        /// One step of supplement A.3 from the direction at angle `phi` towards the area
+        /// `target` (measured from `s0`). The tangent line of ellipse `l` at its point
+        /// along `w` is `pᵀ C_l w = √(wᵀ C_l w)`; along a direction `x` it lies at
+        /// `√(wᵀ C_l w) / (xᵀ C_l w)` and along `w` at `1 / √(wᵀ C_l w)`, so the triangle
+        /// between the origin, `w`, `x` and that line has area `½ det(w, x) / (xᵀ C_l w)`.
+        /// The area between the two tangent lines from `w` to `x` equals the residual
+        /// `A_δ = target - A(w)` where `½ det(w, x) (xᵀ (C_i - C_o) w) =
+        /// A_δ (xᵀ C_i w)(xᵀ C_o w)`, that is `xᵀ T x = 0` with
+        /// `T = R w wᵀ (C_i - C_o) - 2 A_δ C_i w wᵀ C_o` (`det(w, x) = xᵀ R w`, `R` the
+        /// rotation by +90°), Proposition 2's quadratic. Its root is the one Lemma 1
+        /// picks: with `b = (T_xy + T_yx) / 2` and `Δ = b² - T_xx T_yy`,
+        /// `(|b| + √Δ, -T_xx)` if `b >= 0`, else `(T_yy, |b| + √Δ)`.
+        pub fn cubic_step(ui: V, uo: V, s0: V, target: f64, phi: f64) -> f64 {
+            let w = direction(phi);
+            let residual = target - area(ui, uo, s0, w);
+            let (ci, co) = (apply(ui, w), apply(uo, w));
+            let rw = [-w[1], w[0]];
+            let d = [ci[0] - co[0], ci[1] - co[1]];
+            // xᵀ T x = (x · R w)(x · d) - 2 A_δ (x · C_i w)(x · C_o w).
+            let txx = rw[0] * d[0] - 2.0 * residual * ci[0] * co[0];
+            let b =
+                0.5 * (rw[0] * d[1] + rw[1] * d[0]) - residual * (ci[0] * co[1] + ci[1] * co[0]);
+            let tyy = rw[1] * d[1] - 2.0 * residual * ci[1] * co[1];
+            let root = b.abs() + (b * b - txx * tyy).max(0.0).sqrt();
+            let x = if b >= 0.0 { [root, -txx] } else { [tyy, root] };
+            angle_near(x, phi)
+        }
+
+        /// One step of Newton's method on the angle: `A'(φ) = ½ (r_o² - r_i²)` with
+        /// `r_l² = 1 / (wᵀ C_l w)` for the unit `w` at `φ` (the area element of a sector
+        /// of the ellipse is `½ r² dφ`).
+        pub fn newton_step(ui: V, uo: V, s0: V, target: f64, phi: f64) -> f64 {
+            let w = direction(phi);
+            let residual = target - area(ui, uo, s0, w);
+            let slope = 0.5 * (1.0 / dot(w, apply(uo, w)) - 1.0 / dot(w, apply(ui, w)));
+            phi + residual / slope
+        }
+
+        /// `r_o² - r_i²` over `r_o²` at the unit `w`: how far apart the ellipses are.
+        pub fn relative_width(ui: V, uo: V, w: V) -> f64 {
+            1.0 - dot(w, apply(uo, w)) / dot(w, apply(ui, w))
+        }
+    }
+
+    /// Issue 20 (7): the iteration of supplement A.3 converges cubically (supplement A.5,
+    /// Proposition 6: `|α(w_n+1) - α(w*)| <= ζ |α(w_n) - α(w*)|³`). In f64, on
+    /// well-conditioned sectors (the outer ellipse's `r²` at least 25 % above the inner
+    /// one's across the sector, sectors of 0.3 to 1.5 rad, targets in the middle 60 %),
+    /// from initial angles 0.05 to 0.16 rad off the solution, the errors `e_k` against the
+    /// angle that the target area was computed from give the order
+    /// `p ≈ ln(e_k+1 / e_k) / ln(e_k / e_k-1)` (exact for `e_k+1 = ζ e_k^p`). Each case
+    /// contributes its last estimate with `e_k-1 <= 0.1` and `e_k+1 >= 1e-11` (far above
+    /// the f64 rounding of the angles, about 1e-15). Every estimate of the iteration lies
+    /// in [2.7, 3.3] and their median within 0.1 of 3. Newton's method on the same cases,
+    /// measured the same way, gives a median within 0.1 of 2 and fails the cubic check:
+    /// the estimator tells quadratic from cubic convergence.
+    #[test]
+    fn the_sector_inversion_converges_cubically() {
+        use inversion_f64::*;
+        type Step = fn(V, V, V, f64, f64) -> f64;
+        let mut rng = Rng::new(20);
+        let (mut cubic, mut newton) = (Vec::new(), Vec::new());
+        let order = |step: Step, ui: V, uo: V, s0: V, target: f64, from: f64, solution: f64| {
+            let mut errors = [(from - solution).abs(); 12];
+            let mut phi = from;
+            for error in errors.iter_mut().skip(1) {
+                phi = step(ui, uo, s0, target, phi);
+                *error = (phi - solution).abs();
+            }
+            (1..errors.len() - 1)
+                .filter(|&k| errors[k - 1] <= 0.1 && errors[k + 1] >= 1e-11)
+                .map(|k| (errors[k + 1] / errors[k]).ln() / (errors[k] / errors[k - 1]).ln())
+                .next_back()
+        };
+        let mut sectors = 0;
+        while cubic.len() < 1000 || newton.len() < 1000 {
+            let polar = |rng: &mut Rng, lo: f64, hi: f64| {
+                let (r, angle) = (rng.log_uniform(lo, hi), rng.uniform() * 6.3);
+                [r * angle.cos(), r * angle.sin()]
+            };
+            let (ui, uo) = (polar(&mut rng, -1.0, 0.5), polar(&mut rng, -1.5, 0.3));
+            let (from, width) = (rng.uniform() * 6.3, 0.3 + 1.2 * rng.uniform());
+            let well_conditioned = (0..=32)
+                .all(|j| relative_width(ui, uo, direction(from + width * j as f64 / 32.0)) >= 0.2);
+            if !well_conditioned {
+                continue;
+            }
+            sectors += 1;
+            let s0 = direction(from);
+            let solution = from + width * (0.2 + 0.6 * rng.uniform());
+            let target = area(ui, uo, s0, direction(solution));
+            let offset = rng.signed_log_uniform(-1.3, -0.8);
+            let start = solution + offset;
+            if cubic.len() < 1000 {
+                cubic.extend(order(cubic_step, ui, uo, s0, target, start, solution));
+            }
+            if newton.len() < 1000 {
+                newton.extend(order(newton_step, ui, uo, s0, target, start, solution));
+            }
+        }
+        let median = |orders: &mut Vec<f64>| {
+            orders.sort_by(f64::total_cmp);
+            orders[orders.len() / 2]
+        };
+        let within = |orders: &[f64], lo: f64, hi: f64| {
+            orders.iter().filter(|&&p| (lo..=hi).contains(&p)).count() as f64 / orders.len() as f64
+        };
+        let (cubic_median, newton_median) = (median(&mut cubic), median(&mut newton));
+        let cubic_check = |orders: &[f64], median: f64| {
+            within(orders, 2.7, 3.3) == 1.0 && (median - 3.0).abs() <= 0.1
+        };
+        eprintln!(
+            "{sectors} sectors; A.3 iteration: order {:.3} / {cubic_median:.3} / {:.3} \
+             (min / median / max); Newton: {:.3} / {newton_median:.3} / {:.3}, {:.1} % in \
+             [1.7, 2.3], {:.2} % in [2.7, 3.3]",
+            cubic[0],
+            cubic[cubic.len() - 1],
+            newton[0],
+            newton[newton.len() - 1],
+            100.0 * within(&newton, 1.7, 2.3),
+            100.0 * within(&newton, 2.7, 3.3),
+        );
+        assert!(
+            cubic_check(&cubic, cubic_median),
+            "A.3 iteration: orders {:.3}..{:.3}, median {cubic_median:.3}",
+            cubic[0],
+            cubic[cubic.len() - 1]
+        );
+        // Newton's method: quadratic, and the cubic check fails for it.
+        assert!(
+            (newton_median - 2.0).abs() <= 0.1,
+            "Newton: {newton_median}"
+        );
+        assert!(within(&newton, 1.7, 2.3) >= 0.95);
+        assert!(within(&newton, 2.7, 3.3) <= 0.01);
+        assert!(!cubic_check(&newton, newton_median));
+    }
 }

@@ -52,8 +52,11 @@ pub const REFINEMENT_ITERATIONS: u32 = 1;
 /// the iteration may meet near the solution (supplement A.3).
 const ITERATION_MARGIN: f32 = 1e-5;
 
-/// The most refinement iterations a decentral sample runs (the iteration converges
-/// cubically; the default runs 2 or 3): larger requests are clamped.
+/// The most refinement iterations a decentral sample runs (the default runs 1 or 2):
+/// larger requests are clamped. The iteration converges cubically (supplement A.5,
+/// Proposition 6; a test beside the iteration measures the order in f64), so from the initial guess's error of a few
+/// hundredths of a radian two or three iterations reach f32 precision, and 8 leave ample
+/// room for slow starts (Proposition 6 is local).
 pub const MAX_REFINEMENT_ITERATIONS: u32 = 8;
 
 /// A convex polygon prepared for projected solid angle sampling: the first part of
@@ -694,7 +697,8 @@ impl ProjectedSolidAnglePolygon {
             let fraction = local / sector_area;
             // Both counts clamped: `extra_iterations` is a 0/1 flag, and a corrupted
             // prepared value (or a huge argument) must not loop without bound (issue 16,
-            // 6). Convergence is cubic: more than MAX_REFINEMENT_ITERATIONS changes no bit.
+            // 6). Convergence is cubic (supplement A.5, Proposition 6): more than
+            // MAX_REFINEMENT_ITERATIONS changes no bit.
             let iterations = if (ITERATION_MARGIN..=1.0 - ITERATION_MARGIN).contains(&fraction) {
                 iterations.min(MAX_REFINEMENT_ITERATIONS)
                     + extra_iterations as u32 * sector.extra_iterations.min(1)

@@ -1,6 +1,7 @@
 //! Anisotropic spherical Gaussians (ASGs, Xu et al. 2013) as Tokuyoshi 2016 uses them
 //! for the specular lobe at a shading point (supplement Section 4.2): evaluation, the
-//! approximate integral, the ASG × SG product integral, and the ASG fit of the GGX lobe.
+//! approximate integral, the ASG × SG product integral, and the ASG fit of the GGX lobe
+//! (and of the Beckmann lobe, the same function).
 //!
 //! # Definition
 //!
@@ -209,5 +210,13 @@ impl Asg {
             None => orthonormal_basis(z).0,
         };
         Asg::new(x, z, eta_x, eta_y, 1.0)
+    }
+
+    /// The ASG fit of Beckmann's unnormalised NDF warped to directions: the derivation
+    /// above starts from the SG `e^{−λ_h/2 |h − n|²}` with the paper's `λ_h = 2/α²`,
+    /// which is Beckmann's as well as GGX's ([`crate::sg::lobes`]), so this is
+    /// [`Asg::ggx_lobe`] with the same `α`.
+    pub fn beckmann_lobe(normal: Vec3, view: Vec3, alpha: f32) -> Asg {
+        Asg::ggx_lobe(normal, view, alpha)
     }
 }

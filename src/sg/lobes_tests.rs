@@ -120,3 +120,85 @@ fn specular_lobe_is_the_warped_ndf_sg() {
         assert!(s.sharpness.is_finite() && s.log_amplitude.is_finite() && s.sharpness > 0.0);
     }
 }
+
+/// Beckmann's unnormalised NDF `D̂ = πα² D = e^{−tan²θ/α²}/cos⁴θ` at `c = cos θ` (f64).
+fn beckmann_hat(alpha: f64, c: f64) -> f64 {
+    if c <= 0.0 {
+        return 0.0;
+    }
+    let c2 = c * c;
+    (-(1.0 - c2) / c2 / (alpha * alpha)).exp() / (c2 * c2)
+}
+
+/// GGX's unnormalised NDF `D̂ = πα² D = α⁴/(cos²θ (α² − 1) + 1)²` at `c = cos θ` (f64).
+fn ggx_hat(alpha: f64, c: f64) -> f64 {
+    let a2 = alpha * alpha;
+    a2 * a2 / (c * c * (a2 - 1.0) + 1.0).powi(2)
+}
+
+/// `2π ∫₀¹ f(c) dc` (an integral over the upper hemisphere of a function of `cos θ`),
+/// Simpson's rule on `t = 1 − c` with a fine panel over the lobe of width `~α²`.
+fn hemisphere(alpha: f64, f: impl Fn(f64) -> f64) -> f64 {
+    let m = (50.0 * alpha * alpha).min(1.0);
+    let g = |t: f64| f(1.0 - t);
+    let tail = if m < 1.0 {
+        simpson(g, m, 1.0, 4000)
+    } else {
+        0.0
+    };
+    2.0 * PI64 * (simpson(g, 0.0, m, 4000) + tail)
+}
+
+/// Issue 20 (6): the paper's `λ_h = 2/α²` for Beckmann's NDF (Tokuyoshi 2016, Section
+/// 2.1). Against Beckmann written here in f64: its projected integral is `πα²` (checking
+/// the reference), the SG keeps it up to the closed-form factor
+/// `1 − (α²/2)(1 − e^{−2/α²})`, and the L1 distance of the normalised projected lobes
+/// (in half-vector space) is at most `0.7 α²` (0.0017 at α = 0.05, 0.14 at 0.5), where
+/// GGX's is 0.28–0.41 at every `α`: the Gaussian fits Beckmann, not GGX's tail. The
+/// Beckmann lobe functions are the GGX ones (no fitted constant).
+#[test]
+fn beckmann_lobe_keeps_beckmanns_energy_and_shape() {
+    for alpha in [0.05f64, 0.1, 0.2, 0.3, 0.5, 0.7] {
+        let lambda = 2.0 / (alpha * alpha);
+        let sg = |c: f64| (lambda * (c - 1.0)).exp();
+        let beckmann = hemisphere(alpha, |c| beckmann_hat(alpha, c) * c);
+        let ggx = hemisphere(alpha, |c| ggx_hat(alpha, c) * c);
+        let energy = hemisphere(alpha, |c| sg(c) * c);
+        let area = PI64 * alpha * alpha;
+        assert!(
+            (beckmann / area - 1.0).abs() < 1e-6,
+            "α {alpha}: {beckmann}"
+        );
+        assert!((ggx / area - 1.0).abs() < 1e-6, "α {alpha}: {ggx}");
+        let kept = 1.0 - 0.5 * alpha * alpha * (1.0 - (-lambda).exp());
+        assert!((energy / area - kept).abs() < 1e-6, "α {alpha}: {energy}");
+        let l1 = |reference: f64, d: &dyn Fn(f64) -> f64| {
+            hemisphere(alpha, |c| (d(c) / reference - sg(c) / energy).abs() * c)
+        };
+        let l1_beckmann = l1(beckmann, &|c| beckmann_hat(alpha, c));
+        let l1_ggx = l1(ggx, &|c| ggx_hat(alpha, c));
+        assert!(
+            l1_beckmann <= 0.7 * alpha * alpha,
+            "α {alpha}: {l1_beckmann}"
+        );
+        assert!(
+            l1_ggx >= 0.28 && l1_beckmann < l1_ggx,
+            "α {alpha}: {l1_ggx}"
+        );
+    }
+    let mut rng = Rng::new(23);
+    for _ in 0..1000 {
+        let (n, wo) = (rng.unit_vector_f32(), rng.unit_vector_f32());
+        let alpha = rng.log_uniform(-3.0, 0.0) as f32;
+        let s = beckmann_lobe(n, wo, alpha);
+        assert_eq!(s, specular_lobe(n, wo, alpha));
+        assert_eq!(
+            beckmann_lobe_normalized(n, wo, alpha),
+            specular_lobe_normalized(n, wo, alpha)
+        );
+        let expected = (2.0 / (alpha as f64).powi(2))
+            / (4.0 * (wo.dot(n) as f64).abs().max(MIN_SPECULAR_COSINE as f64));
+        let expected = expected.min(super::sg::MAX_SHARPNESS as f64);
+        assert!(((s.sharpness as f64 - expected) / expected).abs() < 1e-4);
+    }
+}

@@ -13,7 +13,8 @@ pub mod vmf;
 
 pub use asg::Asg;
 pub use lobes::{
-    DIFFUSE_LOBE_SHARPNESS, diffuse_lobe_normalized, specular_lobe, specular_lobe_normalized,
+    DIFFUSE_LOBE_SHARPNESS, beckmann_lobe, beckmann_lobe_normalized, diffuse_lobe_normalized,
+    specular_lobe, specular_lobe_normalized,
 };
 pub use sg::{MAX_SHARPNESS, Sg, sg_inner_product, sg_integral, sg_product};
 pub use vmf::{vmf_invert, vmf_pdf, vmf_sample};

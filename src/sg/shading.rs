@@ -59,9 +59,16 @@
 //! `C(ξ_in) ∫ L_in G(ω, ξ_s, λ_s) dω` with the isotropic SG fit. Roughness gives
 //! `α = roughness²` as in [`GgxBrdf::new`], `α` clamped to `[MIN_LOBE_ALPHA, 1]`;
 //! `f0` (one channel) is clamped to `[0, 1]`.
+//!
+//! Beckmann's BRDF splits the same way (its `D = D̂/(πα²)` has the same normalisation):
+//! [`beckmann_specular_shading`] and [`beckmann_specular_shading_sg`] take the lobe fits
+//! of [`crate::sg::lobes`] (`λ_h = 2/α²` for Beckmann too, the same functions) and
+//! [`beckmann_lobe_factor`], whose `G2` has Beckmann's Smith `Λ` ([`beckmann_lambda`]).
 
 use super::asg::Asg;
-use super::lobes::{MIN_SPECULAR_COSINE, clamp_lobe_alpha, diffuse_lobe_normalized, specular_lobe};
+use super::lobes::{
+    MIN_SPECULAR_COSINE, beckmann_lobe, clamp_lobe_alpha, diffuse_lobe_normalized, specular_lobe,
+};
 use super::sg::{
     LN_TAU, MAX_SHARPNESS, Sg, exp_finite, log_of_amplitude, log_sg_integral, unit_or_none,
 };
@@ -189,6 +196,42 @@ pub fn diffuse_shading_sharp_lobe(incoming: &Sg, normal: Vec3, r_d: f32, visibil
 /// once the unnormalised NDF `D̂` is taken out (see the module documentation). 0 for
 /// `dir` or `view` at or below the horizon of `normal`, or for invalid vectors.
 pub fn ggx_lobe_factor(normal: Vec3, view: Vec3, dir: Vec3, alpha: f32, f0: f32) -> f32 {
+    lobe_factor(normal, view, dir, alpha, f0, |alpha, cos| {
+        GgxBrdf::from_alpha(alpha, Vec3::ONE).lambda(cos)
+    })
+}
+
+/// `C(ω) = F(ω_o·h) G2(ω_o, ω)/(4πα² cos θ_o)` of Beckmann's `ρ_s cos`: as
+/// [`ggx_lobe_factor`] (Beckmann's `D = D̂/(πα²)` has the same normalisation) with
+/// Beckmann's Smith term [`beckmann_lambda`] in the height-correlated
+/// `G2 = 1/(1 + Λ(ω_o) + Λ(ω))`.
+pub fn beckmann_lobe_factor(normal: Vec3, view: Vec3, dir: Vec3, alpha: f32, f0: f32) -> f32 {
+    lobe_factor(normal, view, dir, alpha, f0, beckmann_lambda)
+}
+
+/// Smith's `Λ` of Beckmann's NDF for a direction at `cos θ` from the normal (Walter et
+/// al. 2007, from the Gaussian slope distribution): with `a = cos θ/(α sin θ)`,
+/// `Λ = (e^{−a²}/(a√π) − erfc(a))/2`. 0 along the normal (`a = ∞`), growing without
+/// bound towards the horizon (`a → 0`, where `G2 → 0`).
+pub fn beckmann_lambda(alpha: f32, cos: f32) -> f32 {
+    let sin = libm::sqrtf(((1.0 - cos) * (1.0 + cos)).max(0.0));
+    let a = cos / (alpha * sin);
+    let value =
+        0.5 * (libm::expf(-a * a) * (0.5 * core::f32::consts::FRAC_2_SQRT_PI) / a - libm::erfcf(a));
+    // Cancellation for large `a` can round below 0 (the true value is positive).
+    value.max(0.0)
+}
+
+/// `F(ω_o·h) G2/(4πα² cos θ_o)` with `G2 = 1/(1 + Λ(α, cos θ_o) + Λ(α, cos θ))`.
+#[inline(always)]
+fn lobe_factor(
+    normal: Vec3,
+    view: Vec3,
+    dir: Vec3,
+    alpha: f32,
+    f0: f32,
+    lambda: impl Fn(f32, f32) -> f32,
+) -> f32 {
     let (Some(n), Some(wo), Some(wi)) =
         (unit_or_none(normal), unit_or_none(view), unit_or_none(dir))
     else {
@@ -206,15 +249,18 @@ pub fn ggx_lobe_factor(normal: Vec3, view: Vec3, dir: Vec3, alpha: f32, f0: f32)
     let m = (1.0 - wo.dot(h)).max(0.0).min(1.0);
     let m2 = m * m;
     let fresnel = f0 + (1.0 - f0) * (m2 * m2 * m);
-    let ggx = GgxBrdf::from_alpha(alpha, Vec3::splat(f0));
-    let g2 = 1.0 / (1.0 + ggx.lambda(co) + ggx.lambda(ci));
+    let g2 = 1.0 / (1.0 + lambda(alpha, co) + lambda(alpha, ci));
     let value = fresnel * g2 / (4.0 * PI * alpha * alpha * co.max(MIN_SPECULAR_COSINE));
     if value.is_finite() { value } else { 0.0 }
 }
 
+/// The factor `C(ω)` of a microfacet lobe: [`ggx_lobe_factor`] or [`beckmann_lobe_factor`].
+type LobeFactor = fn(Vec3, Vec3, Vec3, f32, f32) -> f32;
+
 /// What both specular forms share: the sanitized incoming SG, `α` and the factor
-/// `V C(ξ_in)` of the GGX lobe towards the incoming axis; `None` where that factor is
+/// `V C(ξ_in)` of the lobe towards the incoming axis; `None` where that factor is
 /// not positive (the shading is 0 there).
+#[inline(always)]
 fn specular_factor(
     incoming: &Sg,
     normal: Vec3,
@@ -222,10 +268,11 @@ fn specular_factor(
     roughness: f32,
     f0: f32,
     visibility: f32,
+    factor: LobeFactor,
 ) -> Option<(Sg, f32, f32)> {
     let incoming = incoming.sanitized();
     let alpha = roughness_to_alpha(roughness);
-    let c = ggx_lobe_factor(normal, view, incoming.axis, alpha, f0) * clamp_unit(visibility);
+    let c = factor(normal, view, incoming.axis, alpha, f0) * clamp_unit(visibility);
     (c > 0.0).then_some((incoming, alpha, c))
 }
 
@@ -239,12 +286,52 @@ pub fn specular_shading(
     f0: f32,
     visibility: f32,
 ) -> f32 {
-    let Some((incoming, alpha, c)) =
-        specular_factor(incoming, normal, view, roughness, f0, visibility)
-    else {
+    let factor = specular_factor(
+        incoming,
+        normal,
+        view,
+        roughness,
+        f0,
+        visibility,
+        ggx_lobe_factor,
+    );
+    asg_shading(factor, normal, view, Asg::ggx_lobe)
+}
+
+/// [`specular_shading`] for Beckmann's NDF: the ASG fit [`Asg::beckmann_lobe`] and
+/// [`beckmann_lobe_factor`].
+pub fn beckmann_specular_shading(
+    incoming: &Sg,
+    normal: Vec3,
+    view: Vec3,
+    roughness: f32,
+    f0: f32,
+    visibility: f32,
+) -> f32 {
+    let factor = specular_factor(
+        incoming,
+        normal,
+        view,
+        roughness,
+        f0,
+        visibility,
+        beckmann_lobe_factor,
+    );
+    asg_shading(factor, normal, view, Asg::beckmann_lobe)
+}
+
+/// `c ∫ G_in Ĝ dω` for the ASG fit `lobe` at the shading point (0 without a factor).
+#[inline(always)]
+fn asg_shading(
+    factor: Option<(Sg, f32, f32)>,
+    normal: Vec3,
+    view: Vec3,
+    lobe: fn(Vec3, Vec3, f32) -> Asg,
+) -> f32 {
+    let Some((incoming, alpha, c)) = factor else {
         return 0.0;
     };
-    let lobe = Asg::ggx_lobe(normal, view, alpha);
+    let lobe = lobe(normal, view, alpha);
     let value = c * lobe.convolve_sg(&incoming);
     if value.is_finite() {
         value.min(f32::MAX)
@@ -263,12 +350,52 @@ pub fn specular_shading_sg(
     f0: f32,
     visibility: f32,
 ) -> f32 {
-    let Some((incoming, alpha, c)) =
-        specular_factor(incoming, normal, view, roughness, f0, visibility)
-    else {
+    let factor = specular_factor(
+        incoming,
+        normal,
+        view,
+        roughness,
+        f0,
+        visibility,
+        ggx_lobe_factor,
+    );
+    sg_shading(factor, normal, view, specular_lobe)
+}
+
+/// [`specular_shading_sg`] for Beckmann's NDF: the SG fit [`beckmann_lobe`] and
+/// [`beckmann_lobe_factor`].
+pub fn beckmann_specular_shading_sg(
+    incoming: &Sg,
+    normal: Vec3,
+    view: Vec3,
+    roughness: f32,
+    f0: f32,
+    visibility: f32,
+) -> f32 {
+    let factor = specular_factor(
+        incoming,
+        normal,
+        view,
+        roughness,
+        f0,
+        visibility,
+        beckmann_lobe_factor,
+    );
+    sg_shading(factor, normal, view, beckmann_lobe)
+}
+
+/// `∫ L_in c G(ω, ξ_s, λ_s) dω` for the SG fit `lobe` (0 without a factor).
+#[inline(always)]
+fn sg_shading(
+    factor: Option<(Sg, f32, f32)>,
+    normal: Vec3,
+    view: Vec3,
+    lobe: fn(Vec3, Vec3, f32) -> Sg,
+) -> f32 {
+    let Some((incoming, alpha, c)) = factor else {
         return 0.0;
     };
-    let lobe = specular_lobe(normal, view, alpha);
+    let lobe = lobe(normal, view, alpha);
     let lobe = Sg {
         log_amplitude: libm::logf(c),
         ..lobe

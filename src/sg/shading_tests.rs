@@ -244,3 +244,106 @@ fn ggx_lobe_factor_is_the_brdf_over_the_unnormalised_ndf() {
         );
     }
 }
+
+/// Beckmann's Smith `Λ` in f64 from the slope distribution (Walter et al. 2007):
+/// `a = cos θ/(α sin θ)`, `Λ = (e^{−a²}/(a√π) − erfc(a))/2`.
+fn beckmann_lambda64(alpha: f64, c: f64) -> f64 {
+    let a = c / (alpha * (1.0 - c * c).sqrt());
+    0.5 * ((-a * a).exp() / (a * PI64.sqrt()) - libm::erfc(a))
+}
+
+/// Beckmann's `ρ_s cos θ_i = F D G2/(4 cos θ_o)` in f64 (normal `z`):
+/// `D = e^{−tan²θ_h/α²}/(πα² cos⁴θ_h)`, `G2 = 1/(1 + Λ(ω_o) + Λ(ω_i))`, Schlick's `F`.
+fn beckmann_cos64(wo: [f64; 3], wi: [f64; 3], alpha: f64, f0: f64) -> f64 {
+    if wo[2] <= 0.0 || wi[2] <= 0.0 {
+        return 0.0;
+    }
+    let h = normalize([wo[0] + wi[0], wo[1] + wi[1], wo[2] + wi[2]]);
+    let c2 = h[2] * h[2];
+    let d = (-(1.0 - c2) / c2 / (alpha * alpha)).exp() / (PI64 * alpha * alpha * c2 * c2);
+    let g2 = 1.0 / (1.0 + beckmann_lambda64(alpha, wo[2]) + beckmann_lambda64(alpha, wi[2]));
+    let f = f0 + (1.0 - f0) * (1.0 - dot(wo, h)).powi(5);
+    f * d * g2 / (4.0 * wo[2])
+}
+
+/// Issue 20 (6): `C(ω)` of the Beckmann lobe is Beckmann's `ρ_s cos` over its
+/// unnormalised NDF `D̂ = πα² D`, against the f64 BRDF above, and its `Λ` is the f64 one.
+#[test]
+fn beckmann_lobe_factor_is_the_brdf_over_the_unnormalised_ndf() {
+    let mut rng = Rng::new(44);
+    for _ in 0..2000 {
+        let mut wo = rng.unit_vector_f32();
+        wo.z = wo.z.abs().max(0.05);
+        let wo = wo.normalize();
+        let mut wi = rng.unit_vector_f32();
+        wi.z = wi.z.abs().max(0.05);
+        let wi = wi.normalize();
+        let alpha = (0.1 + 0.9 * rng.uniform()).powi(2);
+        let alpha32 = alpha as f32;
+        let alpha = alpha32 as f64;
+        let (o, i) = (d3(wo), d3(wi));
+        let h = normalize([o[0] + i[0], o[1] + i[1], o[2] + i[2]]);
+        let c2 = h[2] * h[2];
+        let d_hat = (-(1.0 - c2) / c2 / (alpha * alpha)).exp() / (c2 * c2);
+        if d_hat < 1e-30 {
+            continue; // the ratio of two underflowed values
+        }
+        let expected = beckmann_cos64(o, i, alpha, 0.04) / d_hat;
+        let c = beckmann_lobe_factor(Vec3::Z, wo, wi, alpha32, 0.04) as f64;
+        assert!(
+            ((c - expected) / expected).abs() < 2e-4,
+            "{c} vs {expected}"
+        );
+    }
+    for alpha in [1e-3f32, 0.05, 0.3, 1.0] {
+        for c in [1e-4f32, 0.01, 0.1, 0.5, 0.9, 0.999] {
+            let exact = beckmann_lambda64(alpha as f64, c as f64);
+            let got = beckmann_lambda(alpha, c) as f64;
+            assert!(
+                (got - exact).abs() <= 1e-4 * exact + 1e-7,
+                "α {alpha} cos {c}: {got} vs {exact}"
+            );
+        }
+        assert_eq!(beckmann_lambda(alpha, 1.0), 0.0);
+    }
+}
+
+/// As for GGX: a very sharp incoming lobe at the reflection direction gives
+/// `c A(λ) ρ_s cos θ` of Beckmann's f64 BRDF with both fits (their `D̂ = 1` there).
+#[test]
+fn beckmann_shading_of_a_delta_like_light_is_the_brdf_at_its_direction() {
+    let n = Vec3::Z;
+    for deg in [0.0f32, 30.0, 60.0, 75.0] {
+        for roughness in [0.2f32, 0.5, 0.9] {
+            let t = deg.to_radians();
+            let view = Vec3::new(t.sin(), 0.0, t.cos());
+            let reflected = Vec3::new(-t.sin(), 0.0, t.cos());
+            let l_in = Sg::new(reflected, MAX_SHARPNESS, 1.0);
+            let alpha = (roughness * roughness) as f64;
+            let exact =
+                l_in.integral() as f64 * beckmann_cos64(d3(view), d3(reflected), alpha, 0.04);
+            let asg = beckmann_specular_shading(&l_in, n, view, roughness, 0.04, 1.0) as f64;
+            let sg = beckmann_specular_shading_sg(&l_in, n, view, roughness, 0.04, 1.0) as f64;
+            for (form, value) in [("ASG", asg), ("SG", sg)] {
+                assert!(
+                    ((value - exact) / exact).abs() < 2e-3,
+                    "{deg}° r {roughness}: {form} {value} vs {exact}"
+                );
+            }
+            // The Smith terms differ: Beckmann's G2 is not GGX's.
+            let ggx = specular_shading(&l_in, n, view, roughness, 0.04, 1.0) as f64;
+            if deg >= 60.0 && roughness >= 0.5 {
+                assert!(((ggx - asg) / asg).abs() > 1e-3, "{deg}° r {roughness}");
+            }
+        }
+    }
+    let below = Sg::new(Vec3::new(0.0, 0.6, -0.8), 100.0, 1.0);
+    assert_eq!(
+        beckmann_specular_shading(&below, n, Vec3::Z, 0.5, 0.04, 1.0),
+        0.0
+    );
+    assert_eq!(
+        beckmann_specular_shading_sg(&below, n, Vec3::Z, 0.5, 0.04, 1.0),
+        0.0
+    );
+}

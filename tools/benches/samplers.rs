@@ -12,8 +12,8 @@ use sphera::brdf::lambert::Lambert;
 use sphera::brdf::{Ltc, LtcPolygon};
 use sphera::sg::asg::Asg;
 use sphera::sg::shading::{
-    diffuse_shading_constant_cosine, diffuse_shading_product, incoming_radiance, specular_shading,
-    specular_shading_sg,
+    beckmann_specular_shading, beckmann_specular_shading_sg, diffuse_shading_constant_cosine,
+    diffuse_shading_product, incoming_radiance, specular_shading, specular_shading_sg,
 };
 use sphera::sg::{Sg, vmf_sample};
 use sphera::sphere::phase;
@@ -174,6 +174,16 @@ fn main() {
         (
             "VSGL: specular shading, SG (incl. the fit)",
             time_ns(|i| specular_shading_sg(&incoming[i], Vec3::Z, views[i], 0.3, 0.04, 1.0)),
+        ),
+        (
+            "VSGL: Beckmann specular shading, ASG (incl. the fit)",
+            time_ns(|i| beckmann_specular_shading(&incoming[i], Vec3::Z, views[i], 0.3, 0.04, 1.0)),
+        ),
+        (
+            "VSGL: Beckmann specular shading, SG (incl. the fit)",
+            time_ns(|i| {
+                beckmann_specular_shading_sg(&incoming[i], Vec3::Z, views[i], 0.3, 0.04, 1.0)
+            }),
         ),
     ];
     println!("## ns per call of the BRDF, LTC, sphere-cap, phase-function and SG operations\n");

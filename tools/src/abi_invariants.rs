@@ -1394,6 +1394,8 @@ pub fn sg_entry_points(data: &[u8]) {
         sphera_sg_diffuse_lobe(normal),
         sphera_sg_specular_lobe(normal, view, alpha),
         sphera_sg_specular_lobe_unnormalized(normal, view, alpha),
+        sphera_sg_beckmann_lobe(normal, view, alpha),
+        sphera_sg_beckmann_lobe_unnormalized(normal, view, alpha),
     ] {
         assert_words_finite(&lobe, "lobe");
     }
@@ -1406,6 +1408,8 @@ pub fn sg_entry_points(data: &[u8]) {
             sphera_sg_diffuse_shading_sharp_lobe(sg, normal, scalars[0], scalars[1]),
             sphera_sg_specular_shading(sg, normal, view, alpha, scalars[0], scalars[1]),
             sphera_sg_specular_shading_sg(sg, normal, view, alpha, scalars[0], scalars[1]),
+            sphera_sg_beckmann_specular_shading(sg, normal, view, alpha, scalars[0], scalars[1]),
+            sphera_sg_beckmann_specular_shading_sg(sg, normal, view, alpha, scalars[0], scalars[1]),
         ] {
             assert_density(value, "SG shading");
         }
@@ -1414,7 +1418,9 @@ pub fn sg_entry_points(data: &[u8]) {
     assert_words_finite(&asg, "asg");
     let ggx = sphera_asg_ggx_lobe(normal, view, alpha);
     assert_words_finite(&ggx, "ggx asg");
-    for asg in [asg, ggx] {
+    let beckmann = sphera_asg_beckmann_lobe(normal, view, alpha);
+    assert_words_finite(&beckmann, "beckmann asg");
+    for asg in [asg, ggx, beckmann] {
         assert_density(sphera_asg_integral(asg), "ASG integral");
         assert_density(sphera_asg_convolve_sg(asg, a), "ASG × SG");
         for &probe in &probes {

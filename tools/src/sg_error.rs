@@ -2,7 +2,7 @@
 //! every quantity of `sphera::sg` measured against f64 numerical integration over the
 //! sphere, written independently here (a product grid in the frame of a lobe, refined
 //! near its axis), over a grid of sharpness (per decade 1e-4..1e4), angle between lobes
-//! and GGX roughness (0.05..1).
+//! and GGX or Beckmann roughness (0.05..1); the Beckmann BRDF is written here in f64.
 //!
 //! `measure(false)` is the full table (`cargo run --release -p sphera-tools --bin
 //! sg_error_table`); `measure(true)` a reduced grid that `tools/tests/sg_error.rs` runs.
@@ -10,10 +10,13 @@ use sphera::Vec3;
 use sphera::brdf::ggx::GgxBrdf;
 use sphera::sg::asg::Asg;
 use sphera::sg::shading::{
-    diffuse_shading_constant_cosine, diffuse_shading_product, diffuse_shading_sharp_lobe,
-    specular_shading, specular_shading_sg,
+    beckmann_specular_shading, beckmann_specular_shading_sg, diffuse_shading_constant_cosine,
+    diffuse_shading_product, diffuse_shading_sharp_lobe, specular_shading, specular_shading_sg,
 };
-use sphera::sg::{Sg, diffuse_lobe_normalized, sg_integral, specular_lobe_normalized, vmf_pdf};
+use sphera::sg::{
+    Sg, beckmann_lobe_normalized, diffuse_lobe_normalized, sg_integral, specular_lobe_normalized,
+    vmf_pdf,
+};
 use std::f64::consts::PI;
 
 type D3 = [f64; 3];
@@ -100,6 +103,28 @@ fn sg64(axis: D3, l: f64, w: D3) -> f64 {
 
 fn dot(a: D3, b: D3) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Beckmann's Smith `Λ` in f64 (Walter et al. 2007): `a = cos θ/(α sin θ)`,
+/// `Λ = (e^{−a²}/(a√π) − erfc(a))/2`.
+fn beckmann_lambda64(alpha: f64, c: f64) -> f64 {
+    let a = c / (alpha * (1.0 - c * c).max(0.0).sqrt());
+    0.5 * ((-a * a).exp() / (a * PI.sqrt()) - libm::erfc(a))
+}
+
+/// Beckmann's `ρ_s cos θ_i = F D G2/(4 cos θ_o)` in f64 for the normal `z`, written here
+/// independently of `sphera`: `D = e^{−tan²θ_h/α²}/(πα² cos⁴θ_h)`, the height-correlated
+/// `G2 = 1/(1 + Λ(ω_o) + Λ(ω_i))`, Schlick's `F` at `ω_o·h`.
+fn beckmann_cos64(wo: D3, wi: D3, alpha: f64, f0: f64) -> f64 {
+    if wo[2] <= 0.0 || wi[2] <= 0.0 {
+        return 0.0;
+    }
+    let h = normalize([wo[0] + wi[0], wo[1] + wi[1], wo[2] + wi[2]]);
+    let c2 = h[2] * h[2];
+    let d = (-(1.0 - c2) / c2 / (alpha * alpha)).exp() / (PI * alpha * alpha * c2 * c2);
+    let g2 = 1.0 / (1.0 + beckmann_lambda64(alpha, wo[2]) + beckmann_lambda64(alpha, wi[2]));
+    let f = f0 + (1.0 - f0) * (1.0 - dot(wo, h)).max(0.0).powi(5);
+    f * d * g2 / (4.0 * wo[2])
 }
 
 /// One measured relative error.
@@ -286,6 +311,41 @@ pub fn measure(reduced: bool) -> Vec<Sample> {
                     n,
                     &f,
                 ));
+                let beckmann = |w: D3| {
+                    if w[2] <= 0.0 {
+                        return 0.0;
+                    }
+                    sg64(xi, l32, w) * beckmann_cos64(view, w, alpha, 0.04)
+                };
+                let exact_beckmann = integrate(xi, l32, n, &beckmann).max(integrate(
+                    [-(0.5f64.sqrt()), 0.0, 0.5f64.sqrt()],
+                    lobe_l,
+                    n,
+                    &beckmann,
+                ));
+                if exact_beckmann > 1e-30 {
+                    let case = format!("λ={l:.0e} r={r} off {offset}");
+                    out.push(Sample {
+                        quantity: "Beckmann specular shading, ASG",
+                        decade,
+                        case: case.clone(),
+                        error: rel(
+                            beckmann_specular_shading(&l_in, Vec3::Z, wo, r as f32, 0.04, 1.0)
+                                as f64,
+                            exact_beckmann,
+                        ),
+                    });
+                    out.push(Sample {
+                        quantity: "Beckmann specular shading, SG",
+                        decade,
+                        case,
+                        error: rel(
+                            beckmann_specular_shading_sg(&l_in, Vec3::Z, wo, r as f32, 0.04, 1.0)
+                                as f64,
+                            exact_beckmann,
+                        ),
+                    });
+                }
                 if exact > 1e-30 {
                     let case = format!("λ={l:.0e} r={r} off {offset}");
                     out.push(Sample {
@@ -347,6 +407,20 @@ pub fn measure(reduced: bool) -> Vec<Sample> {
                 case: format!("r={r} view {view_deg}°"),
                 error: shape,
             });
+            // Beckmann: the same SG (λ_h = 2/α²) against the f64 Beckmann BRDF · cos.
+            let b = beckmann_lobe_normalized(Vec3::Z, to_f32(wo), alpha as f32);
+            let alpha32 = (alpha as f32) as f64;
+            let f = |w: D3| beckmann_cos64(wo, w, alpha32, 1.0);
+            let norm_f = integrate(refl, b.sharpness as f64, n, &f);
+            let shape = integrate(refl, b.sharpness as f64, n, &|w| {
+                (f(w) / norm_f - b.eval(to_f32(w)) as f64).abs()
+            });
+            out.push(Sample {
+                quantity: "Beckmann SG lobe shape (L1 vs Beckmann·cos)",
+                decade: (r.log10().floor()) as i32,
+                case: format!("r={r} view {view_deg}°"),
+                error: shape,
+            });
         }
     }
     out
@@ -392,7 +466,19 @@ pub fn render(samples: &[Sample]) -> String {
     md += "  better than the SG fit at r = 1 (34 % vs 42 %), about equal elsewhere.\n";
     md += "- Lobe shapes (L1 distance of normalised lobes, 0..2): diffuse fit 0.258; the\n";
     md += "  specular SG fit 0.5–1.15 (GGX's peak is narrower and its tail heavier than the\n";
-    md += "  Gaussian's; worst at grazing views, where the isotropic warp is also wrong in shape).\n\n";
+    md +=
+        "  Gaussian's; worst at grazing views, where the isotropic warp is also wrong in shape).\n";
+    md += "- Beckmann (the same λ_h = 2/α² fit, against an f64 Beckmann BRDF with its own Smith\n";
+    md += "  term): along the normal the SG has Beckmann's shape (L1 1.1e-4 at r = 0.1, 0.068 at\n";
+    md +=
+        "  r = 0.5, against GGX's 0.41 and 0.23); at 45° and 75° the isotropic warp's own error\n";
+    md += "  dominates (0.22 and 0.80 at r = 0.1). Shading on the reflection direction is within\n";
+    md += "  7.2 % for r ≤ 0.5 at λ ≤ 1e2 (1.4e-4 for the ASG at r = 0.1); at r = 1 (Beckmann\n";
+    md +=
+        "  peaks off the normal there) the ASG is 49 % off for wide lobes, the SG 10 %. Beckmann\n";
+    md += "  has no tail, so 0.2 rad off the reflection both the reference and the fits are\n";
+    md +=
+        "  tiny on smooth surfaces and the relative error reaches 100 % of a negligible value.\n\n";
     md += "| quantity | decade | cases | mean error | max error | worst case |\n|---|---|---|---|---|---|\n";
     for q in &quantities {
         let mut decades: Vec<i32> = samples

@@ -62,5 +62,44 @@ fn reduced_error_table_stays_within_the_measured_bounds() {
     }
 }
 
+/// Issue 20 (6): the Beckmann lobe (the paper's `λ_h = 2/α²`, the GGX lobe's functions)
+/// against the f64 Beckmann BRDF of `tools/src/sg_error.rs`. On the reflection direction
+/// both fits are within 10 % for roughness up to 0.5 at every sharpness up to 1e2
+/// (measured 7.2 %; GGX's reach 18 %), and at roughness 0.1 the ASG is within 1e-3 at
+/// every sharpness (measured 1.4e-4). Along the normal the SG has Beckmann's shape (L1
+/// distance 1.1e-4 at roughness 0.1) where GGX's tail puts it at 0.41.
+#[test]
+fn beckmann_lobe_fits_the_beckmann_brdf() {
+    let samples = measure(true);
+    let on_peak = |s: &Sample| s.case.ends_with("off 0");
+    let moderate = |s: &Sample| !s.case.contains("r=1 ");
+    for q in [
+        "Beckmann specular shading, ASG",
+        "Beckmann specular shading, SG",
+    ] {
+        let w = worst(&samples, q, |s| on_peak(s) && moderate(s) && s.decade <= 2);
+        assert!(w < 0.1, "{q}: {w}");
+    }
+    let w = worst(&samples, "Beckmann specular shading, ASG", |s| {
+        on_peak(s) && s.case.contains("r=0.1 ")
+    });
+    assert!(w < 1e-3, "Beckmann ASG at r = 0.1: {w}");
+    let along_normal = |s: &Sample| s.case == "r=0.1 view 0°";
+    let beckmann = worst(
+        &samples,
+        "Beckmann SG lobe shape (L1 vs Beckmann·cos)",
+        along_normal,
+    );
+    let ggx = worst(
+        &samples,
+        "specular SG lobe shape (L1 vs GGX·cos)",
+        along_normal,
+    );
+    assert!(
+        beckmann < 1e-3 && ggx > 0.3,
+        "Beckmann {beckmann}, GGX {ggx}"
+    );
+}
+
 const BOUND_CONSTANT_COSINE: f64 = 0.05;
 const BOUND_SPECULAR: f64 = 0.5;
