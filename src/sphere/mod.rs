@@ -1,10 +1,12 @@
 //! Sphere lights (Dupuy, Heitz and Belcour 2017, "A Spherical Cap Preserving
 //! Parameterization for Spherical Distributions"): the cap that a sphere subtends,
-//! uniform sampling inside it, the solid angle of the intersection of two caps, the pivot
+//! uniform sampling inside it, the solid angle of the intersection of two caps and uniform
+//! sampling of that intersection, the pivot
 //! transformation that maps caps to caps, and the pivot phase function.
 
 pub mod cap;
 pub mod cap_intersection;
+pub mod cap_intersection_sampling;
 pub mod light;
 pub mod phase;
 pub mod pivot;
@@ -12,6 +14,7 @@ pub mod sptd;
 
 pub use cap::Cap;
 pub use cap_intersection::{cap_intersection_solid_angle, cap_intersection_solid_angle_oat_sander};
+pub use cap_intersection_sampling::CapIntersection;
 pub use light::{GgxPivot, SphereLightSampler, SphereShadingSptd};
 pub use pivot::{pivot_cap, pivot_jacobian, pivot_transform};
 pub use sptd::{Sptd, SptdBase, SptdInCap};

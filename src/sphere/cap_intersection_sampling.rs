@@ -1,0 +1,309 @@
+//! Uniform sampling of the intersection of two spherical caps (Dupuy et al. 2017,
+//! Sec. 4: SPTDs over sets of caps; the sampler behind an SPTD restricted to `C ∩ H`).
+//!
+//! For caps `A` (axis `a`, `t_A = 1 − cos θ_A`) and `B` (axis `b`, half-angle `θ_B`) at
+//! axis angle `d`, the directions at `s = 1 − cos θ` from `a` form a circle, of which
+//! the arc of azimuths `ψ ∈ [−φ(s), φ(s)]` about the direction of `b` lies in `B`:
+//! `cos θ cos d + sin θ sin d cos ψ ≥ cos θ_B`, so
+//!
+//! `cos φ(s) = (cos θ_B − cos θ cos d) / (sin θ sin d)
+//!           = (s + t_d − t_B − s t_d) / √(s (2 − s) t_d (2 − t_d))`
+//!
+//! (clamped to `[−1, 1]`; every term from the `t`s, no cancellation of cosines). The
+//! area element is `dω = ds dψ`, so the radial marginal of the uniform distribution on
+//! `A ∩ B` is `F(s) = Ω(cap(a, s) ∩ B) / Ω(A ∩ B)` with density `2 φ(s) / Ω(A ∩ B)`: the
+//! closed-form two-cap solid angle ([`cap_intersection_solid_angle`]) is its CDF, and its
+//! derivative is `2 φ(s)`. Sampling inverts `F(s) = u₀` by Newton's method safeguarded
+//! by bisection (at most [`MAX_ITERATIONS`] steps), then draws `ψ = (2u₁ − 1) φ(s)`:
+//! exact up to the rounding of `F`, with the inverse `u₀ = F(1 − a·ω)`,
+//! `u₁ = (ψ/φ + 1)/2`.
+//!
+//! Hard cases (tested): nested caps, a lens between tangent caps, a tiny cap across a
+//! large one's rim, caps wider than a hemisphere (whose intersection may be a ring-like
+//! region around a hole), coaxial caps, disjoint caps (no sampler).
+
+use super::cap::Cap;
+use super::cap_intersection::cap_intersection_solid_angle;
+use crate::Sample;
+use crate::math::orthonormal_basis;
+use crate::sample::{INWARD_PULLS, ONE_MINUS_ULP, clamp_random};
+use core::f32::consts::PI;
+use glam::Vec3;
+
+/// The most steps of the radial inversion. Newton's method converges quadratically from
+/// the bisection's bracket; 40 bisection steps alone shrink any bracket in `[0, 2]` below
+/// `f32` resolution, so the bound is never the limit of accuracy.
+pub const MAX_ITERATIONS: u32 = 40;
+
+/// Two caps prepared for uniform sampling of their intersection.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CapIntersection {
+    /// The cap whose axis the radial coordinate `s` is measured from (sanitized).
+    pub radial: Cap,
+    /// The other cap (sanitized).
+    pub other: Cap,
+    /// `Ω(A ∩ B)` in steradians (0 for the empty intersection).
+    pub solid_angle: f32,
+    /// Unit tangent at `a` towards `b` (any tangent when the axes coincide).
+    e1: Vec3,
+    /// `a × e1`.
+    e2: Vec3,
+    /// `t_d = 1 − a·b`.
+    t_d: f32,
+    /// The range of `s` that meets `B`: `[s_low, s_high]` within `[0, t_A]`.
+    s_low: f32,
+    s_high: f32,
+    /// A direction inside both caps (on the arc from `a` towards `b`), towards which a
+    /// sample that rounding put just outside is pulled.
+    inner: Vec3,
+}
+
+/// `1 − cos x` of an angle, accurate for small ones: `2 sin²(x/2)`.
+#[inline(always)]
+fn one_minus_cos_of(x: f32) -> f32 {
+    let s = libm::sinf(0.5 * x);
+    2.0 * s * s
+}
+
+/// The angle `θ = 2 asin(√(t/2))` of `t = 1 − cos θ`.
+#[inline(always)]
+fn angle_of(t: f32) -> f32 {
+    2.0 * libm::asinf(libm::sqrtf((0.5 * t).max(0.0).min(1.0)))
+}
+
+impl CapIntersection {
+    /// The empty intersection: no samples, pdf 0.
+    ///
+    /// cbindgen:ignore
+    pub const EMPTY: CapIntersection = CapIntersection {
+        radial: Cap::EMPTY,
+        other: Cap::EMPTY,
+        solid_angle: 0.0,
+        e1: Vec3::X,
+        e2: Vec3::Y,
+        t_d: 0.0,
+        s_low: 0.0,
+        s_high: 0.0,
+        inner: Vec3::Z,
+    };
+
+    /// Prepares uniform sampling of `a ∩ b` (both sanitized here). `None` when the
+    /// intersection is empty (or `1 / Ω` is not finite). The narrower cap is the radial
+    /// one.
+    #[must_use]
+    pub fn new(a: &Cap, b: &Cap) -> Option<CapIntersection> {
+        let (a, b) = (a.sanitized(), b.sanitized());
+        let (radial, other) = if a.one_minus_cos <= b.one_minus_cos {
+            (a, b)
+        } else {
+            (b, a)
+        };
+        let solid_angle = cap_intersection_solid_angle(&radial, &other);
+        if !(solid_angle > 0.0) || !(1.0 / solid_angle).is_finite() {
+            return None;
+        }
+        let axis = radial.axis;
+        let t_d = (0.5 * (other.axis - axis).length_squared()).min(2.0);
+        // The tangent towards b: b's component perpendicular to a, from a basis of the
+        // tangent plane (as in `SptdInCap`, accurate when b is within ulps of a).
+        let (t, bt) = orthonormal_basis(axis);
+        let (x, y) = (other.axis.dot(t), other.axis.dot(bt));
+        let sin_d = libm::sqrtf(x * x + y * y);
+        let e1 = if sin_d > 1e-18 {
+            t * (x / sin_d) + bt * (y / sin_d)
+        } else {
+            t
+        };
+        let e2 = axis.cross(e1);
+        // Along the great circle from a towards b, the points at angle θ from a lie in
+        // B for |θ − d| ≤ θ_B (d ≤ π, so also θ ≥ d − θ_B and θ ≤ d + θ_B): the radial
+        // range that meets B, and its middle as an inner point.
+        let (theta_a, theta_b, d) = (
+            angle_of(radial.one_minus_cos),
+            angle_of(other.one_minus_cos),
+            angle_of(t_d),
+        );
+        let low = (d - theta_b).max(0.0);
+        let high = (d + theta_b).min(theta_a).max(low);
+        let s_low = one_minus_cos_of(low).min(radial.one_minus_cos);
+        // Past π the circle at θ wraps: every θ up to θ_A can meet B then.
+        let s_high = if d + theta_b >= PI {
+            radial.one_minus_cos
+        } else {
+            one_minus_cos_of(high).min(radial.one_minus_cos)
+        };
+        let middle = 0.5 * (low + high);
+        let (sin_m, cos_m) = libm::sincosf(middle);
+        let mut inner = (axis * cos_m + e1 * sin_m).normalize_or(axis);
+        if !(radial.contains(inner) && other.contains(inner)) {
+            // (A ring around a hole, where the arc's middle may lie in the hole.)
+            inner = if other.contains(axis) {
+                axis
+            } else {
+                other.axis
+            };
+        }
+        Some(CapIntersection {
+            radial,
+            other,
+            solid_angle,
+            e1,
+            e2,
+            t_d,
+            s_low,
+            s_high: s_high.max(s_low),
+            inner,
+        })
+    }
+
+    /// `Ω(cap(a, s) ∩ B)`, the unnormalised radial CDF.
+    #[inline]
+    fn cumulative(&self, s: f32) -> f32 {
+        let cap = Cap::from_axis_one_minus_cos(self.radial.axis, s);
+        cap_intersection_solid_angle(&cap, &self.other)
+    }
+
+    /// `φ(s)`, the half-width in azimuth of the circle at `s` inside `B`.
+    #[inline]
+    fn half_arc(&self, s: f32) -> f32 {
+        let t_b = self.other.one_minus_cos;
+        let numerator = s + self.t_d - t_b - s * self.t_d;
+        let denominator =
+            libm::sqrtf((s * (2.0 - s)).max(0.0) * (self.t_d * (2.0 - self.t_d)).max(0.0));
+        if !(denominator > 0.0) {
+            // Coaxial (or the pole of a): the whole circle or none of it.
+            return if numerator <= 0.0 { PI } else { 0.0 };
+        }
+        libm::acosf((numerator / denominator).max(-1.0).min(1.0))
+    }
+
+    /// The solid angle of the intersection, `Ω(A ∩ B)`.
+    #[inline]
+    #[must_use]
+    pub fn solid_angle(&self) -> f32 {
+        self.solid_angle
+    }
+
+    /// `1 / Ω(A ∩ B)`, or 0 for the empty intersection.
+    #[inline]
+    fn uniform_pdf(&self) -> f32 {
+        if !(self.solid_angle > 0.0) {
+            return 0.0;
+        }
+        let pdf = 1.0 / self.solid_angle;
+        if pdf.is_finite() { pdf } else { 0.0 }
+    }
+
+    /// Whether `dir` lies in both caps.
+    #[inline]
+    #[must_use]
+    pub fn contains(&self, dir: Vec3) -> bool {
+        self.radial.contains(dir) && self.other.contains(dir)
+    }
+
+    /// `s` with `Ω(cap(a, s) ∩ B) = target`, by Newton's method in the bracket
+    /// `[s_low, s_high]`, bisecting where a step leaves it.
+    fn invert_radial(&self, target: f32) -> f32 {
+        let (mut low, mut high) = (self.s_low, self.s_high);
+        let span = (high - low).max(0.0);
+        // A start in proportion to the target (exact for coaxial caps, where F is
+        // linear in s).
+        let mut s = low + span * (target / self.solid_angle).max(0.0).min(1.0);
+        for _ in 0..MAX_ITERATIONS {
+            let f = self.cumulative(s) - target;
+            if f > 0.0 {
+                high = s;
+            } else {
+                low = s;
+            }
+            let slope = 2.0 * self.half_arc(s);
+            let newton = s - f / slope;
+            let next = if slope > 0.0 && newton > low && newton < high {
+                newton
+            } else {
+                0.5 * (low + high)
+            };
+            if (next - s).abs() <= 1e-7 * s.max(1e-30) || !(high > low) {
+                return next.max(self.s_low).min(self.s_high);
+            }
+            s = next;
+        }
+        s.max(self.s_low).min(self.s_high)
+    }
+
+    /// The direction at radial coordinate `s` and azimuth `psi` about `a` from `e1`.
+    #[inline]
+    fn direction(&self, s: f32, psi: f32) -> Vec3 {
+        let sin_theta = libm::sqrtf((s * (2.0 - s)).max(0.0));
+        let (sin_psi, cos_psi) = libm::sincosf(psi);
+        let axis = self.radial.axis;
+        (axis * (1.0 - s) + (self.e1 * cos_psi + self.e2 * sin_psi) * sin_theta).normalize_or(axis)
+    }
+
+    /// Draws a direction uniformly (in solid angle) in `A ∩ B`, pdf `1 / Ω(A ∩ B)`; no
+    /// sample from the empty intersection. `u` is clamped to `[0, 1 − ulp]`.
+    pub fn sample_uniform(&self, u: [f32; 2]) -> Sample {
+        let pdf = self.uniform_pdf();
+        if pdf == 0.0 {
+            return Sample::NONE;
+        }
+        let s = self.invert_radial(clamp_random(u[0]) * self.solid_angle);
+        let phi = self.half_arc(s);
+        let psi = (2.0 * clamp_random(u[1]) - 1.0) * phi;
+        let dir = self.direction(s, psi);
+        if self.contains(dir) {
+            return Sample { dir, pdf };
+        }
+        // Rounding put a sample from the boundary just outside, where `pdf` is 0:
+        // pulled towards the inner point until inside (`INWARD_PULLS`).
+        INWARD_PULLS
+            .iter()
+            .map(|&pull| (dir * (1.0 - pull) + self.inner * pull).normalize_or(self.inner))
+            .find(|&pulled| self.contains(pulled))
+            .map_or(Sample::NONE, |dir| Sample { dir, pdf })
+    }
+
+    /// The density of [`sample_uniform`](Self::sample_uniform): `1 / Ω(A ∩ B)` in both
+    /// caps, 0 outside.
+    #[inline]
+    #[must_use]
+    pub fn pdf(&self, dir: Vec3) -> f32 {
+        if self.contains(dir) {
+            self.uniform_pdf()
+        } else {
+            0.0
+        }
+    }
+
+    /// The random numbers that [`sample_uniform`](Self::sample_uniform) maps to `dir`
+    /// (up to rounding): `u₀ = F(1 − a·ω)`, `u₁ = (ψ/φ + 1)/2`; `None` outside.
+    #[must_use]
+    pub fn invert(&self, dir: Vec3) -> Option<[f32; 2]> {
+        if !self.contains(dir) || !(self.solid_angle > 0.0) {
+            return None;
+        }
+        let w = crate::sample::normalize_scaled(dir);
+        let s = (0.5 * (w - self.radial.axis).length_squared()).min(2.0);
+        let u0 = self.cumulative(s) / self.solid_angle;
+        let psi = libm::atan2f(w.dot(self.e2), w.dot(self.e1));
+        let phi = self.half_arc(s);
+        let u1 = if phi > 0.0 {
+            0.5 * (psi / phi + 1.0)
+        } else {
+            0.5
+        };
+        let clamp = |x: f32| {
+            if x.is_finite() {
+                x.max(0.0).min(ONE_MINUS_ULP)
+            } else {
+                0.0
+            }
+        };
+        Some([clamp(u0), clamp(u1)])
+    }
+}
+
+#[cfg(test)]
+#[path = "cap_intersection_sampling_tests.rs"]
+mod tests;

@@ -1,0 +1,288 @@
+use super::*;
+use crate::testing::*;
+
+/// The unit direction at `degrees` from +z towards +x, then turned by `azimuth` about z.
+fn tilted(degrees: f64, azimuth: f64) -> Vec3 {
+    let (t, p) = (degrees.to_radians(), azimuth.to_radians());
+    Vec3::new(
+        (t.sin() * p.cos()) as f32,
+        (t.sin() * p.sin()) as f32,
+        t.cos() as f32,
+    )
+}
+
+fn cap(axis: Vec3, one_minus_cos: f32) -> Cap {
+    Cap::from_axis_one_minus_cos(axis, one_minus_cos)
+}
+
+fn f64_cap(c: &Cap) -> (D3, f64, f64) {
+    (d3(c.axis), c.one_minus_cos as f64, c.one_plus_cos as f64)
+}
+
+/// Pairs of caps: a lens, a cap wider than a hemisphere, both wider, nested, a small cap
+/// across a larger one's rim, coaxial caps, and the upper hemisphere with a cap across
+/// its horizon.
+fn pairs() -> Vec<(&'static str, Cap, Cap)> {
+    vec![
+        ("lens", cap(Vec3::Z, 0.3), cap(tilted(40.0, 20.0), 0.2)),
+        (
+            "wide other",
+            cap(Vec3::Z, 0.5),
+            cap(tilted(100.0, -30.0), 1.6),
+        ),
+        ("both wide", cap(Vec3::Z, 1.5), cap(tilted(60.0, 70.0), 1.7)),
+        ("nested", cap(Vec3::Z, 0.1), cap(tilted(5.0, 0.0), 0.8)),
+        (
+            "small across a rim",
+            cap(tilted(10.0, 45.0), 1e-3),
+            cap(Vec3::Z, (1.0 - 10f64.to_radians().cos()) as f32),
+        ),
+        ("coaxial", cap(Vec3::Z, 0.4), cap(Vec3::Z, 1.0)),
+        ("horizon", cap(tilted(80.0, 0.0), 0.1), cap(Vec3::Z, 1.0)),
+    ]
+}
+
+/// Cells of `a ∩ b` (`a` the narrower cap) whose probabilities under the uniform
+/// distribution are known exactly in f64: `rows` bands of `s = 1 − a·ω` (uniform steps
+/// over the part of `[0, t_a]` that meets `b`), each cut into `columns` equal parts of the
+/// arc of the band's circle inside `b` (the normalised azimuth `v = (ψ/φ(s) + 1)/2` about
+/// the direction of `b`). A band's probability is a difference of two-cap solid angles
+/// (`cap_intersection_f64`, the acos form, independent of the sampler's), and the
+/// arc's parts are equally likely.
+struct Cells {
+    a: D3,
+    b: (D3, f64, f64),
+    e1: D3,
+    e2: D3,
+    t_d: f64,
+    s_edges: Vec<f64>,
+    columns: usize,
+    probabilities: Vec<f64>,
+}
+
+impl Cells {
+    fn new(a: &Cap, b: &Cap, rows: usize, columns: usize) -> Cells {
+        let (a, b) = if a.one_minus_cos <= b.one_minus_cos {
+            (a, b)
+        } else {
+            (b, a)
+        };
+        let (fa, fb) = (f64_cap(a), f64_cap(b));
+        let omega = cap_intersection_f64(fa, fb);
+        let axis = fa.0;
+        let t_d = 0.5 * norm(sub(fb.0, axis)).powi(2);
+        let along = sub(fb.0, scale(axis, dot(fb.0, axis)));
+        let e1 = if norm(along) > 1e-12 {
+            normalize(along)
+        } else {
+            frame_f64(axis).0
+        };
+        let e2 = cross(axis, e1);
+        let cumulative = |s: f64| {
+            if s <= 0.0 {
+                0.0
+            } else {
+                cap_intersection_f64((axis, s, 2.0 - s), fb)
+            }
+        };
+        // The band of s that meets b, found on a fine grid.
+        let t_a = fa.1;
+        let (mut s_low, mut s_high) = (0.0, t_a);
+        let steps = 100_000;
+        for k in 0..=steps {
+            let s = t_a * k as f64 / steps as f64;
+            if cumulative(s) <= 1e-14 * omega {
+                s_low = s;
+            }
+        }
+        for k in (0..=steps).rev() {
+            let s = t_a * k as f64 / steps as f64;
+            if cumulative(s) >= omega * (1.0 - 1e-14) {
+                s_high = s;
+            }
+        }
+        let s_edges: Vec<f64> = (0..=rows)
+            .map(|i| s_low + (s_high - s_low) * i as f64 / rows as f64)
+            .collect();
+        let mut probabilities = Vec::new();
+        for i in 0..rows {
+            let band = if i + 1 == rows {
+                omega - cumulative(s_edges[i])
+            } else {
+                cumulative(s_edges[i + 1]) - cumulative(s_edges[i])
+            };
+            for _ in 0..columns {
+                probabilities.push(band / omega / columns as f64);
+            }
+        }
+        Cells {
+            a: axis,
+            b: fb,
+            e1,
+            e2,
+            t_d,
+            s_edges,
+            columns,
+            probabilities,
+        }
+    }
+
+    fn of(&self, dir: Vec3) -> usize {
+        let w = normalize(d3(dir));
+        let s = 0.5 * norm(sub(w, self.a)).powi(2);
+        let rows = self.s_edges.len() - 1;
+        let row = self.s_edges[1..rows]
+            .iter()
+            .filter(|&&edge| edge <= s)
+            .count();
+        let (t_b, t_d) = (self.b.1, self.t_d);
+        let c = (s + t_d - t_b - s * t_d) / ((s * (2.0 - s)) * (t_d * (2.0 - t_d))).sqrt();
+        let phi = if c.is_finite() {
+            c.clamp(-1.0, 1.0).acos()
+        } else {
+            core::f64::consts::PI
+        };
+        let psi = dot(w, self.e2).atan2(dot(w, self.e1));
+        let v = if phi > 0.0 {
+            0.5 * (psi / phi + 1.0)
+        } else {
+            0.5
+        };
+        let column = ((v * self.columns as f64).max(0.0) as usize).min(self.columns - 1);
+        row * self.columns + column
+    }
+}
+
+#[test]
+fn samples_are_uniform_in_the_intersection() {
+    let mut rng = Rng::new(5);
+    for (name, a, b) in pairs() {
+        let lens = CapIntersection::new(&a, &b).expect(name);
+        let reference = cap_intersection_f64(f64_cap(&a), f64_cap(&b));
+        assert!(
+            (lens.solid_angle() as f64 - reference).abs() <= 1e-5 * reference + 1e-9,
+            "{name}: {} vs {reference}",
+            lens.solid_angle()
+        );
+        let cells = Cells::new(&a, &b, 24, 8);
+        let mut counts = vec![0u64; cells.probabilities.len()];
+        let n = 400_000;
+        for _ in 0..n {
+            let s = lens.sample_uniform([rng.uniform_f32(), rng.uniform_f32()]);
+            assert!(s.pdf > 0.0, "{name}: no sample");
+            assert_eq!(lens.pdf(s.dir).to_bits(), s.pdf.to_bits(), "{name}");
+            assert!((s.dir.length() - 1.0).abs() < 1e-6, "{name}: {:?}", s.dir);
+            counts[cells.of(s.dir)] += 1;
+        }
+        let (statistic, dof, p) = chi_square(&counts, &cells.probabilities);
+        println!("{name}: chi-square {statistic:.1} with {dof} dof, p = {p:.3}");
+        assert!(p > CHI_SQUARE_ALPHA, "{name}: p = {p}");
+    }
+}
+
+/// The chi-square test can fail: it rejects a radial coordinate drawn uniformly in
+/// `[s_low, s_high]` instead of by the intersection's marginal.
+#[test]
+fn the_chi_square_test_rejects_a_wrong_radial_marginal() {
+    let (a, b) = (cap(Vec3::Z, 0.3), cap(tilted(40.0, 20.0), 0.2));
+    let lens = CapIntersection::new(&a, &b).unwrap();
+    let cells = Cells::new(&a, &b, 24, 8);
+    let mut counts = vec![0u64; cells.probabilities.len()];
+    let mut rng = Rng::new(6);
+    for _ in 0..100_000 {
+        let s = lens.s_low + (lens.s_high - lens.s_low) * rng.uniform_f32();
+        let phi = lens.half_arc(s);
+        counts[cells.of(lens.direction(s, (2.0 * rng.uniform_f32() - 1.0) * phi))] += 1;
+    }
+    let (_, _, p) = chi_square(&counts, &cells.probabilities);
+    assert!(p < 1e-10, "p = {p}");
+}
+
+#[test]
+fn invert_undoes_sample() {
+    let mut rng = Rng::new(7);
+    for (name, a, b) in pairs() {
+        let lens = CapIntersection::new(&a, &b).unwrap();
+        let mut worst = 0.0f32;
+        for _ in 0..2000 {
+            let u = [rng.uniform_f32(), rng.uniform_f32()];
+            let s = lens.sample_uniform(u);
+            let back = lens.invert(s.dir).expect(name);
+            let again = lens.sample_uniform(back);
+            // Directions, not u: u1 is ill-conditioned where the arc is short.
+            worst = worst.max((again.dir - s.dir).length());
+        }
+        // Angular radius of the intersection as the scale.
+        let scale = libm::sqrtf(lens.solid_angle() / PI).min(1.0);
+        assert!(worst <= 2e-4 * scale.max(1e-3) + 1e-6, "{name}: {worst}");
+    }
+}
+
+#[test]
+fn hard_cases() {
+    // Disjoint caps: no sampler.
+    assert!(CapIntersection::new(&cap(Vec3::Z, 0.1), &cap(-Vec3::Z, 0.1)).is_none());
+    assert!(CapIntersection::new(&cap(Vec3::Z, 0.0), &cap(Vec3::Z, 1.0)).is_none());
+    // Tangent caps (a vanishing lens) and a tiny cap: finite samples inside, or none.
+    let mut rng = Rng::new(8);
+    let edges = [0.0, 0.5, ONE_MINUS_ULP, 1.0, f32::NAN, -1.0];
+    for (a, b) in [
+        (cap(Vec3::Z, 1.0), cap(tilted(179.999, 0.0), 1.0)),
+        (cap(tilted(30.0, 10.0), 1e-10), cap(Vec3::Z, 0.2)),
+        (cap(Vec3::Z, 2.0), cap(tilted(90.0, 0.0), 1e-6)),
+    ] {
+        let Some(lens) = CapIntersection::new(&a, &b) else {
+            continue;
+        };
+        for &u0 in &edges {
+            for &u1 in &edges {
+                let s = lens.sample_uniform([u0, u1]);
+                assert!(s.dir.is_finite() && s.pdf.is_finite(), "{s:?}");
+                if s.pdf > 0.0 {
+                    assert_eq!(lens.pdf(s.dir), s.pdf);
+                }
+            }
+        }
+        for _ in 0..1000 {
+            let s = lens.sample_uniform([rng.uniform_f32(), rng.uniform_f32()]);
+            assert!(s.pdf == 0.0 || lens.pdf(s.dir) == s.pdf, "{s:?}");
+        }
+    }
+    // The empty value.
+    let empty = CapIntersection::EMPTY;
+    assert_eq!(empty.sample_uniform([0.5, 0.5]), Sample::NONE);
+    assert_eq!(empty.pdf(Vec3::Z), 0.0);
+    assert!(empty.invert(Vec3::Z).is_none());
+}
+
+/// `∫ pdf dω = 1`: the pdf is `1/Ω` on the intersection, whose f64 area is Ω to 1e-5,
+/// and 0 elsewhere (checked on a grid of directions over the whole sphere).
+#[test]
+fn the_pdf_integrates_to_one() {
+    for (name, a, b) in pairs() {
+        let lens = CapIntersection::new(&a, &b).unwrap();
+        let n = 600;
+        let (dt, dphi) = (2.0 / n as f64, core::f64::consts::TAU / n as f64);
+        let mut integral = 0.0;
+        for i in 0..n {
+            let t = (i as f64 + 0.5) * dt;
+            let sin = (t * (2.0 - t)).sqrt();
+            for j in 0..n {
+                let phi = (j as f64 + 0.5) * dphi;
+                let w = Vec3::new(
+                    (sin * phi.cos()) as f32,
+                    (sin * phi.sin()) as f32,
+                    (1.0 - t) as f32,
+                );
+                integral += lens.pdf(w) as f64 * dt * dphi;
+            }
+        }
+        // The midpoint rule's error at the boundary: a band of one cell.
+        let tolerance = if name == "small across a rim" {
+            0.3
+        } else {
+            0.01
+        };
+        assert!((integral - 1.0).abs() < tolerance, "{name}: {integral}");
+    }
+}
