@@ -114,6 +114,13 @@
 #define MAX_REFINEMENT_ITERATIONS 8
 
 /**
+ * The most steps of the radial inversion. Newton's method converges quadratically from
+ * the bisection's bracket; 40 bisection steps alone shrink any bracket in `[0, 2]` below
+ * `f32` resolution, so the bound is never the limit of accuracy.
+ */
+#define MAX_ITERATIONS 40
+
+/**
  * The base distribution that the pivot transforms.
  */
 enum SpheraSptdBase
@@ -888,23 +895,87 @@ typedef struct SpheraSphereLightShading {
 } SpheraSphereLightShading;
 
 /**
+ * Two caps prepared for uniform sampling of their intersection.
+ */
+typedef struct CapIntersection {
+  /**
+   * The cap whose axis the radial coordinate `s` is measured from (sanitized).
+   */
+  struct SpheraCap radial;
+  /**
+   * The other cap (sanitized).
+   */
+  struct SpheraCap other;
+  /**
+   * `Ω(A ∩ B)` in steradians (0 for the empty intersection).
+   */
+  float solid_angle;
+  /**
+   * Unit tangent at `a` towards `b` (any tangent when the axes coincide).
+   */
+  SpheraVec3 e1;
+  /**
+   * `a × e1`.
+   */
+  SpheraVec3 e2;
+  /**
+   * `t_d = 1 − a·b`.
+   */
+  float t_d;
+  /**
+   * The range of `s` that meets `B`: `[s_low, s_high]` within `[0, t_A]`.
+   */
+  float s_low;
+  float s_high;
+  /**
+   * A direction inside both caps (on the arc from `a` towards `b`), towards which a
+   * sample that rounding put just outside is pulled.
+   */
+  SpheraVec3 inner;
+} CapIntersection;
+
+/**
  * Light sampling of a sphere light by the fitted SPTD restricted to its cap
  * (Section 6.1), with the paper's fallback to uniform cap sampling when
  * `Ω(g(C)) < 10⁻³`. Combine it with [`crate::brdf::GgxBrdf::sample`] by MIS; its pdf is
  * per steradian and 0 outside the cap.
+ *
+ * A cap that crosses the horizon is sampled in `C ∩ H` only (issue 20, 1: SPTDs over
+ * sets of caps, Sec. 4): uniformly in the intersection of the images `g(C) ∩ g(H)`
+ * ([`CapIntersection`]), mapped back by `g`, with density `J(ω) / Ω(g(C) ∩ g(H))` (and
+ * uniformly in `C ∩ H` for the fallback), so that no sample is wasted below the
+ * horizon, where the BRDF is 0.
  */
 typedef struct SpheraSphereLightSampler {
   /**
-   * The SPTD in the light's cap (its `cap` is the light's cap).
+   * The SPTD in the light's cap (its `cap` is the light's cap), for a cap above the
+   * horizon.
    */
   struct SpheraSptdInCap sptd;
   /**
-   * 1 when the SPTD is used, 0 for uniform sampling of `sptd.cap` (any other value,
-   * from a corrupted struct, counts as 1). A `u32`, not a `bool`: a `bool` left three
+   * For a cap that crosses the horizon: the region sampled uniformly, `g(C) ∩ g(H)`
+   * (`C ∩ H` for the fallback); empty otherwise.
+   */
+  struct CapIntersection clipped_region;
+  /**
+   * For a cap that crosses the horizon: the light's cap `C`.
+   */
+  struct SpheraCap light;
+  /**
+   * For a cap that crosses the horizon and the SPTD: the pivot (zero otherwise).
+   */
+  SpheraVec3 pivot;
+  /**
+   * 1 when the SPTD is used, 0 for uniform sampling (any other value, from a
+   * corrupted struct, counts as 1). A `u32`, not a `bool`: a `bool` left three
    * padding bytes that a C caller copying the struct reads uninitialised (issue 16, 7;
    * valgrind flagged the adversarial C test).
    */
   uint32_t uses_sptd;
+  /**
+   * 1 when the cap crosses the horizon and `clipped_region` is sampled.
+   */
+  uint32_t clipped;
 } SpheraSphereLightSampler;
 
 /**
@@ -2412,11 +2483,14 @@ struct SpheraVec3 sphera_sphere_light_shade_occluded_separable(const struct Sphe
 /**
  * Prepares joint BRDF–light sampling of a sphere light (Section 6.1): the fitted SPTD
  * restricted to the light's cap, or uniform cap sampling when the pivoted cap is
- * smaller than 1e-3 sr (`sphera_sphere_light_sampler_uses_sptd` tells which). Combine
- * with `sphera_ggx_sample` by MIS. `center` is relative to the shading point, `wo`
- * points to the viewer, roughness as in `sphera_ggx_pivot_lookup`. Returns `false`
- * (writing a sampler without samples) for an empty cap (non-finite center, radius not
- * finite and positive) or a `wo` at or below the horizon; does nothing for null `out`.
+ * smaller than 1e-3 sr (`sphera_sphere_light_sampler_uses_sptd` tells which). A cap
+ * that crosses the horizon is sampled above it only (the SPTD over the cap's part above
+ * the horizon, through the intersection of the two caps' images): no sample is wasted
+ * below the horizon. Combine with `sphera_ggx_sample` by MIS. `center` is relative to
+ * the shading point, `wo` points to the viewer, roughness as in
+ * `sphera_ggx_pivot_lookup`. Returns `false` (writing a sampler without samples) for an
+ * empty cap (non-finite center, radius not finite and positive), a cap wholly below the
+ * horizon, or a `wo` at or below the horizon; does nothing for null `out`.
  *
  * # Safety
  *
@@ -2429,7 +2503,8 @@ bool sphera_sphere_light_sampler_prepare(struct SpheraSphereLightSampler *out,
                                          float roughness);
 
 /**
- * Draws a direction in the light's cap; its pdf is `sphera_sphere_light_sampler_pdf` at
+ * Draws a direction in the light's cap above the horizon; its pdf is
+ * `sphera_sphere_light_sampler_pdf` at
  * the direction, bit for bit (a draw that rounding puts just outside the cap is returned
  * as no sample). pdf 0 for null or a failed prepare.
  *

@@ -15,7 +15,8 @@ const SceneInfo scene_info[] = {
                  "some crossing the horizon of the walls or the floor; GGX floor (roughness 0.55)"},
     {"hard", "a tiny distant light, a huge light just above the floor, a light edge-on to a wall"},
     {"floor", "one unoccluded quad light over a white Lambert floor (the zero-variance test)"},
-    {"spheres", "sphere lights (small, large, near the floor, far and grazing) over a Lambert "
+    {"spheres", "sphere lights (small, large, near the floor, far and grazing, half sunk into "
+                "the GGX floor) over a Lambert "
                 "and a GGX floor"},
     {"indirect", "a room lit by a spot light (indirect.c) on a GGX floor, for one-bounce "
                  "indirect light (VSGLs against path tracing; render it with --scene indirect)"},
@@ -336,7 +337,10 @@ static bool build_spheres(Builder *b, float aspect) {
     ok = ok && add_sphere_light(b, f3(-1.5f, 1.2f, -1.0f), 0.05f, f3(800, 700, 600)) /* small */
          && add_sphere_light(b, f3(1.8f, 2.6f, -3.0f), 1.0f, f3(2.0f, 2.4f, 3.0f))  /* large */
          && add_sphere_light(b, f3(0.8f, 0.32f, 0.8f), 0.3f, f3(6, 3, 1.5f))        /* near */
-         && add_sphere_light(b, f3(-14.0f, 0.8f, -12.0f), 0.6f, f3(40, 30, 20));   /* grazing */
+         && add_sphere_light(b, f3(-14.0f, 0.8f, -12.0f), 0.6f, f3(40, 30, 20))    /* grazing */
+         /* half sunk into the GGX floor: its cap crosses the horizon of the floor around
+          * it (issue 20, 1: sampled above the horizon only) */
+         && add_sphere_light(b, f3(2.2f, 0.1f, 0.6f), 0.35f, f3(8, 6, 10));
     set_camera(s, f3(0, 2.2f, 6.5f), f3(0, 0.5f, -1.0f), 55.0f, aspect);
     s->ray_epsilon = 2e-4f;
     return ok;

@@ -37,7 +37,8 @@
 
 use super::cap::Cap;
 use super::cap_intersection::cap_intersection_solid_angle;
-use super::pivot::pivot_cap;
+use super::cap_intersection_sampling::CapIntersection;
+use super::pivot::{pivot_cap, pivot_jacobian, pivot_transform};
 use super::sptd::{Sptd, SptdInCap};
 use crate::Sample;
 use crate::brdf::Ltc;
@@ -163,16 +164,32 @@ impl SphereShadingSptd {
 /// (Section 6.1), with the paper's fallback to uniform cap sampling when
 /// `Ω(g(C)) < 10⁻³`. Combine it with [`crate::brdf::GgxBrdf::sample`] by MIS; its pdf is
 /// per steradian and 0 outside the cap.
+///
+/// A cap that crosses the horizon is sampled in `C ∩ H` only (issue 20, 1: SPTDs over
+/// sets of caps, Sec. 4): uniformly in the intersection of the images `g(C) ∩ g(H)`
+/// ([`CapIntersection`]), mapped back by `g`, with density `J(ω) / Ω(g(C) ∩ g(H))` (and
+/// uniformly in `C ∩ H` for the fallback), so that no sample is wasted below the
+/// horizon, where the BRDF is 0.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SphereLightSampler {
-    /// The SPTD in the light's cap (its `cap` is the light's cap).
+    /// The SPTD in the light's cap (its `cap` is the light's cap), for a cap above the
+    /// horizon.
     pub sptd: SptdInCap,
-    /// 1 when the SPTD is used, 0 for uniform sampling of `sptd.cap` (any other value,
-    /// from a corrupted struct, counts as 1). A `u32`, not a `bool`: a `bool` left three
+    /// For a cap that crosses the horizon: the region sampled uniformly, `g(C) ∩ g(H)`
+    /// (`C ∩ H` for the fallback); empty otherwise.
+    clipped_region: CapIntersection,
+    /// For a cap that crosses the horizon: the light's cap `C`.
+    light: Cap,
+    /// For a cap that crosses the horizon and the SPTD: the pivot (zero otherwise).
+    pivot: Vec3,
+    /// 1 when the SPTD is used, 0 for uniform sampling (any other value, from a
+    /// corrupted struct, counts as 1). A `u32`, not a `bool`: a `bool` left three
     /// padding bytes that a C caller copying the struct reads uninitialised (issue 16, 7;
     /// valgrind flagged the adversarial C test).
     uses_sptd: u32,
+    /// 1 when the cap crosses the horizon and `clipped_region` is sampled.
+    clipped: u32,
 }
 
 impl SphereLightSampler {
@@ -181,7 +198,11 @@ impl SphereLightSampler {
     /// cbindgen:ignore
     pub const EMPTY: SphereLightSampler = SphereLightSampler {
         sptd: SptdInCap::EMPTY,
+        clipped_region: CapIntersection::EMPTY,
+        light: Cap::EMPTY,
+        pivot: Vec3::ZERO,
         uses_sptd: 0,
+        clipped: 0,
     };
 
     /// Whether the SPTD is used (else uniform sampling of the light's cap, for caps
@@ -192,10 +213,17 @@ impl SphereLightSampler {
         self.uses_sptd != 0
     }
 
+    /// Whether the light's cap crosses the horizon, so that only `C ∩ H` is sampled.
+    #[inline]
+    #[must_use]
+    pub fn is_clipped(&self) -> bool {
+        self.clipped != 0
+    }
+
     /// Prepares sampling of the sphere (center relative to the shading point, radius)
     /// for a GGX surface with roughness `r = √α` seen from `wo`. `None` when the cap is
-    /// empty (bad center or radius) or `wo` is at or below the horizon, not finite or
-    /// zero.
+    /// empty (bad center or radius), lies wholly below the horizon, or `wo` is at or
+    /// below the horizon, not finite or zero.
     pub fn new(center: Vec3, radius: f32, wo: Vec3, roughness: f32) -> Option<SphereLightSampler> {
         let cap = Cap::from_sphere(center, radius);
         if !(cap.one_minus_cos > 0.0) {
@@ -205,11 +233,19 @@ impl SphereLightSampler {
         Self::with_pivot(&cap, fit.pivot)
     }
 
-    /// Prepares sampling of a cap with an explicit pivot (any uniform SPTD).
+    /// Prepares sampling of a cap with an explicit pivot (any uniform SPTD). `None` for
+    /// an empty cap or one wholly below the horizon.
     pub fn with_pivot(cap: &Cap, pivot: Vec3) -> Option<SphereLightSampler> {
         let cap = cap.sanitized();
         if !(cap.one_minus_cos > 0.0) {
             return None;
+        }
+        // Wholly above the horizon: the angle of the axis from the zenith plus the
+        // half-angle at most π/2, i.e. cos ≥ sin for a cap up to a hemisphere.
+        let above =
+            cap.one_minus_cos <= 1.0 && cap.axis.z >= 0.0 && cap.axis.z * cap.axis.z >= cap.sin2;
+        if !above {
+            return Self::clipped_to_the_horizon(&cap, pivot);
         }
         let (sptd, uses_sptd) = match SptdInCap::new(&Sptd::uniform(pivot), &cap) {
             Some(sptd) if sptd.image.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE => (sptd, true),
@@ -220,16 +256,75 @@ impl SphereLightSampler {
         Some(SphereLightSampler {
             sptd,
             uses_sptd: uses_sptd as u32,
+            ..Self::EMPTY
         })
     }
 
-    /// Draws a direction in the light's cap; `pdf(sample.dir) == sample.pdf` bit for bit
-    /// (MIS relies on it). Samples that rounding puts just outside the cap are dropped
-    /// (`Sample::NONE`), as [`SptdInCap::sample`] drops them; for uniform sampling
-    /// (found by fuzzing: `u` next to 1 put the direction on the rim, where the cap's
-    /// containment test said outside).
+    /// The sampler of a cap that crosses the horizon: the SPTD over `C ∩ H` through the
+    /// images' intersection, or uniform in `C ∩ H` where that image is below 1e-3 sr.
+    fn clipped_to_the_horizon(cap: &Cap, pivot: Vec3) -> Option<SphereLightSampler> {
+        let horizon = Cap::from_axis_one_minus_cos(Vec3::Z, 1.0);
+        let valid_pivot = pivot.is_finite() && pivot.length_squared() < 1.0;
+        let images = if valid_pivot {
+            CapIntersection::new(&pivot_cap(cap, pivot), &pivot_cap(&horizon, pivot))
+        } else {
+            None
+        };
+        let (region, pivot, uses_sptd) = match images {
+            Some(region) if region.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE => {
+                (region, pivot, true)
+            }
+            _ => (CapIntersection::new(cap, &horizon)?, Vec3::ZERO, false),
+        };
+        Some(SphereLightSampler {
+            clipped_region: region,
+            light: *cap,
+            pivot,
+            uses_sptd: uses_sptd as u32,
+            clipped: 1,
+            ..Self::EMPTY
+        })
+    }
+
+    /// The density of the clipped sampler at `dir`: `J(ω)/Ω(g(C) ∩ g(H))` (or
+    /// `1/Ω(C ∩ H)`) in `C ∩ H`, 0 elsewhere.
+    #[inline]
+    fn clipped_pdf(&self, dir: Vec3) -> f32 {
+        if !(self.light.contains(dir) && dir.z >= 0.0) {
+            return 0.0;
+        }
+        let area = self.clipped_region.solid_angle();
+        if !(area > 0.0) {
+            return 0.0;
+        }
+        let jacobian = if self.uses_sptd() {
+            pivot_jacobian(dir, self.pivot)
+        } else {
+            1.0
+        };
+        let pdf = jacobian / area;
+        if pdf.is_finite() { pdf } else { 0.0 }
+    }
+
+    /// Draws a direction in the light's cap (above the horizon); `pdf(sample.dir) ==
+    /// sample.pdf` bit for bit (MIS relies on it). Samples that rounding puts just
+    /// outside the cap are dropped (`Sample::NONE`), as [`SptdInCap::sample`] drops
+    /// them; for uniform sampling (found by fuzzing: `u` next to 1 put the direction on
+    /// the rim, where the cap's containment test said outside).
     #[inline]
     pub fn sample(&self, u: [f32; 2]) -> Sample {
+        if self.is_clipped() {
+            let s = self.clipped_region.sample_uniform(u);
+            if s.pdf == 0.0 {
+                return Sample::NONE;
+            }
+            let dir = if self.uses_sptd() {
+                pivot_transform(s.dir, self.pivot)
+            } else {
+                s.dir
+            };
+            return Sample::new_or_none(dir, self.clipped_pdf(dir));
+        }
         if self.uses_sptd() {
             self.sptd.sample(u)
         } else {
@@ -238,9 +333,13 @@ impl SphereLightSampler {
         }
     }
 
-    /// The density of [`SphereLightSampler::sample`] at `dir`: 0 outside the cap.
+    /// The density of [`SphereLightSampler::sample`] at `dir`: 0 outside the cap (and,
+    /// for a cap that crosses the horizon, below the horizon).
     #[inline]
     pub fn pdf(&self, dir: Vec3) -> f32 {
+        if self.is_clipped() {
+            return self.clipped_pdf(dir);
+        }
         if self.uses_sptd() {
             self.sptd.pdf(dir)
         } else {

@@ -356,7 +356,8 @@ fn sample_pdf_is_the_pdf_of_the_sampled_direction() {
             );
         }
     }
-    assert!(fallbacks > 20 && drawn > 7000, "{fallbacks} {drawn}");
+    // (Lights wholly below the horizon have no sampler since issue 20, 1: about half.)
+    assert!(fallbacks > 20 && drawn > 4000, "{fallbacks} {drawn}");
     assert!(
         (dropped as f64) < 1e-3 * drawn as f64,
         "{dropped} of {drawn}"
@@ -370,7 +371,12 @@ fn the_sphere_light_sampler_has_no_padding() {
     let sampler = SphereLightSampler::EMPTY;
     assert_eq!(
         core::mem::size_of::<SphereLightSampler>(),
-        core::mem::size_of_val(&sampler.sptd) + core::mem::size_of_val(&sampler.uses_sptd)
+        core::mem::size_of_val(&sampler.sptd)
+            + core::mem::size_of_val(&sampler.clipped_region)
+            + core::mem::size_of_val(&sampler.light)
+            + core::mem::size_of_val(&sampler.pivot)
+            + core::mem::size_of_val(&sampler.uses_sptd)
+            + core::mem::size_of_val(&sampler.clipped)
     );
 }
 
@@ -492,4 +498,75 @@ fn separable_occlusion_leaks_light_that_the_triple_product_blocks() {
     // outside the cone is taken off a light that lies wholly inside it); leaked 87%.
     assert!(e_triple < 0.01, "{triple} vs {reference}");
     assert!(e_separable > 0.05, "{separable} vs {reference}");
+}
+
+/// Issue 20 (1): a light whose cap crosses the horizon is sampled in `C ∩ H` only (the
+/// SPTD over the intersection of the images `g(C) ∩ g(H)`), so that no sample is wasted
+/// below the horizon: every sample lies above it, `pdf(sample.dir) == sample.pdf`, the
+/// MIS estimate with GGX sampling matches the f64 reference of `∫_{C ∩ H} f cos`, and
+/// its variance is below that of the SPTD over the whole cap, whose samples below the
+/// horizon count for nothing.
+#[test]
+fn a_light_across_the_horizon_is_sampled_above_it_only() {
+    let mut rng = Rng::new(31);
+    for (degrees, roughness) in [(30.0, 0.5), (60.0, 0.3), (0.0, 0.8)] {
+        let wo = view(degrees);
+        let brdf = GgxBrdf::new(roughness, Vec3::ONE);
+        let pivot = GgxPivot::lookup(wo, roughness).unwrap().pivot;
+        let m = mirror(wo);
+        let low = Vec3::new(m.x, m.y, 0.0).normalize_or(Vec3::X);
+        for (name, center, radius) in [
+            ("just above", low * 2.0 + Vec3::Z * 0.3, 1.0f32),
+            ("centre below", low * 2.0 - Vec3::Z * 0.3, 1.0),
+            ("huge", low * 1.5 + Vec3::Z * 0.2, 1.4),
+        ] {
+            let what = format!("{degrees}° r {roughness} {name}");
+            let cap = Cap::from_sphere(center, radius);
+            let sampler = SphereLightSampler::new(center, radius, wo, roughness).unwrap();
+            assert!(sampler.is_clipped(), "{what}");
+            let whole = SptdInCap::new(&Sptd::uniform(pivot), &cap).unwrap();
+            let reference = reference_integral(wo, roughness, &cap);
+            let (mut clipped, mut unclipped) = (Estimate::default(), Estimate::default());
+            let mut below = 0u32;
+            for _ in 0..40_000 {
+                let u: [f32; 4] = core::array::from_fn(|_| rng.uniform_f32());
+                let s = sampler.sample([u[0], u[1]]);
+                if s.pdf > 0.0 {
+                    assert!(s.dir.z >= 0.0 && cap.contains(s.dir), "{what}: {s:?}");
+                    assert_eq!(sampler.pdf(s.dir).to_bits(), s.pdf.to_bits(), "{what}");
+                }
+                below += u32::from(whole.sample([u[0], u[1]]).dir.z < 0.0);
+                clipped.add(mis_estimate(
+                    &brdf,
+                    wo,
+                    &cap,
+                    |u| sampler.sample(u),
+                    |d| sampler.pdf(d),
+                    u,
+                ));
+                unclipped.add(mis_estimate(
+                    &brdf,
+                    wo,
+                    &cap,
+                    |u| whole.sample(u),
+                    |d| whole.pdf(d),
+                    u,
+                ));
+            }
+            clipped.assert_mean_is(reference, 5.0, 5e-3, &what);
+            unclipped.assert_mean_is(reference, 5.0, 5e-3, &what);
+            println!(
+                "{what}: {below} of 40000 whole-cap samples below the horizon; variance {:.3e} (C ∩ H) vs {:.3e} (C)",
+                clipped.variance(),
+                unclipped.variance()
+            );
+            assert!(below > 0, "{what}: the whole cap's SPTD wastes no sample");
+            assert!(
+                clipped.variance() <= 1.02 * unclipped.variance(),
+                "{what}: {} vs {}",
+                clipped.variance(),
+                unclipped.variance()
+            );
+        }
+    }
 }
