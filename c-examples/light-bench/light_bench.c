@@ -88,6 +88,10 @@ static double uniform_in(uint64_t *state, double lo, double hi) { return lo + (h
 
 /* ---- the C baselines: what a renderer author would write --------------------------- */
 
+/* max(x, lo) as a comparison, as renderers write it (fmaxf is a call at -O2: its NaN
+ * rules keep the compiler from using the max instruction). */
+static float at_least(float x, float lo) { return x > lo ? x : lo; }
+
 /* Cone sampling: directions uniform in solid angle within θmax of the axis. With
  * cos θ uniform in [cos θmax, 1] (the solid angle of the band above cos θ is linear in
  * cos θ), cos θ = (1 − u0) + u0 cos θmax, φ = 2π u1, mapped by an orthonormal frame
@@ -103,7 +107,7 @@ struct ConeC {
 NOINLINE static void cone_prepare(struct ConeC *out, const float *center, float radius) {
   float d2 = center[0] * center[0] + center[1] * center[1] + center[2] * center[2];
   float sin2 = radius * radius / d2;
-  float cos_max = sqrtf(fmaxf(0.0f, 1.0f - sin2));
+  float cos_max = sqrtf(at_least(1.0f - sin2, 0.0f));
   float inv = 1.0f / sqrtf(d2);
   float nx = center[0] * inv, ny = center[1] * inv, nz = center[2] * inv;
   float sign = copysignf(1.0f, nz);
@@ -125,7 +129,7 @@ NOINLINE static void cone_prepare(struct ConeC *out, const float *center, float 
 NOINLINE static SpheraSample cone_sample(const struct ConeC *c, float u0, float u1) {
   SpheraSample s;
   float cos_t = (1.0f - u0) + u0 * c->cos_max;
-  float sin_t = sqrtf(fmaxf(0.0f, 1.0f - cos_t * cos_t));
+  float sin_t = sqrtf(at_least(1.0f - cos_t * cos_t, 0.0f));
   float phi = 2.0f * PI_F * u1;
   float a = sin_t * cosf(phi), b = sin_t * sinf(phi);
   s.dir.x = a * c->x[0] + b * c->y[0] + cos_t * c->z[0];
@@ -195,13 +199,13 @@ NOINLINE static SpheraSample vndf_sample(const struct VndfC *g, float u0, float 
   p2 = r * sinf(phi);
   blend = 0.5f * (1.0f + vz);
   p2 = (1.0f - blend) * sqrtf(1.0f - p1 * p1) + blend * p2;
-  lift = sqrtf(fmaxf(0.0f, 1.0f - p1 * p1 - p2 * p2));
+  lift = sqrtf(at_least(1.0f - p1 * p1 - p2 * p2, 0.0f));
   nx = p1 * t1x + p2 * t2x + lift * vx;
   ny = p1 * t1y + p2 * t2y + lift * vy;
   nz = p2 * t2z + lift * vz;
   hx = a * nx;
   hy = a * ny;
-  hz = fmaxf(1e-6f, nz);
+  hz = at_least(nz, 1e-6f);
   inv = 1.0f / sqrtf(hx * hx + hy * hy + hz * hz);
   hx *= inv;
   hy *= inv;
