@@ -110,7 +110,14 @@ impl Cap {
     /// the center is the shading point); [`Cap::EMPTY`] for a non-finite center or a
     /// radius that is not finite and positive.
     pub fn from_sphere(center: Vec3, radius: f32) -> Cap {
-        if !center.is_finite() || !(radius > 0.0) || !radius.is_finite() {
+        // `x − x` is 0 for a finite `x` and NaN for an infinite or NaN one: one test of
+        // the four numbers (in place of a classification of each).
+        #[allow(clippy::eq_op)] // `x − x` on purpose
+        let finite = (center.x - center.x)
+            + (center.y - center.y)
+            + (center.z - center.z)
+            + (radius - radius);
+        if !(finite == 0.0 && radius > 0.0) {
             return Cap::EMPTY;
         }
         // Rescale by a power of two (exact) so that squaring neither overflows nor
@@ -121,22 +128,31 @@ impl Cap {
         let r = radius * s1 * s2;
         let d = c.length();
         if !(d > r) {
-            let axis = if d > 0.0 { c / d } else { Vec3::Z };
+            let axis = if d > 0.0 {
+                crate::sample::normalize_scaled(c)
+            } else {
+                Vec3::Z
+            };
             return Cap {
                 axis,
                 ..Cap::WHOLE_SPHERE
             };
         }
-        let axis = c / d;
-        let sin = r / d;
-        let sin2 = sin * sin;
-        let cos = libm::sqrtf((d - r) * (d + r)) / d;
-        // `cos ≥ 0`: the cap is at most a hemisphere, `1 + cos θ` has no cancellation.
+        // `q = d cos θ = √((d − r)(d + r))` without cancellation, and
+        // `1 − cos θ = sin²θ / (1 + cos θ) = r² / (d (d + q))`: one division, exact to a
+        // few ulps for tiny caps (no subtraction), and `d + q` has no cancellation (the
+        // cap is at most a hemisphere). The cap is written in the form that
+        // `Cap::sanitized` keeps unchanged (`1 + cos θ = 2 − t`, `sin²θ = t (2 − t)`).
+        let q = libm::sqrtf((d - r) * (d + r));
+        let t = (r * r / (d * (d + q))).min(1.0);
+        let h = 2.0 - t;
         Cap {
-            axis,
-            one_minus_cos: (sin2 / (1.0 + cos)).min(1.0),
-            one_plus_cos: 1.0 + cos,
-            sin2,
+            // Normalised as `Cap::sanitized` normalises an invalid axis: unit to a few
+            // ulps, which the pivot transformation needs (see `Cap::sanitized`).
+            axis: crate::sample::normalize_scaled(c),
+            one_minus_cos: t,
+            one_plus_cos: h,
+            sin2: (t * h).max(0.0).min(1.0),
         }
     }
 
@@ -203,6 +219,24 @@ impl Cap {
         }
     }
 
+    /// Whether the cap is in the form that `Cap::with_sides` writes (with any axis of
+    /// unit length to `UNIT_TOLERANCE`): then [`Cap::sanitized`] has nothing to do.
+    #[inline(always)]
+    fn is_valid(&self) -> bool {
+        let (t, h) = (self.one_minus_cos, self.one_plus_cos);
+        // NaN fails every comparison; `2 − t` and `2 − h` are exact (Sterbenz).
+        let sides = if t <= 1.0 {
+            t >= 0.0 && h == 2.0 - t
+        } else {
+            h >= 0.0 && t == 2.0 - h
+        };
+        let a = self.axis;
+        // An infinite or NaN axis gives an infinite or NaN `|axis|²`, which fails.
+        sides
+            && self.sin2 == (t * h).max(0.0).min(1.0)
+            && (a.length_squared() - 1.0).abs() <= crate::math::UNIT_TOLERANCE
+    }
+
     /// This cap with every field made valid: a non-finite or zero axis or a NaN
     /// `one_minus_cos` gives [`Cap::EMPTY`]; otherwise the axis is normalised,
     /// `one_minus_cos` clamped to `[0, 2]`, and `one_plus_cos` and `sin2` recomputed
@@ -213,7 +247,28 @@ impl Cap {
     /// through C, and a cap built by hand with a stale `one_plus_cos` still gets the
     /// cap that its `one_minus_cos` says. Idempotent. Used by the C ABI, where a caller
     /// may build a cap by hand.
+    ///
+    /// A cap that is valid already (finite axis with `|axis|²` within
+    /// `UNIT_TOLERANCE` of 1, the authoritative side in range, the other side `2 −` it
+    /// and `sin2` their clamped product, bit for bit: what every constructor writes) is
+    /// returned as it is, without normalising its axis again: that made this function
+    /// idempotent bit for bit (a normalised axis normalised again could change in its
+    /// last bit), and saves 80 of the 390 instructions of a sample through the C ABI.
+    /// The constructors normalise their axes with the same function as the slow path
+    /// (dividing by the largest component first), whose results are unit to a few ulps:
+    /// the pivot transformation of a cap whose axis points at a pivot near the unit
+    /// sphere amplifies an axis's deviation from unit length a thousandfold (an axis
+    /// `c / |c|` instead failed `occlusion_of_a_light_whose_image_is_nearly_the_whole_sphere`).
+    #[inline]
     pub fn sanitized(self) -> Cap {
+        if self.is_valid() {
+            return self;
+        }
+        self.sanitized_slow()
+    }
+
+    #[inline(never)]
+    fn sanitized_slow(self) -> Cap {
         let (t, h) = (self.one_minus_cos, self.one_plus_cos);
         // `2 − t` is exact for `t ∈ [1, 2]` (Sterbenz); NaN or infinite `h` fail the test.
         if t > 1.0 && t <= 2.0 && ((2.0 - t) - h).abs() <= 1.0 / 4_194_304.0 {
@@ -305,13 +360,24 @@ impl Cap {
         } else {
             (2.0 - t, 1.0 - t)
         };
-        let phi = TAU * clamp_random(u[1]);
         let sin = libm::sqrtf((t * one_plus).max(0.0));
-        let (sin_phi, cos_phi) = libm::sincosf(phi);
+        let (sin_phi, cos_phi) = crate::math::sin_cos_of_turn(clamp_random(u[1]));
         let (tangent, bitangent) = orthonormal_basis(self.axis);
         let dir = tangent * (sin * cos_phi) + bitangent * (sin * sin_phi) + self.axis * cos;
-        let dir = dir.normalize_or(self.axis);
-        if self.contains(dir) {
+        // `dir` is a unit vector to a few ulps (the frame is orthonormal around a unit
+        // axis, `sin² + cos² = 1`), and `|axis|²` is within `UNIT_TOLERANCE` of 1: one
+        // Newton step for `1/√(|dir|²)` at 1, `(3 − |dir|²)/2`, leaves an error of
+        // `(3/8) ε²` for `|dir|² = 1 + ε` (below 1e-12), below the rounding of the
+        // product, without a square root or a division.
+        let dir = dir * (1.5 - 0.5 * dir.length_squared());
+        // `contains` for a unit `dir` (which it takes as it is) in a non-empty cap
+        // (`pdf > 0`), without its checks.
+        let inside = if self.one_minus_cos > 1.0 {
+            0.5 * (dir + self.axis).length_squared() >= self.one_plus_cos
+        } else {
+            0.5 * (dir - self.axis).length_squared() <= self.one_minus_cos
+        };
+        if inside {
             return Sample { dir, pdf };
         }
         // Rounding put a sample from the rim just outside (for small caps the rounding

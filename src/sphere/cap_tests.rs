@@ -323,3 +323,63 @@ fn a_nearly_whole_sphere_cap_contains_what_is_inside() {
     let s = cap.sample_uniform([crate::sample::ONE_MINUS_ULP, crate::sample::ONE_MINUS_ULP]);
     assert!(s.pdf > 0.0 && cap.pdf(s.dir) == s.pdf);
 }
+
+/// `sanitized` takes the caps that the constructors write as they are (the caps of
+/// spheres included), makes any other cap valid, and is idempotent bit for bit.
+#[test]
+fn sanitized_keeps_valid_caps_and_is_idempotent() {
+    let mut rng = Rng::new(7);
+    for _ in 0..2000 {
+        let dir = rng.unit_vector_f32();
+        let sin2 = rng.log_uniform(-12.0, 0.0);
+        let distance = rng.log_uniform(-3.0, 3.0) as f32;
+        let radius = (distance as f64 * sin2.sqrt()) as f32;
+        for cap in [
+            Cap::from_sphere(dir * distance, radius),
+            Cap::from_sphere(dir * distance, distance * 2.0),
+            Cap::from_axis_cos(dir, (1.0 - 2.0 * sin2) as f32),
+            Cap::from_axis_one_plus_cos(dir * 3.0, sin2 as f32),
+            Cap::from_axis_one_minus_cos(dir, sin2 as f32).sanitized(),
+        ] {
+            assert_eq!(cap.sanitized(), cap, "{cap:?}");
+        }
+    }
+    let hand_built = [
+        Cap {
+            axis: Vec3::new(0.0, 0.0, 2.0),
+            one_minus_cos: 0.5,
+            one_plus_cos: 1.5,
+            sin2: 0.75,
+        },
+        Cap {
+            axis: Vec3::Z,
+            one_minus_cos: 0.5,
+            one_plus_cos: 1.0,
+            sin2: 0.75,
+        },
+        Cap {
+            axis: Vec3::Z,
+            one_minus_cos: 1.999,
+            one_plus_cos: 0.001,
+            sin2: 0.5,
+        },
+        Cap {
+            axis: Vec3::new(f32::NAN, 1.0, 0.0),
+            one_minus_cos: 7.0,
+            one_plus_cos: f32::INFINITY,
+            sin2: -3.0,
+        },
+        Cap {
+            axis: Vec3::X,
+            one_minus_cos: -1.0,
+            one_plus_cos: 3.0,
+            sin2: 0.0,
+        },
+    ];
+    for cap in hand_built {
+        let valid = cap.sanitized();
+        assert_ne!(valid, cap, "{cap:?}");
+        assert_eq!(valid.sanitized(), valid, "{cap:?}");
+        assert!((valid.axis.length() - 1.0).abs() < 1e-6, "{cap:?}");
+    }
+}
