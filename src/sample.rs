@@ -93,6 +93,17 @@ pub(crate) fn clamp_random(u: f32) -> f32 {
     if u >= 0.0 { u.min(ONE_MINUS_ULP) } else { 0.0 }
 }
 
+/// A random number recovered by an inverse, clamped into `[0, 1 − ulp]`, the domain of
+/// every sampler; NaN and ±∞ become 0.
+#[inline(always)]
+pub(crate) fn clamp_inverted(x: f32) -> f32 {
+    if x.is_finite() {
+        x.max(0.0).min(ONE_MINUS_ULP)
+    } else {
+        0.0
+    }
+}
+
 /// The piece that a target value falls into, for pieces laid end to end with start
 /// values `starts`: the number of pieces among `1..N` that start at or before `target`.
 /// The starts are non-decreasing up to the last selectable piece and `+∞` from there on

@@ -77,8 +77,11 @@ static png_byte srgb8(float linear) {
     return (png_byte)(255.0f * s + 0.5f);
 }
 
-bool write_png(const char *path, const float *image, uint32_t width, uint32_t height,
-               float exposure) {
+/* An 8-bit RGB PNG whose rows `fill` writes (3 bytes per pixel), `context` passed on. */
+static bool write_rgb_png(const char *path, uint32_t width, uint32_t height,
+                          void (*fill)(png_bytep row, uint32_t y, uint32_t width,
+                                       const void *context),
+                          const void *context) {
     FILE *f = fopen(path, "wb");
     if (!f) return false;
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
@@ -92,10 +95,8 @@ bool write_png(const char *path, const float *image, uint32_t width, uint32_t he
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_write_info(png, info);
-    float scale = exp2f(exposure);
     for (uint32_t y = 0; y < height; ++y) {
-        for (uint32_t i = 0; i < 3 * width; ++i)
-            row[i] = srgb8(scale * image[(size_t)y * width * 3 + i]);
+        fill(row, y, width, context);
         png_write_row(png, row);
     }
     png_write_end(png, NULL);
@@ -106,38 +107,38 @@ done:
     return fclose(f) == 0 && ok;
 }
 
+typedef struct ImageRows {
+    const float *image, *reference;
+    float scale;
+} ImageRows;
+
+static void image_row(png_bytep row, uint32_t y, uint32_t width, const void *context) {
+    const ImageRows *r = context;
+    for (uint32_t i = 0; i < 3 * width; ++i)
+        row[i] = srgb8(r->scale * r->image[(size_t)y * width * 3 + i]);
+}
+
+bool write_png(const char *path, const float *image, uint32_t width, uint32_t height,
+               float exposure) {
+    ImageRows rows = {image, NULL, exp2f(exposure)};
+    return write_rgb_png(path, width, height, image_row, &rows);
+}
+
+static void error_row(png_bytep row, uint32_t y, uint32_t width, const void *context) {
+    const ImageRows *r = context;
+    for (uint32_t x = 0; x < width; ++x) {
+        size_t i = ((size_t)y * width + x) * 3;
+        float e = 0.0f;
+        for (int c = 0; c < 3; ++c) e += r->image[i + c] - r->reference[i + c];
+        e *= r->scale;
+        row[3 * x + 0] = srgb8(e);
+        row[3 * x + 1] = 0;
+        row[3 * x + 2] = srgb8(-e);
+    }
+}
+
 bool write_error_png(const char *path, const float *image, const float *reference,
                      uint32_t width, uint32_t height, float exposure) {
-    FILE *f = fopen(path, "wb");
-    if (!f) return false;
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
-    png_infop info = png ? png_create_info_struct(png) : NULL;
-    png_bytep row = malloc(3 * (size_t)width);
-    bool ok = false;
-    if (!png || !info || !row) goto done;
-    if (setjmp(png_jmpbuf(png))) goto done;
-    png_init_io(png, f);
-    png_set_IHDR(png, info, width, height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
-                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
-    png_write_info(png, info);
-    float scale = exp2f(exposure) * ERROR_IMAGE_GAIN / 3.0f;
-    for (uint32_t y = 0; y < height; ++y) {
-        for (uint32_t x = 0; x < width; ++x) {
-            size_t i = ((size_t)y * width + x) * 3;
-            float e = 0.0f;
-            for (int c = 0; c < 3; ++c) e += image[i + c] - reference[i + c];
-            e *= scale;
-            row[3 * x + 0] = srgb8(e);
-            row[3 * x + 1] = 0;
-            row[3 * x + 2] = srgb8(-e);
-        }
-        png_write_row(png, row);
-    }
-    png_write_end(png, NULL);
-    ok = true;
-done:
-    if (png) png_destroy_write_struct(&png, info ? &info : NULL);
-    free(row);
-    return fclose(f) == 0 && ok;
+    ImageRows rows = {image, reference, exp2f(exposure) * ERROR_IMAGE_GAIN / 3.0f};
+    return write_rgb_png(path, width, height, error_row, &rows);
 }

@@ -26,7 +26,7 @@ use crate::math::{
     LANES, atan2_upper_half_plane, determinant_is_exactly_zero,
     difference_of_products_unless_cancelling, dot_precise, lane_starts, load4, store4,
 };
-use crate::sample::{ONE_MINUS_ULP, clamp_random, select_piece};
+use crate::sample::{clamp_inverted, clamp_random, select_piece};
 use crate::{MAX_POLYGON_VERTICES, Vec3};
 use glam::{BVec4A, Vec4};
 
@@ -1024,14 +1024,7 @@ impl SolidAnglePolygon {
     /// `u1`, clamped into `[0, 1 - ulp]`.
     fn invert_from(&self, (k, local, u1): (usize, f32, f32)) -> Option<[f32; 2]> {
         let u0 = (self.start[k] + local) / self.solid_angle;
-        let clamp = |x: f32| {
-            if x.is_finite() {
-                x.max(0.0).min(ONE_MINUS_ULP)
-            } else {
-                0.0
-            }
-        };
-        Some([clamp(u0), clamp(u1)])
+        Some([clamp_inverted(u0), clamp_inverted(u1)])
     }
 
     /// The fan triangle `k`, the solid angle `local` from its first edge and the `u1` at
@@ -1109,11 +1102,7 @@ impl SolidAnglePolygon {
         let local = 2.0 * atan2_upper_half_plane(g0, g2 + g1);
         // 1 - s = ξ1 (1 - s'), with 1 - a·b = |a - b|² / 2 for unit vectors.
         let u1 = (v1 - w).length_squared() / (v1 - new_vertex).length_squared();
-        let u1 = if u1.is_finite() {
-            u1.max(0.0).min(ONE_MINUS_ULP)
-        } else {
-            0.0
-        };
+        let u1 = clamp_inverted(u1);
         Some((k, local, u1))
     }
 }

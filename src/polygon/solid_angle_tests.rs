@@ -1,6 +1,7 @@
 //! Tests of solid angle sampling: distribution (chi-square against exact cell solid
 //! angles in f64), estimators, containment, the inverse, and the hard cases.
 use super::*;
+use crate::sample::ONE_MINUS_ULP;
 use crate::testing::*;
 
 fn cell_solid_angle(c: &[D3; 3]) -> f64 {

@@ -26,7 +26,7 @@ use super::cap::Cap;
 use super::cap_intersection::cap_intersection_solid_angle;
 use crate::Sample;
 use crate::math::orthonormal_basis;
-use crate::sample::{INWARD_PULLS, ONE_MINUS_ULP, clamp_random};
+use crate::sample::{INWARD_PULLS, clamp_inverted, clamp_random};
 use core::f32::consts::PI;
 use glam::Vec3;
 
@@ -293,14 +293,7 @@ impl CapIntersection {
         } else {
             0.5
         };
-        let clamp = |x: f32| {
-            if x.is_finite() {
-                x.max(0.0).min(ONE_MINUS_ULP)
-            } else {
-                0.0
-            }
-        };
-        Some([clamp(u0), clamp(u1)])
+        Some([clamp_inverted(u0), clamp_inverted(u1)])
     }
 }
 

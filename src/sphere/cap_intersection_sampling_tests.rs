@@ -1,4 +1,5 @@
 use super::*;
+use crate::sample::ONE_MINUS_ULP;
 use crate::testing::*;
 
 /// The unit direction at `degrees` from +z towards +x, then turned by `azimuth` about z.

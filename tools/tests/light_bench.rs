@@ -6,9 +6,9 @@
 //! cosine-weighted sampling) fails its checks against the library's pdfs and sample
 //! means; no timing is asserted.
 
-use std::process::Command;
+mod common;
 
-use sphera_tools::repository_root;
+use common::pool_rows;
 
 /// The pools (by the first word of their title) and their techniques.
 const POOLS: [(&str, &[&str]); 3] = [
@@ -47,45 +47,9 @@ const POOLS: [(&str, &[&str]); 3] = [
     ),
 ];
 
-/// The table rows of the pool whose title starts with `id`: (technique, cells after
-/// the name).
-fn pool_rows<'a>(output: &'a str, id: &str) -> Option<Vec<(&'a str, Vec<&'a str>)>> {
-    let heading = format!("### {id} (");
-    let start = output.find(&heading)?;
-    let section = &output[start + heading.len()..];
-    let section = &section[..section.find("\n### ").unwrap_or(section.len())];
-    let rows = section
-        .lines()
-        .filter(|line| line.starts_with("| ") && !line.starts_with("| technique"))
-        .map(|line| {
-            let mut cells = line.trim_matches('|').split('|').map(str::trim);
-            let name = cells.next().unwrap_or("");
-            (name, cells.collect())
-        })
-        .collect();
-    Some(rows)
-}
-
 #[test]
 fn quick_light_bench_runs_every_technique_in_every_pool() {
-    let root = repository_root();
-    let output = Command::new("bash")
-        .arg(root.join("c-examples/light-bench/run.sh"))
-        .args(["--quick", "--default-only"])
-        .current_dir(&root)
-        .env("CARGO", env!("CARGO"))
-        .env_remove("CARGO_BUILD_TARGET")
-        .output()
-        .expect("run bash c-examples/light-bench/run.sh");
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        output.status.success(),
-        "run.sh failed with {}\nstdout:\n{stdout}\nstderr:\n{stderr}",
-        output.status
-    );
-    assert!(stdout.contains("== default build"), "{stdout}");
-    assert!(!stdout.contains("== target-cpu=native"), "{stdout}");
+    let (stdout, stderr) = common::run_quick("light");
     for (pool, techniques) in POOLS {
         let rows =
             pool_rows(&stdout, pool).unwrap_or_else(|| panic!("no table for {pool}:\n{stdout}"));

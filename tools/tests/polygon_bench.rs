@@ -4,9 +4,9 @@
 //! benchmark itself exits 1 when a technique yields no valid sample in a pool, or when
 //! its C Turk baseline disagrees with `sphera_turk_polygon_pdf`; no timing is asserted.
 
-use std::process::Command;
+mod common;
 
-use sphera_tools::repository_root;
+use common::pool_rows;
 
 /// The techniques of the benchmark and whether they run on the straddling pools (those
 /// that clip internally, and the C Turk baseline).
@@ -26,44 +26,9 @@ const TECHNIQUES: [(&str, bool); 10] = [
 const SHAPES: [&str; 4] = ["triangles", "quads", "hexagons", "heptagons"];
 const KINDS: [&str; 3] = ["central", "decentral", "straddling"];
 
-/// The table rows of the pool titled `title`: (technique, cells after the name).
-fn pool_rows<'a>(output: &'a str, title: &str) -> Option<Vec<(&'a str, Vec<&'a str>)>> {
-    let heading = format!("### {title} (");
-    let start = output.find(&heading)?;
-    let section = &output[start + heading.len()..];
-    let section = &section[..section.find("\n### ").unwrap_or(section.len())];
-    let rows = section
-        .lines()
-        .filter(|line| line.starts_with("| ") && !line.starts_with("| technique"))
-        .map(|line| {
-            let mut cells = line.trim_matches('|').split('|').map(str::trim);
-            let name = cells.next().unwrap_or("");
-            (name, cells.collect())
-        })
-        .collect();
-    Some(rows)
-}
-
 #[test]
 fn quick_polygon_bench_runs_every_technique_in_every_pool() {
-    let root = repository_root();
-    let output = Command::new("bash")
-        .arg(root.join("c-examples/polygon-bench/run.sh"))
-        .args(["--quick", "--default-only"])
-        .current_dir(&root)
-        .env("CARGO", env!("CARGO"))
-        .env_remove("CARGO_BUILD_TARGET")
-        .output()
-        .expect("run bash c-examples/polygon-bench/run.sh");
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        output.status.success(),
-        "run.sh failed with {}\nstdout:\n{stdout}\nstderr:\n{stderr}",
-        output.status
-    );
-    assert!(stdout.contains("== default build"), "{stdout}");
-    assert!(!stdout.contains("== target-cpu=native"), "{stdout}");
+    let (stdout, stderr) = common::run_quick("polygon");
     for kind in KINDS {
         for shape in SHAPES {
             let title = format!("{shape}, {kind}");
@@ -96,4 +61,5 @@ fn quick_polygon_bench_runs_every_technique_in_every_pool() {
         }
     }
     assert!(stdout.contains("checksum"), "{stdout}");
+    assert!(!stderr.contains("FAILED"), "{stderr}");
 }

@@ -53,7 +53,7 @@
 //! horizon is therefore prepared, and all its samples have `pdf == 0`.
 
 use crate::polygon::SolidAnglePolygon;
-use crate::sample::{ONE_MINUS_ULP, clamp_random};
+use crate::sample::{ONE_MINUS_ULP, clamp_inverted, clamp_random};
 use crate::{Sample, Vec3};
 
 /// The most Newton (or bisection) steps that invert one cubic distribution function.
@@ -120,16 +120,6 @@ fn upper_direction(dir: Vec3) -> Option<Vec3> {
     }
     let biased_exponent = (largest.to_bits() >> 23) & 0xFF;
     Some(dir * f32::from_bits(254u32.saturating_sub(biased_exponent).max(1) << 23))
-}
-
-/// Clamps a random number produced by an inverse to `[0, 1 - ulp]`; NaN becomes 0.
-#[inline(always)]
-fn clamp_unit(x: f32) -> f32 {
-    if x.is_finite() {
-        x.max(0.0).min(ONE_MINUS_ULP)
-    } else {
-        0.0
-    }
 }
 
 /// Draws `x ∈ [0, 1]` with density proportional to `(1 - x) a + x b` (`a, b >= 0`):
@@ -351,8 +341,8 @@ impl HartBilinearPolygon {
         let (a, b) = self.marginal();
         let (c, d) = self.conditional(x);
         Some([
-            clamp_unit(linear_cdf(x, a, b)),
-            clamp_unit(linear_cdf(y, c, d)),
+            clamp_inverted(linear_cdf(x, a, b)),
+            clamp_inverted(linear_cdf(y, c, d)),
         ])
     }
 }
@@ -521,8 +511,8 @@ impl HartBiquadraticPolygon {
             .solid_angle
             .invert_strictly_inside(upper_direction(dir)?)?;
         Some([
-            clamp_unit(quadratic_cdf(x, self.marginal)),
-            clamp_unit(quadratic_cdf(y, self.conditional(x))),
+            clamp_inverted(quadratic_cdf(x, self.marginal)),
+            clamp_inverted(quadratic_cdf(y, self.conditional(x))),
         ])
     }
 }
