@@ -31,24 +31,11 @@
  * Both serve profiling, e.g. under callgrind with --toggle-collect=loop_prepare_cap. */
 #define _POSIX_C_SOURCE 199309L
 
-#include <math.h>
-#include <stdint.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-#include <time.h>
+#include "../bench-common.h"
 
-#include "sphera.h"
-
-#define NOINLINE __attribute__((noinline))
-
-enum { POOL_SIZE = 1024, U_COUNT = 4096, MAX_V = SPHERA_MAX_POLYGON_VERTICES, QUAD = 4 };
-
-/* The pool stores plain floats; the library reads polygons as SpheraVec3 (three floats). */
-typedef char vec3_is_three_floats[sizeof(SpheraVec3) == 3 * sizeof(float) ? 1 : -1];
+enum { MAX_V = SPHERA_MAX_POLYGON_VERTICES, QUAD = 4 };
 
 static const float PI_F = 3.14159265358979323846f;
-static const double PI = 3.14159265358979323846;
 
 enum Family { SPHERES, BRDF, POLYGONS };
 
@@ -69,22 +56,6 @@ typedef struct {
   enum Family family;
   Input inputs[POOL_SIZE];
 } Pool;
-
-static float g_u[U_COUNT][2];
-
-/* ---- deterministic random numbers ------------------------------------------------ */
-
-static uint64_t splitmix64(uint64_t *state) {
-  uint64_t z = (*state += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
-/* In [0, 1). */
-static double uniform(uint64_t *state) { return (double)(splitmix64(state) >> 11) * 0x1.0p-53; }
-
-static double uniform_in(uint64_t *state, double lo, double hi) { return lo + (hi - lo) * uniform(state); }
 
 /* ---- the C baselines: what a renderer author would write --------------------------- */
 
@@ -470,26 +441,6 @@ enum { TECHNIQUE_COUNT = sizeof(TECHNIQUE_LIST) / sizeof(TECHNIQUE_LIST[0]) };
 
 /* ---- pools --------------------------------------------------------------------- */
 
-typedef struct {
-  double x, y, z;
-} D3;
-
-static D3 d3(double x, double y, double z) {
-  D3 r;
-  r.x = x;
-  r.y = y;
-  r.z = z;
-  return r;
-}
-static D3 add(D3 a, D3 b) { return d3(a.x + b.x, a.y + b.y, a.z + b.z); }
-static D3 scale(D3 a, double s) { return d3(a.x * s, a.y * s, a.z * s); }
-static double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static D3 cross(D3 a, D3 b) { return d3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x); }
-static D3 normalize(D3 a) { return scale(a, 1.0 / sqrt(dot(a, a))); }
-
-/* A unit vector orthogonal to the unit vector a. */
-static D3 orthogonal(D3 a) { return normalize(fabs(a.x) < 0.6 ? cross(a, d3(1, 0, 0)) : cross(a, d3(0, 1, 0))); }
-
 /* A unit vector with z uniform in [z_lo, z_hi] and a uniform azimuth. */
 static D3 direction(uint64_t *rng, double z_lo, double z_hi) {
   double z = uniform_in(rng, z_lo, z_hi), s = sqrt(fmax(0.0, 1.0 - z * z)), a = uniform_in(rng, 0.0, 2.0 * PI);
@@ -716,34 +667,13 @@ static int check_c_cosine(void) {
   return bad;
 }
 
-/* ---- timing ------------------------------------------------------------------------ */
-
-static double thread_seconds(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-static int selected(const char *only, const char *id) {
-  size_t length = strlen(id);
-  const char *p = only;
-  if (!only) return 1;
-  while ((p = strstr(p, id)) != NULL) {
-    if ((p == only || p[-1] == ',') && (p[length] == '\0' || p[length] == ',')) return 1;
-    p += length;
-  }
-  return 0;
-}
+/* ---- main ----------------------------------------------------------------------- */
 
 static int technique_index(const char *id) {
   int t;
   for (t = 0; t < TECHNIQUE_COUNT; t++)
     if (strcmp(TECHNIQUE_LIST[t].id, id) == 0) return t;
   return -1;
-}
-
-static void usage(const char *program) {
-  fprintf(stderr, "usage: %s [--quick] [--reps R] [--calls N] [--only NAME[,NAME...]] [--pool ID]\n", program);
 }
 
 int main(int argc, char **argv) {
@@ -755,32 +685,13 @@ int main(int argc, char **argv) {
   Pool *pool = (Pool *)malloc(sizeof(Pool));
   void *arrays[TECHNIQUE_COUNT];
 
-  for (i = 1; i < argc; i++) {
-    if (strcmp(argv[i], "--quick") == 0) {
-      reps = 1;
-      calls = 2000;
-    } else if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc) {
-      reps = atol(argv[++i]);
-    } else if (strcmp(argv[i], "--calls") == 0 && i + 1 < argc) {
-      calls = atol(argv[++i]);
-    } else if (strcmp(argv[i], "--only") == 0 && i + 1 < argc) {
-      only = argv[++i];
-    } else if (strcmp(argv[i], "--pool") == 0 && i + 1 < argc) {
-      pool_filter = argv[++i];
-    } else {
-      usage(argv[0]);
-      return 2;
-    }
-  }
-  if (reps < 1 || calls < 1 || !pool) {
-    usage(argv[0]);
-    return 2;
-  }
-
-  for (i = 0; i < U_COUNT; i++) {
-    g_u[i][0] = (float)((splitmix64(&rng) >> 40) * 0x1.0p-24);
-    g_u[i][1] = (float)((splitmix64(&rng) >> 40) * 0x1.0p-24);
-  }
+  BenchOptions options;
+  if (!parse_bench_options(argc, argv, &options) || !pool) return 2;
+  reps = options.reps;
+  calls = options.calls;
+  only = options.only;
+  pool_filter = options.pool;
+  draw_random_numbers(&rng);
   {
     SpheraVec3 axis;
     axis.x = 0.2f;
