@@ -17,7 +17,7 @@ use sphera::sg::shading::{
 };
 use sphera::sg::{Sg, vmf_sample};
 use sphera::sphere::phase;
-use sphera::sphere::{Cap, pivot_transform};
+use sphera::sphere::{Cap, CapIntersection, pivot_transform};
 use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, fis_select, luminance};
 use sphera::{Sample, Vec3};
 use sphera_tools::bench::Rng;
@@ -95,6 +95,19 @@ fn main() {
     let incoming: Vec<Sg> = (0..INPUTS)
         .map(|i| incoming_radiance(&sgs[i], vsgl_means[i], 0.1))
         .collect();
+    // Lights across the horizon of the upper hemisphere: the intersection C ∩ H that
+    // the sphere-light sampler samples for them (issue 20, 1).
+    let horizon = Cap::from_axis_one_minus_cos(Vec3::Z, 1.0);
+    let lenses: Vec<CapIntersection> = caps
+        .iter()
+        .map(|cap| {
+            let across = Cap::from_axis_one_minus_cos(
+                Vec3::new(cap.axis.x, cap.axis.y, 0.2 * cap.axis.z).normalize(),
+                cap.one_minus_cos,
+            );
+            CapIntersection::new(&across, &horizon).unwrap_or(CapIntersection::EMPTY)
+        })
+        .collect();
     let cap_sample = time_ns(|i| value(caps[i].sample_uniform(us[i])));
     let rows = [
         ("sphere cap: uniform sample", cap_sample),
@@ -106,6 +119,22 @@ fn main() {
             }),
         ),
         ("sphere cap: pdf", time_ns(|i| caps[i].pdf(views[i]))),
+        (
+            "two-cap intersection (a cap across the horizon ∩ H): new + uniform sample",
+            time_ns(|i| {
+                let lens = &lenses[i];
+                CapIntersection::new(&lens.radial, &lens.other)
+                    .map_or(0.0, |lens| value(lens.sample_uniform(us[i])))
+            }),
+        ),
+        (
+            "two-cap intersection: uniform sample",
+            time_ns(|i| value(lenses[i].sample_uniform(us[i]))),
+        ),
+        (
+            "two-cap intersection: pdf",
+            time_ns(|i| lenses[i].pdf(views[i])),
+        ),
         (
             "pivot transformation of a direction",
             time_ns(|i| pivot_transform(views[i], pivots[i]).x),
