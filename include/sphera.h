@@ -425,13 +425,19 @@ typedef struct SpheraClippedSolidAnglePolygon {
  */
 typedef struct SpheraEllipseSector {
   /**
-   * Unit direction of the clockwise boundary.
+   * The directions `b_0 = s0, b_1, b_2, b_3, b_4 = s1` (unit vectors at equal angles)
+   * that bound the quads of the initial guess: `s0` and `s1`, the sector's clockwise
+   * and counter-clockwise boundaries, are the first and the last (stored once, read
+   * through [`s0`](Self::s0) and [`s1`](Self::s1); the central case sets only these
+   * two).
    */
-  float s0[2];
+  float quarters[5][2];
   /**
-   * Unit direction of the counter-clockwise boundary.
+   * `u_o · b_j` for `j = 0..=4`; the two ends, `(u_o · s0, u_o · s1)`, come from the
+   * vertex positions ([`outer_dots`](Self::outer_dots); the central case sets only
+   * these two).
    */
-  float s1[2];
+  float outer_quarter_dots[5];
   /**
    * `det(s0, s1)` from the vertex positions.
    */
@@ -448,14 +454,6 @@ typedef struct SpheraEllipseSector {
    * The outer ellipse.
    */
   float outer[2];
-  /**
-   * `(u_i · s0, u_i · s1)` from the vertex positions.
-   */
-  float inner_dots[2];
-  /**
-   * `(u_o · s0, u_o · s1)` from the vertex positions.
-   */
-  float outer_dots[2];
   /**
    * `√|C_i| = √(1 + |u_i|²)`.
    */
@@ -478,22 +476,14 @@ typedef struct SpheraEllipseSector {
    */
   float coincidence_sign;
   /**
-   * The directions `b_0 = s0, b_1, b_2, b_3, b_4 = s1` (unit vectors at equal angles)
-   * that bound the quads of the initial guess.
-   */
-  float quarters[5][2];
-  /**
    * `det(b_j, b_j+1)` of the rounded quarter directions (equal for all four quads).
    */
   float quarter_det;
   /**
-   * `u_i · b_j` for `j = 0..=4`.
+   * `u_i · b_j` for `j = 0..=4`; the two ends, `(u_i · s0, u_i · s1)`, come from the
+   * vertex positions ([`inner_dots`](Self::inner_dots)).
    */
   float inner_quarter_dots[5];
-  /**
-   * `u_o · b_j` for `j = 0..=4`.
-   */
-  float outer_quarter_dots[5];
   /**
    * `λ_i` at `b_j`: `λ b_j` lies on the inner ellipse.
    */
@@ -560,14 +550,30 @@ typedef struct SpheraSmallPolygonCosineSampler {
 } SpheraSmallPolygonCosineSampler;
 
 /**
+ * What a prepared polygon samples from: the sectors of Algorithm 4 or, below
+ * [`SMALL_EXTENT`], the small-polygon sampler (issue 15, 3: one storage for the two, which
+ * are never used together, saves the small sampler's 548 bytes of every prepared value
+ * and of every preparation's writes). Both are plain `f32` and `u32` words, so every bit
+ * pattern of the storage is a value of either view: reading the view that preparation
+ * did not write (possible only for a caller's corrupted struct) gives wrong numbers,
+ * never undefined behaviour. Preparation writes every byte of the union (the small case
+ * writes the empty sectors first), so no stale word is left in it.
+ */
+typedef union SpheraProjectedPieces {
+  struct SpheraEllipseSector sectors[SPHERA_MAX_POLYGON_VERTICES];
+  struct SpheraSmallPolygonCosineSampler small;
+} SpheraProjectedPieces;
+
+/**
  * A convex polygon prepared for projected solid angle sampling: the first part of
  * Algorithm 4 (ellipses paired with sectors, sector areas).
  */
 typedef struct SpheraProjectedSolidAnglePolygon {
   /**
-   * The sectors, in counter-clockwise order.
+   * The sectors of Algorithm 4 in counter-clockwise order or, for small polygons, the
+   * warped solid angle sampler: one storage for either.
    */
-  struct SpheraEllipseSector sectors[SPHERA_MAX_POLYGON_VERTICES];
+  union SpheraProjectedPieces pieces;
   /**
    * Projected solid angle (area in the disk) of each sector.
    */
@@ -606,10 +612,6 @@ typedef struct SpheraProjectedSolidAnglePolygon {
    * `SmallPolygonCosineSampler::tolerance`.
    */
   float small_tolerance;
-  /**
-   * The exact alternative for small polygons (empty otherwise).
-   */
-  struct SpheraSmallPolygonCosineSampler small;
 } SpheraProjectedSolidAnglePolygon;
 
 /**

@@ -20,10 +20,16 @@ use crate::math::{atan_fast_nonneg, atan2_upper_half_plane, copy_sign};
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EllipseSector {
-    /// Unit direction of the clockwise boundary.
-    pub(crate) s0: [f32; 2],
-    /// Unit direction of the counter-clockwise boundary.
-    pub(crate) s1: [f32; 2],
+    /// The directions `b_0 = s0, b_1, b_2, b_3, b_4 = s1` (unit vectors at equal angles)
+    /// that bound the quads of the initial guess: `s0` and `s1`, the sector's clockwise
+    /// and counter-clockwise boundaries, are the first and the last (stored once, read
+    /// through [`s0`](Self::s0) and [`s1`](Self::s1); the central case sets only these
+    /// two).
+    pub(crate) quarters: [[f32; 2]; 5],
+    /// `u_o · b_j` for `j = 0..=4`; the two ends, `(u_o · s0, u_o · s1)`, come from the
+    /// vertex positions ([`outer_dots`](Self::outer_dots); the central case sets only
+    /// these two).
+    pub(crate) outer_quarter_dots: [f32; 5],
     /// `det(s0, s1)` from the vertex positions.
     pub(crate) det: f32,
     /// `1 / det(s0, s1)` of the rounded `s0`, `s1` (the basis for `α`, `β`).
@@ -32,10 +38,6 @@ pub struct EllipseSector {
     pub(crate) inner: [f32; 2],
     /// The outer ellipse.
     pub(crate) outer: [f32; 2],
-    /// `(u_i · s0, u_i · s1)` from the vertex positions.
-    pub(crate) inner_dots: [f32; 2],
-    /// `(u_o · s0, u_o · s1)` from the vertex positions.
-    pub(crate) outer_dots: [f32; 2],
     /// `√|C_i| = √(1 + |u_i|²)`.
     pub(crate) inner_root_det: f32,
     /// `√|C_o| = √(1 + |u_o|²)`.
@@ -47,15 +49,11 @@ pub struct EllipseSector {
     /// `σ = ±1`, the sign of `u_i · u_o`: the ellipse of `u` is that of `-u`, and two
     /// nearly coincident ellipses have `u_o ≈ σ u_i` (see [`area_between`](Self::area_between)).
     pub(crate) coincidence_sign: f32,
-    /// The directions `b_0 = s0, b_1, b_2, b_3, b_4 = s1` (unit vectors at equal angles)
-    /// that bound the quads of the initial guess.
-    pub(crate) quarters: [[f32; 2]; 5],
     /// `det(b_j, b_j+1)` of the rounded quarter directions (equal for all four quads).
     pub(crate) quarter_det: f32,
-    /// `u_i · b_j` for `j = 0..=4`.
+    /// `u_i · b_j` for `j = 0..=4`; the two ends, `(u_i · s0, u_i · s1)`, come from the
+    /// vertex positions ([`inner_dots`](Self::inner_dots)).
     pub(crate) inner_quarter_dots: [f32; 5],
-    /// `u_o · b_j` for `j = 0..=4`.
-    pub(crate) outer_quarter_dots: [f32; 5],
     /// `λ_i` at `b_j`: `λ b_j` lies on the inner ellipse.
     pub(crate) inner_radius: [f32; 5],
     /// `λ_o` at `b_j`.
@@ -150,23 +148,19 @@ fn ellipse_radius(length2: f32, t: f32) -> f32 {
 
 impl EllipseSector {
     pub const EMPTY: Self = Self {
-        s0: [0.0; 2],
-        s1: [0.0; 2],
+        quarters: [[0.0; 2]; 5],
+        outer_quarter_dots: [0.0; 5],
         det: 0.0,
         inverse_basis: 0.0,
         inner: [0.0; 2],
         outer: [0.0; 2],
-        inner_dots: [0.0; 2],
-        outer_dots: [0.0; 2],
         inner_root_det: 1.0,
         outer_root_det: 1.0,
         root_det_difference: 0.0,
         inverse_root_det_difference: 0.0,
         coincidence_sign: 1.0,
-        quarters: [[0.0; 2]; 5],
         quarter_det: 0.0,
         inner_quarter_dots: [0.0; 5],
-        outer_quarter_dots: [0.0; 5],
         inner_radius: [0.0; 5],
         outer_radius: [0.0; 5],
         cosine: 1.0,
@@ -174,6 +168,30 @@ impl EllipseSector {
         extra_iterations: 0,
         touching_ends: 0,
     };
+
+    /// The sector's clockwise boundary (unit direction).
+    #[inline(always)]
+    pub(crate) fn s0(&self) -> Vec2 {
+        self.quarters[0]
+    }
+
+    /// The sector's counter-clockwise boundary (unit direction).
+    #[inline(always)]
+    pub(crate) fn s1(&self) -> Vec2 {
+        self.quarters[4]
+    }
+
+    /// `(u_i · s0, u_i · s1)` from the vertex positions.
+    #[inline(always)]
+    pub(crate) fn inner_dots(&self) -> [f32; 2] {
+        [self.inner_quarter_dots[0], self.inner_quarter_dots[4]]
+    }
+
+    /// `(u_o · s0, u_o · s1)` from the vertex positions.
+    #[inline(always)]
+    pub(crate) fn outer_dots(&self) -> [f32; 2] {
+        [self.outer_quarter_dots[0], self.outer_quarter_dots[4]]
+    }
 
     /// A sector of the central case: from `s0` to `s1` (unit vectors, accurate
     /// `det = det(s0, s1)`) inside the ellipse `outer` with its accurate dot products
@@ -192,12 +210,15 @@ impl EllipseSector {
         cosine: f32,
         inverse_basis: f32,
     ) -> Self {
+        let mut quarters = Self::EMPTY.quarters;
+        (quarters[0], quarters[4]) = (s0, s1);
+        let mut outer_quarter_dots = Self::EMPTY.outer_quarter_dots;
+        (outer_quarter_dots[0], outer_quarter_dots[4]) = (outer_dots[0], outer_dots[1]);
         Self {
-            s0,
-            s1,
+            quarters,
+            outer_quarter_dots,
             det,
             outer,
-            outer_dots,
             outer_root_det,
             cosine,
             inverse_basis,
@@ -280,14 +301,10 @@ impl EllipseSector {
         ));
         let coincident = dot2(delta, delta) <= COINCIDENCE * uo2.min(ui2);
         Self {
-            s0,
-            s1,
             det,
             inverse_basis,
             inner,
             outer,
-            inner_dots,
-            outer_dots,
             inner_root_det: ki,
             outer_root_det: ko,
             root_det_difference: finite(-length_difference / (ki + ko)),
@@ -349,7 +366,7 @@ impl EllipseSector {
     /// ([`Coordinates`]) is consistent with it.
     #[inline(always)]
     pub(crate) fn coordinates(&self, w: Vec2) -> Coordinates {
-        let (s0, s1) = (self.s0, self.s1);
+        let (s0, s1) = (self.s0(), self.s1());
         let alpha = (w[0] * s1[1] - w[1] * s1[0]) * self.inverse_basis;
         let beta = (s0[0] * w[1] - s0[1] * w[0]) * self.inverse_basis;
         Coordinates::new(self, alpha, beta)
@@ -370,7 +387,7 @@ impl EllipseSector {
             return 0.0;
         }
         let k = self.outer_root_det;
-        let x = (dot + self.outer_dots[0] * to) / k;
+        let x = (dot + self.outer_dots()[0] * to) / k;
         atan2_positive(det.max(0.0), x, precision) * (0.5 / k)
     }
 
@@ -416,8 +433,8 @@ impl EllipseSector {
                     atan2_positive(k * det, dot + t0 * t, precision) * (0.5 / k)
                 }
             };
-            return area(self.outer, self.outer_root_det, self.outer_dots[0], to)
-                - area(self.inner, self.inner_root_det, self.inner_dots[0], ti);
+            return area(self.outer, self.outer_root_det, self.outer_dots()[0], to)
+                - area(self.inner, self.inner_root_det, self.inner_dots()[0], ti);
         }
         if self.area_form == QUADRATURE_FORM {
             return self.area_by_quadrature(w);
@@ -425,7 +442,7 @@ impl EllipseSector {
         let difference = w.dot_difference;
         let (ki, ko) = (self.inner_root_det, self.outer_root_det);
         let sigma = self.coincidence_sign;
-        let (ti0, to0) = (self.inner_dots[0], self.outer_dots[0]);
+        let (ti0, to0) = (self.inner_dots()[0], self.outer_dots()[0]);
         let d0 = to0 - sigma * ti0;
         let xi = dot + ti0 * ti;
         let xo = dot + to0 * to;
@@ -471,7 +488,7 @@ impl EllipseSector {
             w.dot_difference * scale,
         );
         let sigma = self.coincidence_sign;
-        let (ti0, to0) = (self.inner_dots[0], self.outer_dots[0]);
+        let (ti0, to0) = (self.inner_dots()[0], self.outer_dots()[0]);
         let d0 = to0 - sigma * ti0;
         let mut sum = 0.0f32;
         for (x, weight) in GAUSS_LEGENDRE_4_NODES.iter().zip(GAUSS_LEGENDRE_4_WEIGHTS) {
@@ -486,9 +503,9 @@ impl EllipseSector {
     /// The whole sector's area (between the ellipses, or inside the outer one in the
     /// central case).
     pub(crate) fn area(&self, central: bool, precision: AreaPrecision) -> f32 {
-        let dot = dot2(self.s0, self.s1);
+        let dot = dot2(self.s0(), self.s1());
         if central {
-            self.outer_area(self.det, dot, self.outer_dots[1], precision)
+            self.outer_area(self.det, dot, self.outer_dots()[1], precision)
         } else {
             // The direction s1: det(s0, s1), s0 · s1, |s1|² = 1 and the dot products at s1.
             self.area_between(&Coordinates::new(self, 0.0, 1.0), precision)
@@ -512,7 +529,7 @@ impl EllipseSector {
     /// `u · R u = 0`), from the accurate `t0 = u · s0`.
     #[inline(always)]
     pub(crate) fn sample_central(&self, area: f32, xi1: f32) -> (Vec2, f32) {
-        let (u, s0, t0) = (self.outer, self.s0, self.outer_dots[0]);
+        let (u, s0, t0) = (self.outer, self.s0(), self.outer_dots()[0]);
         let k = self.outer_root_det;
         // 2 k area is the sector's angle in the circle's coordinates up to `area`: in
         // [0, π] (the sector's area is atan2_upper_half_plane / (2 k)).
@@ -538,13 +555,13 @@ impl EllipseSector {
     #[inline(always)]
     pub(crate) fn end_shape(&self, at_s1: bool) -> f32 {
         let (end, quarter) = if at_s1 { (1, 3) } else { (0, 1) };
-        let s = if at_s1 { self.s1 } else { self.s0 };
+        let s = if at_s1 { self.s1() } else { self.s0() };
         if is_degenerate(self.inner) || is_degenerate(self.outer) {
             return f32::NAN;
         }
         // s' = ±R s, pointing into the sector.
         let into = scale2(rotate(s), if at_s1 { -1.0 } else { 1.0 });
-        let (ti, to) = (self.inner_dots[end], self.outer_dots[end]);
+        let (ti, to) = (self.inner_dots()[end], self.outer_dots()[end]);
         let width_at = |ti: f32, to: f32| {
             0.5 * (ti.abs() - to.abs()) * (ti.abs() + to.abs())
                 / ((1.0 + ti * ti) * (1.0 + to * to))
@@ -872,8 +889,8 @@ impl Coordinates {
 
     #[inline(always)]
     fn new(sector: &EllipseSector, alpha: f32, beta: f32) -> Self {
-        let (s0, s1, cosine) = (sector.s0, sector.s1, sector.cosine);
-        let (ti, to) = (sector.inner_dots, sector.outer_dots);
+        let (s0, s1, cosine) = (sector.s0(), sector.s1(), sector.cosine);
+        let (ti, to) = (sector.inner_dots(), sector.outer_dots());
         Self {
             alpha,
             beta,
@@ -1000,7 +1017,7 @@ mod tests {
             let exact = area_between_f64(ui, uo, from, width);
             // The inputs' own rounding: the dot products u · s are known to ε/2 relative,
             // and the area is proportional to their small differences d.
-            let (ti, to) = (sector.inner_dots, sector.outer_dots);
+            let (ti, to) = (sector.inner_dots(), sector.outer_dots());
             let d = |j: usize| (to[j] as f64 - sigma as f64 * ti[j] as f64).abs();
             let t_sum = ti[0].abs() + ti[1].abs() + to[0].abs() + to[1].abs();
             let input_error = f32::EPSILON as f64 * t_sum as f64 / (d(0) + d(1));

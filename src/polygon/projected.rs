@@ -64,8 +64,9 @@ pub const MAX_REFINEMENT_ITERATIONS: u32 = 8;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ProjectedSolidAnglePolygon {
-    /// The sectors, in counter-clockwise order.
-    pub(crate) sectors: [EllipseSector; MAX_POLYGON_VERTICES],
+    /// The sectors of Algorithm 4 in counter-clockwise order or, for small polygons, the
+    /// warped solid angle sampler: one storage for either.
+    pieces: ProjectedPieces,
     /// Projected solid angle (area in the disk) of each sector.
     pub(crate) sector_area: [f32; MAX_POLYGON_VERTICES],
     /// Projected solid angle of the sectors before each sector.
@@ -86,8 +87,58 @@ pub struct ProjectedSolidAnglePolygon {
     /// The slack of `pdf` in the small case (radians; 0 otherwise): see
     /// `SmallPolygonCosineSampler::tolerance`.
     small_tolerance: f32,
-    /// The exact alternative for small polygons (empty otherwise).
+}
+
+/// What a prepared polygon samples from: the sectors of Algorithm 4 or, below
+/// [`SMALL_EXTENT`], the small-polygon sampler (issue 15, 3: one storage for the two, which
+/// are never used together, saves the small sampler's 548 bytes of every prepared value
+/// and of every preparation's writes). Both are plain `f32` and `u32` words, so every bit
+/// pattern of the storage is a value of either view: reading the view that preparation
+/// did not write (possible only for a caller's corrupted struct) gives wrong numbers,
+/// never undefined behaviour. Preparation writes every byte of the union (the small case
+/// writes the empty sectors first), so no stale word is left in it.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub union ProjectedPieces {
+    sectors: [EllipseSector; MAX_POLYGON_VERTICES],
     small: SmallPolygonCosineSampler,
+}
+
+// The sectors are the larger view, so that writing them writes the whole storage.
+const _: () = assert!(
+    core::mem::size_of::<[EllipseSector; MAX_POLYGON_VERTICES]>()
+        >= core::mem::size_of::<SmallPolygonCosineSampler>()
+);
+
+impl ProjectedPieces {
+    const EMPTY: Self = Self {
+        sectors: [EllipseSector::EMPTY; MAX_POLYGON_VERTICES],
+    };
+}
+
+impl ProjectedPieces {
+    /// The sectors' view, for preparation to write (a method of the storage, not of the
+    /// polygon, so that the polygon's other fields stay borrowable meanwhile).
+    #[inline(always)]
+    fn sectors_mut(&mut self) -> &mut [EllipseSector; MAX_POLYGON_VERTICES] {
+        // SAFETY: every bit pattern is a valid value of this view (see above).
+        unsafe { &mut self.sectors }
+    }
+}
+
+impl PartialEq for ProjectedPieces {
+    /// Field by field over the sectors' view, which covers the whole storage.
+    fn eq(&self, other: &Self) -> bool {
+        // SAFETY: every bit pattern is a valid `[EllipseSector; 8]` (plain f32/u32).
+        unsafe { self.sectors == other.sectors }
+    }
+}
+
+impl core::fmt::Debug for ProjectedPieces {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        // SAFETY: as in `eq`.
+        unsafe { self.sectors.fmt(f) }
+    }
 }
 
 impl Default for ProjectedSolidAnglePolygon {
@@ -135,7 +186,7 @@ impl ProjectedSolidAnglePolygon {
     /// The state of a polygon that could not be prepared: samples have `pdf == 0`, and the
     /// pdf of every direction is 0.
     pub const EMPTY: Self = Self {
-        sectors: [EllipseSector::EMPTY; MAX_POLYGON_VERTICES],
+        pieces: ProjectedPieces::EMPTY,
         sector_area: [0.0; MAX_POLYGON_VERTICES],
         sector_start: [0.0; MAX_POLYGON_VERTICES],
         edge_normals: [Vec3::ZERO; MAX_POLYGON_VERTICES],
@@ -145,8 +196,28 @@ impl ProjectedSolidAnglePolygon {
         central: 0,
         is_small: 0,
         small_tolerance: 0.0,
-        small: SmallPolygonCosineSampler::EMPTY,
     };
+
+    /// The sectors (not meaningful for a polygon that uses the small-polygon sampler).
+    #[inline(always)]
+    pub(crate) fn sectors(&self) -> &[EllipseSector; MAX_POLYGON_VERTICES] {
+        // SAFETY: every bit pattern of the storage is a valid value of this view (see
+        // `ProjectedPieces`).
+        unsafe { &self.pieces.sectors }
+    }
+
+    /// The small-polygon sampler (meaningful only when `is_small` is 1).
+    #[inline(always)]
+    fn small(&self) -> &SmallPolygonCosineSampler {
+        // SAFETY: as in `sectors`.
+        unsafe { &self.pieces.small }
+    }
+
+    #[inline(always)]
+    fn small_mut(&mut self) -> &mut SmallPolygonCosineSampler {
+        // SAFETY: as in `sectors`.
+        unsafe { &mut self.pieces.small }
+    }
 
     /// Prepares the convex polygon with the given vertices (positions relative to the
     /// shading point in the local frame, not normalised, either winding, 3 to 8 of them).
@@ -297,18 +368,19 @@ impl ProjectedSolidAnglePolygon {
         let extent2 = largest.max_element();
         // Writes the small-polygon sampler in place; the sectors are then not read.
         let switch_to_small = |polygon: &mut Self| {
-            if !polygon.small.prepare(&positions[..count]) {
+            // The whole storage first (the sectors' view is the larger), then the small
+            // sampler over its start: no stale word is left.
+            polygon.pieces = ProjectedPieces::EMPTY;
+            if !polygon.small_mut().prepare(&positions[..count]) {
                 return false;
             }
-            // As in the empty value: the sectors are not read in this case.
-            polygon.sectors = [EllipseSector::EMPTY; MAX_POLYGON_VERTICES];
             polygon.sector_area = [0.0; MAX_POLYGON_VERTICES];
             polygon.sector_start = [0.0; MAX_POLYGON_VERTICES];
-            polygon.projected_solid_angle = polygon.small.projected_solid_angle();
+            polygon.projected_solid_angle = polygon.small().projected_solid_angle();
             polygon.density = 1.0 / polygon.projected_solid_angle;
             polygon.selectable_sectors = 1;
             polygon.is_small = 1;
-            polygon.small_tolerance = polygon.small.tolerance(SMALL_ROUNDING);
+            polygon.small_tolerance = polygon.small().tolerance(SMALL_ROUNDING);
             true
         };
         if allow_small && extent2 < SMALL_EXTENT * SMALL_EXTENT {
@@ -451,7 +523,7 @@ impl ProjectedSolidAnglePolygon {
                 if j == 0 || !is_inner(edge[e]) {
                     outer = e;
                 }
-                polygon.sectors[j] = EllipseSector::new(
+                polygon.pieces.sectors_mut()[j] = EllipseSector::new(
                     direction[a],
                     direction[b],
                     sector_det[j],
@@ -460,13 +532,13 @@ impl ProjectedSolidAnglePolygon {
                     edge[outer],
                     [edge_dot(outer, a), edge_dot(outer, b)],
                 );
-                let sector = &mut polygon.sectors[j];
+                let sector = &mut polygon.pieces.sectors_mut()[j];
                 let outer_area = ellipse_area(
                     sector.outer,
                     sector.det,
-                    dot2(sector.s0, sector.s1),
-                    sector.outer_dots[0],
-                    sector.outer_dots[1],
+                    dot2(sector.s0(), sector.s1()),
+                    sector.outer_dots()[0],
+                    sector.outer_dots()[1],
                 );
                 outer_sum += outer_area;
                 let area = sector.area(false, precision).max(0.0);
@@ -486,8 +558,8 @@ impl ProjectedSolidAnglePolygon {
                 sector.extra_iterations = (outer_area > 200.0 * area || touching) as u32;
                 polygon.sector_area[j] = area;
             }
-            if let Some(last) = (0..sectors).rev().find(|&j| polygon.sectors[j].det != 0.0) {
-                let sector = &mut polygon.sectors[last];
+            if let Some(last) = (0..sectors).rev().find(|&j| polygon.pieces.sectors_mut()[j].det != 0.0) {
+                let sector = &mut polygon.pieces.sectors_mut()[last];
                 if sector.end_shape(true) < 1.0 {
                     sector.touching_ends |= 2;
                     sector.extra_iterations = 1;
@@ -554,7 +626,7 @@ impl ProjectedSolidAnglePolygon {
                 let (a, b) = (j, next(j));
                 // Built in place: building it on the stack and copying it whole after
                 // using it stalls store-to-load forwarding.
-                polygon.sectors[j] = EllipseSector::new_central(
+                polygon.pieces.sectors_mut()[j] = EllipseSector::new_central(
                     [direction[a], direction[b]],
                     sector_det[j],
                     edge[j],
@@ -565,18 +637,16 @@ impl ProjectedSolidAnglePolygon {
                 );
                 polygon.sector_area[j] = match precision {
                     AreaPrecision::Exact => area[j],
-                    AreaPrecision::Fast => polygon.sectors[j].area(true, precision).max(0.0),
+                    AreaPrecision::Fast => polygon.pieces.sectors_mut()[j].area(true, precision).max(0.0),
                 };
             }
         }
         // The unused slots too (no stale or NaN word is left in a prepared value, which
-        // the adversarial C test checks by filling the struct with NaN first); the
-        // small-polygon sampler is not used here.
+        // the adversarial C test checks by filling the struct with NaN first).
         for j in sectors..MAX_POLYGON_VERTICES {
-            polygon.sectors[j] = EllipseSector::EMPTY;
+            polygon.pieces.sectors_mut()[j] = EllipseSector::EMPTY;
             polygon.sector_area[j] = 0.0;
         }
-        polygon.small = SmallPolygonCosineSampler::EMPTY;
         let mut total = 0.0f32;
         for j in 0..sectors {
             polygon.sector_start[j] = total;
@@ -661,7 +731,7 @@ impl ProjectedSolidAnglePolygon {
             // polygons of 1e-5 rad and below and unbounded relative to ℓ near a vertex on
             // the horizon (found by fuzzing: up to 2e3 times; 2 times for u0 = 0 where a
             // clipped vertex repeats). MIS needs `pdf(sample.dir) == sample.pdf`.
-            let s = self.small.sample(u0, u1);
+            let s = self.small().sample(u0, u1);
             let tolerance = self.small_tolerance.min(SMALL_ROUNDING);
             let pdf = self.small_pdf_within(s.dir, tolerance);
             if pdf > 0.0 || s.pdf == 0.0 {
@@ -673,7 +743,7 @@ impl ProjectedSolidAnglePolygon {
             // fails the tight test, for polygons that f32 directions barely resolve) the
             // direction with the 16-ulp slack of before, which the LTC polygon's own
             // `pdf` (slack 1e-5 rad) accepts.
-            let inner = self.small.inner_direction();
+            let inner = self.small().inner_direction();
             let pulled = crate::sample::INWARD_PULLS.iter().find_map(|&pull| {
                 let dir = (s.dir * (1.0 - pull) + inner * pull).normalize_or(inner);
                 let pdf = self.small_pdf_within(dir, tolerance);
@@ -690,7 +760,7 @@ impl ProjectedSolidAnglePolygon {
         let k = select_piece(&self.sector_start, target);
         let sector_area = self.sector_area[k];
         let local = (target - self.sector_start[k]).max(0.0).min(sector_area);
-        let sector = &self.sectors[k];
+        let sector = &self.sectors()[k];
         let point_and_z2 = if self.central != 0 {
             Some(sector.sample_central(local, u1))
         } else {
@@ -754,7 +824,7 @@ impl ProjectedSolidAnglePolygon {
     #[inline]
     pub fn contains_within(&self, dir: Vec3, tolerance: f32) -> bool {
         if self.is_small != 0 {
-            return dir.z > 0.0 && self.small.contains_within(dir, tolerance);
+            return dir.z > 0.0 && self.small().contains_within(dir, tolerance);
         }
         let length = dir.length();
         let mut inside = self.selectable_sectors > 0 && dir.z > 0.0 && dir.is_finite();
@@ -802,7 +872,7 @@ impl ProjectedSolidAnglePolygon {
     /// inversion's absolute error an ulp of 1 (issue 16, 3).
     #[inline(always)]
     fn small_pdf_within(&self, dir: Vec3, tolerance: f32) -> f32 {
-        if dir.z > 0.0 && self.small.contains_within(dir, tolerance) {
+        if dir.z > 0.0 && self.small().contains_within(dir, tolerance) {
             crate::sample::unit_if_needed(dir).z * self.density
         } else {
             0.0
@@ -814,7 +884,7 @@ impl ProjectedSolidAnglePolygon {
     #[inline]
     pub fn contains(&self, dir: Vec3) -> bool {
         if self.is_small != 0 {
-            return dir.z > 0.0 && self.small.contains_within(dir, 0.0);
+            return dir.z > 0.0 && self.small().contains_within(dir, 0.0);
         }
         let mut inside = self.selectable_sectors > 0 && dir.z > 0.0 && dir.is_finite();
         for n in &self.edge_normals {

@@ -64,7 +64,7 @@ impl ArvoProjectedPolygon {
         }
         let selectable = self.sectors.selectable_sectors as usize;
         for j in 0..MAX_POLYGON_VERTICES {
-            let (s0, s1) = (self.sectors.sectors[j].s0, self.sectors.sectors[j].s1);
+            let (s0, s1) = (self.sectors.sectors()[j].s0(), self.sectors.sectors()[j].s1());
             // Unused slots 0, as in the empty value.
             self.sector_angle[j] = if j < selectable {
                 crate::math::atan2_upper_half_plane(det2(s0, s1).max(0.0), dot2(s0, s1))
@@ -96,8 +96,8 @@ impl ArvoProjectedPolygon {
         // negative (issue 16, 6); `min` and `max` return a number.
         let local = (target - sectors.sector_start[k]).max(0.0).min(area);
         let central = sectors.central != 0;
-        let sector = &sectors.sectors[k];
-        let s0 = sector.s0;
+        let sector = &sectors.sectors()[k];
+        let s0 = sector.s0();
         let h = self.sector_angle[k];
         let direction = |phi: f32| {
             let (sin, cos) = libm::sincosf(phi);
@@ -124,7 +124,7 @@ impl ArvoProjectedPolygon {
         let t = local / area;
         let limit = 3.0 * h;
         let m0 = (area / slope(s0)).max(0.0).min(limit);
-        let m1 = (area / slope(sector.s1)).max(0.0).min(limit);
+        let m1 = (area / slope(sector.s1())).max(0.0).min(limit);
         let (t2, t3) = (t * t, t * t * t);
         let guess = (t3 - 2.0 * t2 + t) * m0 + (3.0 * t2 - 2.0 * t3) * h + (t3 - t2) * m1;
         let mut phi = if guess.is_finite() {
