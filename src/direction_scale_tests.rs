@@ -8,8 +8,9 @@
 //! result bit for bit, and the same as the unit direction to a few ulps.
 
 use crate::Vec3;
-use crate::brdf::{Ltc, LtcPolygon};
+use crate::brdf::Ltc;
 use crate::ffi::*;
+use crate::polygon::LtcPolygon;
 use crate::sphere::{Cap, GgxPivot, SphereLightSampler, SphereShadingSptd, SptdInCap};
 use core::mem::MaybeUninit;
 

@@ -23,7 +23,7 @@ pub mod pivot_table;
 
 pub use ggx::GgxBrdf;
 pub use lambert::Lambert;
-pub use ltc::{Ltc, LtcPolygon};
+pub use ltc::Ltc;
 
 use crate::Vec3;
 

@@ -3,7 +3,8 @@
 
 use super::polygon::prepare;
 use super::types::{SpheraSample, SpheraVec3, with_ref};
-use crate::brdf::{Ltc, LtcPolygon};
+use crate::brdf::Ltc;
+use crate::polygon::LtcPolygon;
 use crate::{Sample, Vec3};
 
 /// Looks up the LTC fitted to GGX `f(wo, ω) cos θ` (Fresnel 1; isotropic GGX with

@@ -15,9 +15,10 @@
 //! weighted balance heuristic and of (clamped) optimal MIS are applied per colour
 //! channel, with `c_k` per channel: each channel is its own integral, so the estimate
 //! stays unbiased and, unoccluded, has zero variance up to the fit error of the LTC.
+use crate::brdf::Ltc;
 use crate::brdf::ggx::GgxBrdf;
-use crate::brdf::{Ltc, LtcPolygon};
 use crate::mis;
+use crate::polygon::LtcPolygon;
 use crate::polygon::ProjectedSolidAnglePolygon;
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 

@@ -17,6 +17,7 @@ mod ellipse_sector;
 mod clip_generated;
 pub mod clipped_solid_angle;
 pub mod light;
+pub mod ltc;
 pub mod projected;
 pub mod small_projected;
 pub mod solid_angle;
@@ -26,6 +27,7 @@ mod sorting_networks_generated;
 
 pub use clip::clip_to_upper_hemisphere;
 pub use clipped_solid_angle::ClippedSolidAnglePolygon;
+pub use ltc::LtcPolygon;
 pub use projected::ProjectedSolidAnglePolygon;
 pub use solid_angle::SolidAnglePolygon;
 

@@ -558,7 +558,10 @@ impl ProjectedSolidAnglePolygon {
                 sector.extra_iterations = (outer_area > 200.0 * area || touching) as u32;
                 polygon.sector_area[j] = area;
             }
-            if let Some(last) = (0..sectors).rev().find(|&j| polygon.pieces.sectors_mut()[j].det != 0.0) {
+            if let Some(last) = (0..sectors)
+                .rev()
+                .find(|&j| polygon.pieces.sectors_mut()[j].det != 0.0)
+            {
                 let sector = &mut polygon.pieces.sectors_mut()[last];
                 if sector.end_shape(true) < 1.0 {
                     sector.touching_ends |= 2;
@@ -637,7 +640,9 @@ impl ProjectedSolidAnglePolygon {
                 );
                 polygon.sector_area[j] = match precision {
                     AreaPrecision::Exact => area[j],
-                    AreaPrecision::Fast => polygon.pieces.sectors_mut()[j].area(true, precision).max(0.0),
+                    AreaPrecision::Fast => polygon.pieces.sectors_mut()[j]
+                        .area(true, precision)
+                        .max(0.0),
                 };
             }
         }

@@ -641,7 +641,7 @@ fn polygons_in_planes_through_the_shading_point_get_no_samples_in_any_family() {
                 p.as_ref().unwrap().sample(u)
             });
             let ltc = crate::brdf::ltc::Ltc::IDENTITY;
-            let p = crate::brdf::ltc::LtcPolygon::new(&ltc, &v);
+            let p = crate::polygon::LtcPolygon::new(&ltc, &v);
             check("LTC polygon", p.is_some(), &|u| {
                 p.as_ref().unwrap().sample(u)
             });

@@ -7,9 +7,10 @@
 //! uniform cap sampling measured in the same run (`cargo bench -p sphera-tools --bench
 //! samplers`, a few seconds). A second table times the VSGL accumulator and FIS cluster
 //! selection, and one frame of FIS against the k-means comparison.
+use sphera::brdf::Ltc;
 use sphera::brdf::ggx::GgxBrdf;
 use sphera::brdf::lambert::Lambert;
-use sphera::brdf::{Ltc, LtcPolygon};
+use sphera::polygon::LtcPolygon;
 use sphera::sg::asg::Asg;
 use sphera::sg::shading::{
     beckmann_specular_shading, beckmann_specular_shading_sg, diffuse_shading_constant_cosine,

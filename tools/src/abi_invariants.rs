@@ -34,8 +34,9 @@
 use std::mem::MaybeUninit;
 
 use sphera::Vec3;
-use sphera::brdf::{Ltc, LtcPolygon};
+use sphera::brdf::Ltc;
 use sphera::ffi::*;
+use sphera::polygon::LtcPolygon;
 use sphera::polygon::baselines::{
     ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
 };

@@ -44,8 +44,9 @@
 
 use std::fmt::Write;
 
-use sphera::brdf::{GgxBrdf, Ltc, LtcPolygon};
+use sphera::brdf::{GgxBrdf, Ltc};
 use sphera::ffi::*;
+use sphera::polygon::LtcPolygon;
 use sphera::polygon::baselines::{
     ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
 };

@@ -512,9 +512,10 @@ int main() {
 fn struct_layouts_match_rust() {
     use std::mem::{align_of, offset_of, size_of};
 
-    use sphera::brdf::{GgxBrdf, Ltc, LtcPolygon};
+    use sphera::brdf::{GgxBrdf, Ltc};
     use sphera::ffi::{SpheraSample, SpheraVec3};
     use sphera::math::Frame;
+    use sphera::polygon::LtcPolygon;
     use sphera::polygon::baselines::{
         ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
     };

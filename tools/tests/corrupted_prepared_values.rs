@@ -17,7 +17,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 use sphera::Vec3;
-use sphera::brdf::{Ltc, LtcPolygon};
+use sphera::brdf::Ltc;
+use sphera::polygon::LtcPolygon;
 use sphera::polygon::baselines::{
     ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
 };

@@ -64,7 +64,10 @@ impl ArvoProjectedPolygon {
         }
         let selectable = self.sectors.selectable_sectors as usize;
         for j in 0..MAX_POLYGON_VERTICES {
-            let (s0, s1) = (self.sectors.sectors()[j].s0(), self.sectors.sectors()[j].s1());
+            let (s0, s1) = (
+                self.sectors.sectors()[j].s0(),
+                self.sectors.sectors()[j].s1(),
+            );
             // Unused slots 0, as in the empty value.
             self.sector_angle[j] = if j < selectable {
                 crate::math::atan2_upper_half_plane(det2(s0, s1).max(0.0), dot2(s0, s1))
