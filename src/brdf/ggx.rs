@@ -1,7 +1,8 @@
 //! The GGX (Trowbridge–Reitz) microfacet BRDF with the height-correlated Smith
 //! masking-shadowing term and Schlick's Fresnel approximation, and sampling of the
 //! distribution of visible normals (Heitz 2018, "Sampling the GGX Distribution of
-//! Visible Normals").
+//! Visible Normals", in the spherical-cap form of Dupuy and Benyoub 2023, "Sampling
+//! Visible GGX Normals with Spherical Caps").
 //!
 //! # The model
 //!
@@ -57,15 +58,16 @@
 //! surface's orthographic projection, and a linear map keeps projections uniform. So:
 //!
 //! 1. stretch: `v = normalize(α ωo,x, α ωo,y, ωo,z)`;
-//! 2. in the plane orthogonal to `v`, with `t1 = normalize(-v.y, v.x, 0)` (any
-//!    horizontal unit vector when `v = z`) and `t2 = v × t1`, the unit hemisphere
-//!    projects to the half disk `t2 >= 0` joined with the half ellipse `t2 < 0` of
-//!    semi-axes `1` (along `t1`) and `v.z` (along `t2`), the projection of its base
-//!    circle. A point uniform in the unit disk (concentric mapping) is moved there by
-//!    scaling every vertical chord `[-c, c]` (`c = √(1 - x²)`) affinely onto
-//!    `[-v.z c, c]`: `y' = (1 - s) c + s y` with `s = (1 + v.z) / 2`. Every chord is
-//!    scaled by the same factor `s`, so uniformity is kept;
-//! 3. lift the point to the hemisphere along `v`: `n = x t1 + y' t2 + √(1 - x² - y'²) v`;
+//! 2. (Dupuy and Benyoub 2023, "Sampling Visible GGX Normals with Spherical Caps") the
+//!    view `v` reflected on the visible normals of a unit sphere is uniform over the
+//!    sphere (a mirror ball reflects uniformly), and on the normals of the upper
+//!    hemisphere (`h_z >= 0`) it is uniform in the spherical cap `{c : c_z >= -v_z}`,
+//!    with `h = normalize(v + c)`: draw `c` uniformly in that cap, `c_z = 1 - w` with
+//!    `w = u1 (1 + v_z)` and the azimuth `2π u0`;
+//! 3. `n = v + c` (its length does not matter: step 4 normalises). This replaces
+//!    Heitz's construction (a basis `t1, t2` of the plane orthogonal to `v`, a
+//!    concentric disk point moved onto the projected hemisphere, and a lift along `v`)
+//!    by one square root and a sine and cosine, with the same distribution;
 //! 4. unstretch: `h = normalize(α n.x, α n.y, max(0, n.z))`;
 //! 5. reflect: `ωi = 2 (ωo·h) h - ωo`.
 //!
@@ -94,8 +96,9 @@
 //! grazing; `u` at both ends of `[0, 1)`, outside it and NaN; zero, huge, tiny and
 //! non-finite directions; roughness and `F0` outside their ranges and NaN.
 
-use super::lambert::concentric_disk;
 use super::unit;
+use crate::math::sin_cos_of_turn;
+use crate::sample::clamp_random;
 use crate::{Sample, Vec3};
 use core::f32::consts::FRAC_1_PI;
 
@@ -289,25 +292,31 @@ impl GgxBrdf {
     }
 
     /// A normal `h` distributed with the density of visible normals `D_ωo(h)` (steps
-    /// 1–4 of the module documentation) for a unit `wo` with `wo.z > 0`.
+    /// 1–4 of the module documentation, Dupuy and Benyoub 2023) for a unit `wo` with
+    /// `wo.z > 0`. `u` is clamped to `[0, 1 - ulp]` (NaN counts as 0).
     #[inline(always)]
     pub(crate) fn sample_visible_normal(&self, wo: Vec3, u: [f32; 2]) -> Vec3 {
         let alpha = self.alpha;
-        // 1. The view seen from the hemisphere configuration.
-        let v = unit(Vec3::new(alpha * wo.x, alpha * wo.y, wo.z)).unwrap_or(Vec3::Z);
-        // 2. A basis of the projection plane: t1 horizontal, t2 = v × t1 upwards.
-        let t1 = unit(Vec3::new(-v.y, v.x, 0.0)).unwrap_or(Vec3::X);
-        let t2 = v.cross(t1);
-        let (x, y, _) = concentric_disk(u);
-        let half_chord = libm::sqrtf(((1.0 - x) * (1.0 + x)).max(0.0));
-        // 1 - s = (1 - v.z) / 2 = (v.x² + v.y²) / (2 (1 + v.z)), without cancellation.
-        let one_minus_s = 0.5 * (v.x * v.x + v.y * v.y) / (1.0 + v.z);
-        let s = 1.0 - one_minus_s;
-        let y = one_minus_s * half_chord + s * y;
-        // 3. Lift onto the hemisphere along v.
-        let lift = libm::sqrtf((1.0 - x * x - y * y).max(0.0));
-        let n = t1 * x + t2 * y + v * lift;
-        // 4. Unstretch: normals transform with the inverse transpose.
+        let (u0, u1) = (clamp_random(u[0]), clamp_random(u[1]));
+        // 1. The view seen from the hemisphere configuration. Its squared length lies in
+        //    [α², 1] for a unit `wo` (α >= MIN_ALPHA): plain normalisation neither
+        //    underflows nor overflows.
+        let stretched = Vec3::new(alpha * wo.x, alpha * wo.y, wo.z);
+        let v = stretched * (1.0 / libm::sqrtf(stretched.length_squared()));
+        // 2. c uniform in the spherical cap {c : c_z >= -v_z}: c_z = 1 - w with
+        //    w = u1 (1 + v_z) uniform in [0, 1 + v_z], and sin²θ = (1 - c_z)(1 + c_z)
+        //    = w (2 - w) without the cancellation of 1 - c_z² near the pole.
+        let w = u1 * (1.0 + v.z);
+        let sin_theta = libm::sqrtf((w * (2.0 - w)).max(0.0));
+        let (sin_phi, cos_phi) = sin_cos_of_turn(u0);
+        // 3. The hemisphere's visible normal v + c (not normalised: step 4 normalises).
+        let n = Vec3::new(
+            v.x + sin_theta * cos_phi,
+            v.y + sin_theta * sin_phi,
+            v.z + (1.0 - w),
+        );
+        // 4. Unstretch: normals transform with the inverse transpose. `n` is short only
+        //    next to the cap's rim opposite `v` (`unit` then rescales it first).
         unit(Vec3::new(alpha * n.x, alpha * n.y, n.z.max(0.0))).unwrap_or(Vec3::Z)
     }
 
@@ -322,8 +331,8 @@ impl GgxBrdf {
         if pdf.is_finite() { pdf } else { 0.0 }
     }
 
-    /// Draws `ωi` by sampling a visible normal `h` (Heitz 2018) and reflecting `wo` on
-    /// it; the pdf is `D_ωo(h) / (4 ωo·h) = G1(ωo) D(h) / (4 ωo,z)` per steradian,
+    /// Draws `ωi` by sampling a visible normal `h` (Heitz 2018; Dupuy and Benyoub 2023)
+    /// and reflecting `wo` on it; the pdf is `D_ωo(h) / (4 ωo·h) = G1(ωo) D(h) / (4 ωo,z)` per steradian,
     /// identical to [`pdf`](Self::pdf) of the returned direction.
     ///
     /// Returns [`Sample::NONE`] when the reflected direction lies at or below the

@@ -850,3 +850,59 @@ fn mis_of_vndf_and_cosine_sampling_estimates_the_albedo_without_bias() {
         }
     }
 }
+
+/// The visible-normal map of Dupuy and Benyoub 2023 in f64, written here from the paper:
+/// `v = normalize(α ωo,x, α ωo,y, ωo,z)`, `c` in the cap `c_z >= -v_z` at
+/// `c_z = 1 - u1 (1 + v_z)` and azimuth `2π u0`, `h = normalize(α n_x, α n_y, n_z)` with
+/// `n = v + c`.
+fn visible_normal64(alpha: f64, wo: D3, u: [f64; 2]) -> D3 {
+    let stretched = [alpha * wo[0], alpha * wo[1], wo[2]];
+    let v = normalize(stretched);
+    let cz = 1.0 - u[1] * (1.0 + v[2]);
+    let sin_theta = (1.0 - cz * cz).max(0.0).sqrt();
+    let phi = 2.0 * PI * u[0];
+    let n = [
+        v[0] + sin_theta * phi.cos(),
+        v[1] + sin_theta * phi.sin(),
+        v[2] + cz,
+    ];
+    normalize([alpha * n[0], alpha * n[1], n[2].max(0.0)])
+}
+
+/// The error of the f32 visible-normal map against the same map in f64, as the angle
+/// between the two normals, over a 256 × 256 grid of `u` per roughness and view (the
+/// grid's last row and column at `1 - 2⁻⁹`). Measured: 2e-8 to 7e-6 rad at the 99.9th
+/// percentile, 5e-8 to 3.5e-5 rad at worst, over α from 0.01 to 1 and views to 89°. The
+/// worst cases lie next to the cap's rim opposite the view, where `n = v + c` is short
+/// and the map itself is ill-conditioned (`u` moved by one ulp moves `h` about as far).
+/// Heitz 2018's construction, measured the same way against its own f64 map, which this
+/// replaced: 4e-7 to 6e-6 rad at the 99.9th percentile and 1e-6 to 1.5e-5 rad at worst
+/// (its maxima are lower at grazing views, its percentiles higher at normal incidence).
+#[test]
+fn visible_normals_match_the_f64_map() {
+    let mut worst = 0.0f64;
+    for &alpha in &ALPHAS {
+        let brdf = GgxBrdf::from_alpha(alpha, Vec3::ONE);
+        let alpha64 = brdf.alpha() as f64;
+        for &degrees in &VIEW_DEGREES {
+            let wo = view(degrees);
+            let mut errors = Vec::new();
+            for i in 0..256 {
+                for j in 0..256 {
+                    let u = [(i as f32 + 0.5) / 256.0, (j as f32 + 0.5) / 256.0];
+                    let h = d3(brdf.sample_visible_normal(wo, u));
+                    let reference = visible_normal64(alpha64, d3(wo), [u[0] as f64, u[1] as f64]);
+                    let cross = cross(h, reference);
+                    errors.push(dot(cross, cross).sqrt().atan2(dot(h, reference)));
+                }
+            }
+            errors.sort_by(f64::total_cmp);
+            let (p999, max) = (errors[errors.len() * 999 / 1000], errors[errors.len() - 1]);
+            worst = worst.max(max);
+            println!("α {alpha}, view {degrees}°: 99.9th percentile {p999:.2e} rad, max {max:.2e}");
+            assert!(p999 < 1e-5, "α {alpha}, view {degrees}°: {p999:e}");
+            assert!(max < 5e-5, "α {alpha}, view {degrees}°: {max:e}");
+        }
+    }
+    println!("worst {worst:.2e} rad");
+}

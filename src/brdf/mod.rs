@@ -1,5 +1,5 @@
 //! BRDFs of the shading point: the GGX microfacet BRDF with visible-normal sampling
-//! (Heitz 2018), the Lambertian BRDF with cosine-weighted sampling, and linearly
+//! (Heitz 2018, in Dupuy and Benyoub's spherical-cap form), the Lambertian BRDF with cosine-weighted sampling, and linearly
 //! transformed cosines fitted to GGX (Heitz et al. 2016), the distributions that Peters
 //! 2021 samples inside polygonal lights.
 //!
