@@ -1,5 +1,17 @@
 /*
- * sphera: sampling of area lights (polygonal lights after Peters 2021, and baselines).
+ * sphera: sampling and shading of area lights for renderers.
+ *   - Polygonal lights (Peters 2021): solid angle and projected solid angle sampling
+ *     (sphera_solid_angle_polygon_*, sphera_projected_polygon_*), LTC sampling of GGX
+ *     inside polygons (sphera_ltc_*), the one-call polygon light with MIS
+ *     (sphera_polygon_light_*), and the baselines (Turk, Arvo, Hart et al.).
+ *   - Sphere lights (Dupuy et al. 2017): caps (sphera_cap_*), SPTDs (sphera_sptd_*),
+ *     joint BRDF-light sampling (sphera_sphere_light_sampler_*), real-time shading and
+ *     specular occlusion (sphera_sphere_light_shade*), the pivot phase function
+ *     (sphera_phase_*).
+ *   - Virtual spherical Gaussian lights (Tokuyoshi 2016): SG and ASG algebra
+ *     (sphera_sg_*, sphera_asg_*), VSGLs from VPLs (sphera_vsgl_*).
+ *   - BRDFs: GGX and Lambert sampling (sphera_ggx_*, sphera_lambert_*); MIS weights
+ *     (sphera_mis_*).
  * C ABI of the static library libsphera.a (link with: libsphera.a -lm).
  *
  * Conventions: directions are unit vectors in a local shading frame whose z axis is
@@ -7,9 +19,10 @@
  * per steradian and pdf == 0 means "no sample"; random numbers lie in [0, 1).
  * No function crashes on a null pointer (see each function's documentation).
  *
- * The prepared structs (SpheraSolidAnglePolygon, ...) are complete so that they can
- * live on the stack, but their fields are private: fill them only through the
- * *_prepare functions. Their layout may change between versions of the library.
+ * Prepared values (SpheraSolidAnglePolygon, SpheraProjectedSolidAnglePolygon, ...) are
+ * opaque storage of a fixed size, so that they can live on the stack or in arrays;
+ * only the functions that prepare them write them. Their size may change between
+ * versions of the library.
  */
 
 #ifndef SPHERA_H
@@ -21,26 +34,6 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
-
-/**
- * Cells per axis.
- */
-#define LTC_TABLE_SIZE 64
-
-/**
- * The smallest α the table was fitted for (row 0 uses it instead of α = 0).
- */
-#define LTC_MIN_ALPHA 0.0001
-
-/**
- * The largest view angle's cosine floor (column 63 uses it instead of cos θ = 0).
- */
-#define LTC_MIN_COS_THETA 0.0001
-
-/**
- * Cells per axis.
- */
-#define PIVOT_TABLE_SIZE 64
 
 /**
  * The most vertices a polygon may have, in the C ABI: the length of the array that
@@ -105,22 +98,6 @@
 #define SPHERA_SG_DIFFUSE_LOBE_SHARPNESS 2.292504
 
 /**
- * The most refinement iterations a decentral sample runs (the default runs 1 or 2):
- * larger requests are clamped. The iteration converges cubically (supplement A.5,
- * Proposition 6; a test beside the iteration measures the order in f64), so from the initial guess's error of a few
- * hundredths of a radian two or three iterations reach f32 precision, and 8 leave ample
- * room for slow starts (Proposition 6 is local).
- */
-#define MAX_REFINEMENT_ITERATIONS 8
-
-/**
- * The most steps of the radial inversion. Newton's method converges quadratically from
- * the bisection's bracket; 40 bisection steps alone shrink any bracket in `[0, 2]` below
- * `f32` resolution, so the bound is never the limit of accuracy.
- */
-#define MAX_ITERATIONS 40
-
-/**
  * The base distribution that the pivot transforms.
  */
 enum SpheraSptdBase
@@ -170,81 +147,9 @@ typedef struct SpheraVec3 {
  */
 typedef struct SpheraSolidAnglePolygon {
   /**
-   * Unit directions towards the vertices. `vertices[0]` is the fan apex, which
-   * Algorithm 5 calls `v1`; fan triangle `k` is `(vertices[k + 1], apex,
-   * vertices[k + 2])`, Algorithm 5's `(v0, v1, v2)`.
+   * Opaque: 484 bytes that only the functions preparing a SpheraSolidAnglePolygon write; the layout is private and may change between versions.
    */
-  SpheraVec3 vertices[SPHERA_MAX_POLYGON_VERTICES];
-  /**
-   * Edge plane normals `± p_i × p_(i+1)` (not normalised), oriented so that directions
-   * inside the polygon have non-negative dot products with all of them.
-   */
-  SpheraVec3 edge_normals[SPHERA_MAX_POLYGON_VERTICES];
-  /**
-   * For the narrowest polygons (`checks_samples == 2`), the rounding errors of `edge_normals`: the
-   * exact plane of edge `i` is `edge_normals[i] + edge_residuals[i]` to about ε², so
-   * that the inside test carries no rotation of ε per edge (which moved the boundary
-   * of polygons of 1e-9 sr by a few percent of an ulp, systematically: `∫ pdf dω`
-   * was 1.00043 at 8e-10 sr). Zero otherwise.
-   */
-  SpheraVec3 edge_residuals[SPHERA_MAX_POLYGON_VERTICES];
-  /**
-   * `G0 = |det(v0, v1, v2)|` per fan triangle.
-   */
-  float g0[(SPHERA_MAX_POLYGON_VERTICES - 2)];
-  /**
-   * `G1 + G2 = 1 + v0·v1 + v0·v2 + v1·v2` per fan triangle (see [`denominator`]).
-   */
-  float g1_plus_g2[(SPHERA_MAX_POLYGON_VERTICES - 2)];
-  /**
-   * `G2 = 1 + v0·v1 = |v0 + v1|² / 2` per fan triangle.
-   */
-  float g2[(SPHERA_MAX_POLYGON_VERTICES - 2)];
-  /**
-   * `v0 + v2` per fan triangle, accurate even when `v0 ≈ -v2`.
-   */
-  SpheraVec3 outer_sum[(SPHERA_MAX_POLYGON_VERTICES - 2)];
-  /**
-   * Solid angle of the fan triangles before triangle `k`; `+∞` from the first triangle
-   * that cannot be selected on, which
-   * [`select_piece`](crate::sample::select_piece) then skips.
-   */
-  float start[(SPHERA_MAX_POLYGON_VERTICES - 2)];
-  /**
-   * Total solid angle Ω in steradians (0 when empty).
-   */
-  float solid_angle;
-  /**
-   * `1 / Ω` (0 when empty).
-   */
-  float density;
-  /**
-   * +1 when the polygon winds counter-clockwise seen from the shading point, -1
-   * otherwise: the sign that orients the edge and diagonal normals inwards.
-   */
-  float orientation;
-  /**
-   * Number of vertices (0 when empty).
-   */
-  uint32_t vertex_count;
-  /**
-   * Fan triangles that can be selected: up to the last one with non-zero solid angle.
-   */
-  uint32_t selectable_triangles;
-  /**
-   * The careful fallbacks that preparation took, as bits: 1, the compensated pair sums
-   * of a fan triangle; 2, the short-edge rule of the containment test; 0 for the fast
-   * path throughout.
-   */
-  uint32_t careful_paths;
-  /**
-   * 1 when the polygon is so narrow that the slack of `pdf` may be below the rounding
-   * of a sampled direction (an edge longer than 5 Ω), so that `sample` tests its
-   * direction; 2 when it is narrower still (an edge longer than 50 Ω), so that the
-   * inside test also takes the exact edge planes and a compensated dot product; 0
-   * otherwise.
-   */
-  uint32_t checks_samples;
+  uint32_t opaque[121];
 } SpheraSolidAnglePolygon;
 
 /**
@@ -269,36 +174,9 @@ typedef struct SpheraSample {
  */
 typedef struct SpheraTurkPolygon {
   /**
-   * The vertices relative to the shading point. (The edge planes of `pdf` are
-   * computed from them when `pdf` is called, so that `prepare`, which a renderer calls
-   * once per shading point and light, stays as lean as plain area sampling.)
+   * Opaque: 152 bytes that only the functions preparing a SpheraTurkPolygon write; the layout is private and may change between versions.
    */
-  SpheraVec3 vertices[SPHERA_MAX_POLYGON_VERTICES];
-  /**
-   * Running sums of twice the areas of the fan triangles `(v_0, v_{i+1}, v_{i+2})`
-   * (the unused entries repeat the total).
-   */
-  float cdf[(SPHERA_MAX_POLYGON_VERTICES - 2)];
-  /**
-   * Unit normal of the polygon's plane.
-   */
-  SpheraVec3 normal;
-  /**
-   * Signed distance of the plane from the shading point along `normal`.
-   */
-  float plane_offset;
-  float area;
-  float inv_area;
-  uint32_t count;
-  /**
-   * 1 when `sample` tests its directions against the edge planes (polygons whose
-   * extent from the first vertex is below half its distance: there the slack of
-   * `pdf` is a fraction of the polygon's size, below the rounding of a sample next to
-   * an edge), 2 when the extent is also below 1/128 of the distance (there the inside
-   * test takes the exact edge planes and a compensated dot product as well), else 0
-   * (larger polygons, where the slack of 16 ulps covers it).
-   */
-  uint32_t checks_samples;
+  uint32_t opaque[38];
 } SpheraTurkPolygon;
 
 /**
@@ -306,37 +184,9 @@ typedef struct SpheraTurkPolygon {
  */
 typedef struct SpheraArvoPolygon {
   /**
-   * The vertices projected onto the unit sphere.
+   * Opaque: 420 bytes that only the functions preparing a SpheraArvoPolygon write; the layout is private and may change between versions.
    */
-  SpheraVec3 vertices[SPHERA_MAX_POLYGON_VERTICES];
-  /**
-   * `v̂_i × v̂_{i+1}`, oriented so that the polygon lies on their positive side.
-   */
-  SpheraVec3 edge_normals[SPHERA_MAX_POLYGON_VERTICES];
-  /**
-   * Per fan triangle `A = v̂_0, B = v̂_{i+1}, C = v̂_{i+2}`: the unit tangent at `A`
-   * towards `C`, `normalize(C - (C·A) A)`.
-   */
-  SpheraVec3 towards_c[(SPHERA_MAX_POLYGON_VERTICES - 2)];
-  /**
-   * Per fan triangle: its area by Girard's theorem (0 when degenerate).
-   */
-  float areas[(SPHERA_MAX_POLYGON_VERTICES - 2)];
-  /**
-   * Per fan triangle: the interior angle `α` at `A`, `cos α`, `sin α`, and
-   * `sin α · cos c` with `c` the side `AB`.
-   */
-  float alpha[(SPHERA_MAX_POLYGON_VERTICES - 2)];
-  float cos_alpha[(SPHERA_MAX_POLYGON_VERTICES - 2)];
-  float sin_alpha[(SPHERA_MAX_POLYGON_VERTICES - 2)];
-  float sin_alpha_cos_c[(SPHERA_MAX_POLYGON_VERTICES - 2)];
-  /**
-   * Cumulative probabilities of the fan triangles; the last used entry is exactly 1.
-   */
-  float cdf[(SPHERA_MAX_POLYGON_VERTICES - 2)];
-  float solid_angle;
-  float inv_solid_angle;
-  uint32_t count;
+  uint32_t opaque[105];
 } SpheraArvoPolygon;
 
 /**
@@ -366,19 +216,9 @@ typedef struct SpheraFrame {
  */
 typedef struct SpheraHartBilinearPolygon {
   /**
-   * The solid angle sampler that the warp composes with.
+   * Opaque: 504 bytes that only the functions preparing a SpheraHartBilinearPolygon write; the layout is private and may change between versions.
    */
-  struct SpheraSolidAnglePolygon solid_angle;
-  /**
-   * The warp density at the corners `(0, 0), (1, 0), (0, 1), (1, 1)` of the primary
-   * square `(u'_0, u'_1)`, normalised to mean 1 so that their bilinear interpolation
-   * is the density on the square.
-   */
-  float corners[4];
-  /**
-   * `1 / Ω` (0 when empty).
-   */
-  float inv_solid_angle;
+  uint32_t opaque[126];
 } SpheraHartBilinearPolygon;
 
 /**
@@ -390,23 +230,9 @@ typedef struct SpheraHartBilinearPolygon {
  */
 typedef struct SpheraHartBiquadraticPolygon {
   /**
-   * The solid angle sampler that the warp composes with.
+   * Opaque: 536 bytes that only the functions preparing a SpheraHartBiquadraticPolygon write; the layout is private and may change between versions.
    */
-  struct SpheraSolidAnglePolygon solid_angle;
-  /**
-   * Bernstein control points `c[i + 3 j]` (`i` along `u'_0`, `j` along `u'_1`), all
-   * non-negative, normalised to mean 1 so that `Σ c_ij B_i(x) B_j(y)` is the density
-   * on the square.
-   */
-  float controls[9];
-  /**
-   * Control points of the marginal density of `u'_0`: `Σ_j c[i + 3 j] / 3`.
-   */
-  float marginal[3];
-  /**
-   * `1 / Ω` (0 when empty).
-   */
-  float inv_solid_angle;
+  uint32_t opaque[134];
 } SpheraHartBiquadraticPolygon;
 
 /**
@@ -415,154 +241,10 @@ typedef struct SpheraHartBiquadraticPolygon {
  */
 typedef struct SpheraClippedSolidAnglePolygon {
   /**
-   * The solid angle sampler of the clipped polygon.
+   * Opaque: 484 bytes that only the functions preparing a SpheraClippedSolidAnglePolygon write; the layout is private and may change between versions.
    */
-  struct SpheraSolidAnglePolygon clipped;
+  uint32_t opaque[121];
 } SpheraClippedSolidAnglePolygon;
-
-/**
- * A sector between two ellipses, prepared for sampling.
- */
-typedef struct SpheraEllipseSector {
-  /**
-   * The directions `b_0 = s0, b_1, b_2, b_3, b_4 = s1` (unit vectors at equal angles)
-   * that bound the quads of the initial guess: `s0` and `s1`, the sector's clockwise
-   * and counter-clockwise boundaries, are the first and the last (stored once, read
-   * through [`s0`](Self::s0) and [`s1`](Self::s1); the central case sets only these
-   * two).
-   */
-  float quarters[5][2];
-  /**
-   * `u_o · b_j` for `j = 0..=4`; the two ends, `(u_o · s0, u_o · s1)`, come from the
-   * vertex positions ([`outer_dots`](Self::outer_dots); the central case sets only
-   * these two).
-   */
-  float outer_quarter_dots[5];
-  /**
-   * `det(s0, s1)` from the vertex positions.
-   */
-  float det;
-  /**
-   * `1 / det(s0, s1)` of the rounded `s0`, `s1` (the basis for `α`, `β`).
-   */
-  float inverse_basis;
-  /**
-   * The inner ellipse (unused in the central case).
-   */
-  float inner[2];
-  /**
-   * The outer ellipse.
-   */
-  float outer[2];
-  /**
-   * `√|C_i| = √(1 + |u_i|²)`.
-   */
-  float inner_root_det;
-  /**
-   * `√|C_o| = √(1 + |u_o|²)`.
-   */
-  float outer_root_det;
-  /**
-   * `k_o - k_i = -(|u_i|² - |u_o|²) / (k_o + k_i)`, with `k_l = √|C_l|`.
-   */
-  float root_det_difference;
-  /**
-   * `1/k_o - 1/k_i = (|u_i|² - |u_o|²) / ((k_i + k_o) k_i k_o)`.
-   */
-  float inverse_root_det_difference;
-  /**
-   * `σ = ±1`, the sign of `u_i · u_o`: the ellipse of `u` is that of `-u`, and two
-   * nearly coincident ellipses have `u_o ≈ σ u_i` (see [`area_between`](Self::area_between)).
-   */
-  float coincidence_sign;
-  /**
-   * `det(b_j, b_j+1)` of the rounded quarter directions (equal for all four quads).
-   */
-  float quarter_det;
-  /**
-   * `u_i · b_j` for `j = 0..=4`; the two ends, `(u_i · s0, u_i · s1)`, come from the
-   * vertex positions ([`inner_dots`](Self::inner_dots)).
-   */
-  float inner_quarter_dots[5];
-  /**
-   * `λ_i` at `b_j`: `λ b_j` lies on the inner ellipse.
-   */
-  float inner_radius[5];
-  /**
-   * `λ_o` at `b_j`.
-   */
-  float outer_radius[5];
-  /**
-   * `s0 · s1`.
-   */
-  float cosine;
-  /**
-   * How [`area_between`](Self::area_between) computes the area between the ellipses:
-   * [`DIFFERENCE_FORM`], [`DIRECT_FORM`] or [`QUADRATURE_FORM`].
-   */
-  uint32_t area_form;
-  /**
-   * Refinement iterations that the unbiased sampler adds in this sector: 1 where the
-   * sector is ill-conditioned (its outer ellipse's area exceeds 200 times the area
-   * between the ellipses), where rounding makes the first iteration's result less
-   * reliable, or where its ellipses touch or nearly touch at an end
-   * ([`end_shape`](Self::end_shape) below 1); 0 elsewhere.
-   */
-  uint32_t extra_iterations;
-  /**
-   * The ends where the ellipses touch or nearly touch ([`end_shape`](Self::end_shape)
-   * below 1), as bits: 1 for `s0`, 2 for `s1`; 0 elsewhere. Set by preparation, so that
-   * only samples in such an end quad pay for its shape (issue 17, 2).
-   */
-  uint32_t touching_ends;
-} SpheraEllipseSector;
-
-/**
- * A small convex polygon prepared for cosine-weighted sampling by warped solid angle
- * sampling.
- */
-typedef struct SpheraSmallPolygonCosineSampler {
-  struct SpheraSolidAnglePolygon fan;
-  /**
-   * `Ω_k z̄_k` per fan triangle.
-   */
-  float weight[(SPHERA_MAX_POLYGON_VERTICES - 2)];
-  /**
-   * Sum of the weights of the triangles before each triangle.
-   */
-  float weight_start[(SPHERA_MAX_POLYGON_VERTICES - 2)];
-  /**
-   * `Φ = ∫ ω_z dω` by Gauss quadrature (relative error `O(s⁴)`; 0 when empty).
-   */
-  float projected_solid_angle;
-  /**
-   * `Φ̃ = Σ Ω_k z̄_k`, the normalisation of `ℓ` (0 when empty).
-   */
-  float linear_integral;
-  /**
-   * `1 / Φ̃` (0 when empty).
-   */
-  float density;
-  /**
-   * Triangles up to the last one with non-zero weight (0 when empty).
-   */
-  uint32_t selectable_triangles;
-} SpheraSmallPolygonCosineSampler;
-
-/**
- * What a prepared polygon samples from: the sectors of Algorithm 4 or, below
- * [`SMALL_EXTENT`], the small-polygon sampler (issue 15, 3: one storage for the two, which
- * are never used together, saves the small sampler's 548 bytes of every prepared value
- * and of every preparation's writes). Both are plain `f32` and `u32` words, so every bit
- * pattern of the storage is a value of either view: reading the view that preparation
- * did not write (possible only for a caller's corrupted struct) gives wrong numbers,
- * never undefined behaviour. Preparation writes every byte of the union (the small case
- * writes the empty sectors first), so no stale word is left in it.
- */
-typedef union SpheraProjectedPieces {
-  struct SpheraEllipseSector sectors[SPHERA_MAX_POLYGON_VERTICES];
-  struct SpheraSmallPolygonCosineSampler small;
-} SpheraProjectedPieces;
 
 /**
  * A convex polygon prepared for projected solid angle sampling: the first part of
@@ -570,59 +252,19 @@ typedef union SpheraProjectedPieces {
  */
 typedef struct SpheraProjectedSolidAnglePolygon {
   /**
-   * The sectors of Algorithm 4 in counter-clockwise order or, for small polygons, the
-   * warped solid angle sampler: one storage for either.
+   * Opaque: 1656 bytes that only the functions preparing a SpheraProjectedSolidAnglePolygon write; the layout is private and may change between versions.
    */
-  union SpheraProjectedPieces pieces;
-  /**
-   * Projected solid angle (area in the disk) of each sector.
-   */
-  float sector_area[SPHERA_MAX_POLYGON_VERTICES];
-  /**
-   * Projected solid angle of the sectors before each sector.
-   */
-  float sector_start[SPHERA_MAX_POLYGON_VERTICES];
-  /**
-   * Inward edge plane normals of the clipped polygon, for the inside test of
-   * [`pdf`](Self::pdf) (zero in unused slots).
-   */
-  SpheraVec3 edge_normals[SPHERA_MAX_POLYGON_VERTICES];
-  /**
-   * Total projected solid angle `Φ = ∫ cos θ dω` (0 when empty).
-   */
-  float projected_solid_angle;
-  /**
-   * `1 / Φ` (0 when empty).
-   */
-  float density;
-  /**
-   * Sectors up to the last one with non-zero area (0 when empty).
-   */
-  uint32_t selectable_sectors;
-  /**
-   * 1 when the zenith lies inside the polygon (the central case), else 0.
-   */
-  uint32_t central;
-  /**
-   * 1 when the polygon is smaller than [`SMALL_EXTENT`] and `small` samples it.
-   */
-  uint32_t is_small;
-  /**
-   * The slack of `pdf` in the small case (radians; 0 otherwise): see
-   * `SmallPolygonCosineSampler::tolerance`.
-   */
-  float small_tolerance;
+  uint32_t opaque[414];
 } SpheraProjectedSolidAnglePolygon;
 
 /**
  * A convex polygon prepared for Arvo's projected solid angle sampling.
  */
 typedef struct SpheraArvoProjectedPolygon {
-  struct SpheraProjectedSolidAnglePolygon sectors;
   /**
-   * The angle of each sector in radians.
+   * Opaque: 1688 bytes that only the functions preparing a SpheraArvoProjectedPolygon write; the layout is private and may change between versions.
    */
-  float sector_angle[SPHERA_MAX_POLYGON_VERTICES];
+  uint32_t opaque[422];
 } SpheraArvoProjectedPolygon;
 
 /**
@@ -632,14 +274,9 @@ typedef struct SpheraArvoProjectedPolygon {
  */
 typedef struct SpheraGgxBrdf {
   /**
-   * `α = roughness²`, from the smallest `α` (`MIN_ALPHA`, `SPHERA_GGX_MIN_ALPHA` in
-   * C) to 1.
+   * Opaque: 16 bytes that only the functions preparing a SpheraGgxBrdf write; the layout is private and may change between versions.
    */
-  float alpha;
-  /**
-   * Schlick's `F0` per channel, in `[0, 1]`.
-   */
-  SpheraVec3 f0;
+  uint32_t opaque[4];
 } SpheraGgxBrdf;
 
 /**
@@ -647,26 +284,9 @@ typedef struct SpheraGgxBrdf {
  */
 typedef struct SpheraLtc {
   /**
-   * Rows of `M⁻¹`: `(M⁻¹ω)_k = inverse_rows[k] · ω`. The transformed space keeps the
-   * normal as its z axis.
+   * Opaque: 84 bytes that only the functions preparing a SpheraLtc write; the layout is private and may change between versions.
    */
-  SpheraVec3 inverse_rows[3];
-  /**
-   * Columns of `M`: `Mω' = Σ_k matrix_columns[k] ω'_k`.
-   */
-  SpheraVec3 matrix_columns[3];
-  /**
-   * `det M⁻¹ > 0`.
-   */
-  float inverse_determinant;
-  /**
-   * `∫ f cos θ dω` of the fitted BRDF with `F = 1`.
-   */
-  float albedo;
-  /**
-   * `∫ f (1 − ω_o·h)⁵ cos θ dω` of the fitted BRDF with `F = 1`.
-   */
-  float fresnel;
+  uint32_t opaque[21];
 } SpheraLtc;
 
 /**
@@ -674,17 +294,10 @@ typedef struct SpheraLtc {
  * transformed by `M⁻¹`, mapped back by `M` (Peters 2021, Sec. 5).
  */
 typedef struct SpheraLtcPolygon {
-  struct SpheraLtc ltc;
   /**
-   * The transformed polygon `M⁻¹P`, clipped to its horizon.
+   * Opaque: 1744 bytes that only the functions preparing a SpheraLtcPolygon write; the layout is private and may change between versions.
    */
-  struct SpheraProjectedSolidAnglePolygon transformed;
-  /**
-   * How far (radians, in the cosine's space) outside the transformed polygon `pdf`
-   * continues the density: the smaller of `ROUND_TRIP_TOLERANCE` and
-   * `TOLERANCE_PER_WIDTH` of the polygon's width (0 when empty).
-   */
-  float tolerance;
+  uint32_t opaque[436];
 } SpheraLtcPolygon;
 
 /**
@@ -692,38 +305,9 @@ typedef struct SpheraLtcPolygon {
  */
 typedef struct SpheraPolygonLight {
   /**
-   * Technique 0: projected solid angle sampling.
+   * Opaque: 3476 bytes that only the functions preparing a SpheraPolygonLight write; the layout is private and may change between versions.
    */
-  struct SpheraProjectedSolidAnglePolygon diffuse;
-  /**
-   * Technique 1: the GGX LTC inside the polygon.
-   */
-  struct SpheraLtcPolygon specular;
-  struct SpheraGgxBrdf brdf;
-  /**
-   * 1 when the material has a GGX layer (`f0` not zero), else 0.
-   */
-  uint32_t has_specular;
-  /**
-   * `ρ / π`.
-   */
-  SpheraVec3 lambert;
-  /**
-   * The view direction, unit, above the horizon.
-   */
-  SpheraVec3 wo;
-  /**
-   * `c_0, c_1` per channel (unoccluded contribution per unit radiance).
-   */
-  SpheraVec3 contributions[2];
-  /**
-   * A [`MisHeuristic`] as a number.
-   */
-  uint32_t heuristic;
-  /**
-   * `v` of (clamped) optimal MIS, in `[0, 1]`.
-   */
-  float visibility;
+  uint32_t opaque[869];
 } SpheraPolygonLight;
 
 /**
@@ -748,7 +332,7 @@ typedef struct SpheraMaterial {
 } SpheraMaterial;
 
 /**
- * A sample of a [`PolygonLight`]: the direction, the density of the technique that
+ * A sample of a `PolygonLight`: the direction, the density of the technique that
  * drew it, and its MIS-weighted contribution per unit radiance, in two parts. The
  * estimate of the reflected radiance from this sample is
  * `L × (V(dir) × visible + unoccluded)`, with `V` the visibility of the light along
@@ -808,7 +392,7 @@ typedef struct SpheraCap {
 
 /**
  * A spherical pivot-transformed distribution (Eq. 8): a base distribution and a
- * pivot. Build it with [`Sptd::uniform`] or [`Sptd::clamped_cosine`], which make the
+ * pivot. Build it with `Sptd::uniform` or `Sptd::clamped_cosine`, which make the
  * pivot valid (non-finite → origin, `|r_p|` clamped below 1).
  */
 typedef struct SpheraSptd {
@@ -835,31 +419,9 @@ typedef struct SpheraSptd {
  */
 typedef struct SpheraSptdInCap {
   /**
-   * The distribution.
+   * Opaque: 104 bytes that only the functions preparing a SpheraSptdInCap write; the layout is private and may change between versions.
    */
-  struct SpheraSptd sptd;
-  /**
-   * The cap `C` (sanitized).
-   */
-  struct SpheraCap cap;
-  /**
-   * Its image `g(C)`.
-   */
-  struct SpheraCap image;
-  /**
-   * `∫_C D = ∫_{g(C)} D_std`.
-   */
-  float integral;
-  /**
-   * For the clamped-cosine base: `(x, y, z)` = the projected ellipse's center offset
-   * `cos θ sin β`, its semi-axes `sin θ cos β` (along `e1`) and `sin θ`.
-   */
-  SpheraVec3 ellipse;
-  /**
-   * Unit tangent of the base axis pointing to the image cap's axis (any unit
-   * tangent when the two axes coincide to rounding: the ellipse is then a circle).
-   */
-  SpheraVec3 e1;
+  uint32_t opaque[26];
 } SpheraSptdInCap;
 
 /**
@@ -883,101 +445,28 @@ typedef struct SpheraGgxPivot {
  */
 typedef struct SpheraSphereLightShading {
   /**
-   * The fitted pivot.
+   * Opaque: 52 bytes that only the functions preparing a SpheraSphereLightShading write; the layout is private and may change between versions.
    */
-  struct SpheraGgxPivot fit;
-  /**
-   * The image `g(H)` of the upper hemisphere's cap.
-   */
-  struct SpheraCap horizon_image;
-  /**
-   * The Schlick-weighted albedo per channel.
-   */
-  SpheraVec3 specular_albedo;
+  uint32_t opaque[13];
 } SpheraSphereLightShading;
-
-/**
- * Two caps prepared for uniform sampling of their intersection.
- */
-typedef struct CapIntersection {
-  /**
-   * The cap whose axis the radial coordinate `s` is measured from (sanitized).
-   */
-  struct SpheraCap radial;
-  /**
-   * The other cap (sanitized).
-   */
-  struct SpheraCap other;
-  /**
-   * `Ω(A ∩ B)` in steradians (0 for the empty intersection).
-   */
-  float solid_angle;
-  /**
-   * Unit tangent at `a` towards `b` (any tangent when the axes coincide).
-   */
-  SpheraVec3 e1;
-  /**
-   * `a × e1`.
-   */
-  SpheraVec3 e2;
-  /**
-   * `t_d = 1 − a·b`.
-   */
-  float t_d;
-  /**
-   * The range of `s` that meets `B`: `[s_low, s_high]` within `[0, t_A]`.
-   */
-  float s_low;
-  float s_high;
-  /**
-   * A direction inside both caps (on the arc from `a` towards `b`), towards which a
-   * sample that rounding put just outside is pulled.
-   */
-  SpheraVec3 inner;
-} CapIntersection;
 
 /**
  * Light sampling of a sphere light by the fitted SPTD restricted to its cap
  * (Section 6.1), with the paper's fallback to uniform cap sampling when
- * `Ω(g(C)) < 10⁻³`. Combine it with [`crate::brdf::GgxBrdf::sample`] by MIS; its pdf is
+ * `Ω(g(C)) < 10⁻³`. Combine it with `crate::brdf::GgxBrdf::sample` by MIS; its pdf is
  * per steradian and 0 outside the cap.
  *
  * A cap that crosses the horizon is sampled in `C ∩ H` only (issue 20, 1: SPTDs over
  * sets of caps, Sec. 4): uniformly in the intersection of the images `g(C) ∩ g(H)`
- * ([`CapIntersection`]), mapped back by `g`, with density `J(ω) / Ω(g(C) ∩ g(H))` (and
+ * (`CapIntersection`), mapped back by `g`, with density `J(ω) / Ω(g(C) ∩ g(H))` (and
  * uniformly in `C ∩ H` for the fallback), so that no sample is wasted below the
  * horizon, where the BRDF is 0.
  */
 typedef struct SpheraSphereLightSampler {
   /**
-   * The SPTD in the light's cap (its `cap` is the light's cap), for a cap above the
-   * horizon.
+   * Opaque: 248 bytes that only the functions preparing a SpheraSphereLightSampler write; the layout is private and may change between versions.
    */
-  struct SpheraSptdInCap sptd;
-  /**
-   * For a cap that crosses the horizon: the region sampled uniformly, `g(C) ∩ g(H)`
-   * (`C ∩ H` for the fallback); empty otherwise.
-   */
-  struct CapIntersection clipped_region;
-  /**
-   * For a cap that crosses the horizon: the light's cap `C`.
-   */
-  struct SpheraCap light;
-  /**
-   * For a cap that crosses the horizon and the SPTD: the pivot (zero otherwise).
-   */
-  SpheraVec3 pivot;
-  /**
-   * 1 when the SPTD is used, 0 for uniform sampling (any other value, from a
-   * corrupted struct, counts as 1). A `u32`, not a `bool`: a `bool` left three
-   * padding bytes that a C caller copying the struct reads uninitialised (issue 16, 7;
-   * valgrind flagged the adversarial C test).
-   */
-  uint32_t uses_sptd;
-  /**
-   * 1 when the cap crosses the horizon and `clipped_region` is sampled.
-   */
-  uint32_t clipped;
+  uint32_t opaque[62];
 } SpheraSphereLightSampler;
 
 /**
@@ -1115,7 +604,7 @@ typedef struct SpheraSg {
  * The intensity is `I_v(ω) = diffuse_power ∘ diffuse(ω) + specular_power ∘
  * specular(ω)` where each SG is *normalised* (amplitude `1/A(λ_v)`), i.e. the paper's
  * `c_v = Σ Φ R / A(λ_v)` is `power / A(λ_v)` per RGB channel. An empty cluster (no
- * power, or sums that are not finite) is [`Vsgl::EMPTY`]-like: both powers zero.
+ * power, or sums that are not finite) is `Vsgl::EMPTY`-like: both powers zero.
  */
 typedef struct SpheraVsgl {
   /**

@@ -25,5 +25,178 @@ pub fn generate() -> String {
         .unwrap_or_else(|error| panic!("cbindgen failed on {}: {error}", root.display()));
     let mut bytes = Vec::new();
     bindings.write(&mut bytes);
-    String::from_utf8(bytes).expect("cbindgen writes UTF-8")
+    for_c_users(&String::from_utf8(bytes).expect("cbindgen writes UTF-8"))
+}
+
+/// A prepared value of the C ABI that the header shows as opaque storage: its C name,
+/// size and alignment (from the Rust type, so the two cannot disagree).
+struct Opaque {
+    name: &'static str,
+    size: usize,
+    align: usize,
+}
+
+fn opaque<T>(name: &'static str) -> Opaque {
+    Opaque {
+        name,
+        size: std::mem::size_of::<T>(),
+        align: std::mem::align_of::<T>(),
+    }
+}
+
+/// The prepared values: the caller owns their storage (on the stack, in an array) but
+/// fills them only through the functions that prepare them (issue 19, 3). The header
+/// shows each as `uint32_t opaque[n]` of the Rust type's size: every prepared value is
+/// made of 4-byte words (`f32`, `u32`) with 4-byte alignment (asserted here), so the C
+/// type has the same size and alignment, and `tools/tests/c_abi.rs` compares both as C
+/// compiles them. Data that callers read or build (vectors, samples, caps, SGs, VPLs,
+/// texels and the VSGL accumulator whose sums are a texel, materials, frames) keep their
+/// fields.
+fn opaque_types() -> Vec<Opaque> {
+    use sphera::brdf::{GgxBrdf, Ltc};
+    use sphera::polygon::baselines::{
+        ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
+    };
+    use sphera::polygon::light::PolygonLight;
+    use sphera::polygon::{
+        ClippedSolidAnglePolygon, LtcPolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
+    };
+    use sphera::sphere::light::{SphereLightSampler, SphereShadingSptd};
+    use sphera::sphere::sptd::SptdInCap;
+    vec![
+        opaque::<SolidAnglePolygon>("SpheraSolidAnglePolygon"),
+        opaque::<TurkPolygon>("SpheraTurkPolygon"),
+        opaque::<ArvoPolygon>("SpheraArvoPolygon"),
+        opaque::<HartBilinearPolygon>("SpheraHartBilinearPolygon"),
+        opaque::<HartBiquadraticPolygon>("SpheraHartBiquadraticPolygon"),
+        opaque::<ClippedSolidAnglePolygon>("SpheraClippedSolidAnglePolygon"),
+        opaque::<ProjectedSolidAnglePolygon>("SpheraProjectedSolidAnglePolygon"),
+        opaque::<ArvoProjectedPolygon>("SpheraArvoProjectedPolygon"),
+        opaque::<GgxBrdf>("SpheraGgxBrdf"),
+        opaque::<Ltc>("SpheraLtc"),
+        opaque::<LtcPolygon>("SpheraLtcPolygon"),
+        opaque::<PolygonLight>("SpheraPolygonLight"),
+        opaque::<SptdInCap>("SpheraSptdInCap"),
+        opaque::<SphereShadingSptd>("SpheraSphereLightShading"),
+        opaque::<SphereLightSampler>("SpheraSphereLightSampler"),
+    ]
+}
+
+/// Types that only opaque values contain: their definitions leave the header.
+const INTERNAL_TYPES: [&str; 4] = [
+    "SpheraEllipseSector",
+    "SpheraSmallPolygonCosineSampler",
+    "SpheraProjectedPieces",
+    "SpheraCapIntersection",
+];
+
+/// The header as C users read it: prepared values as opaque storage, the types only
+/// they contain removed, and rustdoc's links (`[`x`](path)`, `[`x`]`) as plain code.
+fn for_c_users(header: &str) -> String {
+    let lines: Vec<&str> = header.lines().collect();
+    let mut out: Vec<String> = Vec::with_capacity(lines.len());
+    let opaque = opaque_types();
+    let mut i = 0;
+    while i < lines.len() {
+        let line = lines[i];
+        let typedef_name = ["typedef struct ", "typedef union "]
+            .iter()
+            .find_map(|prefix| line.strip_prefix(prefix))
+            .and_then(|rest| rest.strip_suffix(" {"));
+        let Some(name) = typedef_name else {
+            out.push(line.to_string());
+            i += 1;
+            continue;
+        };
+        let end = (i..lines.len())
+            .find(|&j| lines[j] == format!("}} {name};"))
+            .unwrap_or_else(|| panic!("no end of {name} in the generated header"));
+        if INTERNAL_TYPES.contains(&name) {
+            // The definition and the doc comment right above it leave; so does the blank
+            // line after it.
+            if out.last().is_some_and(|l| l == " */") {
+                while let Some(l) = out.pop() {
+                    if l == "/**" {
+                        break;
+                    }
+                }
+            }
+            i = end + 1;
+            if lines.get(i) == Some(&"") {
+                i += 1;
+            }
+            continue;
+        }
+        if let Some(o) = opaque.iter().find(|o| o.name == name) {
+            assert!(
+                o.align == 4 && o.size % 4 == 0,
+                "{name}: opaque storage needs 4-byte words and alignment ({} B, align {})",
+                o.size,
+                o.align
+            );
+            out.push(line.to_string());
+            out.push("  /**".to_string());
+            out.push(format!(
+                "   * Opaque: {} bytes that only the functions preparing a {name} write; the layout is private and may change between versions.",
+                o.size
+            ));
+            out.push("   */".to_string());
+            out.push(format!("  uint32_t opaque[{}];", o.size / 4));
+            out.push(lines[end].to_string());
+            i = end + 1;
+            continue;
+        }
+        out.extend(lines[i..=end].iter().map(|l| l.to_string()));
+        i = end + 1;
+    }
+    for o in &opaque {
+        assert!(
+            header.contains(&format!("typedef struct {} {{", o.name)),
+            "{} is not in the generated header",
+            o.name
+        );
+    }
+    let mut text = out.join("\n");
+    text.push('\n');
+    plain_links(&text)
+}
+
+/// Rustdoc's intra-doc links as plain text: `[`x`](target)` and `[x](target)` become
+/// `` `x` `` and `x`, `[`x`]` becomes `` `x` ``; markdown links to web pages (`http`)
+/// stay.
+fn plain_links(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(open) = rest.find('[') {
+        out.push_str(&rest[..open]);
+        let after = &rest[open + 1..];
+        let Some(close) = after.find(']') else {
+            out.push_str(&rest[open..]);
+            rest = "";
+            break;
+        };
+        let label = &after[..close];
+        let tail = &after[close + 1..];
+        let is_code = label.starts_with('`') && label.ends_with('`') && label.len() >= 2;
+        if label.contains('\n') || label.is_empty() {
+            out.push('[');
+            rest = after;
+        } else if let Some(target) = tail.strip_prefix('(').and_then(|t| t.split_once(')')) {
+            if target.0.starts_with("http") || target.0.contains(' ') {
+                out.push('[');
+                rest = after;
+            } else {
+                out.push_str(label);
+                rest = target.1;
+            }
+        } else if is_code {
+            out.push_str(label);
+            rest = tail;
+        } else {
+            out.push('[');
+            rest = after;
+        }
+    }
+    out.push_str(rest);
+    out
 }
