@@ -43,11 +43,11 @@ fn every_name_in_the_header_is_prefixed() {
             let before = &line[..line.find('(').unwrap()];
             if let Some(name) = before
                 .split(|c: char| !(c.is_alphanumeric() || c == '_'))
-                .last()
+                .next_back()
+                && !name.is_empty()
+                && !before.trim_start().starts_with('#')
             {
-                if !name.is_empty() && !before.trim_start().starts_with("#") {
-                    names.push(name.to_string());
-                }
+                names.push(name.to_string());
             }
         }
     }
