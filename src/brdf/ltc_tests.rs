@@ -4,25 +4,6 @@
 use super::*;
 use crate::testing::*;
 
-/// A few LTCs in the view frame `[a, b, c, d, albedo, fresnel]`: the cosine, a mildly
-/// anisotropic one, a sharp one leaning away from the view (as GGX at grazing angles),
-/// and a very sharp one.
-const ENTRIES: [[f32; 6]; 4] = [
-    [1.0, 0.0, 1.0, 0.0, 1.0, 0.0],
-    [1.6, 0.3, 1.4, -0.2, 0.9, 0.1],
-    [8.0, 2.0, 5.0, 1.5, 0.7, 0.05],
-    [300.0, -40.0, 250.0, 0.0, 0.95, 0.02],
-];
-
-fn ltcs() -> Vec<Ltc> {
-    let mut out = Vec::new();
-    for (k, entry) in ENTRIES.iter().enumerate() {
-        let phi = 0.7 * k as f32;
-        out.push(Ltc::from_view_frame(*entry, phi.cos(), phi.sin()).expect("valid"));
-    }
-    out
-}
-
 #[test]
 fn density_integrates_to_one_over_the_sphere() {
     // Midpoint rule in (z, φ): dω = dz dφ. The sharp LTCs need a fine grid near their

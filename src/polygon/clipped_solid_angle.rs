@@ -12,7 +12,8 @@
 //! ever has `z < 0`.
 
 use crate::polygon::clip_to_upper_hemisphere;
-use crate::polygon::solid_angle::{SolidAnglePolygon, rescale};
+use crate::polygon::rescale;
+use crate::polygon::solid_angle::SolidAnglePolygon;
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 
 /// A convex polygon clipped to the upper hemisphere and prepared for solid angle

@@ -27,8 +27,8 @@ use super::ellipse::{
     DEGENERATE, dot2, ellipse_area, ellipse_from_normal, is_degenerate, is_inner, unit_direction,
 };
 use super::ellipse_sector::{AreaPrecision, EllipseSector};
+use super::rescale;
 use super::small_projected::{SLIVER_EXTENT2, SMALL_EXTENT, SmallPolygonCosineSampler};
-use super::solid_angle::rescale;
 use super::sorting_networks::sort_bitonic;
 use crate::math::{
     LANES, copy_sign, cross_precise4, difference_of_products4, lane_starts, load4, store4,

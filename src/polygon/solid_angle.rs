@@ -21,6 +21,7 @@
 //! a shading point in the polygon's plane, vertices 1e5 away, `u = 0` and `u = 1 - ulp`,
 //! both windings, duplicate vertices (as clipping can produce), 3 to 8 vertices.
 
+use super::rescale_factor;
 use crate::Sample;
 use crate::math::{
     LANES, atan2_upper_half_plane, determinant_is_exactly_zero,
@@ -128,47 +129,6 @@ impl Default for SolidAnglePolygon {
     fn default() -> Self {
         Self::EMPTY
     }
-}
-
-/// Rescales positions by a power of two so that the largest coordinate lies in
-/// `[1, 2)`. Returns `None` when all coordinates are zero or any is not finite.
-///
-/// Bit trick: for a normal `f32` `m` with biased exponent `E` (bits 23..=30), `2^(127-E)`
-/// has biased exponent `254 - E`, so `f32::from_bits((254 - E) << 23)` is exactly
-/// `2^-(E-127)` and `m` times it lies in `[1, 2)`. Multiplying by a power of two is exact
-/// while the result stays normal, so the polygon's shape is unchanged. For subnormal `m`
-/// (`E = 0`) the factor is `2^127`, still exact; `E` is at most 254 for finite values
-/// and the factor's exponent is kept at least 1 (a normal number).
-pub(crate) fn rescale(vertices: &[Vec3], out: &mut [Vec3]) -> Option<()> {
-    let factor = rescale_factor(vertices)?;
-    for (o, v) in out.iter_mut().zip(vertices) {
-        *o = *v * factor;
-    }
-    Some(())
-}
-
-/// The power of two by which [`rescale`] multiplies, or `None` when all coordinates are
-/// zero or any is not finite.
-#[inline(always)]
-pub(crate) fn rescale_factor(vertices: &[Vec3]) -> Option<f32> {
-    // Bit trick: with the sign bit cleared, IEEE-754 bit patterns order as unsigned
-    // integers in the order of the magnitudes they encode, and +inf (0x7f80_0000) and
-    // every NaN (above it) have the largest patterns. One integer maximum over the
-    // cleared patterns therefore gives the largest magnitude and, in the same pass,
-    // whether any coordinate is not finite (no early exit, no separate finiteness test).
-    let mut largest_bits = 0u32;
-    for v in vertices {
-        for c in v.to_array() {
-            largest_bits = largest_bits.max(c.to_bits() & 0x7fff_ffff);
-        }
-    }
-    if largest_bits == 0 || largest_bits >= 0x7f80_0000 {
-        return None;
-    }
-    let biased_exponent = largest_bits >> 23;
-    Some(f32::from_bits(
-        254u32.saturating_sub(biased_exponent).max(1) << 23,
-    ))
 }
 
 /// The Householder reflection `H = I - 2 h hᵀ` that maps the unit vector `apex` onto
