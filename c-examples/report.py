@@ -97,7 +97,7 @@ KNOWN_FAILURES = {
     ("hard", "arvo"): "Arvo 1995 is unbiased in exact arithmetic, but in f32 Girard's "
                       "formula (alpha + beta + gamma - pi) cancels for the 1e-7 sr distant "
                       "light: its solid angle, hence its pdf, is off by tens of percent "
-                      "(README: accuracy per decade of solid angle).",
+                      "(docs/polygon-lights.md: accuracy per decade of solid angle).",
     ("hard", "arvo_projected"): "Arvo's projected sampling in f32 puts most draws for the "
                                 "1e-7 sr distant light outside it; since issue 16 such "
                                 "draws are no sample (the baseline no longer claims a "

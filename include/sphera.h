@@ -874,7 +874,7 @@ bool sphera_arvo_polygon_prepare(struct SpheraArvoPolygon *out,
  * when Arvo's construction in f32 puts the direction outside the polygon. A baseline:
  * **unreliable for polygons below about 1e-2 rad across**, where such draws are many
  * (measured on quads at distance 1: 0.25% of the draws at 2e-2 rad across, 7.6% at
- * 2e-3, 20% at 2e-4) and its f32 solid angle is inaccurate (README). `dir` is always a
+ * 2e-3, 20% at 2e-4) and its f32 solid angle is inaccurate (docs/polygon-lights.md). `dir` is always a
  * finite unit vector.
  *
  * # Safety
@@ -1914,7 +1914,7 @@ bool sphera_ggx_pivot_lookup(struct SpheraGgxPivot *out, struct SpheraVec3 wo, f
 
 /**
  * Prepares real-time GGX shading of sphere lights (BIASED: the fitted SPTD
- * approximates GGX; errors are tabulated in the README) for the view `wo`, roughness
+ * approximates GGX; errors are tabulated in docs/sphere-lights.md) for the view `wo`, roughness
  * `r = √α` and Fresnel `f0` (each channel clamped to [0, 1], NaN as 0). Returns
  * `false` (writing a shading that returns zero) when `wo` is not finite, zero, or at
  * or below the horizon; does nothing for a null `out`.
@@ -2216,7 +2216,7 @@ struct SpheraSg sphera_sg_specular_lobe_unnormalized(struct SpheraVec3 normal,
 /**
  * The Beckmann specular lobe of Eq. 2 without `R_s`: the paper's `λ_h = 2/α²` holds
  * for Beckmann as for GGX, so this is `sphera_sg_specular_lobe` with the same `α`
- * (Beckmann's roughness); the lobes differ in their error (README's SG error table).
+ * (Beckmann's roughness); the lobes differ in their error (docs/sg-error.md).
  */
 struct SpheraSg sphera_sg_beckmann_lobe(struct SpheraVec3 normal,
                                         struct SpheraVec3 toward_incoming,

@@ -334,7 +334,7 @@ pub unsafe extern "C" fn sphera_arvo_polygon_prepare(
 /// when Arvo's construction in f32 puts the direction outside the polygon. A baseline:
 /// **unreliable for polygons below about 1e-2 rad across**, where such draws are many
 /// (measured on quads at distance 1: 0.25% of the draws at 2e-2 rad across, 7.6% at
-/// 2e-3, 20% at 2e-4) and its f32 solid angle is inaccurate (README). `dir` is always a
+/// 2e-3, 20% at 2e-4) and its f32 solid angle is inaccurate (docs/polygon-lights.md). `dir` is always a
 /// finite unit vector.
 ///
 /// # Safety

@@ -138,7 +138,7 @@ pub extern "C" fn sphera_sg_specular_lobe_unnormalized(
 
 /// The Beckmann specular lobe of Eq. 2 without `R_s`: the paper's `λ_h = 2/α²` holds
 /// for Beckmann as for GGX, so this is `sphera_sg_specular_lobe` with the same `α`
-/// (Beckmann's roughness); the lobes differ in their error (README's SG error table).
+/// (Beckmann's roughness); the lobes differ in their error (docs/sg-error.md).
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_sg_beckmann_lobe(
     normal: SpheraVec3,

@@ -205,7 +205,7 @@ pub unsafe extern "C" fn sphera_ggx_pivot_lookup(
 }
 
 /// Prepares real-time GGX shading of sphere lights (BIASED: the fitted SPTD
-/// approximates GGX; errors are tabulated in the README) for the view `wo`, roughness
+/// approximates GGX; errors are tabulated in docs/sphere-lights.md) for the view `wo`, roughness
 /// `r = √α` and Fresnel `f0` (each channel clamped to [0, 1], NaN as 0). Returns
 /// `false` (writing a shading that returns zero) when `wo` is not finite, zero, or at
 /// or below the horizon; does nothing for a null `out`.

@@ -103,7 +103,7 @@ pub fn difference_of_products(a: f32, b: f32, c: f32, d: f32) -> f32 {
 /// and when the difference is below 2⁻¹⁰⁰ (where the products' rounding may be
 /// subnormal), the careful form runs. A wider switch (`|ab| + |cd| <= 2 |ab - cd|`, 1.5ε)
 /// saved 6% more of the solid angle prepare but raised the largest error of Ω at 1e-9 sr
-/// in README's table from 4.7e-7 to 5.3e-7; this one leaves every maximum there as it was.
+/// in the accuracy table of docs/polygon-lights.md from 4.7e-7 to 5.3e-7; this one leaves every maximum there as it was.
 #[inline(always)]
 pub fn difference_of_products_unless_cancelling(a: f32, b: f32, c: f32, d: f32) -> f32 {
     let (p1, p2) = (a * b, c * d);

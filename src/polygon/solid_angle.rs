@@ -614,7 +614,7 @@ impl SolidAnglePolygon {
             // vertices at most 90° apart) at most 1.2ε, against the compensated sums' ε/2.
             // The bound was chosen by measurement: with `|s|² >= 1` (120°) the largest
             // error of Ω at 1 sr in the report's accuracy table grew from 6.4e-7 to
-            // 7.8e-7; with 90° every row stays as README.md states it but for 1e-8 sr
+            // 7.8e-7; with 90° every row stays as docs/polygon-lights.md states it but for 1e-8 sr
             // (max 5.2e-7 against 4.9e-7). Only for pairs farther apart (up to nearly
             // antipodal, where the plain sum loses its relative precision: a shading
             // point close to a large polygon) do the compensated sums run.

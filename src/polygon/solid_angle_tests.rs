@@ -409,8 +409,8 @@ fn accuracy_per_decade_of_solid_angle() {
         let max = *errors.last().unwrap();
         let fraction = outside as f64 / total as f64;
         std::println!("1e{decade:<4} {median:14.2e} {max:12.2e} {fraction:16.2e}");
-        // What README.md states for this test (issue 16, 9: it asserted 1e-5 and 1e-4
-        // while README claimed 1e-7): medians 7e-8 to 1.1e-7, maxima 6e-7 to 4e-6. The
+        // What docs/polygon-lights.md states for this test (issue 16, 9: it asserted 1e-5 and 1e-4
+        // while the README claimed 1e-7): medians 7e-8 to 1.1e-7, maxima 6e-7 to 4e-6. The
         // maxima exceed the report table's 7e-7 because these triangles are seen from as
         // close as 0.5 units with random normals, some nearly edge-on, where Ω is
         // ill-conditioned in the rounding of the unit vertex directions.
