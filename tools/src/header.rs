@@ -44,18 +44,17 @@ pub fn package_version() -> String {
     let text = std::fs::read_to_string(&path)
         .unwrap_or_else(|error| panic!("cannot read {}: {error}", path.display()));
     let mut in_package = false;
-    for line in text.lines() {
-        let line = line.trim();
+    for line in text.lines().map(str::trim) {
         if line.starts_with('[') {
             in_package = line == "[package]";
-        } else if in_package {
-            if let Some(value) = line
-                .strip_prefix("version")
-                .map(str::trim_start)
-                .and_then(|rest| rest.strip_prefix('='))
-            {
-                return value.trim().trim_matches('"').to_string();
-            }
+            continue;
+        }
+        let value = line
+            .strip_prefix("version")
+            .map(str::trim_start)
+            .and_then(|rest| rest.strip_prefix('='));
+        if let (true, Some(value)) = (in_package, value) {
+            return value.trim().trim_matches('"').to_string();
         }
     }
     panic!("{} has no version in [package]", path.display());
