@@ -17,8 +17,11 @@
 # static library; sphera::sphera stays the static library. It exports the sphera_*
 # functions only.
 # DESTDIR=/staging puts the files under /staging$PREFIX (for packagers); the files
-# still name $PREFIX. The static library needs only libm besides itself (the core is
-# no_std: no threads, no dynamic loading, no allocator); both files say so.
+# still name $PREFIX. The static library leaves only memcpy, memset, memcmp, bcmp and
+# abort to the C library (the core is no_std: no threads, no dynamic loading, no
+# allocator, and its maths comes from the libm crate inside it), so no -lpthread or
+# -ldl; the pkg-config and CMake files add -lm as the header's link line does, which
+# keeps the link line valid should a target's build ever call the system libm.
 # Environment: CARGO (default cargo), CARGO_TARGET_DIR (default target/install: its
 # own directory, so that the library is built alone, without the tools' `std` feature).
 set -euo pipefail

@@ -1244,6 +1244,21 @@ static void run_all(void) {
   vsgl_suite();
   EXPECT(sphera_version() != NULL && sphera_version()[0] != '\0');
   (void)sphera_has_hardware_fma();
+  /* The version check over special numbers: the header's major version, and its minor
+   * version (before 1.0) or one up to it (from 1.0 on), only. */
+  {
+    const uint32_t numbers[6] = {0u, 1u, 2u, 0x7fffffffu, 0x80000000u, UINT32_MAX};
+    int a, b;
+    for (a = 0; a < 6; a++)
+      for (b = 0; b < 6; b++) {
+        calls++;
+        EXPECT(sphera_check_version(numbers[a], numbers[b]) ==
+               (numbers[a] == SPHERA_VERSION_MAJOR &&
+                (SPHERA_VERSION_MAJOR == 0 ? numbers[b] == SPHERA_VERSION_MINOR
+                                           : numbers[b] <= SPHERA_VERSION_MINOR)));
+      }
+    EXPECT(sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR));
+  }
 }
 
 int main(void) {
