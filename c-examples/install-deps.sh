@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
 # Installs what the example tracer needs and a fresh Debian or Ubuntu machine lacks:
-# Intel Embree 3 (libembree-dev) and libpng (libpng-dev). Does nothing when both are
-# there. Called by README's commands and by .ci/run; the Makefile installs nothing.
+# Intel Embree 3 (libembree-dev) and libpng (libpng-dev); and what examples/check-install.sh
+# needs to build the examples against an installed sphera: cmake and pkg-config. Does
+# nothing when all four are there. Called by README's commands and by .ci/run; the
+# Makefile installs nothing.
 set -euo pipefail
 
 missing=()
 [ -f /usr/include/embree3/rtcore.h ] || missing+=(libembree-dev)
 [ -f /usr/include/png.h ] || missing+=(libpng-dev)
+command -v cmake >/dev/null 2>&1 || missing+=(cmake)
+command -v pkg-config >/dev/null 2>&1 || missing+=(pkg-config)
 [ ${#missing[@]} -eq 0 ] && exit 0
 
 echo "install-deps: installing ${missing[*]}" >&2

@@ -380,21 +380,24 @@ static void check_polygon(const Polygon *p, uint32_t count, int full) {
       if (s.pdf > 0.0f) expect_density(sphera_ltc_polygon_pdf(&value, s.dir));
     }
   }
-  /* The polygon light, every heuristic (and an unknown one). */
+  /* The polygon light, every heuristic (one with a NaN visibility, and two unknown
+   * ones, which fail). */
   {
-    uint32_t heuristic;
-    for (heuristic = 0; heuristic <= 5; heuristic++) {
+    const uint32_t heuristics[8] = {0, 1, 2, 3, 4, SPHERA_MIS_CLAMPED_OPTIMAL, 5, UINT32_MAX};
+    int h;
+    for (h = 0; h < 8; h++) {
+      uint32_t heuristic = heuristics[h];
       SpheraPolygonLight light;
       SpheraVec3 unshadowed;
       int ok, k;
       uint32_t technique;
-      float visibility = heuristic == 5 ? NAN : 0.5f;
+      float visibility = h == 5 ? NAN : 0.5f;
       memset(&light, 0xff, sizeof light);
       ok = sphera_polygon_light_prepare(&light, p->v, count, vec3(0.3f, 0.1f, 0.9f),
                                         &material_for_polygons, heuristic, visibility);
       calls++;
       expect_words_not_nan(&light, sizeof light);
-      if (invalid) EXPECT(!ok);
+      if (invalid || heuristic > SPHERA_MIS_OPTIMAL) EXPECT(!ok);
       unshadowed = sphera_polygon_light_unshadowed(&light);
       EXPECT(finite3(unshadowed) && unshadowed.x >= 0.0f && unshadowed.y >= 0.0f &&
              unshadowed.z >= 0.0f);
@@ -873,7 +876,7 @@ static void sptd_suite(void) {
           float e = sphera_sptd_eval(pivots[k], bases[b], axis, directions[d]);
           calls++;
           expect_density(e);
-          if (!finite3(directions[d])) EXPECT(e == 0.0f);
+          if (!finite3(directions[d]) || b >= 2) EXPECT(e == 0.0f);
         }
         for (d = 0; d < pair_count(0); d++) {
           float u0, u1;
@@ -882,6 +885,7 @@ static void sptd_suite(void) {
           s = sphera_sptd_sample(pivots[k], bases[b], axis, u0, u1);
           calls++;
           expect_sample(s);
+          if (b >= 2) EXPECT(is_no_sample(s)); /* an unknown base draws nothing */
           if (s.pdf > 0.0f) {
             float e = sphera_sptd_eval(pivots[k], bases[b], axis, s.dir);
             calls++;
@@ -897,9 +901,11 @@ static void sptd_suite(void) {
           calls += 2;
           EXPECT(isfinite(whole) && whole >= 0.0f && whole <= 1.00001f);
           EXPECT(isfinite(both) && both >= 0.0f && both <= 1.00001f);
+          if (b >= 2) EXPECT(whole == 0.0f && both == 0.0f);
           memset(&in_cap, 0xff, sizeof in_cap);
           ok = sphera_sptd_in_cap_prepare(&in_cap, pivots[k], bases[b], axis, hard_caps[c]);
           calls++;
+          if (b >= 2) EXPECT(!ok);
           if (j == 0) check_sptd_in_cap(&in_cap, ok);
         }
       }
@@ -1238,6 +1244,21 @@ static void run_all(void) {
   vsgl_suite();
   EXPECT(sphera_version() != NULL && sphera_version()[0] != '\0');
   (void)sphera_has_hardware_fma();
+  /* The version check over special numbers: the header's major version, and its minor
+   * version (before 1.0) or one up to it (from 1.0 on), only. */
+  {
+    const uint32_t numbers[6] = {0u, 1u, 2u, 0x7fffffffu, 0x80000000u, UINT32_MAX};
+    int a, b;
+    for (a = 0; a < 6; a++)
+      for (b = 0; b < 6; b++) {
+        calls++;
+        EXPECT(sphera_check_version(numbers[a], numbers[b]) ==
+               (numbers[a] == SPHERA_VERSION_MAJOR &&
+                (SPHERA_VERSION_MAJOR == 0 ? numbers[b] == SPHERA_VERSION_MINOR
+                                           : numbers[b] <= SPHERA_VERSION_MINOR)));
+      }
+    EXPECT(sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR));
+  }
 }
 
 int main(void) {

@@ -97,13 +97,34 @@ int main(void) {
     odd.roughness = NAN;
     odd.diffuse = vec3(NAN, -1.0f, 5.0f);
     odd.f0 = vec3(INFINITY, NAN, 0.5f);
-    /* bad material values are clamped, bad heuristics and v default */
-    CHECK(sphera_polygon_light_prepare(&light, QUAD, 4, wo, &odd, 99u, NAN));
+    /* bad material values are clamped and a NaN v defaults to 1/2 */
+    CHECK(sphera_polygon_light_prepare(&light, QUAD, 4, wo, &odd, SPHERA_MIS_CLAMPED_OPTIMAL, NAN));
     for (i = 0; i < 100; i++) {
       SpheraLightSample s = sphera_polygon_light_sample(&light, (uint32_t)(i % 3), uniform(), NAN);
       CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf) && vec3_is_finite(s.visible) &&
             vec3_is_finite(s.unoccluded));
       if (i % 3 == 2) CHECK(s.pdf == 0.0f);
+    }
+    /* An unknown heuristic is an error, not a silent default: prepare fails, and the
+     * light it writes (over whatever was there) gives no samples. */
+    {
+      const uint32_t unknown[3] = {SPHERA_MIS_OPTIMAL + 1u, 99u, UINT32_MAX};
+      int k;
+      for (k = 0; k < 3; k++) {
+        SpheraVec3 u;
+        memset(&light, 0xff, sizeof light);
+        CHECK(!sphera_polygon_light_prepare(&light, QUAD, 4, wo, &material, unknown[k], 0.5f));
+        u = sphera_polygon_light_unshadowed(&light);
+        CHECK(u.x == 0.0f && u.y == 0.0f && u.z == 0.0f);
+        for (i = 0; i < 100; i++) {
+          SpheraLightSample s = sphera_polygon_light_sample(&light, (uint32_t)(i % 2), uniform(), uniform());
+          CHECK(s.pdf == 0.0f && s.visible.x == 0.0f && s.unoccluded.x == 0.0f &&
+                vec3_is_finite(s.dir));
+        }
+      }
+      /* The same call with a known heuristic succeeds (the failure above is the
+       * heuristic's). */
+      CHECK(sphera_polygon_light_prepare(&light, QUAD, 4, wo, &material, SPHERA_MIS_OPTIMAL, 0.5f));
     }
     memcpy(nan_quad, QUAD, sizeof QUAD);
     nan_quad[1].z = NAN;

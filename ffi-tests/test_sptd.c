@@ -1,5 +1,7 @@
 /* C ABI tests of SPTDs and sphere lights over GGX (sphera_sptd_*, sphera_ggx_pivot_lookup,
  * sphera_sphere_light_*, sphera_phase_pivot_in_cap_prepare). */
+#include <string.h>
+
 #include "check.h"
 
 static const double PI_D = 3.14159265358979323846;
@@ -48,6 +50,38 @@ static void check_sptd_in_cap(void) {
             1.0, 1e-5);
   CHECK_REL(sphera_sptd_integral_over_cap_intersection(pivot, SPHERA_SPTD_CLAMPED_COSINE, z, cap, cap),
             sphera_sptd_integral_over_cap(pivot, SPHERA_SPTD_CLAMPED_COSINE, z, cap), 1e-4);
+}
+
+/* An unknown base number is an error, not a silent uniform base: density 0, no sample,
+ * integrals 0 and a failed prepare, where the uniform base (checked alongside with the
+ * same arguments) gives positive values. */
+static void check_unknown_base(void) {
+  const uint32_t unknown[3] = {SPHERA_SPTD_CLAMPED_COSINE + 1u, 7u, UINT32_MAX};
+  SpheraVec3 pivot = vec3(0.3f, 0.0f, 0.6f);
+  SpheraVec3 z = vec3(0.0f, 0.0f, 1.0f);
+  SpheraVec3 dir = vec3(0.0f, 0.6f, 0.8f);
+  SpheraCap cap = sphera_cap_from_sphere(vec3(1.0f, 0.5f, 3.0f), 1.0f);
+  SpheraCap other = sphera_cap_from_axis_cos(z, 0.0f);
+  SpheraSptdInCap prepared;
+  SpheraSample s;
+  int k;
+  CHECK(sphera_sptd_eval(pivot, SPHERA_SPTD_UNIFORM, z, dir) > 0.0f);
+  CHECK(sphera_sptd_sample(pivot, SPHERA_SPTD_UNIFORM, z, 0.3f, 0.7f).pdf > 0.0f);
+  CHECK(sphera_sptd_integral_over_cap(pivot, SPHERA_SPTD_UNIFORM, z, cap) > 0.0f);
+  CHECK(sphera_sptd_integral_over_cap_intersection(pivot, SPHERA_SPTD_UNIFORM, z, cap, other) > 0.0f);
+  for (k = 0; k < 3; k++) {
+    CHECK(sphera_sptd_eval(pivot, unknown[k], z, dir) == 0.0f);
+    s = sphera_sptd_sample(pivot, unknown[k], z, 0.3f, 0.7f);
+    CHECK(s.pdf == 0.0f && s.dir.x == 0.0f && s.dir.y == 0.0f && s.dir.z == 1.0f);
+    CHECK(sphera_sptd_integral_over_cap(pivot, unknown[k], z, cap) == 0.0f);
+    CHECK(sphera_sptd_integral_over_cap_intersection(pivot, unknown[k], z, cap, other) == 0.0f);
+    memset(&prepared, 0xff, sizeof prepared);
+    CHECK(!sphera_sptd_in_cap_prepare(&prepared, pivot, unknown[k], z, cap));
+    CHECK(sphera_sptd_in_cap_integral(&prepared) == 0.0f);
+    CHECK(sphera_sptd_in_cap_sample(&prepared, 0.3f, 0.7f).pdf == 0.0f);
+    CHECK(sphera_sptd_in_cap_pdf(&prepared, dir) == 0.0f);
+  }
+  CHECK(sphera_sptd_in_cap_prepare(&prepared, pivot, SPHERA_SPTD_UNIFORM, z, cap));
 }
 
 static void check_sphere_light(void) {
@@ -184,6 +218,7 @@ static void check_bad_input(void) {
 
 int main(void) {
   check_sptd_in_cap();
+  check_unknown_base();
   check_sphere_light();
   check_phase_in_cap();
   check_bad_input();

@@ -35,6 +35,16 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/*
+ * The version of this header, from the library's Cargo.toml. The library says its own
+ * with sphera_version(); check at start-up that the two agree with
+ * sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR).
+ */
+#define SPHERA_VERSION_MAJOR 0
+#define SPHERA_VERSION_MINOR 1
+#define SPHERA_VERSION_PATCH 0
+#define SPHERA_VERSION_STRING "0.1.0"
+
 /**
  * The most vertices a polygon may have, in the C ABI: the length of the array that
  * `sphera_polygon_clip` works on and the largest `count` that a `prepare` accepts.
@@ -966,6 +976,22 @@ bool sphera_has_hardware_fma(void);
 const char *sphera_version(void);
 
 /**
+ * Whether this library serves a program compiled against the header of version
+ * `major.minor`; call it as
+ * `sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR)` once at start-up
+ * to catch a header and a library from different releases (the `SPHERA_VERSION_*`
+ * macros are the header's version, `sphera_version()` the library's).
+ *
+ * Returns `true` when `major` equals the library's major version and either the
+ * major version is 0 and `minor` equals the library's minor version (before 1.0 every
+ * minor release may change the prepared structs and the functions), or the major
+ * version is 1 or more and `minor` is at most the library's minor version (a later
+ * minor release only adds). The patch number is not compared: patch releases change
+ * neither layouts nor contracts. `false` otherwise.
+ */
+bool sphera_check_version(uint32_t major, uint32_t minor);
+
+/**
  * Prepares the bilinear warp of Hart et al. 2020 for the convex polygon
  * `vertices[0..count]` (positions relative to the shading point, not normalised, either
  * winding): solid angle sampling whose primary square is warped by the bilinear
@@ -1616,12 +1642,15 @@ float sphera_ltc_polygon_integral(const struct SpheraLtcPolygon *polygon);
  * the polygon. `vertices[0..count]` are positions relative to the shading point in the
  * local frame (z = normal), convex, either winding, 3 to `SPHERA_MAX_POLYGON_VERTICES`;
  * `wo` points towards the viewer (normalised here). `heuristic` is one of
- * `SPHERA_MIS_*` (anything else counts as `SPHERA_MIS_CLAMPED_OPTIMAL`); `visibility`
+ * `SPHERA_MIS_*` (any other number is an error: see below); `visibility`
  * is `v` of (clamped) optimal MIS, clamped to [0, 1], NaN meaning 1/2 (Peters' default).
  * Material albedos and F0 are clamped to [0, 1], roughness as in `sphera_ltc_ggx`;
  * `f0 = (0, 0, 0)` means a Lambertian surface without a GGX layer.
  *
- * Returns `false` when `out`, `vertices` or `material` is null, when `count` lies
+ * Returns `false` when `out`, `vertices` or `material` is null, when `heuristic` is
+ * not one of `SPHERA_MIS_BALANCE`, `SPHERA_MIS_POWER`, `SPHERA_MIS_WEIGHTED_BALANCE`,
+ * `SPHERA_MIS_CLAMPED_OPTIMAL` and `SPHERA_MIS_OPTIMAL` (0 to 4; no heuristic is
+ * chosen in its place), when `count` lies
  * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when `wo` is not finite or not above the
  * horizon, and when neither technique can sample the polygon (non-finite or collinear
  * vertices, nothing above the horizon, the shading point in its plane). A technique
@@ -1797,7 +1826,8 @@ struct SpheraCap sphera_pivot_cap(struct SpheraCap cap, struct SpheraVec3 pivot)
 
 /**
  * The SPTD density `D(ω) = D_std(g(ω)) J(ω)` (Eq. 8) at `dir` (normalised); 0 for a
- * zero or non-finite `dir`.
+ * zero or non-finite `dir`, and 0 when `base` is not `SPHERA_SPTD_UNIFORM` or
+ * `SPHERA_SPTD_CLAMPED_COSINE`.
  */
 float sphera_sptd_eval(struct SpheraVec3 pivot,
                        uint32_t base,
@@ -1806,8 +1836,9 @@ float sphera_sptd_eval(struct SpheraVec3 pivot,
 
 /**
  * Draws `g(ω_i)` with `ω_i` from the base over the whole sphere; the pdf is
- * `sphera_sptd_eval` at the returned direction, bit for bit. pdf 0 only where the
- * density underflows.
+ * `sphera_sptd_eval` at the returned direction, bit for bit. pdf 0 (no sample) where
+ * the density underflows, and when `base` is not `SPHERA_SPTD_UNIFORM` or
+ * `SPHERA_SPTD_CLAMPED_COSINE`.
  */
 struct SpheraSample sphera_sptd_sample(struct SpheraVec3 pivot,
                                        uint32_t base,
@@ -1816,7 +1847,8 @@ struct SpheraSample sphera_sptd_sample(struct SpheraVec3 pivot,
                                        float u1);
 
 /**
- * `∫_C D = ∫_{g(C)} D_std` (Eq. 10), in [0, 1], exact.
+ * `∫_C D = ∫_{g(C)} D_std` (Eq. 10), in [0, 1], exact; 0 when `base` is not
+ * `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`.
  */
 float sphera_sptd_integral_over_cap(struct SpheraVec3 pivot,
                                     uint32_t base,
@@ -1824,7 +1856,8 @@ float sphera_sptd_integral_over_cap(struct SpheraVec3 pivot,
                                     struct SpheraCap cap);
 
 /**
- * `∫_{A ∩ B} D = ∫_{g(A) ∩ g(B)} D_std` (Eq. 11), in [0, 1], exact.
+ * `∫_{A ∩ B} D = ∫_{g(A) ∩ g(B)} D_std` (Eq. 11), in [0, 1], exact; 0 when `base` is
+ * not `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`.
  */
 float sphera_sptd_integral_over_cap_intersection(struct SpheraVec3 pivot,
                                                  uint32_t base,
@@ -1835,7 +1868,8 @@ float sphera_sptd_integral_over_cap_intersection(struct SpheraVec3 pivot,
 /**
  * Prepares the SPTD restricted to `cap` and normalised there: samples `g(ω_i)` with
  * `ω_i` from the base inside `g(C)`, density `D(ω)/∫_C D` inside `C`. Returns `false`
- * (and writes a sampler without samples, pdf 0) when `∫_C D` is 0 or its inverse
+ * (and writes a sampler without samples, pdf 0) when `base` is not
+ * `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`, when `∫_C D` is 0 or its inverse
  * overflows, or, for the clamped-cosine base, when `g(C)` crosses
  * the base's horizon (only the integral is available there). Does nothing and returns
  * `false` when `out` is null.

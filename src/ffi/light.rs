@@ -32,12 +32,15 @@ const _: () = {
 /// the polygon. `vertices[0..count]` are positions relative to the shading point in the
 /// local frame (z = normal), convex, either winding, 3 to `SPHERA_MAX_POLYGON_VERTICES`;
 /// `wo` points towards the viewer (normalised here). `heuristic` is one of
-/// `SPHERA_MIS_*` (anything else counts as `SPHERA_MIS_CLAMPED_OPTIMAL`); `visibility`
+/// `SPHERA_MIS_*` (any other number is an error: see below); `visibility`
 /// is `v` of (clamped) optimal MIS, clamped to [0, 1], NaN meaning 1/2 (Peters' default).
 /// Material albedos and F0 are clamped to [0, 1], roughness as in `sphera_ltc_ggx`;
 /// `f0 = (0, 0, 0)` means a Lambertian surface without a GGX layer.
 ///
-/// Returns `false` when `out`, `vertices` or `material` is null, when `count` lies
+/// Returns `false` when `out`, `vertices` or `material` is null, when `heuristic` is
+/// not one of `SPHERA_MIS_BALANCE`, `SPHERA_MIS_POWER`, `SPHERA_MIS_WEIGHTED_BALANCE`,
+/// `SPHERA_MIS_CLAMPED_OPTIMAL` and `SPHERA_MIS_OPTIMAL` (0 to 4; no heuristic is
+/// chosen in its place), when `count` lies
 /// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when `wo` is not finite or not above the
 /// horizon, and when neither technique can sample the polygon (non-finite or collinear
 /// vertices, nothing above the horizon, the shading point in its plane). A technique
@@ -63,11 +66,11 @@ pub unsafe extern "C" fn sphera_polygon_light_prepare(
     if out.is_null() {
         return false;
     }
-    let heuristic = MisHeuristic::from_u32(heuristic).unwrap_or(MisHeuristic::ClampedOptimal);
+    let heuristic = MisHeuristic::from_u32(heuristic);
     // SAFETY: forwarded from the caller.
     let polygon = unsafe { read_polygon(vertices, count) };
-    let prepared = match (polygon, material.is_null()) {
-        (Some((local, n)), false) => {
+    let prepared = match (polygon, material.is_null(), heuristic) {
+        (Some((local, n)), false, Some(heuristic)) => {
             // SAFETY: `material` is non-null and the caller guarantees it is valid.
             let material = unsafe { &*material };
             PolygonLight::new(&local[..n], Vec3::from(wo), material, heuristic, visibility)

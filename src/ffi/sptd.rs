@@ -2,7 +2,8 @@
 //! (Dupuy et al. 2017, Sections 4–6): `sphera_sptd_*` and `sphera_sphere_light_*`.
 //!
 //! An SPTD is passed as its pivot, a base number (`SPHERA_SPTD_UNIFORM` or
-//! `SPHERA_SPTD_CLAMPED_COSINE`; any other number counts as uniform) and the cosine
+//! `SPHERA_SPTD_CLAMPED_COSINE`; any other number is an error, which the functions
+//! report as density 0, no sample, integral 0 or a failed prepare) and the cosine
 //! base's axis (ignored for the uniform base; normalised, a zero or non-finite axis
 //! becomes `(0, 0, 1)`). Pivots with `|r_p| ≥ 1` are clamped to `1 − 2⁻²⁰`, non-finite
 //! ones count as the origin. Caps are sanitized as in `sphera_cap_*`.
@@ -24,15 +25,18 @@ const _: () = {
     assert!(SPHERA_SPTD_CLAMPED_COSINE == SptdBase::ClampedCosine as u32);
 };
 
-fn sptd(pivot: SpheraVec3, base: u32, cosine_axis: SpheraVec3) -> Sptd {
-    match SptdBase::from_u32(base) {
-        Some(SptdBase::ClampedCosine) => Sptd::clamped_cosine(pivot.into(), cosine_axis.into()),
-        _ => Sptd::uniform(pivot.into()),
-    }
+/// The SPTD of the C arguments, or `None` for a base number that is not a
+/// `SPHERA_SPTD_*` constant.
+fn sptd(pivot: SpheraVec3, base: u32, cosine_axis: SpheraVec3) -> Option<Sptd> {
+    Some(match SptdBase::from_u32(base)? {
+        SptdBase::ClampedCosine => Sptd::clamped_cosine(pivot.into(), cosine_axis.into()),
+        SptdBase::Uniform => Sptd::uniform(pivot.into()),
+    })
 }
 
 /// The SPTD density `D(ω) = D_std(g(ω)) J(ω)` (Eq. 8) at `dir` (normalised); 0 for a
-/// zero or non-finite `dir`.
+/// zero or non-finite `dir`, and 0 when `base` is not `SPHERA_SPTD_UNIFORM` or
+/// `SPHERA_SPTD_CLAMPED_COSINE`.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_sptd_eval(
     pivot: SpheraVec3,
@@ -40,12 +44,13 @@ pub extern "C" fn sphera_sptd_eval(
     cosine_axis: SpheraVec3,
     dir: SpheraVec3,
 ) -> f32 {
-    sptd(pivot, base, cosine_axis).eval(dir.into())
+    sptd(pivot, base, cosine_axis).map_or(0.0, |d| d.eval(dir.into()))
 }
 
 /// Draws `g(ω_i)` with `ω_i` from the base over the whole sphere; the pdf is
-/// `sphera_sptd_eval` at the returned direction, bit for bit. pdf 0 only where the
-/// density underflows.
+/// `sphera_sptd_eval` at the returned direction, bit for bit. pdf 0 (no sample) where
+/// the density underflows, and when `base` is not `SPHERA_SPTD_UNIFORM` or
+/// `SPHERA_SPTD_CLAMPED_COSINE`.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_sptd_sample(
     pivot: SpheraVec3,
@@ -54,10 +59,13 @@ pub extern "C" fn sphera_sptd_sample(
     u0: f32,
     u1: f32,
 ) -> SpheraSample {
-    sptd(pivot, base, cosine_axis).sample([u0, u1]).into()
+    sptd(pivot, base, cosine_axis)
+        .map_or(crate::Sample::NONE, |d| d.sample([u0, u1]))
+        .into()
 }
 
-/// `∫_C D = ∫_{g(C)} D_std` (Eq. 10), in [0, 1], exact.
+/// `∫_C D = ∫_{g(C)} D_std` (Eq. 10), in [0, 1], exact; 0 when `base` is not
+/// `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_sptd_integral_over_cap(
     pivot: SpheraVec3,
@@ -65,10 +73,11 @@ pub extern "C" fn sphera_sptd_integral_over_cap(
     cosine_axis: SpheraVec3,
     cap: Cap,
 ) -> f32 {
-    sptd(pivot, base, cosine_axis).integral_over_cap(&cap)
+    sptd(pivot, base, cosine_axis).map_or(0.0, |d| d.integral_over_cap(&cap))
 }
 
-/// `∫_{A ∩ B} D = ∫_{g(A) ∩ g(B)} D_std` (Eq. 11), in [0, 1], exact.
+/// `∫_{A ∩ B} D = ∫_{g(A) ∩ g(B)} D_std` (Eq. 11), in [0, 1], exact; 0 when `base` is
+/// not `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_sptd_integral_over_cap_intersection(
     pivot: SpheraVec3,
@@ -77,12 +86,13 @@ pub extern "C" fn sphera_sptd_integral_over_cap_intersection(
     a: Cap,
     b: Cap,
 ) -> f32 {
-    sptd(pivot, base, cosine_axis).integral_over_cap_intersection(&a, &b)
+    sptd(pivot, base, cosine_axis).map_or(0.0, |d| d.integral_over_cap_intersection(&a, &b))
 }
 
 /// Prepares the SPTD restricted to `cap` and normalised there: samples `g(ω_i)` with
 /// `ω_i` from the base inside `g(C)`, density `D(ω)/∫_C D` inside `C`. Returns `false`
-/// (and writes a sampler without samples, pdf 0) when `∫_C D` is 0 or its inverse
+/// (and writes a sampler without samples, pdf 0) when `base` is not
+/// `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`, when `∫_C D` is 0 or its inverse
 /// overflows, or, for the clamped-cosine base, when `g(C)` crosses
 /// the base's horizon (only the integral is available there). Does nothing and returns
 /// `false` when `out` is null.
@@ -101,7 +111,7 @@ pub unsafe extern "C" fn sphera_sptd_in_cap_prepare(
     if out.is_null() {
         return false;
     }
-    let prepared = SptdInCap::new(&sptd(pivot, base, cosine_axis), &cap);
+    let prepared = sptd(pivot, base, cosine_axis).and_then(|d| SptdInCap::new(&d, &cap));
     // SAFETY: `out` is non-null and the caller guarantees it is writable.
     unsafe { out.write(prepared.unwrap_or(SptdInCap::EMPTY)) };
     prepared.is_some()

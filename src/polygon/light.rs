@@ -233,7 +233,12 @@ impl PolygonLight {
     /// estimator that takes one sample from each technique: the sum of the two samples'
     /// estimates is unbiased. Samples at or below the horizon, and samples of a
     /// technique that could not be prepared, have zero contribution (`pdf` says which).
+    /// A light whose stored heuristic is not a [`MisHeuristic`] (only a corrupted value
+    /// can hold one: [`PolygonLight::new`] takes the enum) gives no sample.
     pub fn sample(&self, technique: u32, u: [f32; 2]) -> LightSample {
+        let Some(heuristic) = MisHeuristic::from_u32(self.heuristic) else {
+            return LightSample::NONE;
+        };
         let sample = match technique {
             0 => self.diffuse.sample(u),
             1 => self.specular.sample(u),
@@ -269,7 +274,7 @@ impl PolygonLight {
         let v = self.visibility;
         // The sample's share of the balance heuristic, f / Σ p as a factor of f.
         let balance = mis::balance_heuristic(&p, j) / p[j];
-        match MisHeuristic::from_u32(self.heuristic).unwrap_or(MisHeuristic::ClampedOptimal) {
+        match heuristic {
             MisHeuristic::Balance => out.visible = f * balance,
             MisHeuristic::Power => out.visible = f * (mis::power_heuristic(&p, j) / p[j]),
             heuristic => {

@@ -261,3 +261,27 @@ fn lambertian_material_matches_projected_sampling() {
         estimate.assert_mean_is(exact, 5.0, 1e-3, &format!("{heuristic:?}"));
     }
 }
+
+/// A light whose stored heuristic is no `MisHeuristic` (a corrupted value; `new` takes
+/// the enum) gives no sample instead of falling back to some heuristic.
+#[test]
+fn an_unknown_stored_heuristic_gives_no_sample() {
+    let material = Material {
+        diffuse: Vec3::splat(0.5),
+        f0: Vec3::splat(0.04),
+        roughness: 0.4,
+    };
+    let polygon = circle_polygon(4, [0.3, 0.2, 1.0], [0.0, 0.3, -1.0], 0.4, false);
+    let wo = Vec3::new(0.3, 0.1, 0.9).normalize();
+    let light =
+        PolygonLight::new(&polygon, wo, &material, MisHeuristic::Optimal, 0.5).expect("valid");
+    assert!(light.sample(0, [0.3, 0.6]).pdf > 0.0);
+    for heuristic in [5, 99, u32::MAX] {
+        let corrupted = PolygonLight { heuristic, ..light };
+        for technique in 0..2 {
+            for u in [[0.3, 0.6], [0.5, 0.5], [0.9, 0.1]] {
+                assert_eq!(corrupted.sample(technique, u), LightSample::NONE);
+            }
+        }
+    }
+}

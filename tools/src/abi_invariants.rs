@@ -1090,7 +1090,13 @@ pub fn ltc_and_light_entry_points(data: &[u8]) {
         })
     };
     assert_words_not_nan(&light, "light");
-    if !(3..=8).contains(&polygon.count) || !all_finite || !is_finite3(wo) || !(wo.z > 0.0) {
+    // Heuristics 5 and 6 are no SPHERA_MIS_* constant: an error.
+    if !(3..=8).contains(&polygon.count)
+        || !all_finite
+        || !is_finite3(wo)
+        || !(wo.z > 0.0)
+        || heuristic > SPHERA_MIS_OPTIMAL
+    {
         assert!(!light_ok, "light accepted invalid input");
     }
     // SAFETY: valid pointer.
@@ -1646,7 +1652,8 @@ pub fn sptd_entry_points(data: &[u8]) {
     for &probe in &probes {
         let d = sphera_sptd_eval(pivot, base, axis, probe);
         assert_density(d, "sptd eval");
-        if !is_finite3(probe) {
+        // Base 2 is no SPHERA_SPTD_* constant: an error, density 0.
+        if !is_finite3(probe) || base == 2 {
             assert_eq!(d, 0.0, "sptd eval of {probe:?}");
         }
     }
@@ -1654,6 +1661,9 @@ pub fn sptd_entry_points(data: &[u8]) {
         let sample = sphera_sptd_sample(pivot, base, axis, u0, u1);
         let what = format!("sptd u = ({u0:e}, {u1:e}) pivot {pivot:?} base {base}");
         assert_sample(sample, &what);
+        if base == 2 {
+            assert_no_sample(sample, &what);
+        }
         if sample.pdf > 0.0 {
             let evaluated = sphera_sptd_eval(pivot, base, axis, sample.dir);
             assert!(
@@ -1676,6 +1686,10 @@ pub fn sptd_entry_points(data: &[u8]) {
         assert!(
             integral.is_finite() && (0.0..=1.0 + 1e-5).contains(&integral),
             "{what}: {integral} (pivot {pivot:?}, base {base}, {a:?}, {b:?})"
+        );
+        assert!(
+            base != 2 || integral == 0.0,
+            "{what}: {integral} for base 2"
         );
     }
 
@@ -1706,6 +1720,7 @@ pub fn sptd_entry_points(data: &[u8]) {
     let (in_cap, ok) = unsafe {
         prepared::<SptdInCap>(|out| sphera_sptd_in_cap_prepare(out, pivot, base, axis, a))
     };
+    assert!(base != 2 || !ok, "sptd in cap prepared with base 2");
     check_sptd_in_cap(&in_cap, ok, &pairs, &probes, "sptd in cap");
     // SAFETY: `out` is writable.
     let (phase, ok) =

@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 use sphera_tools::repository_root;
 
 /// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
-const C_TESTS: [&str; 17] = [
+const C_TESTS: [&str; 18] = [
     "test_polygon_clip",
     "test_projected_polygon",
     "test_solid_angle_polygon",
@@ -28,6 +28,7 @@ const C_TESTS: [&str; 17] = [
     "test_sg",
     "test_adversarial",
     "test_determinism",
+    "test_version",
 ];
 
 /// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
@@ -251,6 +252,12 @@ fn test_sg() {
 #[test]
 fn test_adversarial() {
     run_c_test("test_adversarial");
+}
+
+/// The header's version macros against `sphera_version()`, and `sphera_check_version`.
+#[test]
+fn test_version() {
+    run_c_test("test_version");
 }
 
 /// Runs in the test's working directory (`tools/`), from which the program finds

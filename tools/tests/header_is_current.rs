@@ -72,3 +72,61 @@ fn every_name_in_the_header_is_prefixed() {
         "prepared values are not opaque"
     );
 }
+
+/// The header's `SPHERA_VERSION_*` macros are the version that the library reports
+/// (`sphera_version()`, compiled from Cargo.toml's `version`), number by number.
+#[test]
+fn version_macros_match_the_library() {
+    let header = std::fs::read_to_string(sphera_tools::header::header_path())
+        .expect("read include/sphera.h");
+    let macro_value = |name: &str| -> String {
+        let prefix = format!("#define {name} ");
+        let values: Vec<&str> = header
+            .lines()
+            .filter_map(|line| line.strip_prefix(&prefix))
+            .collect();
+        assert_eq!(values.len(), 1, "{name} is defined {} times", values.len());
+        values[0].trim().to_string()
+    };
+    // SAFETY: `sphera_version` returns a NUL-terminated string in static storage.
+    let library = unsafe { std::ffi::CStr::from_ptr(sphera::ffi::sphera_version()) }
+        .to_str()
+        .expect("UTF-8")
+        .to_string();
+    let version = library.strip_suffix("+fma").unwrap_or(&library);
+    assert_eq!(
+        macro_value("SPHERA_VERSION_STRING"),
+        format!("\"{version}\"")
+    );
+    let numbers: Vec<String> = version.split('.').map(str::to_string).collect();
+    assert_eq!(numbers.len(), 3, "{version}");
+    assert_eq!(macro_value("SPHERA_VERSION_MAJOR"), numbers[0]);
+    assert_eq!(macro_value("SPHERA_VERSION_MINOR"), numbers[1]);
+    assert_eq!(macro_value("SPHERA_VERSION_PATCH"), numbers[2]);
+    assert_eq!(sphera_tools::header::package_version(), version);
+    assert!(sphera::ffi::sphera_check_version(
+        numbers[0].parse().unwrap(),
+        numbers[1].parse().unwrap()
+    ));
+}
+
+/// The generator's macros for a few versions, and its refusal of malformed ones.
+#[test]
+fn version_macros_are_generated_from_the_version() {
+    let macros = sphera_tools::header::version_macros("12.3.45-rc.1");
+    for line in [
+        "#define SPHERA_VERSION_MAJOR 12",
+        "#define SPHERA_VERSION_MINOR 3",
+        "#define SPHERA_VERSION_PATCH 45",
+        "#define SPHERA_VERSION_STRING \"12.3.45-rc.1\"",
+    ] {
+        assert!(
+            macros.lines().any(|l| l == line),
+            "{line} missing:\n{macros}"
+        );
+    }
+    for bad in ["1.2", "1.x.3", "", "1.2.3.4"] {
+        let result = std::panic::catch_unwind(|| sphera_tools::header::version_macros(bad));
+        assert!(result.is_err(), "{bad:?} accepted");
+    }
+}
