@@ -322,12 +322,29 @@ impl GgxBrdf {
 
     /// `D(h) / (2 (ωo,z + R(ωo)))` with `h = normalize(ωo + ωi)` for unit directions
     /// above the horizon: the density of [`sample`](Self::sample).
+    ///
+    /// `D` depends on `h` only through `h_x² + h_y² + α² h_z²`, which for `s = ωo + ωi`
+    /// is `(s_x² + s_y² + α² s_z²) / |s|²`: so `D(h) = α² |s|⁴ / (π (s_x² + s_y² + α²
+    /// s_z²)²)` needs neither the square root nor the division of normalising `s`
+    /// (issue 18, 4). Only where `|s|²` is below 1e-20 (both directions grazing and
+    /// nearly opposite), whose squares could underflow, is `s` normalised first.
     #[inline(always)]
     fn pdf_unit(&self, wo: Vec3, wi: Vec3) -> f32 {
-        let Some(h) = unit(wo + wi) else {
-            return 0.0;
+        let s = wo + wi;
+        let (xy2, z2) = (s.x * s.x + s.y * s.y, s.z * s.z);
+        let length2 = xy2 + z2;
+        let d = if length2 > 1e-20 {
+            let a2 = self.alpha * self.alpha;
+            // 1 / (h_x² + h_y² + α² h_z²) for the unit h along s.
+            let inverse = length2 / (xy2 + a2 * z2);
+            a2 * FRAC_1_PI * (inverse * inverse)
+        } else {
+            match unit(s) {
+                Some(h) => self.d_unit(h),
+                None => return 0.0,
+            }
         };
-        let pdf = self.d_unit(h) / (2.0 * (wo.z + self.r(wo)));
+        let pdf = d / (2.0 * (wo.z + self.r(wo)));
         if pdf.is_finite() { pdf } else { 0.0 }
     }
 
