@@ -299,6 +299,21 @@ impl Cap {
         }
     }
 
+    /// The complement `{ω : ω·axis < cos θ}`, up to its boundary circle (a set of
+    /// measure zero): the cap around `−axis` with `1 ∓ cos` exchanged, so that both stay
+    /// exact (Dupuy et al. 2017, Sec. 4: sets of caps). The empty cap and the whole
+    /// sphere are each other's complement.
+    #[inline]
+    #[must_use]
+    pub fn complement(&self) -> Cap {
+        Cap {
+            axis: -self.axis,
+            one_minus_cos: self.one_plus_cos,
+            one_plus_cos: self.one_minus_cos,
+            sin2: self.sin2,
+        }
+    }
+
     /// The solid angle `2π (1 − cos θ)`, in `[0, 4π]`.
     #[inline]
     pub fn solid_angle(&self) -> f32 {

@@ -7,6 +7,7 @@
 pub mod cap;
 pub mod cap_intersection;
 pub mod cap_intersection_sampling;
+pub mod cap_union_sampling;
 pub mod light;
 pub mod phase;
 pub mod pivot;
@@ -15,6 +16,7 @@ pub mod sptd;
 pub use cap::Cap;
 pub use cap_intersection::{cap_intersection_solid_angle, cap_intersection_solid_angle_oat_sander};
 pub use cap_intersection_sampling::CapIntersection;
+pub use cap_union_sampling::CapUnion;
 pub use light::{GgxPivot, SphereLightSampler, SphereShadingSptd};
 pub use pivot::{pivot_cap, pivot_jacobian, pivot_transform};
 pub use sptd::{Sptd, SptdBase, SptdInCap};

@@ -18,7 +18,7 @@ use sphera::sg::shading::{
 };
 use sphera::sg::{Sg, vmf_sample};
 use sphera::sphere::phase;
-use sphera::sphere::{Cap, CapIntersection, pivot_transform};
+use sphera::sphere::{Cap, CapIntersection, CapUnion, pivot_transform};
 use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, fis_select, luminance};
 use sphera::{Sample, Vec3};
 use sphera_tools::bench::Rng;
@@ -109,6 +109,13 @@ fn main() {
             CapIntersection::new(&across, &horizon).unwrap_or(CapIntersection::EMPTY)
         })
         .collect();
+    // Two lights' caps: their union (issue 20, 1: sets of caps).
+    let unions: Vec<(Cap, Cap, Option<CapUnion>)> = (0..INPUTS)
+        .map(|i| {
+            let (a, b) = (caps[i], caps[(i + 1) % INPUTS]);
+            (a, b, CapUnion::new(&a, &b))
+        })
+        .collect();
     let cap_sample = time_ns(|i| value(caps[i].sample_uniform(us[i])));
     let rows = [
         ("sphere cap: uniform sample", cap_sample),
@@ -135,6 +142,25 @@ fn main() {
         (
             "two-cap intersection: pdf",
             time_ns(|i| lenses[i].pdf(views[i])),
+        ),
+        (
+            "two-cap union (two lights' caps): new + uniform sample",
+            time_ns(|i| {
+                let (a, b, _) = &unions[i];
+                CapUnion::new(a, b).map_or(0.0, |union| value(union.sample_uniform(us[i])))
+            }),
+        ),
+        (
+            "two-cap union: uniform sample",
+            time_ns(|i| {
+                unions[i]
+                    .2
+                    .map_or(0.0, |union| value(union.sample_uniform(us[i])))
+            }),
+        ),
+        (
+            "two-cap union: pdf",
+            time_ns(|i| unions[i].2.map_or(0.0, |union| union.pdf(views[i]))),
         ),
         (
             "pivot transformation of a direction",
