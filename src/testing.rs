@@ -984,6 +984,27 @@ pub fn scaled_quad(size: f32, tilt: f32) -> [Vec3; 4] {
     ]
 }
 
+// ---- LTCs shared by the LTC's tests and the LTC polygon sampler's ---------------------
+
+/// A few LTCs in the view frame `[a, b, c, d, albedo, fresnel]`: the cosine, a mildly
+/// anisotropic one, a sharp one leaning away from the view (as GGX at grazing angles),
+/// and a very sharp one.
+pub const LTC_ENTRIES: [[f32; 6]; 4] = [
+    [1.0, 0.0, 1.0, 0.0, 1.0, 0.0],
+    [1.6, 0.3, 1.4, -0.2, 0.9, 0.1],
+    [8.0, 2.0, 5.0, 1.5, 0.7, 0.05],
+    [300.0, -40.0, 250.0, 0.0, 0.95, 0.02],
+];
+
+pub fn ltcs() -> Vec<crate::brdf::Ltc> {
+    let mut out = Vec::new();
+    for (k, entry) in LTC_ENTRIES.iter().enumerate() {
+        let phi = 0.7 * k as f32;
+        out.push(crate::brdf::Ltc::from_view_frame(*entry, phi.cos(), phi.sin()).expect("valid"));
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1029,25 +1050,4 @@ mod tests {
         assert!(cells.locate([3.0, 0.0, 1.0]).is_none());
         assert!(cells.locate([0.0, 0.0, -1.0]).is_none());
     }
-}
-
-// ---- LTCs shared by the LTC's tests and the LTC polygon sampler's ---------------------
-
-/// A few LTCs in the view frame `[a, b, c, d, albedo, fresnel]`: the cosine, a mildly
-/// anisotropic one, a sharp one leaning away from the view (as GGX at grazing angles),
-/// and a very sharp one.
-pub const LTC_ENTRIES: [[f32; 6]; 4] = [
-    [1.0, 0.0, 1.0, 0.0, 1.0, 0.0],
-    [1.6, 0.3, 1.4, -0.2, 0.9, 0.1],
-    [8.0, 2.0, 5.0, 1.5, 0.7, 0.05],
-    [300.0, -40.0, 250.0, 0.0, 0.95, 0.02],
-];
-
-pub fn ltcs() -> Vec<crate::brdf::Ltc> {
-    let mut out = Vec::new();
-    for (k, entry) in LTC_ENTRIES.iter().enumerate() {
-        let phi = 0.7 * k as f32;
-        out.push(crate::brdf::Ltc::from_view_frame(*entry, phi.cos(), phi.sin()).expect("valid"));
-    }
-    out
 }
