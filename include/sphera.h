@@ -858,6 +858,23 @@ typedef struct SpheraSptdInCap {
    * tangent when the two axes coincide to rounding: the ellipse is then a circle).
    */
   SpheraVec3 e1;
+  /**
+   * For the clamped-cosine base: 1 when `g(C)` does not lie in the hemisphere of `a`
+   * and is sampled over the projection of `g(C) ∩ H_a` (see [`SptdInCap::new`]),
+   * else 0.
+   */
+  uint32_t clipped;
+  /**
+   * For a clipped sampler, depths `h = 1 − x` measured along `e1` from the rim point
+   * `e1` of the unit disk: of the chord where the projected ellipse touches the unit
+   * circle (`1 − cos θ / sin β`; 2 when the circles do not cross), else 0.
+   */
+  float chord_depth;
+  /**
+   * For a clipped sampler, the depth of the ellipse's vertex nearest the rim,
+   * `1 − cos θ sin β − sin θ |cos β|`, else 0.
+   */
+  float tip_depth;
 } SpheraSptdInCap;
 
 /**
@@ -2343,10 +2360,12 @@ float sphera_sptd_integral_over_cap_intersection(struct SpheraVec3 pivot,
 
 /**
  * Prepares the SPTD restricted to `cap` and normalised there: samples `g(ω_i)` with
- * `ω_i` from the base inside `g(C)`, density `D(ω)/∫_C D` inside `C`. Returns `false`
- * (and writes a sampler without samples, pdf 0) when `∫_C D` is 0 or its inverse
- * overflows, or, for the clamped-cosine base, when `g(C)` crosses
- * the base's horizon (only the integral is available there). Does nothing and returns
+ * `ω_i` from the base inside `g(C)`, density `D(ω)/∫_C D` inside `C`. For the
+ * clamped-cosine base this holds for every cap, also when `g(C)` crosses the base's
+ * horizon or is wider than a hemisphere: `ω_i` is drawn from the clamped cosine in
+ * `g(C) ∩ H_a` (exactly, through its orthographic projection), and the pdf is 0 where
+ * `g(ω)` is below the horizon. Returns `false` (and writes a sampler without samples,
+ * pdf 0) only when `∫_C D` is 0 or its inverse overflows. Does nothing and returns
  * `false` when `out` is null.
  *
  * # Safety
@@ -2374,8 +2393,8 @@ struct SpheraSample sphera_sptd_in_cap_sample(const struct SpheraSptdInCap *prep
                                               float u1);
 
 /**
- * The density of `sphera_sptd_in_cap_sample` at `dir`: 0 outside the cap and for a
- * null pointer.
+ * The density of `sphera_sptd_in_cap_sample` at `dir`: 0 outside the cap, where the
+ * clamped-cosine base is 0 at `g(dir)`, and for a null pointer.
  *
  * # Safety
  *

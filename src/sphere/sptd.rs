@@ -28,17 +28,27 @@
 //!   form ([`clamped_cosine_over_cap`]), and over an intersection of caps, the
 //!   boundary integral `∫_R ω dω = ½ ∮_∂R ω × dω` over the arcs of the caps' circles
 //!   that bound `R = A ∩ B ∩ H_a` ([`clamped_cosine_over_caps`]). Sampling inside a cap
-//!   is exact when `g(C)` lies in the hemisphere of `a`: the orthographic projection of
-//!   such a cap onto the plane `⊥ a` is an ellipse, and a point uniform in it lifts to a
-//!   direction with density `ω·a / (π sin²θ cos β)` (Nusselt's analogue). When `g(C)`
-//!   crosses the horizon of `a`, [`SptdInCap`] draws no sample (pdf 0) and its `pdf` is
-//!   0 too, so the two stay consistent; its integral remains exact.
+//!   is exact for every cap with a positive integral, by Nusselt's analogue: the
+//!   orthographic projection `P` onto the plane `⊥ a` maps `H_a` onto the unit disk
+//!   with `dA = (ω·a) dω`, so a point uniform in `P(g(C) ∩ H_a)` (of area `A`) lifts to
+//!   a direction of density `ω·a / A` there, the normalised clamped cosine
+//!   (`A = ∫_{g(C)} max(0, ω·a) dω = π ∫_C D`). When `g(C)` lies in the hemisphere of `a`
+//!   its projection is an ellipse (density `ω·a / (π sin²θ cos β)`). When `g(C)`
+//!   crosses the horizon of `a` (or is wider than a hemisphere), `P(g(C) ∩ H_a)` is
+//!   bounded by an arc of that ellipse and an arc of the unit circle, which it touches
+//!   where the cap's circle meets the horizon: the disk up to the chord through those
+//!   points and the ellipse beyond it when the cap's axis is above the horizon, the
+//!   disk without the ellipse up to the chord when it is below ([`SptdInCap::new`]).
+//!   Its area, a sum of circular and elliptic segments, is the closed form's `E`
+//!   term by term; sampling inverts it along the ellipse's axis by a safeguarded
+//!   Newton iteration (at most 40 steps) and draws the offset across uniformly.
 //!
 //! Hard cases (tested): pivots from the origin (where `g` is the antipodal map) to
 //! `|r_p| = 0.9999` (the fitted GGX table reaches `1 − 3.3e-5`), caps containing the
 //! pivot's direction (images wider than a hemisphere), tiny caps (1e-6 sr), caps
-//! straddling the base's horizon, the whole sphere, the empty cap, caps that coincide
-//! or are complementary.
+//! straddling the base's horizon (images just crossing it, mostly above or below it,
+//! with the axis on it, tiny ones, wider than a hemisphere with or without a hole),
+//! the whole sphere, the empty cap, caps that coincide or are complementary.
 
 use super::cap::Cap;
 use super::cap_intersection::cap_intersection_solid_angle;
@@ -494,9 +504,39 @@ impl SptdInCap {
     };
 
     /// Prepares `sptd` restricted to `cap` (sanitized). `None` when `∫_C D` is 0 or its
-    /// inverse is not finite, or, for the clamped-cosine base, when `g(C)` crosses the
-    /// base's horizon (see the module documentation; use
-    /// [`Sptd::integral_over_cap`] for the integral there).
+    /// inverse is not finite.
+    ///
+    /// For the clamped-cosine base the base directions are drawn in `R = g(C) ∩ H_a`
+    /// through its orthographic projection onto the plane `⊥ a` (the module
+    /// documentation; Eq. 10 and the paper's "importance sampling over sets of
+    /// spherical caps" with the set `g(C) ∩ H_a`). In the frame `e1` (towards the image
+    /// axis `c`), `e2`, `a`, with `cos β = c·a`, `sin β ≥ 0`, the cap's circle
+    /// `ω·c = cos θ` projects to the ellipse of centre `x₀ = cos θ sin β`, semi-axes
+    /// `a_x = sin θ |cos β|` along `e1` and `a_y = sin θ`, inside the unit disk and
+    /// touching the unit circle at `x_c = cos θ / sin β` (where the circle meets the
+    /// horizon, `s² = sin²θ − cos²β > 0`). A vertical line through a point of the disk
+    /// meets the sphere at `±z`, and the plane `ω·c = cos θ` separates the two iff the
+    /// point is inside the ellipse; with `x sin β + z cos β ≥ cos θ`:
+    ///
+    /// - `cos β ≥ 0`: `P(R) = (E ∩ {x ≤ x_c}) ∪ (D ∩ {x ≥ x_c})`,
+    /// - `cos β < 0`: `P(R) = (D ∖ E) ∩ {x ≥ x_c}`,
+    ///
+    /// (without crossing, a cap wider than a hemisphere gives `D` or `D ∖ E`: the chord
+    /// at `x = −1`). In depths `h = 1 − x` from the rim point `e1` (small caps near the
+    /// horizon keep their precision), with `S(w) = α − sin α cos α`, `cos α = 1 − w`,
+    /// the unit disk's segment of depth `w` (`segment`), the area at depths `≤ h` is
+    ///
+    /// `A(h) = S(min(h, h_c)) + a_x a_y [S(η(max(h, h_c))) − S(η(h_c))]` (`cos β ≥ 0`),
+    /// `A(h) = S(min(h, h_c)) − a_x a_y S(η(min(h, h_c)))` (`cos β < 0`),
+    ///
+    /// `η` the normalised depth in the ellipse. At the far end it equals the closed form
+    /// of [`clamped_cosine_over_cap`] term by term (`x_c = cos ψ₀`, `(x_c − x₀)/a_x =
+    /// cos φ₀`). Sampling solves `A(h) = u₀ A` (`dA/dh` is twice the strip's half-width,
+    /// Newton's method in a bisection bracket), draws the offset `y` uniformly across
+    /// the strip at `h` (one interval, or two symmetric ones around the ellipse), and
+    /// lifts the point: `z = √(h (2 − h) − y²)`. The density of `ω = g(ω_i)` is then
+    /// `(ω_i·a / A) J(ω)`, i.e. `D(ω) / ∫_C D` with `∫_C D = A/π` (stored in
+    /// `integral`), 0 where `g(ω)` is below the horizon.
     pub fn new(sptd: &Sptd, cap: &Cap) -> Option<SptdInCap> {
         let cap = cap.sanitized();
         let image = pivot_cap(&cap, sptd.pivot);
@@ -669,11 +709,22 @@ impl SptdInCap {
         let end = self.clipped_end();
         let (mut low, mut high) = (0.0f32, end);
         // Near either end of the range the area grows like a circular segment's,
-        // `∝ h^{3/2}`: a start of `end · (target/total)^{2/3}`.
+        // `∝ h^{3/2}` (and so does the rest towards the far end): a start from the
+        // approximate inverse of a disk's normalised segment, `q ↦ (2q)^{2/3}` on the
+        // near half and its mirror image on the far half (13% off at worst).
         let fraction = (target / total).max(0.0).min(1.0);
-        let mut h = end * libm::cbrtf(fraction * fraction);
+        let near = fraction.min(1.0 - fraction);
+        let twice = 2.0 * near;
+        let w = libm::cbrtf(twice * twice);
+        let mut h = 0.5 * end * if fraction <= 0.5 { w } else { 2.0 - w };
         for _ in 0..MAX_ITERATIONS {
             let f = self.clipped_cumulative(h) - target;
+            // Within a few ulps of the target, the rounding of `A` (absolute near the
+            // far end, where the slope vanishes) would only steer Newton's steps at
+            // random.
+            if f.abs() <= 5e-7 * target {
+                return h.max(0.0).min(end);
+            }
             if f > 0.0 {
                 high = h;
             } else {
@@ -734,6 +785,15 @@ impl SptdInCap {
         let u1 = 0.5 * (1.0 + libm::copysignf(v, y));
         let u = [clamp_inverted(u0), clamp_inverted(u1)];
         (u[0].is_finite() && u[1].is_finite()).then_some(u)
+    }
+
+    /// Whether this clamped-cosine sampler draws over the projection of `g(C) ∩ H_a`
+    /// (`g(C)` crosses the base's horizon or is wider than a hemisphere) rather than
+    /// over the ellipse of an image inside the hemisphere; `false` for the uniform base.
+    #[inline]
+    #[must_use]
+    pub fn is_clipped(&self) -> bool {
+        self.sptd.base == SptdBase::ClampedCosine && self.clipped != 0
     }
 
     /// Draws a direction inside `C` with density [`SptdInCap::pdf`].

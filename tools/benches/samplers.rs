@@ -17,7 +17,7 @@ use sphera::sg::shading::{
 };
 use sphera::sg::{Sg, vmf_sample};
 use sphera::sphere::phase;
-use sphera::sphere::{Cap, CapIntersection, pivot_transform};
+use sphera::sphere::{Cap, CapIntersection, Sptd, SptdInCap, pivot_cap, pivot_transform};
 use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, fis_select, luminance};
 use sphera::{Sample, Vec3};
 use sphera_tools::bench::Rng;
@@ -108,6 +108,36 @@ fn main() {
             CapIntersection::new(&across, &horizon).unwrap_or(CapIntersection::EMPTY)
         })
         .collect();
+    // Clamped-cosine SPTDs (axis z) in caps whose image crosses the base's horizon
+    // (issue 20, 2: the clipped sampler), and for comparison in caps whose image lies
+    // above it (the ellipse); the cap is the image's preimage under the pivot.
+    let cosine_sptds: Vec<Sptd> = pivots
+        .iter()
+        .map(|&p| Sptd::clamped_cosine(p, Vec3::Z))
+        .collect();
+    let sptd_caps = |z_scale: f32, one_minus_cos: f32| -> Vec<Cap> {
+        caps.iter()
+            .zip(&cosine_sptds)
+            .map(|(cap, sptd)| {
+                let axis = Vec3::new(cap.axis.x, cap.axis.y, z_scale * cap.axis.z.abs() + 0.1);
+                let t = one_minus_cos.min(cap.one_minus_cos * 10.0).max(1e-3);
+                pivot_cap(
+                    &Cap::from_axis_one_minus_cos(axis.normalize(), t),
+                    sptd.pivot,
+                )
+            })
+            .collect()
+    };
+    let across_caps = sptd_caps(0.2, 0.6);
+    let above_caps = sptd_caps(20.0, 0.05);
+    let prepare = |caps: &[Cap]| -> Vec<SptdInCap> {
+        caps.iter()
+            .zip(&cosine_sptds)
+            .map(|(cap, sptd)| SptdInCap::new(sptd, cap).unwrap_or(SptdInCap::EMPTY))
+            .collect()
+    };
+    let across_sptds = prepare(&across_caps);
+    let above_sptds = prepare(&above_caps);
     let cap_sample = time_ns(|i| value(caps[i].sample_uniform(us[i])));
     let rows = [
         ("sphere cap: uniform sample", cap_sample),
@@ -134,6 +164,25 @@ fn main() {
         (
             "two-cap intersection: pdf",
             time_ns(|i| lenses[i].pdf(views[i])),
+        ),
+        (
+            "clamped-cosine SPTD in a cap, image across the horizon: new + sample",
+            time_ns(|i| {
+                SptdInCap::new(&cosine_sptds[i], &across_caps[i])
+                    .map_or(0.0, |s| value(s.sample(us[i])))
+            }),
+        ),
+        (
+            "clamped-cosine SPTD in a cap, image across the horizon: sample",
+            time_ns(|i| value(across_sptds[i].sample(us[i]))),
+        ),
+        (
+            "clamped-cosine SPTD in a cap, image across the horizon: pdf",
+            time_ns(|i| across_sptds[i].pdf(views[i])),
+        ),
+        (
+            "clamped-cosine SPTD in a cap, image above the horizon: sample",
+            time_ns(|i| value(above_sptds[i].sample(us[i]))),
         ),
         (
             "pivot transformation of a direction",
@@ -215,8 +264,17 @@ fn main() {
             }),
         ),
     ];
+    let clipped = across_sptds.iter().filter(|s| s.is_clipped()).count();
+    let ellipses = above_sptds
+        .iter()
+        .filter(|s| s.integral > 0.0 && !s.is_clipped())
+        .count();
     println!("## ns per call of the BRDF, LTC, sphere-cap, phase-function and SG operations\n");
-    println!("{INPUTS} random inputs, median of {REPEATS} runs; ratio to uniform cap sampling.\n");
+    println!("{INPUTS} random inputs, median of {REPEATS} runs; ratio to uniform cap sampling.");
+    println!(
+        "Clamped-cosine SPTDs: {clipped} of {INPUTS} images across the horizon are clipped, \
+         {ellipses} of {INPUTS} above it are ellipses.\n"
+    );
     println!("| operation | ns | ratio |");
     println!("|---|---:|---:|");
     for (name, ns) in rows {
