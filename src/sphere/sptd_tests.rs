@@ -1,8 +1,8 @@
 use super::*;
 use crate::testing::{
-    CHI_SQUARE_ALPHA, D3, Estimate, Rng, cap_intersection_f64, cap_point, chi_square, cross, d3,
-    dot, frame_f64, inside_f64, integrate_over_cap_f64, norm, normalize, pivot_image_f64,
-    pivot_transform_f64, uniform_direction_f64,
+    CHI_SQUARE_ALPHA, D3, Estimate, Rng, cap_point, chi_square, cross, d3, dot, frame_f64,
+    inside_f64, integrate_over_cap_f64, norm, normalize, pivot_image_f64, pivot_transform_f64,
+    uniform_direction_f64,
 };
 
 /// The SPTD density of Eq. 8 in f64, literally: the base density at the preimage times
