@@ -128,7 +128,22 @@ fn main() {
             })
             .collect()
     };
-    let across_caps = sptd_caps(0.2, 0.6);
+    // Images across the horizon: `1 − cos θ` in [0.01, 1.5], `cos β = k sin θ` with
+    // `k` in (−0.9, 0.9) (axis above or below the horizon, wider than a hemisphere too).
+    // (A generator of their own: the inputs of the other rows stay as they were.)
+    let mut cap_rng = Rng(20);
+    let across_caps: Vec<Cap> = cosine_sptds
+        .iter()
+        .map(|sptd| {
+            let t = 0.01 + 1.49 * cap_rng.uniform();
+            let k = 1.8 * cap_rng.uniform() - 0.9;
+            let cos_beta = k * (t * (2.0 - t)).sqrt();
+            let sin_beta = (1.0 - cos_beta * cos_beta).sqrt();
+            let phi = std::f32::consts::TAU * cap_rng.uniform();
+            let axis = Vec3::new(sin_beta * phi.cos(), sin_beta * phi.sin(), cos_beta);
+            pivot_cap(&Cap::from_axis_one_minus_cos(axis, t), sptd.pivot)
+        })
+        .collect();
     let above_caps = sptd_caps(20.0, 0.05);
     let prepare = |caps: &[Cap]| -> Vec<SptdInCap> {
         caps.iter()
