@@ -429,9 +429,9 @@ typedef struct SpheraSptd {
  */
 typedef struct SpheraSptdInCap {
   /**
-   * Opaque: 104 bytes that only the functions preparing a SpheraSptdInCap write; the layout is private and may change between versions.
+   * Opaque: 116 bytes that only the functions preparing a SpheraSptdInCap write; the layout is private and may change between versions.
    */
-  uint32_t opaque[26];
+  uint32_t opaque[29];
 } SpheraSptdInCap;
 
 /**
@@ -474,9 +474,9 @@ typedef struct SpheraSphereLightShading {
  */
 typedef struct SpheraSphereLightSampler {
   /**
-   * Opaque: 248 bytes that only the functions preparing a SpheraSphereLightSampler write; the layout is private and may change between versions.
+   * Opaque: 260 bytes that only the functions preparing a SpheraSphereLightSampler write; the layout is private and may change between versions.
    */
-  uint32_t opaque[62];
+  uint32_t opaque[65];
 } SpheraSphereLightSampler;
 
 /**
@@ -1867,11 +1867,13 @@ float sphera_sptd_integral_over_cap_intersection(struct SpheraVec3 pivot,
 
 /**
  * Prepares the SPTD restricted to `cap` and normalised there: samples `g(ω_i)` with
- * `ω_i` from the base inside `g(C)`, density `D(ω)/∫_C D` inside `C`. Returns `false`
- * (and writes a sampler without samples, pdf 0) when `base` is not
- * `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`, when `∫_C D` is 0 or its inverse
- * overflows, or, for the clamped-cosine base, when `g(C)` crosses
- * the base's horizon (only the integral is available there). Does nothing and returns
+ * `ω_i` from the base inside `g(C)`, density `D(ω)/∫_C D` inside `C`. For the
+ * clamped-cosine base this holds for every cap, also when `g(C)` crosses the base's
+ * horizon or is wider than a hemisphere: `ω_i` is drawn from the clamped cosine in
+ * `g(C) ∩ H_a` (exactly, through its orthographic projection), and the pdf is 0 where
+ * `g(ω)` is below the horizon. Returns `false` (and writes a sampler without samples,
+ * pdf 0) when `base` is not `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`, and
+ * when `∫_C D` is 0 or its inverse overflows. Does nothing and returns
  * `false` when `out` is null.
  *
  * # Safety
@@ -1899,8 +1901,8 @@ struct SpheraSample sphera_sptd_in_cap_sample(const struct SpheraSptdInCap *prep
                                               float u1);
 
 /**
- * The density of `sphera_sptd_in_cap_sample` at `dir`: 0 outside the cap and for a
- * null pointer.
+ * The density of `sphera_sptd_in_cap_sample` at `dir`: 0 outside the cap, where the
+ * clamped-cosine base is 0 at `g(dir)`, and for a null pointer.
  *
  * # Safety
  *

@@ -90,11 +90,13 @@ pub extern "C" fn sphera_sptd_integral_over_cap_intersection(
 }
 
 /// Prepares the SPTD restricted to `cap` and normalised there: samples `g(ω_i)` with
-/// `ω_i` from the base inside `g(C)`, density `D(ω)/∫_C D` inside `C`. Returns `false`
-/// (and writes a sampler without samples, pdf 0) when `base` is not
-/// `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`, when `∫_C D` is 0 or its inverse
-/// overflows, or, for the clamped-cosine base, when `g(C)` crosses
-/// the base's horizon (only the integral is available there). Does nothing and returns
+/// `ω_i` from the base inside `g(C)`, density `D(ω)/∫_C D` inside `C`. For the
+/// clamped-cosine base this holds for every cap, also when `g(C)` crosses the base's
+/// horizon or is wider than a hemisphere: `ω_i` is drawn from the clamped cosine in
+/// `g(C) ∩ H_a` (exactly, through its orthographic projection), and the pdf is 0 where
+/// `g(ω)` is below the horizon. Returns `false` (and writes a sampler without samples,
+/// pdf 0) when `base` is not `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`, and
+/// when `∫_C D` is 0 or its inverse overflows. Does nothing and returns
 /// `false` when `out` is null.
 ///
 /// # Safety
@@ -135,8 +137,8 @@ pub unsafe extern "C" fn sphera_sptd_in_cap_sample(
     unsafe { with_ref(prepared, crate::Sample::NONE, |p| p.sample([u0, u1])) }.into()
 }
 
-/// The density of `sphera_sptd_in_cap_sample` at `dir`: 0 outside the cap and for a
-/// null pointer.
+/// The density of `sphera_sptd_in_cap_sample` at `dir`: 0 outside the cap, where the
+/// clamped-cosine base is 0 at `g(dir)`, and for a null pointer.
 ///
 /// # Safety
 ///

@@ -28,24 +28,35 @@
 //!   form ([`clamped_cosine_over_cap`]), and over an intersection of caps, the
 //!   boundary integral `∫_R ω dω = ½ ∮_∂R ω × dω` over the arcs of the caps' circles
 //!   that bound `R = A ∩ B ∩ H_a` ([`clamped_cosine_over_caps`]). Sampling inside a cap
-//!   is exact when `g(C)` lies in the hemisphere of `a`: the orthographic projection of
-//!   such a cap onto the plane `⊥ a` is an ellipse, and a point uniform in it lifts to a
-//!   direction with density `ω·a / (π sin²θ cos β)` (Nusselt's analogue). When `g(C)`
-//!   crosses the horizon of `a`, [`SptdInCap`] draws no sample (pdf 0) and its `pdf` is
-//!   0 too, so the two stay consistent; its integral remains exact.
+//!   is exact for every cap with a positive integral, by Nusselt's analogue: the
+//!   orthographic projection `P` onto the plane `⊥ a` maps `H_a` onto the unit disk
+//!   with `dA = (ω·a) dω`, so a point uniform in `P(g(C) ∩ H_a)` (of area `A`) lifts to
+//!   a direction of density `ω·a / A` there, the normalised clamped cosine
+//!   (`A = ∫_{g(C)} max(0, ω·a) dω = π ∫_C D`). When `g(C)` lies in the hemisphere of `a`
+//!   its projection is an ellipse (density `ω·a / (π sin²θ cos β)`). When `g(C)`
+//!   crosses the horizon of `a` (or is wider than a hemisphere), `P(g(C) ∩ H_a)` is
+//!   bounded by an arc of that ellipse and an arc of the unit circle, which it touches
+//!   where the cap's circle meets the horizon: the disk up to the chord through those
+//!   points and the ellipse beyond it when the cap's axis is above the horizon, the
+//!   disk without the ellipse up to the chord when it is below ([`SptdInCap::new`]).
+//!   Its area, a sum of circular and elliptic segments, is the closed form's `E`
+//!   term by term; sampling inverts it along the ellipse's axis by a safeguarded
+//!   Newton iteration (at most 40 steps) and draws the offset across uniformly.
 //!
 //! Hard cases (tested): pivots from the origin (where `g` is the antipodal map) to
 //! `|r_p| = 0.9999` (the fitted GGX table reaches `1 − 3.3e-5`), caps containing the
 //! pivot's direction (images wider than a hemisphere), tiny caps (1e-6 sr), caps
-//! straddling the base's horizon, the whole sphere, the empty cap, caps that coincide
-//! or are complementary.
+//! straddling the base's horizon (images just crossing it, mostly above or below it,
+//! with the axis on it, tiny ones, wider than a hemisphere with or without a hole),
+//! the whole sphere, the empty cap, caps that coincide or are complementary.
 
 use super::cap::Cap;
 use super::cap_intersection::cap_intersection_solid_angle;
+use super::cap_intersection_sampling::MAX_ITERATIONS;
 use super::pivot::{pivot_cap, transform, valid_pivot};
 use crate::Sample;
 use crate::math::orthonormal_basis;
-use crate::sample::{ONE_MINUS_ULP, clamp_random};
+use crate::sample::{ONE_MINUS_ULP, clamp_inverted, clamp_random};
 use core::f32::consts::{FRAC_1_PI, PI, TAU};
 use glam::Vec3;
 
@@ -235,6 +246,31 @@ pub fn clamped_cosine_over_cap(cap: &Cap, a: Vec3) -> f32 {
     let psi0 = libm::atan2f(s, cos);
     let e = cap.sin2 * cos_beta * (PI - phi0) - s * cos + psi0;
     e.max(0.0).min(PI)
+}
+
+/// The area of the part of the unit disk within depth `w ∈ [0, 2]` of a point `e` of
+/// its rim, `{p : p·e ≥ 1 − w}` (a circular segment; π/2 at `w = 1`, π at 2):
+/// `α − sin α cos α` with `cos α = 1 − w`, i.e. `(γ − sin γ)/2` for `γ = 2α`, with
+/// `tan(α/2) = √w / √(2 − w)`. Its derivative is the chord, `2 √(w (2 − w))`. The
+/// smaller of the segment and its complement is evaluated (`2 − w` is exact for
+/// `w ∈ [1, 2]`), by the Taylor series of `γ − sin γ` for `γ < 1.2`, where the
+/// difference would cancel (small segments have area `(4√2/3) w^{3/2}`).
+fn segment(w: f32) -> f32 {
+    let w = w.max(0.0).min(2.0);
+    let small = w.min(2.0 - w);
+    let gamma = 4.0 * libm::atan2f(libm::sqrtf(small), libm::sqrtf(2.0 - small));
+    let g2 = gamma * gamma;
+    let half = if gamma < 1.2 {
+        // γ − sin γ = γ³/3! − γ⁵/5! + … in Horner form; the first term left out is
+        // below 1e-8 of the sum.
+        let series = 1.0
+            - g2 / 20.0
+                * (1.0 - g2 / 42.0 * (1.0 - g2 / 72.0 * (1.0 - g2 / 110.0 * (1.0 - g2 / 156.0))));
+        gamma * g2 * (1.0 / 12.0) * series
+    } else {
+        0.5 * (gamma - libm::sinf(gamma))
+    };
+    if w > 1.0 { PI - half } else { half }
 }
 
 /// A circular interval `[start, start + length]` of azimuths, `length ∈ [0, 2π]`.
@@ -434,6 +470,17 @@ pub struct SptdInCap {
     /// Unit tangent of the base axis pointing to the image cap's axis (any unit
     /// tangent when the two axes coincide to rounding: the ellipse is then a circle).
     e1: Vec3,
+    /// For the clamped-cosine base: 1 when `g(C)` does not lie in the hemisphere of `a`
+    /// and is sampled over the projection of `g(C) ∩ H_a` (see [`SptdInCap::new`]),
+    /// else 0.
+    clipped: u32,
+    /// For a clipped sampler, depths `h = 1 − x` measured along `e1` from the rim point
+    /// `e1` of the unit disk: of the chord where the projected ellipse touches the unit
+    /// circle (`1 − cos θ / sin β`; 2 when the circles do not cross), else 0.
+    chord_depth: f32,
+    /// For a clipped sampler, the depth of the ellipse's vertex nearest the rim,
+    /// `1 − cos θ sin β − sin θ |cos β|`, else 0.
+    tip_depth: f32,
 }
 
 impl SptdInCap {
@@ -451,12 +498,45 @@ impl SptdInCap {
         integral: 0.0,
         ellipse: Vec3::ZERO,
         e1: Vec3::X,
+        clipped: 0,
+        chord_depth: 0.0,
+        tip_depth: 0.0,
     };
 
     /// Prepares `sptd` restricted to `cap` (sanitized). `None` when `∫_C D` is 0 or its
-    /// inverse is not finite, or, for the clamped-cosine base, when `g(C)` crosses the
-    /// base's horizon (see the module documentation; use
-    /// [`Sptd::integral_over_cap`] for the integral there).
+    /// inverse is not finite.
+    ///
+    /// For the clamped-cosine base the base directions are drawn in `R = g(C) ∩ H_a`
+    /// through its orthographic projection onto the plane `⊥ a` (the module
+    /// documentation; Eq. 10 and the paper's "importance sampling over sets of
+    /// spherical caps" with the set `g(C) ∩ H_a`). In the frame `e1` (towards the image
+    /// axis `c`), `e2`, `a`, with `cos β = c·a`, `sin β ≥ 0`, the cap's circle
+    /// `ω·c = cos θ` projects to the ellipse of centre `x₀ = cos θ sin β`, semi-axes
+    /// `a_x = sin θ |cos β|` along `e1` and `a_y = sin θ`, inside the unit disk and
+    /// touching the unit circle at `x_c = cos θ / sin β` (where the circle meets the
+    /// horizon, `s² = sin²θ − cos²β > 0`). A vertical line through a point of the disk
+    /// meets the sphere at `±z`, and the plane `ω·c = cos θ` separates the two iff the
+    /// point is inside the ellipse; with `x sin β + z cos β ≥ cos θ`:
+    ///
+    /// - `cos β ≥ 0`: `P(R) = (E ∩ {x ≤ x_c}) ∪ (D ∩ {x ≥ x_c})`,
+    /// - `cos β < 0`: `P(R) = (D ∖ E) ∩ {x ≥ x_c}`,
+    ///
+    /// (without crossing, a cap wider than a hemisphere gives `D` or `D ∖ E`: the chord
+    /// at `x = −1`). In depths `h = 1 − x` from the rim point `e1` (small caps near the
+    /// horizon keep their precision), with `S(w) = α − sin α cos α`, `cos α = 1 − w`,
+    /// the unit disk's segment of depth `w` (`segment`), the area at depths `≤ h` is
+    ///
+    /// `A(h) = S(min(h, h_c)) + a_x a_y [S(η(max(h, h_c))) − S(η(h_c))]` (`cos β ≥ 0`),
+    /// `A(h) = S(min(h, h_c)) − a_x a_y S(η(min(h, h_c)))` (`cos β < 0`),
+    ///
+    /// `η` the normalised depth in the ellipse. At the far end it equals the closed form
+    /// of [`clamped_cosine_over_cap`] term by term (`x_c = cos ψ₀`, `(x_c − x₀)/a_x =
+    /// cos φ₀`). Sampling solves `A(h) = u₀ A` (`dA/dh` is twice the strip's half-width,
+    /// Newton's method in a bisection bracket), draws the offset `y` uniformly across
+    /// the strip at `h` (one interval, or two symmetric ones around the ellipse), and
+    /// lifts the point: `z = √(h (2 − h) − y²)`. The density of `ω = g(ω_i)` is then
+    /// `(ω_i·a / A) J(ω)`, i.e. `D(ω) / ∫_C D` with `∫_C D = A/π` (stored in
+    /// `integral`), 0 where `g(ω)` is below the horizon.
     pub fn new(sptd: &Sptd, cap: &Cap) -> Option<SptdInCap> {
         let cap = cap.sanitized();
         let image = pivot_cap(&cap, sptd.pivot);
@@ -471,15 +551,14 @@ impl SptdInCap {
             integral,
             ellipse: Vec3::ZERO,
             e1: Vec3::X,
+            clipped: 0,
+            chord_depth: 0.0,
+            tip_depth: 0.0,
         };
         if sptd.base == SptdBase::ClampedCosine {
             let a = sptd.cosine_axis;
             let cos_beta = image.axis.dot(a);
             let sin_theta = libm::sqrtf(image.sin2.max(0.0));
-            // Inside the hemisphere of a: β + θ ≤ π/2, i.e. cos β ≥ sin θ with θ ≤ π/2.
-            if !(image.one_minus_cos <= 1.0) || !(cos_beta >= sin_theta) || !(cos_beta > 0.0) {
-                return None;
-            }
             // The tangential part of the image's axis in a basis (t, b) of the plane ⊥ a:
             // `c − a (c·a)` is rounding noise, not perpendicular to `a`, when `c` is
             // within ~1e-5 rad of `a` (issue 17, 3: normalised into `e1`, it tilted the
@@ -502,14 +581,219 @@ impl SptdInCap {
                 sin_theta * cos_beta,
                 sin_theta,
             );
-            // The sampling density is ω·a / (π sin²θ cos β): use that normalisation, the
-            // closed form's value in this case.
-            prepared.integral = image.sin2 * cos_beta;
+            // Inside the hemisphere of a: β + θ ≤ π/2, i.e. cos β ≥ sin θ with θ ≤ π/2.
+            if image.one_minus_cos <= 1.0 && cos_beta >= sin_theta && cos_beta > 0.0 {
+                // The sampling density is ω·a / (π sin²θ cos β): use that normalisation,
+                // the closed form's value in this case.
+                prepared.integral = image.sin2 * cos_beta;
+            } else {
+                prepared.prepare_clipped(cos_beta.max(-1.0).min(1.0), sin_beta.min(1.0));
+            }
             if !(prepared.integral > 0.0) || !(1.0 / prepared.integral).is_finite() {
                 return None;
             }
         }
         Some(prepared)
+    }
+
+    /// The clipped sampler's geometry from `cos β = c·a` and `sin β ≥ 0` (`ellipse` and
+    /// `e1` already set): the chord and tip depths, and `integral` = the projected area
+    /// `A(2)` over π (see [`SptdInCap::new`]).
+    fn prepare_clipped(&mut self, cos_beta: f32, sin_beta: f32) {
+        let sin_theta = self.ellipse.z;
+        let cos_theta = self.image.cos();
+        let abs_cos_beta = cos_beta.abs();
+        // `s² = sin²θ − cos²β` (> 0 iff the circles cross, as in
+        // `clamped_cosine_over_cap`) as a product: for a small cap near the horizon both
+        // squares are ~θ².
+        let s2 = (sin_theta - abs_cos_beta) * (sin_theta + abs_cos_beta);
+        // The crossing points lie on the horizon (`z = 0`) and on the plane
+        // `ω·c = cos θ`, so at `x = cos θ / sin β`; for `cos θ ≥ 0` the depth
+        // `1 − cos θ / sin β = (sin²β − cos²θ) / (sin β (sin β + cos θ))` with
+        // `sin²β − cos²θ = sin²θ − cos²β = s²` keeps small depths to full precision.
+        // Without a crossing, the region is the whole disk or the disk without the
+        // ellipse (θ > π/2, chord at the far end, depth 2) or empty (θ ≤ π/2, depth 0).
+        let chord = if s2 > 0.0 {
+            if cos_theta >= 0.0 {
+                s2 / (sin_beta * (sin_beta + cos_theta))
+            } else {
+                1.0 - cos_theta / sin_beta
+            }
+        } else if cos_theta < 0.0 {
+            2.0
+        } else {
+            0.0
+        };
+        // The ellipse's centre at depth `1 − cos θ sin β = (1 − cos θ) + cos θ (1 − sin β)`
+        // with `1 − sin β = cos²β / (1 + sin β)`; its vertex nearest the rim `sin θ |cos β|`
+        // closer (≥ 0: the ellipse lies in the disk).
+        let center =
+            self.image.one_minus_cos + cos_theta * (cos_beta * cos_beta / (1.0 + sin_beta));
+        let tip = center - sin_theta * abs_cos_beta;
+        self.clipped = 1;
+        // (`max` first: a NaN becomes 0.)
+        self.chord_depth = chord.max(0.0).min(2.0);
+        self.tip_depth = tip.max(0.0).min(2.0);
+        self.integral = self.clipped_cumulative(2.0) * FRAC_1_PI;
+    }
+
+    /// The normalised depth `η ∈ [0, 2]` of depth `h` in the projected ellipse (0 at the
+    /// vertex nearest the rim, 2 at the far one); 0 or 2 for a degenerate ellipse.
+    #[inline(always)]
+    fn ellipse_depth(&self, h: f32) -> f32 {
+        ((h - self.tip_depth) / self.ellipse.y.abs())
+            .max(0.0)
+            .min(2.0)
+    }
+
+    /// `A(h)`: the area of the clipped region's projection at depths `≤ h` (see
+    /// [`SptdInCap::new`]), non-decreasing from 0 to the whole area at `h = 2`.
+    fn clipped_cumulative(&self, h: f32) -> f32 {
+        // The ellipse is the unit disk scaled by |a_x| along e1 and a_y across, so its
+        // part at normalised depth ≤ η has area |a_x| a_y S(η).
+        let area = self.ellipse.y.abs() * self.ellipse.z;
+        let chord = self.chord_depth;
+        let near = h.min(chord);
+        let value = if self.ellipse.y >= 0.0 {
+            // cos β ≥ 0: the disk up to the chord, then the ellipse beyond it.
+            segment(near)
+                + area
+                    * (segment(self.ellipse_depth(h.max(chord)))
+                        - segment(self.ellipse_depth(chord)))
+        } else {
+            // cos β < 0: the disk without the ellipse, up to the chord.
+            segment(near) - area * segment(self.ellipse_depth(near))
+        };
+        value.max(0.0)
+    }
+
+    /// The half-widths `(inner, outer)` across `e1` of the clipped region's projection at
+    /// depth `h`: the points `x = 1 − h` with `inner ≤ |y| ≤ outer`. `dA/dh = 2 (outer −
+    /// inner)`.
+    #[inline]
+    fn clipped_strip(&self, h: f32) -> (f32, f32) {
+        let circle = libm::sqrtf((h * (2.0 - h)).max(0.0));
+        let eta = self.ellipse_depth(h);
+        let ellipse = (self.ellipse.z * libm::sqrtf((eta * (2.0 - eta)).max(0.0))).min(circle);
+        if self.ellipse.y >= 0.0 {
+            (
+                0.0,
+                if h <= self.chord_depth {
+                    circle
+                } else {
+                    ellipse
+                },
+            )
+        } else if h <= self.chord_depth {
+            (ellipse, circle)
+        } else {
+            (0.0, 0.0)
+        }
+    }
+
+    /// The depth range of the clipped region: `[0, end]`.
+    #[inline]
+    fn clipped_end(&self) -> f32 {
+        if self.ellipse.y >= 0.0 {
+            let far = self.tip_depth + 2.0 * self.ellipse.y;
+            far.max(self.chord_depth).max(0.0).min(2.0)
+        } else {
+            self.chord_depth.max(0.0).min(2.0)
+        }
+    }
+
+    /// The depth `h` with `A(h) = target`, by Newton's method on `A` (slope `2 (outer −
+    /// inner)`) in a bracket, bisecting where a step leaves it: at most
+    /// [`MAX_ITERATIONS`] steps.
+    fn clipped_depth(&self, target: f32, total: f32) -> f32 {
+        let end = self.clipped_end();
+        let (mut low, mut high) = (0.0f32, end);
+        // Near either end of the range the area grows like a circular segment's,
+        // `∝ h^{3/2}` (and so does the rest towards the far end): a start from the
+        // approximate inverse of a disk's normalised segment, `q ↦ (2q)^{2/3}` on the
+        // near half and its mirror image on the far half (13% off at worst).
+        let fraction = (target / total).max(0.0).min(1.0);
+        let near = fraction.min(1.0 - fraction);
+        let twice = 2.0 * near;
+        let w = libm::cbrtf(twice * twice);
+        let mut h = 0.5 * end * if fraction <= 0.5 { w } else { 2.0 - w };
+        for _ in 0..MAX_ITERATIONS {
+            let f = self.clipped_cumulative(h) - target;
+            // Within a few ulps of the target, the rounding of `A` (absolute near the
+            // far end, where the slope vanishes) would only steer Newton's steps at
+            // random.
+            if f.abs() <= 5e-7 * target {
+                return h.max(0.0).min(end);
+            }
+            if f > 0.0 {
+                high = h;
+            } else {
+                low = h;
+            }
+            let (inner, outer) = self.clipped_strip(h);
+            let slope = 2.0 * (outer - inner);
+            let newton = h - f / slope;
+            let next = if slope > 0.0 && newton > low && newton < high {
+                newton
+            } else {
+                0.5 * (low + high)
+            };
+            if (next - h).abs() <= 3e-7 * h.max(1e-30) || !(high > low) {
+                return next.max(0.0).min(end);
+            }
+            h = next;
+        }
+        h.max(0.0).min(end)
+    }
+
+    /// A base direction of the clipped sampler: the depth from `u₀`, the offset across
+    /// `e1` uniform in the strip from `u₁` (its two halves for `u₁ < ½` and `u₁ ≥ ½`),
+    /// lifted to the hemisphere of `a`.
+    fn sample_clipped(&self, u: [f32; 2]) -> Vec3 {
+        let a = self.sptd.cosine_axis;
+        let e2 = a.cross(self.e1);
+        let total = PI * self.integral;
+        let h = self.clipped_depth(clamp_random(u[0]) * total, total);
+        let (inner, outer) = self.clipped_strip(h);
+        let v = 2.0 * clamp_random(u[1]) - 1.0;
+        let y = libm::copysignf(inner + (outer - inner) * v.abs(), v);
+        // `1 − x² − y² = h (2 − h) − y²`: no cancellation of `x² ≈ 1` near the rim.
+        let z = libm::sqrtf((h * (2.0 - h) - y * y).max(0.0));
+        (self.e1 * (1.0 - h) + e2 * y + a * z).normalize_or(a)
+    }
+
+    /// The random numbers of the clipped sampler for a base direction.
+    fn invert_clipped(&self, base: Vec3) -> Option<[f32; 2]> {
+        let a = self.sptd.cosine_axis;
+        let e2 = a.cross(self.e1);
+        let (x, y, z) = (base.dot(self.e1), base.dot(e2), base.dot(a));
+        // `1 − x = (y² + z²)/(1 + x)` for a unit direction, accurate near the rim.
+        let h = if x > 0.0 {
+            (y * y + z * z) / (1.0 + x)
+        } else {
+            1.0 - x
+        };
+        let total = PI * self.integral;
+        let u0 = self.clipped_cumulative(h) / total;
+        let (inner, outer) = self.clipped_strip(h);
+        let width = outer - inner;
+        let v = if width > 0.0 {
+            ((y.abs() - inner) / width).max(0.0).min(1.0)
+        } else {
+            0.0
+        };
+        let u1 = 0.5 * (1.0 + libm::copysignf(v, y));
+        let u = [clamp_inverted(u0), clamp_inverted(u1)];
+        (u[0].is_finite() && u[1].is_finite()).then_some(u)
+    }
+
+    /// Whether this clamped-cosine sampler draws over the projection of `g(C) ∩ H_a`
+    /// (`g(C)` crosses the base's horizon or is wider than a hemisphere) rather than
+    /// over the ellipse of an image inside the hemisphere; `false` for the uniform base.
+    #[inline]
+    #[must_use]
+    pub fn is_clipped(&self) -> bool {
+        self.sptd.base == SptdBase::ClampedCosine && self.clipped != 0
     }
 
     /// Draws a direction inside `C` with density [`SptdInCap::pdf`].
@@ -522,6 +806,7 @@ impl SptdInCap {
                 }
                 s.dir
             }
+            SptdBase::ClampedCosine if self.clipped != 0 => self.sample_clipped(u),
             SptdBase::ClampedCosine => {
                 let a = self.sptd.cosine_axis;
                 let e2 = a.cross(self.e1);
@@ -593,6 +878,7 @@ impl SptdInCap {
         let base = transform(crate::sample::normalize_scaled(dir), self.sptd.pivot);
         match self.sptd.base {
             SptdBase::Uniform => self.image.invert(base),
+            SptdBase::ClampedCosine if self.clipped != 0 => self.invert_clipped(base),
             SptdBase::ClampedCosine => {
                 let a = self.sptd.cosine_axis;
                 let e2 = a.cross(self.e1);

@@ -18,7 +18,7 @@ use sphera::sg::shading::{
 };
 use sphera::sg::{Sg, vmf_sample};
 use sphera::sphere::phase;
-use sphera::sphere::{Cap, CapIntersection, CapUnion, pivot_transform};
+use sphera::sphere::{Cap, CapIntersection, CapUnion, Sptd, SptdInCap, pivot_cap, pivot_transform};
 use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, fis_select, luminance};
 use sphera::{Sample, Vec3};
 use sphera_tools::bench::Rng;
@@ -116,6 +116,51 @@ fn main() {
             (a, b, CapUnion::new(&a, &b))
         })
         .collect();
+    // Clamped-cosine SPTDs (axis z) in caps whose image crosses the base's horizon
+    // (issue 20, 2: the clipped sampler), and for comparison in caps whose image lies
+    // above it (the ellipse); the cap is the image's preimage under the pivot.
+    let cosine_sptds: Vec<Sptd> = pivots
+        .iter()
+        .map(|&p| Sptd::clamped_cosine(p, Vec3::Z))
+        .collect();
+    let sptd_caps = |z_scale: f32, one_minus_cos: f32| -> Vec<Cap> {
+        caps.iter()
+            .zip(&cosine_sptds)
+            .map(|(cap, sptd)| {
+                let axis = Vec3::new(cap.axis.x, cap.axis.y, z_scale * cap.axis.z.abs() + 0.1);
+                let t = one_minus_cos.min(cap.one_minus_cos * 10.0).max(1e-3);
+                pivot_cap(
+                    &Cap::from_axis_one_minus_cos(axis.normalize(), t),
+                    sptd.pivot,
+                )
+            })
+            .collect()
+    };
+    // Images across the horizon: `1 − cos θ` in [0.01, 1.5], `cos β = k sin θ` with
+    // `k` in (−0.9, 0.9) (axis above or below the horizon, wider than a hemisphere too).
+    // (A generator of their own: the inputs of the other rows stay as they were.)
+    let mut cap_rng = Rng(20);
+    let across_caps: Vec<Cap> = cosine_sptds
+        .iter()
+        .map(|sptd| {
+            let t = 0.01 + 1.49 * cap_rng.uniform();
+            let k = 1.8 * cap_rng.uniform() - 0.9;
+            let cos_beta = k * (t * (2.0 - t)).sqrt();
+            let sin_beta = (1.0 - cos_beta * cos_beta).sqrt();
+            let phi = std::f32::consts::TAU * cap_rng.uniform();
+            let axis = Vec3::new(sin_beta * phi.cos(), sin_beta * phi.sin(), cos_beta);
+            pivot_cap(&Cap::from_axis_one_minus_cos(axis, t), sptd.pivot)
+        })
+        .collect();
+    let above_caps = sptd_caps(20.0, 0.05);
+    let prepare = |caps: &[Cap]| -> Vec<SptdInCap> {
+        caps.iter()
+            .zip(&cosine_sptds)
+            .map(|(cap, sptd)| SptdInCap::new(sptd, cap).unwrap_or(SptdInCap::EMPTY))
+            .collect()
+    };
+    let across_sptds = prepare(&across_caps);
+    let above_sptds = prepare(&above_caps);
     let cap_sample = time_ns(|i| value(caps[i].sample_uniform(us[i])));
     let rows = [
         ("sphere cap: uniform sample", cap_sample),
@@ -161,6 +206,25 @@ fn main() {
         (
             "two-cap union: pdf",
             time_ns(|i| unions[i].2.map_or(0.0, |union| union.pdf(views[i]))),
+        ),
+        (
+            "clamped-cosine SPTD in a cap, image across the horizon: new + sample",
+            time_ns(|i| {
+                SptdInCap::new(&cosine_sptds[i], &across_caps[i])
+                    .map_or(0.0, |s| value(s.sample(us[i])))
+            }),
+        ),
+        (
+            "clamped-cosine SPTD in a cap, image across the horizon: sample",
+            time_ns(|i| value(across_sptds[i].sample(us[i]))),
+        ),
+        (
+            "clamped-cosine SPTD in a cap, image across the horizon: pdf",
+            time_ns(|i| across_sptds[i].pdf(views[i])),
+        ),
+        (
+            "clamped-cosine SPTD in a cap, image above the horizon: sample",
+            time_ns(|i| value(above_sptds[i].sample(us[i]))),
         ),
         (
             "pivot transformation of a direction",
@@ -242,8 +306,17 @@ fn main() {
             }),
         ),
     ];
+    let clipped = across_sptds.iter().filter(|s| s.is_clipped()).count();
+    let ellipses = above_sptds
+        .iter()
+        .filter(|s| s.integral > 0.0 && !s.is_clipped())
+        .count();
     println!("## ns per call of the BRDF, LTC, sphere-cap, phase-function and SG operations\n");
-    println!("{INPUTS} random inputs, median of {REPEATS} runs; ratio to uniform cap sampling.\n");
+    println!("{INPUTS} random inputs, median of {REPEATS} runs; ratio to uniform cap sampling.");
+    println!(
+        "Clamped-cosine SPTDs: {clipped} of {INPUTS} images across the horizon are clipped, \
+         {ellipses} of {INPUTS} above it are ellipses.\n"
+    );
     println!("| operation | ns | ratio |");
     println!("|---|---:|---:|");
     for (name, ns) in rows {

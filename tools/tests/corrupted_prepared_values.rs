@@ -357,15 +357,20 @@ fn corrupted_sphere_values_neither_hang_nor_panic() {
     );
     corrupt_every_word("Sptd (clamped cosine)", cosine, sptd_readers);
     let mut in_caps = 0;
+    // The last one's image crosses the cosine base's horizon: the clipped sampler
+    // (issue 20, 2), whose inversion is a bounded Newton iteration.
+    let mut clipped = 0;
     for sptd in [
         Sptd::uniform(Vec3::new(0.2, 0.1, 0.3)),
         Sptd::uniform(Vec3::new(-0.5, 0.3, 0.1)),
         cosine,
+        Sptd::clamped_cosine(Vec3::new(0.2, 0.1, 0.3), Vec3::X),
     ] {
         let Some(in_cap) = SptdInCap::new(&sptd, &cap) else {
             continue;
         };
         in_caps += 1;
+        clipped += in_cap.is_clipped() as usize;
         corrupt_every_word("SptdInCap", in_cap, |s: &SptdInCap| {
             let mut sum = 0.0;
             for u in US {
@@ -376,6 +381,7 @@ fn corrupted_sphere_values_neither_hang_nor_panic() {
         });
     }
     assert!(in_caps >= 2, "only {in_caps} SPTDs in a cap prepared");
+    assert_eq!(clipped, 1, "the clipped sampler was not corrupted");
     let wo = Vec3::new(0.4, 0.0, 0.9).normalize();
     let sampler = SphereLightSampler::new(Vec3::new(0.3, 0.2, 2.0), 0.5, wo, 0.4).unwrap();
     corrupt_every_word("SphereLightSampler", sampler, |s: &SphereLightSampler| {
