@@ -362,7 +362,7 @@ fn planar_vpls(rng: &mut Rng, count: usize, radius: f32) -> std::vec::Vec<Vpl> {
         .map(|_| {
             let (r, phi) = (
                 radius * rng.uniform_f32().sqrt(),
-                6.283_185 * rng.uniform_f32(),
+                core::f32::consts::TAU * rng.uniform_f32(),
             );
             Vpl {
                 position: Vec3::new(r * phi.cos(), r * phi.sin(), 0.0),
