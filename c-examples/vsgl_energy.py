@@ -20,7 +20,9 @@ Rows, each a `sphera-trace --scene indirect` run against one path-traced referen
   + cluster visibility            V = the visible share of the cluster's VPLs (exact)
   + one ray to the mean           the method as specified (V of the mean)
 
-Prints a Markdown table of the mean ratios.
+and, for k-means, the clustering step split in two (`--variant exact-lobes`): each cluster
+at its mean emitting the sum of its VPLs' SG lobes, then one Toksvig lobe per component.
+Prints Markdown tables of the mean ratios (`--tables` picks them).
 """
 
 import argparse
@@ -40,6 +42,8 @@ def main():
     p.add_argument("--spp", type=int, default=2048)
     p.add_argument("--clusters", default="16,64,256,1024")
     p.add_argument("--out", default="/tmp/sphera-vsgl-energy")
+    p.add_argument("--tables", default="vpl,clusters,lobes",
+                   help="which tables: vpl, clusters, lobes (comma-separated)")
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
     size = ["--width", str(a.width), "--height", str(a.height)]
@@ -62,7 +66,18 @@ def main():
         print(f"  {technique} N={n} {variant}: {r['mean_ratio']:.4f}", file=sys.stderr)
         return r["mean_ratio"]
 
+    tables = a.tables.split(",")
+    counts = [int(x) for x in a.clusters.split(",")]
     print(f"{a.width}x{a.height}, RSM {a.rsm_size}^2, reference {a.spp} paths per pixel\n")
+    if "vpl" in tables:
+        vpl_table(ratio)
+    if "clusters" in tables:
+        cluster_table(ratio, counts)
+    if "lobes" in tables:
+        lobe_table(ratio, counts)
+
+
+def vpl_table(ratio):
     print("| VPL rows (no clustering) | mean ratio |")
     print("|---|---:|")
     for label, variant in (("VPLs, exact", "none"), ("VPLs, unshadowed", "unshadowed"),
@@ -72,6 +87,9 @@ def main():
                            ("each VPL a VSGL, one ray to it", "vsgl-per-vpl")):
         print(f"| {label} | {ratio('vpl', variant):.3f} |")
     print()
+
+
+def cluster_table(ratio, counts):
     steps = (("points (σ² = 0), unshadowed", "point,unshadowed"),
              ("+ positional variance (receiver by quadrature)",
               "unshadowed,receiver-quadrature"),
@@ -81,10 +99,32 @@ def main():
     print("| clustering | N | " + " | ".join(s[0] for s in steps) + " |")
     print("|---|---:|" + "---:|" * len(steps))
     for technique, name in (("fis", "FIS"), ("kmeans", "k-means")):
-        for n in [int(x) for x in a.clusters.split(",")]:
+        for n in counts:
             cells = [f"{ratio(technique, v, n):.3f}" for _, v in steps]
             print(f"| {name} | {n} | " + " | ".join(cells) + " |")
             sys.stdout.flush()
+    print()
+
+
+def lobe_table(ratio, counts):
+    """k-means only (its clusters are sets of VPLs): the clustering step split into the
+    cluster collapsed to its mean (its VPLs' own SG lobes summed) and the one Toksvig lobe
+    per component; unshadowed."""
+    rows = (("each VPL its SG lobes, at its position (exact receiver)", "vpl",
+             "sg-emission,unshadowed"),
+            ("each cluster at its mean, its VPLs' SG lobes summed (exact receiver)", "kmeans",
+             "exact-lobes"),
+            ("each cluster at its mean, one Toksvig lobe per component (closed forms)", "kmeans",
+             "point,unshadowed"))
+    print("| k-means, unshadowed | " + " | ".join(f"N = {n}" for n in counts) + " |")
+    print("|---|" + "---:|" * len(counts))
+    for label, technique, variant in rows:
+        if technique == "vpl":
+            cells = [f"{ratio(technique, variant):.3f}"] * len(counts)
+        else:
+            cells = [f"{ratio(technique, variant, n):.3f}" for n in counts]
+        print(f"| {label} | " + " | ".join(cells) + " |")
+        sys.stdout.flush()
 
 
 if __name__ == "__main__":

@@ -711,6 +711,42 @@ static void cluster_visibility(const ShadeJob *job, struct RTCIntersectContext *
     for (uint32_t i = 0; i < n; ++i) visibility[i] = den[i] > 0.0 ? (float)(num[i] / den[i]) : 0.0f;
 }
 
+/* VARIANT_EXACT_LOBES (k-means): Σ_i I_i(ω_i) f(wo, ω_i) cos / d_i², each cluster i a
+ * point light at its mean whose intensity toward the shading point is the sum of its
+ * VPLs' SG lobes, Φ∘(R_d G_d/A_d + R_s G_s/A_s) (Eq. 1, 2), unshadowed. `emitted` holds
+ * one RGB value per cluster. */
+static float3 shade_exact_lobes(const ShadeJob *job, const CameraHit *hit, float3 *emitted) {
+    const Rsm *rsm = job->rsm;
+    const uint32_t m = rsm->size * rsm->size, n = job->count;
+    const Material *mat = &job->scene->materials[hit->material];
+    for (uint32_t i = 0; i < n; ++i) emitted[i] = f3(0, 0, 0);
+    for (uint32_t k = 0; k < m; ++k) {
+        if (!(rsm->texels[k].weight > 0.0f)) continue;
+        uint32_t i = job->assignment[k];
+        const SpheraVpl *vpl = &rsm->vpls[k];
+        float3 out = f3_sub(hit->position, fv(job->vsgls[i].mean));
+        float length = f3_length(out);
+        if (!(length > 0.0f)) continue;
+        SpheraVec3 toward = sv(f3_scale(out, 1.0f / length));
+        float gd = sphera_sg_eval(sphera_sg_diffuse_lobe(vpl->normal), toward);
+        float gs = sphera_sg_eval(
+            sphera_sg_specular_lobe(vpl->normal, vpl->toward_incoming, vpl->roughness), toward);
+        emitted[i] = f3_add(emitted[i],
+                            f3_mul(fv(vpl->power), f3_add(f3_scale(fv(vpl->diffuse_reflectance), gd),
+                                                          f3_scale(fv(vpl->specular_reflectance), gs))));
+    }
+    float3 sum = f3(0, 0, 0);
+    for (uint32_t i = 0; i < n; ++i) {
+        float3 d = f3_sub(fv(job->vsgls[i].mean), hit->position);
+        float d2 = f3_dot(d, d);
+        if (!(d2 > 1e-8f) || !(lum(emitted[i]) > 0.0f)) continue;
+        SpheraVec3 wi = frame_to_local(&hit->frame, f3_scale(d, 1.0f / sqrtf(d2)));
+        float3 f = material_eval(mat, hit->wo, wi);
+        sum = f3_add(sum, f3_scale(f3_mul(f, emitted[i]), wi.z / d2));
+    }
+    return sum;
+}
+
 static void shade_row(void *context, struct RTCIntersectContext *rtc, uint32_t y) {
     ShadeJob *job = context;
     SpheraVsglTexel *scratch = NULL;
@@ -727,9 +763,15 @@ static void shade_row(void *context, struct RTCIntersectContext *rtc, uint32_t y
         uint32_t pixel = y * job->width + x;
         const CameraHit *hit = &job->hits[pixel];
         if (visibility && hit->valid) cluster_visibility(job, rtc, hit, scratch, num, den, visibility);
-        float3 value = hit->valid ? shade_vsgls(job->scene, rtc, hit, job->vsgls, job->count,
-                                                job->variant, visibility)
-                                  : f3(0, 0, 0);
+        float3 value = f3(0, 0, 0);
+        if (hit->valid && (job->variant & VARIANT_EXACT_LOBES) && job->assignment) {
+            float3 *emitted = malloc(sizeof(float3) * job->count);
+            if (!emitted) abort();
+            value = shade_exact_lobes(job, hit, emitted);
+            free(emitted);
+        } else if (hit->valid)
+            value = shade_vsgls(job->scene, rtc, hit, job->vsgls, job->count, job->variant,
+                                visibility);
         job->image[3 * pixel + 0] = value.x;
         job->image[3 * pixel + 1] = value.y;
         job->image[3 * pixel + 2] = value.z;
@@ -813,7 +855,8 @@ bool indirect_render_vsgl(const Scene *scene, const SpotLight *spot,
         } else {
             ShadeJob job = {scene, hits, vsgls, s->cluster_count, s->width, image,
                             s->variant, &rsm, s,
-                            s->clustering == CLUSTERING_FIS ? fis_points : NULL, assignment};
+                            s->clustering == CLUSTERING_FIS ? fis_points : NULL,
+                            s->clustering == CLUSTERING_KMEANS ? assignment : NULL};
             for_each_row(threads, s->height, shade_row, &job);
         }
         double t3 = now_ms();
@@ -869,7 +912,7 @@ static bool parse_u32(const char *text, uint32_t *out) {
 }
 
 /* `--variant a,b,...` (diagnosis): unshadowed, sg-emission, vsgl-per-vpl, point,
- * cluster-visibility, receiver-quadrature, or none. */
+ * cluster-visibility, receiver-quadrature, exact-lobes, or none. */
 static bool parse_variant(const char *text, uint32_t *out) {
     static const struct {
         const char *name;
@@ -880,7 +923,8 @@ static bool parse_variant(const char *text, uint32_t *out) {
                  {"vsgl-per-vpl", VARIANT_VSGL_PER_VPL},
                  {"point", VARIANT_POINT},
                  {"cluster-visibility", VARIANT_CLUSTER_VISIBILITY},
-                 {"receiver-quadrature", VARIANT_RECEIVER_QUADRATURE}};
+                 {"receiver-quadrature", VARIANT_RECEIVER_QUADRATURE},
+                 {"exact-lobes", VARIANT_EXACT_LOBES}};
     *out = 0;
     while (*text) {
         size_t length = strcspn(text, ",");
@@ -966,7 +1010,7 @@ int indirect_main(int argc, char **argv) {
                 "  [--out-pfm F] [--out-png F] [--exposure E] [--quiet]\n"
                 "  [--variant V,...] diagnosis: unshadowed, sg-emission (vpl), vsgl-per-vpl\n"
                 "    (vpl), point (fis/kmeans), cluster-visibility (fis/kmeans),\n"
-                "    receiver-quadrature (VSGL shading by quadrature)\n");
+                "    receiver-quadrature (VSGL shading by quadrature), exact-lobes (kmeans)\n");
         return help ? 0 : 2;
     }
     s.seed = seed;

@@ -49,9 +49,13 @@ enum {
     VARIANT_POINT = 1u << 3,       /* fis/kmeans: variance 0 (a point at the mean) */
     VARIANT_CLUSTER_VISIBILITY = 1u << 4, /* fis/kmeans: V = the visible share of the
                                              cluster's VPLs (per pixel, exact) */
-    VARIANT_RECEIVER_QUADRATURE = 1u << 5 /* the receiver's ∫ L_in f cos dω by 64
-                                             stratified vMF samples of L_in, exact BRDF,
-                                             instead of the closed forms of Sec. 4.2 */
+    VARIANT_RECEIVER_QUADRATURE = 1u << 5, /* the receiver's ∫ L_in f cos dω by 64
+                                              stratified vMF samples of L_in, exact BRDF,
+                                              instead of the closed forms of Sec. 4.2 */
+    VARIANT_EXACT_LOBES = 1u << 6 /* k-means: each cluster a point light at its mean
+                                     emitting the sum of its VPLs' SG lobes (Eq. 1, 2)
+                                     instead of one Toksvig lobe per component, exact
+                                     receiver BRDF, unshadowed */
 };
 
 typedef struct IndirectSettings {
