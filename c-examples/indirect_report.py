@@ -38,8 +38,10 @@ EXPLANATION = (
     "and ASG specular shading, and one shadow ray to the VSGL's mean. <b>ms/frame</b>: RSM + "
     "pyramid + clustering + shading on all threads, mean of {frames} frame(s); <b>ms "
     "clustering</b> includes the pyramid. <b>mean ratio</b>: image mean / reference mean "
-    "(VSGLs are biased by design: the SG diffuse lobe puts 9 % of a VPL's light below its "
-    "horizon, visibility is that of the cluster mean). Reference: {spp} one-bounce paths per "
+    "(VSGLs are biased by design and lose light, most of it to the positional spread of Eq. "
+    "6&ndash;7 and to the single Toksvig lobe of large clusters; the README's &ldquo;Where the "
+    "VSGLs' energy goes&rdquo; decomposes it with <code>c-examples/vsgl_energy.py</code>). "
+    "Reference: {spp} one-bounce paths per "
     "pixel; its noise (RMSE) is about {noise:.2g}. <b>VPLs, exact</b> (a diagnosis, N = the "
     "VPL count): every VPL as a point light with the exact BRDFs at both ends and a shadow "
     "ray, unclamped: the RSM's own error, without clustering and SG fits.")

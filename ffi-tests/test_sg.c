@@ -96,10 +96,11 @@ static void check_lobes_and_shading(void) {
   CHECK_REL(s.sharpness, (2.0 / (0.09 * 0.09)) / (4.0 * 0.8660254), 1e-5);
   CHECK_REL(exp(s.log_amplitude) * a_d(s.sharpness), 1.0, 1e-4);
   CHECK_REL(sphera_sg_specular_lobe_unnormalized(n, view, 0.09f).sharpness, s.sharpness, 1e-7);
-  /* Eq. 7: lambda_sigma = 10 / 0.04 = 250 toward (0, 1, 3)/sqrt(10). */
+  /* Eq. 7 with the planar Gaussian's s^2 = sigma^2/2 = 0.02 (README, issue 20):
+   * lambda_sigma = 10 / 0.02 = 500 toward (0, 1, 3)/sqrt(10). */
   CHECK(sg_is_finite(l_in));
-  CHECK(l_in.sharpness > 250.0f && l_in.sharpness < 254.0f);
-  exact = 10.0 / (2.0 * PI_D * 0.04) * exp(4.0 * (3.0 / sqrt(10.0) - 1.0));
+  CHECK(l_in.sharpness > 500.0f && l_in.sharpness < 504.0f);
+  exact = 10.0 / (2.0 * PI_D * 0.02) * exp(4.0 * (3.0 / sqrt(10.0) - 1.0));
   CHECK_REL(sphera_sg_eval(l_in, vec3(0.0f, 1.0f, 3.0f)), exact, 1e-3);
   /* Diffuse: three forms agree to a few percent for this narrow lobe. */
   {

@@ -15,8 +15,10 @@
  *    reference's (the RSM carries the right energy; measured 0.4 % low).
  * 5. The error against the reference falls from N = 16 to N = 256 for both
  *    clusterings, and the image mean approaches the reference's (VSGLs are biased by
- *    design: the SG lobe fits lose energy below the horizon, visibility is that of the
- *    cluster mean; the bound asserted is the measured one with a margin).
+ *    design: one Toksvig lobe for clusters that span several surfaces, the positional
+ *    spread of Eq. 6-7 and the visibility of the cluster mean lose light, most with few
+ *    large clusters; README, "Where the VSGLs' energy goes"; the bound asserted is the
+ *    measured one with a margin).
  */
 #include <math.h>
 #include <stdio.h>

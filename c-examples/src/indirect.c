@@ -396,13 +396,17 @@ static float radical_inverse2(uint32_t i) {
 
 /* FIS: cluster i from the shifted Hammersley point ((i + ξ0)/N, frac(φ2(i) + ξ1)). */
 static void cluster_fis(const Rsm *rsm, const IndirectSettings *s, uint64_t *state,
-                        SpheraVsgl *vsgls) {
+                        SpheraVsgl *vsgls, float *points) {
     float xi0 = uniform(state), xi1 = uniform(state);
     uint32_t n = s->cluster_count;
     for (uint32_t i = 0; i < n; ++i) {
         float u0 = ((float)i + xi0) / (float)n;
         float u1 = radical_inverse2(i) + xi1;
         if (u1 >= 1.0f) u1 -= 1.0f;
+        if (points) {
+            points[2 * i] = u0;
+            points[2 * i + 1] = u1;
+        }
         vsgls[i] = sphera_vsgl_fis_select(rsm->texels, rsm->texel_count, rsm->size, rsm->origin,
                                           n, s->kernel_scale, s->iterations, u0, u1);
     }
@@ -414,7 +418,7 @@ static void cluster_fis(const Rsm *rsm, const IndirectSettings *s, uint64_t *sta
  * d² = |x_a − x_b|²/h_image² + |y_a − y_b|²/h_world², h_image = 1/√N,
  * h_world = world_extent/√N (brute force), each cluster summed about its centre. */
 static bool cluster_kmeans(const Rsm *rsm, const IndirectSettings *s, uint64_t *state,
-                           SpheraVsgl *vsgls) {
+                           SpheraVsgl *vsgls, uint32_t *assignment) {
     const uint32_t size = rsm->size, m = size * size, n = s->cluster_count;
     double *cumulative = malloc(sizeof(double) * m);
     uint32_t *centres = malloc(sizeof(uint32_t) * n);
@@ -474,6 +478,7 @@ static bool cluster_kmeans(const Rsm *rsm, const IndirectSettings *s, uint64_t *
                 }
             }
             sphera_vsgl_accumulator_add_vpl(&acc[best_i], v);
+            if (assignment) assignment[k] = best_i;
         }
     for (uint32_t i = 0; i < n; ++i) vsgls[i] = sphera_vsgl_accumulator_finish(&acc[i]);
     free(cumulative);
@@ -491,6 +496,12 @@ typedef struct ShadeJob {
     const SpheraVsgl *vsgls;
     uint32_t count, width;
     float *image;
+    /* Diagnosis (VARIANT_*): */
+    uint32_t variant;
+    const Rsm *rsm;
+    const IndirectSettings *settings;
+    const float *fis_points;      /* FIS: the 2D point of each cluster */
+    const uint32_t *assignment;   /* k-means: the cluster of each texel */
 } ShadeJob;
 
 /* The GGX layer's shading of one incoming-radiance SG per RGB channel of F0 (one call
@@ -510,12 +521,30 @@ static float3 specular_rgb(SpheraSg incoming, SpheraVec3 n, SpheraVec3 view, con
     return f3(r, g, b);
 }
 
+/* VARIANT_RECEIVER_QUADRATURE: ∫ L_in(ω) f(wo, ω) max(ω·n, 0) dω for the incoming SG
+ * `L_in = a G(ω, ξ, λ)` as a A(λ) E[f cos] over 8 × 8 stratified vMF samples. */
+static float3 receiver_quadrature(SpheraSg incoming, const CameraHit *hit, const Material *m) {
+    if (!(incoming.log_amplitude > -1e29f)) return f3(0, 0, 0);
+    float3 sum = f3(0, 0, 0);
+    for (int i = 0; i < 8; ++i)
+        for (int j = 0; j < 8; ++j) {
+            SpheraSample s = sphera_sg_vmf_sample(incoming, (i + 0.5f) / 8.0f, (j + 0.5f) / 8.0f);
+            if (!(s.pdf > 0.0f)) continue;
+            SpheraVec3 wi = frame_to_local(&hit->frame, fv(s.dir));
+            if (!(wi.z > 0.0f)) continue;
+            sum = f3_add(sum, f3_scale(material_eval(m, hit->wo, wi), wi.z));
+        }
+    float scale = expf(incoming.log_amplitude) * sphera_sg_integral(incoming.sharpness) / 64.0f;
+    return f3_scale(sum, scale);
+}
+
 /* The radiance at a camera hit from all VSGLs: per VSGL and per lobe (diffuse, specular
  * emission), L_in of Eq. 6-7 for unit power, constant-cosine diffuse and ASG specular
  * shading, times the lobe's RGB power; V from one shadow ray to the VSGL's mean, traced
  * only when the unshadowed term is positive. */
 static float3 shade_vsgls(const Scene *scene, struct RTCIntersectContext *rtc,
-                          const CameraHit *hit, const SpheraVsgl *vsgls, uint32_t count) {
+                          const CameraHit *hit, const SpheraVsgl *vsgls, uint32_t count,
+                          uint32_t variant, const float *visibility) {
     const Material *m = &scene->materials[hit->material];
     SpheraVec3 n = hit->frame.normal;
     SpheraVec3 view = sv(frame_to_world(&hit->frame, hit->wo));
@@ -525,19 +554,27 @@ static float3 shade_vsgls(const Scene *scene, struct RTCIntersectContext *rtc,
         const SpheraVsgl *g = &vsgls[v];
         float3 mean = fv(g->mean);
         SpheraVec3 offset = sv(f3_sub(mean, hit->position));
+        float variance = variant & VARIANT_POINT ? 0.0f : g->variance;
         float3 value = f3(0, 0, 0);
         for (int lobe = 0; lobe < 2; ++lobe) {
             float3 power = fv(lobe ? g->specular_power : g->diffuse_power);
             if (!(lum(power) > 0.0f)) continue;
             SpheraSg incoming =
-                sphera_sg_incoming_radiance(lobe ? g->specular : g->diffuse, offset, g->variance);
-            float d = sphera_sg_diffuse_shading_constant_cosine(incoming, n, 1.0f, 1.0f);
-            float3 r = f3_scale(m->diffuse, d);
-            if (glossy) r = f3_add(r, specular_rgb(incoming, n, view, m, 1.0f));
+                sphera_sg_incoming_radiance(lobe ? g->specular : g->diffuse, offset, variance);
+            float3 r;
+            if (variant & VARIANT_RECEIVER_QUADRATURE) {
+                r = receiver_quadrature(incoming, hit, m);
+            } else {
+                float d = sphera_sg_diffuse_shading_constant_cosine(incoming, n, 1.0f, 1.0f);
+                r = f3_scale(m->diffuse, d);
+                if (glossy) r = f3_add(r, specular_rgb(incoming, n, view, m, 1.0f));
+            }
             value = f3_add(value, f3_mul(power, r));
         }
         if (!(lum(value) > 0.0f)) continue;
-        if (!segment_free(scene, rtc, hit->origin, mean)) continue;
+        if (visibility) value = f3_scale(value, visibility[v]);
+        else if (!(variant & VARIANT_UNSHADOWED) && !segment_free(scene, rtc, hit->origin, mean))
+            continue;
         sum = f3_add(sum, value);
     }
     return sum;
@@ -547,7 +584,7 @@ static float3 shade_vsgls(const Scene *scene, struct RTCIntersectContext *rtc,
  * both ends, Φ f_y(ω', ω) cos_y f_x cos_x / d² V (instant radiosity, unclamped): the
  * RSM's own discretisation error, without the VSGL approximations. */
 static float3 shade_vpls(const Scene *scene, struct RTCIntersectContext *rtc,
-                         const CameraHit *hit, const Rsm *rsm) {
+                         const CameraHit *hit, const Rsm *rsm, uint32_t variant) {
     const Material *m = &scene->materials[hit->material];
     float3 sum = f3(0, 0, 0);
     for (uint32_t k = 0; k < rsm->size * rsm->size; ++k) {
@@ -564,10 +601,26 @@ static float3 shade_vpls(const Scene *scene, struct RTCIntersectContext *rtc,
         if (!sphera_frame_from_normal(&frame, vpl->normal)) continue;
         const Material *my = &scene->materials[rsm->material[k]];
         SpheraVec3 out = frame_to_local(&frame, f3_scale(l, -1.0f));
-        float3 fy = material_eval(my, frame_to_local(&frame, fv(vpl->toward_incoming)), out);
-        if (!(lum(fy) > 0.0f)) continue;
-        float3 value = f3_scale(f3_mul(f3_mul(fx, fy), fv(vpl->power)), wi.z * out.z / d2);
-        if (!segment_free(scene, rtc, hit->origin, fv(vpl->position))) continue;
+        float3 emitted; /* the VPL's radiant intensity towards the shading point */
+        if (variant & VARIANT_SG_EMISSION) {
+            /* Eq. 1 and 2: Φ∘R_d G_d/A_d + Φ∘R_s G_s/A_s. */
+            SpheraVec3 toward = sv(f3_scale(l, -1.0f));
+            float gd = sphera_sg_eval(sphera_sg_diffuse_lobe(vpl->normal), toward);
+            float gs = sphera_sg_eval(
+                sphera_sg_specular_lobe(vpl->normal, vpl->toward_incoming, vpl->roughness),
+                toward);
+            emitted = f3_mul(fv(vpl->power), f3_add(f3_scale(fv(vpl->diffuse_reflectance), gd),
+                                                    f3_scale(fv(vpl->specular_reflectance), gs)));
+        } else {
+            float3 fy =
+                material_eval(my, frame_to_local(&frame, fv(vpl->toward_incoming)), out);
+            emitted = f3_scale(f3_mul(fy, fv(vpl->power)), out.z);
+        }
+        if (!(lum(emitted) > 0.0f)) continue;
+        float3 value = f3_scale(f3_mul(fx, emitted), wi.z / d2);
+        if (!(variant & VARIANT_UNSHADOWED) &&
+            !segment_free(scene, rtc, hit->origin, fv(vpl->position)))
+            continue;
         sum = f3_add(sum, value);
     }
     return sum;
@@ -579,6 +632,9 @@ typedef struct VplJob {
     const Rsm *rsm;
     uint32_t width;
     float *image;
+    uint32_t variant;
+    const SpheraVsgl *vsgls; /* VARIANT_VSGL_PER_VPL: one VSGL per VPL */
+    uint32_t vsgl_count;
 } VplJob;
 
 static void vpl_row(void *context, struct RTCIntersectContext *rtc, uint32_t y) {
@@ -586,24 +642,144 @@ static void vpl_row(void *context, struct RTCIntersectContext *rtc, uint32_t y) 
     for (uint32_t x = 0; x < job->width; ++x) {
         uint32_t pixel = y * job->width + x;
         const CameraHit *hit = &job->hits[pixel];
-        float3 value = hit->valid ? shade_vpls(job->scene, rtc, hit, job->rsm) : f3(0, 0, 0);
+        float3 value = f3(0, 0, 0);
+        if (hit->valid && job->vsgls)
+            value = shade_vsgls(job->scene, rtc, hit, job->vsgls, job->vsgl_count, job->variant,
+                                NULL);
+        else if (hit->valid)
+            value = shade_vpls(job->scene, rtc, hit, job->rsm, job->variant);
         job->image[3 * pixel + 0] = value.x;
         job->image[3 * pixel + 1] = value.y;
         job->image[3 * pixel + 2] = value.z;
     }
 }
 
+/* VARIANT_CLUSTER_VISIBILITY: the visible share of each cluster's luminance from `hit`,
+ * `Σ_t m_it w_t V(hit, y_t) / Σ_t m_it w_t` with the membership m_it of texel t in
+ * cluster i. k-means: m = 1 for the assigned cluster. FIS: the same draw on a pyramid
+ * whose texels keep their weight (so the same position, level and weight) and carry
+ * (w V, w, 0) as diffuse power; `scratch` holds that pyramid. */
+static void cluster_visibility(const ShadeJob *job, struct RTCIntersectContext *rtc,
+                               const CameraHit *hit, SpheraVsglTexel *scratch, double *num,
+                               double *den, float *visibility) {
+    const Rsm *rsm = job->rsm;
+    const uint32_t size = rsm->size, m = size * size, n = job->count;
+    bool fis = job->fis_points != NULL;
+    if (!fis)
+        for (uint32_t i = 0; i < n; ++i) num[i] = den[i] = 0.0;
+    for (uint32_t k = 0; k < m; ++k) {
+        float w = rsm->texels[k].weight;
+        float v = 0.0f;
+        if (w > 0.0f) v = segment_free(job->scene, rtc, hit->origin, fv(rsm->vpls[k].position));
+        if (fis) {
+            memset(&scratch[k], 0, sizeof scratch[k]);
+            scratch[k].weight = w > 0.0f ? w : 0.0f;
+            scratch[k].diffuse_power.x = scratch[k].weight * v;
+            scratch[k].diffuse_power.y = scratch[k].weight;
+        } else if (w > 0.0f) {
+            num[job->assignment[k]] += (double)w * v;
+            den[job->assignment[k]] += (double)w;
+        }
+    }
+    if (fis) {
+        size_t below = 0, offset = m;
+        for (uint32_t side = size / 2; side >= 1; side /= 2) {
+            uint32_t child = 2 * side;
+            for (uint32_t y = 0; y < side; ++y)
+                for (uint32_t x = 0; x < side; ++x) {
+                    SpheraVsglTexel *t = &scratch[offset + y * side + x];
+                    memset(t, 0, sizeof *t);
+                    for (uint32_t q = 0; q < 4; ++q) {
+                        const SpheraVsglTexel *c =
+                            &scratch[below + (2 * y + q / 2) * child + 2 * x + q % 2];
+                        t->weight += c->weight;
+                        t->diffuse_power.x += c->diffuse_power.x;
+                        t->diffuse_power.y += c->diffuse_power.y;
+                    }
+                }
+            below = offset;
+            offset += (size_t)side * side;
+        }
+        for (uint32_t i = 0; i < n; ++i) {
+            SpheraVsgl g = sphera_vsgl_fis_select(
+                scratch, rsm->texel_count, size, rsm->origin, n, job->settings->kernel_scale,
+                job->settings->iterations, job->fis_points[2 * i], job->fis_points[2 * i + 1]);
+            num[i] = g.diffuse_power.x;
+            den[i] = g.diffuse_power.y;
+        }
+    }
+    for (uint32_t i = 0; i < n; ++i) visibility[i] = den[i] > 0.0 ? (float)(num[i] / den[i]) : 0.0f;
+}
+
+/* VARIANT_EXACT_LOBES (k-means): Σ_i I_i(ω_i) f(wo, ω_i) cos / d_i², each cluster i a
+ * point light at its mean whose intensity toward the shading point is the sum of its
+ * VPLs' SG lobes, Φ∘(R_d G_d/A_d + R_s G_s/A_s) (Eq. 1, 2), unshadowed. `emitted` holds
+ * one RGB value per cluster. */
+static float3 shade_exact_lobes(const ShadeJob *job, const CameraHit *hit, float3 *emitted) {
+    const Rsm *rsm = job->rsm;
+    const uint32_t m = rsm->size * rsm->size, n = job->count;
+    const Material *mat = &job->scene->materials[hit->material];
+    for (uint32_t i = 0; i < n; ++i) emitted[i] = f3(0, 0, 0);
+    for (uint32_t k = 0; k < m; ++k) {
+        if (!(rsm->texels[k].weight > 0.0f)) continue;
+        uint32_t i = job->assignment[k];
+        const SpheraVpl *vpl = &rsm->vpls[k];
+        float3 out = f3_sub(hit->position, fv(job->vsgls[i].mean));
+        float length = f3_length(out);
+        if (!(length > 0.0f)) continue;
+        SpheraVec3 toward = sv(f3_scale(out, 1.0f / length));
+        float gd = sphera_sg_eval(sphera_sg_diffuse_lobe(vpl->normal), toward);
+        float gs = sphera_sg_eval(
+            sphera_sg_specular_lobe(vpl->normal, vpl->toward_incoming, vpl->roughness), toward);
+        emitted[i] = f3_add(emitted[i],
+                            f3_mul(fv(vpl->power), f3_add(f3_scale(fv(vpl->diffuse_reflectance), gd),
+                                                          f3_scale(fv(vpl->specular_reflectance), gs))));
+    }
+    float3 sum = f3(0, 0, 0);
+    for (uint32_t i = 0; i < n; ++i) {
+        float3 d = f3_sub(fv(job->vsgls[i].mean), hit->position);
+        float d2 = f3_dot(d, d);
+        if (!(d2 > 1e-8f) || !(lum(emitted[i]) > 0.0f)) continue;
+        SpheraVec3 wi = frame_to_local(&hit->frame, f3_scale(d, 1.0f / sqrtf(d2)));
+        float3 f = material_eval(mat, hit->wo, wi);
+        sum = f3_add(sum, f3_scale(f3_mul(f, emitted[i]), wi.z / d2));
+    }
+    return sum;
+}
+
 static void shade_row(void *context, struct RTCIntersectContext *rtc, uint32_t y) {
     ShadeJob *job = context;
+    SpheraVsglTexel *scratch = NULL;
+    double *num = NULL, *den = NULL;
+    float *visibility = NULL;
+    if (job->variant & VARIANT_CLUSTER_VISIBILITY) {
+        scratch = malloc(sizeof(SpheraVsglTexel) * job->rsm->texel_count);
+        num = malloc(sizeof(double) * job->count);
+        den = malloc(sizeof(double) * job->count);
+        visibility = malloc(sizeof(float) * job->count);
+        if (!scratch || !num || !den || !visibility) abort();
+    }
     for (uint32_t x = 0; x < job->width; ++x) {
         uint32_t pixel = y * job->width + x;
         const CameraHit *hit = &job->hits[pixel];
-        float3 value = hit->valid ? shade_vsgls(job->scene, rtc, hit, job->vsgls, job->count)
-                                  : f3(0, 0, 0);
+        if (visibility && hit->valid) cluster_visibility(job, rtc, hit, scratch, num, den, visibility);
+        float3 value = f3(0, 0, 0);
+        if (hit->valid && (job->variant & VARIANT_EXACT_LOBES) && job->assignment) {
+            float3 *emitted = malloc(sizeof(float3) * job->count);
+            if (!emitted) abort();
+            value = shade_exact_lobes(job, hit, emitted);
+            free(emitted);
+        } else if (hit->valid)
+            value = shade_vsgls(job->scene, rtc, hit, job->vsgls, job->count, job->variant,
+                                visibility);
         job->image[3 * pixel + 0] = value.x;
         job->image[3 * pixel + 1] = value.y;
         job->image[3 * pixel + 2] = value.z;
     }
+    free(scratch);
+    free(num);
+    free(den);
+    free(visibility);
 }
 
 /* ---- frames ---------------------------------------------------------------------- */
@@ -617,16 +793,22 @@ bool indirect_render_vsgl(const Scene *scene, const SpotLight *spot,
     const uint32_t threads = s->threads ? s->threads : core_count();
     CameraHit *hits = malloc(sizeof(CameraHit) * pixels);
     SpheraVsgl *vsgls = malloc(sizeof(SpheraVsgl) * (s->cluster_count ? s->cluster_count : 1));
+    /* Diagnosis only: the FIS points, the k-means assignment, the per-VPL VSGLs. */
+    float *fis_points = malloc(sizeof(float) * 2 * (s->cluster_count ? s->cluster_count : 1));
+    uint32_t *assignment = calloc((size_t)s->rsm_size * s->rsm_size, sizeof(uint32_t));
+    SpheraVsgl *per_vpl = NULL;
     float *image = malloc(sizeof(float) * 3 * pixels);
     Rsm rsm;
     /* The pyramid's reference point: the room's centre. */
-    bool ok = hits && vsgls && image && s->cluster_count > 0 &&
+    bool ok = hits && vsgls && image && fis_points && assignment && s->cluster_count > 0 &&
               rsm_alloc(&rsm, s->rsm_size, f3(0.0f, 1.5f, 0.0f));
     if (!ok) {
         fprintf(stderr, "sphera-trace: indirect: bad settings or out of memory\n");
         free(hits);
         free(vsgls);
         free(image);
+        free(fis_points);
+        free(assignment);
         return false;
     }
     enable_flush_to_zero();
@@ -645,17 +827,36 @@ bool indirect_render_vsgl(const Scene *scene, const SpotLight *spot,
                 result->rsm_flux[1] += rsm.vpls[k].power.y;
                 result->rsm_flux[2] += rsm.vpls[k].power.z;
             }
-        if (s->clustering == CLUSTERING_FIS) cluster_fis(&rsm, s, &state, vsgls);
+        if (s->clustering == CLUSTERING_FIS) cluster_fis(&rsm, s, &state, vsgls, fis_points);
         else if (s->clustering == CLUSTERING_KMEANS) {
-            if (!cluster_kmeans(&rsm, s, &state, vsgls)) ok = false;
+            if (!cluster_kmeans(&rsm, s, &state, vsgls, assignment)) ok = false;
         } else
             memset(vsgls, 0, sizeof(SpheraVsgl) * s->cluster_count);
         double t2 = now_ms();
         if (s->clustering == CLUSTERING_VPLS) {
-            VplJob job = {scene, hits, &rsm, s->width, image};
+            VplJob job = {scene, hits, &rsm, s->width, image, s->variant, NULL, 0};
+            if (s->variant & VARIANT_VSGL_PER_VPL) {
+                /* Each VPL its own VSGL (σ² = 0), about its own position. */
+                free(per_vpl);
+                per_vpl = malloc(sizeof(SpheraVsgl) * s->rsm_size * s->rsm_size);
+                if (!per_vpl) abort();
+                uint32_t count = 0;
+                for (uint32_t k = 0; k < s->rsm_size * s->rsm_size; ++k) {
+                    if (!rsm.valid[k]) continue;
+                    SpheraVsglAccumulator a;
+                    sphera_vsgl_accumulator_init(&a, rsm.vpls[k].position);
+                    if (sphera_vsgl_accumulator_add_vpl(&a, &rsm.vpls[k]))
+                        per_vpl[count++] = sphera_vsgl_accumulator_finish(&a);
+                }
+                job.vsgls = per_vpl;
+                job.vsgl_count = count;
+            }
             for_each_row(threads, s->height, vpl_row, &job);
         } else {
-            ShadeJob job = {scene, hits, vsgls, s->cluster_count, s->width, image};
+            ShadeJob job = {scene, hits, vsgls, s->cluster_count, s->width, image,
+                            s->variant, &rsm, s,
+                            s->clustering == CLUSTERING_FIS ? fis_points : NULL,
+                            s->clustering == CLUSTERING_KMEANS ? assignment : NULL};
             for_each_row(threads, s->height, shade_row, &job);
         }
         double t3 = now_ms();
@@ -694,6 +895,9 @@ bool indirect_render_vsgl(const Scene *scene, const SpotLight *spot,
     rsm_free(&rsm);
     free(hits);
     free(vsgls);
+    free(fis_points);
+    free(assignment);
+    free(per_vpl);
     return ok;
 }
 
@@ -704,6 +908,36 @@ static bool parse_u32(const char *text, uint32_t *out) {
     unsigned long v = strtoul(text, &end, 10);
     if (*text == '\0' || *end != '\0' || v > 100000000ul) return false;
     *out = (uint32_t)v;
+    return true;
+}
+
+/* `--variant a,b,...` (diagnosis): unshadowed, sg-emission, vsgl-per-vpl, point,
+ * cluster-visibility, receiver-quadrature, exact-lobes, or none. */
+static bool parse_variant(const char *text, uint32_t *out) {
+    static const struct {
+        const char *name;
+        uint32_t bit;
+    } names[] = {{"none", 0},
+                 {"unshadowed", VARIANT_UNSHADOWED},
+                 {"sg-emission", VARIANT_SG_EMISSION},
+                 {"vsgl-per-vpl", VARIANT_VSGL_PER_VPL},
+                 {"point", VARIANT_POINT},
+                 {"cluster-visibility", VARIANT_CLUSTER_VISIBILITY},
+                 {"receiver-quadrature", VARIANT_RECEIVER_QUADRATURE},
+                 {"exact-lobes", VARIANT_EXACT_LOBES}};
+    *out = 0;
+    while (*text) {
+        size_t length = strcspn(text, ",");
+        bool found = false;
+        for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i)
+            if (strlen(names[i].name) == length && strncmp(text, names[i].name, length) == 0) {
+                *out |= names[i].bit;
+                found = true;
+            }
+        if (!found) return false;
+        text += length;
+        if (*text == ',') ++text;
+    }
     return true;
 }
 
@@ -747,6 +981,7 @@ int indirect_main(int argc, char **argv) {
         else if (strcmp(a, "--spp") == 0) ok = parse_u32(v, &spp) && spp > 0;
         else if (strcmp(a, "--threads") == 0) ok = parse_u32(v, &s.threads);
         else if (strcmp(a, "--seed") == 0) ok = parse_u32(v, &seed);
+        else if (strcmp(a, "--variant") == 0) ok = parse_variant(v, &s.variant);
         else if (strcmp(a, "--reference") == 0) reference_path = v;
         else if (strcmp(a, "--out-pfm") == 0) pfm = v;
         else if (strcmp(a, "--out-png") == 0) png = v;
@@ -772,7 +1007,10 @@ int indirect_main(int argc, char **argv) {
                 "usage: sphera-trace --scene indirect [--technique fis|kmeans|vpl|reference]\n"
                 "  [--clusters N] [--rsm-size S] [--frames F] [--spp P (reference)]\n"
                 "  [--width W --height H] [--threads T] [--seed S] [--reference F.pfm]\n"
-                "  [--out-pfm F] [--out-png F] [--exposure E] [--quiet]\n");
+                "  [--out-pfm F] [--out-png F] [--exposure E] [--quiet]\n"
+                "  [--variant V,...] diagnosis: unshadowed, sg-emission (vpl), vsgl-per-vpl\n"
+                "    (vpl), point (fis/kmeans), cluster-visibility (fis/kmeans),\n"
+                "    receiver-quadrature (VSGL shading by quadrature), exact-lobes (kmeans)\n");
         return help ? 0 : 2;
     }
     s.seed = seed;

@@ -40,6 +40,24 @@ typedef enum Clustering {
     CLUSTERING_VPLS /* diagnosis: no clusters, every VPL shaded exactly (N ignored) */
 } Clustering;
 
+/* Diagnosis switches (`--variant a,b,...`), each removing one approximation or adding
+ * one, to decompose the VSGLs' loss of energy (README, issue 20): */
+enum {
+    VARIANT_UNSHADOWED = 1u << 0,  /* no shadow rays (V = 1), VPLs and VSGLs */
+    VARIANT_SG_EMISSION = 1u << 1, /* vpl: each VPL emits by its SG lobes (Eq. 1, 2) */
+    VARIANT_VSGL_PER_VPL = 1u << 2, /* vpl: each VPL a VSGL of its own, SG shading */
+    VARIANT_POINT = 1u << 3,       /* fis/kmeans: variance 0 (a point at the mean) */
+    VARIANT_CLUSTER_VISIBILITY = 1u << 4, /* fis/kmeans: V = the visible share of the
+                                             cluster's VPLs (per pixel, exact) */
+    VARIANT_RECEIVER_QUADRATURE = 1u << 5, /* the receiver's ∫ L_in f cos dω by 64
+                                              stratified vMF samples of L_in, exact BRDF,
+                                              instead of the closed forms of Sec. 4.2 */
+    VARIANT_EXACT_LOBES = 1u << 6 /* k-means: each cluster a point light at its mean
+                                     emitting the sum of its VPLs' SG lobes (Eq. 1, 2)
+                                     instead of one Toksvig lobe per component, exact
+                                     receiver BRDF, unshadowed */
+};
+
 typedef struct IndirectSettings {
     uint32_t width, height;
     uint32_t rsm_size;      /* a power of two */
@@ -51,6 +69,7 @@ typedef struct IndirectSettings {
     float kernel_scale;     /* FIS's K (1) */
     uint32_t iterations;    /* FIS's bisection steps (8) */
     float world_extent;     /* k-means: h_world = world_extent / sqrt(N) */
+    uint32_t variant;       /* VARIANT_* bits (0: the method as specified) */
 } IndirectSettings;
 
 typedef struct IndirectResult {

@@ -17,7 +17,7 @@
 //! ~1e-3 rad) that is the difference between a correct lobe and a staircase.
 //!
 //! The amplitude is stored as its logarithm, so that the products and the VSGL
-//! incoming radiance (`c_v / (2πσ²) · e^{λ_in − λ_v − λ_σ}`, Eq. 7) neither overflow
+//! incoming radiance (`c_v / (2πs²) · e^{λ_in − λ_v − λ_σ}`, Eq. 7) neither overflow
 //! nor form `0 · ∞` for sharpness up to [`MAX_SHARPNESS`].
 //!
 //! # Integral and products

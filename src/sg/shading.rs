@@ -12,18 +12,30 @@
 //!
 //! # Incoming radiance (Eq. 6–7)
 //!
-//! `L_in(ω) ≈ c_v/(2πσ²) · G(ω, −ξ_v, λ_v) · G(ω, ξ_μ, λ_σ)` with
-//! `ξ_μ = μ/|μ|`, `λ_σ = |μ|²/σ²`, the product of two SGs ([`Sg::product`]):
-//! `λ_in = |λ_σ ξ_μ − λ_v ξ_v|`, `c_in = c_v/(2πσ²) e^{λ_in − λ_v − λ_σ}`, all in log
-//! space (the exponent without cancellation). Degenerate inputs:
+//! `L_in(ω) ≈ c_v/(2πs²) · G(ω, −ξ_v, λ_v) · G(ω, ξ_μ, λ_σ)` with
+//! `ξ_μ = μ/|μ|`, `λ_σ = |μ|²/s²`, the product of two SGs ([`Sg::product`]):
+//! `λ_in = |λ_σ ξ_μ − λ_v ξ_v|`, `c_in = c_v/(2πs²) e^{λ_in − λ_v − λ_σ}`, all in log
+//! space (the exponent without cancellation).
 //!
-//! - `σ² → 0` (a point light): `λ_σ = |μ|²/σ²` exceeds `MAX_SHARPNESS`. It is clamped
-//!   there, and `1/(2πσ²)` replaced by `λ_σ/(2π|μ|²)` with the clamped `λ_σ`, which
-//!   keeps the limit `∫ G_σ/(2πσ²) dω → 1/|μ|²` (inverse-square falloff) exact.
+//! **`s² = σ²/2`, not the paper's `σ²`** (derived again, issue 20). `variance` is the
+//! VSGL's positional variance `σ_v² = E‖y − μ‖²` of Section 3.2 (the accumulator's), the
+//! spread over all three axes. Eq. 3 models the cluster as the planar Gaussian
+//! `γ(‖y − μ‖, s²)/(2πs²)`, whose spread is `E‖y − μ‖² = 2s²`: the Gaussian with the
+//! cluster's own spread has `s² = σ_v²/2`. The paper puts `σ_v²` itself into Eq. 3 and 6,
+//! which makes every VSGL √2 as wide as its cluster (twice its second moment); seen
+//! from afar, the SG `G(ω, ξ_μ, λ_σ)` then has the angular spread `E|ω − ξ_μ|² = 2/λ_σ`
+//! of the VPLs' directions only with `λ_σ = 2|μ|²/σ_v²` (tested). With the paper's
+//! value the tracer's VSGLs lost a further 2–6 % of the image's light (README).
+//!
+//! Degenerate inputs:
+//!
+//! - `σ² → 0` (a point light): `λ_σ = |μ|²/s²` exceeds `MAX_SHARPNESS`. It is clamped
+//!   there, and `1/(2πs²)` replaced by `λ_σ/(2π|μ|²)` with the clamped `λ_σ`, which
+//!   keeps the limit `∫ G_σ/(2πs²) dω → 1/|μ|²` (inverse-square falloff) exact.
 //!   A NaN or negative variance (the accumulator's `E|y|² − |μ|²` can round below 0)
 //!   counts as 0.
 //! - `|μ| → 0` (the shading point at the VSGL's mean): `λ_σ = 0` and `ξ_μ` is irrelevant;
-//!   with `σ² > 0` the result is `c_v/(2πσ²) G(ω, −ξ_v, λ_v)`. With `σ² = 0` too the
+//!   with `σ² > 0` the result is `c_v/(2πs²) G(ω, −ξ_v, λ_v)`. With `σ² = 0` too the
 //!   radiance is that of a point light at the shading point, infinite: this returns
 //!   [`Sg::ZERO`] (no contribution), as renderers skip a light at the shading point.
 //! - a non-finite mean, an infinite variance or an invalid lobe give [`Sg::ZERO`].
@@ -90,14 +102,16 @@ fn clamp_nonnegative(x: f32) -> f32 {
 
 /// The incoming radiance `c_in G(ω, ξ_in, λ_in)` of Eq. 7 from the VSGL lobe
 /// `lobe` (`c_v`, `ξ_v`, `λ_v`), its positional mean `mean` relative to the shading point
-/// and its positional variance `variance` (see the module documentation for the
-/// degenerate cases).
+/// and its positional variance `variance` (`σ_v² = E‖y − μ‖²`, as [`crate::vsgl::Vsgl`]
+/// holds it; the planar Gaussian gets `s² = σ_v²/2`, see the module documentation, also
+/// for the degenerate cases).
 pub fn incoming_radiance(lobe: &Sg, mean: Vec3, variance: f32) -> Sg {
     let lobe = lobe.sanitized();
     if lobe == Sg::ZERO || !mean.is_finite() || variance == f32::INFINITY {
         return Sg::ZERO;
     }
-    let variance = if variance > 0.0 { variance } else { 0.0 };
+    // s² = σ²/2: the planar Gaussian with the cluster's spread (module documentation).
+    let variance = if variance > 0.0 { 0.5 * variance } else { 0.0 };
     let emitted = Sg {
         axis: -lobe.axis,
         ..lobe

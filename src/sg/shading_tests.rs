@@ -2,7 +2,7 @@ use super::sg::{MAX_SHARPNESS, Sg, sg_integral};
 use super::shading::*;
 use crate::Vec3;
 use crate::brdf::ggx::GgxBrdf;
-use crate::testing::{Rng, d3, dot, normalize, sub};
+use crate::testing::{D3, Rng, d3, dot, normalize, scale, sub};
 use core::f64::consts::PI as PI64;
 
 /// `e^{λ(ω·ξ − 1)}` in f64 with `1 − ω·ξ = |ω − ξ|²/2`.
@@ -26,7 +26,9 @@ fn incoming_radiance_is_the_product_of_eq_7() {
         let l_in = incoming_radiance(&lobe, mean, variance);
         let mu = d3(mean);
         let d2 = dot(mu, mu);
-        let l_sigma = d2 / variance as f64;
+        // The planar Gaussian's per-axis variance s² = σ²/2 (module documentation).
+        let s2 = 0.5 * variance as f64;
+        let l_sigma = d2 / s2;
         if l_sigma > 1e5 {
             continue;
         }
@@ -34,7 +36,7 @@ fn incoming_radiance_is_the_product_of_eq_7() {
             // Directions near the product's axis, where it is not negligible.
             let w = (l_in.axis + rng.unit_vector_f32() * (1.0 / (1.0 + l_in.sharpness).sqrt()))
                 .normalize();
-            let reference = cv / (2.0 * PI64 * variance as f64)
+            let reference = cv / (2.0 * PI64 * s2)
                 * sg64(d3(-lobe.axis), lobe.sharpness as f64, d3(w))
                 * sg64(mu, l_sigma, d3(w));
             let value = l_in.eval(w) as f64;
@@ -76,9 +78,9 @@ fn point_light_limit_keeps_the_inverse_square_law() {
 #[test]
 fn degenerate_vsgls_give_finite_radiance() {
     let lobe = Sg::new(Vec3::Z, 2.0, 1.0);
-    // Shading point at the mean: λ_σ = 0.
+    // Shading point at the mean: λ_σ = 0, amplitude c_v/(2πs²) with s² = σ²/2 = 0.25.
     let at_mean = incoming_radiance(&lobe, Vec3::ZERO, 0.5);
-    assert!((at_mean.amplitude() - 1.0 / (2.0 * core::f32::consts::PI * 0.5)).abs() < 1e-5);
+    assert!((at_mean.amplitude() - 1.0 / (2.0 * core::f32::consts::PI * 0.25)).abs() < 1e-5);
     assert_eq!(at_mean.sharpness, 2.0);
     assert_eq!(incoming_radiance(&lobe, Vec3::ZERO, 0.0), Sg::ZERO);
     let vectors = [
@@ -345,5 +347,156 @@ fn beckmann_shading_of_a_delta_like_light_is_the_brdf_at_its_direction() {
     assert_eq!(
         beckmann_specular_shading_sg(&below, n, Vec3::Z, 0.5, 0.04, 1.0),
         0.0
+    );
+}
+
+// ---- VSGLs of VPL clusters against the VPLs themselves (issue 20) -------------------
+
+use crate::vsgl::{Vpl, VsglAccumulator};
+
+/// VPLs in the plane z = 0 around the origin within `radius`, normal +z, all lit from
+/// the same direction (so that their lobes are identical), random powers and
+/// reflectances.
+fn planar_vpls(rng: &mut Rng, count: usize, radius: f32) -> std::vec::Vec<Vpl> {
+    (0..count)
+        .map(|_| {
+            let (r, phi) = (
+                radius * rng.uniform_f32().sqrt(),
+                core::f32::consts::TAU * rng.uniform_f32(),
+            );
+            Vpl {
+                position: Vec3::new(r * phi.cos(), r * phi.sin(), 0.0),
+                normal: Vec3::Z,
+                power: Vec3::new(
+                    0.2 + rng.uniform_f32(),
+                    0.2 + rng.uniform_f32(),
+                    0.2 + rng.uniform_f32(),
+                ),
+                diffuse_reflectance: Vec3::splat(0.1 + 0.8 * rng.uniform_f32()),
+                specular_reflectance: Vec3::splat(0.5 * rng.uniform_f32()),
+                toward_incoming: Vec3::new(0.5, 0.2, 0.7),
+                roughness: 0.3,
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn a_planar_cluster_seen_face_on_has_its_own_angular_spread() {
+    // Seen from a distance D along the plane's normal, a planar cluster's VPLs lie at
+    // directions ω_j around ξ_μ with the weighted spread m = E|ω − ξ_μ|²; an SG of
+    // sharpness λ has E|ω − ξ|² = 2/λ for λ ≫ 1, so the spatial SG of Eq. 6 must have
+    // λ_σ = 2/m. The paper's λ_σ = D²/σ_v² is half of that (the VSGL √2 too wide).
+    let mut rng = Rng::new(2020);
+    for (count, radius, distance) in [(400usize, 0.5f32, 20.0f32), (50, 1.0, 40.0)] {
+        let vpls = planar_vpls(&mut rng, count, radius);
+        let mut accumulator = VsglAccumulator::new(Vec3::ZERO);
+        for vpl in &vpls {
+            assert!(accumulator.add_vpl(vpl));
+        }
+        let vsgl = accumulator.finish();
+        let x = [0.0, 0.0, distance as f64];
+        // f64: the luminance-weighted mean position and angular spread.
+        let weight = |v: &Vpl| {
+            let p = v.power * (v.diffuse_reflectance + v.specular_reflectance);
+            0.2126 * p.x as f64 + 0.7152 * p.y as f64 + 0.0722 * p.z as f64
+        };
+        let total: f64 = vpls.iter().map(weight).sum();
+        let mut mean = [0.0; 3];
+        for v in &vpls {
+            mean = crate::testing::add(mean, scale(d3(v.position), weight(v) / total));
+        }
+        let axis = normalize(sub(mean, x));
+        let spread: f64 = vpls
+            .iter()
+            .map(|v| {
+                let e = sub(normalize(sub(d3(v.position), x)), axis);
+                weight(v) * dot(e, e)
+            })
+            .sum::<f64>()
+            / total;
+        // A uniform emission lobe (λ_v = 0): the product is the spatial SG itself.
+        let uniform = Sg::new(Vec3::Z, 0.0, 1.0);
+        let offset = vsgl.mean - Vec3::new(0.0, 0.0, distance);
+        let l_in = incoming_radiance(&uniform, offset, vsgl.variance);
+        let expected = 2.0 / spread;
+        assert!(
+            (l_in.sharpness as f64 / expected - 1.0).abs() < 0.02,
+            "{count} VPLs: λ_σ {} vs {expected}",
+            l_in.sharpness
+        );
+        // Its energy is the inverse-square law's: ∫ G_σ/(2πs²) dω = 1/|μ − x|².
+        let energy = (l_in.log_amplitude as f64).exp() * sg_integral(l_in.sharpness) as f64;
+        let d2 = dot(sub(mean, x), sub(mean, x));
+        assert!((energy * d2 - 1.0).abs() < 1e-3, "{energy} vs {}", 1.0 / d2);
+    }
+}
+
+/// `e^{λ(ω·ξ − 1)}/A(λ)` in f64, `A(λ) = 2π(1 − e^{−2λ})/λ`.
+fn normalised_sg64(axis: D3, l: f64, w: D3) -> f64 {
+    sg64(axis, l, w) * l / (2.0 * PI64 * (1.0 - (-2.0 * l).exp()))
+}
+
+#[test]
+fn far_from_a_cluster_vsgl_shading_converges_to_the_vpls_sum() {
+    // The diffuse shading (constant cosine, unit albedo) of a point at distance D from
+    // a cluster of VPLs with identical lobes, from the VSGL (Eq. 6-7) against the sum
+    // over the VPLs of Φ R G(−ω_j)/A · max(n·ω_j, 0)/π / r_j² in f64 (Eq. 1, 2 with
+    // λ_d = 2.2925, λ_s = (2/α²)/(4 cos θ'), written out here): the error falls with
+    // the cluster's angular size.
+    let mut rng = Rng::new(77);
+    let vpls = planar_vpls(&mut rng, 300, 0.1);
+    let mut accumulator = VsglAccumulator::new(Vec3::ZERO);
+    for vpl in &vpls {
+        assert!(accumulator.add_vpl(vpl));
+    }
+    let vsgl = accumulator.finish();
+    let w_in = normalize(d3(vpls[0].toward_incoming));
+    let reflected = sub(scale([0.0, 0.0, 1.0], 2.0 * w_in[2]), w_in);
+    let alpha = 0.3f64;
+    let l_s = 2.0 / (alpha * alpha) / (4.0 * w_in[2]);
+    let mut worst = [0.0f64; 2];
+    for (k, distance) in [10.0f64, 1000.0].into_iter().enumerate() {
+        for _ in 0..40 {
+            let dir = loop {
+                let d = crate::testing::uniform_direction_f64(&mut rng);
+                if d[2] > 0.2 {
+                    break d;
+                }
+            };
+            let x = scale(dir, distance);
+            let n = scale(dir, -1.0); // the receiver faces the cluster
+            let mut reference = 0.0;
+            for v in &vpls {
+                let to_vpl = sub(d3(v.position), x);
+                let r2 = dot(to_vpl, to_vpl);
+                let w = normalize(to_vpl);
+                let out = scale(w, -1.0); // from the VPL towards the receiver
+                let emitted = (v.power.x * v.diffuse_reflectance.x) as f64
+                    * normalised_sg64([0.0, 0.0, 1.0], 2.2925, out)
+                    + (v.power.x * v.specular_reflectance.x) as f64
+                        * normalised_sg64(reflected, l_s, out);
+                reference += emitted * dot(n, w).max(0.0) / PI64 / r2;
+            }
+            let offset = vsgl.mean - Vec3::new(x[0] as f32, x[1] as f32, x[2] as f32);
+            let normal = Vec3::new(n[0] as f32, n[1] as f32, n[2] as f32);
+            let mut value = 0.0f64;
+            for (lobe, power) in [
+                (vsgl.diffuse, vsgl.diffuse_power.x),
+                (vsgl.specular, vsgl.specular_power.x),
+            ] {
+                let l_in = incoming_radiance(&lobe, offset, vsgl.variance);
+                value +=
+                    power as f64 * diffuse_shading_constant_cosine(&l_in, normal, 1.0, 1.0) as f64;
+            }
+            let error = (value / reference - 1.0).abs();
+            worst[k] = worst[k].max(error);
+        }
+    }
+    assert!(worst[0] < 0.02, "D = 10: worst relative error {}", worst[0]);
+    assert!(
+        worst[1] < 2e-4,
+        "D = 1000: worst relative error {}",
+        worst[1]
     );
 }
