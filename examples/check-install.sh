@@ -5,7 +5,7 @@
 # under "== <way>: <program>" lines (tools/tests/examples.rs checks the numbers). Also
 # checks the CMake package's version rule and, on Linux, the shared library of
 # `SHARED=1 install.sh` (quad_light linked against it through pkg-config). Needs cmake and pkg-config (CI installs them
-# with c-examples/install-deps.sh). Exits non-zero on the first failure.
+# with bench/install-deps.sh). Exits non-zero on the first failure.
 #
 #   bash examples/check-install.sh             # KEEP=1 keeps the temporary directory
 set -euo pipefail
@@ -14,7 +14,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 root="$(dirname "$here")"
 for tool in cmake pkg-config "${CC:-cc}" "${CXX:-c++}"; do
     command -v "$tool" >/dev/null 2>&1 || {
-        echo "check-install: $tool is missing (bash c-examples/install-deps.sh installs cmake and pkg-config)" >&2
+        echo "check-install: $tool is missing (bash bench/install-deps.sh installs cmake and pkg-config)" >&2
         exit 1
     }
 done

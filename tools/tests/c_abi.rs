@@ -31,9 +31,9 @@ const C_TESTS: [&str; 18] = [
     "test_version",
 ];
 
-/// The C tests that link the example tracer's sources (`c-examples/src`) and Embree 3
+/// The C tests that link the example tracer's sources (`bench/src`) and Embree 3
 /// besides `libsphera.a`; they need `libembree-dev` and `libpng-dev` installed
-/// (`c-examples/install-deps.sh`).
+/// (`bench/install-deps.sh`).
 const TRACER_TESTS: [&str; 2] = ["test_tracer_end_to_end", "test_tracer_indirect"];
 
 /// The tracer's sources that the tracer tests link (all but its `main.c`).
@@ -279,12 +279,12 @@ fn build_with_tracer(name: &str, main: &Path) -> PathBuf {
         .arg("-I")
         .arg(root.join("include"))
         .arg("-I")
-        .arg(root.join("c-examples").join("src"))
+        .arg(root.join("bench").join("src"))
         .arg("-I")
         .arg(root.join("ffi-tests"))
         .arg(main);
     for source in TRACER_SOURCES {
-        command.arg(root.join("c-examples").join("src").join(source));
+        command.arg(root.join("bench").join("src").join(source));
     }
     command
         .arg(static_library())
@@ -293,24 +293,27 @@ fn build_with_tracer(name: &str, main: &Path) -> PathBuf {
     if let Err(message) = run(&mut command) {
         panic!(
             "{name} does not compile and link (Embree 3 and libpng must be installed: \
-             bash c-examples/install-deps.sh):\n{message}"
+             bash bench/install-deps.sh):\n{message}"
         );
     }
     program
 }
 
-/// Compiles `ffi-tests/<name>.c` with the tracer's sources, runs it and asserts that it
-/// exits with status 0.
+/// Compiles `bench/tests/<name>.c` (the tracer's own tests, beside it) with the tracer's
+/// sources, runs it and asserts that it exits with status 0.
 fn run_tracer_test(name: &str) {
     let root = repository_root();
-    let program = build_with_tracer(name, &root.join("ffi-tests").join(format!("{name}.c")));
+    let program = build_with_tracer(
+        name,
+        &root.join("bench").join("tests").join(format!("{name}.c")),
+    );
     match run(&mut Command::new(&program)) {
         Ok(output) => println!("{name}.c:\n{output}"),
         Err(message) => panic!("{name}.c failed:\n{message}"),
     }
 }
 
-/// Issue 16 (8): the tracer's command line (`c-examples/src/main.c`, built with the
+/// Issue 16 (8): the tracer's command line (`bench/src/main.c`, built with the
 /// tracer's sources): every bad value gets a message and exit status 2 (an infinite or
 /// huge time budget ran without end, a NaN or non-numeric exposure was read as a black
 /// image or 0, `--curve` without `--reference` wrote only a header); a NaN reference
@@ -321,7 +324,7 @@ fn tracer_command_line_rejects_bad_values() {
     let root = repository_root();
     let program = build_with_tracer(
         "sphera-trace-cli",
-        &root.join("c-examples").join("src").join("main.c"),
+        &root.join("bench").join("src").join("main.c"),
     );
     let small = ["--width", "8", "--height", "8", "--spp", "1", "--quiet"];
     for bad in [
@@ -393,14 +396,19 @@ fn test_tracer_indirect() {
 
 #[test]
 fn every_c_test_file_has_a_test() {
-    let mut found: Vec<String> = std::fs::read_dir(repository_root().join("ffi-tests"))
-        .expect("read ffi-tests/")
-        .filter_map(|entry| {
-            let path = entry.expect("read ffi-tests/").path();
-            let is_c = path.extension().is_some_and(|extension| extension == "c");
-            is_c.then(|| path.file_stem().unwrap().to_string_lossy().into_owned())
-        })
-        .collect();
+    let c_files = |dir: &str| -> Vec<String> {
+        std::fs::read_dir(repository_root().join(dir))
+            .unwrap_or_else(|error| panic!("read {dir}/: {error}"))
+            .filter_map(|entry| {
+                let path = entry.expect("read a directory entry").path();
+                let is_c = path.extension().is_some_and(|extension| extension == "c");
+                is_c.then(|| path.file_stem().unwrap().to_string_lossy().into_owned())
+            })
+            .collect()
+    };
+    // ffi-tests/ holds only tests of the C ABI; the tracer's tests live beside it.
+    let mut found = c_files("ffi-tests");
+    found.extend(c_files("bench/tests"));
     found.sort();
     let mut known: Vec<String> = C_TESTS
         .iter()
@@ -410,7 +418,7 @@ fn every_c_test_file_has_a_test() {
     known.sort();
     assert_eq!(
         found, known,
-        "add a #[test] and a C_TESTS (or TRACER_TESTS) entry in tools/tests/c_abi.rs for each ffi-tests/*.c"
+        "add a #[test] and a C_TESTS (or TRACER_TESTS) entry in tools/tests/c_abi.rs for each ffi-tests/*.c (bench/tests/*.c)"
     );
 }
 

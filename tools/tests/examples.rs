@@ -4,7 +4,7 @@
 //! checked against values computed here (Lambert's closed form for the quad light) or
 //! by the program itself (a brute-force estimate for the sphere light).
 //! `examples/check-install.sh` does the same through CMake's `find_package(sphera)` and
-//! `pkg-config`; it needs cmake and pkg-config (`c-examples/install-deps.sh`).
+//! `pkg-config`; it needs cmake and pkg-config (`bench/install-deps.sh`).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -247,7 +247,7 @@ fn installed_examples_build_with_cmake_and_pkg_config() {
         nested(
             Command::new("bash").arg(repository_root().join("examples").join("check-install.sh")),
         ),
-        "examples/check-install.sh (needs cmake and pkg-config: bash c-examples/install-deps.sh)",
+        "examples/check-install.sh (needs cmake and pkg-config: bash bench/install-deps.sh)",
     );
     println!("{output}");
     let mut checked = Vec::new();

@@ -1,5 +1,5 @@
 //! The C benchmark of the sphere-light, BRDF and LTC polygon-light techniques
-//! (`c-examples/light-bench`) in its quick form, default build only: it builds, runs and
+//! (`bench/light-bench`) in its quick form, default build only: it builds, runs and
 //! exits 0, and prints a table row for every technique of every pool, each with valid
 //! samples. The benchmark itself exits 1 when a technique yields no valid sample, or
 //! when one of its C baselines (cone sampling, GGX visible-normal sampling,

@@ -1,4 +1,4 @@
-//! The C benchmark of the polygon techniques (`c-examples/polygon-bench`) in its quick
+//! The C benchmark of the polygon techniques (`bench/polygon-bench`) in its quick
 //! form, default build only: it builds, runs and exits 0, and prints a table row for
 //! every technique in every pool it runs on, each with valid samples (pdf > 0). The
 //! benchmark itself exits 1 when a technique yields no valid sample in a pool, or when

@@ -1,5 +1,5 @@
-//! The report script (`c-examples/report.py`) against its mock tracer
-//! (`c-examples/mock_tracer.py`, same command line as `sphera-trace`, no rendering):
+//! The report script (`bench/report.py`) against its mock tracer
+//! (`bench/mock_tracer.py`, same command line as `sphera-trace`, no rendering):
 //! the quick report is written and its mean check passes, and the check fails when an
 //! unbiased technique's mean is shifted (the mock's `MOCK_BIAS`), so that the check
 //! that `.ci/run` relies on can fail.
@@ -15,10 +15,10 @@ fn quick_report(name: &str, bias: bool) -> (Output, PathBuf) {
     let root = repository_root();
     let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
     let _ = std::fs::remove_dir_all(&out);
-    let mock = root.join("c-examples").join("mock_tracer.py");
+    let mock = root.join("bench").join("mock_tracer.py");
     let mut command = Command::new("python3");
     command
-        .arg(root.join("c-examples").join("report.py"))
+        .arg(root.join("bench").join("report.py"))
         .args([
             "--quick",
             "--no-indirect",
@@ -34,7 +34,7 @@ fn quick_report(name: &str, bias: bool) -> (Output, PathBuf) {
     if bias {
         command.env("MOCK_BIAS", "1");
     }
-    let output = command.output().expect("run python3 c-examples/report.py");
+    let output = command.output().expect("run python3 bench/report.py");
     (output, out)
 }
 
@@ -85,7 +85,7 @@ fn quick_report_check_fails_on_a_biased_mean() {
 #[test]
 fn bad_arguments_get_a_message_and_a_non_zero_exit() {
     let root = repository_root();
-    let mock = root.join("c-examples").join("mock_tracer.py");
+    let mock = root.join("bench").join("mock_tracer.py");
     let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("report-bad-arguments");
     let out = out.to_string_lossy().into_owned();
     for bad in [
@@ -98,7 +98,7 @@ fn bad_arguments_get_a_message_and_a_non_zero_exit() {
     ] {
         let mut command = Command::new("python3");
         command
-            .arg(root.join("c-examples").join("report.py"))
+            .arg(root.join("bench").join("report.py"))
             .args(["--quick", "--no-indirect", "--tracer"])
             .arg(format!("python3 {}", mock.display()));
         if bad[0] != "--out" {
@@ -107,7 +107,7 @@ fn bad_arguments_get_a_message_and_a_non_zero_exit() {
         let output = command
             .args(&bad)
             .output()
-            .expect("run python3 c-examples/report.py");
+            .expect("run python3 bench/report.py");
         let stderr = String::from_utf8_lossy(&output.stderr);
         assert!(
             !output.status.success(),

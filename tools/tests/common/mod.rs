@@ -5,12 +5,12 @@ use std::process::Command;
 
 use sphera_tools::repository_root;
 
-/// Runs `bash c-examples/NAME-bench/run.sh --quick --default-only` from the repository
+/// Runs `bash bench/NAME-bench/run.sh --quick --default-only` from the repository
 /// root and returns its stdout and stderr, after asserting that it succeeded and ran the
 /// default build only.
 pub fn run_quick(name: &str) -> (String, String) {
     let root = repository_root();
-    let script = format!("c-examples/{name}-bench/run.sh");
+    let script = format!("bench/{name}-bench/run.sh");
     let output = Command::new("bash")
         .arg(root.join(&script))
         .args(["--quick", "--default-only"])

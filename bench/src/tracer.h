@@ -2,7 +2,7 @@
  * The sphera example tracer: direct illumination from polygonal area lights, with
  * shadow rays through Intel Embree 3 and the light sampled by one of the techniques
  * that libsphera exports. The program (main.c) and the end-to-end test
- * (ffi-tests/test_tracer_end_to_end.c) both drive it through this interface.
+ * (bench/tests/test_tracer_end_to_end.c) both drive it through this interface.
  *
  * What is rendered: camera rays through pixel centres (one per pixel, traced once and
  * cached, so the image has no antialiasing noise), emission of the lights they hit,

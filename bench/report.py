@@ -160,7 +160,7 @@ def parse_args(argv):
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--quick", action="store_true", help="small and fast; implies --check")
-    ap.add_argument("--tracer", default=os.path.join(root, "c-examples", "build", "sphera-trace"),
+    ap.add_argument("--tracer", default=os.path.join(root, "bench", "build", "sphera-trace"),
                     help="path or command line of sphera-trace")
     ap.add_argument("--out", default="report", help="output directory")
     ap.add_argument("--scenes", default=",".join(SCENES))

@@ -466,7 +466,7 @@ static int zenith_inside(const Input *p) {
   return positive == p->n || negative == p->n;
 }
 
-/* A quad as in c-examples/polygon-bench: vertices irregularly spaced on an ellipse
+/* A quad as in bench/polygon-bench: vertices irregularly spaced on an ellipse
  * (aspect in [0.5, 1], random rotation) in a plane tilted up to 50° from facing the
  * shading point, centre at a log-uniform distance in [1, 4], radius 0.3–1 times the
  * distance, entirely above the horizon, the zenith inside (central) or outside. */

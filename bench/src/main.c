@@ -1,4 +1,4 @@
-/* sphera-trace: the command line of the example tracer. See c-examples/README.md. */
+/* sphera-trace: the command line of the example tracer. See bench/README.md. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>

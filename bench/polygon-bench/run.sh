@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# Builds the release static library (as c-examples/Makefile does) and the polygon benchmark
+# Builds the release static library (as bench/Makefile does) and the polygon benchmark
 # against it, and runs it: first the default build, then the build for the host CPU
 # (RUSTFLAGS="-C target-cpu=native", bench compiled with -march=native).
 #
-#   bash c-examples/polygon-bench/run.sh [--quick] [--native-only|--default-only] [bench options]
+#   bash bench/polygon-bench/run.sh [--quick] [--native-only|--default-only] [bench options]
 #
 # Other options (--reps R, --calls N, --only NAME, --pool ID) go to the benchmark. The
-# body is shared with the other benchmark: c-examples/bench-run.sh.
+# body is shared with the other benchmark: bench/bench-run.sh.
 set -euo pipefail
 exec bash "$(cd "$(dirname "$0")" && pwd)/../bench-run.sh" polygon "$@"

@@ -1,5 +1,5 @@
 /*
- * The tracer's one-bounce indirect scene (c-examples/src/indirect.c) at a tiny
+ * The tracer's one-bounce indirect scene (bench/src/indirect.c) at a tiny
  * resolution: VSGLs from an RSM of the spot light, clustered by FIS and by k-means,
  * against the path-traced one-bounce reference.
  *

@@ -40,7 +40,7 @@ EXPLANATION = (
     "clustering</b> includes the pyramid. <b>mean ratio</b>: image mean / reference mean "
     "(VSGLs are biased by design and lose light, most of it to the positional spread of Eq. "
     "6&ndash;7 and to the single Toksvig lobe of large clusters; the README's &ldquo;Where the "
-    "VSGLs' energy goes&rdquo; decomposes it with <code>c-examples/vsgl_energy.py</code>). "
+    "VSGLs' energy goes&rdquo; decomposes it with <code>bench/vsgl_energy.py</code>). "
     "Reference: {spp} one-bounce paths per "
     "pixel; its noise (RMSE) is about {noise:.2g}. <b>VPLs, exact</b> (a diagnosis, N = the "
     "VPL count): every VPL as a point light with the exact BRDFs at both ends and a shadow "

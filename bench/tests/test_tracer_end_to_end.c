@@ -1,5 +1,5 @@
 /*
- * End to end through the example tracer (c-examples/src), linked with libsphera.a and
+ * End to end through the example tracer (bench/src), linked with libsphera.a and
  * Embree 3 the way an engine links them:
  *
  * 1. The Cornell box at low resolution, rendered with every unbiased technique: the

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# The body of c-examples/polygon-bench/run.sh and c-examples/light-bench/run.sh: builds
-# the release static library (as c-examples/Makefile does) and the named benchmark
-# (c-examples/NAME-bench/NAME_bench.c) against it, and runs it: first the default build,
+# The body of bench/polygon-bench/run.sh and bench/light-bench/run.sh: builds
+# the release static library (as bench/Makefile does) and the named benchmark
+# (bench/NAME-bench/NAME_bench.c) against it, and runs it: first the default build,
 # then the build for the host CPU (RUSTFLAGS="-C target-cpu=native", bench compiled with
 # -march=native).
 #
-#   bash c-examples/bench-run.sh NAME [--quick] [--native-only|--default-only] [bench options]
+#   bash bench/bench-run.sh NAME [--quick] [--native-only|--default-only] [bench options]
 #
 # Other options (--reps R, --calls N, --only NAME, --pool ID) go to the benchmark.
 set -euo pipefail
@@ -50,7 +50,7 @@ for build in $builds; do
   fi
   echo "== $label"
   # The core alone in its own target directory, so that the `std` feature that the
-  # workspace's tools turn on is not unified into it (see c-examples/Makefile).
+  # workspace's tools turn on is not unified into it (see bench/Makefile).
   (cd "$root" && env -u CARGO_BUILD_TARGET RUSTFLAGS="$rustflags" CARGO_TARGET_DIR="$target_dir" \
     "$cargo" build --release -p sphera --lib --manifest-path "$root/Cargo.toml" 1>&2)
   program="$out/${name}_bench-$build"

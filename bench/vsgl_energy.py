@@ -2,7 +2,7 @@
 """Where the VSGLs' energy goes (issue 20, 5): the image mean of the `indirect` scene over
 the reference's, one approximation added at a time (the tracer's `--variant` switches).
 
-    python3 c-examples/vsgl_energy.py [--tracer c-examples/build/sphera-trace]
+    python3 bench/vsgl_energy.py [--tracer bench/build/sphera-trace]
         [--width 128 --height 96 --spp 2048] [--clusters 16,64,256,1024] [--out DIR]
 
 Rows, each a `sphera-trace --scene indirect` run against one path-traced reference
