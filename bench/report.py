@@ -50,7 +50,8 @@ SCENES = ("cornell", "polygons", "polygons@8", "hard", "glossy", "spheres", "sla
 MIS_TECHNIQUES = ("brdf_balance", "brdf_power", "ltc_weighted", "ltc_clamped", "ltc_optimal")
 GLOSSY_TECHNIQUES = ("area", "solid_angle", "projected") + MIS_TECHNIQUES
 # Sphere lights have their own samplers; they run on the `spheres` scene only.
-SPHERE_TECHNIQUES = ("sphere_cap", "sphere_cap_brdf", "sphere_sptd", "sphere_realtime")
+SPHERE_TECHNIQUES = ("sphere_cap", "sphere_cap_brdf", "sphere_sptd", "sphere_projected",
+                     "sphere_realtime")
 # In-scattering in a medium: the `slab` scene, the pivot phase function restricted to
 # the light's cap (Dupuy et al. 2017, Sec. 6.2) beside its baseline, Henyey-Greenstein
 # sampling with uniform cap sampling by MIS, against uniform cap sampling.

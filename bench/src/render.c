@@ -318,6 +318,36 @@ static float3 sphere_sptd_specular_estimate(const Scene *scene, struct RTCInters
     return sum;
 }
 
+/* One light sample of sphere_projected: the Lambert layer by one sample of the clamped
+ * cosine inside the cap (the SPTD whose pivot is the origin, where the pivot
+ * transformation is the antipodal map, so its base axis is -z), whose density cos θ /
+ * ∫_C max(0, cos) covers every direction where f_diffuse cos > 0 in the cap: zero variance
+ * for an unoccluded Lambertian receiver, also for a light across the horizon (the clipped
+ * sampler of issue 20, 2); the GGX layer as sphere_sptd (where the SPTD sampler cannot
+ * be prepared, one cap and one BRDF sample on it, balance heuristic). */
+static float3 sphere_projected_estimate(const Scene *scene, struct RTCIntersectContext *context,
+                                        const Hit *hit, const Light *light, SpheraCap cap,
+                                        const SpheraSptdInCap *cosine,
+                                        const SpheraSphereLightSampler *sampler,
+                                        const BrdfSampler *brdf, Rng *rng, uint64_t *samples) {
+    const Material *m = &scene->materials[hit->material];
+    float3 sum = f3(0, 0, 0);
+    float u0 = rng_float(rng), u1 = rng_float(rng);
+    *samples += 3;
+    if (cosine) {
+        SpheraSample a = sphera_sptd_in_cap_sample(cosine, u0, u1);
+        if (a.pdf > 0.0f && a.dir.z > 0.0f) {
+            float3 f = brdf_part(m, hit->wo, a.dir, BRDF_DIFFUSE);
+            float3 radiance = light_cosine(scene, context, hit, light, a.dir);
+            sum = f3_scale(f3_mul(radiance, f), 1.0f / a.pdf);
+        }
+    }
+    if (sampler)
+        return f3_add(sum, sphere_sptd_specular_estimate(scene, context, hit, light, sampler, rng));
+    return f3_add(sum, sphere_cap_brdf_estimate(scene, context, hit, light, cap, brdf,
+                                                BRDF_SPECULAR, rng));
+}
+
 /* Draws at most this many uniform cap directions for sphere_realtime's visibility ray
  * before giving up (the cap is then almost all below the horizon). */
 #define REALTIME_VISIBILITY_TRIES 8
@@ -468,6 +498,22 @@ static float3 shade_sphere(const Scene *scene, struct RTCIntersectContext *conte
                                                         cone, separable, rng, samples));
         return f3_scale(sum, 1.0f / (float)k);
     }
+    if (technique == TECHNIQUE_SPHERE_PROJECTED) {
+        /* Prepared once per light at this point, as a renderer does, for k samples. */
+        SpheraSptdInCap cosine;
+        const SpheraVec3 origin = {0.0f, 0.0f, 0.0f}, down = {0.0f, 0.0f, -1.0f};
+        bool has_cosine =
+            sphera_sptd_in_cap_prepare(&cosine, origin, SPHERA_SPTD_CLAMPED_COSINE, down, cap);
+        SpheraSphereLightSampler specular;
+        bool has_specular = m->roughness > 0.0f &&
+                            sphera_sphere_light_sampler_prepare(&specular, local, light->radius,
+                                                                to_sphera(hit->wo), m->roughness);
+        for (uint32_t s = 0; s < k; ++s)
+            sum = f3_add(sum, sphere_projected_estimate(
+                                  scene, context, hit, light, cap, has_cosine ? &cosine : NULL,
+                                  has_specular ? &specular : NULL, brdf, rng, samples));
+        return f3_scale(sum, 1.0f / (float)k);
+    }
     SpheraSphereLightSampler sampler;
     bool sptd = (technique == TECHNIQUE_SPHERE_SPTD || technique == TECHNIQUE_REFERENCE) &&
                 m->roughness > 0.0f &&
@@ -519,7 +565,8 @@ static float3 shade(const Scene *scene, struct RTCIntersectContext *context, con
     memset(&brdf, 0, sizeof brdf);
     if (technique == TECHNIQUE_BRDF_BALANCE || technique == TECHNIQUE_BRDF_POWER ||
         technique == TECHNIQUE_SPHERE_CAP_BRDF || technique == TECHNIQUE_SPHERE_SPTD ||
-        technique == TECHNIQUE_MEDIUM_PIVOT || technique == TECHNIQUE_MEDIUM_HG_CAP ||
+        technique == TECHNIQUE_SPHERE_PROJECTED || technique == TECHNIQUE_MEDIUM_PIVOT ||
+        technique == TECHNIQUE_MEDIUM_HG_CAP ||
         technique == TECHNIQUE_REFERENCE)
         brdf_sampler_init(&brdf, m, hit->wo);
     /* sphere_realtime: the SPTD shading depends on the view and the material only */

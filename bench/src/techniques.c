@@ -34,6 +34,10 @@ const TechniqueInfo technique_info[TECHNIQUE_COUNT] = {
     {"sphere_sptd", false,
      "sphere lights: GGX layer by one SPTD light sample (Dupuy et al. 2017, Section 6.1) and one "
      "VNDF sample, balance heuristic; Lambert layer as in sphere_cap_brdf"},
+    {"sphere_projected", false,
+     "sphere lights: Lambert layer by one sample of the clamped cosine in the cap (an SPTD with "
+     "the pivot at the origin, exact also where the cap crosses the horizon: issue 20, 2), "
+     "zero variance where unoccluded; GGX layer as in sphere_sptd"},
     {"sphere_realtime", true,
      "sphere lights: GGX layer by SPTD shading (Dupuy et al. 2017, Eq. 19, biased) times the "
      "visibility of one shadow ray uniform in the cap above the horizon; Lambert layer as in "
@@ -102,6 +106,7 @@ bool technique_prepare(Technique technique, PreparedLight *out, const SpheraVec3
     case TECHNIQUE_SPHERE_CAP:
     case TECHNIQUE_SPHERE_CAP_BRDF:
     case TECHNIQUE_SPHERE_SPTD:
+    case TECHNIQUE_SPHERE_PROJECTED:
     case TECHNIQUE_SPHERE_REALTIME:
     case TECHNIQUE_SPHERE_OCCLUSION:
     case TECHNIQUE_SPHERE_OCCLUSION_SEPARABLE:
@@ -146,6 +151,7 @@ SpheraSample technique_sample(Technique technique, const PreparedLight *p, float
     case TECHNIQUE_SPHERE_CAP:
     case TECHNIQUE_SPHERE_CAP_BRDF:
     case TECHNIQUE_SPHERE_SPTD:
+    case TECHNIQUE_SPHERE_PROJECTED:
     case TECHNIQUE_SPHERE_REALTIME:
     case TECHNIQUE_SPHERE_OCCLUSION:
     case TECHNIQUE_SPHERE_OCCLUSION_SEPARABLE:

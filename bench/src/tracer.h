@@ -46,6 +46,7 @@ typedef enum Technique {
     TECHNIQUE_SPHERE_CAP,          /* uniform in the sphere's cap of directions */
     TECHNIQUE_SPHERE_CAP_BRDF,     /* one cap and one BRDF sample, balance heuristic */
     TECHNIQUE_SPHERE_SPTD,         /* GGX layer: one SPTD light and one VNDF sample, balance */
+    TECHNIQUE_SPHERE_PROJECTED,    /* Lambert layer: cosine-weighted in the cap; GGX as sptd */
     TECHNIQUE_SPHERE_REALTIME,     /* biased: Eq. 19 SPTD shading x one-ray visibility */
     TECHNIQUE_SPHERE_OCCLUSION,    /* biased: Eq. 23 SPTD shading in a traced bent cone */
     TECHNIQUE_SPHERE_OCCLUSION_SEPARABLE, /* biased: its separable baseline, Eq. 21-22 */
