@@ -984,6 +984,37 @@ pub fn scaled_quad(size: f32, tilt: f32) -> [Vec3; 4] {
     ]
 }
 
+// ---- directions, caps and integrals over the sphere shared by several tests --------
+
+/// The unit direction at `degrees` from +z towards +x, then turned by `azimuth` about z.
+pub fn tilted(degrees: f64, azimuth: f64) -> Vec3 {
+    let (t, p) = (degrees.to_radians(), azimuth.to_radians());
+    Vec3::new(
+        (t.sin() * p.cos()) as f32,
+        (t.sin() * p.sin()) as f32,
+        t.cos() as f32,
+    )
+}
+
+/// `∫ f(ω) dω` over the sphere by the midpoint rule on `n × n` cells of `(z, φ)`, in
+/// which `dω = dz dφ` (exact for functions of `z` alone; `f` sees `f32` directions).
+pub fn integrate_over_sphere(n: usize, f: impl Fn(Vec3) -> f64) -> f64 {
+    let mut sum = 0.0f64;
+    for i in 0..n {
+        let z = -1.0 + (i as f64 + 0.5) * 2.0 / n as f64;
+        let r = (1.0 - z * z).sqrt();
+        for j in 0..n {
+            let phi = (j as f64 + 0.5) * 2.0 * core::f64::consts::PI / n as f64;
+            sum += f(Vec3::new(
+                (r * phi.cos()) as f32,
+                (r * phi.sin()) as f32,
+                z as f32,
+            ));
+        }
+    }
+    sum * (2.0 / n as f64) * (2.0 * core::f64::consts::PI / n as f64)
+}
+
 // ---- LTCs shared by the LTC's tests and the LTC polygon sampler's ---------------------
 
 /// A few LTCs in the view frame `[a, b, c, d, albedo, fresnel]`: the cosine, a mildly

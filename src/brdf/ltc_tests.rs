@@ -10,18 +10,7 @@ fn density_integrates_to_one_over_the_sphere() {
     // peak; 3000 × 3000 points suffice for the first three, the last is tested through
     // the polygon integral instead.
     for ltc in &ltcs()[..3] {
-        let n = 3000;
-        let mut sum = 0.0f64;
-        for i in 0..n {
-            let z = -1.0 + (i as f64 + 0.5) * 2.0 / n as f64;
-            let r = (1.0 - z * z).sqrt();
-            for j in 0..n {
-                let phi = (j as f64 + 0.5) * 2.0 * core::f64::consts::PI / n as f64;
-                let dir = Vec3::new((r * phi.cos()) as f32, (r * phi.sin()) as f32, z as f32);
-                sum += ltc.density(dir) as f64;
-            }
-        }
-        let integral = sum * 2.0 / n as f64 * 2.0 * core::f64::consts::PI / n as f64;
+        let integral = integrate_over_sphere(3000, |dir| ltc.density(dir) as f64);
         assert!((integral - 1.0).abs() < 2e-3, "{ltc:?}: ∫D = {integral}");
     }
 }

@@ -2,16 +2,6 @@ use super::*;
 use crate::sample::ONE_MINUS_ULP;
 use crate::testing::*;
 
-/// The unit direction at `degrees` from +z towards +x, then turned by `azimuth` about z.
-fn tilted(degrees: f64, azimuth: f64) -> Vec3 {
-    let (t, p) = (degrees.to_radians(), azimuth.to_radians());
-    Vec3::new(
-        (t.sin() * p.cos()) as f32,
-        (t.sin() * p.sin()) as f32,
-        t.cos() as f32,
-    )
-}
-
 fn cap(axis: Vec3, one_minus_cos: f32) -> Cap {
     Cap::from_axis_one_minus_cos(axis, one_minus_cos)
 }

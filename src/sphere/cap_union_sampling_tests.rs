@@ -5,16 +5,6 @@ use super::*;
 use crate::sample::ONE_MINUS_ULP;
 use crate::testing::*;
 
-/// The unit direction at `degrees` from +z towards +x, then turned by `azimuth` about z.
-fn tilted(degrees: f64, azimuth: f64) -> Vec3 {
-    let (t, p) = (degrees.to_radians(), azimuth.to_radians());
-    Vec3::new(
-        (t.sin() * p.cos()) as f32,
-        (t.sin() * p.sin()) as f32,
-        t.cos() as f32,
-    )
-}
-
 fn cap(axis: Vec3, one_minus_cos: f32) -> Cap {
     Cap::from_axis_one_minus_cos(axis, one_minus_cos)
 }
@@ -219,18 +209,7 @@ fn invert_undoes_sample() {
 fn the_pdf_integrates_to_one() {
     for (name, a, b) in pairs() {
         let union = CapUnion::new(&a, &b).expect(name);
-        let n = 1000;
-        let mut sum = 0.0f64;
-        for i in 0..n {
-            let z = -1.0 + (i as f64 + 0.5) * 2.0 / n as f64;
-            let r = (1.0 - z * z).sqrt();
-            for j in 0..n {
-                let phi = (j as f64 + 0.5) * 2.0 * core::f64::consts::PI / n as f64;
-                let dir = Vec3::new((r * phi.cos()) as f32, (r * phi.sin()) as f32, z as f32);
-                sum += union.pdf(dir) as f64;
-            }
-        }
-        let integral = sum * (2.0 / n as f64) * (2.0 * core::f64::consts::PI / n as f64);
+        let integral = integrate_over_sphere(1000, |dir| union.pdf(dir) as f64);
         assert!((integral - 1.0).abs() < 5e-3, "{name}: ∫ pdf = {integral}");
     }
 }
