@@ -28,7 +28,7 @@ SCENES = {  # name: (lights, description)
 }
 TECHNIQUES = {  # name: (biased, noise sigma, ns per sample with shadow ray, description)
     "reference": (False, 0.4, 400.0, "projected solid angle, many samples"),
-    "area": (False, 2.0, 330.0, "Turk area sampling"),
+    "turk": (False, 2.0, 330.0, "Turk area sampling"),
     "solid_angle": (False, 1.2, 345.0, "solid angle sampling (Alg. 5)"),
     "clipped_solid_angle": (False, 0.9, 350.0, "solid angle sampling of the clipped polygon"),
     "hart_bilinear": (False, 0.7, 360.0, "bilinear cosine warp (Hart et al. 2020)"),

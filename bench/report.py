@@ -48,7 +48,7 @@ SCENES = ("cornell", "polygons", "polygons@8", "hard", "glossy", "spheres", "sla
 # solid angle sampling) matter on glossy surfaces: they run on the `glossy` scene, with
 # the light samplers they are built from; the other scenes compare the light samplers.
 MIS_TECHNIQUES = ("brdf_balance", "brdf_power", "ltc_weighted", "ltc_clamped", "ltc_optimal")
-GLOSSY_TECHNIQUES = ("area", "solid_angle", "projected") + MIS_TECHNIQUES
+GLOSSY_TECHNIQUES = ("turk", "solid_angle", "projected") + MIS_TECHNIQUES
 # Sphere lights have their own samplers; they run on the `spheres` scene only.
 SPHERE_TECHNIQUES = ("sphere_cap", "sphere_cap_brdf", "sphere_sptd", "sphere_projected",
                      "sphere_realtime")
@@ -89,7 +89,7 @@ QUICK = {"width": 64, "height": 48, "ref_spp": 128, "spp": 4, "budget_ms": 150.0
 FULL_REF_SPP = {"spheres": 256}
 REF_SEED = 1          # seed of reference renders
 RUN_SEED = 2          # seed of technique renders (independent of the reference's noise)
-BASELINE = "area"     # technique the speed-up is relative to
+BASELINE = "turk"     # technique the speed-up is relative to
 CHECK_SIGMAS = 5.0
 # Unbiased techniques whose f32 implementation is known to miss the reference in a
 # scene, and why. The check expects them to fail (and fails if one starts to agree, so

@@ -11,7 +11,7 @@ use crate::Vec3;
 use crate::brdf::Ltc;
 use crate::ffi::*;
 use crate::polygon::LtcPolygon;
-use crate::sphere::{Cap, GgxPivot, SphereLightSampler, SphereShadingSptd, SptdInCap};
+use crate::sphere::{Cap, GgxPivot, SphereLightSampler, SphereLightShading, SptdInCap};
 use core::mem::MaybeUninit;
 
 /// The lengths of the issue, as powers of two (with 1 for comparison).
@@ -52,7 +52,7 @@ fn pivot(view: SpheraVec3) -> (bool, GgxPivot) {
     // SAFETY: as above.
     prepared(|out| unsafe { sphera_ggx_pivot_lookup(out, view, 0.5) })
 }
-fn shading(view: SpheraVec3) -> (bool, SphereShadingSptd) {
+fn shading(view: SpheraVec3) -> (bool, SphereLightShading) {
     let f0 = Vec3::new(0.04, 0.5, 0.9).into();
     // SAFETY: as above.
     prepared(|out| unsafe { sphera_sphere_light_shading_prepare(out, view, 0.5, f0) })

@@ -5,7 +5,7 @@
 #include "techniques.h"
 
 const TechniqueInfo technique_info[TECHNIQUE_COUNT] = {
-    {"area", false, "Turk 1990: uniform on the polygon's area, pdf converted to solid angle"},
+    {"turk", false, "Turk 1990: uniform on the polygon's area, pdf converted to solid angle"},
     {"arvo", false, "Arvo 1995: solid angle sampling of triangles, polygon as a fan"},
     {"solid_angle", false, "Peters 2021 (Algorithm 5): solid angle sampling of triangle fans"},
     {"clipped_solid_angle", false, "solid angle sampling of the polygon clipped to the horizon"},
@@ -90,7 +90,7 @@ bool technique_prepare(Technique technique, PreparedLight *out, const SpheraVec3
         return sphera_polygon_light_prepare(&out->u.polygon_light, vertices, count, point->wo,
                                             &point->material, technique_heuristic(technique),
                                             0.5f);
-    case TECHNIQUE_AREA: return sphera_turk_polygon_prepare(&out->u.area, vertices, count);
+    case TECHNIQUE_TURK: return sphera_turk_polygon_prepare(&out->u.turk, vertices, count);
     case TECHNIQUE_ARVO: return sphera_arvo_polygon_prepare(&out->u.arvo, vertices, count);
     case TECHNIQUE_SOLID_ANGLE:
         return sphera_solid_angle_polygon_prepare(&out->u.solid_angle, vertices, count);
@@ -136,7 +136,7 @@ bool technique_prepare(Technique technique, PreparedLight *out, const SpheraVec3
 
 SpheraSample technique_sample(Technique technique, const PreparedLight *p, float u0, float u1) {
     switch (technique) {
-    case TECHNIQUE_AREA: return sphera_turk_polygon_sample(&p->u.area, u0, u1);
+    case TECHNIQUE_TURK: return sphera_turk_polygon_sample(&p->u.turk, u0, u1);
     case TECHNIQUE_ARVO: return sphera_arvo_polygon_sample(&p->u.arvo, u0, u1);
     case TECHNIQUE_SOLID_ANGLE: return sphera_solid_angle_polygon_sample(&p->u.solid_angle, u0, u1);
     case TECHNIQUE_CLIPPED_SOLID_ANGLE:

@@ -7,7 +7,7 @@
 /* One prepared polygon for any technique (the reference technique uses two). */
 typedef struct PreparedLight {
     union {
-        SpheraTurkPolygon area;
+        SpheraTurkPolygon turk;
         SpheraArvoPolygon arvo;
         SpheraSolidAnglePolygon solid_angle;
         SpheraClippedSolidAnglePolygon clipped;

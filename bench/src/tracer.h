@@ -27,7 +27,7 @@
 /* ---- techniques ------------------------------------------------------------------ */
 
 typedef enum Technique {
-    TECHNIQUE_AREA,                /* Turk's uniform area sampling (pdf -> solid angle) */
+    TECHNIQUE_TURK,                /* Turk's uniform area sampling (pdf -> solid angle) */
     TECHNIQUE_ARVO,                /* Arvo 1995 solid angle sampling */
     TECHNIQUE_SOLID_ANGLE,         /* Peters 2021 solid angle sampling of triangle fans */
     TECHNIQUE_CLIPPED_SOLID_ANGLE, /* the same after clipping to the horizon */

@@ -12,7 +12,7 @@ use super::types::{SpheraSample, SpheraVec3, with_ref};
 use crate::Vec3;
 use crate::sphere::phase::pivot_phase_in_cap;
 use crate::sphere::{
-    Cap, GgxPivot, SphereLightSampler, SphereShadingSptd, Sptd, SptdBase, SptdInCap,
+    Cap, GgxPivot, SphereLightSampler, SphereLightShading, Sptd, SptdBase, SptdInCap,
 };
 
 /// The uniform base distribution `1/4π` (Eq. 16).
@@ -227,7 +227,7 @@ pub unsafe extern "C" fn sphera_ggx_pivot_lookup(
 /// `out` must be null or point to writable memory for one `SpheraSphereLightShading`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_shading_prepare(
-    out: *mut SphereShadingSptd,
+    out: *mut SphereLightShading,
     wo: SpheraVec3,
     roughness: f32,
     f0: SpheraVec3,
@@ -235,8 +235,8 @@ pub unsafe extern "C" fn sphera_sphere_light_shading_prepare(
     if out.is_null() {
         return false;
     }
-    let prepared = SphereShadingSptd::new(wo.into(), roughness, f0.into());
-    let empty = SphereShadingSptd {
+    let prepared = SphereLightShading::new(wo.into(), roughness, f0.into());
+    let empty = SphereLightShading {
         fit: GgxPivot {
             pivot: Vec3::ZERO,
             albedo: 0.0,
@@ -259,7 +259,7 @@ pub unsafe extern "C" fn sphera_sphere_light_shading_prepare(
 /// `sphera_sphere_light_shading_prepare`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_shade(
-    shading: *const SphereShadingSptd,
+    shading: *const SphereLightShading,
     light: Cap,
 ) -> SpheraVec3 {
     // SAFETY: forwarded from the caller.
@@ -276,7 +276,7 @@ pub unsafe extern "C" fn sphera_sphere_light_shade(
 /// As for `sphera_sphere_light_shade`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_shade_occluded(
-    shading: *const SphereShadingSptd,
+    shading: *const SphereLightShading,
     light: Cap,
     visibility: Cap,
 ) -> SpheraVec3 {
@@ -301,7 +301,7 @@ pub unsafe extern "C" fn sphera_sphere_light_shade_occluded(
 /// As for `sphera_sphere_light_shade`.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_shade_occluded_separable(
-    shading: *const SphereShadingSptd,
+    shading: *const SphereLightShading,
     light: Cap,
     visibility: Cap,
 ) -> SpheraVec3 {

@@ -18,7 +18,7 @@
 //! `V` (the visibility cap): `L · albedo · Ω(g(C) ∩ g(V)) / 4π`, the triple product of
 //! BRDF, light and visibility; for an unoccluded point `V = H` and both agree. Its
 //! baseline, the separable approximation of Eq. 21–22
-//! ([`SphereShadingSptd::shade_occluded_separable`]), multiplies the unoccluded shading
+//! ([`SphereLightShading::shade_occluded_separable`]), multiplies the unoccluded shading
 //! by the fraction of the BRDF lobe inside the cone. The
 //! Fresnel factor is the LTC table's Schlick-weighted albedo ([`Ltc::specular_albedo`]),
 //! so the result is RGB.
@@ -90,7 +90,7 @@ impl GgxPivot {
 /// any number of lights.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SphereShadingSptd {
+pub struct SphereLightShading {
     /// The fitted pivot.
     pub fit: GgxPivot,
     /// The image `g(H)` of the upper hemisphere's cap.
@@ -99,11 +99,11 @@ pub struct SphereShadingSptd {
     pub specular_albedo: Vec3,
 }
 
-impl SphereShadingSptd {
+impl SphereLightShading {
     /// Prepares the shading of a GGX surface with roughness `r = √α` and Fresnel
     /// reflectance at normal incidence `f0` for the view `wo`. `None` when `wo` is not
     /// finite, zero, or at or below the horizon.
-    pub fn new(wo: Vec3, roughness: f32, f0: Vec3) -> Option<SphereShadingSptd> {
+    pub fn new(wo: Vec3, roughness: f32, f0: Vec3) -> Option<SphereLightShading> {
         let fit = GgxPivot::lookup(wo, roughness)?;
         let ltc = Ltc::ggx(wo, roughness)?;
         let f0 = if f0.is_finite() {
@@ -111,7 +111,7 @@ impl SphereShadingSptd {
         } else {
             Vec3::ZERO
         };
-        Some(SphereShadingSptd {
+        Some(SphereLightShading {
             fit,
             horizon_image: pivot_cap(&Cap::from_axis_one_minus_cos(Vec3::Z, 1.0), fit.pivot),
             specular_albedo: ltc.specular_albedo(f0),
@@ -129,7 +129,7 @@ impl SphereShadingSptd {
     /// Specular occlusion with a bent cone `visibility` (Eq. 23): `∫_{C ∩ V} f cos θ dω
     /// ≈ albedo_F · Ω(g(C) ∩ g(V)) / 4π`. The bent cone takes the place of the upper
     /// hemisphere (an unoccluded point's bent cone is `H`, and then this equals
-    /// [`SphereShadingSptd::shade`]).
+    /// [`SphereLightShading::shade`]).
     pub fn shade_occluded(&self, light: &Cap, visibility: &Cap) -> Vec3 {
         let image = pivot_cap(&light.sanitized(), self.fit.pivot);
         let visible = pivot_cap(&visibility.sanitized(), self.fit.pivot);

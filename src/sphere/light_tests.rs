@@ -82,7 +82,7 @@ fn real_time_shading_is_the_pivoted_probability_of_the_clipped_cap() {
     for degrees in [0.0, 45.0, 80.0] {
         for roughness in [0.1, 0.5, 1.0] {
             let wo = view(degrees);
-            let shading = SphereShadingSptd::new(wo, roughness, Vec3::ONE).unwrap();
+            let shading = SphereLightShading::new(wo, roughness, Vec3::ONE).unwrap();
             let pivot = d3(shading.fit.pivot);
             for (name, center, radius) in lights(wo) {
                 let cap = Cap::from_sphere(center, radius);
@@ -296,8 +296,8 @@ fn bad_input_gives_none_or_finite_values() {
     assert!(SphereLightSampler::new(Vec3::splat(f32::NAN), 1.0, Vec3::Z, 0.5).is_none());
     assert!(SphereLightSampler::new(Vec3::Z * 3.0, -1.0, Vec3::Z, 0.5).is_none());
     assert!(SphereLightSampler::new(Vec3::Z * 3.0, 1.0, -Vec3::Z, 0.5).is_none());
-    assert!(SphereShadingSptd::new(Vec3::new(0.0, 0.0, f32::INFINITY), 0.5, Vec3::ONE).is_none());
-    let shading = SphereShadingSptd::new(Vec3::Z, f32::NAN, Vec3::splat(f32::NAN)).unwrap();
+    assert!(SphereLightShading::new(Vec3::new(0.0, 0.0, f32::INFINITY), 0.5, Vec3::ONE).is_none());
+    let shading = SphereLightShading::new(Vec3::Z, f32::NAN, Vec3::splat(f32::NAN)).unwrap();
     let nan_cap = Cap {
         axis: Vec3::splat(f32::NAN),
         ..Cap::WHOLE_SPHERE
@@ -401,7 +401,7 @@ fn the_sphere_light_sampler_has_no_padding() {
 fn occlusion_of_a_light_whose_image_is_nearly_the_whole_sphere() {
     let cos_o = 0.025f32;
     let wo = Vec3::new((1.0 - cos_o * cos_o).sqrt(), 0.0, cos_o);
-    let shading = SphereShadingSptd::new(wo, 0.074, Vec3::ONE).unwrap();
+    let shading = SphereLightShading::new(wo, 0.074, Vec3::ONE).unwrap();
     let fit = shading.fit;
     assert!((fit.pivot.length() - 0.996).abs() < 1e-3);
     let pivot = d3(fit.pivot);
@@ -459,7 +459,7 @@ fn occlusion_of_a_light_whose_image_is_nearly_the_whole_sphere() {
 fn separable_occlusion_leaks_light_that_the_triple_product_blocks() {
     let wo = view(30.0);
     let roughness = 0.5;
-    let shading = SphereShadingSptd::new(wo, roughness, Vec3::ONE).unwrap();
+    let shading = SphereLightShading::new(wo, roughness, Vec3::ONE).unwrap();
     let mirror = Vec3::new(-wo.x, -wo.y, wo.z);
     // A cone of half-angle 50° about the mirror direction; a light of half-angle 5.7°
     // whose centre is 62° from the mirror direction (6° outside the cone's edge).

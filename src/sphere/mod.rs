@@ -17,6 +17,6 @@ pub use cap::Cap;
 pub use cap_intersection::{cap_intersection_solid_angle, cap_intersection_solid_angle_oat_sander};
 pub use cap_intersection_sampling::CapIntersection;
 pub use cap_union_sampling::CapUnion;
-pub use light::{GgxPivot, SphereLightSampler, SphereShadingSptd};
+pub use light::{GgxPivot, SphereLightSampler, SphereLightShading};
 pub use pivot::{pivot_cap, pivot_jacobian, pivot_transform};
 pub use sptd::{Sptd, SptdBase, SptdInCap};

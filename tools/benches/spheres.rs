@@ -5,7 +5,7 @@
 //! operation of every sphere-light technique, as ratios measured in the same run
 //! (`cargo bench -p sphera-tools --bench spheres`, about 20 s).
 use sphera::brdf::GgxBrdf;
-use sphera::sphere::light::{SphereLightSampler, SphereShadingSptd};
+use sphera::sphere::light::{SphereLightSampler, SphereLightShading};
 use sphera::sphere::phase::{
     henyey_greenstein, pivot_from_henyey_greenstein, pivot_phase, pivot_phase_in_cap,
     sample_henyey_greenstein,
@@ -290,9 +290,9 @@ fn timing_table(rng: &mut Rng) {
                 .unwrap_or(SphereLightSampler::EMPTY)
         })
         .collect();
-    let shadings: Vec<SphereShadingSptd> = cs
+    let shadings: Vec<SphereLightShading> = cs
         .iter()
-        .map(|c| SphereShadingSptd::new(c.wo, 0.3, Vec3::splat(0.04)).unwrap())
+        .map(|c| SphereLightShading::new(c.wo, 0.3, Vec3::splat(0.04)).unwrap())
         .collect();
     let brdf = GgxBrdf::new(0.3, Vec3::splat(0.04));
     let bent = Cap::from_axis_cos(Vec3::new(0.2, 0.0, 1.0), 0.3);
@@ -354,7 +354,7 @@ fn timing_table(rng: &mut Rng) {
         (
             "real-time shading: prepare (pivot + LTC Fresnel lookup, g(H))",
             time_ns(|i| {
-                SphereShadingSptd::new(cs[i].wo, 0.3, Vec3::splat(0.04))
+                SphereLightShading::new(cs[i].wo, 0.3, Vec3::splat(0.04))
                     .map_or(0.0, |s| s.fit.albedo)
             }),
         ),

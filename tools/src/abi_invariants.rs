@@ -1628,7 +1628,7 @@ fn check_sptd_in_cap(
 /// per unit radiance in [0, 1] per channel (it is at most the Fresnel-weighted albedo);
 /// the light sampler's samples have `pdf(dir)` equal to their pdf bit for bit.
 pub fn sptd_entry_points(data: &[u8]) {
-    use sphera::sphere::{GgxPivot, SphereLightSampler, SphereShadingSptd, SptdInCap};
+    use sphera::sphere::{GgxPivot, SphereLightSampler, SphereLightShading, SptdInCap};
     let mut input = Input::new(data);
     let a = decode_cap(&mut input);
     let b = decode_cap(&mut input);
@@ -1769,7 +1769,7 @@ pub fn sptd_entry_points(data: &[u8]) {
             sphera_sphere_light_shade_occluded_separable(std::ptr::null(), a, b),
             zero
         );
-        let (shading, ok) = prepared::<SphereShadingSptd>(|out| {
+        let (shading, ok) = prepared::<SphereLightShading>(|out| {
             sphera_sphere_light_shading_prepare(out, wo, roughness, f0)
         });
         assert_words_finite(&shading, "shading");

@@ -53,7 +53,7 @@ use sphera::polygon::baselines::{
 use sphera::polygon::light::{Material, PolygonLight};
 use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon};
 use sphera::sg::Sg;
-use sphera::sphere::{SphereLightSampler, SphereShadingSptd, SptdInCap};
+use sphera::sphere::{SphereLightSampler, SphereLightShading, SptdInCap};
 use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, VsglTexel};
 
 fn hex(x: f32) -> String {
@@ -425,7 +425,7 @@ fn sphere_records(out: &mut String) {
                 let cone_cos = 0.2f32;
                 // SAFETY: `out` is writable; then valid pointers.
                 let (shade, occluded) = unsafe {
-                    let shading: SphereShadingSptd =
+                    let shading: SphereLightShading =
                         prepared(|o| sphera_sphere_light_shading_prepare(o, wo, roughness, f0));
                     let light = sphera_cap_from_sphere(center, radius);
                     let cone = sphera_cap_from_axis_cos(cone_axis, cone_cos);

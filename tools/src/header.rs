@@ -68,7 +68,7 @@ fn opaque_types() -> Vec<Opaque> {
     use sphera::polygon::{
         ClippedSolidAnglePolygon, LtcPolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
     };
-    use sphera::sphere::light::{SphereLightSampler, SphereShadingSptd};
+    use sphera::sphere::light::{SphereLightSampler, SphereLightShading};
     use sphera::sphere::sptd::SptdInCap;
     vec![
         opaque::<SolidAnglePolygon>("SpheraSolidAnglePolygon"),
@@ -84,7 +84,7 @@ fn opaque_types() -> Vec<Opaque> {
         opaque::<LtcPolygon>("SpheraLtcPolygon"),
         opaque::<PolygonLight>("SpheraPolygonLight"),
         opaque::<SptdInCap>("SpheraSptdInCap"),
-        opaque::<SphereShadingSptd>("SpheraSphereLightShading"),
+        opaque::<SphereLightShading>("SpheraSphereLightShading"),
         opaque::<SphereLightSampler>("SpheraSphereLightSampler"),
     ]
 }

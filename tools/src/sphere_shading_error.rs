@@ -1,5 +1,5 @@
 //! The error of real-time sphere-light shading with the fitted SPTD (Dupuy et al. 2017,
-//! Section 5, Eq. 19; `SphereShadingSptd`) against a converged Monte Carlo reference of
+//! Section 5, Eq. 19; `SphereLightShading`) against a converged Monte Carlo reference of
 //! `∫_{C ∩ H} f cos θ dω` (GGX with F = 1, f64, one uniform cap sample and one
 //! visible-normal sample per stratum, balance heuristic, 512² strata), over a grid of
 //! roughness, view angle, light size and distance, and light direction. Also the two

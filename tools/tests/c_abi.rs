@@ -539,7 +539,7 @@ fn struct_layouts_match_rust() {
         ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
     };
     use sphera::sg::{Asg, Sg};
-    use sphera::sphere::{Cap, GgxPivot, SphereLightSampler, SphereShadingSptd, SptdInCap};
+    use sphera::sphere::{Cap, GgxPivot, SphereLightSampler, SphereLightShading, SptdInCap};
     use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, VsglTexel};
 
     let expected: Vec<(&str, usize)> = vec![
@@ -637,7 +637,7 @@ fn struct_layouts_match_rust() {
         ),
         (
             "sizeof(SpheraSphereLightShading)",
-            size_of::<SphereShadingSptd>(),
+            size_of::<SphereLightShading>(),
         ),
         (
             "sizeof(SpheraSphereLightSampler)",

@@ -24,7 +24,7 @@ use sphera::polygon::baselines::{
 };
 use sphera::polygon::light::{Material, MisHeuristic, PolygonLight};
 use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon};
-use sphera::sphere::{Cap, SphereLightSampler, SphereShadingSptd, Sptd, SptdInCap};
+use sphera::sphere::{Cap, SphereLightSampler, SphereLightShading, Sptd, SptdInCap};
 
 /// The words written over each word of a prepared value in turn.
 const HOSTILE_WORDS: [u32; 12] = [
@@ -392,11 +392,11 @@ fn corrupted_sphere_values_neither_hang_nor_panic() {
         }
         std::hint::black_box(sum)
     });
-    let shading = SphereShadingSptd::new(wo, 0.4, Vec3::splat(0.04)).unwrap();
+    let shading = SphereLightShading::new(wo, 0.4, Vec3::splat(0.04)).unwrap();
     corrupt_every_word(
-        "SphereShadingSptd",
+        "SphereLightShading",
         shading,
-        move |s: &SphereShadingSptd| {
+        move |s: &SphereLightShading| {
             let light = Cap::from_sphere(Vec3::new(0.3, 0.2, 2.0), 0.5);
             let visibility = Cap::from_axis_cos(Vec3::new(0.0, 0.3, 1.0).normalize(), 0.8);
             std::hint::black_box(s.shade(&light).x + s.shade_occluded(&light, &visibility).x)

@@ -1,12 +1,12 @@
 //! Bounds on the error of real-time sphere-light shading with the fitted SPTD
-//! (`SphereShadingSptd`, Dupuy et al. 2017 Eq. 19) against the f64 Monte Carlo reference
+//! (`SphereLightShading`, Dupuy et al. 2017 Eq. 19) against the f64 Monte Carlo reference
 //! of `sphera_tools::sphere_shading_error`, on the part of the grid where the paper's
 //! approximation is good (lights in the mirror direction, views up to 30°, r ≤ 0.5) and
 //! everywhere against the measured maxima, so that a regression of the fit or of the pivoted-cap pipeline
 //! shows. The full table is `docs/sphere-shading-error.md`.
 use sphera::Vec3;
 use sphera::sphere::Cap;
-use sphera::sphere::light::SphereShadingSptd;
+use sphera::sphere::light::SphereLightShading;
 use sphera_tools::ltc_fitter::Ggx;
 use sphera_tools::sphere_shading_error::{configs, reference};
 
@@ -26,7 +26,7 @@ fn shading_error_stays_within_the_measured_bounds() {
         let wo = Vec3::new(view[0] as f32, view[1] as f32, view[2] as f32);
         let center = Vec3::new(c.center[0] as f32, c.center[1] as f32, c.center[2] as f32);
         let expected = reference(&ggx, c.center, c.radius, None, 96);
-        let shading = SphereShadingSptd::new(wo, c.roughness, Vec3::ONE).unwrap();
+        let shading = SphereLightShading::new(wo, c.roughness, Vec3::ONE).unwrap();
         let value = shading.shade(&Cap::from_sphere(center, c.radius as f32)).x as f64;
         let relative = (value - expected).abs() / expected;
         let what = format!(

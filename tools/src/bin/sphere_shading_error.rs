@@ -2,7 +2,7 @@
 //! `sphera_tools::sphere_shading_error`): `cargo run --release -p sphera-tools --bin
 //! sphere_shading_error > docs/sphere-shading-error.md` (about 20 s).
 use sphera::Vec3;
-use sphera::sphere::light::SphereShadingSptd;
+use sphera::sphere::light::SphereLightShading;
 use sphera::sphere::{
     Cap, cap_intersection_solid_angle, cap_intersection_solid_angle_oat_sander, pivot_cap,
 };
@@ -57,7 +57,7 @@ fn main() {
         let wo = v3(ggx.view());
         let reference = reference(&ggx, c.center, c.radius, None, n);
         let shading =
-            SphereShadingSptd::new(wo, c.roughness, Vec3::ONE).expect("view above the horizon");
+            SphereLightShading::new(wo, c.roughness, Vec3::ONE).expect("view above the horizon");
         let cap = Cap::from_sphere(v3(c.center), c.radius as f32);
         let exact = shading.shade(&cap).x as f64;
         let image = pivot_cap(&cap, shading.fit.pivot);
@@ -193,7 +193,7 @@ fn main() {
                 let theta: f64 = f64::to_radians(view_degrees);
                 let ggx = Ggx::new((roughness as f64).powi(2).max(1e-4), theta.cos().max(1e-4));
                 let wo = v3(ggx.view());
-                let shading = SphereShadingSptd::new(wo, roughness, Vec3::ONE).unwrap();
+                let shading = SphereLightShading::new(wo, roughness, Vec3::ONE).unwrap();
                 let mirror = [-theta.sin(), 0.0, theta.cos()];
                 let tilt = 20f64.to_radians();
                 let cone_axis = normalize([tilt_sign * tilt.sin(), 0.0, tilt.cos()]);
