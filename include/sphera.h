@@ -370,6 +370,26 @@ typedef struct SpheraLightSample {
 } SpheraLightSample;
 
 /**
+ * A spherical pivot-transformed distribution (Eq. 8): a base distribution and a
+ * pivot. Build it with `Sptd::uniform` or `Sptd::clamped_cosine`, which make the
+ * pivot valid (non-finite → origin, `|r_p|` clamped below 1).
+ */
+typedef struct SpheraSptd {
+  /**
+   * The pivot `r_p`, `|r_p| ≤ 1 − 2⁻²⁰`.
+   */
+  SpheraVec3 pivot;
+  /**
+   * The unit axis `a` of the clamped-cosine base (`z` for the uniform base).
+   */
+  SpheraVec3 cosine_axis;
+  /**
+   * Which base distribution.
+   */
+  SpheraSptdBase base;
+} SpheraSptd;
+
+/**
  * A spherical cap `{ω : ω·axis ≥ cos θ}` with `1 − cos θ` and `1 + cos θ` both stored
  * to full relative precision: the smaller of the two is authoritative and the other
  * is `2 −` it. A cap built by hand is made valid by every function that takes it: from
@@ -399,26 +419,6 @@ typedef struct SpheraCap {
    */
   float sin2;
 } SpheraCap;
-
-/**
- * A spherical pivot-transformed distribution (Eq. 8): a base distribution and a
- * pivot. Build it with `Sptd::uniform` or `Sptd::clamped_cosine`, which make the
- * pivot valid (non-finite → origin, `|r_p|` clamped below 1).
- */
-typedef struct SpheraSptd {
-  /**
-   * The pivot `r_p`, `|r_p| ≤ 1 − 2⁻²⁰`.
-   */
-  SpheraVec3 pivot;
-  /**
-   * The unit axis `a` of the clamped-cosine base (`z` for the uniform base).
-   */
-  SpheraVec3 cosine_axis;
-  /**
-   * Which base distribution.
-   */
-  SpheraSptdBase base;
-} SpheraSptd;
 
 /**
  * An SPTD restricted to a cap `C` and normalised there: a prepared sampler
@@ -1753,6 +1753,22 @@ struct SpheraSample sphera_phase_henyey_greenstein_sample(struct SpheraVec3 wo,
                                                           float u1);
 
 /**
+ * The pivot phase function (pivot `g·wo`, `wo` normalised, `g` clamped as in
+ * `sphera_phase_pivot`) restricted to a sphere light's cap (Section 6.2): sample and
+ * evaluate it with `sphera_sptd_in_cap_*`. Returns `false` (writing a sampler without
+ * samples) for a zero or non-finite `wo` or an empty cap; does nothing for a null
+ * `out`.
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one `SpheraSptdInCap`.
+ */
+bool sphera_phase_pivot_in_cap_prepare(struct SpheraSptdInCap *out,
+                                       struct SpheraVec3 wo,
+                                       float g,
+                                       struct SpheraCap cap);
+
+/**
  * The cap of directions that a sphere of `radius` centered at `center` (relative to
  * the shading point) subtends: `sin θ = radius / |center|`, with `1 − cos θ` kept to
  * full relative precision for tiny or distant spheres. The whole sphere
@@ -1919,22 +1935,6 @@ float sphera_sptd_in_cap_pdf(const struct SpheraSptdInCap *prepared, struct Sphe
  * As for `sphera_sptd_in_cap_sample`.
  */
 float sphera_sptd_in_cap_integral(const struct SpheraSptdInCap *prepared);
-
-/**
- * The pivot phase function (pivot `g·wo`, `wo` normalised, `g` clamped as in
- * `sphera_phase_pivot`) restricted to a sphere light's cap (Section 6.2): sample and
- * evaluate it with `sphera_sptd_in_cap_*`. Returns `false` (writing a sampler without
- * samples) for a zero or non-finite `wo` or an empty cap; does nothing for a null
- * `out`.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraSptdInCap`.
- */
-bool sphera_phase_pivot_in_cap_prepare(struct SpheraSptdInCap *out,
-                                       struct SpheraVec3 wo,
-                                       float g,
-                                       struct SpheraCap cap);
 
 /**
  * The uniform SPTD fitted to GGX `f cos θ` (the pivot table, 64×64, bilinear) for the

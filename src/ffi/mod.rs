@@ -1,4 +1,5 @@
-//! The C ABI: thin wrappers over the safe core, one file per family, no logic beyond
+//! The C ABI: thin wrappers over the safe core, one file per C prefix (`ggx.rs` holds
+//! `sphera_ggx_*`, `solid_angle_polygon.rs` `sphera_solid_angle_polygon_*`, ...), no logic beyond
 //! the null-pointer and count contract that C callers rely on.
 //!
 //! Every exported function is `extern "C"` with an unmangled `sphera_` name; the header
@@ -23,41 +24,74 @@ mod types;
 
 mod polygon;
 
+mod solid_angle_polygon;
+
+mod turk_polygon;
+
+mod arvo_polygon;
+
 mod frame;
 
-mod warps;
+mod version;
 
-mod projected;
+mod hart;
 
-mod brdf;
+mod clipped_solid_angle_polygon;
+
+mod projected_polygon;
+
+mod arvo_projected_polygon;
+
+mod ggx;
+
+mod lambert;
+
+mod mis;
 
 mod ltc;
 
-mod light;
+mod polygon_light;
 
 mod phase;
 
-mod sphere;
+mod cap;
+
+mod pivot;
 
 mod sptd;
+
+mod sphere_light;
 
 mod vsgl;
 
 mod sg;
 
-pub use brdf::*;
+mod asg;
+
+pub use arvo_polygon::*;
+pub use arvo_projected_polygon::*;
+pub use asg::*;
+pub use cap::*;
+pub use clipped_solid_angle_polygon::*;
 pub use frame::*;
-pub use light::*;
+pub use ggx::*;
+pub use hart::*;
+pub use lambert::*;
 pub use ltc::*;
+pub use mis::*;
 pub use phase::*;
+pub use pivot::*;
 pub use polygon::*;
-pub use projected::*;
+pub use polygon_light::*;
+pub use projected_polygon::*;
 pub use sg::*;
-pub use sphere::*;
+pub use solid_angle_polygon::*;
+pub use sphere_light::*;
 pub use sptd::*;
+pub use turk_polygon::*;
 pub use types::*;
+pub use version::*;
 pub use vsgl::*;
-pub use warps::*;
 
 /// The precompiled `core` of hosted targets is built with unwinding, and its object
 /// file refers to `rust_eh_personality` (a `DW.ref.rust_eh_personality` data word), even

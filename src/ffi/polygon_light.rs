@@ -1,19 +1,22 @@
 //! The one-call shading of a polygonal light: projected solid angle sampling and the GGX
 //! LTC inside the polygon, combined by multiple importance sampling
 //! (`sphera_polygon_light_*`).
-
 use super::types::{SpheraVec3, read_polygon};
 use crate::Vec3;
 use crate::polygon::light::{LightSample, Material, MisHeuristic, PolygonLight};
 
 /// The balance heuristic, `p_j / Σ p_k`.
 pub const SPHERA_MIS_BALANCE: u32 = 0;
+
 /// The power heuristic with exponent 2, `p_j² / Σ p_k²`.
 pub const SPHERA_MIS_POWER: u32 = 1;
+
 /// The weighted balance heuristic of Peters 2021, `c_j p_j / Σ c_k p_k`.
 pub const SPHERA_MIS_WEIGHTED_BALANCE: u32 = 2;
+
 /// Clamped optimal MIS (Peters 2021, supplement B.3), with visibility estimate `v`.
 pub const SPHERA_MIS_CLAMPED_OPTIMAL: u32 = 3;
+
 /// Optimal MIS (Peters 2021, supplement B.1), with visibility estimate `v`.
 pub const SPHERA_MIS_OPTIMAL: u32 = 4;
 

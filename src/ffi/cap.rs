@@ -8,12 +8,8 @@
 //! except that a cap wider than a hemisphere keeps an `one_plus_cos` that agrees with
 //! `2 − one_minus_cos` to 2⁻²², its hole to full precision, and takes `one_minus_cos`
 //! from it), so outputs are always finite.
-
 use super::types::{SpheraSample, SpheraVec3};
-use crate::sphere::{
-    Cap, cap_intersection_solid_angle, cap_intersection_solid_angle_oat_sander, pivot_cap,
-    pivot_jacobian, pivot_transform,
-};
+use crate::sphere::{Cap, cap_intersection_solid_angle, cap_intersection_solid_angle_oat_sander};
 
 /// The cap of directions that a sphere of `radius` centered at `center` (relative to
 /// the shading point) subtends: `sin θ = radius / |center|`, with `1 − cos θ` kept to
@@ -72,28 +68,4 @@ pub extern "C" fn sphera_cap_intersection_solid_angle(a: Cap, b: Cap) -> f32 {
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_cap_intersection_solid_angle_oat_sander(a: Cap, b: Cap) -> f32 {
     cap_intersection_solid_angle_oat_sander(&a.sanitized(), &b.sanitized())
-}
-
-/// The pivot transformation `g(dir)`: the second intersection with the unit sphere of
-/// the line from `dir` (normalised) through `pivot`. `|pivot| ≥ 1` is clamped to
-/// `1 − 2⁻²⁰`; a non-finite pivot counts as the origin (`g(dir) = −dir`); a zero or
-/// non-finite `dir` gives `(0, 0, 1)`.
-#[unsafe(no_mangle)]
-pub extern "C" fn sphera_pivot_transform(dir: SpheraVec3, pivot: SpheraVec3) -> SpheraVec3 {
-    pivot_transform(dir.into(), pivot.into()).into()
-}
-
-/// The Jacobian `((1 − |pivot|²) / |dir − pivot|²)²` of the pivot transformation at
-/// `dir` (normalised); 0 for a zero or non-finite `dir`. Pivots as in
-/// `sphera_pivot_transform`.
-#[unsafe(no_mangle)]
-pub extern "C" fn sphera_pivot_jacobian(dir: SpheraVec3, pivot: SpheraVec3) -> f32 {
-    pivot_jacobian(dir.into(), pivot.into())
-}
-
-/// The image of a cap under the pivot transformation: a cap, which may be wider than a
-/// hemisphere. Pivots as in `sphera_pivot_transform`.
-#[unsafe(no_mangle)]
-pub extern "C" fn sphera_pivot_cap(cap: Cap, pivot: SpheraVec3) -> Cap {
-    pivot_cap(&cap.sanitized(), pivot.into())
 }

@@ -1,0 +1,131 @@
+//! C ABI, `sphera_solid_angle_polygon_*`: solid angle sampling of polygons (Peters 2021,
+//! supplement C).
+use super::polygon::prepare;
+use super::types::{SpheraSample, SpheraVec3, with_ref};
+use crate::Sample;
+use crate::polygon::SolidAnglePolygon;
+
+/// Prepares the solid angle sampler (Peters 2021) for the convex polygon
+/// `vertices[0..count]`: positions relative to the shading point, not normalised, in
+/// either winding. The polygon need not be clipped; clip it first with
+/// `sphera_polygon_clip` to sample only the part above the horizon.
+///
+/// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
+/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
+/// when the polygon subtends no solid angle, in particular when its vertices lie exactly
+/// in a plane through the shading point (decided exactly, at any tilt). Unless `out` is
+/// null, a `false` return writes the empty polygon into `*out`: its samples have pdf 0,
+/// its `pdf` is 0 and its solid angle is 0, whatever `*out` held before.
+///
+/// # Safety
+///
+/// `out` must be null or point to writable memory for one `SpheraSolidAnglePolygon`;
+/// `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_solid_angle_polygon_prepare(
+    out: *mut SolidAnglePolygon,
+    vertices: *const SpheraVec3,
+    count: u32,
+) -> bool {
+    // SAFETY: forwarded from the caller.
+    unsafe { prepare(out, vertices, count, SolidAnglePolygon::prepare) }
+}
+
+/// Draws a direction uniformly distributed in the solid angle of `polygon` from the
+/// random numbers `u0`, `u1` in [0, 1) (values outside are clamped by the library).
+/// The pdf of the sample is 1 / solid angle per steradian.
+///
+/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty.
+/// `dir` is always a finite unit vector.
+///
+/// # Safety
+///
+/// `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
+/// `sphera_solid_angle_polygon_prepare`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_solid_angle_polygon_sample(
+    polygon: *const SolidAnglePolygon,
+    u0: f32,
+    u1: f32,
+) -> SpheraSample {
+    // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
+    unsafe {
+        with_ref(polygon, Sample::NONE.into(), |polygon| {
+            polygon.sample([u0, u1]).into()
+        })
+    }
+}
+
+/// The density per steradian with which `sphera_solid_angle_polygon_sample` produces
+/// the direction `dir` (need not be normalised): 1 / solid angle inside the polygon
+/// (boundary included, and up to a slack outside it where rounding puts samples drawn
+/// next to an edge: the smaller of 16 ulps, 1.9e-6 rad, and 2e-5 of the polygon's width,
+/// solid angle over perimeter), 0 outside it. Every sample's pdf is this function's
+/// value at its direction, bit for bit.
+///
+/// Returns 0 when `polygon` is null or empty, and for a zero or non-finite `dir`.
+///
+/// # Safety
+///
+/// `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
+/// `sphera_solid_angle_polygon_prepare`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_solid_angle_polygon_pdf(
+    polygon: *const SolidAnglePolygon,
+    dir: SpheraVec3,
+) -> f32 {
+    // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
+    unsafe { with_ref(polygon, 0.0, |polygon| polygon.pdf(dir.into())) }
+}
+
+/// The solid angle (in steradians) that the polygon subtends.
+///
+/// Returns 0 when `polygon` is null or empty.
+///
+/// # Safety
+///
+/// `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
+/// `sphera_solid_angle_polygon_prepare`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_solid_angle_polygon_solid_angle(
+    polygon: *const SolidAnglePolygon,
+) -> f32 {
+    // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
+    unsafe { with_ref(polygon, 0.0, |polygon| polygon.solid_angle()) }
+}
+
+/// Inverts `sphera_solid_angle_polygon_sample`: finds the random numbers `*u0`, `*u1`
+/// in [0, 1] for which the sampler produces the unit direction `dir`.
+///
+/// Returns `false` when `polygon`, `u0` or `u1` is null, when the polygon is empty, or
+/// when `dir` does not point into the polygon; `*u0` and `*u1` are then set to 0 where
+/// they are non-null.
+///
+/// # Safety
+///
+/// `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
+/// `sphera_solid_angle_polygon_prepare`; `u0` and `u1` must each be null or point to a
+/// writable `float`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_solid_angle_polygon_invert(
+    polygon: *const SolidAnglePolygon,
+    dir: SpheraVec3,
+    u0: *mut f32,
+    u1: *mut f32,
+) -> bool {
+    // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
+    let inverted = match unsafe { polygon.as_ref() } {
+        Some(polygon) if !u0.is_null() && !u1.is_null() => polygon.invert(dir.into()),
+        _ => None,
+    };
+    let [v0, v1] = inverted.unwrap_or([0.0, 0.0]);
+    if !u0.is_null() {
+        // SAFETY: non-null, and the caller guarantees it is writable.
+        unsafe { u0.write(v0) };
+    }
+    if !u1.is_null() {
+        // SAFETY: non-null, and the caller guarantees it is writable.
+        unsafe { u1.write(v1) };
+    }
+    inverted.is_some()
+}

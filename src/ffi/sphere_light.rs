@@ -1,0 +1,210 @@
+//! C ABI, `sphera_sphere_light_*` and `sphera_ggx_pivot_*`: the joint BRDF–light
+//! sampler of a sphere light, its real-time shading with specular occlusion (Dupuy et
+//! al. 2017, Sec. 5–6), and the GGX pivot table behind both.
+use super::types::{SpheraSample, SpheraVec3, with_ref};
+use crate::Vec3;
+use crate::sphere::{Cap, GgxPivot, SphereLightSampler, SphereLightShading};
+
+/// The uniform SPTD fitted to GGX `f cos θ` (the pivot table, 64×64, bilinear) for the
+/// view `wo` (local frame, normalised) and roughness `r = √α` (clamped to [0, 1], NaN as
+/// 0). Returns `false` (writing a zero pivot and albedo) when `wo` is not finite, zero
+/// or at or below the horizon; does nothing for a null `out`.
+///
+/// # Safety
+///
+/// `out` must be null or point to writable memory for one `SpheraGgxPivot`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_ggx_pivot_lookup(
+    out: *mut GgxPivot,
+    wo: SpheraVec3,
+    roughness: f32,
+) -> bool {
+    if out.is_null() {
+        return false;
+    }
+    let fit = GgxPivot::lookup(wo.into(), roughness);
+    let empty = GgxPivot {
+        pivot: Vec3::ZERO,
+        albedo: 0.0,
+    };
+    // SAFETY: `out` is non-null and the caller guarantees it is writable.
+    unsafe { out.write(fit.unwrap_or(empty)) };
+    fit.is_some()
+}
+
+/// Prepares real-time GGX shading of sphere lights (BIASED: the fitted SPTD
+/// approximates GGX; errors are tabulated in docs/sphere-lights.md) for the view `wo`, roughness
+/// `r = √α` and Fresnel `f0` (each channel clamped to [0, 1], NaN as 0). Returns
+/// `false` (writing a shading that returns zero) when `wo` is not finite, zero, or at
+/// or below the horizon; does nothing for a null `out`.
+///
+/// # Safety
+///
+/// `out` must be null or point to writable memory for one `SpheraSphereLightShading`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_sphere_light_shading_prepare(
+    out: *mut SphereLightShading,
+    wo: SpheraVec3,
+    roughness: f32,
+    f0: SpheraVec3,
+) -> bool {
+    if out.is_null() {
+        return false;
+    }
+    let prepared = SphereLightShading::new(wo.into(), roughness, f0.into());
+    let empty = SphereLightShading {
+        fit: GgxPivot {
+            pivot: Vec3::ZERO,
+            albedo: 0.0,
+        },
+        horizon_image: Cap::EMPTY,
+        specular_albedo: Vec3::ZERO,
+    };
+    // SAFETY: `out` is non-null and the caller guarantees it is writable.
+    unsafe { out.write(prepared.unwrap_or(empty)) };
+    prepared.is_some()
+}
+
+/// `∫_{C ∩ H} f cos θ dω ≈ albedo_F Ω(g(C) ∩ g(H))/4π` per unit radiance (Eq. 19,
+/// BIASED), RGB, for the cap `light` of a sphere light; multiply by its radiance. Zero
+/// for a null pointer or an empty cap.
+///
+/// # Safety
+///
+/// `shading` must be null or point to a `SpheraSphereLightShading` written by
+/// `sphera_sphere_light_shading_prepare`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_sphere_light_shade(
+    shading: *const SphereLightShading,
+    light: Cap,
+) -> SpheraVec3 {
+    // SAFETY: forwarded from the caller.
+    unsafe { with_ref(shading, Vec3::ZERO, |s| s.shade(&light)) }.into()
+}
+
+/// Specular occlusion with a bent cone `visibility` (Eq. 23, BIASED):
+/// `albedo_F Ω(g(C) ∩ g(V))/4π`; the bent cone replaces the upper hemisphere (pass the
+/// hemisphere `(0, 0, 1)`, `cos θ = 0`, for an unoccluded point). Zero for a null
+/// pointer.
+///
+/// # Safety
+///
+/// As for `sphera_sphere_light_shade`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_sphere_light_shade_occluded(
+    shading: *const SphereLightShading,
+    light: Cap,
+    visibility: Cap,
+) -> SpheraVec3 {
+    // SAFETY: forwarded from the caller.
+    unsafe {
+        with_ref(shading, Vec3::ZERO, |s| {
+            s.shade_occluded(&light, &visibility)
+        })
+    }
+    .into()
+}
+
+/// Specular occlusion by the separable approximation (Eq. 21–22, BIASED; the baseline
+/// of `sphera_sphere_light_shade_occluded`): the unoccluded shading
+/// `sphera_sphere_light_shade` times the fraction of the BRDF lobe inside the bent cone,
+/// `Ω(g(V) ∩ g(H)) / Ω(g(H))`. It lets light through a cone that holds the lobe but not
+/// the light (shadow leaking). Equals `sphera_sphere_light_shade` for the hemisphere
+/// `(0, 0, 1)`, `cos θ = 0`. Zero for a null pointer.
+///
+/// # Safety
+///
+/// As for `sphera_sphere_light_shade`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_sphere_light_shade_occluded_separable(
+    shading: *const SphereLightShading,
+    light: Cap,
+    visibility: Cap,
+) -> SpheraVec3 {
+    // SAFETY: forwarded from the caller.
+    unsafe {
+        with_ref(shading, Vec3::ZERO, |s| {
+            s.shade_occluded_separable(&light, &visibility)
+        })
+    }
+    .into()
+}
+
+/// Prepares joint BRDF–light sampling of a sphere light (Section 6.1): the fitted SPTD
+/// restricted to the light's cap, or uniform cap sampling when the pivoted cap is
+/// smaller than 1e-3 sr (`sphera_sphere_light_sampler_uses_sptd` tells which). A cap
+/// that crosses the horizon is sampled above it only (the SPTD over the cap's part above
+/// the horizon, through the intersection of the two caps' images): no sample is wasted
+/// below the horizon. Combine with `sphera_ggx_sample` by MIS. `center` is relative to
+/// the shading point, `wo` points to the viewer, roughness as in
+/// `sphera_ggx_pivot_lookup`. Returns `false` (writing a sampler without samples) for an
+/// empty cap (non-finite center, radius not finite and positive), a cap wholly below the
+/// horizon, or a `wo` at or below the horizon; does nothing for null `out`.
+///
+/// # Safety
+///
+/// `out` must be null or point to writable memory for one `SpheraSphereLightSampler`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_sphere_light_sampler_prepare(
+    out: *mut SphereLightSampler,
+    center: SpheraVec3,
+    radius: f32,
+    wo: SpheraVec3,
+    roughness: f32,
+) -> bool {
+    if out.is_null() {
+        return false;
+    }
+    let prepared = SphereLightSampler::new(center.into(), radius, wo.into(), roughness);
+    // SAFETY: `out` is non-null and the caller guarantees it is writable.
+    unsafe { out.write(prepared.unwrap_or(SphereLightSampler::EMPTY)) };
+    prepared.is_some()
+}
+
+/// Draws a direction in the light's cap above the horizon; its pdf is
+/// `sphera_sphere_light_sampler_pdf` at
+/// the direction, bit for bit (a draw that rounding puts just outside the cap is returned
+/// as no sample). pdf 0 for null or a failed prepare.
+///
+/// # Safety
+///
+/// `sampler` must be null or point to a `SpheraSphereLightSampler` written by
+/// `sphera_sphere_light_sampler_prepare`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_sphere_light_sampler_sample(
+    sampler: *const SphereLightSampler,
+    u0: f32,
+    u1: f32,
+) -> SpheraSample {
+    // SAFETY: forwarded from the caller.
+    unsafe { with_ref(sampler, crate::Sample::NONE, |s| s.sample([u0, u1])) }.into()
+}
+
+/// The density of `sphera_sphere_light_sampler_sample` at `dir`; 0 outside the cap and
+/// for null.
+///
+/// # Safety
+///
+/// As for `sphera_sphere_light_sampler_sample`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_sphere_light_sampler_pdf(
+    sampler: *const SphereLightSampler,
+    dir: SpheraVec3,
+) -> f32 {
+    // SAFETY: forwarded from the caller.
+    unsafe { with_ref(sampler, 0.0, |s| s.pdf(dir.into())) }
+}
+
+/// Whether the sampler draws from the SPTD (`true`) or uniformly in the cap (the
+/// fallback for pivoted caps under 1e-3 sr); `false` for null.
+///
+/// # Safety
+///
+/// As for `sphera_sphere_light_sampler_sample`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_sphere_light_sampler_uses_sptd(
+    sampler: *const SphereLightSampler,
+) -> bool {
+    // SAFETY: forwarded from the caller.
+    unsafe { with_ref(sampler, false, |s| s.uses_sptd()) }
+}
