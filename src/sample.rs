@@ -50,39 +50,6 @@ pub(crate) const INWARD_PULLS: [f32; 5] = [
     1.0,
 ];
 
-/// `dir` unchanged when `| |dir|² - 1 | <= 2e-6` (every direction a sampler computes
-/// accurately, bit for bit), otherwise `dir / |dir|` by the shared helper
-/// [`crate::math::normalize_by_largest`] (scaled by its largest component first so that
-/// the squares neither underflow into denormals nor overflow); a zero or non-finite
-/// `dir` comes back non-finite, for the caller's "no sample" test. The samplers use it
-/// where an ill-conditioned construction can lose the unit length (found by fuzzing;
-/// see the callers).
-#[inline(always)]
-pub(crate) fn unit_if_needed(dir: Vec3) -> Vec3 {
-    unit_if_needed_or_none(dir).unwrap_or(Vec3::NAN)
-}
-
-/// [`unit_if_needed`] with `None` for a zero or non-finite `dir`: a caller that returns
-/// "no sample" then needs no finiteness test on the common path (a `dir` that passes the
-/// length test is finite, as NaN and infinite lengths fail it).
-#[inline(always)]
-pub(crate) fn unit_if_needed_or_none(dir: Vec3) -> Option<Vec3> {
-    let length_squared = dir.length_squared();
-    if (length_squared - 1.0).abs() <= 2e-6 {
-        return Some(dir);
-    }
-    crate::math::normalize_by_largest(dir)
-}
-
-/// `v / |v|` by the shared helper [`crate::math::normalize_by_largest`] (tiny vectors,
-/// whose squares are denormal, e.g. 5e-22, and huge ones normalise to full precision);
-/// zero for a zero or non-finite `v` (found by fuzzing: a view or phase direction of
-/// length 5e-22 normalised to length 0.99986).
-#[inline(always)]
-pub(crate) fn normalize_scaled(v: Vec3) -> Vec3 {
-    crate::math::normalize_by_largest(v).unwrap_or(Vec3::ZERO)
-}
-
 /// The largest `f32` below one.
 pub(crate) const ONE_MINUS_ULP: f32 = 1.0 - f32::EPSILON / 2.0;
 

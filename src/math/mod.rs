@@ -25,7 +25,9 @@ pub use products::{
 };
 pub use sin_cos::sin_cos_0_to_pi;
 pub(crate) use sin_cos::sin_cos_of_turn;
-pub(crate) use unit::{UNIT_TOLERANCE, normalize_by_largest, unit};
+pub(crate) use unit::{
+    UNIT_TOLERANCE, normalize_scaled, unit, unit_if_needed, unit_if_needed_or_none,
+};
 
 /// `c[0] + s (c[1] + s (c[2] + …))` by Horner's rule, one multiplication and one
 /// addition per coefficient after the last, each rounded (never fused: the bits do not

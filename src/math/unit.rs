@@ -1,5 +1,8 @@
-//! Direction arguments as unit vectors: the one normalisation that every function
-//! taking a direction (which need not be normalised) goes through (issue 17, 5).
+//! Every normalisation of the library, in one place (issue 19, 5): direction arguments
+//! as unit vectors ([`unit`], the one normalisation that every function taking a
+//! direction goes through, issue 17, 5), a sampler's computed directions
+//! ([`unit_if_needed`], with its own tolerance), and the zero-or-unit form
+//! ([`normalize_scaled`]); all three share [`normalize_by_largest`].
 //!
 //! `v / |v|` computed directly fails at both ends of the range: `|v|²` overflows to
 //! infinity for components from about `1.8e19` on, and underflows to zero, or into
@@ -42,6 +45,44 @@ pub(crate) fn unit(v: Vec3) -> Option<Vec3> {
         return Some(v);
     }
     normalize_by_largest(v)
+}
+
+/// The tolerance of [`unit_if_needed`] for a sampler's own output: 2e-6, twice
+/// [`UNIT_TOLERANCE`] (an argument's), as a computed direction carries a few more
+/// roundings than one a caller normalised.
+const OUTPUT_UNIT_TOLERANCE: f32 = 2e-6;
+
+/// `dir` unchanged when `| |dir|² - 1 | <= 2e-6` (every direction a sampler computes
+/// accurately, bit for bit), otherwise `dir / |dir|` by the shared helper
+/// [`normalize_by_largest`] (scaled by its largest component first so that
+/// the squares neither underflow into denormals nor overflow); a zero or non-finite
+/// `dir` comes back non-finite, for the caller's "no sample" test. The samplers use it
+/// where an ill-conditioned construction can lose the unit length (found by fuzzing;
+/// see the callers).
+#[inline(always)]
+pub(crate) fn unit_if_needed(dir: Vec3) -> Vec3 {
+    unit_if_needed_or_none(dir).unwrap_or(Vec3::NAN)
+}
+
+/// [`unit_if_needed`] with `None` for a zero or non-finite `dir`: a caller that returns
+/// "no sample" then needs no finiteness test on the common path (a `dir` that passes the
+/// length test is finite, as NaN and infinite lengths fail it).
+#[inline(always)]
+pub(crate) fn unit_if_needed_or_none(dir: Vec3) -> Option<Vec3> {
+    let length_squared = dir.length_squared();
+    if (length_squared - 1.0).abs() <= OUTPUT_UNIT_TOLERANCE {
+        return Some(dir);
+    }
+    normalize_by_largest(dir)
+}
+
+/// `v / |v|` by the shared helper [`normalize_by_largest`] (tiny vectors,
+/// whose squares are denormal, e.g. 5e-22, and huge ones normalise to full precision);
+/// zero for a zero or non-finite `v` (found by fuzzing: a view or phase direction of
+/// length 5e-22 normalised to length 0.99986).
+#[inline(always)]
+pub(crate) fn normalize_scaled(v: Vec3) -> Vec3 {
+    normalize_by_largest(v).unwrap_or(Vec3::ZERO)
 }
 
 #[cfg(test)]

@@ -101,7 +101,7 @@ impl ClippedSolidAnglePolygon {
         // fuzzing: |dir| = 0.875).
         if sample.dir.z < 0.0 {
             sample.dir.z = 0.0;
-            sample.dir = crate::sample::unit_if_needed(sample.dir);
+            sample.dir = crate::math::unit_if_needed(sample.dir);
             if !(sample.dir.is_finite() && sample.dir != Vec3::ZERO) {
                 return Sample::NONE;
             }

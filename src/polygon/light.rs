@@ -163,7 +163,7 @@ impl PolygonLight {
         if !(3..=MAX_POLYGON_VERTICES).contains(&vertices.len()) {
             return None;
         }
-        let wo = crate::sample::normalize_scaled(wo);
+        let wo = crate::math::normalize_scaled(wo);
         if !(wo.z > 0.0) {
             return None;
         }

@@ -72,8 +72,8 @@ fn round_trip_tolerance(transformed: &[Vec3], projected_solid_angle: f32) -> f32
     let mut perimeter = 0.0f32;
     for i in 0..count {
         let next = if i + 1 == count { 0 } else { i + 1 };
-        let a = crate::sample::normalize_scaled(transformed[i]);
-        let b = crate::sample::normalize_scaled(transformed[next]);
+        let a = crate::math::normalize_scaled(transformed[i]);
+        let b = crate::math::normalize_scaled(transformed[next]);
         perimeter += (b - a).length();
     }
     let width = projected_solid_angle / perimeter;

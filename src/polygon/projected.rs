@@ -791,7 +791,7 @@ impl ProjectedSolidAnglePolygon {
         // disagree: found by fuzzing, |dir| = 1.117. Renormalise such a direction (the
         // test leaves every direction with | |dir|² - 1 | <= 2e-6 bit for bit as it was);
         // its pdf is then `dir.z / Φ` of the direction returned, as `pdf` gives.
-        let Some(dir) = crate::sample::unit_if_needed_or_none(dir) else {
+        let Some(dir) = crate::math::unit_if_needed_or_none(dir) else {
             return Sample::NONE;
         };
         // `dir.z / Φ` as `pdf` computes it (`unit_if_needed` leaves this `dir` as it is),
@@ -817,7 +817,7 @@ impl ProjectedSolidAnglePolygon {
             // bit for bit; others normalised by the largest component first: a tiny
             // `dir` (1e-45) had a length of 0 and an infinite pdf (found by the
             // adversarial C test).
-            crate::sample::unit_if_needed(dir).z * self.density
+            crate::math::unit_if_needed(dir).z * self.density
         } else {
             0.0
         }
@@ -861,7 +861,7 @@ impl ProjectedSolidAnglePolygon {
             return self.small_pdf_within(dir, tolerance);
         }
         if self.contains_within(dir, tolerance) {
-            crate::sample::unit_if_needed(dir).z * self.density
+            crate::math::unit_if_needed(dir).z * self.density
         } else {
             0.0
         }
@@ -878,7 +878,7 @@ impl ProjectedSolidAnglePolygon {
     #[inline(always)]
     fn small_pdf_within(&self, dir: Vec3, tolerance: f32) -> f32 {
         if dir.z > 0.0 && self.small().contains_within(dir, tolerance) {
-            crate::sample::unit_if_needed(dir).z * self.density
+            crate::math::unit_if_needed(dir).z * self.density
         } else {
             0.0
         }

@@ -225,7 +225,7 @@ impl SmallPolygonCosineSampler {
         let mut dir = sample.dir;
         if dir.z < 0.0 {
             dir.z = 0.0;
-            dir = crate::sample::unit_if_needed(dir);
+            dir = crate::math::unit_if_needed(dir);
         }
         if !dir.is_finite() {
             return Sample::NONE;

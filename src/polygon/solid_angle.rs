@@ -876,7 +876,7 @@ impl SolidAnglePolygon {
         // ulp, so t and with it |dir| can be off by up to about 1e-3 (found by fuzzing:
         // |dir| = 0.99957); renormalise then. The test leaves every other direction
         // (|dir|² within 2e-6 of 1) bit for bit as it was.
-        let Some(dir) = crate::sample::unit_if_needed_or_none(dir) else {
+        let Some(dir) = crate::math::unit_if_needed_or_none(dir) else {
             return Sample::NONE;
         };
         Sample {
@@ -1016,7 +1016,7 @@ impl SolidAnglePolygon {
         if self.selectable_triangles == 0 {
             return None;
         }
-        let w = crate::sample::normalize_scaled(dir);
+        let w = crate::math::normalize_scaled(dir);
         let apex = self.vertices[0];
         let count = super::stored_count(self.vertex_count, MAX_POLYGON_VERTICES);
         let selectable = super::stored_count(self.selectable_triangles, MAX_TRIANGLES);

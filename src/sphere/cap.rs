@@ -129,7 +129,7 @@ impl Cap {
         let d = c.length();
         if !(d > r) {
             let axis = if d > 0.0 {
-                crate::sample::normalize_scaled(c)
+                crate::math::normalize_scaled(c)
             } else {
                 Vec3::Z
             };
@@ -149,7 +149,7 @@ impl Cap {
         Cap {
             // Normalised as `Cap::sanitized` normalises an invalid axis: unit to a few
             // ulps, which the pivot transformation needs (see `Cap::sanitized`).
-            axis: crate::sample::normalize_scaled(c),
+            axis: crate::math::normalize_scaled(c),
             one_minus_cos: t,
             one_plus_cos: h,
             sin2: (t * h).max(0.0).min(1.0),
@@ -206,7 +206,7 @@ impl Cap {
         // Normalised by the largest component first: a huge axis overflowed `length`,
         // and a tiny one (components of 1e-23) normalised through denormal squares to
         // length 1.006 (found by fuzzing).
-        let unit = crate::sample::normalize_scaled(axis);
+        let unit = crate::math::normalize_scaled(axis);
         if unit == Vec3::ZERO {
             return Cap::EMPTY;
         }

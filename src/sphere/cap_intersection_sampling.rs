@@ -283,7 +283,7 @@ impl CapIntersection {
         if !self.contains(dir) || !(self.solid_angle > 0.0) {
             return None;
         }
-        let w = crate::sample::normalize_scaled(dir);
+        let w = crate::math::normalize_scaled(dir);
         let s = (0.5 * (w - self.radial.axis).length_squared()).min(2.0);
         let u0 = self.cumulative(s) / self.solid_angle;
         let psi = libm::atan2f(w.dot(self.e2), w.dot(self.e1));

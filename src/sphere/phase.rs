@@ -139,7 +139,7 @@ fn uniform_sphere(u0: f32, u1: f32) -> Vec3 {
 /// light travels in, `μ = wo·ω`): a uniform direction pivoted through `r_p = g wo`. The
 /// pdf is `f_pivot(μ)`. `Sample::NONE` for a zero or non-finite `wo`.
 pub fn sample_pivot_phase(wo: Vec3, g: f32, u: [f32; 2]) -> Sample {
-    let Some(frame) = Frame::from_normal(crate::sample::normalize_scaled(wo)) else {
+    let Some(frame) = Frame::from_normal(crate::math::normalize_scaled(wo)) else {
         return Sample::NONE;
     };
     let g = clamp_g(g);
@@ -171,7 +171,7 @@ pub fn sample_pivot_phase(wo: Vec3, g: f32, u: [f32; 2]) -> Sample {
 /// non-finite `ω_o` or an empty cap.
 pub fn pivot_phase_in_cap(wo: Vec3, g: f32, cap: &Cap) -> Option<SptdInCap> {
     // Scaled first: a tiny `wo` has a denormal |ω_o|² and would not come out unit.
-    let wo = crate::sample::normalize_scaled(wo);
+    let wo = crate::math::normalize_scaled(wo);
     if wo == Vec3::ZERO {
         return None;
     }
@@ -184,7 +184,7 @@ pub fn pivot_phase_in_cap(wo: Vec3, g: f32, cap: &Cap) -> Option<SptdInCap> {
 /// relative, and the returned pdf is the HG density, so the bias is below that). The
 /// pdf is `f_HG(μ)`.
 pub fn sample_henyey_greenstein(wo: Vec3, g: f32, u: [f32; 2]) -> Sample {
-    let Some(frame) = Frame::from_normal(crate::sample::normalize_scaled(wo)) else {
+    let Some(frame) = Frame::from_normal(crate::math::normalize_scaled(wo)) else {
         return Sample::NONE;
     };
     let g = clamp_g(g);

@@ -140,7 +140,7 @@ impl Sptd {
         // Scaled by the largest component before normalising: an axis of 2e-21 has a
         // denormal |a|², whose rounding left |a| = 1.00006 and integrals above 1
         // (found by fuzzing). `normalize_scaled` gives 0 for zero or non-finite axes.
-        let axis = crate::sample::normalize_scaled(axis);
+        let axis = crate::math::normalize_scaled(axis);
         let axis = if axis == Vec3::ZERO { Vec3::Z } else { axis };
         Sptd {
             pivot: valid_pivot(pivot),
@@ -875,7 +875,7 @@ impl SptdInCap {
         if !self.cap.contains(dir) {
             return None;
         }
-        let base = transform(crate::sample::normalize_scaled(dir), self.sptd.pivot);
+        let base = transform(crate::math::normalize_scaled(dir), self.sptd.pivot);
         match self.sptd.base {
             SptdBase::Uniform => self.image.invert(base),
             SptdBase::ClampedCosine if self.clipped != 0 => self.invert_clipped(base),

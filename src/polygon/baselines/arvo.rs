@@ -263,7 +263,7 @@ impl ArvoPolygon {
         let dir =
             z * b + sqrt_clamped(1.0 - z * z) * (c_hat - c_hat.dot(b) * b).normalize_or_zero();
         // Far, tiny triangles lose the unit length to about 1e-5 (found by fuzzing).
-        let dir = crate::sample::unit_if_needed(dir);
+        let dir = crate::math::unit_if_needed(dir);
         // No sample where Arvo's f32 construction put the direction outside the polygon
         // by more than the rounding of a unit vector (issue 16, 5: 29% of the samples of
         // a 1e-6 sr polygon, far outside). A baseline keeps its algorithm's weaknesses
@@ -299,7 +299,7 @@ impl ArvoPolygon {
         if count < 3 || !dir.is_finite() || dir == Vec3::ZERO {
             return 0.0;
         }
-        if self.within_edge_slack(crate::sample::normalize_scaled(dir)) {
+        if self.within_edge_slack(crate::math::normalize_scaled(dir)) {
             self.inv_solid_angle
         } else {
             0.0

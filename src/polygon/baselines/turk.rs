@@ -59,7 +59,7 @@ fn to_unit(point: Vec3) -> Vec3 {
     if distance_squared > 1e-30 && distance_squared < 1e30 {
         point * (1.0 / libm::sqrtf(distance_squared))
     } else {
-        crate::sample::normalize_scaled(point)
+        crate::math::normalize_scaled(point)
     }
 }
 
