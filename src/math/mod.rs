@@ -8,6 +8,7 @@ mod fast_functions_generated;
 mod frame;
 mod lanes;
 mod products;
+mod roots;
 mod sin_cos;
 mod unit;
 
@@ -23,6 +24,7 @@ pub use products::{
     difference_of_products, difference_of_products_sign, difference_of_products_unless_cancelling,
     dot_precise, fma, two_product, two_sum,
 };
+pub(crate) use roots::safeguarded_newton_step;
 pub use sin_cos::sin_cos_0_to_pi;
 pub(crate) use sin_cos::sin_cos_of_turn;
 pub(crate) use unit::{

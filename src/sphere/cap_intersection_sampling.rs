@@ -212,18 +212,8 @@ impl CapIntersection {
         let mut s = low + span * (target / self.solid_angle).max(0.0).min(1.0);
         for _ in 0..MAX_ITERATIONS {
             let f = self.cumulative(s) - target;
-            if f > 0.0 {
-                high = s;
-            } else {
-                low = s;
-            }
             let slope = 2.0 * self.half_arc(s);
-            let newton = s - f / slope;
-            let next = if slope > 0.0 && newton > low && newton < high {
-                newton
-            } else {
-                0.5 * (low + high)
-            };
+            let next = crate::math::safeguarded_newton_step(s, f, slope, &mut low, &mut high);
             if (next - s).abs() <= 1e-7 * s.max(1e-30) || !(high > low) {
                 return next.max(self.s_low).min(self.s_high);
             }

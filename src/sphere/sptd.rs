@@ -725,19 +725,9 @@ impl SptdInCap {
             if f.abs() <= 5e-7 * target {
                 return h.max(0.0).min(end);
             }
-            if f > 0.0 {
-                high = h;
-            } else {
-                low = h;
-            }
             let (inner, outer) = self.clipped_strip(h);
             let slope = 2.0 * (outer - inner);
-            let newton = h - f / slope;
-            let next = if slope > 0.0 && newton > low && newton < high {
-                newton
-            } else {
-                0.5 * (low + high)
-            };
+            let next = crate::math::safeguarded_newton_step(h, f, slope, &mut low, &mut high);
             if (next - h).abs() <= 3e-7 * h.max(1e-30) || !(high > low) {
                 return next.max(0.0).min(end);
             }

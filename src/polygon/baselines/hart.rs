@@ -191,17 +191,8 @@ pub(crate) fn sample_quadratic(xi: f32, d: [f32; 3]) -> f32 {
         if residual == 0.0 {
             break;
         }
-        if residual > 0.0 {
-            high = t;
-        } else {
-            low = t;
-        }
         let density = quadratic_bernstein(t, d) * scale;
-        let mut next = t - residual / density;
-        // Also catches NaN and infinity from a zero density.
-        if !(next > low && next < high) {
-            next = 0.5 * (low + high);
-        }
+        let next = crate::math::safeguarded_newton_step(t, residual, density, &mut low, &mut high);
         let step = (next - t).abs();
         t = next;
         if step <= 0.5 * f32::EPSILON * t.max(f32::EPSILON) || high - low <= f32::EPSILON {
