@@ -634,6 +634,42 @@ static int cap_is_valid(SpheraCap c) {
          c.one_plus_cos >= 0.0f && c.one_plus_cos <= 2.0f && c.sin2 >= 0.0f && c.sin2 <= 1.0f;
 }
 
+/* A sphere prepared for solid angle sampling: a prepared value that held garbage, the
+ * empty value on failure, samples with their pdf bit for bit. */
+static void check_solid_angle_sphere(const SpheraSolidAngleSphere *sphere, int ok, int full) {
+  float omega = sphera_solid_angle_sphere_solid_angle(sphere);
+  int k, d;
+  calls++;
+  expect_words_not_nan(sphere, sizeof *sphere);
+  EXPECT(isfinite(omega) && omega >= 0.0f && omega <= 12.566371f * 1.000001f);
+  if (!ok) EXPECT(omega == 0.0f);
+  for (d = 0; d < DIRECTION_COUNT; d++) {
+    float p = sphera_solid_angle_sphere_pdf(sphere, directions[d]);
+    calls++;
+    expect_density(p);
+    if (!ok || !finite3(directions[d])) EXPECT(p == 0.0f);
+  }
+  for (k = 0; k < pair_count(full); k++) {
+    float u0, u1;
+    SpheraSample s;
+    pair(k, full, &u0, &u1);
+    s = sphera_solid_angle_sphere_sample(sphere, u0, u1);
+    calls++;
+    expect_sample(s);
+    if (!ok) EXPECT(is_no_sample(s));
+    if (s.pdf > 0.0f) EXPECT(sphera_solid_angle_sphere_pdf(sphere, s.dir) == s.pdf);
+  }
+}
+
+static void check_solid_angle_sphere_of_cap(SpheraCap cap, int full) {
+  SpheraSolidAngleSphere sphere;
+  int ok;
+  memset(&sphere, 0xff, sizeof sphere);
+  ok = sphera_solid_angle_sphere_prepare_cap(&sphere, cap);
+  calls++;
+  check_solid_angle_sphere(&sphere, ok, full);
+}
+
 static void check_cap(SpheraCap cap, int full) {
   float omega = sphera_cap_solid_angle(cap);
   int k, d;
@@ -655,12 +691,20 @@ static void check_cap(SpheraCap cap, int full) {
     expect_sample(s);
     if (omega == 0.0f) EXPECT(is_no_sample(s));
   }
+  check_solid_angle_sphere_of_cap(cap, full);
 }
 
 static void sphere_suite(void) {
   int k, j, d;
   SpheraCap caps[64];
   int cap_count = 0;
+  /* Null pointers of the prepared sphere. */
+  EXPECT(!sphera_solid_angle_sphere_prepare(NULL, vec3(0.0f, 0.0f, 3.0f), 1.0f));
+  EXPECT(!sphera_solid_angle_sphere_prepare_cap(NULL, sphera_cap_from_axis_cos(vec3(0, 0, 1), 0.5f)));
+  EXPECT(is_no_sample(sphera_solid_angle_sphere_sample(NULL, 0.5f, 0.5f)));
+  EXPECT(sphera_solid_angle_sphere_pdf(NULL, vec3(0.0f, 0.0f, 1.0f)) == 0.0f);
+  EXPECT(sphera_solid_angle_sphere_solid_angle(NULL) == 0.0f);
+  calls += 5;
   /* Hard cases: tiny (1e-7 sr), on and inside the sphere, distant, whole sphere. */
   caps[cap_count++] = sphera_cap_from_sphere(vec3(0.0f, 0.0f, 1e3f), 0.178f); /* ~1e-7 sr */
   caps[cap_count++] = sphera_cap_from_sphere(vec3(0.0f, 0.0f, 1.0f), 1.0f);   /* on it */
@@ -681,7 +725,13 @@ static void sphere_suite(void) {
     SpheraCap a = sphera_cap_from_sphere(v, x);
     SpheraCap b = sphera_cap_from_axis_cos(v, x);
     SpheraCap hand;
-    calls += 2;
+    SpheraSolidAngleSphere sphere;
+    int ok;
+    memset(&sphere, 0xff, sizeof sphere);
+    ok = sphera_solid_angle_sphere_prepare(&sphere, v, x);
+    calls += 3;
+    check_solid_angle_sphere(&sphere, ok, 0);
+    if (!daz_mode && (!finite3(v) || !(x > 0.0f) || !isfinite(x))) EXPECT(!ok);
     EXPECT(cap_is_valid(a));
     EXPECT(cap_is_valid(b));
     if (!daz_mode && (!finite3(v) || !(x > 0.0f) || !isfinite(x))) {

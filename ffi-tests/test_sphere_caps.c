@@ -1,4 +1,7 @@
-/* C ABI tests of sphere caps and the pivot transformation (sphera_cap_*, sphera_pivot_*). */
+/* C ABI tests of sphere caps and the pivot transformation (sphera_cap_*, sphera_pivot_*),
+ * and of spheres prepared for solid angle sampling (sphera_solid_angle_sphere_*). */
+#include <string.h>
+
 #include "check.h"
 
 static const double PI_D = 3.14159265358979323846;
@@ -158,8 +161,58 @@ static void check_bad_input(void) {
             4.0 * PI_D, 1e-6);
 }
 
+/* A sphere prepared for solid angle sampling draws what sphera_cap_sample_uniform draws
+ * from the same cap, bit for bit, with its pdf; bad input writes the empty value. */
+static void check_solid_angle_sphere(void) {
+  SpheraVec3 center = vec3(1.0f, 2.0f, 2.0f);
+  SpheraCap cap = sphera_cap_from_sphere(center, 1.0f);
+  SpheraSolidAngleSphere sphere, garbage;
+  float u[U_COUNT];
+  int i, j;
+  CHECK(sphera_solid_angle_sphere_prepare(&sphere, center, 1.0f));
+  CHECK(sphera_solid_angle_sphere_solid_angle(&sphere) == sphera_cap_solid_angle(cap));
+  CHECK_REL(sphera_solid_angle_sphere_solid_angle(&sphere), 2.0 * PI_D * one_minus_cos_d(center, 1.0), 1e-6);
+  fill_u_values(u);
+  for (i = 0; i < U_COUNT; i++) {
+    for (j = 0; j < U_COUNT; j++) {
+      SpheraSample s = sphera_solid_angle_sphere_sample(&sphere, u[i], u[j]);
+      SpheraSample t = sphera_cap_sample_uniform(cap, u[i], u[j]);
+      CHECK(s.pdf > 0.0f && s.pdf == t.pdf);
+      CHECK(s.dir.x == t.dir.x && s.dir.y == t.dir.y && s.dir.z == t.dir.z);
+      CHECK(sphera_solid_angle_sphere_pdf(&sphere, s.dir) == s.pdf);
+    }
+  }
+  CHECK(sphera_solid_angle_sphere_pdf(&sphere, vec3(-1.0f, 0.0f, 0.0f)) == 0.0f);
+  /* A cap by hand, and the whole sphere from inside. */
+  CHECK(sphera_solid_angle_sphere_prepare_cap(&sphere, sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, 2.0f), -0.5f)));
+  CHECK_REL(sphera_solid_angle_sphere_solid_angle(&sphere), 3.0 * PI_D, 1e-6);
+  CHECK(sphera_solid_angle_sphere_prepare(&sphere, center, 4.0f));
+  CHECK_REL(sphera_solid_angle_sphere_solid_angle(&sphere), 4.0 * PI_D, 1e-6);
+  /* Bad input: false, the empty value over whatever the struct held. */
+  memset(&garbage, 0xff, sizeof garbage);
+  CHECK(!sphera_solid_angle_sphere_prepare(&garbage, vec3(NAN, 0.0f, 1.0f), 1.0f));
+  CHECK(sphera_solid_angle_sphere_sample(&garbage, 0.5f, 0.5f).pdf == 0.0f);
+  CHECK(vec3_is_finite(sphera_solid_angle_sphere_sample(&garbage, 0.5f, 0.5f).dir));
+  CHECK(sphera_solid_angle_sphere_pdf(&garbage, vec3(0.0f, 0.0f, 1.0f)) == 0.0f);
+  CHECK(sphera_solid_angle_sphere_solid_angle(&garbage) == 0.0f);
+  memset(&garbage, 0xff, sizeof garbage);
+  CHECK(!sphera_solid_angle_sphere_prepare(&garbage, center, -1.0f));
+  CHECK(sphera_solid_angle_sphere_solid_angle(&garbage) == 0.0f);
+  memset(&garbage, 0xff, sizeof garbage);
+  CHECK(!sphera_solid_angle_sphere_prepare(&garbage, center, INFINITY));
+  CHECK(!sphera_solid_angle_sphere_prepare_cap(&garbage, sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, 0.0f), 0.5f)));
+  CHECK(sphera_solid_angle_sphere_sample(&garbage, 0.5f, 0.5f).pdf == 0.0f);
+  /* Null pointers. */
+  CHECK(!sphera_solid_angle_sphere_prepare(NULL, center, 1.0f));
+  CHECK(!sphera_solid_angle_sphere_prepare_cap(NULL, cap));
+  CHECK(sphera_solid_angle_sphere_sample(NULL, 0.5f, 0.5f).pdf == 0.0f);
+  CHECK(sphera_solid_angle_sphere_pdf(NULL, vec3(0.0f, 0.0f, 1.0f)) == 0.0f);
+  CHECK(sphera_solid_angle_sphere_solid_angle(NULL) == 0.0f);
+}
+
 int main(void) {
   check_good_caps();
+  check_solid_angle_sphere();
   check_intersections();
   check_pivot();
   check_bad_input();

@@ -435,6 +435,22 @@ typedef struct SpheraSptdInCap {
 } SpheraSptdInCap;
 
 /**
+ * A sphere light (or any cap) prepared for uniform sampling in solid angle: the cap,
+ * its frame and its density.
+ */
+typedef struct SpheraSolidAngleSphere {
+  /**
+   * Opaque: 52 bytes that only the functions preparing a SpheraSolidAngleSphere write; the layout is private and may change between versions.
+   */
+  uint32_t opaque[13];
+} SpheraSolidAngleSphere;
+/**
+ * The value of a light that could not be prepared: no sample, `pdf` 0, solid
+ * angle 0.
+ */
+#define SpheraSolidAngleSphere_EMPTY (SpheraSolidAngleSphere){ .cap = SpheraCap_EMPTY, .tangent = SpheraVec3_X, .bitangent = SpheraVec3_Y, .density = 0.0 }
+
+/**
  * The uniform SPTD fitted to GGX `f cos θ` at one view and roughness.
  */
 typedef struct SpheraGgxPivot {
@@ -1818,6 +1834,76 @@ float sphera_cap_intersection_solid_angle(struct SpheraCap a, struct SpheraCap b
  * nested caps.
  */
 float sphera_cap_intersection_solid_angle_oat_sander(struct SpheraCap a, struct SpheraCap b);
+
+/**
+ * Prepares uniform sampling of the cap that the sphere of radius `radius` centred at
+ * `center` (relative to the shading point) subtends; the whole sphere of directions
+ * when the shading point is inside or on the sphere. The cap is that of
+ * `sphera_cap_from_sphere`, exact to a few ulps down to 1e-12 sr and below.
+ *
+ * Returns `false` when `out` is null, when a coordinate of `center` is NaN or
+ * infinite, or when `radius` is not finite and positive; unless `out` is null, a
+ * `false` return writes the empty value into `*out` (no sample, pdf 0, solid angle 0).
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one `SpheraSolidAngleSphere`.
+ */
+bool sphera_solid_angle_sphere_prepare(struct SpheraSolidAngleSphere *out,
+                                       struct SpheraVec3 center,
+                                       float radius);
+
+/**
+ * Prepares uniform sampling of any cap (made valid first, as every `sphera_cap_*`
+ * function does). Returns `false` when `out` is null or the cap is empty; unless
+ * `out` is null, a `false` return writes the empty value into `*out`.
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one `SpheraSolidAngleSphere`.
+ */
+bool sphera_solid_angle_sphere_prepare_cap(struct SpheraSolidAngleSphere *out,
+                                           struct SpheraCap cap);
+
+/**
+ * Draws a direction uniformly in solid angle inside the prepared cap from `u0`, `u1`
+ * in [0, 1) (clamped by the library); its pdf is 1 / solid angle. Bit for bit the
+ * sample of `sphera_cap_sample_uniform` for the same cap.
+ *
+ * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `sphere` is null or empty.
+ *
+ * # Safety
+ *
+ * `sphere` must be null or point to a `SpheraSolidAngleSphere` written by a
+ * `sphera_solid_angle_sphere_prepare*` function.
+ */
+struct SpheraSample sphera_solid_angle_sphere_sample(const struct SpheraSolidAngleSphere *sphere,
+                                                     float u0,
+                                                     float u1);
+
+/**
+ * The density per steradian of `sphera_solid_angle_sphere_sample` at `dir` (need not
+ * be normalised): 1 / solid angle inside the cap (boundary included), 0 outside; every
+ * sample's pdf is this value at its direction, bit for bit. Returns 0 when `sphere` is
+ * null or empty and for a zero or non-finite `dir`.
+ *
+ * # Safety
+ *
+ * `sphere` must be null or point to a `SpheraSolidAngleSphere` written by a
+ * `sphera_solid_angle_sphere_prepare*` function.
+ */
+float sphera_solid_angle_sphere_pdf(const struct SpheraSolidAngleSphere *sphere,
+                                    struct SpheraVec3 dir);
+
+/**
+ * The solid angle in steradians of the prepared cap; 0 when `sphere` is null or empty.
+ *
+ * # Safety
+ *
+ * `sphere` must be null or point to a `SpheraSolidAngleSphere` written by a
+ * `sphera_solid_angle_sphere_prepare*` function.
+ */
+float sphera_solid_angle_sphere_solid_angle(const struct SpheraSolidAngleSphere *sphere);
 
 /**
  * The pivot transformation `g(dir)`: the second intersection with the unit sphere of

@@ -248,6 +248,9 @@ static SpheraSample both(SpheraSample a, SpheraSample b) {
 #define CAP_PREPARE(out, in) (*(out) = sphera_cap_from_sphere(vec3((in)->center), (in)->radius))
 #define CAP_SAMPLE(p, u0, u1) sphera_cap_sample_uniform(*(p), u0, u1)
 
+#define SOLID_ANGLE_SPHERE_PREPARE(out, in) sphera_solid_angle_sphere_prepare(out, vec3((in)->center), (in)->radius)
+#define SOLID_ANGLE_SPHERE_SAMPLE(p, u0, u1) sphera_solid_angle_sphere_sample(p, u0, u1)
+
 struct ConeVndfC {
   struct ConeC cone;
   struct VndfC vndf;
@@ -403,6 +406,7 @@ typedef struct {
 #define TECHNIQUES(X)                                                                                 \
   X(c_cone, SPHERES, c_cone, struct ConeC, C_CONE_PREPARE, C_CONE_SAMPLE)                             \
   X(cap, SPHERES, c_cone, SpheraCap, CAP_PREPARE, CAP_SAMPLE)                                         \
+  X(solid_angle_sphere, SPHERES, c_cone, SpheraSolidAngleSphere, SOLID_ANGLE_SPHERE_PREPARE, SOLID_ANGLE_SPHERE_SAMPLE) \
   X(c_cone_vndf, SPHERES, c_cone_vndf, struct ConeVndfC, C_CONE_VNDF_PREPARE, C_CONE_VNDF_SAMPLE)     \
   X(sptd, SPHERES, c_cone_vndf, SpheraSphereLightSampler, SPTD_PREPARE, SPTD_SAMPLE)                  \
   X(rt_shade, SPHERES, c_cone, struct Shading, RT_SHADE_PREPARE, RT_SHADE_SAMPLE)                     \

@@ -56,6 +56,8 @@ mod phase;
 
 mod cap;
 
+mod solid_angle_sphere;
+
 mod pivot;
 
 mod sptd;

@@ -109,6 +109,7 @@ impl Cap {
     /// `1 − cos θ = sin²θ / (1 + cos θ)`. The whole sphere when `d ≤ r` (axis `z` when
     /// the center is the shading point); [`Cap::EMPTY`] for a non-finite center or a
     /// radius that is not finite and positive.
+    #[inline]
     pub fn from_sphere(center: Vec3, radius: f32) -> Cap {
         // `x − x` is 0 for a finite `x` and NaN for an infinite or NaN one: one test of
         // the four numbers (in place of a classification of each).
@@ -147,9 +148,16 @@ impl Cap {
         let t = (r * r / (d * (d + q))).min(1.0);
         let h = 2.0 - t;
         Cap {
-            // Normalised as `Cap::sanitized` normalises an invalid axis: unit to a few
-            // ulps, which the pivot transformation needs (see `Cap::sanitized`).
-            axis: crate::math::normalize_scaled(c),
+            // Normalised as `Cap::sanitized` normalises an invalid axis (by the largest
+            // component first): unit to a few ulps, which the pivot transformation needs
+            // (see `Cap::sanitized`; `c / d` failed a test of the pivot). Written out
+            // without `normalize_by_largest`'s checks, which the rescaled `c` passes
+            // (finite, and its largest component at least `d / √3 > r / √3 > 0`): the
+            // same bits.
+            axis: {
+                let scaled = c / c.abs().max_element();
+                scaled * (1.0 / libm::sqrtf(scaled.length_squared()))
+            },
             one_minus_cos: t,
             one_plus_cos: h,
             sin2: (t * h).max(0.0).min(1.0),
@@ -365,6 +373,22 @@ impl Cap {
         if pdf == 0.0 {
             return Sample::NONE;
         }
+        let (tangent, bitangent) = orthonormal_basis(self.axis);
+        self.sample_uniform_in_frame(tangent, bitangent, pdf, u)
+    }
+
+    /// [`Cap::sample_uniform`] of a non-empty cap with its frame `(tangent, bitangent,
+    /// axis)` (from [`orthonormal_basis`]) and its density `pdf = 1/Ω` given: the body
+    /// that [`SolidAngleSphere`](super::SolidAngleSphere) runs with the frame and the
+    /// density it prepared once.
+    #[inline(always)]
+    pub(crate) fn sample_uniform_in_frame(
+        &self,
+        tangent: Vec3,
+        bitangent: Vec3,
+        pdf: f32,
+        u: [f32; 2],
+    ) -> Sample {
         let u0 = clamp_random(u[0]);
         let t = u0 * self.one_minus_cos;
         // `1 + cos θ' = 2 − t'`; past the hemisphere (`t' > 1`, so `u₀ > 1/2` and
@@ -377,7 +401,6 @@ impl Cap {
         };
         let sin = libm::sqrtf((t * one_plus).max(0.0));
         let (sin_phi, cos_phi) = crate::math::sin_cos_of_turn(clamp_random(u[1]));
-        let (tangent, bitangent) = orthonormal_basis(self.axis);
         let dir = tangent * (sin * cos_phi) + bitangent * (sin * sin_phi) + self.axis * cos;
         // `dir` is a unit vector to a few ulps (the frame is orthonormal around a unit
         // axis, `sin² + cos² = 1`), and `|axis|²` is within `UNIT_TOLERANCE` of 1: one
@@ -409,7 +432,7 @@ impl Cap {
 
     /// `1 / Ω`, or 0 when the cap is empty or `1/Ω` is not finite.
     #[inline]
-    fn uniform_pdf(&self) -> f32 {
+    pub(crate) fn uniform_pdf(&self) -> f32 {
         if !(self.one_minus_cos > 0.0) {
             return 0.0;
         }

@@ -11,6 +11,7 @@ pub mod cap_union_sampling;
 pub mod light;
 pub mod phase;
 pub mod pivot;
+pub mod solid_angle_sphere;
 pub mod sptd;
 
 pub use cap::Cap;
@@ -19,4 +20,5 @@ pub use cap_intersection_sampling::CapIntersection;
 pub use cap_union_sampling::CapUnion;
 pub use light::{GgxPivot, SphereLightSampler, SphereLightShading};
 pub use pivot::{pivot_cap, pivot_jacobian, pivot_transform};
+pub use solid_angle_sphere::SolidAngleSphere;
 pub use sptd::{Sptd, SptdBase, SptdInCap};

@@ -69,6 +69,7 @@ fn opaque_types() -> Vec<Opaque> {
         ClippedSolidAnglePolygon, LtcPolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
     };
     use sphera::sphere::light::{SphereLightSampler, SphereLightShading};
+    use sphera::sphere::solid_angle_sphere::SolidAngleSphere;
     use sphera::sphere::sptd::SptdInCap;
     vec![
         opaque::<SolidAnglePolygon>("SpheraSolidAnglePolygon"),
@@ -84,6 +85,7 @@ fn opaque_types() -> Vec<Opaque> {
         opaque::<LtcPolygon>("SpheraLtcPolygon"),
         opaque::<PolygonLight>("SpheraPolygonLight"),
         opaque::<SptdInCap>("SpheraSptdInCap"),
+        opaque::<SolidAngleSphere>("SpheraSolidAngleSphere"),
         opaque::<SphereLightShading>("SpheraSphereLightShading"),
         opaque::<SphereLightSampler>("SpheraSphereLightSampler"),
     ]

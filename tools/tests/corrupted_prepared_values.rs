@@ -24,7 +24,9 @@ use sphera::polygon::baselines::{
 };
 use sphera::polygon::light::{Material, MisHeuristic, PolygonLight};
 use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon};
-use sphera::sphere::{Cap, SphereLightSampler, SphereLightShading, Sptd, SptdInCap};
+use sphera::sphere::{
+    Cap, SolidAngleSphere, SphereLightSampler, SphereLightShading, Sptd, SptdInCap,
+};
 
 /// The words written over each word of a prepared value in turn.
 const HOSTILE_WORDS: [u32; 12] = [
@@ -382,6 +384,16 @@ fn corrupted_sphere_values_neither_hang_nor_panic() {
     }
     assert!(in_caps >= 2, "only {in_caps} SPTDs in a cap prepared");
     assert_eq!(clipped, 1, "the clipped sampler was not corrupted");
+    let mut sphere = SolidAngleSphere::EMPTY;
+    assert!(sphere.prepare(Vec3::new(0.3, 0.2, 2.0), 0.5));
+    corrupt_every_word("SolidAngleSphere", sphere, |s: &SolidAngleSphere| {
+        let mut sum = 0.0;
+        for u in US {
+            let x = s.sample(u);
+            sum += x.pdf + x.dir.x + s.pdf(x.dir) + s.invert(x.dir).map_or(0.0, |u| u[0]);
+        }
+        std::hint::black_box(sum + s.solid_angle())
+    });
     let wo = Vec3::new(0.4, 0.0, 0.9).normalize();
     let sampler = SphereLightSampler::new(Vec3::new(0.3, 0.2, 2.0), 0.5, wo, 0.4).unwrap();
     corrupt_every_word("SphereLightSampler", sampler, |s: &SphereLightSampler| {

@@ -17,6 +17,7 @@ const POOLS: [(&str, &[&str]); 3] = [
         &[
             "c_cone",
             "cap",
+            "solid_angle_sphere",
             "c_cone_vndf",
             "sptd",
             "rt_shade",

@@ -1,0 +1,143 @@
+//! A sphere light prepared for solid angle sampling: uniform sampling of the cap it
+//! subtends, with the cap's frame and density computed once (issue 18, 2).
+//!
+//! [`Cap::sample_uniform`] takes a plain cap, a value that a caller may build by hand,
+//! and so builds the cap's frame (Duff et al. 2017, one division) and its density
+//! `1/Ω` (another division) at every sample, and the C ABI checks the cap's fields at
+//! every call. A renderer draws one or more samples per prepared light: here the
+//! prepare does both divisions once, as a cone sampler does, and a sample is the
+//! warp alone: `1 − cos θ' = u₀ (1 − cos θ)`, `sin θ' = √(t' (2 − t'))`, `φ = 2π u₁`,
+//! mapped by the stored frame. The cap and the sample are exactly those of
+//! [`Cap::from_sphere`] and [`Cap::sample_uniform`], bit for bit (one body, shared):
+//! `1 − cos θ = r² / (d (d + √((d − r)(d + r))))` keeps tiny caps exact to 1e-12 sr
+//! and below, and the rim test with its inward pull keeps `pdf(sample.dir) ==
+//! sample.pdf`.
+
+use super::Cap;
+use crate::Sample;
+use crate::math::orthonormal_basis;
+use glam::Vec3;
+
+/// A sphere light (or any cap) prepared for uniform sampling in solid angle: the cap,
+/// its frame and its density.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolidAngleSphere {
+    /// The cap that the light subtends ([`Cap::from_sphere`]).
+    cap: Cap,
+    /// The frame's first tangent, `orthonormal_basis(cap.axis).0`.
+    tangent: Vec3,
+    /// The frame's second tangent.
+    bitangent: Vec3,
+    /// `1 / Ω` (0: empty, no sample).
+    density: f32,
+}
+
+impl Default for SolidAngleSphere {
+    fn default() -> Self {
+        Self::EMPTY
+    }
+}
+
+impl SolidAngleSphere {
+    /// The value of a light that could not be prepared: no sample, `pdf` 0, solid
+    /// angle 0.
+    pub const EMPTY: SolidAngleSphere = SolidAngleSphere {
+        cap: Cap::EMPTY,
+        tangent: Vec3::X,
+        bitangent: Vec3::Y,
+        density: 0.0,
+    };
+
+    /// Prepares the sphere of radius `radius` centred at `center` (relative to the
+    /// shading point), in place: the cap of [`Cap::from_sphere`] (the whole sphere when
+    /// the shading point is inside or on it), its frame and `1/Ω`. Returns `false` and
+    /// writes [`EMPTY`](Self::EMPTY) for a non-finite center or a radius that is not
+    /// finite and positive.
+    #[inline]
+    pub fn prepare(&mut self, center: Vec3, radius: f32) -> bool {
+        // `from_sphere` writes a valid cap (the form `Cap::sanitized` keeps): no check.
+        self.prepare_valid_cap(Cap::from_sphere(center, radius))
+    }
+
+    /// Prepares uniform sampling of any cap, in place (made valid first as
+    /// [`Cap::sanitized`] does). Returns `false` and writes [`EMPTY`](Self::EMPTY) for an
+    /// empty cap or one whose density `1/Ω` is not finite.
+    pub fn prepare_cap(&mut self, cap: Cap) -> bool {
+        self.prepare_valid_cap(cap.sanitized())
+    }
+
+    /// [`prepare_cap`](Self::prepare_cap) of a cap that is valid already.
+    #[inline(always)]
+    fn prepare_valid_cap(&mut self, cap: Cap) -> bool {
+        let density = cap.uniform_pdf();
+        if density == 0.0 {
+            *self = Self::EMPTY;
+            return false;
+        }
+        let (tangent, bitangent) = orthonormal_basis(cap.axis);
+        self.cap = cap;
+        self.tangent = tangent;
+        self.bitangent = bitangent;
+        self.density = density;
+        true
+    }
+
+    /// The prepared cap.
+    #[inline]
+    #[must_use]
+    pub fn cap(&self) -> Cap {
+        self.cap
+    }
+
+    /// The solid angle `Ω` of the cap (0 when empty).
+    #[inline]
+    #[must_use]
+    pub fn solid_angle(&self) -> f32 {
+        if self.density > 0.0 {
+            self.cap.solid_angle()
+        } else {
+            0.0
+        }
+    }
+
+    /// A direction uniform in solid angle inside the cap, pdf `1/Ω`: bit for bit
+    /// [`Cap::sample_uniform`] of the prepared cap. `u` is clamped to `[0, 1 − ulp]`
+    /// (NaN counts as 0); no sample (pdf 0) from the empty value.
+    #[inline]
+    #[must_use]
+    pub fn sample(&self, u: [f32; 2]) -> Sample {
+        if !(self.density > 0.0) {
+            return Sample::NONE;
+        }
+        self.cap
+            .sample_uniform_in_frame(self.tangent, self.bitangent, self.density, u)
+    }
+
+    /// The density of [`sample`](Self::sample): `1/Ω` inside the cap (boundary
+    /// included), 0 outside it, for the empty value, and for a zero or non-finite `dir`
+    /// (which need not be normalised).
+    #[inline]
+    #[must_use]
+    pub fn pdf(&self, dir: Vec3) -> f32 {
+        if self.density > 0.0 && self.cap.contains(dir) {
+            self.density
+        } else {
+            0.0
+        }
+    }
+
+    /// The random numbers that [`sample`](Self::sample) maps to `dir` ([`Cap::invert`]);
+    /// `None` outside the cap and for the empty value.
+    #[must_use]
+    pub fn invert(&self, dir: Vec3) -> Option<[f32; 2]> {
+        if !(self.density > 0.0) {
+            return None;
+        }
+        self.cap.invert(dir)
+    }
+}
+
+#[cfg(test)]
+#[path = "solid_angle_sphere_tests.rs"]
+mod tests;
