@@ -14,15 +14,25 @@
  *     (sphera_mis_*).
  * C ABI of the static library libsphera.a (link with: libsphera.a -lm).
  *
- * Conventions: directions are unit vectors in a local shading frame whose z axis is
- * the surface normal; light geometry is given relative to the shading point; pdfs are
- * per steradian and pdf == 0 means "no sample"; random numbers lie in [0, 1).
- * No function crashes on a null pointer (see each function's documentation).
+ * Conventions, which each function's comment does not repeat:
+ *   - Directions are in a local shading frame whose z axis is the surface normal; light
+ *     geometry is relative to the shading point; pdfs are per steradian.
+ *   - Random numbers u0, u1 lie in [0, 1); the library clamps other values into it (NaN as 0).
+ *   - "No sample" is {dir = (0, 0, 1), pdf = 0}; a sampled dir is always a finite unit vector.
+ *   - Pointers: no function crashes on a null pointer (each comment says what it does then).
+ *     A non-null pointer points to one value of its type (`count` for an array), writable
+ *     for an output, readable for an input, and inputs do not overlap the output; a
+ *     prepared value was written by a function that prepares it (a failed prepare included).
+ *   - Polygons: `vertices[0..count]` are convex, either winding, 3 <= count <=
+ *     SPHERA_MAX_POLYGON_VERTICES. A prepare returns false for a null `out` or `vertices`,
+ *     a count out of range or a non-finite coordinate, and in the cases its comment lists.
+ *   - A failed prepare still writes `*out` (unless null), whatever it held: the empty value,
+ *     with no samples, pdf 0 and measures (solid angle, integral) 0. Given a null or empty
+ *     prepared value, samplers return no sample and the other functions 0 or false.
  *
- * Prepared values (SpheraSolidAnglePolygon, SpheraProjectedSolidAnglePolygon, ...) are
- * opaque storage of a fixed size, so that they can live on the stack or in arrays;
- * only the functions that prepare them write them. Their size may change between
- * versions of the library.
+ * Prepared values (SpheraSolidAnglePolygon, SpheraProjectedPolygon, ...) are opaque
+ * storage of a fixed size, so that they can live on the stack or in arrays; only the
+ * functions that prepare them write them. Their size may change between versions.
  */
 
 #ifndef SPHERA_H
@@ -390,24 +400,14 @@ uint32_t sphera_polygon_clip(struct SpheraVec3 *vertices, uint32_t count);
  * positions relative to the shading point, not normalised, in either winding. The polygon need
  * not be clipped; clip it first with `sphera_polygon_clip` to sample only the part above the
  * horizon.
- * Returns `false` when `out` is null, when `vertices` is null, when `count` lies outside
- * 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or when the polygon
- * subtends no solid angle, in particular when its vertices lie exactly in a plane through the
- * shading point (decided exactly, at any tilt). Unless `out` is null, a `false` return writes
- * the empty polygon into `*out`: its samples have pdf 0, its `pdf` is 0 and its solid angle is
- * 0, whatever `*out` held before.
- * Safety: `out` must be null or point to writable memory for one `SpheraSolidAnglePolygon`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`. */
+ * Returns `false` also when the polygon subtends no solid angle, in particular when its vertices
+ * lie exactly in a plane through the shading point (decided exactly, at any tilt). */
 bool sphera_solid_angle_polygon_prepare(struct SpheraSolidAnglePolygon *out,
                                         const struct SpheraVec3 *vertices, uint32_t count);
 
 /* Draws a direction uniformly distributed in the solid angle of `polygon` from the random
- * numbers `u0`, `u1` in [0, 1) (values outside are clamped by the library). The pdf of the
- * sample is 1 / solid angle per steradian.
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty. `dir` is
- * always a finite unit vector.
- * Safety: `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
- * `sphera_solid_angle_polygon_prepare`. */
+ * numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / solid angle per steradian.
+ * No sample when `polygon` is null or empty. */
 struct SpheraSample sphera_solid_angle_polygon_sample(const struct SpheraSolidAnglePolygon *polygon,
                                                       float u0, float u1);
 
@@ -416,123 +416,85 @@ struct SpheraSample sphera_solid_angle_polygon_sample(const struct SpheraSolidAn
  * included, and up to a slack outside it where rounding puts samples drawn next to an edge: the
  * smaller of 16 ulps, 1.9e-6 rad, and 2e-5 of the polygon's width, solid angle over perimeter),
  * 0 outside it. Every sample's pdf is this function's value at its direction, bit for bit.
- * Returns 0 when `polygon` is null or empty, and for a zero or non-finite `dir`.
- * Safety: `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
- * `sphera_solid_angle_polygon_prepare`. */
+ * Returns 0 when `polygon` is null or empty, and for a zero or non-finite `dir`. */
 float sphera_solid_angle_polygon_pdf(const struct SpheraSolidAnglePolygon *polygon,
                                      struct SpheraVec3 dir);
 
 /* The solid angle (in steradians) that the polygon subtends.
- * Returns 0 when `polygon` is null or empty.
- * Safety: `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
- * `sphera_solid_angle_polygon_prepare`. */
+ * Returns 0 when `polygon` is null or empty. */
 float sphera_solid_angle_polygon_solid_angle(const struct SpheraSolidAnglePolygon *polygon);
 
 /* Inverts `sphera_solid_angle_polygon_sample`: finds the random numbers `*u0`, `*u1` in [0, 1]
  * for which the sampler produces the unit direction `dir`.
  * Returns `false` when `polygon`, `u0` or `u1` is null, when the polygon is empty, or when `dir`
- * does not point into the polygon; `*u0` and `*u1` are then set to 0 where they are non-null.
- * Safety: `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
- * `sphera_solid_angle_polygon_prepare`; `u0` and `u1` must each be null or point to a writable
- * `float`. */
+ * does not point into the polygon; `*u0` and `*u1` are then set to 0 where they are non-null. */
 bool sphera_solid_angle_polygon_invert(const struct SpheraSolidAnglePolygon *polygon,
                                        struct SpheraVec3 dir, float *u0, float *u1);
 
 /* Prepares Turk's baseline for the convex polygon `vertices[0..count]`: points uniformly
  * distributed over the polygon's area, with the density converted to solid angle.
- * Returns `false` when `out` is null, when `vertices` is null, when `count` lies outside
- * 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, when a coordinate
- * exceeds about 1e18 (2^60) (so that the edge planes that `sphera_turk_polygon_pdf` computes
- * stay finite), or when the polygon is degenerate. Unless `out` is null, a `false` return writes
- * the empty polygon into `*out`: its samples have pdf 0, its `pdf` is 0 and its area is 0,
- * whatever `*out` held before.
- * Safety: `out` must be null or point to writable memory for one `SpheraTurkPolygon`; `vertices`
- * must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`. */
+ * Returns `false` also when a coordinate exceeds about 1e18 (2^60) (so that the edge planes that
+ * `sphera_turk_polygon_pdf` computes stay finite), or when the polygon is degenerate. */
 bool sphera_turk_polygon_prepare(struct SpheraTurkPolygon *out, const struct SpheraVec3 *vertices,
                                  uint32_t count);
 
 /* Draws a direction towards a point uniformly distributed over the polygon's area from the
- * random numbers `u0`, `u1` in [0, 1) (values outside are clamped by the library). The pdf is
- * distance² / (area · |cos θ|) per steradian, with θ the angle between the direction and the
- * polygon's normal, computed as `sphera_turk_polygon_pdf` computes it: equal to it bit for bit
- * wherever that finds the direction inside the polygon.
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty. `dir` is
- * always a finite unit vector.
- * Safety: `polygon` must be null or point to a `SpheraTurkPolygon` written by
- * `sphera_turk_polygon_prepare`. */
+ * random numbers `u0`, `u1` in [0, 1). The pdf is distance² / (area · |cos θ|) per steradian,
+ * with θ the angle between the direction and the polygon's normal, computed as
+ * `sphera_turk_polygon_pdf` computes it: equal to it bit for bit wherever that finds the
+ * direction inside the polygon.
+ * No sample when `polygon` is null or empty. */
 struct SpheraSample sphera_turk_polygon_sample(const struct SpheraTurkPolygon *polygon, float u0,
                                                float u1);
 
 /* The density per steradian with which `sphera_turk_polygon_sample` produces the unit direction
  * `dir`; 0 when `dir` misses the polygon.
- * Returns 0 when `polygon` is null or empty.
- * Safety: `polygon` must be null or point to a `SpheraTurkPolygon` written by
- * `sphera_turk_polygon_prepare`. */
+ * Returns 0 when `polygon` is null or empty. */
 float sphera_turk_polygon_pdf(const struct SpheraTurkPolygon *polygon, struct SpheraVec3 dir);
 
 /* The area of the polygon (in squared units of the vertex coordinates).
- * Returns 0 when `polygon` is null or empty.
- * Safety: `polygon` must be null or point to a `SpheraTurkPolygon` written by
- * `sphera_turk_polygon_prepare`. */
+ * Returns 0 when `polygon` is null or empty. */
 float sphera_turk_polygon_area(const struct SpheraTurkPolygon *polygon);
 
 /* Prepares Arvo's 1995 baseline for the convex polygon `vertices[0..count]`: uniform sampling of
  * the solid angle, triangle by triangle.
- * Returns `false` when `out` is null, when `vertices` is null, when `count` lies outside
- * 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or when the polygon
- * subtends no solid angle, in particular when its vertices lie exactly in a plane through the
- * shading point (decided exactly, at any tilt). Unless `out` is null, a `false` return writes
- * the empty polygon into `*out`: its samples have pdf 0, its `pdf` is 0 and its solid angle is
- * 0, whatever `*out` held before.
- * Safety: `out` must be null or point to writable memory for one `SpheraArvoPolygon`; `vertices`
- * must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`. */
+ * Returns `false` also when the polygon subtends no solid angle, in particular when its vertices
+ * lie exactly in a plane through the shading point (decided exactly, at any tilt). */
 bool sphera_arvo_polygon_prepare(struct SpheraArvoPolygon *out, const struct SpheraVec3 *vertices,
                                  uint32_t count);
 
 /* Draws a direction uniformly distributed in the solid angle of `polygon` with Arvo's method
- * from the random numbers `u0`, `u1` in [0, 1) (values outside are clamped by the library). The
- * pdf of the sample is 1 / solid angle per steradian, as `sphera_arvo_polygon_pdf` gives it for
- * the direction.
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty, and when
- * Arvo's construction in f32 puts the direction outside the polygon. A baseline: **unreliable
- * for polygons below about 1e-2 rad across**, where such draws are many (measured on quads at
- * distance 1: 0.25% of the draws at 2e-2 rad across, 7.6% at 2e-3, 20% at 2e-4) and its f32
- * solid angle is inaccurate (docs/polygon-lights.md). `dir` is always a finite unit vector.
- * Safety: `polygon` must be null or point to a `SpheraArvoPolygon` written by
- * `sphera_arvo_polygon_prepare`. */
+ * from the random numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / solid angle per
+ * steradian, as `sphera_arvo_polygon_pdf` gives it for the direction.
+ * No sample when `polygon` is null or empty, and when Arvo's construction in f32 puts the
+ * direction outside the polygon. A baseline: **unreliable for polygons below about 1e-2 rad
+ * across**, where such draws are many (measured on quads at distance 1: 0.25% of the draws at
+ * 2e-2 rad across, 7.6% at 2e-3, 20% at 2e-4) and its f32 solid angle is inaccurate
+ * (docs/polygon-lights.md). */
 struct SpheraSample sphera_arvo_polygon_sample(const struct SpheraArvoPolygon *polygon, float u0,
                                                float u1);
 
 /* The density per steradian with which `sphera_arvo_polygon_sample` produces the unit direction
  * `dir`: 1 / solid angle inside the polygon, 0 outside it.
- * Returns 0 when `polygon` is null or empty.
- * Safety: `polygon` must be null or point to a `SpheraArvoPolygon` written by
- * `sphera_arvo_polygon_prepare`. */
+ * Returns 0 when `polygon` is null or empty. */
 float sphera_arvo_polygon_pdf(const struct SpheraArvoPolygon *polygon, struct SpheraVec3 dir);
 
 /* The solid angle (in steradians) that the polygon subtends, as Arvo's method computes it.
- * Returns 0 when `polygon` is null or empty.
- * Safety: `polygon` must be null or point to a `SpheraArvoPolygon` written by
- * `sphera_arvo_polygon_prepare`. */
+ * Returns 0 when `polygon` is null or empty. */
 float sphera_arvo_polygon_solid_angle(const struct SpheraArvoPolygon *polygon);
 
 /* Builds the orthonormal shading frame (tangent, bitangent, normal) around a unit `normal`.
  * Returns `false` when `out` is null, or when `normal` is not finite or not of unit length (|n|²
  * outside 1 ± 1e-3); in the second case `*out` is set to the identity frame (tangent = x axis,
- * bitangent = y axis, normal = z axis).
- * Safety: `out` must be null or point to writable memory for one `SpheraFrame`. */
+ * bitangent = y axis, normal = z axis). */
 bool sphera_frame_from_normal(struct SpheraFrame *out, struct SpheraVec3 normal);
 
 /* Expresses the world-space vector `v` in `frame` (x = tangent, y = bitangent, z = normal). A
- * null `frame` acts as the identity frame: `v` is returned unchanged.
- * Safety: `frame` must be null or point to a `SpheraFrame` (e.g. one written by
- * `sphera_frame_from_normal`). */
+ * null `frame` acts as the identity frame: `v` is returned unchanged. */
 struct SpheraVec3 sphera_frame_to_local(const struct SpheraFrame *frame, struct SpheraVec3 v);
 
 /* Expresses the local vector `v` (x = tangent, y = bitangent, z = normal) in world space. A null
- * `frame` acts as the identity frame: `v` is returned unchanged.
- * Safety: `frame` must be null or point to a `SpheraFrame` (e.g. one written by
- * `sphera_frame_from_normal`). */
+ * `frame` acts as the identity frame: `v` is returned unchanged. */
 struct SpheraVec3 sphera_frame_to_world(const struct SpheraFrame *frame, struct SpheraVec3 v);
 
 /* Whether the library was compiled to use hardware fused multiply-add instructions (otherwise
@@ -566,31 +528,21 @@ bool sphera_check_version(uint32_t major, uint32_t minor);
  * the samples drawn, but not proportional to the cosine). The polygon is not clipped: samples
  * that land below the horizon are returned as "no sample" (pdf 0), and when the cosine is 0 at
  * all four corners the warp is uniform (plain solid angle sampling).
- * Returns `false` when `out` is null, when `vertices` is null, when `count` lies outside
- * 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or when the polygon
- * subtends no solid angle. Unless `out` is null, a `false` return writes the empty polygon into
- * `*out`: its samples have pdf 0 and its `pdf` is 0, whatever `*out` held before.
- * Safety: `out` must be null or point to writable memory for one `SpheraHartBilinearPolygon`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`. */
+ * Returns `false` also when the polygon subtends no solid angle. */
 bool sphera_hart_bilinear_polygon_prepare(struct SpheraHartBilinearPolygon *out,
                                           const struct SpheraVec3 *vertices, uint32_t count);
 
-/* Draws a direction with the bilinear warp from the random numbers `u0`, `u1` in [0, 1) (values
- * outside are clamped by the library). The pdf is the warp's density divided by the solid angle,
- * per steradian.
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty, and when the
- * direction lies at or below the horizon (z <= 0). `dir` is always a finite unit vector.
- * Safety: `polygon` must be null or point to a `SpheraHartBilinearPolygon` written by
- * `sphera_hart_bilinear_polygon_prepare`. */
+/* Draws a direction with the bilinear warp from the random numbers `u0`, `u1` in [0, 1). The pdf
+ * is the warp's density divided by the solid angle, per steradian.
+ * No sample when `polygon` is null or empty, and when the direction lies at or below the horizon
+ * (z <= 0). */
 struct SpheraSample sphera_hart_bilinear_polygon_sample(const struct SpheraHartBilinearPolygon *polygon,
                                                         float u0, float u1);
 
 /* The density per steradian with which `sphera_hart_bilinear_polygon_sample` produces the
  * direction `dir` (need not be normalised); 0 outside the polygon and at or below the horizon (z
  * <= 0).
- * Returns 0 when `polygon` is null or empty.
- * Safety: `polygon` must be null or point to a `SpheraHartBilinearPolygon` written by
- * `sphera_hart_bilinear_polygon_prepare`. */
+ * Returns 0 when `polygon` is null or empty. */
 float sphera_hart_bilinear_polygon_pdf(const struct SpheraHartBilinearPolygon *polygon,
                                        struct SpheraVec3 dir);
 
@@ -603,74 +555,49 @@ float sphera_hart_bilinear_polygon_pdf(const struct SpheraHartBilinearPolygon *p
  * polygon is not clipped: samples that land below the horizon are returned as "no sample" (pdf
  * 0), and when the cosine is 0 at all grid points the warp is uniform (plain solid angle
  * sampling).
- * Returns `false` when `out` is null, when `vertices` is null, when `count` lies outside
- * 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or when the polygon
- * subtends no solid angle. Unless `out` is null, a `false` return writes the empty polygon into
- * `*out`: its samples have pdf 0 and its `pdf` is 0, whatever `*out` held before.
- * Safety: `out` must be null or point to writable memory for one `SpheraHartBiquadraticPolygon`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s. */
+ * Returns `false` also when the polygon subtends no solid angle. */
 bool sphera_hart_biquadratic_polygon_prepare(struct SpheraHartBiquadraticPolygon *out,
                                              const struct SpheraVec3 *vertices, uint32_t count);
 
-/* Draws a direction with the biquadratic warp from the random numbers `u0`, `u1` in [0, 1)
- * (values outside are clamped by the library). The pdf is the warp's density divided by the
- * solid angle, per steradian.
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty, and when the
- * direction lies at or below the horizon (z <= 0). `dir` is always a finite unit vector.
- * Safety: `polygon` must be null or point to a `SpheraHartBiquadraticPolygon` written by
- * `sphera_hart_biquadratic_polygon_prepare`. */
+/* Draws a direction with the biquadratic warp from the random numbers `u0`, `u1` in [0, 1). The
+ * pdf is the warp's density divided by the solid angle, per steradian.
+ * No sample when `polygon` is null or empty, and when the direction lies at or below the horizon
+ * (z <= 0). */
 struct SpheraSample sphera_hart_biquadratic_polygon_sample(const struct SpheraHartBiquadraticPolygon *polygon,
                                                            float u0, float u1);
 
 /* The density per steradian with which `sphera_hart_biquadratic_polygon_sample` produces the
  * direction `dir` (need not be normalised); 0 outside the polygon and at or below the horizon (z
  * <= 0).
- * Returns 0 when `polygon` is null or empty.
- * Safety: `polygon` must be null or point to a `SpheraHartBiquadraticPolygon` written by
- * `sphera_hart_biquadratic_polygon_prepare`. */
+ * Returns 0 when `polygon` is null or empty. */
 float sphera_hart_biquadratic_polygon_pdf(const struct SpheraHartBiquadraticPolygon *polygon,
                                           struct SpheraVec3 dir);
 
 /* Prepares clipped solid angle sampling for the convex polygon `vertices[0..count]` (positions
  * relative to the shading point, not normalised, either winding): the polygon is clipped to the
  * upper hemisphere (z >= 0) and the part above the horizon is sampled uniformly in solid angle.
- * Returns `false` when `out` is null, when `vertices` is null, when `count` lies outside
- * 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, when nothing of the
- * polygon lies above the horizon, when a polygon of `SPHERA_MAX_POLYGON_VERTICES` vertices needs
- * clipping (the result could have one vertex more than the limit), or when the clipped polygon
- * subtends no solid angle. Unless `out` is null, a `false` return writes the empty polygon into
- * `*out`: its samples have pdf 0, its `pdf` is 0 and its solid angle is 0, whatever `*out` held
- * before.
- * Safety: `out` must be null or point to writable memory for one
- * `SpheraClippedSolidAnglePolygon`; `vertices` must be null or point to `count` readable
- * `SpheraVec3`s that do not overlap `*out`. */
+ * Returns `false` also when nothing of the polygon lies above the horizon, when a polygon of
+ * `SPHERA_MAX_POLYGON_VERTICES` vertices needs clipping (the result could have one vertex more
+ * than the limit), or when the clipped polygon subtends no solid angle. */
 bool sphera_clipped_solid_angle_polygon_prepare(struct SpheraClippedSolidAnglePolygon *out,
                                                 const struct SpheraVec3 *vertices, uint32_t count);
 
 /* Draws a direction uniformly distributed in the solid angle of the part of `polygon` above the
- * horizon from the random numbers `u0`, `u1` in [0, 1) (values outside are clamped by the
- * library). The pdf of the sample is 1 / (clipped solid angle) per steradian, and the direction
- * has z >= 0.
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty. `dir` is
- * always a finite unit vector.
- * Safety: `polygon` must be null or point to a `SpheraClippedSolidAnglePolygon` written by
- * `sphera_clipped_solid_angle_polygon_prepare`. */
+ * horizon from the random numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / (clipped
+ * solid angle) per steradian, and the direction has z >= 0.
+ * No sample when `polygon` is null or empty. */
 struct SpheraSample sphera_clipped_solid_angle_polygon_sample(const struct SpheraClippedSolidAnglePolygon *polygon,
                                                               float u0, float u1);
 
 /* The density per steradian with which `sphera_clipped_solid_angle_polygon_sample` produces the
  * unit direction `dir`: 1 / (clipped solid angle) inside the part of the polygon above the
  * horizon, 0 elsewhere.
- * Returns 0 when `polygon` is null or empty.
- * Safety: `polygon` must be null or point to a `SpheraClippedSolidAnglePolygon` written by
- * `sphera_clipped_solid_angle_polygon_prepare`. */
+ * Returns 0 when `polygon` is null or empty. */
 float sphera_clipped_solid_angle_polygon_pdf(const struct SpheraClippedSolidAnglePolygon *polygon,
                                              struct SpheraVec3 dir);
 
 /* The solid angle (in steradians) of the part of the polygon above the horizon.
- * Returns 0 when `polygon` is null or empty.
- * Safety: `polygon` must be null or point to a `SpheraClippedSolidAnglePolygon` written by
- * `sphera_clipped_solid_angle_polygon_prepare`. */
+ * Returns 0 when `polygon` is null or empty. */
 float sphera_clipped_solid_angle_polygon_solid_angle(const struct SpheraClippedSolidAnglePolygon *polygon);
 
 /* Prepares projected solid angle sampling (Peters 2021) for the convex polygon
@@ -679,16 +606,10 @@ float sphera_clipped_solid_angle_polygon_solid_angle(const struct SpheraClippedS
  * smaller than 1e-2 rad across, and nearly edge-on slivers, are sampled by warped solid angle
  * sampling instead (exact for its own pdf, which deviates from cos θ / Φ by less than 1e-4
  * relative).
- * Returns `false` when `out` is null, when `vertices` is null, when `count` lies outside
- * 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, when `count` is
- * `SPHERA_MAX_POLYGON_VERTICES` and the polygon crosses the horizon (a 9th vertex would be
- * needed), when nothing of the polygon lies above the horizon, and when its projected solid
- * angle is zero (for example when the shading point lies in the polygon's plane). Unless `out`
- * is null, a `false` return writes the empty polygon into `*out`: its samples have pdf 0, its
- * `pdf` is 0 and its projected solid angle is 0, whatever `*out` held before.
- * Safety: `out` must be null or point to writable memory for one
- * `SpheraProjectedSolidAnglePolygon`; `vertices` must be null or point to `count` readable
- * `SpheraVec3`s that do not overlap `*out`. */
+ * Returns `false` also when `count` is `SPHERA_MAX_POLYGON_VERTICES` and the polygon crosses the
+ * horizon (a 9th vertex would be needed), when nothing of the polygon lies above the horizon,
+ * and when its projected solid angle is zero (for example when the shading point lies in the
+ * polygon's plane). */
 bool sphera_projected_polygon_prepare(struct SpheraProjectedSolidAnglePolygon *out,
                                       const struct SpheraVec3 *vertices, uint32_t count);
 
@@ -696,24 +617,19 @@ bool sphera_projected_polygon_prepare(struct SpheraProjectedSolidAnglePolygon *o
  * (relative error below 1.4e-4 per sector, amplified where inner and outer sector areas nearly
  * cancel), so the projected solid angle and with it every pdf is off by about that much.
  * **Biased.** Same contract as `sphera_projected_polygon_prepare`. Use with
- * `sphera_projected_polygon_sample_fast`.
- * Safety: As for `sphera_projected_polygon_prepare`. */
+ * `sphera_projected_polygon_sample_fast`. */
 bool sphera_projected_polygon_prepare_fast(struct SpheraProjectedSolidAnglePolygon *out,
                                            const struct SpheraVec3 *vertices, uint32_t count);
 
 /* Draws a direction with density cos θ / Φ inside the polygon from the random numbers `u0`, `u1`
- * in [0, 1) (values outside, and NaN, are clamped by the library). The pdf is per steradian,
- * `dir.z / Φ`, equal to `sphera_projected_polygon_pdf(polygon, dir)` bit for bit wherever that
- * finds the direction inside the polygon. For polygons under 1e-2 rad (the small-polygon
- * sampler) the draws follow `dir.z / Φ` within 0.2 s² relative (2e-5; s is the polygon's angular
- * size). Where a polygon crosses the horizon, its clipped part is accurate to the f32 rounding
- * of the horizon points: Φ within about 6e-8 / w relative for a clipped part w radians wide
- * (solid angle over perimeter).
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty, and for a
- * draw that lands exactly on the horizon (`cos θ = 0`, possible only for polygons that touch
- * it). `dir` is always a finite unit vector.
- * Safety: `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
- * `sphera_projected_polygon_prepare` or `sphera_projected_polygon_prepare_fast`. */
+ * in [0, 1). The pdf is per steradian, `dir.z / Φ`, equal to
+ * `sphera_projected_polygon_pdf(polygon, dir)` bit for bit wherever that finds the direction
+ * inside the polygon. For polygons under 1e-2 rad (the small-polygon sampler) the draws follow
+ * `dir.z / Φ` within 0.2 s² relative (2e-5; s is the polygon's angular size). Where a polygon
+ * crosses the horizon, its clipped part is accurate to the f32 rounding of the horizon points: Φ
+ * within about 6e-8 / w relative for a clipped part w radians wide (solid angle over perimeter).
+ * No sample when `polygon` is null or empty, and for a draw that lands exactly on the horizon
+ * (`cos θ = 0`, possible only for polygons that touch it). */
 struct SpheraSample sphera_projected_polygon_sample(const struct SpheraProjectedSolidAnglePolygon *polygon,
                                                     float u0, float u1);
 
@@ -721,8 +637,7 @@ struct SpheraSample sphera_projected_polygon_sample(const struct SpheraProjected
  * is the closed-form initial guess of Peters' Proposition 3, within a few hundredths of a radian
  * of the exact one). **Biased**: the returned pdf is that of the exact distribution,
  * `dir.z / Φ`, not the density with which this function actually places its samples; the bias is
- * the distance between the two. Same contract as `sphera_projected_polygon_sample`.
- * Safety: As for `sphera_projected_polygon_sample`. */
+ * the distance between the two. Same contract as `sphera_projected_polygon_sample`. */
 struct SpheraSample sphera_projected_polygon_sample_fast(const struct SpheraProjectedSolidAnglePolygon *polygon,
                                                          float u0, float u1);
 
@@ -731,50 +646,37 @@ struct SpheraSample sphera_projected_polygon_sample_fast(const struct SpheraProj
  * horizon, and for a zero or non-finite `dir`. For polygons under 1e-2 rad (the small-polygon
  * sampler) directions outside by at most the smaller of 16 ulps (1.9e-6 rad) and 2e-5 of the
  * polygon's width count as inside.
- * Returns 0 when `polygon` is null or empty.
- * Safety: `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by a
- * `sphera_projected_polygon_prepare*` function. */
+ * Returns 0 when `polygon` is null or empty. */
 float sphera_projected_polygon_pdf(const struct SpheraProjectedSolidAnglePolygon *polygon,
                                    struct SpheraVec3 dir);
 
 /* The projected solid angle Φ = ∫ cos θ dω of the polygon's part above the horizon, in
  * steradians (the irradiance from a unit-radiance polygon). Returns 0 when `polygon` is null or
- * empty.
- * Safety: `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by a
- * `sphera_projected_polygon_prepare*` function. */
+ * empty. */
 float sphera_projected_polygon_projected_solid_angle(const struct SpheraProjectedSolidAnglePolygon *polygon);
 
 /* Prepares Arvo's projected solid angle sampling (the baseline of Peters 2021: the same sectors,
  * with the azimuth found by Newton's method on the sector's area function) for the convex
  * polygon `vertices[0..count]`. Same input and contract as `sphera_projected_polygon_prepare`,
- * without the small-polygon alternative.
- * Safety: `out` must be null or point to writable memory for one `SpheraArvoProjectedPolygon`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`. */
+ * without the small-polygon alternative. */
 bool sphera_arvo_projected_polygon_prepare(struct SpheraArvoProjectedPolygon *out,
                                            const struct SpheraVec3 *vertices, uint32_t count);
 
-/* Draws a direction with density cos θ / Φ by Arvo's method from `u0`, `u1` in [0, 1) (clamped
- * by the library); the pdf is `dir.z / Φ`, as `sphera_arvo_projected_polygon_pdf` gives it for
- * the direction. Returns `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or empty, for a
- * draw exactly on the horizon, and when the f32 construction puts the direction outside the
- * polygon. A baseline: **unreliable for polygons below about 2e-3 rad across**, where such draws
- * are many (measured on quads at distance 1: 0.06% of the draws at 2e-3 rad across, 5.9% at
- * 2e-4, 79% at 2e-5). `dir` is always a finite unit vector.
- * Safety: `polygon` must be null or point to a `SpheraArvoProjectedPolygon` written by
- * `sphera_arvo_projected_polygon_prepare`. */
+/* Draws a direction with density cos θ / Φ by Arvo's method from `u0`, `u1` in [0, 1); the pdf
+ * is `dir.z / Φ`, as `sphera_arvo_projected_polygon_pdf` gives it for the direction. No sample
+ * when `polygon` is null or empty, for a draw exactly on the horizon, and when the f32
+ * construction puts the direction outside the polygon. A baseline: **unreliable for polygons
+ * below about 2e-3 rad across**, where such draws are many (measured on quads at distance 1:
+ * 0.06% of the draws at 2e-3 rad across, 5.9% at 2e-4, 79% at 2e-5). */
 struct SpheraSample sphera_arvo_projected_polygon_sample(const struct SpheraArvoProjectedPolygon *polygon,
                                                          float u0, float u1);
 
 /* `dir.z / Φ` inside the polygon and above the horizon, 0 otherwise (and 0 when `polygon` is
- * null or empty, or `dir` is zero or not finite).
- * Safety: `polygon` must be null or point to a `SpheraArvoProjectedPolygon` written by
- * `sphera_arvo_projected_polygon_prepare`. */
+ * null or empty, or `dir` is zero or not finite). */
 float sphera_arvo_projected_polygon_pdf(const struct SpheraArvoProjectedPolygon *polygon,
                                         struct SpheraVec3 dir);
 
-/* The projected solid angle Φ in steradians (0 when `polygon` is null or empty).
- * Safety: `polygon` must be null or point to a `SpheraArvoProjectedPolygon` written by
- * `sphera_arvo_projected_polygon_prepare`. */
+/* The projected solid angle Φ in steradians (0 when `polygon` is null or empty). */
 float sphera_arvo_projected_polygon_projected_solid_angle(const struct SpheraArvoProjectedPolygon *polygon);
 
 /* Prepares the GGX microfacet BRDF (Trowbridge–Reitz distribution, height-correlated Smith
@@ -784,46 +686,36 @@ float sphera_arvo_projected_polygon_projected_solid_angle(const struct SpheraArv
  * channel of `f0` is clamped to [0, 1]. Returns `false` when `out` is null, and when `roughness`
  * or a channel of `f0` is NaN or infinite; the latter still writes a usable BRDF into `*out` (a
  * NaN roughness counts as the smoothest, `α = SPHERA_GGX_MIN_ALPHA`; NaN channels of `f0` count
- * as 0; infinities are clamped).
- * Safety: `out` must be null or point to writable memory for one `SpheraGgxBrdf`. */
+ * as 0; infinities are clamped). */
 bool sphera_ggx_brdf_prepare(struct SpheraGgxBrdf *out, float roughness, struct SpheraVec3 f0);
 
 /* The GGX BRDF `f(wo, wi) = F D G2 / (4 cos θo cos θi)` per RGB channel, without the cosine
  * `cos θi`. Symmetric in `wo` and `wi`.
  * Returns (0, 0, 0) when `brdf` is null, when either direction lies at or below the horizon (z
- * <= 0), is zero or is not finite. Never returns NaN or infinities.
- * Safety: `brdf` must be null or point to a `SpheraGgxBrdf` written by
- * `sphera_ggx_brdf_prepare`. */
+ * <= 0), is zero or is not finite. Never returns NaN or infinities. */
 struct SpheraVec3 sphera_ggx_eval(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo,
                                   struct SpheraVec3 wi);
 
 /* `D G2 / (4 cos θo cos θi)`: `sphera_ggx_eval` with Fresnel F = 1 (a scalar).
- * Returns 0 in the cases where `sphera_ggx_eval` returns (0, 0, 0).
- * Safety: `brdf` must be null or point to a `SpheraGgxBrdf` written by
- * `sphera_ggx_brdf_prepare`. */
+ * Returns 0 in the cases where `sphera_ggx_eval` returns (0, 0, 0). */
 float sphera_ggx_eval_without_fresnel(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo,
                                       struct SpheraVec3 wi);
 
 /* Draws `wi` by sampling the GGX distribution of normals visible from `wo` (Heitz 2018) and
- * reflecting `wo` on the sampled normal, from the random numbers `u0`, `u1` in [0, 1) (values
- * outside are clamped by the library, NaN counts as 0). The pdf is `G1(wo) D(h) / (4 cos θo)`
- * per steradian and equals `sphera_ggx_pdf(brdf, wo, dir)`.
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `brdf` is null, when `wo` lies at or
- * below the horizon, is zero or is not finite, and when the reflected direction lies at or below
- * the horizon. The last case happens with positive probability (about half the draws for
- * roughness 1 at normal incidence): the pdf then integrates to less than 1 over the upper
- * hemisphere. Count such a draw as a sample that contributes 0; do not renormalise the pdf.
- * Safety: `brdf` must be null or point to a `SpheraGgxBrdf` written by
- * `sphera_ggx_brdf_prepare`. */
+ * reflecting `wo` on the sampled normal, from the random numbers `u0`, `u1` in [0, 1). The pdf
+ * is `G1(wo) D(h) / (4 cos θo)` per steradian and equals `sphera_ggx_pdf(brdf, wo, dir)`.
+ * No sample when `brdf` is null, when `wo` lies at or below the horizon, is zero or is not
+ * finite, and when the reflected direction lies at or below the horizon. The last case happens
+ * with positive probability (about half the draws for roughness 1 at normal incidence): the pdf
+ * then integrates to less than 1 over the upper hemisphere. Count such a draw as a sample that
+ * contributes 0; do not renormalise the pdf. */
 struct SpheraSample sphera_ggx_sample(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo,
                                       float u0, float u1);
 
 /* The density per steradian with which `sphera_ggx_sample` draws `wi` given `wo`:
  * `G1(wo) D(h) / (4 cos θo)` with `h` the half vector of `wo` and `wi`.
  * Returns 0 when `brdf` is null, and when either direction lies at or below the horizon, is zero
- * or is not finite.
- * Safety: `brdf` must be null or point to a `SpheraGgxBrdf` written by
- * `sphera_ggx_brdf_prepare`. */
+ * or is not finite. */
 float sphera_ggx_pdf(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo, struct SpheraVec3 wi);
 
 /* The Lambertian BRDF `albedo / π` per RGB channel (each channel of `albedo` clamped to [0, 1],
@@ -834,9 +726,8 @@ struct SpheraVec3 sphera_lambert_eval(struct SpheraVec3 albedo, struct SpheraVec
                                       struct SpheraVec3 wi);
 
 /* Draws a direction with density `cos θ / π` (cosine-weighted, by the concentric disk mapping)
- * from the random numbers `u0`, `u1` in [0, 1) (values outside are clamped by the library, NaN
- * counts as 0). Every draw lies strictly above the horizon and its pdf equals
- * `sphera_lambert_pdf(dir)`. */
+ * from the random numbers `u0`, `u1` in [0, 1). Every draw lies strictly above the horizon and
+ * its pdf equals `sphera_lambert_pdf(dir)`. */
 struct SpheraSample sphera_lambert_sample(float u0, float u1);
 
 /* The density `max(0, cos θ) / π` per steradian with which `sphera_lambert_sample` draws `wi`.
@@ -888,14 +779,12 @@ float sphera_mis_clamped_optimal_weight(float p_this, float c_this, float p_othe
  * and rotated to the view's azimuth.
  * Returns `false` when `out` is null, or when `wo` is not finite, zero, or at or below the
  * horizon (`wo.z <= 0`); in the second case `*out` is set to the plain cosine (`M = I`, albedo
- * 1, fresnel 0).
- * Safety: `out` must be null or point to writable memory for one `SpheraLtc`. */
+ * 1, fresnel 0). */
 bool sphera_ltc_ggx(struct SpheraLtc *out, struct SpheraVec3 wo, float roughness);
 
 /* The LTC's density per steradian at `dir` over the whole sphere (`dir` is normalised first):
  * `D(ω) = max(0, (M⁻¹ω)_z) det M⁻¹ / (π |M⁻¹ω|⁴)`. 0 for a null `ltc` and for zero or non-finite
- * `dir`.
- * Safety: `ltc` must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`. */
+ * `dir`. */
 float sphera_ltc_density(const struct SpheraLtc *ltc, struct SpheraVec3 dir);
 
 /* GGX's directional albedo with Schlick's Fresnel for the reflectance at normal incidence `f0`
@@ -903,8 +792,7 @@ float sphera_ltc_density(const struct SpheraLtc *ltc, struct SpheraVec3 dir);
  * `f0 (albedo − fresnel) + fresnel`, from the fitted integrals; always finite. Unshadowed GGX
  * shading of a polygonal light with radiance `L` is
  * `L × sphera_ltc_specular_albedo(ltc, f0) × sphera_ltc_polygon_integral(polygon)`. A null `ltc`
- * gives (0, 0, 0).
- * Safety: `ltc` must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`. */
+ * gives (0, 0, 0). */
 struct SpheraVec3 sphera_ltc_specular_albedo(const struct SpheraLtc *ltc, struct SpheraVec3 f0);
 
 /* Prepares the LTC `*ltc` restricted to the convex polygon `vertices[0..count]` (positions
@@ -916,26 +804,19 @@ struct SpheraVec3 sphera_ltc_specular_albedo(const struct SpheraLtc *ltc, struct
  * collinear or the shading point lies in the polygon's plane, when nothing of the transformed
  * polygon lies above the horizon (the LTC has no mass in the polygon), and when the transformed
  * polygon has `SPHERA_MAX_POLYGON_VERTICES` vertices and crosses the horizon. Unless `out` is
- * null, a `false` return writes the empty polygon: no samples, pdf 0, integral 0.
- * Safety: `out` must be null or point to writable memory for one `SpheraLtcPolygon`; `ltc` must
- * be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`; `vertices` must be null or
- * point to `count` readable `SpheraVec3`s that do not overlap `*out`. */
+ * null, a `false` return writes the empty polygon: no samples, pdf 0, integral 0. */
 bool sphera_ltc_polygon_prepare(struct SpheraLtcPolygon *out, const struct SpheraLtc *ltc,
                                 const struct SpheraVec3 *vertices, uint32_t count);
 
-/* Draws a direction with density `D(ω) / ∫_P D` inside the polygon, from `u0`, `u1` in [0, 1)
- * (clamped by the library). The direction may lie at or below the horizon (`dir.z <= 0`) where
- * the LTC puts a little mass; the BRDF is zero there, so such a sample contributes nothing, and
- * it must not be discarded and redrawn (the pdf counts it). The pdf is
- * `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit (MIS weights rely on it). A draw that the
- * f32 round trip through the LTC's matrix throws outside the polygon (by more than the slack of
- * `sphera_ltc_polygon_pdf`) is pulled towards the polygon's inside until the pdf accepts it: a
- * bias confined to a band of that rounding along the boundary. Returns
- * `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or empty, and where even the pulled draw
- * is rejected (a polygon smaller than the round trip's rounding); `dir` is always a finite unit
- * vector.
- * Safety: `polygon` must be null or point to a `SpheraLtcPolygon` written by
- * `sphera_ltc_polygon_prepare`. */
+/* Draws a direction with density `D(ω) / ∫_P D` inside the polygon, from `u0`, `u1` in [0, 1).
+ * The direction may lie at or below the horizon (`dir.z <= 0`) where the LTC puts a little mass;
+ * the BRDF is zero there, so such a sample contributes nothing, and it must not be discarded and
+ * redrawn (the pdf counts it). The pdf is `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit
+ * (MIS weights rely on it). A draw that the f32 round trip through the LTC's matrix throws
+ * outside the polygon (by more than the slack of `sphera_ltc_polygon_pdf`) is pulled towards the
+ * polygon's inside until the pdf accepts it: a bias confined to a band of that rounding along
+ * the boundary. No sample when `polygon` is null or empty, and where even the pulled draw is
+ * rejected (a polygon smaller than the round trip's rounding). */
 struct SpheraSample sphera_ltc_polygon_sample(const struct SpheraLtcPolygon *polygon, float u0,
                                               float u1);
 
@@ -944,13 +825,11 @@ struct SpheraSample sphera_ltc_polygon_sample(const struct SpheraLtcPolygon *pol
  * Directions outside the polygon by at most a slack (in the LTC's cosine space, where the
  * polygon is transformed by the inverse matrix) count as inside, where rounding puts samples:
  * the smaller of 1e-5 rad and 2e-5 of the transformed polygon's width (projected solid angle
- * over perimeter), so that the pdf integrates to 1 within 2e-5 over the sphere.
- * Safety: As for `sphera_ltc_polygon_sample`. */
+ * over perimeter), so that the pdf integrates to 1 within 2e-5 over the sphere. */
 float sphera_ltc_polygon_pdf(const struct SpheraLtcPolygon *polygon, struct SpheraVec3 dir);
 
 /* `∫_P D dω`, the LTC's mass inside the polygon, in [0, 1]: the projected solid angle of the
- * transformed polygon over π (Heitz et al. 2016), clamped to 1. 0 for a null or empty `polygon`.
- * Safety: As for `sphera_ltc_polygon_sample`. */
+ * transformed polygon over π (Heitz et al. 2016), clamped to 1. 0 for a null or empty `polygon`. */
 float sphera_ltc_polygon_integral(const struct SpheraLtcPolygon *polygon);
 
 /* Prepares a polygonal light at a shading point for both techniques of Peters 2021: technique 0
@@ -970,10 +849,7 @@ float sphera_ltc_polygon_integral(const struct SpheraLtcPolygon *polygon);
  * collinear vertices, nothing above the horizon, the shading point in its plane). A technique
  * that cannot sample the polygon on its own gets zero weight and draws no samples. Unless `out`
  * is null, a `false` return writes a light whose samples are all "no sample" (pdf 0, zero
- * contributions).
- * Safety: `out` must be null or point to writable memory for one `SpheraPolygonLight`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s; `material` must be null or
- * point to a `SpheraMaterial`. */
+ * contributions). */
 bool sphera_polygon_light_prepare(struct SpheraPolygonLight *out, const struct SpheraVec3 *vertices,
                                   uint32_t count, struct SpheraVec3 wo,
                                   const struct SpheraMaterial *material, uint32_t heuristic,
@@ -989,16 +865,13 @@ bool sphera_polygon_light_prepare(struct SpheraPolygonLight *out, const struct S
  * `pdf` is the density of the technique that drew the sample; 0 means no sample (both parts 0).
  * Directions at or below the horizon (the LTC's mass below the surface) come with their pdf and
  * zero contributions. All outputs are finite; `dir` is a unit vector. A null `light` gives no
- * sample.
- * Safety: `light` must be null or point to a `SpheraPolygonLight` written by
- * `sphera_polygon_light_prepare`. */
+ * sample. */
 struct SpheraLightSample sphera_polygon_light_sample(const struct SpheraPolygonLight *light,
                                                      uint32_t technique, float u0, float u1);
 
 /* The unshadowed shading per unit radiance in closed form: `ρ Φ / π` (exact) plus GGX's
  * directional albedo times the LTC's mass in the polygon (Heitz et al. 2016), per channel. (0,
- * 0, 0) for a null or empty `light`.
- * Safety: As for `sphera_polygon_light_sample`. */
+ * 0, 0) for a null or empty `light`. */
 struct SpheraVec3 sphera_polygon_light_unshadowed(const struct SpheraPolygonLight *light);
 
 /* The pivot phase function `1/(4π) ((1 − g²)/(1 + g² − 2g mu))²` (Eq. 25), per steradian, with
@@ -1033,8 +906,7 @@ struct SpheraSample sphera_phase_henyey_greenstein_sample(struct SpheraVec3 wo, 
 /* The pivot phase function (pivot `g·wo`, `wo` normalised, `g` clamped as in
  * `sphera_phase_pivot`) restricted to a sphere light's cap (Section 6.2): sample and evaluate it
  * with `sphera_sptd_in_cap_*`. Returns `false` (writing a sampler without samples) for a zero or
- * non-finite `wo` or an empty cap; does nothing for a null `out`.
- * Safety: `out` must be null or point to writable memory for one `SpheraSptdInCap`. */
+ * non-finite `wo` or an empty cap; does nothing for a null `out`. */
 bool sphera_phase_pivot_in_cap_prepare(struct SpheraSptdInCap *out, struct SpheraVec3 wo, float g,
                                        struct SpheraCap cap);
 
@@ -1114,56 +986,46 @@ float sphera_sptd_integral_over_cap_intersection(struct SpheraVec3 pivot, uint32
  * orthographic projection), and the pdf is 0 where `g(ω)` is below the horizon. Returns `false`
  * (and writes a sampler without samples, pdf 0) when `base` is not `SPHERA_SPTD_UNIFORM` or
  * `SPHERA_SPTD_CLAMPED_COSINE`, and when `∫_C D` is 0 or its inverse overflows. Does nothing and
- * returns `false` when `out` is null.
- * Safety: `out` must be null or point to writable memory for one `SpheraSptdInCap`. */
+ * returns `false` when `out` is null. */
 bool sphera_sptd_in_cap_prepare(struct SpheraSptdInCap *out, struct SpheraVec3 pivot, uint32_t base,
                                 struct SpheraVec3 cosine_axis, struct SpheraCap cap);
 
 /* Draws a direction of a prepared SPTD in a cap (`u0`, `u1` clamped into [0, 1)). pdf 0 for a
- * null pointer, a failed prepare, or a sample that rounding moved out of the cap.
- * Safety: `prepared` must be null or point to a `SpheraSptdInCap` written by
- * `sphera_sptd_in_cap_prepare` or `sphera_phase_pivot_in_cap_prepare`. */
+ * null pointer, a failed prepare, or a sample that rounding moved out of the cap. */
 struct SpheraSample sphera_sptd_in_cap_sample(const struct SpheraSptdInCap *prepared, float u0,
                                               float u1);
 
 /* The density of `sphera_sptd_in_cap_sample` at `dir`: 0 outside the cap, where the
- * clamped-cosine base is 0 at `g(dir)`, and for a null pointer.
- * Safety: As for `sphera_sptd_in_cap_sample`. */
+ * clamped-cosine base is 0 at `g(dir)`, and for a null pointer. */
 float sphera_sptd_in_cap_pdf(const struct SpheraSptdInCap *prepared, struct SpheraVec3 dir);
 
 /* `∫_C D` of a prepared SPTD in a cap (for the pivot phase function, `∫_C f_pivot`: the
- * zero-variance estimate of an unoccluded light of unit radiance); 0 for null.
- * Safety: As for `sphera_sptd_in_cap_sample`. */
+ * zero-variance estimate of an unoccluded light of unit radiance); 0 for null. */
 float sphera_sptd_in_cap_integral(const struct SpheraSptdInCap *prepared);
 
 /* The uniform SPTD fitted to GGX `f cos θ` (the pivot table, 64×64, bilinear) for the view `wo`
  * (local frame, normalised) and roughness `r = √α` (clamped to [0, 1], NaN as 0). Returns
  * `false` (writing a zero pivot and albedo) when `wo` is not finite, zero or at or below the
- * horizon; does nothing for a null `out`.
- * Safety: `out` must be null or point to writable memory for one `SpheraGgxPivot`. */
+ * horizon; does nothing for a null `out`. */
 bool sphera_ggx_pivot_lookup(struct SpheraGgxPivot *out, struct SpheraVec3 wo, float roughness);
 
 /* Prepares real-time GGX shading of sphere lights (BIASED: the fitted SPTD approximates GGX;
  * errors are tabulated in docs/sphere-lights.md) for the view `wo`, roughness `r = √α` and
  * Fresnel `f0` (each channel clamped to [0, 1], NaN as 0). Returns `false` (writing a shading
  * that returns zero) when `wo` is not finite, zero, or at or below the horizon; does nothing for
- * a null `out`.
- * Safety: `out` must be null or point to writable memory for one `SpheraSphereLightShading`. */
+ * a null `out`. */
 bool sphera_sphere_light_shading_prepare(struct SpheraSphereLightShading *out, struct SpheraVec3 wo,
                                          float roughness, struct SpheraVec3 f0);
 
 /* `∫_{C ∩ H} f cos θ dω ≈ albedo_F Ω(g(C) ∩ g(H))/4π` per unit radiance (Eq. 19, BIASED), RGB,
  * for the cap `light` of a sphere light; multiply by its radiance. Zero for a null pointer or an
- * empty cap.
- * Safety: `shading` must be null or point to a `SpheraSphereLightShading` written by
- * `sphera_sphere_light_shading_prepare`. */
+ * empty cap. */
 struct SpheraVec3 sphera_sphere_light_shade(const struct SpheraSphereLightShading *shading,
                                             struct SpheraCap light);
 
 /* Specular occlusion with a bent cone `visibility` (Eq. 23, BIASED):
  * `albedo_F Ω(g(C) ∩ g(V))/4π`; the bent cone replaces the upper hemisphere (pass the hemisphere
- * `(0, 0, 1)`, `cos θ = 0`, for an unoccluded point). Zero for a null pointer.
- * Safety: As for `sphera_sphere_light_shade`. */
+ * `(0, 0, 1)`, `cos θ = 0`, for an unoccluded point). Zero for a null pointer. */
 struct SpheraVec3 sphera_sphere_light_shade_occluded(const struct SpheraSphereLightShading *shading,
                                                      struct SpheraCap light,
                                                      struct SpheraCap visibility);
@@ -1173,8 +1035,7 @@ struct SpheraVec3 sphera_sphere_light_shade_occluded(const struct SpheraSphereLi
  * times the fraction of the BRDF lobe inside the bent cone, `Ω(g(V) ∩ g(H)) / Ω(g(H))`. It lets
  * light through a cone that holds the lobe but not the light (shadow leaking). Equals
  * `sphera_sphere_light_shade` for the hemisphere `(0, 0, 1)`, `cos θ = 0`. Zero for a null
- * pointer.
- * Safety: As for `sphera_sphere_light_shade`. */
+ * pointer. */
 struct SpheraVec3 sphera_sphere_light_shade_occluded_separable(const struct SpheraSphereLightShading *shading,
                                                                struct SpheraCap light,
                                                                struct SpheraCap visibility);
@@ -1187,68 +1048,56 @@ struct SpheraVec3 sphera_sphere_light_shade_occluded_separable(const struct Sphe
  * `sphera_ggx_sample` by MIS. `center` is relative to the shading point, `wo` points to the
  * viewer, roughness as in `sphera_ggx_pivot_lookup`. Returns `false` (writing a sampler without
  * samples) for an empty cap (non-finite center, radius not finite and positive), a cap wholly
- * below the horizon, or a `wo` at or below the horizon; does nothing for null `out`.
- * Safety: `out` must be null or point to writable memory for one `SpheraSphereLightSampler`. */
+ * below the horizon, or a `wo` at or below the horizon; does nothing for null `out`. */
 bool sphera_sphere_light_sampler_prepare(struct SpheraSphereLightSampler *out,
                                          struct SpheraVec3 center, float radius,
                                          struct SpheraVec3 wo, float roughness);
 
 /* Draws a direction in the light's cap above the horizon; its pdf is
  * `sphera_sphere_light_sampler_pdf` at the direction, bit for bit (a draw that rounding puts
- * just outside the cap is returned as no sample). pdf 0 for null or a failed prepare.
- * Safety: `sampler` must be null or point to a `SpheraSphereLightSampler` written by
- * `sphera_sphere_light_sampler_prepare`. */
+ * just outside the cap is returned as no sample). pdf 0 for null or a failed prepare. */
 struct SpheraSample sphera_sphere_light_sampler_sample(const struct SpheraSphereLightSampler *sampler,
                                                        float u0, float u1);
 
-/* The density of `sphera_sphere_light_sampler_sample` at `dir`; 0 outside the cap and for null.
- * Safety: As for `sphera_sphere_light_sampler_sample`. */
+/* The density of `sphera_sphere_light_sampler_sample` at `dir`; 0 outside the cap and for null. */
 float sphera_sphere_light_sampler_pdf(const struct SpheraSphereLightSampler *sampler,
                                       struct SpheraVec3 dir);
 
 /* Whether the sampler draws from the SPTD (`true`) or uniformly in the cap (the fallback for
- * pivoted caps under 1e-3 sr); `false` for null.
- * Safety: As for `sphera_sphere_light_sampler_sample`. */
+ * pivoted caps under 1e-3 sr); `false` for null. */
 bool sphera_sphere_light_sampler_uses_sptd(const struct SpheraSphereLightSampler *sampler);
 
 /* Writes an empty accumulator whose sums are taken relative to `origin` (a non-finite origin
  * counts as the world origin; choose a point near the VPLs, such as the centre of the scene, to
- * keep the variance precise). `false` when `accumulator` is null.
- * Safety: `accumulator` must be null or point to writable memory for a `SpheraVsglAccumulator`. */
+ * keep the variance precise). `false` when `accumulator` is null. */
 bool sphera_vsgl_accumulator_init(struct SpheraVsglAccumulator *accumulator,
                                   struct SpheraVec3 origin);
 
 /* Adds one VPL. `false` (nothing added) when a pointer is null or the VPL has a non-finite
  * position, normal, direction or roughness, a zero normal or direction, or sums that overflow;
- * negative or NaN power and reflectance channels count as 0.
- * Safety: `accumulator` must be null or point to a valid `SpheraVsglAccumulator` (from
- * `sphera_vsgl_accumulator_init`); `vpl` null or valid. */
+ * negative or NaN power and reflectance channels count as 0. */
 bool sphera_vsgl_accumulator_add_vpl(struct SpheraVsglAccumulator *accumulator,
                                      const struct SpheraVpl *vpl);
 
 /* Adds a texel of sums taken relative to the accumulator's origin (a mip texel). `false`
- * (nothing added) when a pointer is null or a sum is not finite.
- * Safety: As `sphera_vsgl_accumulator_add_vpl`, with `texel` null or valid. */
+ * (nothing added) when a pointer is null or a sum is not finite. */
 bool sphera_vsgl_accumulator_add_texel(struct SpheraVsglAccumulator *accumulator,
                                        const struct SpheraVsglTexel *texel);
 
 /* Adds the sums of `other` (moved to the accumulator's origin). `false` (nothing added) when a
  * pointer is null or the moved sums are not finite. `other` may equal `accumulator` (the sums
- * then double).
- * Safety: Both pointers null or valid `SpheraVsglAccumulator`s. */
+ * then double). */
 bool sphera_vsgl_accumulator_merge(struct SpheraVsglAccumulator *accumulator,
                                    const struct SpheraVsglAccumulator *other);
 
 /* The VSGL of the sums: normalised diffuse and specular SGs (Toksvig), RGB powers, mean and
  * variance (0 for a single VPL: treat as a point light). An empty VSGL (zero powers, mean at the
- * origin) for a null pointer, no power or non-finite sums.
- * Safety: `accumulator` null or valid. */
+ * origin) for a null pointer, no power or non-finite sums. */
 struct SpheraVsgl sphera_vsgl_accumulator_finish(const struct SpheraVsglAccumulator *accumulator);
 
 /* Writes the sums of one VPL relative to `origin` into `*texel` (a level-0 texel of a pyramid).
  * `false`, with the zero texel written when `texel` is non-null, when `vpl` is null or rejected
- * (see `sphera_vsgl_accumulator_add_vpl`) or `origin` is not finite.
- * Safety: `vpl` null or valid; `texel` null or writable. */
+ * (see `sphera_vsgl_accumulator_add_vpl`) or `origin` is not finite. */
 bool sphera_vsgl_texel_from_vpl(const struct SpheraVpl *vpl, struct SpheraVec3 origin,
                                 struct SpheraVsglTexel *texel);
 

@@ -10,20 +10,13 @@ use crate::polygon::ClippedSolidAnglePolygon;
 /// polygon is clipped to the upper hemisphere (z >= 0) and the part above the horizon
 /// is sampled uniformly in solid angle.
 ///
-/// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
-/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite,
-/// when nothing of the polygon lies above the horizon, when a polygon of
-/// `SPHERA_MAX_POLYGON_VERTICES` vertices needs clipping (the result could have one
+/// Returns `false` also when nothing of the polygon lies above the horizon, when a polygon
+/// of `SPHERA_MAX_POLYGON_VERTICES` vertices needs clipping (the result could have one
 /// vertex more than the limit), or when the clipped polygon subtends no solid angle.
-/// Unless `out` is null, a `false` return writes the empty polygon into `*out`: its
-/// samples have pdf 0, its `pdf` is 0 and its solid angle is 0, whatever `*out` held
-/// before.
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one
-/// `SpheraClippedSolidAnglePolygon`; `vertices` must be null or point to `count`
-/// readable `SpheraVec3`s that do not overlap `*out`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_prepare(
     out: *mut ClippedSolidAnglePolygon,
@@ -35,17 +28,14 @@ pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_prepare(
 }
 
 /// Draws a direction uniformly distributed in the solid angle of the part of `polygon`
-/// above the horizon from the random numbers `u0`, `u1` in [0, 1) (values outside are
-/// clamped by the library). The pdf of the sample is 1 / (clipped solid angle) per
-/// steradian, and the direction has z >= 0.
+/// above the horizon from the random numbers `u0`, `u1` in [0, 1). The pdf of the sample is
+/// 1 / (clipped solid angle) per steradian, and the direction has z >= 0.
 ///
-/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty.
-/// `dir` is always a finite unit vector.
+/// No sample when `polygon` is null or empty.
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraClippedSolidAnglePolygon` written by
-/// `sphera_clipped_solid_angle_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_sample(
     polygon: *const ClippedSolidAnglePolygon,
@@ -68,8 +58,7 @@ pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_sample(
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraClippedSolidAnglePolygon` written by
-/// `sphera_clipped_solid_angle_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_pdf(
     polygon: *const ClippedSolidAnglePolygon,
@@ -85,8 +74,7 @@ pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_pdf(
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraClippedSolidAnglePolygon` written by
-/// `sphera_clipped_solid_angle_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_solid_angle(
     polygon: *const ClippedSolidAnglePolygon,

@@ -24,7 +24,7 @@ const _: () = assert!(SPHERA_GGX_MIN_ALPHA == crate::brdf::ggx::MIN_ALPHA);
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraGgxBrdf`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ggx_brdf_prepare(
     out: *mut GgxBrdf,
@@ -48,8 +48,7 @@ pub unsafe extern "C" fn sphera_ggx_brdf_prepare(
 ///
 /// # Safety
 ///
-/// `brdf` must be null or point to a `SpheraGgxBrdf` written by
-/// `sphera_ggx_brdf_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ggx_eval(
     brdf: *const GgxBrdf,
@@ -70,8 +69,7 @@ pub unsafe extern "C" fn sphera_ggx_eval(
 ///
 /// # Safety
 ///
-/// `brdf` must be null or point to a `SpheraGgxBrdf` written by
-/// `sphera_ggx_brdf_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ggx_eval_without_fresnel(
     brdf: *const GgxBrdf,
@@ -86,22 +84,20 @@ pub unsafe extern "C" fn sphera_ggx_eval_without_fresnel(
     }
 }
 
-/// Draws `wi` by sampling the GGX distribution of normals visible from `wo` (Heitz
-/// 2018) and reflecting `wo` on the sampled normal, from the random numbers `u0`, `u1`
-/// in [0, 1) (values outside are clamped by the library, NaN counts as 0). The pdf is
-/// `G1(wo) D(h) / (4 cos θo)` per steradian and equals `sphera_ggx_pdf(brdf, wo, dir)`.
+/// Draws `wi` by sampling the GGX distribution of normals visible from `wo` (Heitz 2018)
+/// and reflecting `wo` on the sampled normal, from the random numbers `u0`, `u1` in [0, 1).
+/// The pdf is `G1(wo) D(h) / (4 cos θo)` per steradian and equals
+/// `sphera_ggx_pdf(brdf, wo, dir)`.
 ///
-/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `brdf` is null, when `wo`
-/// lies at or below the horizon, is zero or is not finite, and when the reflected
-/// direction lies at or below the horizon. The last case happens with positive
-/// probability (about half the draws for roughness 1 at normal incidence): the pdf
-/// then integrates to less than 1 over the upper hemisphere. Count such a draw as a
-/// sample that contributes 0; do not renormalise the pdf.
+/// No sample when `brdf` is null, when `wo` lies at or below the horizon, is zero or is not
+/// finite, and when the reflected direction lies at or below the horizon. The last case
+/// happens with positive probability (about half the draws for roughness 1 at normal
+/// incidence): the pdf then integrates to less than 1 over the upper hemisphere. Count such
+/// a draw as a sample that contributes 0; do not renormalise the pdf.
 ///
 /// # Safety
 ///
-/// `brdf` must be null or point to a `SpheraGgxBrdf` written by
-/// `sphera_ggx_brdf_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ggx_sample(
     brdf: *const GgxBrdf,
@@ -125,8 +121,7 @@ pub unsafe extern "C" fn sphera_ggx_sample(
 ///
 /// # Safety
 ///
-/// `brdf` must be null or point to a `SpheraGgxBrdf` written by
-/// `sphera_ggx_brdf_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ggx_pdf(
     brdf: *const GgxBrdf,

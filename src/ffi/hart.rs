@@ -14,16 +14,11 @@ use crate::polygon::baselines::{HartBilinearPolygon, HartBiquadraticPolygon};
 /// horizon are returned as "no sample" (pdf 0), and when the cosine is 0 at all four
 /// corners the warp is uniform (plain solid angle sampling).
 ///
-/// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
-/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
-/// when the polygon subtends no solid angle. Unless `out` is null, a `false` return
-/// writes the empty polygon into `*out`: its samples have pdf 0 and its `pdf` is 0,
-/// whatever `*out` held before.
+/// Returns `false` also when the polygon subtends no solid angle.
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraHartBilinearPolygon`;
-/// `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_hart_bilinear_polygon_prepare(
     out: *mut HartBilinearPolygon,
@@ -34,18 +29,15 @@ pub unsafe extern "C" fn sphera_hart_bilinear_polygon_prepare(
     unsafe { prepare(out, vertices, count, HartBilinearPolygon::prepare) }
 }
 
-/// Draws a direction with the bilinear warp from the random numbers `u0`, `u1` in
-/// [0, 1) (values outside are clamped by the library). The pdf is the warp's density
-/// divided by the solid angle, per steradian.
+/// Draws a direction with the bilinear warp from the random numbers `u0`, `u1` in [0, 1).
+/// The pdf is the warp's density divided by the solid angle, per steradian.
 ///
-/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
-/// and when the direction lies at or below the horizon (z <= 0). `dir` is always a
-/// finite unit vector.
+/// No sample when `polygon` is null or empty, and when the direction lies at or below the
+/// horizon (z <= 0).
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraHartBilinearPolygon` written by
-/// `sphera_hart_bilinear_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_hart_bilinear_polygon_sample(
     polygon: *const HartBilinearPolygon,
@@ -68,8 +60,7 @@ pub unsafe extern "C" fn sphera_hart_bilinear_polygon_sample(
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraHartBilinearPolygon` written by
-/// `sphera_hart_bilinear_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_hart_bilinear_polygon_pdf(
     polygon: *const HartBilinearPolygon,
@@ -89,17 +80,11 @@ pub unsafe extern "C" fn sphera_hart_bilinear_polygon_pdf(
 /// samples that land below the horizon are returned as "no sample" (pdf 0), and when the
 /// cosine is 0 at all grid points the warp is uniform (plain solid angle sampling).
 ///
-/// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
-/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
-/// when the polygon subtends no solid angle. Unless `out` is null, a `false` return
-/// writes the empty polygon into `*out`: its samples have pdf 0 and its `pdf` is 0,
-/// whatever `*out` held before.
+/// Returns `false` also when the polygon subtends no solid angle.
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one
-/// `SpheraHartBiquadraticPolygon`; `vertices` must be null or point to `count` readable
-/// `SpheraVec3`s.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_hart_biquadratic_polygon_prepare(
     out: *mut HartBiquadraticPolygon,
@@ -110,18 +95,15 @@ pub unsafe extern "C" fn sphera_hart_biquadratic_polygon_prepare(
     unsafe { prepare(out, vertices, count, HartBiquadraticPolygon::prepare) }
 }
 
-/// Draws a direction with the biquadratic warp from the random numbers `u0`, `u1` in
-/// [0, 1) (values outside are clamped by the library). The pdf is the warp's density
-/// divided by the solid angle, per steradian.
+/// Draws a direction with the biquadratic warp from the random numbers `u0`, `u1` in [0,
+/// 1). The pdf is the warp's density divided by the solid angle, per steradian.
 ///
-/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
-/// and when the direction lies at or below the horizon (z <= 0). `dir` is always a
-/// finite unit vector.
+/// No sample when `polygon` is null or empty, and when the direction lies at or below the
+/// horizon (z <= 0).
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraHartBiquadraticPolygon` written by
-/// `sphera_hart_biquadratic_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_hart_biquadratic_polygon_sample(
     polygon: *const HartBiquadraticPolygon,
@@ -144,8 +126,7 @@ pub unsafe extern "C" fn sphera_hart_biquadratic_polygon_sample(
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraHartBiquadraticPolygon` written by
-/// `sphera_hart_biquadratic_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_hart_biquadratic_polygon_pdf(
     polygon: *const HartBiquadraticPolygon,

@@ -19,7 +19,7 @@ use crate::{Sample, Vec3};
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraLtc`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ltc_ggx(out: *mut Ltc, wo: SpheraVec3, roughness: f32) -> bool {
     if out.is_null() {
@@ -37,7 +37,7 @@ pub unsafe extern "C" fn sphera_ltc_ggx(out: *mut Ltc, wo: SpheraVec3, roughness
 ///
 /// # Safety
 ///
-/// `ltc` must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ltc_density(ltc: *const Ltc, dir: SpheraVec3) -> f32 {
     // SAFETY: the caller guarantees that a non-null `ltc` points to a valid value.
@@ -53,7 +53,7 @@ pub unsafe extern "C" fn sphera_ltc_density(ltc: *const Ltc, dir: SpheraVec3) ->
 ///
 /// # Safety
 ///
-/// `ltc` must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ltc_specular_albedo(ltc: *const Ltc, f0: SpheraVec3) -> SpheraVec3 {
     // SAFETY: the caller guarantees that a non-null `ltc` points to a valid value.
@@ -83,9 +83,7 @@ pub unsafe extern "C" fn sphera_ltc_specular_albedo(ltc: *const Ltc, f0: SpheraV
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraLtcPolygon`; `ltc`
-/// must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`; `vertices` must
-/// be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ltc_polygon_prepare(
     out: *mut LtcPolygon,
@@ -110,22 +108,20 @@ pub unsafe extern "C" fn sphera_ltc_polygon_prepare(
     }
 }
 
-/// Draws a direction with density `D(ω) / ∫_P D` inside the polygon, from `u0`, `u1`
-/// in [0, 1) (clamped by the library). The direction may lie at or below the horizon
-/// (`dir.z <= 0`) where the LTC puts a little mass; the BRDF is zero there, so such a
-/// sample contributes nothing, and it must not be discarded and redrawn (the pdf counts
-/// it). The pdf is `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit (MIS weights rely
-/// on it). A draw that the f32 round trip through the LTC's matrix throws outside the
-/// polygon (by more than the slack of `sphera_ltc_polygon_pdf`) is pulled towards the
-/// polygon's inside until the pdf accepts it: a bias confined to a band of that rounding
-/// along the boundary. Returns `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or
-/// empty, and where even the pulled draw is rejected (a polygon smaller than the round
-/// trip's rounding); `dir` is always a finite unit vector.
+/// Draws a direction with density `D(ω) / ∫_P D` inside the polygon, from `u0`, `u1` in [0,
+/// 1). The direction may lie at or below the horizon (`dir.z <= 0`) where the LTC puts a
+/// little mass; the BRDF is zero there, so such a sample contributes nothing, and it must
+/// not be discarded and redrawn (the pdf counts it). The pdf is
+/// `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit (MIS weights rely on it). A draw that
+/// the f32 round trip through the LTC's matrix throws outside the polygon (by more than the
+/// slack of `sphera_ltc_polygon_pdf`) is pulled towards the polygon's inside until the pdf
+/// accepts it: a bias confined to a band of that rounding along the boundary. No sample
+/// when `polygon` is null or empty, and where even the pulled draw is rejected (a polygon
+/// smaller than the round trip's rounding).
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraLtcPolygon` written by
-/// `sphera_ltc_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ltc_polygon_sample(
     polygon: *const LtcPolygon,
@@ -150,7 +146,7 @@ pub unsafe extern "C" fn sphera_ltc_polygon_sample(
 ///
 /// # Safety
 ///
-/// As for `sphera_ltc_polygon_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ltc_polygon_pdf(
     polygon: *const LtcPolygon,
@@ -166,7 +162,7 @@ pub unsafe extern "C" fn sphera_ltc_polygon_pdf(
 ///
 /// # Safety
 ///
-/// As for `sphera_ltc_polygon_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ltc_polygon_integral(polygon: *const LtcPolygon) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.

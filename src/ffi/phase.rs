@@ -72,7 +72,7 @@ pub extern "C" fn sphera_phase_henyey_greenstein_sample(
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraSptdInCap`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_phase_pivot_in_cap_prepare(
     out: *mut SptdInCap,

@@ -53,9 +53,7 @@ const _: () = {
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraPolygonLight`;
-/// `vertices` must be null or point to `count` readable `SpheraVec3`s; `material` must
-/// be null or point to a `SpheraMaterial`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_polygon_light_prepare(
     out: *mut PolygonLight,
@@ -100,8 +98,7 @@ pub unsafe extern "C" fn sphera_polygon_light_prepare(
 ///
 /// # Safety
 ///
-/// `light` must be null or point to a `SpheraPolygonLight` written by
-/// `sphera_polygon_light_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_polygon_light_sample(
     light: *const PolygonLight,
@@ -122,7 +119,7 @@ pub unsafe extern "C" fn sphera_polygon_light_sample(
 ///
 /// # Safety
 ///
-/// As for `sphera_polygon_light_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_polygon_light_unshadowed(light: *const PolygonLight) -> SpheraVec3 {
     if light.is_null() {

@@ -17,20 +17,14 @@ use crate::polygon::ProjectedSolidAnglePolygon;
 /// are sampled by warped solid angle sampling instead (exact for its own pdf, which
 /// deviates from cos θ / Φ by less than 1e-4 relative).
 ///
-/// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
-/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite,
-/// when `count` is `SPHERA_MAX_POLYGON_VERTICES` and the polygon crosses the horizon (a
-/// 9th vertex would be needed), when nothing of the polygon lies above the horizon, and
-/// when its projected solid angle is zero (for example when the shading point lies in
-/// the polygon's plane). Unless `out` is null, a `false` return writes the empty polygon
-/// into `*out`: its samples have pdf 0, its `pdf` is 0 and its projected solid angle is
-/// 0, whatever `*out` held before.
+/// Returns `false` also when `count` is `SPHERA_MAX_POLYGON_VERTICES` and the polygon
+/// crosses the horizon (a 9th vertex would be needed), when nothing of the polygon lies
+/// above the horizon, and when its projected solid angle is zero (for example when the
+/// shading point lies in the polygon's plane).
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one
-/// `SpheraProjectedSolidAnglePolygon`; `vertices` must be null or point to `count`
-/// readable `SpheraVec3`s that do not overlap `*out`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_prepare(
     out: *mut ProjectedSolidAnglePolygon,
@@ -49,7 +43,7 @@ pub unsafe extern "C" fn sphera_projected_polygon_prepare(
 ///
 /// # Safety
 ///
-/// As for `sphera_projected_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_prepare_fast(
     out: *mut ProjectedSolidAnglePolygon,
@@ -68,22 +62,20 @@ pub unsafe extern "C" fn sphera_projected_polygon_prepare_fast(
 }
 
 /// Draws a direction with density cos θ / Φ inside the polygon from the random numbers
-/// `u0`, `u1` in [0, 1) (values outside, and NaN, are clamped by the library). The pdf
-/// is per steradian, `dir.z / Φ`, equal to `sphera_projected_polygon_pdf(polygon, dir)`
-/// bit for bit wherever that finds the direction inside the polygon. For polygons under
-/// 1e-2 rad (the small-polygon sampler) the draws follow `dir.z / Φ` within 0.2 s²
-/// relative (2e-5; s is the polygon's angular size). Where a polygon crosses the horizon,
-/// its clipped part is accurate to the f32 rounding of the horizon points: Φ within about
-/// 6e-8 / w relative for a clipped part w radians wide (solid angle over perimeter).
+/// `u0`, `u1` in [0, 1). The pdf is per steradian, `dir.z / Φ`, equal to
+/// `sphera_projected_polygon_pdf(polygon, dir)` bit for bit wherever that finds the
+/// direction inside the polygon. For polygons under 1e-2 rad (the small-polygon sampler)
+/// the draws follow `dir.z / Φ` within 0.2 s² relative (2e-5; s is the polygon's angular
+/// size). Where a polygon crosses the horizon, its clipped part is accurate to the f32
+/// rounding of the horizon points: Φ within about 6e-8 / w relative for a clipped part w
+/// radians wide (solid angle over perimeter).
 ///
-/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
-/// and for a draw that lands exactly on the horizon (`cos θ = 0`, possible only for
-/// polygons that touch it). `dir` is always a finite unit vector.
+/// No sample when `polygon` is null or empty, and for a draw that lands exactly on the
+/// horizon (`cos θ = 0`, possible only for polygons that touch it).
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
-/// `sphera_projected_polygon_prepare` or `sphera_projected_polygon_prepare_fast`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_sample(
     polygon: *const ProjectedSolidAnglePolygon,
@@ -107,7 +99,7 @@ pub unsafe extern "C" fn sphera_projected_polygon_sample(
 ///
 /// # Safety
 ///
-/// As for `sphera_projected_polygon_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_sample_fast(
     polygon: *const ProjectedSolidAnglePolygon,
@@ -132,8 +124,7 @@ pub unsafe extern "C" fn sphera_projected_polygon_sample_fast(
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
-/// a `sphera_projected_polygon_prepare*` function.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_pdf(
     polygon: *const ProjectedSolidAnglePolygon,
@@ -149,8 +140,7 @@ pub unsafe extern "C" fn sphera_projected_polygon_pdf(
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
-/// a `sphera_projected_polygon_prepare*` function.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_projected_solid_angle(
     polygon: *const ProjectedSolidAnglePolygon,

@@ -10,17 +10,13 @@ use crate::polygon::SolidAnglePolygon;
 /// either winding. The polygon need not be clipped; clip it first with
 /// `sphera_polygon_clip` to sample only the part above the horizon.
 ///
-/// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
-/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
-/// when the polygon subtends no solid angle, in particular when its vertices lie exactly
-/// in a plane through the shading point (decided exactly, at any tilt). Unless `out` is
-/// null, a `false` return writes the empty polygon into `*out`: its samples have pdf 0,
-/// its `pdf` is 0 and its solid angle is 0, whatever `*out` held before.
+/// Returns `false` also when the polygon subtends no solid angle, in particular when its
+/// vertices lie exactly in a plane through the shading point (decided exactly, at any
+/// tilt).
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraSolidAnglePolygon`;
-/// `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_solid_angle_polygon_prepare(
     out: *mut SolidAnglePolygon,
@@ -31,17 +27,14 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_prepare(
     unsafe { prepare(out, vertices, count, SolidAnglePolygon::prepare) }
 }
 
-/// Draws a direction uniformly distributed in the solid angle of `polygon` from the
-/// random numbers `u0`, `u1` in [0, 1) (values outside are clamped by the library).
-/// The pdf of the sample is 1 / solid angle per steradian.
+/// Draws a direction uniformly distributed in the solid angle of `polygon` from the random
+/// numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / solid angle per steradian.
 ///
-/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty.
-/// `dir` is always a finite unit vector.
+/// No sample when `polygon` is null or empty.
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
-/// `sphera_solid_angle_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_solid_angle_polygon_sample(
     polygon: *const SolidAnglePolygon,
@@ -67,8 +60,7 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_sample(
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
-/// `sphera_solid_angle_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_solid_angle_polygon_pdf(
     polygon: *const SolidAnglePolygon,
@@ -84,8 +76,7 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_pdf(
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
-/// `sphera_solid_angle_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_solid_angle_polygon_solid_angle(
     polygon: *const SolidAnglePolygon,
@@ -103,9 +94,7 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_solid_angle(
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
-/// `sphera_solid_angle_polygon_prepare`; `u0` and `u1` must each be null or point to a
-/// writable `float`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_solid_angle_polygon_invert(
     polygon: *const SolidAnglePolygon,

@@ -12,7 +12,7 @@ use crate::sphere::{Cap, GgxPivot, SphereLightSampler, SphereLightShading};
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraGgxPivot`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ggx_pivot_lookup(
     out: *mut GgxPivot,
@@ -40,7 +40,7 @@ pub unsafe extern "C" fn sphera_ggx_pivot_lookup(
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraSphereLightShading`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_shading_prepare(
     out: *mut SphereLightShading,
@@ -71,8 +71,7 @@ pub unsafe extern "C" fn sphera_sphere_light_shading_prepare(
 ///
 /// # Safety
 ///
-/// `shading` must be null or point to a `SpheraSphereLightShading` written by
-/// `sphera_sphere_light_shading_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_shade(
     shading: *const SphereLightShading,
@@ -89,7 +88,7 @@ pub unsafe extern "C" fn sphera_sphere_light_shade(
 ///
 /// # Safety
 ///
-/// As for `sphera_sphere_light_shade`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_shade_occluded(
     shading: *const SphereLightShading,
@@ -114,7 +113,7 @@ pub unsafe extern "C" fn sphera_sphere_light_shade_occluded(
 ///
 /// # Safety
 ///
-/// As for `sphera_sphere_light_shade`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_shade_occluded_separable(
     shading: *const SphereLightShading,
@@ -143,7 +142,7 @@ pub unsafe extern "C" fn sphera_sphere_light_shade_occluded_separable(
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraSphereLightSampler`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_sampler_prepare(
     out: *mut SphereLightSampler,
@@ -168,8 +167,7 @@ pub unsafe extern "C" fn sphera_sphere_light_sampler_prepare(
 ///
 /// # Safety
 ///
-/// `sampler` must be null or point to a `SpheraSphereLightSampler` written by
-/// `sphera_sphere_light_sampler_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_sampler_sample(
     sampler: *const SphereLightSampler,
@@ -185,7 +183,7 @@ pub unsafe extern "C" fn sphera_sphere_light_sampler_sample(
 ///
 /// # Safety
 ///
-/// As for `sphera_sphere_light_sampler_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_sampler_pdf(
     sampler: *const SphereLightSampler,
@@ -200,7 +198,7 @@ pub unsafe extern "C" fn sphera_sphere_light_sampler_pdf(
 ///
 /// # Safety
 ///
-/// As for `sphera_sphere_light_sampler_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_sampler_uses_sptd(
     sampler: *const SphereLightSampler,

@@ -97,7 +97,7 @@ pub extern "C" fn sphera_sptd_integral_over_cap_intersection(
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraSptdInCap`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sptd_in_cap_prepare(
     out: *mut SptdInCap,
@@ -121,8 +121,7 @@ pub unsafe extern "C" fn sphera_sptd_in_cap_prepare(
 ///
 /// # Safety
 ///
-/// `prepared` must be null or point to a `SpheraSptdInCap` written by
-/// `sphera_sptd_in_cap_prepare` or `sphera_phase_pivot_in_cap_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sptd_in_cap_sample(
     prepared: *const SptdInCap,
@@ -138,7 +137,7 @@ pub unsafe extern "C" fn sphera_sptd_in_cap_sample(
 ///
 /// # Safety
 ///
-/// As for `sphera_sptd_in_cap_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sptd_in_cap_pdf(
     prepared: *const SptdInCap,
@@ -153,7 +152,7 @@ pub unsafe extern "C" fn sphera_sptd_in_cap_pdf(
 ///
 /// # Safety
 ///
-/// As for `sphera_sptd_in_cap_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sptd_in_cap_integral(prepared: *const SptdInCap) -> f32 {
     // SAFETY: forwarded from the caller.

@@ -230,6 +230,12 @@ fn compact(header: &str) -> String {
     text
 }
 
+/// A function's `# Safety` section that says only that its pointers follow the conventions
+/// of `sphera::ffi`: the header leaves it out, since its preamble states those conventions
+/// (cbindgen.toml, `header`).
+const CONVENTIONAL_SAFETY: &str =
+    "Safety: Pointers as in the conventions of the C ABI (`crate::ffi`).";
+
 /// A doc comment's lines (without their ` * `) as a compact `/* … */` comment at
 /// `indent`: paragraphs reflowed to [`WIDTH`] columns, each on a new line.
 fn reflow_comment(indent: &str, body: &[&str]) -> Vec<String> {
@@ -259,6 +265,7 @@ fn reflow_comment(indent: &str, body: &[&str]) -> Vec<String> {
     if !current.is_empty() {
         paragraphs.push(current);
     }
+    paragraphs.retain(|p| p != CONVENTIONAL_SAFETY);
     let first = format!("{indent}/* ");
     let rest = format!("{indent} * ");
     let mut out: Vec<String> = Vec::new();
