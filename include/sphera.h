@@ -45,51 +45,36 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/*
- * The version of this header, from the library's Cargo.toml. The library says its own
- * with sphera_version(); check at start-up that the two agree with
- * sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR).
- */
+/* The header's version (the library's Cargo.toml); check at start-up that the library agrees
+ * with sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR). */
 #define SPHERA_VERSION_MAJOR 0
 #define SPHERA_VERSION_MINOR 1
 #define SPHERA_VERSION_PATCH 0
 #define SPHERA_VERSION_STRING "0.1.0"
-
 /* The most vertices a polygon may have, in the C ABI: the length of the array that
  * `sphera_polygon_clip` works on and the largest `count` that a `prepare` accepts. */
 #define SPHERA_MAX_POLYGON_VERTICES 8
-
 /* The smallest GGX `α` (= roughness²) that `sphera_ggx_brdf_prepare` keeps; smaller values are
  * raised to it (see the Rust documentation of `brdf::ggx::MIN_ALPHA`). */
 #define SPHERA_GGX_MIN_ALPHA 1e-4
-
 /* The visibility estimate `v` that Peters 2021 uses for clamped optimal MIS. */
 #define SPHERA_MIS_DEFAULT_VISIBILITY 0.5
-
 /* The balance heuristic, `p_j / Σ p_k`. */
 #define SPHERA_MIS_BALANCE 0
-
 /* The power heuristic with exponent 2, `p_j² / Σ p_k²`. */
 #define SPHERA_MIS_POWER 1
-
 /* The weighted balance heuristic of Peters 2021, `c_j p_j / Σ c_k p_k`. */
 #define SPHERA_MIS_WEIGHTED_BALANCE 2
-
 /* Clamped optimal MIS (Peters 2021, supplement B.3), with visibility estimate `v`. */
 #define SPHERA_MIS_CLAMPED_OPTIMAL 3
-
 /* Optimal MIS (Peters 2021, supplement B.1), with visibility estimate `v`. */
 #define SPHERA_MIS_OPTIMAL 4
-
 /* The uniform base distribution `1/4π` (Eq. 16). */
 #define SPHERA_SPTD_UNIFORM 0
-
 /* The clamped-cosine base distribution `max(0, ω·a)/π`. */
 #define SPHERA_SPTD_CLAMPED_COSINE 1
-
 /* The largest sharpness of an SG (and bandwidth of an ASG): a lobe 1e-4 rad wide. */
 #define SPHERA_SG_MAX_SHARPNESS 1e8
-
 /* The least-squares sharpness `λ_d` of the SG fit of the clamped cosine (Eq. 1). */
 #define SPHERA_SG_DIFFUSE_LOBE_SHARPNESS 2.292504
 
@@ -281,12 +266,11 @@ typedef struct SpheraSphereLightShading {
 } SpheraSphereLightShading;
 
 /* Light sampling of a sphere light by the fitted SPTD restricted to its cap (Section 6.1), with
- * the paper's fallback to uniform cap sampling when `Ω(g(C)) < 10⁻³`. Combine it with
- * `crate::brdf::GgxBrdf::sample` by MIS; its pdf is per steradian and 0 outside the cap.
- * A cap that crosses the horizon is sampled in `C ∩ H` only (issue 20, 1: SPTDs over sets of
- * caps, Sec. 4): uniformly in the intersection of the images `g(C) ∩ g(H)` (`CapIntersection`),
- * mapped back by `g`, with density `J(ω) / Ω(g(C) ∩ g(H))` (and uniformly in `C ∩ H` for the
- * fallback), so that no sample is wasted below the horizon, where the BRDF is 0. */
+ * the paper's fallback to uniform cap sampling when `Ω(g(C)) < 10⁻³`; combine it with
+ * `crate::brdf::GgxBrdf::sample` by MIS. Its pdf is per steradian and 0 outside the cap. A cap
+ * that crosses the horizon is sampled in `C ∩ H` only, uniformly in `g(C) ∩ g(H)` mapped back by
+ * `g` (density `J(ω) / Ω(g(C) ∩ g(H))`; the fallback uniformly in `C ∩ H`), so that no sample is
+ * wasted below the horizon. */
 typedef struct SpheraSphereLightSampler {
   uint32_t opaque[65]; /* 260 bytes, private: see the preamble */
 } SpheraSphereLightSampler;
@@ -305,16 +289,9 @@ typedef struct SpheraVsglTexel {
 } SpheraVsglTexel;
 
 /* Sums VPLs, mip texels or other accumulators into one VSGL. Allocation-free and `Copy`; the
- * sums are relative to `origin`, a point the caller picks near the VPLs.
- * Compensated: each field's running sum is kept as the triple (`sums`, `compensation`,
- * `second_compensation`): the rounded sum, the sum of the rounding errors of its additions (each
- * exact by Knuth's TwoSum, and summed by TwoSum too), and the sum of that sum's rounding errors.
- * This is Ogita, Rump and Oishi's SumK with K = 3, applied online: for the non-negative sums
- * (powers, weights, squared distances) the relative error after `n` additions is at most about
- * `ε + (n ε)³` (ε = 2⁻²³), where plain `f32` sums drift by up to `n ε`. Measured: a million
- * identical VPLs added one by one give the VSGL of one VPL, the mean within 1.1e-7 of its
- * distance and the powers within 2.1e-7 (plain sums: a mean 3e-2 off and a spread of 11% of the
- * distance; with one level of compensation, 3e-5 and 5e-5; tested). */
+ * sums are relative to `origin`, a point the caller picks near the VPLs, and carry two levels of
+ * compensation (relative error about `ε + (n ε)³` after `n` additions, where plain `f32` sums
+ * drift by `n ε`). */
 typedef struct SpheraVsglAccumulator {
   struct SpheraVsglTexel sums; /* The sums so far, rounded. */
   SpheraVec3 origin; /* The reference point `o` of the sums. */
@@ -350,12 +327,11 @@ typedef struct SpheraSg {
   float log_amplitude;
 } SpheraSg;
 
-/* A virtual spherical Gaussian light: the radiant intensity of a cluster as two SGs and the
- * positional distribution as an isotropic Gaussian (supplement Sections 3.1–3.2).
- * The intensity is `I_v(ω) = diffuse_power ∘ diffuse(ω) + specular_power ∘ specular(ω)` where
- * each SG is *normalised* (amplitude `1/A(λ_v)`), i.e. the paper's `c_v = Σ Φ R / A(λ_v)` is
- * `power / A(λ_v)` per RGB channel. An empty cluster (no power, or sums that are not finite) is
- * `Vsgl::EMPTY`-like: both powers zero. */
+/* A virtual spherical Gaussian light (supplement Sections 3.1–3.2): the radiant intensity
+ * `I_v(ω) = diffuse_power ∘ diffuse(ω) + specular_power ∘ specular(ω)` of a cluster with
+ * normalised SGs (amplitude `1/A(λ_v)`, so the paper's `c_v` is `power / A(λ_v)` per RGB
+ * channel) and its positions as an isotropic Gaussian. An empty cluster (no power, or sums that
+ * are not finite) has both powers zero, like `Vsgl::EMPTY`. */
 typedef struct SpheraVsgl {
   /* Normalised SG of the diffuse radiant intensity: axis `ξ_v`, sharpness `λ_v`. */
   struct SpheraSg diffuse;
@@ -384,30 +360,27 @@ extern "C" {
 #endif // __cplusplus
 
 /* Clips the convex polygon `vertices[0..count]` to the upper hemisphere (z >= 0) in place and
- * returns the new vertex count: 0 when nothing of the polygon lies above the horizon, otherwise
- * 3 to `SPHERA_MAX_POLYGON_VERTICES`. Vertices created by the clip lie exactly on z = 0; the
- * winding is kept. A polygon with `SPHERA_MAX_POLYGON_VERTICES` vertices is kept only when it
- * lies entirely above the horizon (z > 0), otherwise the result is 0, since clipping could need
- * one vertex more than the array holds.
- * Returns 0 and leaves the array untouched when `vertices` is null or `count` lies outside
+ * returns the new vertex count: 0 when nothing lies above the horizon, otherwise 3 to
+ * `SPHERA_MAX_POLYGON_VERTICES`. New vertices lie exactly on z = 0; the winding is kept. A
+ * polygon of `SPHERA_MAX_POLYGON_VERTICES` vertices gives 0 unless it lies entirely above the
+ * horizon (z > 0), since clipping could need one vertex more than the array holds. Returns 0 and
+ * leaves the array untouched when `vertices` is null or `count` lies outside
  * 3..=`SPHERA_MAX_POLYGON_VERTICES`.
  * Safety: `vertices` must be null or point to an array of `SPHERA_MAX_POLYGON_VERTICES` writable
  * `SpheraVec3`s whose first `count` are initialised (the clipped polygon may have more vertices
  * than the input). */
 uint32_t sphera_polygon_clip(struct SpheraVec3 *vertices, uint32_t count);
 
-/* Prepares the solid angle sampler (Peters 2021) for the convex polygon `vertices[0..count]`:
- * positions relative to the shading point, not normalised, in either winding. The polygon need
- * not be clipped; clip it first with `sphera_polygon_clip` to sample only the part above the
- * horizon.
+/* Prepares the solid angle sampler (Peters 2021) for the convex polygon `vertices[0..count]`
+ * (not normalised). The polygon need not be clipped; clip it first with `sphera_polygon_clip` to
+ * sample only the part above the horizon.
  * Returns `false` also when the polygon subtends no solid angle, in particular when its vertices
  * lie exactly in a plane through the shading point (decided exactly, at any tilt). */
 bool sphera_solid_angle_polygon_prepare(struct SpheraSolidAnglePolygon *out,
                                         const struct SpheraVec3 *vertices, uint32_t count);
 
 /* Draws a direction uniformly distributed in the solid angle of `polygon` from the random
- * numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / solid angle per steradian.
- * No sample when `polygon` is null or empty. */
+ * numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / solid angle per steradian. */
 struct SpheraSample sphera_solid_angle_polygon_sample(const struct SpheraSolidAnglePolygon *polygon,
                                                       float u0, float u1);
 
@@ -416,12 +389,11 @@ struct SpheraSample sphera_solid_angle_polygon_sample(const struct SpheraSolidAn
  * included, and up to a slack outside it where rounding puts samples drawn next to an edge: the
  * smaller of 16 ulps, 1.9e-6 rad, and 2e-5 of the polygon's width, solid angle over perimeter),
  * 0 outside it. Every sample's pdf is this function's value at its direction, bit for bit.
- * Returns 0 when `polygon` is null or empty, and for a zero or non-finite `dir`. */
+ * Returns 0 also for a zero or non-finite `dir`. */
 float sphera_solid_angle_polygon_pdf(const struct SpheraSolidAnglePolygon *polygon,
                                      struct SpheraVec3 dir);
 
-/* The solid angle (in steradians) that the polygon subtends.
- * Returns 0 when `polygon` is null or empty. */
+/* The solid angle (in steradians) that the polygon subtends. */
 float sphera_solid_angle_polygon_solid_angle(const struct SpheraSolidAnglePolygon *polygon);
 
 /* Inverts `sphera_solid_angle_polygon_sample`: finds the random numbers `*u0`, `*u1` in [0, 1]
@@ -442,18 +414,15 @@ bool sphera_turk_polygon_prepare(struct SpheraTurkPolygon *out, const struct Sph
  * random numbers `u0`, `u1` in [0, 1). The pdf is distance² / (area · |cos θ|) per steradian,
  * with θ the angle between the direction and the polygon's normal, computed as
  * `sphera_turk_polygon_pdf` computes it: equal to it bit for bit wherever that finds the
- * direction inside the polygon.
- * No sample when `polygon` is null or empty. */
+ * direction inside the polygon. */
 struct SpheraSample sphera_turk_polygon_sample(const struct SpheraTurkPolygon *polygon, float u0,
                                                float u1);
 
 /* The density per steradian with which `sphera_turk_polygon_sample` produces the unit direction
- * `dir`; 0 when `dir` misses the polygon.
- * Returns 0 when `polygon` is null or empty. */
+ * `dir`; 0 when `dir` misses the polygon. */
 float sphera_turk_polygon_pdf(const struct SpheraTurkPolygon *polygon, struct SpheraVec3 dir);
 
-/* The area of the polygon (in squared units of the vertex coordinates).
- * Returns 0 when `polygon` is null or empty. */
+/* The area of the polygon (in squared units of the vertex coordinates). */
 float sphera_turk_polygon_area(const struct SpheraTurkPolygon *polygon);
 
 /* Prepares Arvo's 1995 baseline for the convex polygon `vertices[0..count]`: uniform sampling of
@@ -466,21 +435,18 @@ bool sphera_arvo_polygon_prepare(struct SpheraArvoPolygon *out, const struct Sph
 /* Draws a direction uniformly distributed in the solid angle of `polygon` with Arvo's method
  * from the random numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / solid angle per
  * steradian, as `sphera_arvo_polygon_pdf` gives it for the direction.
- * No sample when `polygon` is null or empty, and when Arvo's construction in f32 puts the
- * direction outside the polygon. A baseline: **unreliable for polygons below about 1e-2 rad
- * across**, where such draws are many (measured on quads at distance 1: 0.25% of the draws at
- * 2e-2 rad across, 7.6% at 2e-3, 20% at 2e-4) and its f32 solid angle is inaccurate
- * (docs/polygon-lights.md). */
+ * No sample also when Arvo's construction in f32 puts the direction outside the polygon. A
+ * baseline: **unreliable for polygons below about 1e-2 rad across**, where such draws are many
+ * (measured on quads at distance 1: 0.25% of the draws at 2e-2 rad across, 7.6% at 2e-3, 20% at
+ * 2e-4) and its f32 solid angle is inaccurate (docs/polygon-lights.md). */
 struct SpheraSample sphera_arvo_polygon_sample(const struct SpheraArvoPolygon *polygon, float u0,
                                                float u1);
 
 /* The density per steradian with which `sphera_arvo_polygon_sample` produces the unit direction
- * `dir`: 1 / solid angle inside the polygon, 0 outside it.
- * Returns 0 when `polygon` is null or empty. */
+ * `dir`: 1 / solid angle inside the polygon, 0 outside it. */
 float sphera_arvo_polygon_pdf(const struct SpheraArvoPolygon *polygon, struct SpheraVec3 dir);
 
-/* The solid angle (in steradians) that the polygon subtends, as Arvo's method computes it.
- * Returns 0 when `polygon` is null or empty. */
+/* The solid angle (in steradians) that the polygon subtends, as Arvo's method computes it. */
 float sphera_arvo_polygon_solid_angle(const struct SpheraArvoPolygon *polygon);
 
 /* Builds the orthonormal shading frame (tangent, bitangent, normal) around a unit `normal`.
@@ -501,81 +467,67 @@ struct SpheraVec3 sphera_frame_to_world(const struct SpheraFrame *frame, struct 
  * the error-free products are emulated, which is slower but as accurate). */
 bool sphera_has_hardware_fma(void);
 
-/* The library's version and build as a NUL-terminated string: the `version` of its `Cargo.toml`
- * (`MAJOR.MINOR.PATCH`), followed by `+fma` in a build that uses hardware fused multiply-add
- * (`sphera_has_hardware_fma()`), e.g. `"0.1.0"` or `"0.1.0+fma"`. The two builds give results
- * that differ in the last bits (the determinism table, `ffi-tests/determinism_table.txt`,
- * records the default build), so a cache of images or values computed with the library must key
- * on this whole string, not on the version alone. The pointer is to static storage: never free
- * it. */
+/* The library's version and build as a NUL-terminated string in static storage (never free it):
+ * `Cargo.toml`'s `MAJOR.MINOR.PATCH`, followed by `+fma` in a build that uses hardware fused
+ * multiply-add, e.g. `"0.1.0+fma"`. The two builds differ in the last bits, so a cache of
+ * results must key on this whole string. */
 const char *sphera_version(void);
 
-/* Whether this library serves a program compiled against the header of version `major.minor`;
- * call it as `sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR)` once at start-up
- * to catch a header and a library from different releases (the `SPHERA_VERSION_*` macros are the
- * header's version, `sphera_version()` the library's).
+/* Whether this library serves a program compiled against the header of version `major.minor`:
+ * call `sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR)` once at start-up.
  * Returns `true` when `major` equals the library's major version and either the major version is
- * 0 and `minor` equals the library's minor version (before 1.0 every minor release may change
- * the prepared structs and the functions), or the major version is 1 or more and `minor` is at
- * most the library's minor version (a later minor release only adds). The patch number is not
- * compared: patch releases change neither layouts nor contracts. `false` otherwise. */
+ * 0 and `minor` equals the library's minor version (before 1.0 a minor release may change the
+ * prepared structs and the functions), or the major version is 1 or more and `minor` is at most
+ * the library's (a later minor release only adds); the patch number is not compared. `false`
+ * otherwise. */
 bool sphera_check_version(uint32_t major, uint32_t minor);
 
-/* Prepares the bilinear warp of Hart et al. 2020 for the convex polygon `vertices[0..count]`
- * (positions relative to the shading point, not normalised, either winding): solid angle
- * sampling whose primary square is warped by the bilinear density through the cosine at the
- * directions of its four corners. It approximates cosine-weighted sampling (the pdf is exact for
- * the samples drawn, but not proportional to the cosine). The polygon is not clipped: samples
- * that land below the horizon are returned as "no sample" (pdf 0), and when the cosine is 0 at
- * all four corners the warp is uniform (plain solid angle sampling).
+/* Prepares the bilinear warp of Hart et al. 2020 for the convex polygon `vertices[0..count]`:
+ * solid angle sampling whose primary square is warped by the bilinear density through the cosine
+ * at its four corners, which approximates cosine-weighted sampling (the pdf is exact for the
+ * samples drawn). The polygon is not clipped: samples below the horizon are no sample, and when
+ * the cosine is 0 at all four corners the warp is uniform.
  * Returns `false` also when the polygon subtends no solid angle. */
 bool sphera_hart_bilinear_polygon_prepare(struct SpheraHartBilinearPolygon *out,
                                           const struct SpheraVec3 *vertices, uint32_t count);
 
 /* Draws a direction with the bilinear warp from the random numbers `u0`, `u1` in [0, 1). The pdf
  * is the warp's density divided by the solid angle, per steradian.
- * No sample when `polygon` is null or empty, and when the direction lies at or below the horizon
- * (z <= 0). */
+ * No sample also when the direction lies at or below the horizon (z <= 0). */
 struct SpheraSample sphera_hart_bilinear_polygon_sample(const struct SpheraHartBilinearPolygon *polygon,
                                                         float u0, float u1);
 
 /* The density per steradian with which `sphera_hart_bilinear_polygon_sample` produces the
  * direction `dir` (need not be normalised); 0 outside the polygon and at or below the horizon (z
- * <= 0).
- * Returns 0 when `polygon` is null or empty. */
+ * <= 0). */
 float sphera_hart_bilinear_polygon_pdf(const struct SpheraHartBilinearPolygon *polygon,
                                        struct SpheraVec3 dir);
 
-/* Prepares the biquadratic warp of Hart et al. 2020 for the convex polygon `vertices[0..count]`
- * (positions relative to the shading point, not normalised, either winding): solid angle
- * sampling whose primary square is warped by the biquadratic density through the cosine at the
- * directions of its 3×3 grid points {0, 1/2, 1}², written in Bernstein form with negative
- * control points clamped to 0 so that it is non-negative. It approximates cosine-weighted
- * sampling (the pdf is exact for the samples drawn, but not proportional to the cosine). The
- * polygon is not clipped: samples that land below the horizon are returned as "no sample" (pdf
- * 0), and when the cosine is 0 at all grid points the warp is uniform (plain solid angle
- * sampling).
+/* Prepares the biquadratic warp of Hart et al. 2020 for the convex polygon `vertices[0..count]`:
+ * solid angle sampling whose primary square is warped by the biquadratic density through the
+ * cosine at its 3×3 grid points {0, 1/2, 1}² (Bernstein form, negative control points clamped to
+ * 0), which approximates cosine-weighted sampling (the pdf is exact for the samples drawn). The
+ * polygon is not clipped: samples below the horizon are no sample, and when the cosine is 0 at
+ * all grid points the warp is uniform.
  * Returns `false` also when the polygon subtends no solid angle. */
 bool sphera_hart_biquadratic_polygon_prepare(struct SpheraHartBiquadraticPolygon *out,
                                              const struct SpheraVec3 *vertices, uint32_t count);
 
 /* Draws a direction with the biquadratic warp from the random numbers `u0`, `u1` in [0, 1). The
  * pdf is the warp's density divided by the solid angle, per steradian.
- * No sample when `polygon` is null or empty, and when the direction lies at or below the horizon
- * (z <= 0). */
+ * No sample also when the direction lies at or below the horizon (z <= 0). */
 struct SpheraSample sphera_hart_biquadratic_polygon_sample(const struct SpheraHartBiquadraticPolygon *polygon,
                                                            float u0, float u1);
 
 /* The density per steradian with which `sphera_hart_biquadratic_polygon_sample` produces the
  * direction `dir` (need not be normalised); 0 outside the polygon and at or below the horizon (z
- * <= 0).
- * Returns 0 when `polygon` is null or empty. */
+ * <= 0). */
 float sphera_hart_biquadratic_polygon_pdf(const struct SpheraHartBiquadraticPolygon *polygon,
                                           struct SpheraVec3 dir);
 
-/* Prepares clipped solid angle sampling for the convex polygon `vertices[0..count]` (positions
- * relative to the shading point, not normalised, either winding): the polygon is clipped to the
- * upper hemisphere (z >= 0) and the part above the horizon is sampled uniformly in solid angle.
+/* Prepares clipped solid angle sampling for the convex polygon `vertices[0..count]` (not
+ * normalised): the polygon is clipped to the upper hemisphere (z >= 0) and the part above the
+ * horizon is sampled uniformly in solid angle.
  * Returns `false` also when nothing of the polygon lies above the horizon, when a polygon of
  * `SPHERA_MAX_POLYGON_VERTICES` vertices needs clipping (the result could have one vertex more
  * than the limit), or when the clipped polygon subtends no solid angle. */
@@ -584,25 +536,21 @@ bool sphera_clipped_solid_angle_polygon_prepare(struct SpheraClippedSolidAnglePo
 
 /* Draws a direction uniformly distributed in the solid angle of the part of `polygon` above the
  * horizon from the random numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / (clipped
- * solid angle) per steradian, and the direction has z >= 0.
- * No sample when `polygon` is null or empty. */
+ * solid angle) per steradian, and the direction has z >= 0. */
 struct SpheraSample sphera_clipped_solid_angle_polygon_sample(const struct SpheraClippedSolidAnglePolygon *polygon,
                                                               float u0, float u1);
 
 /* The density per steradian with which `sphera_clipped_solid_angle_polygon_sample` produces the
  * unit direction `dir`: 1 / (clipped solid angle) inside the part of the polygon above the
- * horizon, 0 elsewhere.
- * Returns 0 when `polygon` is null or empty. */
+ * horizon, 0 elsewhere. */
 float sphera_clipped_solid_angle_polygon_pdf(const struct SpheraClippedSolidAnglePolygon *polygon,
                                              struct SpheraVec3 dir);
 
-/* The solid angle (in steradians) of the part of the polygon above the horizon.
- * Returns 0 when `polygon` is null or empty. */
+/* The solid angle (in steradians) of the part of the polygon above the horizon. */
 float sphera_clipped_solid_angle_polygon_solid_angle(const struct SpheraClippedSolidAnglePolygon *polygon);
 
 /* Prepares projected solid angle sampling (Peters 2021) for the convex polygon
- * `vertices[0..count]`: positions relative to the shading point in the local frame (z = normal),
- * not normalised, in either winding. The part below the horizon is clipped away. Polygons
+ * `vertices[0..count]` (not normalised). The part below the horizon is clipped away. Polygons
  * smaller than 1e-2 rad across, and nearly edge-on slivers, are sampled by warped solid angle
  * sampling instead (exact for its own pdf, which deviates from cos θ / Φ by less than 1e-4
  * relative).
@@ -628,8 +576,8 @@ bool sphera_projected_polygon_prepare_fast(struct SpheraProjectedSolidAnglePolyg
  * `dir.z / Φ` within 0.2 s² relative (2e-5; s is the polygon's angular size). Where a polygon
  * crosses the horizon, its clipped part is accurate to the f32 rounding of the horizon points: Φ
  * within about 6e-8 / w relative for a clipped part w radians wide (solid angle over perimeter).
- * No sample when `polygon` is null or empty, and for a draw that lands exactly on the horizon
- * (`cos θ = 0`, possible only for polygons that touch it). */
+ * No sample also for a draw that lands exactly on the horizon (`cos θ = 0`, possible only for
+ * polygons that touch it). */
 struct SpheraSample sphera_projected_polygon_sample(const struct SpheraProjectedSolidAnglePolygon *polygon,
                                                     float u0, float u1);
 
@@ -645,14 +593,12 @@ struct SpheraSample sphera_projected_polygon_sample_fast(const struct SpheraProj
  * `dir` (need not be normalised): `dir.z / Φ` inside the polygon, 0 outside it, at or below the
  * horizon, and for a zero or non-finite `dir`. For polygons under 1e-2 rad (the small-polygon
  * sampler) directions outside by at most the smaller of 16 ulps (1.9e-6 rad) and 2e-5 of the
- * polygon's width count as inside.
- * Returns 0 when `polygon` is null or empty. */
+ * polygon's width count as inside. */
 float sphera_projected_polygon_pdf(const struct SpheraProjectedSolidAnglePolygon *polygon,
                                    struct SpheraVec3 dir);
 
 /* The projected solid angle Φ = ∫ cos θ dω of the polygon's part above the horizon, in
- * steradians (the irradiance from a unit-radiance polygon). Returns 0 when `polygon` is null or
- * empty. */
+ * steradians (the irradiance from a unit-radiance polygon). */
 float sphera_projected_polygon_projected_solid_angle(const struct SpheraProjectedSolidAnglePolygon *polygon);
 
 /* Prepares Arvo's projected solid angle sampling (the baseline of Peters 2021: the same sectors,
@@ -664,10 +610,10 @@ bool sphera_arvo_projected_polygon_prepare(struct SpheraArvoProjectedPolygon *ou
 
 /* Draws a direction with density cos θ / Φ by Arvo's method from `u0`, `u1` in [0, 1); the pdf
  * is `dir.z / Φ`, as `sphera_arvo_projected_polygon_pdf` gives it for the direction. No sample
- * when `polygon` is null or empty, for a draw exactly on the horizon, and when the f32
- * construction puts the direction outside the polygon. A baseline: **unreliable for polygons
- * below about 2e-3 rad across**, where such draws are many (measured on quads at distance 1:
- * 0.06% of the draws at 2e-3 rad across, 5.9% at 2e-4, 79% at 2e-5). */
+ * also for a draw exactly on the horizon, and when the f32 construction puts the direction
+ * outside the polygon. A baseline: **unreliable for polygons below about 2e-3 rad across**,
+ * where such draws are many (measured on quads at distance 1: 0.06% of the draws at 2e-3 rad
+ * across, 5.9% at 2e-4, 79% at 2e-5). */
 struct SpheraSample sphera_arvo_projected_polygon_sample(const struct SpheraArvoProjectedPolygon *polygon,
                                                          float u0, float u1);
 
@@ -679,14 +625,12 @@ float sphera_arvo_projected_polygon_pdf(const struct SpheraArvoProjectedPolygon 
 /* The projected solid angle Φ in steradians (0 when `polygon` is null or empty). */
 float sphera_arvo_projected_polygon_projected_solid_angle(const struct SpheraArvoProjectedPolygon *polygon);
 
-/* Prepares the GGX microfacet BRDF (Trowbridge–Reitz distribution, height-correlated Smith
- * masking-shadowing, Schlick Fresnel) with perceptual roughness `roughness` (`α = roughness²`)
- * and Fresnel reflectance `f0` at normal incidence per RGB channel.
- * `roughness` is clamped to [0, 1] and `α` to the range from `SPHERA_GGX_MIN_ALPHA` to 1; each
- * channel of `f0` is clamped to [0, 1]. Returns `false` when `out` is null, and when `roughness`
- * or a channel of `f0` is NaN or infinite; the latter still writes a usable BRDF into `*out` (a
- * NaN roughness counts as the smoothest, `α = SPHERA_GGX_MIN_ALPHA`; NaN channels of `f0` count
- * as 0; infinities are clamped). */
+/* Prepares the GGX BRDF with perceptual roughness `roughness` (`α = roughness²`) and Fresnel
+ * reflectance `f0` at normal incidence per RGB channel. `roughness` is clamped to [0, 1] and `α`
+ * to [`SPHERA_GGX_MIN_ALPHA`, 1]; each channel of `f0` is clamped to [0, 1]. Returns `false`
+ * when `out` is null, and when `roughness` or a channel of `f0` is NaN or infinite; the latter
+ * still writes a usable BRDF (a NaN roughness counts as the smoothest, NaN channels of `f0` as
+ * 0, infinities are clamped). */
 bool sphera_ggx_brdf_prepare(struct SpheraGgxBrdf *out, float roughness, struct SpheraVec3 f0);
 
 /* The GGX BRDF `f(wo, wi) = F D G2 / (4 cos θo cos θi)` per RGB channel, without the cosine
@@ -772,14 +716,12 @@ float sphera_mis_clamped_optimal_contribution(float f, float p_this, float c_thi
 float sphera_mis_clamped_optimal_weight(float p_this, float c_this, float p_other, float c_other,
                                         float v);
 
-/* Looks up the LTC fitted to GGX `f(wo, ω) cos θ` (Fresnel 1; isotropic GGX with
- * height-correlated Smith masking-shadowing, `α = roughness²`) for the view direction `wo`
- * (local frame, towards the viewer, need not be normalised) and `roughness` in [0, 1] (clamped;
- * NaN counts as 0). The table is interpolated bilinearly in `√α = roughness` and `√(1 − cos θ)`,
- * and rotated to the view's azimuth.
+/* Looks up the LTC fitted to GGX `f(wo, ω) cos θ` (Fresnel 1, `α = roughness²`) for the view
+ * `wo` (towards the viewer, need not be normalised) and `roughness` in [0, 1] (clamped; NaN
+ * counts as 0), interpolated bilinearly in `roughness` and `√(1 − cos θ)` and rotated to the
+ * view's azimuth.
  * Returns `false` when `out` is null, or when `wo` is not finite, zero, or at or below the
- * horizon (`wo.z <= 0`); in the second case `*out` is set to the plain cosine (`M = I`, albedo
- * 1, fresnel 0). */
+ * horizon; in the second case `*out` is set to the plain cosine (`M = I`, albedo 1, fresnel 0). */
 bool sphera_ltc_ggx(struct SpheraLtc *out, struct SpheraVec3 wo, float roughness);
 
 /* The LTC's density per steradian at `dir` over the whole sphere (`dir` is normalised first):
@@ -787,36 +729,29 @@ bool sphera_ltc_ggx(struct SpheraLtc *out, struct SpheraVec3 wo, float roughness
  * `dir`. */
 float sphera_ltc_density(const struct SpheraLtc *ltc, struct SpheraVec3 dir);
 
-/* GGX's directional albedo with Schlick's Fresnel for the reflectance at normal incidence `f0`
- * (per channel, clamped to [0, 1], NaN counting as 0, as in `sphera_ggx_brdf_prepare`):
- * `f0 (albedo − fresnel) + fresnel`, from the fitted integrals; always finite. Unshadowed GGX
- * shading of a polygonal light with radiance `L` is
- * `L × sphera_ltc_specular_albedo(ltc, f0) × sphera_ltc_polygon_integral(polygon)`. A null `ltc`
- * gives (0, 0, 0). */
+/* GGX's directional albedo with Schlick's Fresnel for `f0` (per channel, clamped as in
+ * `sphera_ggx_brdf_prepare`): `f0 (albedo − fresnel) + fresnel`; always finite, (0, 0, 0) for a
+ * null `ltc`. Unshadowed GGX shading of a polygonal light of radiance `L` is
+ * `L × sphera_ltc_specular_albedo(ltc, f0) × sphera_ltc_polygon_integral(polygon)`. */
 struct SpheraVec3 sphera_ltc_specular_albedo(const struct SpheraLtc *ltc, struct SpheraVec3 f0);
 
-/* Prepares the LTC `*ltc` restricted to the convex polygon `vertices[0..count]` (positions
- * relative to the shading point in the local frame, either winding, 3 to
- * `SPHERA_MAX_POLYGON_VERTICES`): the polygon is transformed by `M⁻¹`, clipped to the horizon of
- * that space, and prepared for projected solid angle sampling.
- * Returns `false` when `out`, `ltc` or `vertices` is null, when `count` lies outside
- * 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is not finite, when the vertices are
- * collinear or the shading point lies in the polygon's plane, when nothing of the transformed
- * polygon lies above the horizon (the LTC has no mass in the polygon), and when the transformed
- * polygon has `SPHERA_MAX_POLYGON_VERTICES` vertices and crosses the horizon. Unless `out` is
- * null, a `false` return writes the empty polygon: no samples, pdf 0, integral 0. */
+/* Prepares the LTC `*ltc` restricted to the convex polygon `vertices[0..count]`: the polygon is
+ * transformed by `M⁻¹`, clipped to the horizon of that space, and prepared for projected solid
+ * angle sampling.
+ * Returns `false` also when `ltc` is null, when the vertices are collinear or the shading point
+ * lies in the polygon's plane, when nothing of the transformed polygon lies above the horizon
+ * (the LTC has no mass in the polygon), and when the transformed polygon has
+ * `SPHERA_MAX_POLYGON_VERTICES` vertices and crosses the horizon. */
 bool sphera_ltc_polygon_prepare(struct SpheraLtcPolygon *out, const struct SpheraLtc *ltc,
                                 const struct SpheraVec3 *vertices, uint32_t count);
 
-/* Draws a direction with density `D(ω) / ∫_P D` inside the polygon, from `u0`, `u1` in [0, 1).
- * The direction may lie at or below the horizon (`dir.z <= 0`) where the LTC puts a little mass;
- * the BRDF is zero there, so such a sample contributes nothing, and it must not be discarded and
- * redrawn (the pdf counts it). The pdf is `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit
- * (MIS weights rely on it). A draw that the f32 round trip through the LTC's matrix throws
- * outside the polygon (by more than the slack of `sphera_ltc_polygon_pdf`) is pulled towards the
- * polygon's inside until the pdf accepts it: a bias confined to a band of that rounding along
- * the boundary. No sample when `polygon` is null or empty, and where even the pulled draw is
- * rejected (a polygon smaller than the round trip's rounding). */
+/* Draws a direction with density `D(ω) / ∫_P D` inside the polygon. It may lie at or below the
+ * horizon, where the LTC puts a little mass and the BRDF is zero: such a sample contributes
+ * nothing and must not be redrawn (the pdf counts it). The pdf is
+ * `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit: a draw that the f32 round trip through the
+ * LTC's matrix throws outside the polygon (beyond the pdf's slack) is pulled inward until the
+ * pdf accepts it, a bias confined to a band of that rounding along the boundary. No sample also
+ * where even the pulled draw is rejected (a polygon smaller than that rounding). */
 struct SpheraSample sphera_ltc_polygon_sample(const struct SpheraLtcPolygon *polygon, float u0,
                                               float u1);
 
@@ -833,39 +768,29 @@ float sphera_ltc_polygon_pdf(const struct SpheraLtcPolygon *polygon, struct Sphe
 float sphera_ltc_polygon_integral(const struct SpheraLtcPolygon *polygon);
 
 /* Prepares a polygonal light at a shading point for both techniques of Peters 2021: technique 0
- * samples `cos θ` inside the polygon (projected solid angle sampling), technique 1 samples the
- * LTC fitted to GGX (`material->roughness`, view `wo`) inside the polygon. `vertices[0..count]`
- * are positions relative to the shading point in the local frame (z = normal), convex, either
- * winding, 3 to `SPHERA_MAX_POLYGON_VERTICES`; `wo` points towards the viewer (normalised here).
- * `heuristic` is one of `SPHERA_MIS_*` (any other number is an error: see below); `visibility`
- * is `v` of (clamped) optimal MIS, clamped to [0, 1], NaN meaning 1/2 (Peters' default).
- * Material albedos and F0 are clamped to [0, 1], roughness as in `sphera_ltc_ggx`;
- * `f0 = (0, 0, 0)` means a Lambertian surface without a GGX layer.
- * Returns `false` when `out`, `vertices` or `material` is null, when `heuristic` is not one of
- * `SPHERA_MIS_BALANCE`, `SPHERA_MIS_POWER`, `SPHERA_MIS_WEIGHTED_BALANCE`,
- * `SPHERA_MIS_CLAMPED_OPTIMAL` and `SPHERA_MIS_OPTIMAL` (0 to 4; no heuristic is chosen in its
- * place), when `count` lies outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when `wo` is not finite
- * or not above the horizon, and when neither technique can sample the polygon (non-finite or
- * collinear vertices, nothing above the horizon, the shading point in its plane). A technique
- * that cannot sample the polygon on its own gets zero weight and draws no samples. Unless `out`
- * is null, a `false` return writes a light whose samples are all "no sample" (pdf 0, zero
- * contributions). */
+ * samples `cos θ` inside the polygon (projected solid angle sampling), technique 1 the LTC
+ * fitted to GGX (`material->roughness`, view `wo`, normalised here). `heuristic` is one of
+ * `SPHERA_MIS_*` (0 to 4); `visibility` is `v` of (clamped) optimal MIS, clamped to [0, 1], NaN
+ * meaning 1/2 (Peters' default). Material albedos and F0 are clamped to [0, 1], roughness as in
+ * `sphera_ltc_ggx`; `f0 = (0, 0, 0)` means a Lambertian surface without a GGX layer.
+ * Returns `false` also when `material` is null, when `heuristic` is not a `SPHERA_MIS_*` value
+ * (no heuristic is chosen in its place), when `wo` is not finite or not above the horizon, and
+ * when neither technique can sample the polygon (collinear vertices, nothing above the horizon,
+ * the shading point in its plane). A technique that cannot sample the polygon on its own gets
+ * zero weight and draws no samples. A failed prepare writes a light whose samples are all no
+ * sample (zero contributions). */
 bool sphera_polygon_light_prepare(struct SpheraPolygonLight *out, const struct SpheraVec3 *vertices,
                                   uint32_t count, struct SpheraVec3 wo,
                                   const struct SpheraMaterial *material, uint32_t heuristic,
                                   float visibility);
 
 /* Draws a sample from technique `technique` (0: projected solid angle sampling, 1: the GGX LTC;
- * other values: no sample) with `u0`, `u1` in [0, 1) (clamped), weighted for the estimator that
- * takes one sample from each technique. The reflected radiance of a light of radiance `L` is
- * estimated by summing, over one sample of technique 0 and one of technique 1,
- * `L × (V(dir) × visible + unoccluded)`, with `V` the light's visibility along `dir` (trace a
- * shadow ray only when `visible` is non-zero). `unoccluded` is non-zero only for
- * `SPHERA_MIS_OPTIMAL`.
- * `pdf` is the density of the technique that drew the sample; 0 means no sample (both parts 0).
- * Directions at or below the horizon (the LTC's mass below the surface) come with their pdf and
- * zero contributions. All outputs are finite; `dir` is a unit vector. A null `light` gives no
- * sample. */
+ * other values: no sample), weighted for the estimator that sums, over one sample of technique 0
+ * and one of technique 1, `L × (V(dir) × visible + unoccluded)` for a light of radiance `L` with
+ * visibility `V` along `dir` (trace a shadow ray only when `visible` is non-zero; `unoccluded`
+ * is non-zero only for `SPHERA_MIS_OPTIMAL`). `pdf` is the density of the technique that drew
+ * the sample; no sample has both parts 0. Directions at or below the horizon come with their pdf
+ * and zero contributions. All outputs are finite. */
 struct SpheraLightSample sphera_polygon_light_sample(const struct SpheraPolygonLight *light,
                                                      uint32_t technique, float u0, float u1);
 
@@ -1042,13 +967,11 @@ struct SpheraVec3 sphera_sphere_light_shade_occluded_separable(const struct Sphe
 
 /* Prepares joint BRDF–light sampling of a sphere light (Section 6.1): the fitted SPTD restricted
  * to the light's cap, or uniform cap sampling when the pivoted cap is smaller than 1e-3 sr
- * (`sphera_sphere_light_sampler_uses_sptd` tells which). A cap that crosses the horizon is
- * sampled above it only (the SPTD over the cap's part above the horizon, through the
- * intersection of the two caps' images): no sample is wasted below the horizon. Combine with
- * `sphera_ggx_sample` by MIS. `center` is relative to the shading point, `wo` points to the
- * viewer, roughness as in `sphera_ggx_pivot_lookup`. Returns `false` (writing a sampler without
- * samples) for an empty cap (non-finite center, radius not finite and positive), a cap wholly
- * below the horizon, or a `wo` at or below the horizon; does nothing for null `out`. */
+ * (`sphera_sphere_light_sampler_uses_sptd` tells which); a cap that crosses the horizon is
+ * sampled above it only. Combine with `sphera_ggx_sample` by MIS. `center` is relative to the
+ * shading point, `wo` points to the viewer, roughness as in `sphera_ggx_pivot_lookup`. Returns
+ * `false` (writing a sampler without samples) for an empty cap (non-finite center, radius not
+ * finite and positive), a cap wholly below the horizon, or a `wo` at or below the horizon. */
 bool sphera_sphere_light_sampler_prepare(struct SpheraSphereLightSampler *out,
                                          struct SpheraVec3 center, float radius,
                                          struct SpheraVec3 wo, float roughness);
@@ -1183,10 +1106,10 @@ struct SpheraSg sphera_sg_beckmann_lobe_unnormalized(struct SpheraVec3 normal,
 
 /* The incoming radiance SG of a VSGL (Eq. 6–7): `lobe` holds `c_v` (amplitude), `ξ_v` and `λ_v`;
  * `mean` is the positional mean relative to the shading point, `variance` the positional
- * variance `σ_v² = E‖y − μ‖²` (the VSGL's; the planar Gaussian of Eq. 3 gets `σ_v²/2`, its
- * per-axis variance, where the paper writes `σ_v²`: README, issue 20). A variance of 0 (or NaN,
- * or negative) is a point light (sharpness clamped, inverse-square energy kept); a mean at the
- * shading point with variance 0, a non-finite mean or an infinite variance give the zero SG. */
+ * variance `σ_v² = E‖y − μ‖²` (the planar Gaussian of Eq. 3 gets `σ_v²/2`, its per-axis
+ * variance). A variance of 0 (or NaN, or negative) is a point light (sharpness clamped,
+ * inverse-square energy kept); a mean at the shading point with variance 0, a non-finite mean or
+ * an infinite variance give the zero SG. */
 struct SpheraSg sphera_sg_incoming_radiance(struct SpheraSg lobe, struct SpheraVec3 mean,
                                             float variance);
 

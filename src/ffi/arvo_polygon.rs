@@ -28,11 +28,10 @@ pub unsafe extern "C" fn sphera_arvo_polygon_prepare(
 /// method from the random numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / solid
 /// angle per steradian, as `sphera_arvo_polygon_pdf` gives it for the direction.
 ///
-/// No sample when `polygon` is null or empty, and when Arvo's construction in f32 puts the
-/// direction outside the polygon. A baseline: **unreliable for polygons below about 1e-2
-/// rad across**, where such draws are many (measured on quads at distance 1: 0.25% of the
-/// draws at 2e-2 rad across, 7.6% at 2e-3, 20% at 2e-4) and its f32 solid angle is
-/// inaccurate (docs/polygon-lights.md).
+/// No sample also when Arvo's construction in f32 puts the direction outside the polygon. A
+/// baseline: **unreliable for polygons below about 1e-2 rad across**, where such draws are
+/// many (measured on quads at distance 1: 0.25% of the draws at 2e-2 rad across, 7.6% at
+/// 2e-3, 20% at 2e-4) and its f32 solid angle is inaccurate (docs/polygon-lights.md).
 ///
 /// # Safety
 ///
@@ -54,8 +53,6 @@ pub unsafe extern "C" fn sphera_arvo_polygon_sample(
 /// The density per steradian with which `sphera_arvo_polygon_sample` produces the unit
 /// direction `dir`: 1 / solid angle inside the polygon, 0 outside it.
 ///
-/// Returns 0 when `polygon` is null or empty.
-///
 /// # Safety
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
@@ -70,8 +67,6 @@ pub unsafe extern "C" fn sphera_arvo_polygon_pdf(
 
 /// The solid angle (in steradians) that the polygon subtends, as Arvo's method computes
 /// it.
-///
-/// Returns 0 when `polygon` is null or empty.
 ///
 /// # Safety
 ///

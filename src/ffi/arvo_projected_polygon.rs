@@ -25,10 +25,10 @@ pub unsafe extern "C" fn sphera_arvo_projected_polygon_prepare(
 
 /// Draws a direction with density cos θ / Φ by Arvo's method from `u0`, `u1` in [0, 1); the
 /// pdf is `dir.z / Φ`, as `sphera_arvo_projected_polygon_pdf` gives it for the direction.
-/// No sample when `polygon` is null or empty, for a draw exactly on the horizon, and when
-/// the f32 construction puts the direction outside the polygon. A baseline: **unreliable
-/// for polygons below about 2e-3 rad across**, where such draws are many (measured on quads
-/// at distance 1: 0.06% of the draws at 2e-3 rad across, 5.9% at 2e-4, 79% at 2e-5).
+/// No sample also for a draw exactly on the horizon, and when the f32 construction puts the
+/// direction outside the polygon. A baseline: **unreliable for polygons below about 2e-3
+/// rad across**, where such draws are many (measured on quads at distance 1: 0.06% of the
+/// draws at 2e-3 rad across, 5.9% at 2e-4, 79% at 2e-5).
 ///
 /// # Safety
 ///

@@ -5,10 +5,9 @@ use super::types::{SpheraSample, SpheraVec3, with_ref};
 use crate::Sample;
 use crate::polygon::ClippedSolidAnglePolygon;
 
-/// Prepares clipped solid angle sampling for the convex polygon `vertices[0..count]`
-/// (positions relative to the shading point, not normalised, either winding): the
-/// polygon is clipped to the upper hemisphere (z >= 0) and the part above the horizon
-/// is sampled uniformly in solid angle.
+/// Prepares clipped solid angle sampling for the convex polygon `vertices[0..count]` (not
+/// normalised): the polygon is clipped to the upper hemisphere (z >= 0) and the part above
+/// the horizon is sampled uniformly in solid angle.
 ///
 /// Returns `false` also when nothing of the polygon lies above the horizon, when a polygon
 /// of `SPHERA_MAX_POLYGON_VERTICES` vertices needs clipping (the result could have one
@@ -31,8 +30,6 @@ pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_prepare(
 /// above the horizon from the random numbers `u0`, `u1` in [0, 1). The pdf of the sample is
 /// 1 / (clipped solid angle) per steradian, and the direction has z >= 0.
 ///
-/// No sample when `polygon` is null or empty.
-///
 /// # Safety
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
@@ -54,8 +51,6 @@ pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_sample(
 /// produces the unit direction `dir`: 1 / (clipped solid angle) inside the part of the
 /// polygon above the horizon, 0 elsewhere.
 ///
-/// Returns 0 when `polygon` is null or empty.
-///
 /// # Safety
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
@@ -69,8 +64,6 @@ pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_pdf(
 }
 
 /// The solid angle (in steradians) of the part of the polygon above the horizon.
-///
-/// Returns 0 when `polygon` is null or empty.
 ///
 /// # Safety
 ///

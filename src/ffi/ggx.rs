@@ -11,16 +11,12 @@ const _: () = assert!(SPHERA_GGX_MIN_ALPHA == crate::brdf::ggx::MIN_ALPHA);
 
 // ---- GGX ---------------------------------------------------------------------------
 
-/// Prepares the GGX microfacet BRDF (Trowbridge–Reitz distribution, height-correlated
-/// Smith masking-shadowing, Schlick Fresnel) with perceptual roughness `roughness`
-/// (`α = roughness²`) and Fresnel reflectance `f0` at normal incidence per RGB channel.
-///
-/// `roughness` is clamped to [0, 1] and `α` to the range from `SPHERA_GGX_MIN_ALPHA`
-/// to 1; each channel of `f0` is clamped to [0, 1]. Returns `false` when `out` is null,
-/// and when `roughness` or a channel of `f0` is NaN or infinite; the latter still
-/// writes a usable BRDF into `*out` (a NaN roughness counts as the smoothest,
-/// `α = SPHERA_GGX_MIN_ALPHA`; NaN channels of `f0` count as 0; infinities are
-/// clamped).
+/// Prepares the GGX BRDF with perceptual roughness `roughness` (`α = roughness²`) and
+/// Fresnel reflectance `f0` at normal incidence per RGB channel. `roughness` is clamped to
+/// [0, 1] and `α` to [`SPHERA_GGX_MIN_ALPHA`, 1]; each channel of `f0` is clamped to [0,
+/// 1]. Returns `false` when `out` is null, and when `roughness` or a channel of `f0` is NaN
+/// or infinite; the latter still writes a usable BRDF (a NaN roughness counts as the
+/// smoothest, NaN channels of `f0` as 0, infinities are clamped).
 ///
 /// # Safety
 ///

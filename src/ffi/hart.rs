@@ -6,13 +6,11 @@ use crate::Sample;
 use crate::polygon::baselines::{HartBilinearPolygon, HartBiquadraticPolygon};
 
 /// Prepares the bilinear warp of Hart et al. 2020 for the convex polygon
-/// `vertices[0..count]` (positions relative to the shading point, not normalised, either
-/// winding): solid angle sampling whose primary square is warped by the bilinear
-/// density through the cosine at the directions of its four corners. It approximates
-/// cosine-weighted sampling (the pdf is exact for the samples drawn, but not
-/// proportional to the cosine). The polygon is not clipped: samples that land below the
-/// horizon are returned as "no sample" (pdf 0), and when the cosine is 0 at all four
-/// corners the warp is uniform (plain solid angle sampling).
+/// `vertices[0..count]`: solid angle sampling whose primary square is warped by the
+/// bilinear density through the cosine at its four corners, which approximates
+/// cosine-weighted sampling (the pdf is exact for the samples drawn). The polygon is not
+/// clipped: samples below the horizon are no sample, and when the cosine is 0 at all four
+/// corners the warp is uniform.
 ///
 /// Returns `false` also when the polygon subtends no solid angle.
 ///
@@ -32,8 +30,7 @@ pub unsafe extern "C" fn sphera_hart_bilinear_polygon_prepare(
 /// Draws a direction with the bilinear warp from the random numbers `u0`, `u1` in [0, 1).
 /// The pdf is the warp's density divided by the solid angle, per steradian.
 ///
-/// No sample when `polygon` is null or empty, and when the direction lies at or below the
-/// horizon (z <= 0).
+/// No sample also when the direction lies at or below the horizon (z <= 0).
 ///
 /// # Safety
 ///
@@ -56,8 +53,6 @@ pub unsafe extern "C" fn sphera_hart_bilinear_polygon_sample(
 /// the direction `dir` (need not be normalised); 0 outside the polygon and at or below
 /// the horizon (z <= 0).
 ///
-/// Returns 0 when `polygon` is null or empty.
-///
 /// # Safety
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
@@ -71,14 +66,11 @@ pub unsafe extern "C" fn sphera_hart_bilinear_polygon_pdf(
 }
 
 /// Prepares the biquadratic warp of Hart et al. 2020 for the convex polygon
-/// `vertices[0..count]` (positions relative to the shading point, not normalised, either
-/// winding): solid angle sampling whose primary square is warped by the biquadratic
-/// density through the cosine at the directions of its 3×3 grid points {0, 1/2, 1}²,
-/// written in Bernstein form with negative control points clamped to 0 so that it is
-/// non-negative. It approximates cosine-weighted sampling (the pdf is exact for the
-/// samples drawn, but not proportional to the cosine). The polygon is not clipped:
-/// samples that land below the horizon are returned as "no sample" (pdf 0), and when the
-/// cosine is 0 at all grid points the warp is uniform (plain solid angle sampling).
+/// `vertices[0..count]`: solid angle sampling whose primary square is warped by the
+/// biquadratic density through the cosine at its 3×3 grid points {0, 1/2, 1}² (Bernstein
+/// form, negative control points clamped to 0), which approximates cosine-weighted sampling
+/// (the pdf is exact for the samples drawn). The polygon is not clipped: samples below the
+/// horizon are no sample, and when the cosine is 0 at all grid points the warp is uniform.
 ///
 /// Returns `false` also when the polygon subtends no solid angle.
 ///
@@ -98,8 +90,7 @@ pub unsafe extern "C" fn sphera_hart_biquadratic_polygon_prepare(
 /// Draws a direction with the biquadratic warp from the random numbers `u0`, `u1` in [0,
 /// 1). The pdf is the warp's density divided by the solid angle, per steradian.
 ///
-/// No sample when `polygon` is null or empty, and when the direction lies at or below the
-/// horizon (z <= 0).
+/// No sample also when the direction lies at or below the horizon (z <= 0).
 ///
 /// # Safety
 ///
@@ -121,8 +112,6 @@ pub unsafe extern "C" fn sphera_hart_biquadratic_polygon_sample(
 /// The density per steradian with which `sphera_hart_biquadratic_polygon_sample`
 /// produces the direction `dir` (need not be normalised); 0 outside the polygon and at
 /// or below the horizon (z <= 0).
-///
-/// Returns 0 when `polygon` is null or empty.
 ///
 /// # Safety
 ///

@@ -7,15 +7,14 @@ use crate::brdf::Ltc;
 use crate::polygon::LtcPolygon;
 use crate::{Sample, Vec3};
 
-/// Looks up the LTC fitted to GGX `f(wo, ω) cos θ` (Fresnel 1; isotropic GGX with
-/// height-correlated Smith masking-shadowing, `α = roughness²`) for the view direction
-/// `wo` (local frame, towards the viewer, need not be normalised) and `roughness` in
-/// [0, 1] (clamped; NaN counts as 0). The table is interpolated bilinearly in
-/// `√α = roughness` and `√(1 − cos θ)`, and rotated to the view's azimuth.
+/// Looks up the LTC fitted to GGX `f(wo, ω) cos θ` (Fresnel 1, `α = roughness²`) for the
+/// view `wo` (towards the viewer, need not be normalised) and `roughness` in [0, 1]
+/// (clamped; NaN counts as 0), interpolated bilinearly in `roughness` and `√(1 − cos θ)`
+/// and rotated to the view's azimuth.
 ///
-/// Returns `false` when `out` is null, or when `wo` is not finite, zero, or at or below
-/// the horizon (`wo.z <= 0`); in the second case `*out` is set to the plain cosine
-/// (`M = I`, albedo 1, fresnel 0).
+/// Returns `false` when `out` is null, or when `wo` is not finite, zero, or at or below the
+/// horizon; in the second case `*out` is set to the plain cosine (`M = I`, albedo 1,
+/// fresnel 0).
 ///
 /// # Safety
 ///
@@ -44,12 +43,10 @@ pub unsafe extern "C" fn sphera_ltc_density(ltc: *const Ltc, dir: SpheraVec3) ->
     unsafe { with_ref(ltc, 0.0, |ltc| ltc.density(dir.into())) }
 }
 
-/// GGX's directional albedo with Schlick's Fresnel for the reflectance at normal
-/// incidence `f0` (per channel, clamped to [0, 1], NaN counting as 0, as in
-/// `sphera_ggx_brdf_prepare`): `f0 (albedo − fresnel) + fresnel`, from the fitted
-/// integrals; always finite. Unshadowed GGX shading of a polygonal light with radiance `L`
-/// is `L × sphera_ltc_specular_albedo(ltc, f0) × sphera_ltc_polygon_integral(polygon)`.
-/// A null `ltc` gives (0, 0, 0).
+/// GGX's directional albedo with Schlick's Fresnel for `f0` (per channel, clamped as in
+/// `sphera_ggx_brdf_prepare`): `f0 (albedo − fresnel) + fresnel`; always finite, (0, 0, 0)
+/// for a null `ltc`. Unshadowed GGX shading of a polygonal light of radiance `L` is
+/// `L × sphera_ltc_specular_albedo(ltc, f0) × sphera_ltc_polygon_integral(polygon)`.
 ///
 /// # Safety
 ///
@@ -68,18 +65,14 @@ pub unsafe extern "C" fn sphera_ltc_specular_albedo(ltc: *const Ltc, f0: SpheraV
     }
 }
 
-/// Prepares the LTC `*ltc` restricted to the convex polygon `vertices[0..count]`
-/// (positions relative to the shading point in the local frame, either winding, 3 to
-/// `SPHERA_MAX_POLYGON_VERTICES`): the polygon is transformed by `M⁻¹`, clipped to the
-/// horizon of that space, and prepared for projected solid angle sampling.
+/// Prepares the LTC `*ltc` restricted to the convex polygon `vertices[0..count]`: the
+/// polygon is transformed by `M⁻¹`, clipped to the horizon of that space, and prepared for
+/// projected solid angle sampling.
 ///
-/// Returns `false` when `out`, `ltc` or `vertices` is null, when `count` lies outside
-/// 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is not finite, when the
-/// vertices are collinear or the shading point lies in the polygon's plane, when nothing
-/// of the transformed polygon lies above the horizon (the LTC has no mass in the
-/// polygon), and when the transformed polygon has `SPHERA_MAX_POLYGON_VERTICES`
-/// vertices and crosses the horizon. Unless `out` is null, a `false` return writes the
-/// empty polygon: no samples, pdf 0, integral 0.
+/// Returns `false` also when `ltc` is null, when the vertices are collinear or the shading
+/// point lies in the polygon's plane, when nothing of the transformed polygon lies above
+/// the horizon (the LTC has no mass in the polygon), and when the transformed polygon has
+/// `SPHERA_MAX_POLYGON_VERTICES` vertices and crosses the horizon.
 ///
 /// # Safety
 ///
@@ -108,16 +101,14 @@ pub unsafe extern "C" fn sphera_ltc_polygon_prepare(
     }
 }
 
-/// Draws a direction with density `D(ω) / ∫_P D` inside the polygon, from `u0`, `u1` in [0,
-/// 1). The direction may lie at or below the horizon (`dir.z <= 0`) where the LTC puts a
-/// little mass; the BRDF is zero there, so such a sample contributes nothing, and it must
-/// not be discarded and redrawn (the pdf counts it). The pdf is
-/// `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit (MIS weights rely on it). A draw that
-/// the f32 round trip through the LTC's matrix throws outside the polygon (by more than the
-/// slack of `sphera_ltc_polygon_pdf`) is pulled towards the polygon's inside until the pdf
-/// accepts it: a bias confined to a band of that rounding along the boundary. No sample
-/// when `polygon` is null or empty, and where even the pulled draw is rejected (a polygon
-/// smaller than the round trip's rounding).
+/// Draws a direction with density `D(ω) / ∫_P D` inside the polygon. It may lie at or below
+/// the horizon, where the LTC puts a little mass and the BRDF is zero: such a sample
+/// contributes nothing and must not be redrawn (the pdf counts it). The pdf is
+/// `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit: a draw that the f32 round trip
+/// through the LTC's matrix throws outside the polygon (beyond the pdf's slack) is pulled
+/// inward until the pdf accepts it, a bias confined to a band of that rounding along the
+/// boundary. No sample also where even the pulled draw is rejected (a polygon smaller than
+/// that rounding).
 ///
 /// # Safety
 ///

@@ -11,11 +11,10 @@ use crate::Sample;
 use crate::polygon::ProjectedSolidAnglePolygon;
 
 /// Prepares projected solid angle sampling (Peters 2021) for the convex polygon
-/// `vertices[0..count]`: positions relative to the shading point in the local frame
-/// (z = normal), not normalised, in either winding. The part below the horizon is
-/// clipped away. Polygons smaller than 1e-2 rad across, and nearly edge-on slivers,
-/// are sampled by warped solid angle sampling instead (exact for its own pdf, which
-/// deviates from cos θ / Φ by less than 1e-4 relative).
+/// `vertices[0..count]` (not normalised). The part below the horizon is clipped away.
+/// Polygons smaller than 1e-2 rad across, and nearly edge-on slivers, are sampled by warped
+/// solid angle sampling instead (exact for its own pdf, which deviates from cos θ / Φ by
+/// less than 1e-4 relative).
 ///
 /// Returns `false` also when `count` is `SPHERA_MAX_POLYGON_VERTICES` and the polygon
 /// crosses the horizon (a 9th vertex would be needed), when nothing of the polygon lies
@@ -70,8 +69,8 @@ pub unsafe extern "C" fn sphera_projected_polygon_prepare_fast(
 /// rounding of the horizon points: Φ within about 6e-8 / w relative for a clipped part w
 /// radians wide (solid angle over perimeter).
 ///
-/// No sample when `polygon` is null or empty, and for a draw that lands exactly on the
-/// horizon (`cos θ = 0`, possible only for polygons that touch it).
+/// No sample also for a draw that lands exactly on the horizon (`cos θ = 0`, possible only
+/// for polygons that touch it).
 ///
 /// # Safety
 ///
@@ -120,8 +119,6 @@ pub unsafe extern "C" fn sphera_projected_polygon_sample_fast(
 /// 1e-2 rad (the small-polygon sampler) directions outside by at most the smaller of 16
 /// ulps (1.9e-6 rad) and 2e-5 of the polygon's width count as inside.
 ///
-/// Returns 0 when `polygon` is null or empty.
-///
 /// # Safety
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
@@ -135,8 +132,7 @@ pub unsafe extern "C" fn sphera_projected_polygon_pdf(
 }
 
 /// The projected solid angle Φ = ∫ cos θ dω of the polygon's part above the horizon, in
-/// steradians (the irradiance from a unit-radiance polygon). Returns 0 when `polygon`
-/// is null or empty.
+/// steradians (the irradiance from a unit-radiance polygon).
 ///
 /// # Safety
 ///

@@ -157,13 +157,12 @@ pub extern "C" fn sphera_sg_beckmann_lobe_unnormalized(
     beckmann_lobe(normal.into(), toward_incoming.into(), alpha)
 }
 
-/// The incoming radiance SG of a VSGL (Eq. 6–7): `lobe` holds `c_v` (amplitude),
-/// `ξ_v` and `λ_v`; `mean` is the positional mean relative to the shading point,
-/// `variance` the positional variance `σ_v² = E‖y − μ‖²` (the VSGL's; the planar Gaussian
-/// of Eq. 3 gets `σ_v²/2`, its per-axis variance, where the paper writes `σ_v²`: README,
-/// issue 20). A variance of 0 (or NaN, or negative) is a point
-/// light (sharpness clamped, inverse-square energy kept); a mean at the shading point
-/// with variance 0, a non-finite mean or an infinite variance give the zero SG.
+/// The incoming radiance SG of a VSGL (Eq. 6–7): `lobe` holds `c_v` (amplitude), `ξ_v` and
+/// `λ_v`; `mean` is the positional mean relative to the shading point, `variance` the
+/// positional variance `σ_v² = E‖y − μ‖²` (the planar Gaussian of Eq. 3 gets `σ_v²/2`, its
+/// per-axis variance). A variance of 0 (or NaN, or negative) is a point light (sharpness
+/// clamped, inverse-square energy kept); a mean at the shading point with variance 0, a
+/// non-finite mean or an infinite variance give the zero SG.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_sg_incoming_radiance(lobe: Sg, mean: SpheraVec3, variance: f32) -> Sg {
     incoming_radiance(&lobe, mean.into(), variance)

@@ -6,9 +6,8 @@ use crate::Sample;
 use crate::polygon::SolidAnglePolygon;
 
 /// Prepares the solid angle sampler (Peters 2021) for the convex polygon
-/// `vertices[0..count]`: positions relative to the shading point, not normalised, in
-/// either winding. The polygon need not be clipped; clip it first with
-/// `sphera_polygon_clip` to sample only the part above the horizon.
+/// `vertices[0..count]` (not normalised). The polygon need not be clipped; clip it first
+/// with `sphera_polygon_clip` to sample only the part above the horizon.
 ///
 /// Returns `false` also when the polygon subtends no solid angle, in particular when its
 /// vertices lie exactly in a plane through the shading point (decided exactly, at any
@@ -29,8 +28,6 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_prepare(
 
 /// Draws a direction uniformly distributed in the solid angle of `polygon` from the random
 /// numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / solid angle per steradian.
-///
-/// No sample when `polygon` is null or empty.
 ///
 /// # Safety
 ///
@@ -56,7 +53,7 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_sample(
 /// solid angle over perimeter), 0 outside it. Every sample's pdf is this function's
 /// value at its direction, bit for bit.
 ///
-/// Returns 0 when `polygon` is null or empty, and for a zero or non-finite `dir`.
+/// Returns 0 also for a zero or non-finite `dir`.
 ///
 /// # Safety
 ///
@@ -71,8 +68,6 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_pdf(
 }
 
 /// The solid angle (in steradians) that the polygon subtends.
-///
-/// Returns 0 when `polygon` is null or empty.
 ///
 /// # Safety
 ///

@@ -130,15 +130,13 @@ pub unsafe extern "C" fn sphera_sphere_light_shade_occluded_separable(
 }
 
 /// Prepares joint BRDF–light sampling of a sphere light (Section 6.1): the fitted SPTD
-/// restricted to the light's cap, or uniform cap sampling when the pivoted cap is
-/// smaller than 1e-3 sr (`sphera_sphere_light_sampler_uses_sptd` tells which). A cap
-/// that crosses the horizon is sampled above it only (the SPTD over the cap's part above
-/// the horizon, through the intersection of the two caps' images): no sample is wasted
-/// below the horizon. Combine with `sphera_ggx_sample` by MIS. `center` is relative to
-/// the shading point, `wo` points to the viewer, roughness as in
+/// restricted to the light's cap, or uniform cap sampling when the pivoted cap is smaller
+/// than 1e-3 sr (`sphera_sphere_light_sampler_uses_sptd` tells which); a cap that crosses
+/// the horizon is sampled above it only. Combine with `sphera_ggx_sample` by MIS. `center`
+/// is relative to the shading point, `wo` points to the viewer, roughness as in
 /// `sphera_ggx_pivot_lookup`. Returns `false` (writing a sampler without samples) for an
 /// empty cap (non-finite center, radius not finite and positive), a cap wholly below the
-/// horizon, or a `wo` at or below the horizon; does nothing for null `out`.
+/// horizon, or a `wo` at or below the horizon.
 ///
 /// # Safety
 ///

@@ -31,8 +31,6 @@ pub unsafe extern "C" fn sphera_turk_polygon_prepare(
 /// `sphera_turk_polygon_pdf` computes it: equal to it bit for bit wherever that finds the
 /// direction inside the polygon.
 ///
-/// No sample when `polygon` is null or empty.
-///
 /// # Safety
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
@@ -53,8 +51,6 @@ pub unsafe extern "C" fn sphera_turk_polygon_sample(
 /// The density per steradian with which `sphera_turk_polygon_sample` produces the unit
 /// direction `dir`; 0 when `dir` misses the polygon.
 ///
-/// Returns 0 when `polygon` is null or empty.
-///
 /// # Safety
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
@@ -68,8 +64,6 @@ pub unsafe extern "C" fn sphera_turk_polygon_pdf(
 }
 
 /// The area of the polygon (in squared units of the vertex coordinates).
-///
-/// Returns 0 when `polygon` is null or empty.
 ///
 /// # Safety
 ///

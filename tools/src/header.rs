@@ -173,7 +173,8 @@ const WIDTH: usize = 100;
 /// The header in compact form: each doc comment (`/** … */`) reflowed to [`WIDTH`]
 /// columns as `/* … */` with its text from the first line, paragraphs on new lines
 /// without blank lines between them, and rustdoc's `# Safety` heading as a `Safety:`
-/// lead-in; a struct field's one-line comment after the field when both fit; a function's
+/// lead-in; a struct field's one-line comment after the field when both fit; no blank line
+/// between one macro and the next (their comments separate them); a function's
 /// parameters packed onto as few lines as fit.
 fn compact(header: &str) -> String {
     let lines: Vec<&str> = header.lines().collect();
@@ -220,6 +221,19 @@ fn compact(header: &str) -> String {
                 .expect("an unterminated declaration in the generated header");
             out.extend(pack_parameters(&lines[i..=end]));
             i = end + 1;
+            continue;
+        }
+        // A blank line between a macro and the next macro's comment goes.
+        let next_is_macro = || {
+            (i + 1..lines.len())
+                .find(|&j| !lines[j].starts_with("/*") && !lines[j].starts_with(" *"))
+                .is_some_and(|j| j > i + 1 && lines[j].starts_with("#define "))
+        };
+        if line.is_empty()
+            && out.last().is_some_and(|l| l.starts_with("#define "))
+            && next_is_macro()
+        {
+            i += 1;
             continue;
         }
         out.push(line.to_string());
@@ -418,11 +432,8 @@ pub fn version_macros(version: &str) -> String {
     };
     format!(
         "
-/*
- * The version of this header, from the library's Cargo.toml. The library says its own
- * with sphera_version(); check at start-up that the two agree with
- * sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR).
- */
+/* The header's version (the library's Cargo.toml); check at start-up that the library agrees
+ * with sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR). */
 #define SPHERA_VERSION_MAJOR {major}
 #define SPHERA_VERSION_MINOR {minor}
 #define SPHERA_VERSION_PATCH {patch}
