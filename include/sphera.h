@@ -6,10 +6,10 @@
  *     (sphera_polygon_light_*), and the baselines (Turk, Arvo, Hart et al.).
  *   - Sphere lights (Dupuy et al. 2017): caps (sphera_cap_*), SPTDs (sphera_sptd_*),
  *     joint BRDF-light sampling (sphera_sphere_light_sampler_*), real-time shading and
- *     specular occlusion (sphera_sphere_light_shade*), the pivot phase function
+ *     specular occlusion (sphera_sphere_light_shading_*), the pivot phase function
  *     (sphera_phase_*).
  *   - Virtual spherical Gaussian lights (Tokuyoshi 2016): SG and ASG algebra
- *     (sphera_sg_*, sphera_asg_*), VSGLs from VPLs (sphera_vsgl_*).
+ *     (sphera_sg_*, sphera_vmf_*, sphera_asg_*), VSGLs from VPLs (sphera_vsgl_*).
  *   - BRDFs: GGX and Lambert sampling (sphera_ggx_*, sphera_lambert_*); MIS weights
  *     (sphera_mis_*).
  * C ABI of the static library libsphera.a (link with: libsphera.a -lm).
@@ -159,9 +159,9 @@ typedef struct SpheraClippedSolidAnglePolygon {
 
 /* A convex polygon prepared for projected solid angle sampling: the first part of Algorithm 4
  * (ellipses paired with sectors, sector areas). */
-typedef struct SpheraProjectedSolidAnglePolygon {
+typedef struct SpheraProjectedPolygon {
   uint32_t opaque[414]; /* 1656 bytes, private: see the preamble */
-} SpheraProjectedSolidAnglePolygon;
+} SpheraProjectedPolygon;
 
 /* A convex polygon prepared for Arvo's projected solid angle sampling. */
 typedef struct SpheraArvoProjectedPolygon {
@@ -558,7 +558,7 @@ float sphera_clipped_solid_angle_polygon_solid_angle(const struct SpheraClippedS
  * horizon (a 9th vertex would be needed), when nothing of the polygon lies above the horizon,
  * and when its projected solid angle is zero (for example when the shading point lies in the
  * polygon's plane). */
-bool sphera_projected_polygon_prepare(struct SpheraProjectedSolidAnglePolygon *out,
+bool sphera_projected_polygon_prepare(struct SpheraProjectedPolygon *out,
                                       const struct SpheraVec3 *vertices, uint32_t count);
 
 /* `sphera_projected_polygon_prepare` for the biased variant: the sector areas use a fast `atan`
@@ -566,7 +566,7 @@ bool sphera_projected_polygon_prepare(struct SpheraProjectedSolidAnglePolygon *o
  * cancel), so the projected solid angle and with it every pdf is off by about that much.
  * **Biased.** Same contract as `sphera_projected_polygon_prepare`. Use with
  * `sphera_projected_polygon_sample_fast`. */
-bool sphera_projected_polygon_prepare_fast(struct SpheraProjectedSolidAnglePolygon *out,
+bool sphera_projected_polygon_prepare_fast(struct SpheraProjectedPolygon *out,
                                            const struct SpheraVec3 *vertices, uint32_t count);
 
 /* Draws a direction with density cos θ / Φ inside the polygon from the random numbers `u0`, `u1`
@@ -578,7 +578,7 @@ bool sphera_projected_polygon_prepare_fast(struct SpheraProjectedSolidAnglePolyg
  * within about 6e-8 / w relative for a clipped part w radians wide (solid angle over perimeter).
  * No sample also for a draw that lands exactly on the horizon (`cos θ = 0`, possible only for
  * polygons that touch it). */
-struct SpheraSample sphera_projected_polygon_sample(const struct SpheraProjectedSolidAnglePolygon *polygon,
+struct SpheraSample sphera_projected_polygon_sample(const struct SpheraProjectedPolygon *polygon,
                                                     float u0, float u1);
 
 /* The biased variant of `sphera_projected_polygon_sample`: no refinement iterations (the azimuth
@@ -586,7 +586,7 @@ struct SpheraSample sphera_projected_polygon_sample(const struct SpheraProjected
  * of the exact one). **Biased**: the returned pdf is that of the exact distribution,
  * `dir.z / Φ`, not the density with which this function actually places its samples; the bias is
  * the distance between the two. Same contract as `sphera_projected_polygon_sample`. */
-struct SpheraSample sphera_projected_polygon_sample_fast(const struct SpheraProjectedSolidAnglePolygon *polygon,
+struct SpheraSample sphera_projected_polygon_sample_fast(const struct SpheraProjectedPolygon *polygon,
                                                          float u0, float u1);
 
 /* The density per steradian with which `sphera_projected_polygon_sample` produces the direction
@@ -594,12 +594,12 @@ struct SpheraSample sphera_projected_polygon_sample_fast(const struct SpheraProj
  * horizon, and for a zero or non-finite `dir`. For polygons under 1e-2 rad (the small-polygon
  * sampler) directions outside by at most the smaller of 16 ulps (1.9e-6 rad) and 2e-5 of the
  * polygon's width count as inside. */
-float sphera_projected_polygon_pdf(const struct SpheraProjectedSolidAnglePolygon *polygon,
+float sphera_projected_polygon_pdf(const struct SpheraProjectedPolygon *polygon,
                                    struct SpheraVec3 dir);
 
 /* The projected solid angle Φ = ∫ cos θ dω of the polygon's part above the horizon, in
  * steradians (the irradiance from a unit-radiance polygon). */
-float sphera_projected_polygon_projected_solid_angle(const struct SpheraProjectedSolidAnglePolygon *polygon);
+float sphera_projected_polygon_projected_solid_angle(const struct SpheraProjectedPolygon *polygon);
 
 /* Prepares Arvo's projected solid angle sampling (the baseline of Peters 2021: the same sectors,
  * with the azimuth found by Newton's method on the sector's area function) for the convex
@@ -637,30 +637,31 @@ bool sphera_ggx_brdf_prepare(struct SpheraGgxBrdf *out, float roughness, struct 
  * `cos θi`. Symmetric in `wo` and `wi`.
  * Returns (0, 0, 0) when `brdf` is null, when either direction lies at or below the horizon (z
  * <= 0), is zero or is not finite. Never returns NaN or infinities. */
-struct SpheraVec3 sphera_ggx_eval(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo,
-                                  struct SpheraVec3 wi);
+struct SpheraVec3 sphera_ggx_brdf_eval(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo,
+                                       struct SpheraVec3 wi);
 
-/* `D G2 / (4 cos θo cos θi)`: `sphera_ggx_eval` with Fresnel F = 1 (a scalar).
- * Returns 0 in the cases where `sphera_ggx_eval` returns (0, 0, 0). */
-float sphera_ggx_eval_without_fresnel(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo,
-                                      struct SpheraVec3 wi);
+/* `D G2 / (4 cos θo cos θi)`: `sphera_ggx_brdf_eval` with Fresnel F = 1 (a scalar).
+ * Returns 0 in the cases where `sphera_ggx_brdf_eval` returns (0, 0, 0). */
+float sphera_ggx_brdf_eval_without_fresnel(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo,
+                                           struct SpheraVec3 wi);
 
 /* Draws `wi` by sampling the GGX distribution of normals visible from `wo` (Heitz 2018) and
  * reflecting `wo` on the sampled normal, from the random numbers `u0`, `u1` in [0, 1). The pdf
- * is `G1(wo) D(h) / (4 cos θo)` per steradian and equals `sphera_ggx_pdf(brdf, wo, dir)`.
+ * is `G1(wo) D(h) / (4 cos θo)` per steradian and equals `sphera_ggx_brdf_pdf(brdf, wo, dir)`.
  * No sample when `brdf` is null, when `wo` lies at or below the horizon, is zero or is not
  * finite, and when the reflected direction lies at or below the horizon. The last case happens
  * with positive probability (about half the draws for roughness 1 at normal incidence): the pdf
  * then integrates to less than 1 over the upper hemisphere. Count such a draw as a sample that
  * contributes 0; do not renormalise the pdf. */
-struct SpheraSample sphera_ggx_sample(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo,
-                                      float u0, float u1);
+struct SpheraSample sphera_ggx_brdf_sample(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo,
+                                           float u0, float u1);
 
-/* The density per steradian with which `sphera_ggx_sample` draws `wi` given `wo`:
+/* The density per steradian with which `sphera_ggx_brdf_sample` draws `wi` given `wo`:
  * `G1(wo) D(h) / (4 cos θo)` with `h` the half vector of `wo` and `wi`.
  * Returns 0 when `brdf` is null, and when either direction lies at or below the horizon, is zero
  * or is not finite. */
-float sphera_ggx_pdf(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo, struct SpheraVec3 wi);
+float sphera_ggx_brdf_pdf(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo,
+                          struct SpheraVec3 wi);
 
 /* The Lambertian BRDF `albedo / π` per RGB channel (each channel of `albedo` clamped to [0, 1],
  * NaN to 0), without the cosine `cos θi`.
@@ -722,12 +723,12 @@ float sphera_mis_clamped_optimal_weight(float p_this, float c_this, float p_othe
  * view's azimuth.
  * Returns `false` when `out` is null, or when `wo` is not finite, zero, or at or below the
  * horizon; in the second case `*out` is set to the plain cosine (`M = I`, albedo 1, fresnel 0). */
-bool sphera_ltc_ggx(struct SpheraLtc *out, struct SpheraVec3 wo, float roughness);
+bool sphera_ltc_prepare(struct SpheraLtc *out, struct SpheraVec3 wo, float roughness);
 
 /* The LTC's density per steradian at `dir` over the whole sphere (`dir` is normalised first):
  * `D(ω) = max(0, (M⁻¹ω)_z) det M⁻¹ / (π |M⁻¹ω|⁴)`. 0 for a null `ltc` and for zero or non-finite
  * `dir`. */
-float sphera_ltc_density(const struct SpheraLtc *ltc, struct SpheraVec3 dir);
+float sphera_ltc_eval(const struct SpheraLtc *ltc, struct SpheraVec3 dir);
 
 /* GGX's directional albedo with Schlick's Fresnel for `f0` (per channel, clamped as in
  * `sphera_ggx_brdf_prepare`): `f0 (albedo − fresnel) + fresnel`; always finite, (0, 0, 0) for a
@@ -772,7 +773,7 @@ float sphera_ltc_polygon_integral(const struct SpheraLtcPolygon *polygon);
  * fitted to GGX (`material->roughness`, view `wo`, normalised here). `heuristic` is one of
  * `SPHERA_MIS_*` (0 to 4); `visibility` is `v` of (clamped) optimal MIS, clamped to [0, 1], NaN
  * meaning 1/2 (Peters' default). Material albedos and F0 are clamped to [0, 1], roughness as in
- * `sphera_ltc_ggx`; `f0 = (0, 0, 0)` means a Lambertian surface without a GGX layer.
+ * `sphera_ltc_prepare`; `f0 = (0, 0, 0)` means a Lambertian surface without a GGX layer.
  * Returns `false` also when `material` is null, when `heuristic` is not a `SPHERA_MIS_*` value
  * (no heuristic is chosen in its place), when `wo` is not finite or not above the horizon, and
  * when neither technique can sample the polygon (collinear vertices, nothing above the horizon,
@@ -832,8 +833,8 @@ struct SpheraSample sphera_phase_henyey_greenstein_sample(struct SpheraVec3 wo, 
  * `sphera_phase_pivot`) restricted to a sphere light's cap (Section 6.2): sample and evaluate it
  * with `sphera_sptd_in_cap_*`. Returns `false` (writing a sampler without samples) for a zero or
  * non-finite `wo` or an empty cap; does nothing for a null `out`. */
-bool sphera_phase_pivot_in_cap_prepare(struct SpheraSptdInCap *out, struct SpheraVec3 wo, float g,
-                                       struct SpheraCap cap);
+bool sphera_sptd_in_cap_prepare_pivot_phase(struct SpheraSptdInCap *out, struct SpheraVec3 wo,
+                                            float g, struct SpheraCap cap);
 
 /* The cap of directions that a sphere of `radius` centered at `center` (relative to the shading
  * point) subtends: `sin θ = radius / |center|`, with `1 − cos θ` kept to full relative precision
@@ -879,7 +880,7 @@ float sphera_pivot_jacobian(struct SpheraVec3 dir, struct SpheraVec3 pivot);
 
 /* The image of a cap under the pivot transformation: a cap, which may be wider than a
  * hemisphere. Pivots as in `sphera_pivot_transform`. */
-struct SpheraCap sphera_pivot_cap(struct SpheraCap cap, struct SpheraVec3 pivot);
+struct SpheraCap sphera_pivot_transform_cap(struct SpheraCap cap, struct SpheraVec3 pivot);
 
 /* The SPTD density `D(ω) = D_std(g(ω)) J(ω)` (Eq. 8) at `dir` (normalised); 0 for a zero or
  * non-finite `dir`, and 0 when `base` is not `SPHERA_SPTD_UNIFORM` or
@@ -932,7 +933,7 @@ float sphera_sptd_in_cap_integral(const struct SpheraSptdInCap *prepared);
  * (local frame, normalised) and roughness `r = √α` (clamped to [0, 1], NaN as 0). Returns
  * `false` (writing a zero pivot and albedo) when `wo` is not finite, zero or at or below the
  * horizon; does nothing for a null `out`. */
-bool sphera_ggx_pivot_lookup(struct SpheraGgxPivot *out, struct SpheraVec3 wo, float roughness);
+bool sphera_ggx_pivot_from_view(struct SpheraGgxPivot *out, struct SpheraVec3 wo, float roughness);
 
 /* Prepares real-time GGX shading of sphere lights (BIASED: the fitted SPTD approximates GGX;
  * errors are tabulated in docs/sphere-lights.md) for the view `wo`, roughness `r = √α` and
@@ -945,33 +946,34 @@ bool sphera_sphere_light_shading_prepare(struct SpheraSphereLightShading *out, s
 /* `∫_{C ∩ H} f cos θ dω ≈ albedo_F Ω(g(C) ∩ g(H))/4π` per unit radiance (Eq. 19, BIASED), RGB,
  * for the cap `light` of a sphere light; multiply by its radiance. Zero for a null pointer or an
  * empty cap. */
-struct SpheraVec3 sphera_sphere_light_shade(const struct SpheraSphereLightShading *shading,
-                                            struct SpheraCap light);
+struct SpheraVec3 sphera_sphere_light_shading_eval(const struct SpheraSphereLightShading *shading,
+                                                   struct SpheraCap light);
 
 /* Specular occlusion with a bent cone `visibility` (Eq. 23, BIASED):
  * `albedo_F Ω(g(C) ∩ g(V))/4π`; the bent cone replaces the upper hemisphere (pass the hemisphere
  * `(0, 0, 1)`, `cos θ = 0`, for an unoccluded point). Zero for a null pointer. */
-struct SpheraVec3 sphera_sphere_light_shade_occluded(const struct SpheraSphereLightShading *shading,
-                                                     struct SpheraCap light,
-                                                     struct SpheraCap visibility);
+struct SpheraVec3 sphera_sphere_light_shading_eval_occluded(const struct SpheraSphereLightShading *shading,
+                                                            struct SpheraCap light,
+                                                            struct SpheraCap visibility);
 
 /* Specular occlusion by the separable approximation (Eq. 21–22, BIASED; the baseline of
- * `sphera_sphere_light_shade_occluded`): the unoccluded shading `sphera_sphere_light_shade`
- * times the fraction of the BRDF lobe inside the bent cone, `Ω(g(V) ∩ g(H)) / Ω(g(H))`. It lets
- * light through a cone that holds the lobe but not the light (shadow leaking). Equals
- * `sphera_sphere_light_shade` for the hemisphere `(0, 0, 1)`, `cos θ = 0`. Zero for a null
- * pointer. */
-struct SpheraVec3 sphera_sphere_light_shade_occluded_separable(const struct SpheraSphereLightShading *shading,
-                                                               struct SpheraCap light,
-                                                               struct SpheraCap visibility);
+ * `sphera_sphere_light_shading_eval_occluded`): the unoccluded shading
+ * `sphera_sphere_light_shading_eval` times the fraction of the BRDF lobe inside the bent cone,
+ * `Ω(g(V) ∩ g(H)) / Ω(g(H))`. It lets light through a cone that holds the lobe but not the light
+ * (shadow leaking). Equals `sphera_sphere_light_shading_eval` for the hemisphere `(0, 0, 1)`,
+ * `cos θ = 0`. Zero for a null pointer. */
+struct SpheraVec3 sphera_sphere_light_shading_eval_occluded_separable(const struct SpheraSphereLightShading *shading,
+                                                                      struct SpheraCap light,
+                                                                      struct SpheraCap visibility);
 
 /* Prepares joint BRDF–light sampling of a sphere light (Section 6.1): the fitted SPTD restricted
  * to the light's cap, or uniform cap sampling when the pivoted cap is smaller than 1e-3 sr
  * (`sphera_sphere_light_sampler_uses_sptd` tells which); a cap that crosses the horizon is
- * sampled above it only. Combine with `sphera_ggx_sample` by MIS. `center` is relative to the
- * shading point, `wo` points to the viewer, roughness as in `sphera_ggx_pivot_lookup`. Returns
- * `false` (writing a sampler without samples) for an empty cap (non-finite center, radius not
- * finite and positive), a cap wholly below the horizon, or a `wo` at or below the horizon. */
+ * sampled above it only. Combine with `sphera_ggx_brdf_sample` by MIS. `center` is relative to
+ * the shading point, `wo` points to the viewer, roughness as in `sphera_ggx_pivot_from_view`.
+ * Returns `false` (writing a sampler without samples) for an empty cap (non-finite center,
+ * radius not finite and positive), a cap wholly below the horizon, or a `wo` at or below the
+ * horizon. */
 bool sphera_sphere_light_sampler_prepare(struct SpheraSphereLightSampler *out,
                                          struct SpheraVec3 center, float radius,
                                          struct SpheraVec3 wo, float roughness);
@@ -993,8 +995,8 @@ bool sphera_sphere_light_sampler_uses_sptd(const struct SpheraSphereLightSampler
 /* Writes an empty accumulator whose sums are taken relative to `origin` (a non-finite origin
  * counts as the world origin; choose a point near the VPLs, such as the centre of the scene, to
  * keep the variance precise). `false` when `accumulator` is null. */
-bool sphera_vsgl_accumulator_init(struct SpheraVsglAccumulator *accumulator,
-                                  struct SpheraVec3 origin);
+bool sphera_vsgl_accumulator_new(struct SpheraVsglAccumulator *accumulator,
+                                 struct SpheraVec3 origin);
 
 /* Adds one VPL. `false` (nothing added) when a pointer is null or the VPL has a non-finite
  * position, normal, direction or roughness, a zero normal or direction, or sums that overflow;
@@ -1066,41 +1068,40 @@ float sphera_sg_inner_product(struct SpheraSg a, struct SpheraSg b);
 /* Draws a direction from the normalised SG (von Mises–Fisher distribution; the amplitude is
  * ignored). `u0`, `u1` in [0, 1) (clamped). pdf 0 (and `dir = (0, 0, 1)`) for the zero SG built
  * from an invalid axis. */
-struct SpheraSample sphera_sg_vmf_sample(struct SpheraSg sg, float u0, float u1);
+struct SpheraSample sphera_vmf_sample(struct SpheraSg sg, float u0, float u1);
 
-/* The density per steradian of `sphera_sg_vmf_sample` at `dir` (normalised; 0 for a zero or
+/* The density per steradian of `sphera_vmf_sample` at `dir` (normalised; 0 for a zero or
  * non-finite `dir`). */
-float sphera_sg_vmf_pdf(struct SpheraSg sg, struct SpheraVec3 dir);
+float sphera_vmf_pdf(struct SpheraSg sg, struct SpheraVec3 dir);
 
-/* Writes to `u[0]`, `u[1]` the random numbers that `sphera_sg_vmf_sample` maps to `dir` and
- * returns true; returns false (writing nothing) for a null `u`, a zero or non-finite `dir`, or
- * an SG with an invalid axis.
+/* Writes to `u[0]`, `u[1]` the random numbers that `sphera_vmf_sample` maps to `dir` and returns
+ * true; returns false (writing nothing) for a null `u`, a zero or non-finite `dir`, or an SG
+ * with an invalid axis.
  * Safety: `u` must be null or point to two writable `float`s. */
-bool sphera_sg_vmf_invert(struct SpheraSg sg, struct SpheraVec3 dir, float *u);
+bool sphera_vmf_invert(struct SpheraSg sg, struct SpheraVec3 dir, float *u);
 
 /* The diffuse lobe `G(ω, n, λ_d)/A(λ_d)` (Eq. 1 without `R_d`); the zero SG for a zero or
  * non-finite normal. */
-struct SpheraSg sphera_sg_diffuse_lobe(struct SpheraVec3 normal);
+struct SpheraSg sphera_sg_from_lambert(struct SpheraVec3 normal);
 
 /* The GGX specular lobe of Eq. 2 without `R_s`: axis `ξ_s = 2(ω'·n)n − ω'`, sharpness
  * `(2/α²)/(4|ξ_s·n|)` (`|ξ_s·n|` at least 1e-4, `α` clamped to [1e-3, 1]), amplitude `1/A(λ_s)`.
  * `toward_incoming` is `ω'`. The zero SG for invalid vectors. */
-struct SpheraSg sphera_sg_specular_lobe(struct SpheraVec3 normal, struct SpheraVec3 toward_incoming,
-                                        float alpha);
+struct SpheraSg sphera_sg_from_ggx(struct SpheraVec3 normal, struct SpheraVec3 toward_incoming,
+                                   float alpha);
 
-/* As `sphera_sg_specular_lobe` with amplitude 1 (the warped unnormalised NDF). */
-struct SpheraSg sphera_sg_specular_lobe_unnormalized(struct SpheraVec3 normal,
-                                                     struct SpheraVec3 toward_incoming,
-                                                     float alpha);
+/* As `sphera_sg_from_ggx` with amplitude 1 (the warped unnormalised NDF). */
+struct SpheraSg sphera_sg_from_ggx_unnormalized(struct SpheraVec3 normal,
+                                                struct SpheraVec3 toward_incoming, float alpha);
 
 /* The Beckmann specular lobe of Eq. 2 without `R_s`: the paper's `λ_h = 2/α²` holds for Beckmann
- * as for GGX, so this is `sphera_sg_specular_lobe` with the same `α` (Beckmann's roughness); the
+ * as for GGX, so this is `sphera_sg_from_ggx` with the same `α` (Beckmann's roughness); the
  * lobes differ in their error (docs/sg-error.md). */
-struct SpheraSg sphera_sg_beckmann_lobe(struct SpheraVec3 normal, struct SpheraVec3 toward_incoming,
+struct SpheraSg sphera_sg_from_beckmann(struct SpheraVec3 normal, struct SpheraVec3 toward_incoming,
                                         float alpha);
 
-/* As `sphera_sg_beckmann_lobe` with amplitude 1 (the warped unnormalised NDF). */
-struct SpheraSg sphera_sg_beckmann_lobe_unnormalized(struct SpheraVec3 normal,
+/* As `sphera_sg_from_beckmann` with amplitude 1 (the warped unnormalised NDF). */
+struct SpheraSg sphera_sg_from_beckmann_unnormalized(struct SpheraVec3 normal,
                                                      struct SpheraVec3 toward_incoming,
                                                      float alpha);
 
@@ -1141,13 +1142,13 @@ float sphera_sg_specular_shading_sg(struct SpheraSg incoming, struct SpheraVec3 
                                     float visibility);
 
 /* Beckmann specular shading: as `sphera_sg_specular_shading` with Beckmann's NDF and Smith term
- * (`α = roughness²` is Beckmann's `α`); the ASG fit is `sphera_asg_beckmann_lobe`. */
+ * (`α = roughness²` is Beckmann's `α`); the ASG fit is `sphera_asg_from_beckmann`. */
 float sphera_sg_beckmann_specular_shading(struct SpheraSg incoming, struct SpheraVec3 normal,
                                           struct SpheraVec3 view, float roughness, float f0,
                                           float visibility);
 
 /* As `sphera_sg_beckmann_specular_shading` with the isotropic SG fit of Eq. 2
- * (`sphera_sg_beckmann_lobe_unnormalized`) instead of the ASG. */
+ * (`sphera_sg_from_beckmann_unnormalized`) instead of the ASG. */
 float sphera_sg_beckmann_specular_shading_sg(struct SpheraSg incoming, struct SpheraVec3 normal,
                                              struct SpheraVec3 view, float roughness, float f0,
                                              float visibility);
@@ -1175,11 +1176,11 @@ float sphera_asg_convolve_sg(struct SpheraAsg asg, struct SpheraSg sg);
 /* The ASG fit (amplitude 1) of GGX's warped unnormalised NDF at a shading point: `z` the
  * reflection of `view` about `normal`, `η_x = 1/(4α²)` in the plane of incidence and
  * `η_y = 1/(4α² cos²θ_o)` across it. The zero ASG for invalid vectors. */
-struct SpheraAsg sphera_asg_ggx_lobe(struct SpheraVec3 normal, struct SpheraVec3 view, float alpha);
+struct SpheraAsg sphera_asg_from_ggx(struct SpheraVec3 normal, struct SpheraVec3 view, float alpha);
 
 /* The ASG fit (amplitude 1) of Beckmann's warped unnormalised NDF at a shading point: built from
- * the same `λ_h = 2/α²`, so the same ASG as `sphera_asg_ggx_lobe`. */
-struct SpheraAsg sphera_asg_beckmann_lobe(struct SpheraVec3 normal, struct SpheraVec3 view,
+ * the same `λ_h = 2/α²`, so the same ASG as `sphera_asg_from_ggx`. */
+struct SpheraAsg sphera_asg_from_beckmann(struct SpheraVec3 normal, struct SpheraVec3 view,
                                           float alpha);
 
 #ifdef __cplusplus

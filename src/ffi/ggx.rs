@@ -46,7 +46,7 @@ pub unsafe extern "C" fn sphera_ggx_brdf_prepare(
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_ggx_eval(
+pub unsafe extern "C" fn sphera_ggx_brdf_eval(
     brdf: *const GgxBrdf,
     wo: SpheraVec3,
     wi: SpheraVec3,
@@ -59,15 +59,15 @@ pub unsafe extern "C" fn sphera_ggx_eval(
     }
 }
 
-/// `D G2 / (4 cos θo cos θi)`: `sphera_ggx_eval` with Fresnel F = 1 (a scalar).
+/// `D G2 / (4 cos θo cos θi)`: `sphera_ggx_brdf_eval` with Fresnel F = 1 (a scalar).
 ///
-/// Returns 0 in the cases where `sphera_ggx_eval` returns (0, 0, 0).
+/// Returns 0 in the cases where `sphera_ggx_brdf_eval` returns (0, 0, 0).
 ///
 /// # Safety
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_ggx_eval_without_fresnel(
+pub unsafe extern "C" fn sphera_ggx_brdf_eval_without_fresnel(
     brdf: *const GgxBrdf,
     wo: SpheraVec3,
     wi: SpheraVec3,
@@ -83,7 +83,7 @@ pub unsafe extern "C" fn sphera_ggx_eval_without_fresnel(
 /// Draws `wi` by sampling the GGX distribution of normals visible from `wo` (Heitz 2018)
 /// and reflecting `wo` on the sampled normal, from the random numbers `u0`, `u1` in [0, 1).
 /// The pdf is `G1(wo) D(h) / (4 cos θo)` per steradian and equals
-/// `sphera_ggx_pdf(brdf, wo, dir)`.
+/// `sphera_ggx_brdf_pdf(brdf, wo, dir)`.
 ///
 /// No sample when `brdf` is null, when `wo` lies at or below the horizon, is zero or is not
 /// finite, and when the reflected direction lies at or below the horizon. The last case
@@ -95,7 +95,7 @@ pub unsafe extern "C" fn sphera_ggx_eval_without_fresnel(
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_ggx_sample(
+pub unsafe extern "C" fn sphera_ggx_brdf_sample(
     brdf: *const GgxBrdf,
     wo: SpheraVec3,
     u0: f32,
@@ -109,7 +109,7 @@ pub unsafe extern "C" fn sphera_ggx_sample(
     }
 }
 
-/// The density per steradian with which `sphera_ggx_sample` draws `wi` given `wo`:
+/// The density per steradian with which `sphera_ggx_brdf_sample` draws `wi` given `wo`:
 /// `G1(wo) D(h) / (4 cos θo)` with `h` the half vector of `wo` and `wi`.
 ///
 /// Returns 0 when `brdf` is null, and when either direction lies at or below the
@@ -119,7 +119,7 @@ pub unsafe extern "C" fn sphera_ggx_sample(
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_ggx_pdf(
+pub unsafe extern "C" fn sphera_ggx_brdf_pdf(
     brdf: *const GgxBrdf,
     wo: SpheraVec3,
     wi: SpheraVec3,

@@ -20,7 +20,7 @@ use crate::{Sample, Vec3};
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_ltc_ggx(out: *mut Ltc, wo: SpheraVec3, roughness: f32) -> bool {
+pub unsafe extern "C" fn sphera_ltc_prepare(out: *mut Ltc, wo: SpheraVec3, roughness: f32) -> bool {
     if out.is_null() {
         return false;
     }
@@ -38,7 +38,7 @@ pub unsafe extern "C" fn sphera_ltc_ggx(out: *mut Ltc, wo: SpheraVec3, roughness
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_ltc_density(ltc: *const Ltc, dir: SpheraVec3) -> f32 {
+pub unsafe extern "C" fn sphera_ltc_eval(ltc: *const Ltc, dir: SpheraVec3) -> f32 {
     // SAFETY: the caller guarantees that a non-null `ltc` points to a valid value.
     unsafe { with_ref(ltc, 0.0, |ltc| ltc.density(dir.into())) }
 }

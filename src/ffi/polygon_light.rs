@@ -34,7 +34,7 @@ const _: () = {
 /// technique 1 the LTC fitted to GGX (`material->roughness`, view `wo`, normalised here).
 /// `heuristic` is one of `SPHERA_MIS_*` (0 to 4); `visibility` is `v` of (clamped) optimal
 /// MIS, clamped to [0, 1], NaN meaning 1/2 (Peters' default). Material albedos and F0 are
-/// clamped to [0, 1], roughness as in `sphera_ltc_ggx`; `f0 = (0, 0, 0)` means a Lambertian
+/// clamped to [0, 1], roughness as in `sphera_ltc_prepare`; `f0 = (0, 0, 0)` means a Lambertian
 /// surface without a GGX layer.
 ///
 /// Returns `false` also when `material` is null, when `heuristic` is not a `SPHERA_MIS_*`

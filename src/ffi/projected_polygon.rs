@@ -8,7 +8,7 @@
 use super::polygon::prepare;
 use super::types::{SpheraSample, SpheraVec3, with_ref};
 use crate::Sample;
-use crate::polygon::ProjectedSolidAnglePolygon;
+use crate::polygon::ProjectedPolygon;
 
 /// Prepares projected solid angle sampling (Peters 2021) for the convex polygon
 /// `vertices[0..count]` (not normalised). The part below the horizon is clipped away.
@@ -26,12 +26,12 @@ use crate::polygon::ProjectedSolidAnglePolygon;
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_prepare(
-    out: *mut ProjectedSolidAnglePolygon,
+    out: *mut ProjectedPolygon,
     vertices: *const SpheraVec3,
     count: u32,
 ) -> bool {
     // SAFETY: forwarded from the caller.
-    unsafe { prepare(out, vertices, count, ProjectedSolidAnglePolygon::prepare) }
+    unsafe { prepare(out, vertices, count, ProjectedPolygon::prepare) }
 }
 
 /// `sphera_projected_polygon_prepare` for the biased variant: the sector areas use a
@@ -45,19 +45,12 @@ pub unsafe extern "C" fn sphera_projected_polygon_prepare(
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_prepare_fast(
-    out: *mut ProjectedSolidAnglePolygon,
+    out: *mut ProjectedPolygon,
     vertices: *const SpheraVec3,
     count: u32,
 ) -> bool {
     // SAFETY: forwarded from the caller.
-    unsafe {
-        prepare(
-            out,
-            vertices,
-            count,
-            ProjectedSolidAnglePolygon::prepare_fast_biased,
-        )
-    }
+    unsafe { prepare(out, vertices, count, ProjectedPolygon::prepare_fast_biased) }
 }
 
 /// Draws a direction with density cos θ / Φ inside the polygon from the random numbers
@@ -77,7 +70,7 @@ pub unsafe extern "C" fn sphera_projected_polygon_prepare_fast(
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_sample(
-    polygon: *const ProjectedSolidAnglePolygon,
+    polygon: *const ProjectedPolygon,
     u0: f32,
     u1: f32,
 ) -> SpheraSample {
@@ -101,7 +94,7 @@ pub unsafe extern "C" fn sphera_projected_polygon_sample(
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_sample_fast(
-    polygon: *const ProjectedSolidAnglePolygon,
+    polygon: *const ProjectedPolygon,
     u0: f32,
     u1: f32,
 ) -> SpheraSample {
@@ -124,7 +117,7 @@ pub unsafe extern "C" fn sphera_projected_polygon_sample_fast(
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_pdf(
-    polygon: *const ProjectedSolidAnglePolygon,
+    polygon: *const ProjectedPolygon,
     dir: SpheraVec3,
 ) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
@@ -139,7 +132,7 @@ pub unsafe extern "C" fn sphera_projected_polygon_pdf(
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_projected_solid_angle(
-    polygon: *const ProjectedSolidAnglePolygon,
+    polygon: *const ProjectedPolygon,
 ) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
     unsafe { with_ref(polygon, 0.0, |polygon| polygon.projected_solid_angle()) }

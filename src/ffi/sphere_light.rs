@@ -14,7 +14,7 @@ use crate::sphere::{Cap, GgxPivot, SphereLightSampler, SphereLightShading};
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_ggx_pivot_lookup(
+pub unsafe extern "C" fn sphera_ggx_pivot_from_view(
     out: *mut GgxPivot,
     wo: SpheraVec3,
     roughness: f32,
@@ -73,7 +73,7 @@ pub unsafe extern "C" fn sphera_sphere_light_shading_prepare(
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_sphere_light_shade(
+pub unsafe extern "C" fn sphera_sphere_light_shading_eval(
     shading: *const SphereLightShading,
     light: Cap,
 ) -> SpheraVec3 {
@@ -90,7 +90,7 @@ pub unsafe extern "C" fn sphera_sphere_light_shade(
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_sphere_light_shade_occluded(
+pub unsafe extern "C" fn sphera_sphere_light_shading_eval_occluded(
     shading: *const SphereLightShading,
     light: Cap,
     visibility: Cap,
@@ -105,17 +105,17 @@ pub unsafe extern "C" fn sphera_sphere_light_shade_occluded(
 }
 
 /// Specular occlusion by the separable approximation (Eq. 21–22, BIASED; the baseline
-/// of `sphera_sphere_light_shade_occluded`): the unoccluded shading
-/// `sphera_sphere_light_shade` times the fraction of the BRDF lobe inside the bent cone,
+/// of `sphera_sphere_light_shading_eval_occluded`): the unoccluded shading
+/// `sphera_sphere_light_shading_eval` times the fraction of the BRDF lobe inside the bent cone,
 /// `Ω(g(V) ∩ g(H)) / Ω(g(H))`. It lets light through a cone that holds the lobe but not
-/// the light (shadow leaking). Equals `sphera_sphere_light_shade` for the hemisphere
+/// the light (shadow leaking). Equals `sphera_sphere_light_shading_eval` for the hemisphere
 /// `(0, 0, 1)`, `cos θ = 0`. Zero for a null pointer.
 ///
 /// # Safety
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_sphere_light_shade_occluded_separable(
+pub unsafe extern "C" fn sphera_sphere_light_shading_eval_occluded_separable(
     shading: *const SphereLightShading,
     light: Cap,
     visibility: Cap,
@@ -132,9 +132,9 @@ pub unsafe extern "C" fn sphera_sphere_light_shade_occluded_separable(
 /// Prepares joint BRDF–light sampling of a sphere light (Section 6.1): the fitted SPTD
 /// restricted to the light's cap, or uniform cap sampling when the pivoted cap is smaller
 /// than 1e-3 sr (`sphera_sphere_light_sampler_uses_sptd` tells which); a cap that crosses
-/// the horizon is sampled above it only. Combine with `sphera_ggx_sample` by MIS. `center`
+/// the horizon is sampled above it only. Combine with `sphera_ggx_brdf_sample` by MIS. `center`
 /// is relative to the shading point, `wo` points to the viewer, roughness as in
-/// `sphera_ggx_pivot_lookup`. Returns `false` (writing a sampler without samples) for an
+/// `sphera_ggx_pivot_from_view`. Returns `false` (writing a sampler without samples) for an
 /// empty cap (non-finite center, radius not finite and positive), a cap wholly below the
 /// horizon, or a `wo` at or below the horizon.
 ///

@@ -20,7 +20,7 @@ use crate::vsgl::{Vpl, Vsgl, VsglAccumulator, VsglPyramid, VsglTexel, fis_select
 ///
 /// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_vsgl_accumulator_init(
+pub unsafe extern "C" fn sphera_vsgl_accumulator_new(
     accumulator: *mut VsglAccumulator,
     origin: SpheraVec3,
 ) -> bool {

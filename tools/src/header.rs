@@ -66,7 +66,7 @@ fn opaque_types() -> Vec<Opaque> {
     };
     use sphera::polygon::light::PolygonLight;
     use sphera::polygon::{
-        ClippedSolidAnglePolygon, LtcPolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
+        ClippedSolidAnglePolygon, LtcPolygon, ProjectedPolygon, SolidAnglePolygon,
     };
     use sphera::sphere::light::{SphereLightSampler, SphereLightShading};
     use sphera::sphere::sptd::SptdInCap;
@@ -77,7 +77,7 @@ fn opaque_types() -> Vec<Opaque> {
         opaque::<HartBilinearPolygon>("SpheraHartBilinearPolygon"),
         opaque::<HartBiquadraticPolygon>("SpheraHartBiquadraticPolygon"),
         opaque::<ClippedSolidAnglePolygon>("SpheraClippedSolidAnglePolygon"),
-        opaque::<ProjectedSolidAnglePolygon>("SpheraProjectedSolidAnglePolygon"),
+        opaque::<ProjectedPolygon>("SpheraProjectedPolygon"),
         opaque::<ArvoProjectedPolygon>("SpheraArvoProjectedPolygon"),
         opaque::<GgxBrdf>("SpheraGgxBrdf"),
         opaque::<Ltc>("SpheraLtc"),

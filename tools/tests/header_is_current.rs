@@ -69,7 +69,7 @@ fn every_name_in_the_header_is_prefixed() {
         "a rustdoc link is left in the header"
     );
     assert!(
-        header.contains("typedef struct SpheraProjectedSolidAnglePolygon {\n  uint32_t opaque["),
+        header.contains("typedef struct SpheraProjectedPolygon {\n  uint32_t opaque["),
         "prepared values are not opaque"
     );
 }
