@@ -25,7 +25,7 @@ int main(void) {
   const int rounds = 200000;
   SpheraFrame frame;
   SpheraVec3 local[4];
-  SpheraProjectedSolidAnglePolygon light;
+  SpheraProjectedPolygon light;
   double sum = 0.0, sum_squares = 0.0;
   uint32_t rng = 1u;
   int i;

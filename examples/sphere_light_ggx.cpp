@@ -76,12 +76,12 @@ int main() {
     // Light sample, drawn jointly for the light and the BRDF.
     SpheraSample s = sphera_sphere_light_sampler_sample(&light, rng.next(), rng.next());
     if (s.pdf > 0.0f)
-      accumulate(x, sphera_ggx_eval(&brdf, wo, s.dir), radiance, s.dir.z, s.pdf,
-                 sphera_mis_balance(s.pdf, sphera_ggx_pdf(&brdf, wo, s.dir)));
+      accumulate(x, sphera_ggx_brdf_eval(&brdf, wo, s.dir), radiance, s.dir.z, s.pdf,
+                 sphera_mis_balance(s.pdf, sphera_ggx_brdf_pdf(&brdf, wo, s.dir)));
     // BRDF sample; it counts where it hits the light.
-    SpheraSample b = sphera_ggx_sample(&brdf, wo, rng.next(), rng.next());
+    SpheraSample b = sphera_ggx_brdf_sample(&brdf, wo, rng.next(), rng.next());
     if (b.pdf > 0.0f && sphera_cap_contains(cap, b.dir))
-      accumulate(x, sphera_ggx_eval(&brdf, wo, b.dir), radiance, b.dir.z, b.pdf,
+      accumulate(x, sphera_ggx_brdf_eval(&brdf, wo, b.dir), radiance, b.dir.z, b.pdf,
                  sphera_mis_balance(b.pdf, sphera_sphere_light_sampler_pdf(&light, b.dir)));
     mis.add(x);
   }
@@ -90,7 +90,7 @@ int main() {
     double x[3] = {0.0, 0.0, 0.0};
     SpheraSample u = sphera_cap_sample_uniform(cap, rng.next(), rng.next());
     if (u.pdf > 0.0f && u.dir.z > 0.0f)
-      accumulate(x, sphera_ggx_eval(&brdf, wo, u.dir), radiance, u.dir.z, u.pdf, 1.0f);
+      accumulate(x, sphera_ggx_brdf_eval(&brdf, wo, u.dir), radiance, u.dir.z, u.pdf, 1.0f);
     uniform.add(x);
   }
   mis.print("mis");
@@ -98,7 +98,7 @@ int main() {
   // The real-time approximation (biased): one call per light, no samples.
   SpheraSphereLightShading shading;
   sphera_sphere_light_shading_prepare(&shading, wo, roughness, f0);
-  const SpheraVec3 shaded = sphera_sphere_light_shade(&shading, cap);
+  const SpheraVec3 shaded = sphera_sphere_light_shading_eval(&shading, cap);
   std::printf("real-time %.6f %.6f %.6f\n", radiance * shaded.x, radiance * shaded.y,
               radiance * shaded.z);
   return 0;

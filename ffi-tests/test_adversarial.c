@@ -338,10 +338,10 @@ static void check_polygon(const Polygon *p, uint32_t count, int full) {
                sphera_clipped_solid_angle_polygon_sample,
                sphera_clipped_solid_angle_polygon_pdf,
                sphera_clipped_solid_angle_polygon_solid_angle);
-  CHECK_FAMILY(SpheraProjectedSolidAnglePolygon, sphera_projected_polygon_prepare,
+  CHECK_FAMILY(SpheraProjectedPolygon, sphera_projected_polygon_prepare,
                sphera_projected_polygon_sample, sphera_projected_polygon_pdf,
                sphera_projected_polygon_projected_solid_angle);
-  CHECK_FAMILY(SpheraProjectedSolidAnglePolygon, sphera_projected_polygon_prepare_fast,
+  CHECK_FAMILY(SpheraProjectedPolygon, sphera_projected_polygon_prepare_fast,
                sphera_projected_polygon_sample_fast, sphera_projected_polygon_pdf,
                sphera_projected_polygon_projected_solid_angle);
   CHECK_FAMILY(SpheraArvoProjectedPolygon, sphera_arvo_projected_polygon_prepare,
@@ -507,9 +507,9 @@ static void brdf_suite(void) {
     EXPECT(!sphera_ggx_brdf_prepare(NULL, 0.5f, vec3(1, 1, 1)));
     for (d = 0; d < DIRECTION_COUNT; d++) {
       for (e = 0; e < DIRECTION_COUNT; e++) {
-        SpheraVec3 f = sphera_ggx_eval(&ggx, directions[d], directions[e]);
-        float g = sphera_ggx_eval_without_fresnel(&ggx, directions[d], directions[e]);
-        float p = sphera_ggx_pdf(&ggx, directions[d], directions[e]);
+        SpheraVec3 f = sphera_ggx_brdf_eval(&ggx, directions[d], directions[e]);
+        float g = sphera_ggx_brdf_eval_without_fresnel(&ggx, directions[d], directions[e]);
+        float p = sphera_ggx_brdf_pdf(&ggx, directions[d], directions[e]);
         SpheraVec3 l = sphera_lambert_eval(special_vec(r + e), directions[d], directions[e]);
         calls += 4;
         EXPECT(finite3(f) && f.x >= 0.0f && f.y >= 0.0f && f.z >= 0.0f);
@@ -521,15 +521,15 @@ static void brdf_suite(void) {
         }
       }
       for (k = 0; k < U_VALUES * U_VALUES; k += 7) {
-        SpheraSample s = sphera_ggx_sample(&ggx, directions[d], us[k / U_VALUES], us[k % U_VALUES]);
+        SpheraSample s = sphera_ggx_brdf_sample(&ggx, directions[d], us[k / U_VALUES], us[k % U_VALUES]);
         calls++;
         expect_sample(s);
         if (!(directions[d].z > 0.0f) || !finite3(directions[d])) EXPECT(is_no_sample(s));
         if (s.pdf > 0.0f) EXPECT(s.dir.z > 0.0f);
       }
-      EXPECT(is_no_sample(sphera_ggx_sample(NULL, directions[d], 0.5f, 0.5f)));
-      EXPECT(sphera_ggx_pdf(NULL, directions[d], directions[0]) == 0.0f);
-      EXPECT(sphera_ggx_eval_without_fresnel(NULL, directions[d], directions[0]) == 0.0f);
+      EXPECT(is_no_sample(sphera_ggx_brdf_sample(NULL, directions[d], 0.5f, 0.5f)));
+      EXPECT(sphera_ggx_brdf_pdf(NULL, directions[d], directions[0]) == 0.0f);
+      EXPECT(sphera_ggx_brdf_eval_without_fresnel(NULL, directions[d], directions[0]) == 0.0f);
       expect_density(sphera_lambert_pdf(directions[d]));
     }
   }
@@ -609,18 +609,18 @@ static void frame_and_ltc_suite(void) {
       SpheraVec3 albedo;
       int ok, e;
       memset(&ltc, 0xff, sizeof ltc);
-      ok = sphera_ltc_ggx(&ltc, wo, specials[r]);
+      ok = sphera_ltc_prepare(&ltc, wo, specials[r]);
       calls++;
       expect_words_finite(&ltc, sizeof ltc);
       if (!finite3(wo) || !(wo.z > 0.0f)) EXPECT(!ok);
       albedo = sphera_ltc_specular_albedo(&ltc, special_vec(r));
       EXPECT(finite3(albedo));
-      for (e = 0; e < DIRECTION_COUNT; e++) expect_density(sphera_ltc_density(&ltc, directions[e]));
+      for (e = 0; e < DIRECTION_COUNT; e++) expect_density(sphera_ltc_eval(&ltc, directions[e]));
       calls += DIRECTION_COUNT + 1;
     }
   }
-  EXPECT(!sphera_ltc_ggx(NULL, vec3(0, 0, 1), 0.5f));
-  EXPECT(sphera_ltc_density(NULL, vec3(0, 0, 1)) == 0.0f);
+  EXPECT(!sphera_ltc_prepare(NULL, vec3(0, 0, 1), 0.5f));
+  EXPECT(sphera_ltc_eval(NULL, vec3(0, 0, 1)) == 0.0f);
   {
     SpheraVec3 zero = sphera_ltc_specular_albedo(NULL, vec3(1, 1, 1));
     EXPECT(zero.x == 0.0f && zero.y == 0.0f && zero.z == 0.0f);
@@ -781,7 +781,7 @@ static void sphere_suite(void) {
           if (!finite3(directions[j])) EXPECT(vec3_equal(g, vec3(0, 0, 1)) && jacobian == 0.0f);
         }
         for (j = 0; j < cap_count; j++) {
-          SpheraCap image = sphera_pivot_cap(caps[j], pivot);
+          SpheraCap image = sphera_pivot_transform_cap(caps[j], pivot);
           calls++;
           EXPECT(cap_is_valid(image));
         }
@@ -900,16 +900,16 @@ static void sptd_suite(void) {
 
   /* Null pointers. */
   EXPECT(!sphera_sptd_in_cap_prepare(NULL, pivots[0], 0, directions[0], hard_caps[0]));
-  EXPECT(!sphera_phase_pivot_in_cap_prepare(NULL, directions[0], 0.5f, hard_caps[0]));
+  EXPECT(!sphera_sptd_in_cap_prepare_pivot_phase(NULL, directions[0], 0.5f, hard_caps[0]));
   EXPECT(sphera_sptd_in_cap_integral(NULL) == 0.0f);
   EXPECT(sphera_sptd_in_cap_pdf(NULL, directions[0]) == 0.0f);
   EXPECT(is_no_sample(sphera_sptd_in_cap_sample(NULL, 0.5f, 0.5f)));
-  EXPECT(!sphera_ggx_pivot_lookup(NULL, directions[1], 0.5f));
+  EXPECT(!sphera_ggx_pivot_from_view(NULL, directions[1], 0.5f));
   EXPECT(!sphera_sphere_light_shading_prepare(NULL, directions[1], 0.5f, vec3(1, 1, 1)));
-  EXPECT(vec3_equal(sphera_sphere_light_shade(NULL, hard_caps[3]), vec3(0, 0, 0)));
-  EXPECT(vec3_equal(sphera_sphere_light_shade_occluded(NULL, hard_caps[3], hard_caps[7]),
+  EXPECT(vec3_equal(sphera_sphere_light_shading_eval(NULL, hard_caps[3]), vec3(0, 0, 0)));
+  EXPECT(vec3_equal(sphera_sphere_light_shading_eval_occluded(NULL, hard_caps[3], hard_caps[7]),
                     vec3(0, 0, 0)));
-  EXPECT(vec3_equal(sphera_sphere_light_shade_occluded_separable(NULL, hard_caps[3], hard_caps[7]),
+  EXPECT(vec3_equal(sphera_sphere_light_shading_eval_occluded_separable(NULL, hard_caps[3], hard_caps[7]),
                     vec3(0, 0, 0)));
   EXPECT(!sphera_sphere_light_sampler_prepare(NULL, vec3(0, 0, 2), 0.5f, directions[1], 0.5f));
   EXPECT(is_no_sample(sphera_sphere_light_sampler_sample(NULL, 0.5f, 0.5f)));
@@ -976,12 +976,12 @@ static void sptd_suite(void) {
       int ok, c2;
       for (c = 0; c < hard_cap_count; c += 3) {
         memset(&phase, 0xff, sizeof phase);
-        ok = sphera_phase_pivot_in_cap_prepare(&phase, wo, x, hard_caps[c]);
+        ok = sphera_sptd_in_cap_prepare_pivot_phase(&phase, wo, x, hard_caps[c]);
         calls++;
         check_sptd_in_cap(&phase, ok);
       }
       memset(&fit, 0xff, sizeof fit);
-      ok = sphera_ggx_pivot_lookup(&fit, wo, x);
+      ok = sphera_ggx_pivot_from_view(&fit, wo, x);
       calls++;
       expect_words_finite(&fit, sizeof fit);
       if (ok) EXPECT(fit.albedo >= 0.0f && fit.albedo <= 1.00001f &&
@@ -996,10 +996,10 @@ static void sptd_suite(void) {
       if (!finite3(wo) || !(wo.z > 0.0f)) EXPECT(!ok);
       for (c = 0; c < hard_cap_count; c++) {
         for (c2 = 0; c2 < hard_cap_count; c2 += 2) {
-          SpheraVec3 v = c2 == 0 ? sphera_sphere_light_shade(&shading, hard_caps[c])
-                                 : sphera_sphere_light_shade_occluded(&shading, hard_caps[c],
+          SpheraVec3 v = c2 == 0 ? sphera_sphere_light_shading_eval(&shading, hard_caps[c])
+                                 : sphera_sphere_light_shading_eval_occluded(&shading, hard_caps[c],
                                                                       hard_caps[c2]);
-          SpheraVec3 w = sphera_sphere_light_shade_occluded_separable(&shading, hard_caps[c],
+          SpheraVec3 w = sphera_sphere_light_shading_eval_occluded_separable(&shading, hard_caps[c],
                                                                       hard_caps[c2]);
           EXPECT(finite3(w) && w.x >= 0.0f && w.y >= 0.0f && w.z >= 0.0f && w.x <= 1.00001f &&
                  w.y <= 1.00001f && w.z <= 1.00001f);
@@ -1078,9 +1078,9 @@ static void sg_suite(void) {
     calls += 2;
     for (d = 0; d < DIRECTION_COUNT; d++) {
       float e = sphera_sg_eval(g, directions[d]);
-      float p = sphera_sg_vmf_pdf(g, directions[d]);
+      float p = sphera_vmf_pdf(g, directions[d]);
       float u[2] = {-1.0f, -1.0f};
-      int inverted = sphera_sg_vmf_invert(g, directions[d], u);
+      int inverted = sphera_vmf_invert(g, directions[d], u);
       calls += 3;
       expect_density(e);
       expect_density(p);
@@ -1089,14 +1089,14 @@ static void sg_suite(void) {
       else
         EXPECT(u[0] == -1.0f && u[1] == -1.0f); /* writes nothing */
       if (!finite3(directions[d])) EXPECT(!inverted);
-      EXPECT(!sphera_sg_vmf_invert(g, directions[d], NULL));
+      EXPECT(!sphera_vmf_invert(g, directions[d], NULL));
       calls++;
     }
     for (d = 0; d < pair_count(0); d++) {
       float u0, u1;
       SpheraSample s;
       pair(d, 0, &u0, &u1);
-      s = sphera_sg_vmf_sample(g, u0, u1);
+      s = sphera_vmf_sample(g, u0, u1);
       calls++;
       expect_sample(s);
     }
@@ -1113,13 +1113,13 @@ static void sg_suite(void) {
       float x = specials[(j * 3 + k) % SPECIAL_COUNT];
       float vis = specials[(j + 2 * k) % SPECIAL_COUNT];
       SpheraSg incoming = sphera_sg_incoming_radiance(g, special_vec(j * 11 + k), x);
-      SpheraSg lobe = sphera_sg_diffuse_lobe(normal);
-      SpheraSg specular = sphera_sg_specular_lobe(normal, view, x);
-      SpheraSg unnormalized = sphera_sg_specular_lobe_unnormalized(normal, view, x);
-      SpheraAsg asg = sphera_asg_ggx_lobe(normal, view, x);
-      SpheraSg beckmann = sphera_sg_beckmann_lobe(normal, view, x);
-      SpheraSg beckmann_unnormalized = sphera_sg_beckmann_lobe_unnormalized(normal, view, x);
-      SpheraAsg beckmann_asg = sphera_asg_beckmann_lobe(normal, view, x);
+      SpheraSg lobe = sphera_sg_from_lambert(normal);
+      SpheraSg specular = sphera_sg_from_ggx(normal, view, x);
+      SpheraSg unnormalized = sphera_sg_from_ggx_unnormalized(normal, view, x);
+      SpheraAsg asg = sphera_asg_from_ggx(normal, view, x);
+      SpheraSg beckmann = sphera_sg_from_beckmann(normal, view, x);
+      SpheraSg beckmann_unnormalized = sphera_sg_from_beckmann_unnormalized(normal, view, x);
+      SpheraAsg beckmann_asg = sphera_asg_from_beckmann(normal, view, x);
       SpheraAsg hand = sphera_asg_new(view, normal, x, vis, specials[(j + 9) % SPECIAL_COUNT]);
       calls += 6;
       EXPECT(sg_is_valid(incoming) && sg_is_valid(lobe) && sg_is_valid(specular) &&
@@ -1173,7 +1173,7 @@ static void vsgl_suite(void) {
   const uint32_t clusters[5] = {0u, 1u, 2u, 9u, UINT32_MAX};
 
   /* Null pointers. */
-  EXPECT(!sphera_vsgl_accumulator_init(NULL, origin));
+  EXPECT(!sphera_vsgl_accumulator_new(NULL, origin));
   EXPECT(!sphera_vsgl_accumulator_add_vpl(NULL, NULL));
   EXPECT(!sphera_vsgl_accumulator_add_texel(NULL, NULL));
   EXPECT(!sphera_vsgl_accumulator_merge(NULL, NULL));
@@ -1191,7 +1191,7 @@ static void vsgl_suite(void) {
   for (k = 0; k < 160; k++) {
     SpheraVpl vpl = special_vpl(k);
     SpheraVec3 o = k % 8 ? origin : special_vec(k);
-    int ok = sphera_vsgl_accumulator_init(&acc, o);
+    int ok = sphera_vsgl_accumulator_new(&acc, o);
     calls++;
     /* The contract: a non-finite origin counts as the world origin. */
     EXPECT(ok && finite3(acc.origin));
@@ -1211,7 +1211,7 @@ static void vsgl_suite(void) {
     v = sphera_vsgl_accumulator_finish(&acc);
     calls++;
     EXPECT(vsgl_is_finite(v));
-    EXPECT(sphera_vsgl_accumulator_init(&other, origin));
+    EXPECT(sphera_vsgl_accumulator_new(&other, origin));
     (void)sphera_vsgl_accumulator_add_vpl(&other, &vpl);
     (void)sphera_vsgl_accumulator_merge(&other, &acc);
     (void)sphera_vsgl_accumulator_merge(&other, &other);
@@ -1226,7 +1226,7 @@ static void vsgl_suite(void) {
     texel.position = special_vec(k + 4);
     texel.squared_distance = specials[k % SPECIAL_COUNT];
     texel.weight = specials[(k + 1) % SPECIAL_COUNT];
-    EXPECT(sphera_vsgl_accumulator_init(&other, origin));
+    EXPECT(sphera_vsgl_accumulator_new(&other, origin));
     (void)sphera_vsgl_accumulator_add_texel(&other, &texel);
     calls += 2;
     EXPECT(vsgl_is_finite(sphera_vsgl_accumulator_finish(&other)));
@@ -1280,7 +1280,7 @@ static void vsgl_suite(void) {
 
 static void run_all(void) {
   SpheraVec3 view = vec3(0.3f, 0.1f, 0.9f);
-  EXPECT(sphera_ltc_ggx(&ltc_for_polygons, view, 0.4f));
+  EXPECT(sphera_ltc_prepare(&ltc_for_polygons, view, 0.4f));
   material_for_polygons.diffuse = vec3(0.5f, 0.5f, 0.5f);
   material_for_polygons.f0 = vec3(0.04f, 0.04f, 0.04f);
   material_for_polygons.roughness = 0.4f;

@@ -83,7 +83,7 @@ int main(void) {
   for (i = 0; i < 3 && file == NULL; i++) file = fopen(paths[i], "r");
   CHECK(file != NULL);
   if (file == NULL) return check_summary();
-  CHECK(sphera_ltc_ggx(&ltc, vec3(0.3f, 0.1f, 0.9f), 0.4f));
+  CHECK(sphera_ltc_prepare(&ltc, vec3(0.3f, 0.1f, 0.9f), 0.4f));
   material.diffuse = vec3(0.5f, 0.5f, 0.5f);
   material.f0 = vec3(0.04f, 0.04f, 0.04f);
   material.roughness = 0.4f;
@@ -125,7 +125,7 @@ int main(void) {
     if (strcmp(kind, "ggx") == 0) {
       SpheraGgxBrdf brdf;
       sphera_ggx_brdf_prepare(&brdf, bits_to_float(tokens[1]), vec3(1.0f, 1.0f, 1.0f));
-      sample_outputs(sphera_ggx_sample(&brdf,
+      sample_outputs(sphera_ggx_brdf_sample(&brdf,
                                        vec3(bits_to_float(tokens[2]), bits_to_float(tokens[3]),
                                             bits_to_float(tokens[4])),
                                        bits_to_float(tokens[5]), bits_to_float(tokens[6])),
@@ -170,7 +170,7 @@ int main(void) {
     if (strcmp(kind, "phase_in_cap") == 0) {
       SpheraSptdInCap p;
       SpheraCap cap = sphera_cap_from_sphere(read3(tokens, 5), bits_to_float(tokens[8]));
-      sphera_phase_pivot_in_cap_prepare(&p, read3(tokens, 1), bits_to_float(tokens[4]), cap);
+      sphera_sptd_in_cap_prepare_pivot_phase(&p, read3(tokens, 1), bits_to_float(tokens[4]), cap);
       sample_outputs(sphera_sptd_in_cap_sample(&p, bits_to_float(tokens[9]), bits_to_float(tokens[10])), o);
       expect_bits(o, 4, tokens, 11, line);
       continue;
@@ -192,14 +192,14 @@ int main(void) {
       SpheraCap cone = sphera_cap_from_axis_cos(read3(tokens, 12), bits_to_float(tokens[15]));
       sphera_sphere_light_shading_prepare(&shading, read3(tokens, 1), bits_to_float(tokens[4]),
                                           read3(tokens, 5));
-      vec3_outputs(sphera_sphere_light_shade(&shading, light), o);
-      vec3_outputs(sphera_sphere_light_shade_occluded(&shading, light, cone), o + 3);
+      vec3_outputs(sphera_sphere_light_shading_eval(&shading, light), o);
+      vec3_outputs(sphera_sphere_light_shading_eval_occluded(&shading, light, cone), o + 3);
       expect_bits(o, 6, tokens, 16, line);
       continue;
     }
     if (strcmp(kind, "vmf") == 0) {
       SpheraSg g = sphera_sg_new(read3(tokens, 1), bits_to_float(tokens[4]), 1.0f);
-      sample_outputs(sphera_sg_vmf_sample(g, bits_to_float(tokens[5]), bits_to_float(tokens[6])), o);
+      sample_outputs(sphera_vmf_sample(g, bits_to_float(tokens[5]), bits_to_float(tokens[6])), o);
       expect_bits(o, 4, tokens, 7, line);
       continue;
     }
@@ -216,7 +216,7 @@ int main(void) {
       SpheraVec3 normal = read3(tokens, 6), view = read3(tokens, 9);
       float roughness = bits_to_float(tokens[12]);
       SpheraSg incoming = sphera_sg_incoming_radiance(sg, read3(tokens, 13), bits_to_float(tokens[16]));
-      SpheraAsg asg = sphera_asg_ggx_lobe(normal, view, roughness * roughness);
+      SpheraAsg asg = sphera_asg_from_ggx(normal, view, roughness * roughness);
       sg_outputs(incoming, o);
       o[5] = sphera_asg_convolve_sg(asg, incoming);
       o[6] = sphera_sg_specular_shading(incoming, normal, view, roughness, 0.04f, 1.0f);
@@ -241,7 +241,7 @@ int main(void) {
     if (strcmp(kind, "vsgl_finish") == 0) {
       SpheraVsglAccumulator acc;
       int first = atoi(tokens[1]), count = atoi(tokens[2]), k;
-      sphera_vsgl_accumulator_init(&acc, vec3(0.0f, 0.0f, 0.0f));
+      sphera_vsgl_accumulator_new(&acc, vec3(0.0f, 0.0f, 0.0f));
       for (k = first; k < first + count; k++) sphera_vsgl_accumulator_add_vpl(&acc, &vpls[k]);
       vsgl_outputs(sphera_vsgl_accumulator_finish(&acc), o);
       expect_bits(o, 20, tokens, 3, line);
@@ -252,7 +252,7 @@ int main(void) {
       SpheraVsglAccumulator acc;
       SpheraVec3 origin = vec3(0.0f, 0.0f, 0.0f);
       int k;
-      sphera_vsgl_accumulator_init(&acc, origin);
+      sphera_vsgl_accumulator_new(&acc, origin);
       for (k = 0; k < 4; k++) {
         sphera_vsgl_texel_from_vpl(&vpls[k], origin, &pyramid[k]);
         sphera_vsgl_accumulator_add_texel(&acc, &pyramid[k]);
@@ -299,11 +299,11 @@ int main(void) {
         sphera_clipped_solid_angle_polygon_prepare(&p, v, count);
         s = sphera_clipped_solid_angle_polygon_sample(&p, u0, u1);
       } else if (strcmp(kind, "projected") == 0) {
-        SpheraProjectedSolidAnglePolygon p;
+        SpheraProjectedPolygon p;
         sphera_projected_polygon_prepare(&p, v, count);
         s = sphera_projected_polygon_sample(&p, u0, u1);
       } else if (strcmp(kind, "projected_fast") == 0) {
-        SpheraProjectedSolidAnglePolygon p;
+        SpheraProjectedPolygon p;
         sphera_projected_polygon_prepare_fast(&p, v, count);
         s = sphera_projected_polygon_sample_fast(&p, u0, u1);
       } else if (strcmp(kind, "arvo_projected") == 0) {

@@ -82,13 +82,13 @@ static int vec3_is_zero(SpheraVec3 v) { return v.x == 0.0f && v.y == 0.0f && v.z
  * at wo = wi = z, D = 1 / (π α²), G2 = 1 and F = F0, so f = F0 / (4π α²). */
 static double alpha_of(const SpheraGgxBrdf *brdf) {
   SpheraVec3 z = vec3(0.0f, 0.0f, 1.0f);
-  return 1.0 / sqrt(4.0 * PI * sphera_ggx_eval_without_fresnel(brdf, z, z));
+  return 1.0 / sqrt(4.0 * PI * sphera_ggx_brdf_eval_without_fresnel(brdf, z, z));
 }
 
 static SpheraVec3 f0_of(const SpheraGgxBrdf *brdf) {
   SpheraVec3 z = vec3(0.0f, 0.0f, 1.0f);
-  SpheraVec3 f = sphera_ggx_eval(brdf, z, z);
-  float scalar = sphera_ggx_eval_without_fresnel(brdf, z, z);
+  SpheraVec3 f = sphera_ggx_brdf_eval(brdf, z, z);
+  float scalar = sphera_ggx_brdf_eval_without_fresnel(brdf, z, z);
   return vec3(f.x / scalar, f.y / scalar, f.z / scalar);
 }
 
@@ -106,7 +106,7 @@ static int is_no_sample(SpheraSample s) {
 /* ---- good input ------------------------------------------------------------------- */
 
 /* Samples on a grid of u: unit directions above the horizon whose pdf is
- * sphera_ggx_pdf of the direction and the double density; the estimator of the
+ * sphera_ggx_brdf_pdf of the direction and the double density; the estimator of the
  * albedo (F = 1) stays at most 1. Returns the estimate. */
 static double check_sampling(const SpheraGgxBrdf *brdf, double alpha, SpheraVec3 wo, int n) {
   double sum = 0.0, worst = 0.0;
@@ -114,7 +114,7 @@ static double check_sampling(const SpheraGgxBrdf *brdf, double alpha, SpheraVec3
   for (i = 0; i < n; i++) {
     for (j = 0; j < n; j++) {
       float u0 = ((float)i + 0.5f) / (float)n, u1 = ((float)j + 0.5f) / (float)n;
-      SpheraSample s = sphera_ggx_sample(brdf, wo, u0, u1);
+      SpheraSample s = sphera_ggx_brdf_sample(brdf, wo, u0, u1);
       double reference, f;
       if (s.pdf == 0.0f) {
         if (!CHECK(is_no_sample(s))) return -1.0;
@@ -124,10 +124,10 @@ static double check_sampling(const SpheraGgxBrdf *brdf, double alpha, SpheraVec3
       if (!CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf) && s.pdf > 0.0f && s.dir.z > 0.0f))
         return -1.0;
       if (!CHECK(fabs(dlength(dvec(s.dir)) - 1.0) < 1e-6)) return -1.0;
-      if (!CHECK(sphera_ggx_pdf(brdf, wo, s.dir) == s.pdf)) return -1.0;
+      if (!CHECK(sphera_ggx_brdf_pdf(brdf, wo, s.dir) == s.pdf)) return -1.0;
       reference = ggx_pdf(alpha, dvec(wo), dvec(s.dir));
       if (fabs(s.pdf - reference) / reference > worst) worst = fabs(s.pdf - reference) / reference;
-      f = sphera_ggx_eval_without_fresnel(brdf, wo, s.dir);
+      f = sphera_ggx_brdf_eval_without_fresnel(brdf, wo, s.dir);
       sum += f * s.dir.z / s.pdf;
     }
   }
@@ -160,24 +160,24 @@ static void check_good_input(void) {
     SpheraVec3 wo = view(3.0 + 1.3 * k), wi;
     SpheraVec3 f, g;
     wi = direction((double)(k % 17) * 5.0 * PI / 180.0, 0.37 * k);
-    f = sphera_ggx_eval(&brdf, wo, wi);
-    g = sphera_ggx_eval(&brdf, wi, wo);
+    f = sphera_ggx_brdf_eval(&brdf, wo, wi);
+    g = sphera_ggx_brdf_eval(&brdf, wi, wo);
     CHECK(vec3_equal(f, g));
     CHECK_REL(f.x, ggx_brdf(0.36, 0.04f, dvec(wo), dvec(wi)), 2e-5);
     CHECK_REL(f.y, ggx_brdf(0.36, 0.5f, dvec(wo), dvec(wi)), 2e-5);
     CHECK_REL(f.z, ggx_brdf(0.36, 1.0f, dvec(wo), dvec(wi)), 2e-5);
-    CHECK_REL(sphera_ggx_pdf(&brdf, wo, wi), ggx_pdf(0.36, dvec(wo), dvec(wi)), 2e-5);
+    CHECK_REL(sphera_ggx_brdf_pdf(&brdf, wo, wi), ggx_pdf(0.36, dvec(wo), dvec(wi)), 2e-5);
   }
   {
     /* Mirror configuration at normal incidence: F = F0. */
     SpheraVec3 z = vec3(0.0f, 0.0f, 1.0f);
-    SpheraVec3 f = sphera_ggx_eval(&brdf, z, z);
-    float scalar = sphera_ggx_eval_without_fresnel(&brdf, z, z);
+    SpheraVec3 f = sphera_ggx_brdf_eval(&brdf, z, z);
+    float scalar = sphera_ggx_brdf_eval_without_fresnel(&brdf, z, z);
     CHECK_REL(f.x, 0.04 * scalar, 1e-6);
     CHECK_REL(f.y, 0.5 * scalar, 1e-6);
     CHECK_REL(f.z, 1.0 * scalar, 1e-6);
     /* Unnormalised directions are normalised. */
-    CHECK_REL(sphera_ggx_pdf(&brdf, vec3(0.0f, 0.0f, 3.0f), vec3(0.1f, 0.0f, 2.0f)),
+    CHECK_REL(sphera_ggx_brdf_pdf(&brdf, vec3(0.0f, 0.0f, 3.0f), vec3(0.1f, 0.0f, 2.0f)),
               ggx_pdf(0.36, dvec(z), dvec(vec3(0.1f, 0.0f, 2.0f))), 2e-5);
   }
 
@@ -219,15 +219,15 @@ static void check_good_input(void) {
 
 static void check_outputs_finite(const SpheraGgxBrdf *brdf, SpheraVec3 wo, SpheraVec3 wi, float u0,
                                  float u1) {
-  SpheraVec3 f = sphera_ggx_eval(brdf, wo, wi);
-  SpheraSample s = sphera_ggx_sample(brdf, wo, u0, u1);
-  float p = sphera_ggx_pdf(brdf, wo, wi);
+  SpheraVec3 f = sphera_ggx_brdf_eval(brdf, wo, wi);
+  SpheraSample s = sphera_ggx_brdf_sample(brdf, wo, u0, u1);
+  float p = sphera_ggx_brdf_pdf(brdf, wo, wi);
   SpheraSample l = sphera_lambert_sample(u0, u1);
   SpheraVec3 lf = sphera_lambert_eval(wo, wo, wi);
   CHECK(vec3_is_finite(f) && f.x >= 0.0f && f.y >= 0.0f && f.z >= 0.0f);
   CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf) && s.pdf >= 0.0f);
   CHECK(isfinite(p) && p >= 0.0f);
-  CHECK(isfinite(sphera_ggx_eval_without_fresnel(brdf, wo, wi)));
+  CHECK(isfinite(sphera_ggx_brdf_eval_without_fresnel(brdf, wo, wi)));
   CHECK(vec3_is_finite(l.dir) && isfinite(l.pdf) && l.pdf > 0.0f);
   CHECK(vec3_is_finite(lf));
   CHECK(isfinite(sphera_lambert_pdf(wi)));
@@ -250,7 +250,7 @@ static void check_bad_input(void) {
   CHECK(!sphera_ggx_brdf_prepare(NULL, 0.5f, vec3(0.04f, 0.04f, 0.04f)));
   CHECK(!sphera_ggx_brdf_prepare(&brdf, NAN, vec3(0.04f, 0.04f, 0.04f)));
   CHECK_REL(alpha_of(&brdf), SPHERA_GGX_MIN_ALPHA, 1e-5);
-  CHECK(sphera_ggx_sample(&brdf, good, 0.3f, 0.6f).pdf > 0.0f);
+  CHECK(sphera_ggx_brdf_sample(&brdf, good, 0.3f, 0.6f).pdf > 0.0f);
   CHECK(!sphera_ggx_brdf_prepare(&brdf, INFINITY, vec3(0.04f, 0.04f, 0.04f)));
   CHECK_REL(alpha_of(&brdf), 1.0, 1e-6);
   CHECK(!sphera_ggx_brdf_prepare(&brdf, 0.5f, vec3(NAN, 0.5f, INFINITY)));
@@ -265,20 +265,20 @@ static void check_bad_input(void) {
   CHECK_REL(alpha_of(&brdf), 0.25, 1e-6);
 
   /* Null BRDF. */
-  CHECK(vec3_is_zero(sphera_ggx_eval(NULL, good, other)));
-  CHECK(sphera_ggx_eval_without_fresnel(NULL, good, other) == 0.0f);
-  CHECK(is_no_sample(sphera_ggx_sample(NULL, good, 0.5f, 0.5f)));
-  CHECK(sphera_ggx_pdf(NULL, good, other) == 0.0f);
+  CHECK(vec3_is_zero(sphera_ggx_brdf_eval(NULL, good, other)));
+  CHECK(sphera_ggx_brdf_eval_without_fresnel(NULL, good, other) == 0.0f);
+  CHECK(is_no_sample(sphera_ggx_brdf_sample(NULL, good, 0.5f, 0.5f)));
+  CHECK(sphera_ggx_brdf_pdf(NULL, good, other) == 0.0f);
 
   /* Bad directions: 0 and no sample. */
   CHECK(sphera_ggx_brdf_prepare(&brdf, 0.4f, vec3(0.04f, 0.04f, 0.04f)));
   for (i = 0; i < nbad; i++) {
-    CHECK(vec3_is_zero(sphera_ggx_eval(&brdf, bad[i], good)));
-    CHECK(vec3_is_zero(sphera_ggx_eval(&brdf, good, bad[i])));
-    CHECK(sphera_ggx_eval_without_fresnel(&brdf, bad[i], good) == 0.0f);
-    CHECK(sphera_ggx_pdf(&brdf, bad[i], good) == 0.0f);
-    CHECK(sphera_ggx_pdf(&brdf, good, bad[i]) == 0.0f);
-    CHECK(is_no_sample(sphera_ggx_sample(&brdf, bad[i], 0.5f, 0.5f)));
+    CHECK(vec3_is_zero(sphera_ggx_brdf_eval(&brdf, bad[i], good)));
+    CHECK(vec3_is_zero(sphera_ggx_brdf_eval(&brdf, good, bad[i])));
+    CHECK(sphera_ggx_brdf_eval_without_fresnel(&brdf, bad[i], good) == 0.0f);
+    CHECK(sphera_ggx_brdf_pdf(&brdf, bad[i], good) == 0.0f);
+    CHECK(sphera_ggx_brdf_pdf(&brdf, good, bad[i]) == 0.0f);
+    CHECK(is_no_sample(sphera_ggx_brdf_sample(&brdf, bad[i], 0.5f, 0.5f)));
     CHECK(vec3_is_zero(sphera_lambert_eval(vec3(1.0f, 1.0f, 1.0f), bad[i], good)));
     CHECK(vec3_is_zero(sphera_lambert_eval(vec3(1.0f, 1.0f, 1.0f), good, bad[i])));
     CHECK(sphera_lambert_pdf(bad[i]) == 0.0f);
@@ -287,15 +287,15 @@ static void check_bad_input(void) {
   /* Random numbers outside [0, 1) are clamped, NaN counts as 0. */
   {
     float last = nextafterf(1.0f, 0.0f);
-    SpheraSample a = sphera_ggx_sample(&brdf, good, NAN, 0.3f);
-    SpheraSample b = sphera_ggx_sample(&brdf, good, 0.0f, 0.3f);
+    SpheraSample a = sphera_ggx_brdf_sample(&brdf, good, NAN, 0.3f);
+    SpheraSample b = sphera_ggx_brdf_sample(&brdf, good, 0.0f, 0.3f);
     CHECK(memcmp(&a, &b, sizeof a) == 0);
-    a = sphera_ggx_sample(&brdf, good, -5.0f, 0.3f);
+    a = sphera_ggx_brdf_sample(&brdf, good, -5.0f, 0.3f);
     CHECK(memcmp(&a, &b, sizeof a) == 0);
-    a = sphera_ggx_sample(&brdf, good, 0.3f, 2.0f);
-    b = sphera_ggx_sample(&brdf, good, 0.3f, last);
+    a = sphera_ggx_brdf_sample(&brdf, good, 0.3f, 2.0f);
+    b = sphera_ggx_brdf_sample(&brdf, good, 0.3f, last);
     CHECK(memcmp(&a, &b, sizeof a) == 0);
-    a = sphera_ggx_sample(&brdf, good, 0.3f, INFINITY);
+    a = sphera_ggx_brdf_sample(&brdf, good, 0.3f, INFINITY);
     CHECK(memcmp(&a, &b, sizeof a) == 0);
     a = sphera_lambert_sample(INFINITY, -INFINITY);
     b = sphera_lambert_sample(last, 0.0f);

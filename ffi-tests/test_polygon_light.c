@@ -1,6 +1,6 @@
 /* C ABI tests of the one-call polygonal light shading (sphera_polygon_light_*): every
  * heuristic's two-sample estimate agrees with an independent estimate of the same
- * integral by solid angle sampling and sphera_ggx_eval; bad input gives no sample. */
+ * integral by solid angle sampling and sphera_ggx_brdf_eval; bad input gives no sample. */
 #include <string.h>
 
 #include "check.h"
@@ -36,7 +36,7 @@ int main(void) {
     SpheraSample s = sphera_solid_angle_polygon_sample(&solid_angle, uniform(), uniform());
     double x = 0.0;
     if (s.pdf > 0.0f && s.dir.z > 0.0f) {
-      SpheraVec3 f = sphera_ggx_eval(&ggx, wo, s.dir);
+      SpheraVec3 f = sphera_ggx_brdf_eval(&ggx, wo, s.dir);
       x = (0.3 / 3.14159265358979 + f.x) * s.dir.z / s.pdf;
     }
     reference += x;

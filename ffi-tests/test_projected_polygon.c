@@ -38,7 +38,7 @@ static double projected_solid_angle(const SpheraVec3 *v, int n) {
   return fabs(0.5 * sigma * sum);
 }
 
-static void check_is_empty(const SpheraProjectedSolidAnglePolygon *polygon, const char *what) {
+static void check_is_empty(const SpheraProjectedPolygon *polygon, const char *what) {
   float u[U_COUNT];
   int i, j, bad = 0;
   fill_u_values(u);
@@ -56,7 +56,7 @@ static void check_is_empty(const SpheraProjectedSolidAnglePolygon *polygon, cons
 }
 
 static void check_polygon(const char *name, const SpheraVec3 *v, int n, const SpheraVec3 *above, int n_above, double tolerance) {
-  SpheraProjectedSolidAnglePolygon polygon, fast;
+  SpheraProjectedPolygon polygon, fast;
   double exact = projected_solid_angle(above, n_above);
   float u[U_COUNT];
   int i, j, bad_pdf = 0, bad_dir = 0, bad_hit = 0, bad_pdf_of_dir = 0, bad_fast = 0;
@@ -143,7 +143,7 @@ static void check_arvo(const char *name, const SpheraVec3 *v, int n, const Spher
 }
 
 static void check_rejected(const char *name, const SpheraVec3 *v, uint32_t n) {
-  SpheraProjectedSolidAnglePolygon polygon;
+  SpheraProjectedPolygon polygon;
   printf("rejected: %s\n", name);
   /* Start from a valid polygon to see that a failed prepare overwrites it. */
   CHECK(sphera_projected_polygon_prepare(&polygon, QUAD, 4));

@@ -60,7 +60,7 @@ static void check_vmf(void) {
     SpheraSg s = sphera_sg_new(vec3(0.3f, -0.4f, 0.5f), lambdas[k], 7.0f);
     for (i = 0; i < U_COUNT; i++) {
       for (j = 0; j < U_COUNT; j++) {
-        SpheraSample x = sphera_sg_vmf_sample(s, u[i], u[j]);
+        SpheraSample x = sphera_vmf_sample(s, u[i], u[j]);
         float inverse[2] = {-1.0f, -1.0f};
         double t = 1.0 - ddot(dvec(x.dir), dvec(s.axis));
         double l = s.sharpness;
@@ -70,8 +70,8 @@ static void check_vmf(void) {
         if (l < 1e3) {
           CHECK_REL(x.pdf, pdf, 1e-4);
         }
-        CHECK(sphera_sg_vmf_pdf(s, x.dir) == x.pdf);
-        CHECK(sphera_sg_vmf_invert(s, x.dir, inverse));
+        CHECK(sphera_vmf_pdf(s, x.dir) == x.pdf);
+        CHECK(sphera_vmf_invert(s, x.dir, inverse));
         CHECK(inverse[0] >= 0.0f && inverse[0] <= 1.0f && inverse[1] >= 0.0f && inverse[1] < 1.0f);
         if (u_is_interior(i) && l < 1e3) {
           CHECK_ABS(inverse[0], u[i], 1e-3);
@@ -84,18 +84,18 @@ static void check_vmf(void) {
 static void check_lobes_and_shading(void) {
   SpheraVec3 n = vec3(0.0f, 0.0f, 1.0f);
   SpheraVec3 view = vec3(0.5f, 0.0f, 0.8660254f);
-  SpheraSg d = sphera_sg_diffuse_lobe(n);
-  SpheraSg s = sphera_sg_specular_lobe(n, view, 0.09f);
+  SpheraSg d = sphera_sg_from_lambert(n);
+  SpheraSg s = sphera_sg_from_ggx(n, view, 0.09f);
   SpheraSg lobe = sphera_sg_new(vec3(0.0f, 0.0f, -1.0f), 4.0f, 10.0f);
   SpheraSg l_in = sphera_sg_incoming_radiance(lobe, vec3(0.0f, 1.0f, 3.0f), 0.04f);
-  SpheraAsg g = sphera_asg_ggx_lobe(n, view, 0.09f);
+  SpheraAsg g = sphera_asg_from_ggx(n, view, 0.09f);
   double exact;
   CHECK(d.sharpness == (float)SPHERA_SG_DIFFUSE_LOBE_SHARPNESS);
   CHECK_REL(exp(d.log_amplitude) * a_d(d.sharpness), 1.0, 1e-5);
   CHECK_ABS(s.axis.x, -0.5, 1e-6);
   CHECK_REL(s.sharpness, (2.0 / (0.09 * 0.09)) / (4.0 * 0.8660254), 1e-5);
   CHECK_REL(exp(s.log_amplitude) * a_d(s.sharpness), 1.0, 1e-4);
-  CHECK_REL(sphera_sg_specular_lobe_unnormalized(n, view, 0.09f).sharpness, s.sharpness, 1e-7);
+  CHECK_REL(sphera_sg_from_ggx_unnormalized(n, view, 0.09f).sharpness, s.sharpness, 1e-7);
   /* Eq. 7 with the planar Gaussian's s^2 = sigma^2/2 = 0.02 (README, issue 20):
    * lambda_sigma = 10 / 0.02 = 500 toward (0, 1, 3)/sqrt(10). */
   CHECK(sg_is_finite(l_in));
@@ -165,11 +165,11 @@ static double beckmann_cos_d(const double wo[3], const double wi[3], double alph
 static void check_beckmann(void) {
   SpheraVec3 n = vec3(0.0f, 0.0f, 1.0f);
   SpheraVec3 view = vec3(0.5f, 0.0f, 0.8660254f);
-  SpheraSg b = sphera_sg_beckmann_lobe(n, view, 0.09f);
-  SpheraSg s = sphera_sg_specular_lobe(n, view, 0.09f);
-  SpheraSg bu = sphera_sg_beckmann_lobe_unnormalized(n, view, 0.09f);
-  SpheraAsg ab = sphera_asg_beckmann_lobe(n, view, 0.09f);
-  SpheraAsg ag = sphera_asg_ggx_lobe(n, view, 0.09f);
+  SpheraSg b = sphera_sg_from_beckmann(n, view, 0.09f);
+  SpheraSg s = sphera_sg_from_ggx(n, view, 0.09f);
+  SpheraSg bu = sphera_sg_from_beckmann_unnormalized(n, view, 0.09f);
+  SpheraAsg ab = sphera_asg_from_beckmann(n, view, 0.09f);
+  SpheraAsg ag = sphera_asg_from_ggx(n, view, 0.09f);
   int i, j;
   CHECK(sg_is_finite(b) && sg_is_finite(bu) && asg_is_finite(ab));
   CHECK_ABS(b.axis.x, -0.5, 1e-6);
@@ -234,20 +234,20 @@ static void check_bad_input(void) {
       ahand.amplitude = bad[j];
       CHECK(sg_is_finite(s));
       CHECK(asg_is_finite(sphera_asg_new(vectors[i], vectors[i], bad[j], bad[j], bad[j])));
-      CHECK(asg_is_finite(sphera_asg_ggx_lobe(vectors[i], vectors[4], bad[j])));
-      CHECK(sg_is_finite(sphera_sg_specular_lobe(vectors[i], vectors[4], bad[j])));
-      CHECK(asg_is_finite(sphera_asg_beckmann_lobe(vectors[i], vectors[4], bad[j])));
-      CHECK(sg_is_finite(sphera_sg_beckmann_lobe(vectors[i], vectors[4], bad[j])));
-      CHECK(sg_is_finite(sphera_sg_beckmann_lobe_unnormalized(vectors[4], vectors[i], bad[j])));
+      CHECK(asg_is_finite(sphera_asg_from_ggx(vectors[i], vectors[4], bad[j])));
+      CHECK(sg_is_finite(sphera_sg_from_ggx(vectors[i], vectors[4], bad[j])));
+      CHECK(asg_is_finite(sphera_asg_from_beckmann(vectors[i], vectors[4], bad[j])));
+      CHECK(sg_is_finite(sphera_sg_from_beckmann(vectors[i], vectors[4], bad[j])));
+      CHECK(sg_is_finite(sphera_sg_from_beckmann_unnormalized(vectors[4], vectors[i], bad[j])));
       CHECK(isfinite(sphera_sg_integral(bad[j])) && sphera_sg_integral(bad[j]) > 0.0f);
       for (k = 0; k < 5; k++) {
         SpheraSg l_in = sphera_sg_incoming_radiance(hand, vectors[k], bad[j]);
-        SpheraSample x = sphera_sg_vmf_sample(hand, bad[j], bad[j]);
+        SpheraSample x = sphera_vmf_sample(hand, bad[j], bad[j]);
         float values[13];
         int m;
         values[0] = sphera_sg_eval(hand, vectors[k]);
         values[1] = sphera_sg_inner_product(hand, s);
-        values[2] = sphera_sg_vmf_pdf(hand, vectors[k]);
+        values[2] = sphera_vmf_pdf(hand, vectors[k]);
         values[3] = sphera_sg_diffuse_shading_product(l_in, vectors[k], bad[j], bad[j]);
         values[4] = sphera_sg_diffuse_shading_constant_cosine(l_in, vectors[k], bad[j], 1.0f);
         values[5] = sphera_sg_diffuse_shading_sharp_lobe(l_in, vectors[k], 1.0f, bad[j]);
@@ -264,7 +264,7 @@ static void check_bad_input(void) {
         CHECK(sg_is_finite(l_in));
         CHECK(sg_is_finite(sphera_sg_product(hand, l_in)));
         CHECK(vec3_is_finite(x.dir) && isfinite(x.pdf) && x.pdf >= 0.0f);
-        (void)sphera_sg_vmf_invert(hand, vectors[k], u);
+        (void)sphera_vmf_invert(hand, vectors[k], u);
       }
     }
   }
@@ -274,10 +274,10 @@ static void check_bad_input(void) {
     zero.axis = vec3(0.0f, 0.0f, 0.0f);
     zero.sharpness = 1.0f;
     zero.log_amplitude = 0.0f;
-    CHECK(sphera_sg_vmf_sample(zero, 0.5f, 0.5f).pdf == 0.0f);
-    CHECK(!sphera_sg_vmf_invert(sphera_sg_new(vec3(0.0f, 0.0f, 1.0f), 1.0f, 1.0f),
+    CHECK(sphera_vmf_sample(zero, 0.5f, 0.5f).pdf == 0.0f);
+    CHECK(!sphera_vmf_invert(sphera_sg_new(vec3(0.0f, 0.0f, 1.0f), 1.0f, 1.0f),
                                 vec3(0.0f, 0.0f, 1.0f), NULL));
-    CHECK(!sphera_sg_vmf_invert(zero, vec3(0.0f, 0.0f, 1.0f), u));
+    CHECK(!sphera_vmf_invert(zero, vec3(0.0f, 0.0f, 1.0f), u));
   }
 }
 

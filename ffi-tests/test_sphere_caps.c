@@ -95,7 +95,7 @@ static void check_pivot(void) {
   SpheraVec3 g = sphera_pivot_transform(w, pivot);
   SpheraVec3 back = sphera_pivot_transform(g, pivot);
   SpheraCap cap = sphera_cap_from_axis_cos(vec3(0.0f, 0.6f, 0.8f), 0.7f);
-  SpheraCap image = sphera_pivot_cap(cap, pivot);
+  SpheraCap image = sphera_pivot_transform_cap(cap, pivot);
   DVec3 e, p = dvec(pivot), wd = dvec(w);
   double pp = ddot(p, p), j;
   CHECK_ABS(dlength(dvec(g)), 1.0, 1e-6);
@@ -109,7 +109,7 @@ static void check_pivot(void) {
   CHECK_REL(sphera_pivot_jacobian(w, pivot), j * j, 1e-5);
   CHECK(cap_is_finite(image) && image.one_minus_cos > 0.0f);
   /* Pivot at the origin: the antipodal cap. */
-  image = sphera_pivot_cap(cap, vec3(0.0f, 0.0f, 0.0f));
+  image = sphera_pivot_transform_cap(cap, vec3(0.0f, 0.0f, 0.0f));
   CHECK_ABS(image.axis.y, -0.6, 1e-6);
   CHECK_ABS(image.one_minus_cos, cap.one_minus_cos, 1e-6);
 }
@@ -147,8 +147,8 @@ static void check_bad_input(void) {
       g = sphera_pivot_transform(v, vec3(0.1f, 0.2f, 0.3f));
       CHECK(vec3_is_finite(g));
       CHECK(isfinite(sphera_pivot_jacobian(vec3(0.0f, 0.6f, 0.8f), v)));
-      CHECK(cap_is_finite(sphera_pivot_cap(garbage, v)));
-      CHECK(cap_is_finite(sphera_pivot_cap(sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, 1.0f), 0.3f), v)));
+      CHECK(cap_is_finite(sphera_pivot_transform_cap(garbage, v)));
+      CHECK(cap_is_finite(sphera_pivot_transform_cap(sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, 1.0f), 0.3f), v)));
     }
   }
   /* Invalid spheres give the empty cap: no samples. */

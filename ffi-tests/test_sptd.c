@@ -1,5 +1,5 @@
-/* C ABI tests of SPTDs and sphere lights over GGX (sphera_sptd_*, sphera_ggx_pivot_lookup,
- * sphera_sphere_light_*, sphera_phase_pivot_in_cap_prepare). */
+/* C ABI tests of SPTDs and sphere lights over GGX (sphera_sptd_*, sphera_ggx_pivot_from_view,
+ * sphera_sphere_light_*, sphera_sptd_in_cap_prepare_pivot_phase). */
 #include <string.h>
 
 #include "check.h"
@@ -96,20 +96,20 @@ static void check_sphere_light(void) {
   SpheraVec3 value;
   float u[U_COUNT];
   int i, j;
-  CHECK(sphera_ggx_pivot_lookup(&fit, wo, 0.3f));
+  CHECK(sphera_ggx_pivot_from_view(&fit, wo, 0.3f));
   CHECK(dlength(dvec(fit.pivot)) < 1.0 && fit.albedo > 0.5f && fit.albedo <= 1.0f);
   CHECK(fit.pivot.x < 0.0f); /* it leans towards the mirror direction */
   CHECK(sphera_sphere_light_shading_prepare(&shading, wo, 0.3f, vec3(1.0f, 1.0f, 1.0f)));
-  value = sphera_sphere_light_shade(&shading, light);
+  value = sphera_sphere_light_shading_eval(&shading, light);
   CHECK(value.x > 0.0f && value.x <= fit.albedo && value.x == value.z);
-  CHECK(vec3_equal(sphera_sphere_light_shade_occluded(&shading, light, horizon), value));
-  CHECK(sphera_sphere_light_shade_occluded(&shading, light, away).x == 0.0f);
+  CHECK(vec3_equal(sphera_sphere_light_shading_eval_occluded(&shading, light, horizon), value));
+  CHECK(sphera_sphere_light_shading_eval_occluded(&shading, light, away).x == 0.0f);
   /* The separable baseline (Eq. 21-22): the unoccluded value for the hemisphere, none
    * for a cone away from the light and the lobe. */
-  CHECK(fabsf(sphera_sphere_light_shade_occluded_separable(&shading, light, horizon).x - value.x) <=
+  CHECK(fabsf(sphera_sphere_light_shading_eval_occluded_separable(&shading, light, horizon).x - value.x) <=
         1e-6f * value.x);
-  CHECK(sphera_sphere_light_shade_occluded_separable(&shading, light, away).x >= 0.0f);
-  CHECK(sphera_sphere_light_shade_occluded_separable(&shading, light, away).x <= value.x);
+  CHECK(sphera_sphere_light_shading_eval_occluded_separable(&shading, light, away).x >= 0.0f);
+  CHECK(sphera_sphere_light_shading_eval_occluded_separable(&shading, light, away).x <= value.x);
 
   CHECK(sphera_sphere_light_sampler_prepare(&sampler, mirror, 0.5f, wo, 0.3f));
   CHECK(sphera_sphere_light_sampler_uses_sptd(&sampler));
@@ -134,7 +134,7 @@ static void check_phase_in_cap(void) {
   SpheraCap light = sphera_cap_from_sphere(vec3(0.0f, 3.0f, 4.0f), 1.0f);
   SpheraSptdInCap prepared;
   int i;
-  CHECK(sphera_phase_pivot_in_cap_prepare(&prepared, wo, 0.7f, light));
+  CHECK(sphera_sptd_in_cap_prepare_pivot_phase(&prepared, wo, 0.7f, light));
   for (i = 0; i < 64; i++) {
     SpheraSample s = sphera_sptd_in_cap_sample(&prepared, (i + 0.5f) / 64.0f, 0.37f);
     float f;
@@ -158,16 +158,16 @@ static void check_bad_input(void) {
   CHECK(sphera_sptd_in_cap_sample(NULL, 0.5f, 0.5f).pdf == 0.0f);
   CHECK(sphera_sptd_in_cap_pdf(NULL, vec3(0, 0, 1)) == 0.0f);
   CHECK(sphera_sptd_in_cap_integral(NULL) == 0.0f);
-  CHECK(!sphera_ggx_pivot_lookup(NULL, vec3(0, 0, 1), 0.5f));
+  CHECK(!sphera_ggx_pivot_from_view(NULL, vec3(0, 0, 1), 0.5f));
   CHECK(!sphera_sphere_light_shading_prepare(NULL, vec3(0, 0, 1), 0.5f, vec3(1, 1, 1)));
-  CHECK(vec3_equal(sphera_sphere_light_shade(NULL, cap), vec3(0, 0, 0)));
-  CHECK(vec3_equal(sphera_sphere_light_shade_occluded(NULL, cap, cap), vec3(0, 0, 0)));
-  CHECK(vec3_equal(sphera_sphere_light_shade_occluded_separable(NULL, cap, cap), vec3(0, 0, 0)));
+  CHECK(vec3_equal(sphera_sphere_light_shading_eval(NULL, cap), vec3(0, 0, 0)));
+  CHECK(vec3_equal(sphera_sphere_light_shading_eval_occluded(NULL, cap, cap), vec3(0, 0, 0)));
+  CHECK(vec3_equal(sphera_sphere_light_shading_eval_occluded_separable(NULL, cap, cap), vec3(0, 0, 0)));
   CHECK(!sphera_sphere_light_sampler_prepare(NULL, vec3(0, 0, 3), 1.0f, vec3(0, 0, 1), 0.5f));
   CHECK(sphera_sphere_light_sampler_sample(NULL, 0.5f, 0.5f).pdf == 0.0f);
   CHECK(sphera_sphere_light_sampler_pdf(NULL, vec3(0, 0, 1)) == 0.0f);
   CHECK(!sphera_sphere_light_sampler_uses_sptd(NULL));
-  CHECK(!sphera_phase_pivot_in_cap_prepare(NULL, vec3(0, 0, 1), 0.5f, cap));
+  CHECK(!sphera_sptd_in_cap_prepare_pivot_phase(NULL, vec3(0, 0, 1), 0.5f, cap));
   /* Failed prepares write samplers without samples. */
   CHECK(!sphera_sptd_in_cap_prepare(&prepared, vec3(0, 0, 0), 0, vec3(0, 0, 1),
                                     sphera_cap_from_sphere(vec3(0, 0, 3), -1.0f)));
@@ -175,8 +175,8 @@ static void check_bad_input(void) {
   CHECK(!sphera_sphere_light_sampler_prepare(&sampler, vec3(0, 0, 3), 1.0f, vec3(0, 0, -1), 0.5f));
   CHECK(sphera_sphere_light_sampler_sample(&sampler, 0.5f, 0.5f).pdf == 0.0f);
   CHECK(!sphera_sphere_light_shading_prepare(&shading, vec3(1, 0, 0), 0.5f, vec3(1, 1, 1)));
-  CHECK(vec3_equal(sphera_sphere_light_shade(&shading, cap), vec3(0, 0, 0)));
-  CHECK(!sphera_ggx_pivot_lookup(&fit, vec3(0, 0, -1), 0.5f));
+  CHECK(vec3_equal(sphera_sphere_light_shading_eval(&shading, cap), vec3(0, 0, 0)));
+  CHECK(!sphera_ggx_pivot_from_view(&fit, vec3(0, 0, -1), 0.5f));
   for (i = 0; i < n; i++) {
     for (k = 0; k < n; k++) {
       SpheraVec3 v = vec3(bad[i], bad[k], 1.0f);
@@ -200,17 +200,17 @@ static void check_bad_input(void) {
       s = sphera_sptd_in_cap_sample(&prepared, bad[i], bad[k]);
       CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf));
       sphera_sphere_light_shading_prepare(&shading, v, bad[k], v);
-      CHECK(vec3_is_finite(sphera_sphere_light_shade(&shading, garbage)));
-      CHECK(vec3_is_finite(sphera_sphere_light_shade_occluded(&shading, cap, garbage)));
-      CHECK(vec3_is_finite(sphera_sphere_light_shade_occluded_separable(&shading, garbage, garbage)));
+      CHECK(vec3_is_finite(sphera_sphere_light_shading_eval(&shading, garbage)));
+      CHECK(vec3_is_finite(sphera_sphere_light_shading_eval_occluded(&shading, cap, garbage)));
+      CHECK(vec3_is_finite(sphera_sphere_light_shading_eval_occluded_separable(&shading, garbage, garbage)));
       sphera_sphere_light_sampler_prepare(&sampler, v, bad[k], v, bad[i]);
       s = sphera_sphere_light_sampler_sample(&sampler, bad[i], bad[k]);
       CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf));
       CHECK(isfinite(sphera_sphere_light_sampler_pdf(&sampler, v)));
-      sphera_phase_pivot_in_cap_prepare(&prepared, v, bad[k], garbage);
+      sphera_sptd_in_cap_prepare_pivot_phase(&prepared, v, bad[k], garbage);
       s = sphera_sptd_in_cap_sample(&prepared, bad[i], bad[k]);
       CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf));
-      sphera_ggx_pivot_lookup(&fit, v, bad[k]);
+      sphera_ggx_pivot_from_view(&fit, v, bad[k]);
       CHECK(vec3_is_finite(fit.pivot) && isfinite(fit.albedo));
     }
   }

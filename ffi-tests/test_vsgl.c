@@ -68,7 +68,7 @@ int main(void) {
   const float nan = nanf("");
 
   /* Two VPLs of equal power 2 apart: mean halfway, variance 1 (|y − μ|² = 1 each). */
-  CHECK(sphera_vsgl_accumulator_init(&acc, origin));
+  CHECK(sphera_vsgl_accumulator_new(&acc, origin));
   {
     SpheraVpl a = make_vpl(vec3(101.0f, 0.0f, -50.0f), vec3(0.0f, 0.0f, 1.0f), 2.0f);
     SpheraVpl b = make_vpl(vec3(99.0f, 0.0f, -50.0f), vec3(0.0f, 0.0f, 1.0f), 2.0f);
@@ -103,10 +103,10 @@ int main(void) {
     SpheraVpl a = make_vpl(vec3(103.0f, 4.0f, -50.0f), vec3(0.0f, 1.0f, 0.0f), 1.0f);
     SpheraVsgl from_vpl, from_texel;
     CHECK(sphera_vsgl_texel_from_vpl(&a, origin, &t));
-    CHECK(sphera_vsgl_accumulator_init(&acc, origin));
+    CHECK(sphera_vsgl_accumulator_new(&acc, origin));
     CHECK(sphera_vsgl_accumulator_add_texel(&acc, &t));
     from_texel = sphera_vsgl_accumulator_finish(&acc);
-    CHECK(sphera_vsgl_accumulator_init(&acc, origin));
+    CHECK(sphera_vsgl_accumulator_new(&acc, origin));
     CHECK(sphera_vsgl_accumulator_add_vpl(&acc, &a));
     from_vpl = sphera_vsgl_accumulator_finish(&acc);
     CHECK(from_vpl.variance == 0.0f && from_texel.variance == 0.0f);
@@ -116,7 +116,7 @@ int main(void) {
   }
 
   /* Bad VPLs: NaN position rejected; NaN power channels count as 0. */
-  CHECK(sphera_vsgl_accumulator_init(&acc, origin));
+  CHECK(sphera_vsgl_accumulator_new(&acc, origin));
   {
     SpheraVpl bad = make_vpl(vec3(nan, 0.0f, 0.0f), vec3(0.0f, 0.0f, 1.0f), 1.0f);
     SpheraVpl nan_power = make_vpl(vec3(100.0f, 0.0f, -50.0f), vec3(0.0f, 0.0f, 1.0f), 1.0f);
@@ -141,7 +141,7 @@ int main(void) {
   {
     SpheraVpl a = make_vpl(vec3(0.0f, 0.0f, 0.0f), vec3(0.0f, 0.0f, 1.0f), 1.0f);
     SpheraVsglTexel t;
-    CHECK(!sphera_vsgl_accumulator_init(NULL, origin));
+    CHECK(!sphera_vsgl_accumulator_new(NULL, origin));
     CHECK(!sphera_vsgl_accumulator_add_vpl(NULL, &a));
     CHECK(!sphera_vsgl_accumulator_add_vpl(&acc, NULL));
     CHECK(!sphera_vsgl_accumulator_add_texel(NULL, &t));

@@ -4,25 +4,36 @@
  *     (sphera_solid_angle_polygon_*, sphera_projected_polygon_*), LTC sampling of GGX
  *     inside polygons (sphera_ltc_*), the one-call polygon light with MIS
  *     (sphera_polygon_light_*), and the baselines (Turk, Arvo, Hart et al.).
- *   - Sphere lights (Dupuy et al. 2017): caps (sphera_cap_*), SPTDs (sphera_sptd_*),
- *     joint BRDF-light sampling (sphera_sphere_light_sampler_*), real-time shading and
- *     specular occlusion (sphera_sphere_light_shade*), the pivot phase function
+ *   - Sphere lights (Dupuy et al. 2017): caps (sphera_cap_*), uniform sampling of a
+ *     prepared sphere (sphera_solid_angle_sphere_*), SPTDs (sphera_sptd_*), joint
+ *     BRDF-light sampling (sphera_sphere_light_sampler_*), real-time shading and
+ *     specular occlusion (sphera_sphere_light_shading_*), the pivot phase function
  *     (sphera_phase_*).
  *   - Virtual spherical Gaussian lights (Tokuyoshi 2016): SG and ASG algebra
- *     (sphera_sg_*, sphera_asg_*), VSGLs from VPLs (sphera_vsgl_*).
+ *     (sphera_sg_*, sphera_vmf_*, sphera_asg_*), VSGLs from VPLs (sphera_vsgl_*).
  *   - BRDFs: GGX and Lambert sampling (sphera_ggx_*, sphera_lambert_*); MIS weights
  *     (sphera_mis_*).
  * C ABI of the static library libsphera.a (link with: libsphera.a -lm).
  *
- * Conventions: directions are unit vectors in a local shading frame whose z axis is
- * the surface normal; light geometry is given relative to the shading point; pdfs are
- * per steradian and pdf == 0 means "no sample"; random numbers lie in [0, 1).
- * No function crashes on a null pointer (see each function's documentation).
+ * Conventions, which each function's comment does not repeat:
+ *   - Directions are in a local shading frame whose z axis is the surface normal; light
+ *     geometry is relative to the shading point; pdfs are per steradian.
+ *   - Random numbers u0, u1 lie in [0, 1); the library clamps other values into it (NaN as 0).
+ *   - "No sample" is {dir = (0, 0, 1), pdf = 0}; a sampled dir is always a finite unit vector.
+ *   - Pointers: no function crashes on a null pointer (each comment says what it does then).
+ *     A non-null pointer points to one value of its type (`count` for an array), writable
+ *     for an output, readable for an input, and inputs do not overlap the output; a
+ *     prepared value was written by a function that prepares it (a failed prepare included).
+ *   - Polygons: `vertices[0..count]` are convex, either winding, 3 <= count <=
+ *     SPHERA_MAX_POLYGON_VERTICES. A prepare returns false for a null `out` or `vertices`,
+ *     a count out of range or a non-finite coordinate, and in the cases its comment lists.
+ *   - A failed prepare still writes `*out` (unless null), whatever it held: the empty value,
+ *     with no samples, pdf 0 and measures (solid angle, integral) 0. Given a null or empty
+ *     prepared value, samplers return no sample and the other functions 0 or false.
  *
- * Prepared values (SpheraSolidAnglePolygon, SpheraProjectedSolidAnglePolygon, ...) are
- * opaque storage of a fixed size, so that they can live on the stack or in arrays;
- * only the functions that prepare them write them. Their size may change between
- * versions of the library.
+ * Prepared values (SpheraSolidAnglePolygon, SpheraProjectedPolygon, ...) are opaque
+ * storage of a fixed size, so that they can live on the stack or in arrays; only the
+ * functions that prepare them write them. Their size may change between versions.
  */
 
 #ifndef SPHERA_H
@@ -35,93 +46,48 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/*
- * The version of this header, from the library's Cargo.toml. The library says its own
- * with sphera_version(); check at start-up that the two agree with
- * sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR).
- */
+/* The header's version (the library's Cargo.toml); check at start-up that the library agrees
+ * with sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR). */
 #define SPHERA_VERSION_MAJOR 0
 #define SPHERA_VERSION_MINOR 1
 #define SPHERA_VERSION_PATCH 0
 #define SPHERA_VERSION_STRING "0.1.0"
-
-/**
- * The most vertices a polygon may have, in the C ABI: the length of the array that
- * `sphera_polygon_clip` works on and the largest `count` that a `prepare` accepts.
- */
+/* The most vertices a polygon may have, in the C ABI: the length of the array that
+ * `sphera_polygon_clip` works on and the largest `count` that a `prepare` accepts. */
 #define SPHERA_MAX_POLYGON_VERTICES 8
-
-/**
- * The smallest GGX `α` (= roughness²) that `sphera_ggx_brdf_prepare` keeps; smaller
- * values are raised to it (see the Rust documentation of `brdf::ggx::MIN_ALPHA`).
- */
+/* The smallest GGX `α` (= roughness²) that `sphera_ggx_brdf_prepare` keeps; smaller values are
+ * raised to it (see the Rust documentation of `brdf::ggx::MIN_ALPHA`). */
 #define SPHERA_GGX_MIN_ALPHA 1e-4
-
-/**
- * The visibility estimate `v` that Peters 2021 uses for clamped optimal MIS.
- */
+/* The visibility estimate `v` that Peters 2021 uses for clamped optimal MIS. */
 #define SPHERA_MIS_DEFAULT_VISIBILITY 0.5
-
-/**
- * The balance heuristic, `p_j / Σ p_k`.
- */
+/* The balance heuristic, `p_j / Σ p_k`. */
 #define SPHERA_MIS_BALANCE 0
-
-/**
- * The power heuristic with exponent 2, `p_j² / Σ p_k²`.
- */
+/* The power heuristic with exponent 2, `p_j² / Σ p_k²`. */
 #define SPHERA_MIS_POWER 1
-
-/**
- * The weighted balance heuristic of Peters 2021, `c_j p_j / Σ c_k p_k`.
- */
+/* The weighted balance heuristic of Peters 2021, `c_j p_j / Σ c_k p_k`. */
 #define SPHERA_MIS_WEIGHTED_BALANCE 2
-
-/**
- * Clamped optimal MIS (Peters 2021, supplement B.3), with visibility estimate `v`.
- */
+/* Clamped optimal MIS (Peters 2021, supplement B.3), with visibility estimate `v`. */
 #define SPHERA_MIS_CLAMPED_OPTIMAL 3
-
-/**
- * Optimal MIS (Peters 2021, supplement B.1), with visibility estimate `v`.
- */
+/* Optimal MIS (Peters 2021, supplement B.1), with visibility estimate `v`. */
 #define SPHERA_MIS_OPTIMAL 4
-
-/**
- * The uniform base distribution `1/4π` (Eq. 16).
- */
+/* The uniform base distribution `1/4π` (Eq. 16). */
 #define SPHERA_SPTD_UNIFORM 0
-
-/**
- * The clamped-cosine base distribution `max(0, ω·a)/π`.
- */
+/* The clamped-cosine base distribution `max(0, ω·a)/π`. */
 #define SPHERA_SPTD_CLAMPED_COSINE 1
-
-/**
- * The largest sharpness of an SG (and bandwidth of an ASG): a lobe 1e-4 rad wide.
- */
+/* The largest sharpness of an SG (and bandwidth of an ASG): a lobe 1e-4 rad wide. */
 #define SPHERA_SG_MAX_SHARPNESS 1e8
-
-/**
- * The least-squares sharpness `λ_d` of the SG fit of the clamped cosine (Eq. 1).
- */
+/* The least-squares sharpness `λ_d` of the SG fit of the clamped cosine (Eq. 1). */
 #define SPHERA_SG_DIFFUSE_LOBE_SHARPNESS 2.292504
 
-/**
- * The base distribution that the pivot transforms.
- */
+/* The base distribution that the pivot transforms. */
 enum SpheraSptdBase
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
   : uint32_t
 #endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
  {
-  /**
-   * `D_std = 1/4π` over the sphere (Eq. 16).
-   */
+  /* `D_std = 1/4π` over the sphere (Eq. 16). */
   SpheraSptdBase_Uniform = 0,
-  /**
-   * `D_std = max(0, ω·a)/π` about the SPTD's `cosine_axis`.
-   */
+  /* `D_std = max(0, ω·a)/π` about the SPTD's `cosine_axis`. */
   SpheraSptdBase_ClampedCosine = 1,
 };
 #ifndef __cplusplus
@@ -132,2358 +98,1093 @@ typedef uint32_t SpheraSptdBase;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 
-/**
- * A 3D vector of `float`s (a point or a direction in the local shading frame, whose z
- * axis is the surface normal).
- */
+/* A 3D vector of `float`s (a point or a direction in the local shading frame, whose z axis is
+ * the surface normal). */
 typedef struct SpheraVec3 {
-  /**
-   * First tangent coordinate.
-   */
-  float x;
-  /**
-   * Second tangent coordinate.
-   */
-  float y;
-  /**
-   * Coordinate along the normal.
-   */
-  float z;
+  float x; /* First tangent coordinate. */
+  float y; /* Second tangent coordinate. */
+  float z; /* Coordinate along the normal. */
 } SpheraVec3;
 
-/**
- * A convex polygon prepared for solid angle sampling: everything Algorithm 5 computes
- * once per polygon.
- */
+/* A convex polygon prepared for solid angle sampling: everything Algorithm 5 computes once per
+ * polygon. */
 typedef struct SpheraSolidAnglePolygon {
-  /**
-   * Opaque: 484 bytes that only the functions preparing a SpheraSolidAnglePolygon write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[121];
+  uint32_t opaque[121]; /* 484 bytes, private: see the preamble */
 } SpheraSolidAnglePolygon;
 
-/**
- * A sampled direction and its density per steradian, as the C ABI returns it.
- *
+/* A sampled direction and its density per steradian, as the C ABI returns it.
  * `pdf == 0` means that no sample could be drawn; `dir` is then still finite (it is
- * `(0, 0, 1)`), so that a caller that forgets to check never sees NaN.
- */
+ * `(0, 0, 1)`), so that a caller that forgets to check never sees NaN. */
 typedef struct SpheraSample {
-  /**
-   * Unit direction in the local frame.
-   */
-  struct SpheraVec3 dir;
-  /**
-   * Density per steradian; 0 when there is no sample.
-   */
-  float pdf;
+  struct SpheraVec3 dir; /* Unit direction in the local frame. */
+  float pdf; /* Density per steradian; 0 when there is no sample. */
 } SpheraSample;
 
-/**
- * A convex polygon prepared for Turk's area sampling.
- */
+/* A convex polygon prepared for Turk's area sampling. */
 typedef struct SpheraTurkPolygon {
-  /**
-   * Opaque: 152 bytes that only the functions preparing a SpheraTurkPolygon write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[38];
+  uint32_t opaque[38]; /* 152 bytes, private: see the preamble */
 } SpheraTurkPolygon;
 
-/**
- * A convex polygon prepared for Arvo's sampling of its spherical fan triangles.
- */
+/* A convex polygon prepared for Arvo's sampling of its spherical fan triangles. */
 typedef struct SpheraArvoPolygon {
-  /**
-   * Opaque: 420 bytes that only the functions preparing a SpheraArvoPolygon write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[105];
+  uint32_t opaque[105]; /* 420 bytes, private: see the preamble */
 } SpheraArvoPolygon;
 
-/**
- * A local shading frame: z is the normal. Converts world directions to local ones
- * and back.
- */
+/* A local shading frame: z is the normal. Converts world directions to local ones and back. */
 typedef struct SpheraFrame {
-  /**
-   * First tangent (local x).
-   */
-  SpheraVec3 tangent;
-  /**
-   * Second tangent (local y).
-   */
-  SpheraVec3 bitangent;
-  /**
-   * The normal (local z).
-   */
-  SpheraVec3 normal;
+  SpheraVec3 tangent; /* First tangent (local x). */
+  SpheraVec3 bitangent; /* Second tangent (local y). */
+  SpheraVec3 normal; /* The normal (local z). */
 } SpheraFrame;
 
-/**
- * Solid angle sampling warped by a bilinear density fitted to the cosine at the four
- * corners of the primary square (Hart et al. 2020), an approximation of cosine-weighted
- * sampling whose pdf is exact for the samples it draws. Directions at or below the
- * horizon get "no sample" and pdf 0.
- */
+/* Solid angle sampling warped by a bilinear density fitted to the cosine at the four corners of
+ * the primary square (Hart et al. 2020), an approximation of cosine-weighted sampling whose pdf
+ * is exact for the samples it draws. Directions at or below the horizon get "no sample" and pdf
+ * 0. */
 typedef struct SpheraHartBilinearPolygon {
-  /**
-   * Opaque: 504 bytes that only the functions preparing a SpheraHartBilinearPolygon write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[126];
+  uint32_t opaque[126]; /* 504 bytes, private: see the preamble */
 } SpheraHartBilinearPolygon;
 
-/**
- * Solid angle sampling warped by a biquadratic density fitted to the cosine at 3×3
- * points of the primary square (Hart et al. 2020), made non-negative by clamping its
- * Bernstein control points: an approximation of cosine-weighted sampling whose pdf is
- * exact for the samples it draws. Directions at or below the horizon get "no sample"
- * and pdf 0.
- */
+/* Solid angle sampling warped by a biquadratic density fitted to the cosine at 3×3 points of the
+ * primary square (Hart et al. 2020), made non-negative by clamping its Bernstein control points:
+ * an approximation of cosine-weighted sampling whose pdf is exact for the samples it draws.
+ * Directions at or below the horizon get "no sample" and pdf 0. */
 typedef struct SpheraHartBiquadraticPolygon {
-  /**
-   * Opaque: 536 bytes that only the functions preparing a SpheraHartBiquadraticPolygon write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[134];
+  uint32_t opaque[134]; /* 536 bytes, private: see the preamble */
 } SpheraHartBiquadraticPolygon;
 
-/**
- * A convex polygon clipped to the upper hemisphere and prepared for solid angle
- * sampling.
- */
+/* A convex polygon clipped to the upper hemisphere and prepared for solid angle sampling. */
 typedef struct SpheraClippedSolidAnglePolygon {
-  /**
-   * Opaque: 484 bytes that only the functions preparing a SpheraClippedSolidAnglePolygon write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[121];
+  uint32_t opaque[121]; /* 484 bytes, private: see the preamble */
 } SpheraClippedSolidAnglePolygon;
 
-/**
- * A convex polygon prepared for projected solid angle sampling: the first part of
- * Algorithm 4 (ellipses paired with sectors, sector areas).
- */
-typedef struct SpheraProjectedSolidAnglePolygon {
-  /**
-   * Opaque: 1656 bytes that only the functions preparing a SpheraProjectedSolidAnglePolygon write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[414];
-} SpheraProjectedSolidAnglePolygon;
+/* A convex polygon prepared for projected solid angle sampling: the first part of Algorithm 4
+ * (ellipses paired with sectors, sector areas). */
+typedef struct SpheraProjectedPolygon {
+  uint32_t opaque[414]; /* 1656 bytes, private: see the preamble */
+} SpheraProjectedPolygon;
 
-/**
- * A convex polygon prepared for Arvo's projected solid angle sampling.
- */
+/* A convex polygon prepared for Arvo's projected solid angle sampling. */
 typedef struct SpheraArvoProjectedPolygon {
-  /**
-   * Opaque: 1688 bytes that only the functions preparing a SpheraArvoProjectedPolygon write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[422];
+  uint32_t opaque[422]; /* 1688 bytes, private: see the preamble */
 } SpheraArvoProjectedPolygon;
 
-/**
- * The GGX microfacet BRDF: the Trowbridge–Reitz normal distribution with
- * `α = roughness²`, height-correlated Smith masking-shadowing, and Schlick's Fresnel
- * with the reflectance `F0` at normal incidence per RGB channel.
- */
+/* The GGX microfacet BRDF: the Trowbridge–Reitz normal distribution with `α = roughness²`,
+ * height-correlated Smith masking-shadowing, and Schlick's Fresnel with the reflectance `F0` at
+ * normal incidence per RGB channel. */
 typedef struct SpheraGgxBrdf {
-  /**
-   * Opaque: 16 bytes that only the functions preparing a SpheraGgxBrdf write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[4];
+  uint32_t opaque[4]; /* 16 bytes, private: see the preamble */
 } SpheraGgxBrdf;
 
-/**
- * A linearly transformed cosine in the local shading frame (z = normal).
- */
+/* A linearly transformed cosine in the local shading frame (z = normal). */
 typedef struct SpheraLtc {
-  /**
-   * Opaque: 84 bytes that only the functions preparing a SpheraLtc write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[21];
+  uint32_t opaque[21]; /* 84 bytes, private: see the preamble */
 } SpheraLtc;
 
-/**
- * An LTC restricted to a convex polygon: projected solid angle sampling of the polygon
- * transformed by `M⁻¹`, mapped back by `M` (Peters 2021, Sec. 5).
- */
+/* An LTC restricted to a convex polygon: projected solid angle sampling of the polygon
+ * transformed by `M⁻¹`, mapped back by `M` (Peters 2021, Sec. 5). */
 typedef struct SpheraLtcPolygon {
-  /**
-   * Opaque: 1744 bytes that only the functions preparing a SpheraLtcPolygon write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[436];
+  uint32_t opaque[436]; /* 1744 bytes, private: see the preamble */
 } SpheraLtcPolygon;
 
-/**
- * A polygonal light prepared at one shading point for both techniques.
- */
+/* A polygonal light prepared at one shading point for both techniques. */
 typedef struct SpheraPolygonLight {
-  /**
-   * Opaque: 3476 bytes that only the functions preparing a SpheraPolygonLight write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[869];
+  uint32_t opaque[869]; /* 3476 bytes, private: see the preamble */
 } SpheraPolygonLight;
 
-/**
- * A surface's BRDF: Lambert with albedo `diffuse`, plus GGX with reflectance `f0` at
- * normal incidence (Schlick's Fresnel) and `roughness = √α` in `[0, 1]`. `f0 = (0, 0, 0)`
- * means no GGX layer at all (a Lambertian surface; Schlick's grazing reflection
- * `(1 − ω_o·h)⁵`, which `F0 = 0` would otherwise keep, is dropped too).
- */
+/* A surface's BRDF: Lambert with albedo `diffuse`, plus GGX with reflectance `f0` at normal
+ * incidence (Schlick's Fresnel) and `roughness = √α` in `[0, 1]`. `f0 = (0, 0, 0)` means no GGX
+ * layer at all (a Lambertian surface; Schlick's grazing reflection `(1 − ω_o·h)⁵`, which
+ * `F0 = 0` would otherwise keep, is dropped too). */
 typedef struct SpheraMaterial {
-  /**
-   * Lambertian albedo per channel, in `[0, 1]`.
-   */
-  SpheraVec3 diffuse;
-  /**
-   * GGX reflectance at normal incidence per channel, in `[0, 1]`.
-   */
-  SpheraVec3 f0;
-  /**
-   * `√α`, in `[0, 1]`.
-   */
-  float roughness;
+  SpheraVec3 diffuse; /* Lambertian albedo per channel, in `[0, 1]`. */
+  SpheraVec3 f0; /* GGX reflectance at normal incidence per channel, in `[0, 1]`. */
+  float roughness; /* `√α`, in `[0, 1]`. */
 } SpheraMaterial;
 
-/**
- * A sample of a `PolygonLight`: the direction, the density of the technique that
- * drew it, and its MIS-weighted contribution per unit radiance, in two parts. The
- * estimate of the reflected radiance from this sample is
- * `L × (V(dir) × visible + unoccluded)`, with `V` the visibility of the light along
- * `dir`. `unoccluded` is zero except for optimal MIS, whose zero-mean terms do not
- * depend on visibility (supplement B.1).
- */
+/* A sample of a `PolygonLight`: the direction, the density of the technique that drew it, and
+ * its MIS-weighted contribution per unit radiance, in two parts. The estimate of the reflected
+ * radiance from this sample is `L × (V(dir) × visible + unoccluded)`, with `V` the visibility of
+ * the light along `dir`. `unoccluded` is zero except for optimal MIS, whose zero-mean terms do
+ * not depend on visibility (supplement B.1). */
 typedef struct SpheraLightSample {
-  /**
-   * Unit direction in the local frame.
-   */
-  SpheraVec3 dir;
-  /**
-   * The density of the technique that drew the sample; 0: no sample (and both
-   * contribution parts are 0).
-   */
+  SpheraVec3 dir; /* Unit direction in the local frame. */
+  /* The density of the technique that drew the sample; 0: no sample (and both contribution parts
+   * are 0). */
   float pdf;
-  /**
-   * `f cos θ × weight / pdf`, per channel: multiply by `L V`.
-   */
-  SpheraVec3 visible;
-  /**
-   * The part of optimal MIS that does not depend on visibility: multiply by `L`.
-   */
+  SpheraVec3 visible; /* `f cos θ × weight / pdf`, per channel: multiply by `L V`. */
+  /* The part of optimal MIS that does not depend on visibility: multiply by `L`. */
   SpheraVec3 unoccluded;
 } SpheraLightSample;
 
-/**
- * A spherical pivot-transformed distribution (Eq. 8): a base distribution and a
- * pivot. Build it with `Sptd::uniform` or `Sptd::clamped_cosine`, which make the
- * pivot valid (non-finite → origin, `|r_p|` clamped below 1).
- */
+/* A spherical pivot-transformed distribution (Eq. 8): a base distribution and a pivot. Build it
+ * with `Sptd::uniform` or `Sptd::clamped_cosine`, which make the pivot valid (non-finite →
+ * origin, `|r_p|` clamped below 1). */
 typedef struct SpheraSptd {
-  /**
-   * The pivot `r_p`, `|r_p| ≤ 1 − 2⁻²⁰`.
-   */
-  SpheraVec3 pivot;
-  /**
-   * The unit axis `a` of the clamped-cosine base (`z` for the uniform base).
-   */
+  SpheraVec3 pivot; /* The pivot `r_p`, `|r_p| ≤ 1 − 2⁻²⁰`. */
+  /* The unit axis `a` of the clamped-cosine base (`z` for the uniform base). */
   SpheraVec3 cosine_axis;
-  /**
-   * Which base distribution.
-   */
-  SpheraSptdBase base;
+  SpheraSptdBase base; /* Which base distribution. */
 } SpheraSptd;
 
-/**
- * A spherical cap `{ω : ω·axis ≥ cos θ}` with `1 − cos θ` and `1 + cos θ` both stored
- * to full relative precision: the smaller of the two is authoritative and the other
- * is `2 −` it. A cap built by hand is made valid by every function that takes it: from
- * `one_minus_cos`, except that a cap wider than a hemisphere keeps an `one_plus_cos`
- * that agrees with `2 − one_minus_cos` to `2⁻²²` (and recomputes `one_minus_cos` from
- * it).
- */
+/* A spherical cap `{ω : ω·axis ≥ cos θ}` with `1 ∓ cos θ` both to full relative precision: the
+ * smaller is authoritative, the other `2 −` it. Every function makes a cap built by hand valid,
+ * from `one_minus_cos` (a wide cap keeps an `one_plus_cos` within `2⁻²²` of
+ * `2 − one_minus_cos`). */
 typedef struct SpheraCap {
-  /**
-   * Unit axis (direction of the cap's center).
-   */
-  SpheraVec3 axis;
-  /**
-   * `1 − cos θ` in `[0, 2]`: 0 for an empty cap, 1 for a hemisphere, 2 for the whole
-   * sphere. Authoritative for caps up to a hemisphere (`one_minus_cos ≤ 1`).
-   */
+  SpheraVec3 axis; /* Unit axis (direction of the cap's center). */
+  /* `1 − cos θ` in `[0, 2]`: 0 for an empty cap, 1 for a hemisphere, 2 for the whole sphere.
+   * Authoritative for caps up to a hemisphere (`one_minus_cos ≤ 1`). */
   float one_minus_cos;
-  /**
-   * `1 + cos θ = 2 − one_minus_cos` in `[0, 2]`, the size of the cap's hole: 2 for an
-   * empty cap, 0 for the whole sphere. Authoritative for caps wider than a hemisphere
-   * (`one_minus_cos > 1`), whose hole it keeps to full relative precision (near 2,
-   * `one_minus_cos` keeps only `ulp(2)` of it).
-   */
+  /* `1 + cos θ` in `[0, 2]`, the cap's hole: 2 for an empty cap, 0 for the whole sphere.
+   * Authoritative for caps wider than a hemisphere (`one_minus_cos > 1`). */
   float one_plus_cos;
-  /**
-   * `sin²θ = (1 − cos θ)(1 + cos θ)` in `[0, 1]`.
-   */
-  float sin2;
+  float sin2; /* `sin²θ = (1 − cos θ)(1 + cos θ)` in `[0, 1]`. */
 } SpheraCap;
 
-/**
- * An SPTD restricted to a cap `C` and normalised there: a prepared sampler
- * (Section 4.2, importance sampling over spherical caps). Samples are
- * `ω = g(ω_i)` with `ω_i` drawn from the base inside `g(C)`; the density is
- * `D(ω) / ∫_C D` inside `C` and 0 outside. For the uniform base it is
- * `J(ω) / Ω(g(C))`.
- */
+/* An SPTD restricted to a cap `C` and normalised there: a prepared sampler (Section 4.2,
+ * importance sampling over spherical caps). Samples are `ω = g(ω_i)` with `ω_i` drawn from the
+ * base inside `g(C)`; the density is `D(ω) / ∫_C D` inside `C` and 0 outside. For the uniform
+ * base it is `J(ω) / Ω(g(C))`. */
 typedef struct SpheraSptdInCap {
-  /**
-   * Opaque: 116 bytes that only the functions preparing a SpheraSptdInCap write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[29];
+  uint32_t opaque[29]; /* 116 bytes, private: see the preamble */
 } SpheraSptdInCap;
 
-/**
- * A sphere light (or any cap) prepared for uniform sampling in solid angle: the cap,
- * its frame and its density.
- */
+/* A sphere light (or any cap) prepared for uniform sampling in solid angle: the cap, its frame
+ * and its density. */
 typedef struct SpheraSolidAngleSphere {
-  /**
-   * Opaque: 52 bytes that only the functions preparing a SpheraSolidAngleSphere write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[13];
+  uint32_t opaque[13]; /* 52 bytes, private: see the preamble */
 } SpheraSolidAngleSphere;
-/**
- * The value of a light that could not be prepared: no sample, `pdf` 0, solid
- * angle 0.
- */
-#define SpheraSolidAngleSphere_EMPTY (SpheraSolidAngleSphere){ .cap = SpheraCap_EMPTY, .tangent = SpheraVec3_X, .bitangent = SpheraVec3_Y, .density = 0.0 }
 
-/**
- * The uniform SPTD fitted to GGX `f cos θ` at one view and roughness.
- */
+/* The uniform SPTD fitted to GGX `f cos θ` at one view and roughness. */
 typedef struct SpheraGgxPivot {
-  /**
-   * The pivot `r_p` in the local frame (`|r_p| < 1`).
-   */
-  SpheraVec3 pivot;
-  /**
-   * `∫ f cos θ dω` with Fresnel = 1.
-   */
-  float albedo;
+  SpheraVec3 pivot; /* The pivot `r_p` in the local frame (`|r_p| < 1`). */
+  float albedo; /* `∫ f cos θ dω` with Fresnel = 1. */
 } SpheraGgxPivot;
 
-/**
- * Real-time GGX shading of sphere lights by the fitted SPTD (biased; see the module
- * documentation): prepared once per shading point and material, then evaluated for
- * any number of lights.
- */
+/* Real-time GGX shading of sphere lights by the fitted SPTD (biased; see the module
+ * documentation): prepared once per shading point and material, then evaluated for any number of
+ * lights. */
 typedef struct SpheraSphereLightShading {
-  /**
-   * Opaque: 52 bytes that only the functions preparing a SpheraSphereLightShading write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[13];
+  uint32_t opaque[13]; /* 52 bytes, private: see the preamble */
 } SpheraSphereLightShading;
 
-/**
- * Light sampling of a sphere light by the fitted SPTD restricted to its cap
- * (Section 6.1), with the paper's fallback to uniform cap sampling when
- * `Ω(g(C)) < 10⁻³`. Combine it with `crate::brdf::GgxBrdf::sample` by MIS; its pdf is
- * per steradian and 0 outside the cap.
- *
- * A cap that crosses the horizon is sampled in `C ∩ H` only (issue 20, 1: SPTDs over
- * sets of caps, Sec. 4): uniformly in the intersection of the images `g(C) ∩ g(H)`
- * (`CapIntersection`), mapped back by `g`, with density `J(ω) / Ω(g(C) ∩ g(H))` (and
- * uniformly in `C ∩ H` for the fallback), so that no sample is wasted below the
- * horizon, where the BRDF is 0.
- */
+/* Light sampling of a sphere light by the fitted SPTD restricted to its cap (Section 6.1), with
+ * the paper's fallback to uniform cap sampling when `Ω(g(C)) < 10⁻³`; combine it with
+ * `crate::brdf::GgxBrdf::sample` by MIS. Its pdf is per steradian and 0 outside the cap. A cap
+ * that crosses the horizon is sampled in `C ∩ H` only, uniformly in `g(C) ∩ g(H)` mapped back by
+ * `g` (density `J(ω) / Ω(g(C) ∩ g(H))`; the fallback uniformly in `C ∩ H`), so that no sample is
+ * wasted below the horizon. */
 typedef struct SpheraSphereLightSampler {
-  /**
-   * Opaque: 260 bytes that only the functions preparing a SpheraSphereLightSampler write; the layout is private and may change between versions.
-   */
-  uint32_t opaque[65];
+  uint32_t opaque[65]; /* 260 bytes, private: see the preamble */
 } SpheraSphereLightSampler;
 
-/**
- * The sums of a cluster of VPLs (tabled in the docs of `sphera::vsgl::accumulator`),
- * relative to a reference point `o` kept outside the texel. This is what a texel of
- * the mip pyramid stores: a texel of level `l + 1` is the field-wise sum of its four
- * children.
- */
+/* The sums of a cluster of VPLs (tabled in the docs of `sphera::vsgl::accumulator`), relative to
+ * a reference point `o` kept outside the texel. This is what a texel of the mip pyramid stores:
+ * a texel of level `l + 1` is the field-wise sum of its four children. */
 typedef struct SpheraVsglTexel {
-  /**
-   * `Σ Φ ∘ R_d` (RGB).
-   */
-  SpheraVec3 diffuse_power;
-  /**
-   * `Σ Φ ∘ R_s` (RGB).
-   */
-  SpheraVec3 specular_power;
-  /**
-   * `Σ lum(Φ ∘ R_d) ξ̄_d` with `ξ̄ = λ/(λ+1) ξ`.
-   */
-  SpheraVec3 diffuse_direction;
-  /**
-   * `Σ lum(Φ ∘ R_s) ξ̄_s` with `ξ̄ = λ/(λ+1) ξ`.
-   */
-  SpheraVec3 specular_direction;
-  /**
-   * `Σ w (y − o)`, `w = lum(Φ ∘ (R_d + R_s))`.
-   */
-  SpheraVec3 position;
-  /**
-   * `Σ w ‖y − o‖²`.
-   */
-  float squared_distance;
-  /**
-   * `Σ w`: also the importance `p` of filtered importance sampling.
-   */
-  float weight;
+  SpheraVec3 diffuse_power; /* `Σ Φ ∘ R_d` (RGB). */
+  SpheraVec3 specular_power; /* `Σ Φ ∘ R_s` (RGB). */
+  SpheraVec3 diffuse_direction; /* `Σ lum(Φ ∘ R_d) ξ̄_d` with `ξ̄ = λ/(λ+1) ξ`. */
+  SpheraVec3 specular_direction; /* `Σ lum(Φ ∘ R_s) ξ̄_s` with `ξ̄ = λ/(λ+1) ξ`. */
+  SpheraVec3 position; /* `Σ w (y − o)`, `w = lum(Φ ∘ (R_d + R_s))`. */
+  float squared_distance; /* `Σ w ‖y − o‖²`. */
+  float weight; /* `Σ w`: also the importance `p` of filtered importance sampling. */
 } SpheraVsglTexel;
 
-/**
- * Sums VPLs, mip texels or other accumulators into one VSGL. Allocation-free and
- * `Copy`; the sums are relative to `origin`, a point the caller picks near the VPLs.
- *
- * Compensated: each field's running sum is kept as the triple (`sums`, `compensation`,
- * `second_compensation`): the rounded sum, the sum of the rounding errors of its
- * additions (each exact by Knuth's TwoSum, and summed by TwoSum too), and the sum of
- * that sum's rounding errors. This is Ogita, Rump and Oishi's SumK with K = 3, applied
- * online: for the non-negative sums (powers, weights, squared distances) the relative
- * error after `n` additions is at most about `ε + (n ε)³` (ε = 2⁻²³), where plain `f32`
- * sums drift by up to `n ε`. Measured: a million identical VPLs added one by one give
- * the VSGL of one VPL, the mean within 1.1e-7 of its distance and the powers within
- * 2.1e-7 (plain sums: a mean 3e-2 off and a spread of 11% of the distance; with one
- * level of compensation, 3e-5 and 5e-5; tested).
- */
+/* Sums VPLs, mip texels or other accumulators into one VSGL. Allocation-free and `Copy`; the
+ * sums are relative to `origin`, a point the caller picks near the VPLs, and carry two levels of
+ * compensation (relative error about `ε + (n ε)³` after `n` additions, where plain `f32` sums
+ * drift by `n ε`). */
 typedef struct SpheraVsglAccumulator {
-  /**
-   * The sums so far, rounded.
-   */
-  struct SpheraVsglTexel sums;
-  /**
-   * The reference point `o` of the sums.
-   */
-  SpheraVec3 origin;
-  /**
-   * The rounding errors of the additions into `sums`: the sums to full precision are
-   * `sums + compensation`.
-   */
+  struct SpheraVsglTexel sums; /* The sums so far, rounded. */
+  SpheraVec3 origin; /* The reference point `o` of the sums. */
+  /* The rounding errors of the additions into `sums`: the sums to full precision are
+   * `sums + compensation`. */
   struct SpheraVsglTexel compensation;
-  /**
-   * The rounding errors of the additions into `compensation`.
-   */
+  /* The rounding errors of the additions into `compensation`. */
   struct SpheraVsglTexel second_compensation;
 } SpheraVsglAccumulator;
 
-/**
- * A virtual point light: a point `y` on a surface lit by a photon of power `Φ` that
- * arrived from `toward_incoming` (`ω'`, pointing away from the surface).
- */
+/* A virtual point light: a point `y` on a surface lit by a photon of power `Φ` that arrived from
+ * `toward_incoming` (`ω'`, pointing away from the surface). */
 typedef struct SpheraVpl {
-  /**
-   * World position `y`.
-   */
-  SpheraVec3 position;
-  /**
-   * Surface normal `n` (normalised on use).
-   */
-  SpheraVec3 normal;
-  /**
-   * Photon power `Φ` (RGB, negative or NaN channels count as 0).
-   */
-  SpheraVec3 power;
-  /**
-   * Diffuse reflectance `R_d` (RGB, negative or NaN channels count as 0).
-   */
+  SpheraVec3 position; /* World position `y`. */
+  SpheraVec3 normal; /* Surface normal `n` (normalised on use). */
+  SpheraVec3 power; /* Photon power `Φ` (RGB, negative or NaN channels count as 0). */
+  /* Diffuse reflectance `R_d` (RGB, negative or NaN channels count as 0). */
   SpheraVec3 diffuse_reflectance;
-  /**
-   * Specular reflectance `R_s` (RGB, negative or NaN channels count as 0).
-   */
+  /* Specular reflectance `R_s` (RGB, negative or NaN channels count as 0). */
   SpheraVec3 specular_reflectance;
-  /**
-   * Unit direction toward the light the photon came from, `ω'` (normalised on use).
-   */
+  /* Unit direction toward the light the photon came from, `ω'` (normalised on use). */
   SpheraVec3 toward_incoming;
-  /**
-   * GGX/Beckmann roughness `α` of the specular lobe (raised to `1e-4`).
-   */
-  float roughness;
+  float roughness; /* GGX/Beckmann roughness `α` of the specular lobe (raised to `1e-4`). */
 } SpheraVpl;
 
-/**
- * A spherical Gaussian `G(ω) = exp(log_amplitude) · exp(λ(ω·ξ − 1))` with unit axis
- * `ξ = axis` and sharpness `λ = sharpness`.
- */
+/* A spherical Gaussian `G(ω) = exp(log_amplitude) · exp(λ(ω·ξ − 1))` with unit axis `ξ = axis`
+ * and sharpness `λ = sharpness`. */
 typedef struct SpheraSg {
-  /**
-   * Unit lobe axis `ξ`.
-   */
-  SpheraVec3 axis;
-  /**
-   * Sharpness `λ` in `[0, 1e8]` (`MAX_SHARPNESS`).
-   */
-  float sharpness;
-  /**
-   * Natural logarithm of the amplitude (the value at the axis), in
-   * `[−1e30, 88.72283]` (`MIN_LOG_AMPLITUDE`, `ln FLT_MAX`); −1e30 means amplitude 0.
-   */
+  SpheraVec3 axis; /* Unit lobe axis `ξ`. */
+  float sharpness; /* Sharpness `λ` in `[0, 1e8]` (`MAX_SHARPNESS`). */
+  /* Natural logarithm of the amplitude (the value at the axis), in `[−1e30, 88.72283]`
+   * (`MIN_LOG_AMPLITUDE`, `ln FLT_MAX`); −1e30 means amplitude 0. */
   float log_amplitude;
 } SpheraSg;
 
-/**
- * A virtual spherical Gaussian light: the radiant intensity of a cluster as two SGs
- * and the positional distribution as an isotropic Gaussian (supplement Sections
- * 3.1–3.2).
- *
- * The intensity is `I_v(ω) = diffuse_power ∘ diffuse(ω) + specular_power ∘
- * specular(ω)` where each SG is *normalised* (amplitude `1/A(λ_v)`), i.e. the paper's
- * `c_v = Σ Φ R / A(λ_v)` is `power / A(λ_v)` per RGB channel. An empty cluster (no
- * power, or sums that are not finite) is `Vsgl::EMPTY`-like: both powers zero.
- */
+/* A virtual spherical Gaussian light (supplement Sections 3.1–3.2): the radiant intensity
+ * `I_v(ω) = diffuse_power ∘ diffuse(ω) + specular_power ∘ specular(ω)` of a cluster with
+ * normalised SGs (amplitude `1/A(λ_v)`, so the paper's `c_v` is `power / A(λ_v)` per RGB
+ * channel) and its positions as an isotropic Gaussian. An empty cluster (no power, or sums that
+ * are not finite) has both powers zero, like `Vsgl::EMPTY`. */
 typedef struct SpheraVsgl {
-  /**
-   * Normalised SG of the diffuse radiant intensity: axis `ξ_v`, sharpness `λ_v`.
-   */
+  /* Normalised SG of the diffuse radiant intensity: axis `ξ_v`, sharpness `λ_v`. */
   struct SpheraSg diffuse;
-  /**
-   * Normalised SG of the specular radiant intensity.
-   */
-  struct SpheraSg specular;
-  /**
-   * `Σ Φ ∘ R_d` (RGB).
-   */
-  SpheraVec3 diffuse_power;
-  /**
-   * `Σ Φ ∘ R_s` (RGB).
-   */
-  SpheraVec3 specular_power;
-  /**
-   * The weighted mean position `μ_v`.
-   */
-  SpheraVec3 mean;
-  /**
-   * The positional variance `σ_v²` (Section 3.2). 0 for a single VPL or a cluster
-   * whose spread is below the `f32` rounding of the sums: the shading must treat
-   * `σ² = 0` as a point light (the limit `λ_σ → ∞` of Eq. 6).
-   */
+  struct SpheraSg specular; /* Normalised SG of the specular radiant intensity. */
+  SpheraVec3 diffuse_power; /* `Σ Φ ∘ R_d` (RGB). */
+  SpheraVec3 specular_power; /* `Σ Φ ∘ R_s` (RGB). */
+  SpheraVec3 mean; /* The weighted mean position `μ_v`. */
+  /* The positional variance `σ_v²` (Section 3.2). 0 for a single VPL or a cluster whose spread
+   * is below the `f32` rounding of the sums: the shading must treat `σ² = 0` as a point light
+   * (the limit `λ_σ → ∞` of Eq. 6). */
   float variance;
 } SpheraVsgl;
 
-/**
- * An anisotropic spherical Gaussian
- * `a · max(ω·z, 0) · exp(−η_x (ω·x)² − η_y (ω·y)²)`.
- */
+/* An anisotropic spherical Gaussian `a · max(ω·z, 0) · exp(−η_x (ω·x)² − η_y (ω·y)²)`. */
 typedef struct SpheraAsg {
-  /**
-   * Tangent axis of bandwidth `eta_x`.
-   */
-  SpheraVec3 x;
-  /**
-   * Tangent axis of bandwidth `eta_y`.
-   */
-  SpheraVec3 y;
-  /**
-   * Lobe axis.
-   */
-  SpheraVec3 z;
-  /**
-   * Bandwidth along `x`, in `[0, MAX_SHARPNESS]`.
-   */
-  float eta_x;
-  /**
-   * Bandwidth along `y`, in `[0, MAX_SHARPNESS]`.
-   */
-  float eta_y;
-  /**
-   * Amplitude `a ≥ 0` (finite).
-   */
-  float amplitude;
+  SpheraVec3 x; /* Tangent axis of bandwidth `eta_x`. */
+  SpheraVec3 y; /* Tangent axis of bandwidth `eta_y`. */
+  SpheraVec3 z; /* Lobe axis. */
+  float eta_x; /* Bandwidth along `x`, in `[0, MAX_SHARPNESS]`. */
+  float eta_y; /* Bandwidth along `y`, in `[0, MAX_SHARPNESS]`. */
+  float amplitude; /* Amplitude `a ≥ 0` (finite). */
 } SpheraAsg;
 
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
 
-/**
- * Clips the convex polygon `vertices[0..count]` to the upper hemisphere (z >= 0) in
- * place and returns the new vertex count: 0 when nothing of the polygon lies above the
- * horizon, otherwise 3 to `SPHERA_MAX_POLYGON_VERTICES`. Vertices created by the clip
- * lie exactly on z = 0; the winding is kept. A polygon with
- * `SPHERA_MAX_POLYGON_VERTICES` vertices is kept only when it lies entirely above the
- * horizon (z > 0), otherwise the result is 0, since clipping could need one vertex
- * more than the array holds.
- *
- * Returns 0 and leaves the array untouched when `vertices` is null or `count` lies
- * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`.
- *
- * # Safety
- *
- * `vertices` must be null or point to an array of `SPHERA_MAX_POLYGON_VERTICES`
- * writable `SpheraVec3`s whose first `count` are initialised (the clipped polygon may
- * have more vertices than the input).
- */
+/* Clips the convex polygon `vertices[0..count]` to the upper hemisphere (z >= 0) in place and
+ * returns the new vertex count: 0 when nothing lies above the horizon, otherwise 3 to
+ * `SPHERA_MAX_POLYGON_VERTICES`. New vertices lie exactly on z = 0; the winding is kept. A
+ * polygon of `SPHERA_MAX_POLYGON_VERTICES` vertices gives 0 unless it lies entirely above the
+ * horizon (z > 0), since clipping could need one vertex more than the array holds. Returns 0 and
+ * leaves the array untouched when `vertices` is null or `count` lies outside
+ * 3..=`SPHERA_MAX_POLYGON_VERTICES`.
+ * Safety: `vertices` must be null or point to an array of `SPHERA_MAX_POLYGON_VERTICES` writable
+ * `SpheraVec3`s whose first `count` are initialised (the clipped polygon may have more vertices
+ * than the input). */
 uint32_t sphera_polygon_clip(struct SpheraVec3 *vertices, uint32_t count);
 
-/**
- * Prepares the solid angle sampler (Peters 2021) for the convex polygon
- * `vertices[0..count]`: positions relative to the shading point, not normalised, in
- * either winding. The polygon need not be clipped; clip it first with
- * `sphera_polygon_clip` to sample only the part above the horizon.
- *
- * Returns `false` when `out` is null, when `vertices` is null, when `count` lies
- * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
- * when the polygon subtends no solid angle, in particular when its vertices lie exactly
- * in a plane through the shading point (decided exactly, at any tilt). Unless `out` is
- * null, a `false` return writes the empty polygon into `*out`: its samples have pdf 0,
- * its `pdf` is 0 and its solid angle is 0, whatever `*out` held before.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraSolidAnglePolygon`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
- */
+/* Prepares the solid angle sampler (Peters 2021) for the convex polygon `vertices[0..count]`
+ * (not normalised). The polygon need not be clipped; clip it first with `sphera_polygon_clip` to
+ * sample only the part above the horizon.
+ * Returns `false` also when the polygon subtends no solid angle, in particular when its vertices
+ * lie exactly in a plane through the shading point (decided exactly, at any tilt). */
 bool sphera_solid_angle_polygon_prepare(struct SpheraSolidAnglePolygon *out,
-                                        const struct SpheraVec3 *vertices,
-                                        uint32_t count);
+                                        const struct SpheraVec3 *vertices, uint32_t count);
 
-/**
- * Draws a direction uniformly distributed in the solid angle of `polygon` from the
- * random numbers `u0`, `u1` in [0, 1) (values outside are clamped by the library).
- * The pdf of the sample is 1 / solid angle per steradian.
- *
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty.
- * `dir` is always a finite unit vector.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
- * `sphera_solid_angle_polygon_prepare`.
- */
+/* Draws a direction uniformly distributed in the solid angle of `polygon` from the random
+ * numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / solid angle per steradian. */
 struct SpheraSample sphera_solid_angle_polygon_sample(const struct SpheraSolidAnglePolygon *polygon,
-                                                      float u0,
-                                                      float u1);
+                                                      float u0, float u1);
 
-/**
- * The density per steradian with which `sphera_solid_angle_polygon_sample` produces
- * the direction `dir` (need not be normalised): 1 / solid angle inside the polygon
- * (boundary included, and up to a slack outside it where rounding puts samples drawn
- * next to an edge: the smaller of 16 ulps, 1.9e-6 rad, and 2e-5 of the polygon's width,
- * solid angle over perimeter), 0 outside it. Every sample's pdf is this function's
- * value at its direction, bit for bit.
- *
- * Returns 0 when `polygon` is null or empty, and for a zero or non-finite `dir`.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
- * `sphera_solid_angle_polygon_prepare`.
- */
+/* The density per steradian with which `sphera_solid_angle_polygon_sample` produces the
+ * direction `dir` (need not be normalised): 1 / solid angle inside the polygon (boundary
+ * included, and up to a slack outside it where rounding puts samples drawn next to an edge: the
+ * smaller of 16 ulps, 1.9e-6 rad, and 2e-5 of the polygon's width, solid angle over perimeter),
+ * 0 outside it. Every sample's pdf is this function's value at its direction, bit for bit.
+ * Returns 0 also for a zero or non-finite `dir`. */
 float sphera_solid_angle_polygon_pdf(const struct SpheraSolidAnglePolygon *polygon,
                                      struct SpheraVec3 dir);
 
-/**
- * The solid angle (in steradians) that the polygon subtends.
- *
- * Returns 0 when `polygon` is null or empty.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
- * `sphera_solid_angle_polygon_prepare`.
- */
+/* The solid angle (in steradians) that the polygon subtends. */
 float sphera_solid_angle_polygon_solid_angle(const struct SpheraSolidAnglePolygon *polygon);
 
-/**
- * Inverts `sphera_solid_angle_polygon_sample`: finds the random numbers `*u0`, `*u1`
- * in [0, 1] for which the sampler produces the unit direction `dir`.
- *
- * Returns `false` when `polygon`, `u0` or `u1` is null, when the polygon is empty, or
- * when `dir` does not point into the polygon; `*u0` and `*u1` are then set to 0 where
- * they are non-null.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
- * `sphera_solid_angle_polygon_prepare`; `u0` and `u1` must each be null or point to a
- * writable `float`.
- */
+/* Inverts `sphera_solid_angle_polygon_sample`: finds the random numbers `*u0`, `*u1` in [0, 1]
+ * for which the sampler produces the unit direction `dir`.
+ * Returns `false` when `polygon`, `u0` or `u1` is null, when the polygon is empty, or when `dir`
+ * does not point into the polygon; `*u0` and `*u1` are then set to 0 where they are non-null. */
 bool sphera_solid_angle_polygon_invert(const struct SpheraSolidAnglePolygon *polygon,
-                                       struct SpheraVec3 dir,
-                                       float *u0,
-                                       float *u1);
+                                       struct SpheraVec3 dir, float *u0, float *u1);
 
-/**
- * Prepares Turk's baseline for the convex polygon `vertices[0..count]`: points
- * uniformly distributed over the polygon's area, with the density converted to solid
- * angle.
- *
- * Returns `false` when `out` is null, when `vertices` is null, when `count` lies
- * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite,
- * when a coordinate exceeds about 1e18 (2^60) (so that the edge
- * planes that `sphera_turk_polygon_pdf` computes stay finite), or when the polygon is
- * degenerate. Unless `out` is null, a `false` return writes the empty polygon into
- * `*out`: its samples have pdf 0, its `pdf` is 0 and its area is 0, whatever `*out`
- * held before.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraTurkPolygon`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
- */
-bool sphera_turk_polygon_prepare(struct SpheraTurkPolygon *out,
-                                 const struct SpheraVec3 *vertices,
+/* Prepares Turk's baseline for the convex polygon `vertices[0..count]`: points uniformly
+ * distributed over the polygon's area, with the density converted to solid angle.
+ * Returns `false` also when a coordinate exceeds about 1e18 (2^60) (so that the edge planes that
+ * `sphera_turk_polygon_pdf` computes stay finite), or when the polygon is degenerate. */
+bool sphera_turk_polygon_prepare(struct SpheraTurkPolygon *out, const struct SpheraVec3 *vertices,
                                  uint32_t count);
 
-/**
- * Draws a direction towards a point uniformly distributed over the polygon's area from
- * the random numbers `u0`, `u1` in [0, 1) (values outside are clamped by the library).
- * The pdf is distance² / (area · |cos θ|) per steradian, with θ the angle between the
- * direction and the polygon's normal, computed as `sphera_turk_polygon_pdf` computes it:
- * equal to it bit for bit wherever that finds the direction inside the polygon.
- *
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty.
- * `dir` is always a finite unit vector.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraTurkPolygon` written by
- * `sphera_turk_polygon_prepare`.
- */
-struct SpheraSample sphera_turk_polygon_sample(const struct SpheraTurkPolygon *polygon,
-                                               float u0,
+/* Draws a direction towards a point uniformly distributed over the polygon's area from the
+ * random numbers `u0`, `u1` in [0, 1). The pdf is distance² / (area · |cos θ|) per steradian,
+ * with θ the angle between the direction and the polygon's normal, computed as
+ * `sphera_turk_polygon_pdf` computes it: equal to it bit for bit wherever that finds the
+ * direction inside the polygon. */
+struct SpheraSample sphera_turk_polygon_sample(const struct SpheraTurkPolygon *polygon, float u0,
                                                float u1);
 
-/**
- * The density per steradian with which `sphera_turk_polygon_sample` produces the unit
- * direction `dir`; 0 when `dir` misses the polygon.
- *
- * Returns 0 when `polygon` is null or empty.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraTurkPolygon` written by
- * `sphera_turk_polygon_prepare`.
- */
+/* The density per steradian with which `sphera_turk_polygon_sample` produces the unit direction
+ * `dir`; 0 when `dir` misses the polygon. */
 float sphera_turk_polygon_pdf(const struct SpheraTurkPolygon *polygon, struct SpheraVec3 dir);
 
-/**
- * The area of the polygon (in squared units of the vertex coordinates).
- *
- * Returns 0 when `polygon` is null or empty.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraTurkPolygon` written by
- * `sphera_turk_polygon_prepare`.
- */
+/* The area of the polygon (in squared units of the vertex coordinates). */
 float sphera_turk_polygon_area(const struct SpheraTurkPolygon *polygon);
 
-/**
- * Prepares Arvo's 1995 baseline for the convex polygon `vertices[0..count]`: uniform
- * sampling of the solid angle, triangle by triangle.
- *
- * Returns `false` when `out` is null, when `vertices` is null, when `count` lies
- * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
- * when the polygon subtends no solid angle, in particular when its vertices lie exactly
- * in a plane through the shading point (decided exactly, at any tilt). Unless `out` is
- * null, a `false` return writes the empty polygon into `*out`: its samples have pdf 0,
- * its `pdf` is 0 and its solid angle is 0, whatever `*out` held before.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraArvoPolygon`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
- */
-bool sphera_arvo_polygon_prepare(struct SpheraArvoPolygon *out,
-                                 const struct SpheraVec3 *vertices,
+/* Prepares Arvo's 1995 baseline for the convex polygon `vertices[0..count]`: uniform sampling of
+ * the solid angle, triangle by triangle.
+ * Returns `false` also when the polygon subtends no solid angle, in particular when its vertices
+ * lie exactly in a plane through the shading point (decided exactly, at any tilt). */
+bool sphera_arvo_polygon_prepare(struct SpheraArvoPolygon *out, const struct SpheraVec3 *vertices,
                                  uint32_t count);
 
-/**
- * Draws a direction uniformly distributed in the solid angle of `polygon` with Arvo's
- * method from the random numbers `u0`, `u1` in [0, 1) (values outside are clamped by
- * the library). The pdf of the sample is 1 / solid angle per steradian, as
- * `sphera_arvo_polygon_pdf` gives it for the direction.
- *
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty, and
- * when Arvo's construction in f32 puts the direction outside the polygon. A baseline:
- * **unreliable for polygons below about 1e-2 rad across**, where such draws are many
- * (measured on quads at distance 1: 0.25% of the draws at 2e-2 rad across, 7.6% at
- * 2e-3, 20% at 2e-4) and its f32 solid angle is inaccurate (docs/polygon-lights.md). `dir` is always a
- * finite unit vector.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraArvoPolygon` written by
- * `sphera_arvo_polygon_prepare`.
- */
-struct SpheraSample sphera_arvo_polygon_sample(const struct SpheraArvoPolygon *polygon,
-                                               float u0,
+/* Draws a direction uniformly distributed in the solid angle of `polygon` with Arvo's method
+ * from the random numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / solid angle per
+ * steradian, as `sphera_arvo_polygon_pdf` gives it for the direction.
+ * No sample also when Arvo's construction in f32 puts the direction outside the polygon. A
+ * baseline: **unreliable for polygons below about 1e-2 rad across**, where such draws are many
+ * (measured on quads at distance 1: 0.25% of the draws at 2e-2 rad across, 7.6% at 2e-3, 20% at
+ * 2e-4) and its f32 solid angle is inaccurate (docs/polygon-lights.md). */
+struct SpheraSample sphera_arvo_polygon_sample(const struct SpheraArvoPolygon *polygon, float u0,
                                                float u1);
 
-/**
- * The density per steradian with which `sphera_arvo_polygon_sample` produces the unit
- * direction `dir`: 1 / solid angle inside the polygon, 0 outside it.
- *
- * Returns 0 when `polygon` is null or empty.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraArvoPolygon` written by
- * `sphera_arvo_polygon_prepare`.
- */
+/* The density per steradian with which `sphera_arvo_polygon_sample` produces the unit direction
+ * `dir`: 1 / solid angle inside the polygon, 0 outside it. */
 float sphera_arvo_polygon_pdf(const struct SpheraArvoPolygon *polygon, struct SpheraVec3 dir);
 
-/**
- * The solid angle (in steradians) that the polygon subtends, as Arvo's method computes
- * it.
- *
- * Returns 0 when `polygon` is null or empty.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraArvoPolygon` written by
- * `sphera_arvo_polygon_prepare`.
- */
+/* The solid angle (in steradians) that the polygon subtends, as Arvo's method computes it. */
 float sphera_arvo_polygon_solid_angle(const struct SpheraArvoPolygon *polygon);
 
-/**
- * Builds the orthonormal shading frame (tangent, bitangent, normal) around a unit
- * `normal`.
- *
- * Returns `false` when `out` is null, or when `normal` is not finite or not of unit
- * length (|n|² outside 1 ± 1e-3); in the second case `*out` is set to the identity
- * frame (tangent = x axis, bitangent = y axis, normal = z axis).
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraFrame`.
- */
+/* Builds the orthonormal shading frame (tangent, bitangent, normal) around a unit `normal`.
+ * Returns `false` when `out` is null, or when `normal` is not finite or not of unit length (|n|²
+ * outside 1 ± 1e-3); in the second case `*out` is set to the identity frame (tangent = x axis,
+ * bitangent = y axis, normal = z axis). */
 bool sphera_frame_from_normal(struct SpheraFrame *out, struct SpheraVec3 normal);
 
-/**
- * Expresses the world-space vector `v` in `frame` (x = tangent, y = bitangent,
- * z = normal). A null `frame` acts as the identity frame: `v` is returned unchanged.
- *
- * # Safety
- *
- * `frame` must be null or point to a `SpheraFrame` (e.g. one written by
- * `sphera_frame_from_normal`).
- */
+/* Expresses the world-space vector `v` in `frame` (x = tangent, y = bitangent, z = normal). A
+ * null `frame` acts as the identity frame: `v` is returned unchanged. */
 struct SpheraVec3 sphera_frame_to_local(const struct SpheraFrame *frame, struct SpheraVec3 v);
 
-/**
- * Expresses the local vector `v` (x = tangent, y = bitangent, z = normal) in world
- * space. A null `frame` acts as the identity frame: `v` is returned unchanged.
- *
- * # Safety
- *
- * `frame` must be null or point to a `SpheraFrame` (e.g. one written by
- * `sphera_frame_from_normal`).
- */
+/* Expresses the local vector `v` (x = tangent, y = bitangent, z = normal) in world space. A null
+ * `frame` acts as the identity frame: `v` is returned unchanged. */
 struct SpheraVec3 sphera_frame_to_world(const struct SpheraFrame *frame, struct SpheraVec3 v);
 
-/**
- * Whether the library was compiled to use hardware fused multiply-add instructions
- * (otherwise the error-free products are emulated, which is slower but as accurate).
- */
+/* Whether the library was compiled to use hardware fused multiply-add instructions (otherwise
+ * the error-free products are emulated, which is slower but as accurate). */
 bool sphera_has_hardware_fma(void);
 
-/**
- * The library's version and build as a NUL-terminated string: the `version` of its
- * `Cargo.toml` (`MAJOR.MINOR.PATCH`), followed by `+fma` in a build that uses hardware
- * fused multiply-add (`sphera_has_hardware_fma()`), e.g. `"0.1.0"` or `"0.1.0+fma"`.
- * The two builds give results that differ in the last bits (the determinism table,
- * `ffi-tests/determinism_table.txt`, records the default build), so a cache of images
- * or values computed with the library must key on this whole string, not on the
- * version alone. The pointer is to static storage: never free it.
- */
+/* The library's version and build as a NUL-terminated string in static storage (never free it):
+ * `Cargo.toml`'s `MAJOR.MINOR.PATCH`, followed by `+fma` in a build that uses hardware fused
+ * multiply-add, e.g. `"0.1.0+fma"`. The two builds differ in the last bits, so a cache of
+ * results must key on this whole string. */
 const char *sphera_version(void);
 
-/**
- * Whether this library serves a program compiled against the header of version
- * `major.minor`; call it as
- * `sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR)` once at start-up
- * to catch a header and a library from different releases (the `SPHERA_VERSION_*`
- * macros are the header's version, `sphera_version()` the library's).
- *
- * Returns `true` when `major` equals the library's major version and either the
- * major version is 0 and `minor` equals the library's minor version (before 1.0 every
- * minor release may change the prepared structs and the functions), or the major
- * version is 1 or more and `minor` is at most the library's minor version (a later
- * minor release only adds). The patch number is not compared: patch releases change
- * neither layouts nor contracts. `false` otherwise.
- */
+/* Whether this library serves a program compiled against the header of version `major.minor`:
+ * call `sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR)` once at start-up.
+ * Returns `true` when `major` equals the library's major version and either the major version is
+ * 0 and `minor` equals the library's minor version (before 1.0 a minor release may change the
+ * prepared structs and the functions), or the major version is 1 or more and `minor` is at most
+ * the library's (a later minor release only adds); the patch number is not compared. `false`
+ * otherwise. */
 bool sphera_check_version(uint32_t major, uint32_t minor);
 
-/**
- * Prepares the bilinear warp of Hart et al. 2020 for the convex polygon
- * `vertices[0..count]` (positions relative to the shading point, not normalised, either
- * winding): solid angle sampling whose primary square is warped by the bilinear
- * density through the cosine at the directions of its four corners. It approximates
- * cosine-weighted sampling (the pdf is exact for the samples drawn, but not
- * proportional to the cosine). The polygon is not clipped: samples that land below the
- * horizon are returned as "no sample" (pdf 0), and when the cosine is 0 at all four
- * corners the warp is uniform (plain solid angle sampling).
- *
- * Returns `false` when `out` is null, when `vertices` is null, when `count` lies
- * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
- * when the polygon subtends no solid angle. Unless `out` is null, a `false` return
- * writes the empty polygon into `*out`: its samples have pdf 0 and its `pdf` is 0,
- * whatever `*out` held before.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraHartBilinearPolygon`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
- */
+/* Prepares the bilinear warp of Hart et al. 2020 for the convex polygon `vertices[0..count]`:
+ * solid angle sampling whose primary square is warped by the bilinear density through the cosine
+ * at its four corners, which approximates cosine-weighted sampling (the pdf is exact for the
+ * samples drawn). The polygon is not clipped: samples below the horizon are no sample, and when
+ * the cosine is 0 at all four corners the warp is uniform.
+ * Returns `false` also when the polygon subtends no solid angle. */
 bool sphera_hart_bilinear_polygon_prepare(struct SpheraHartBilinearPolygon *out,
-                                          const struct SpheraVec3 *vertices,
-                                          uint32_t count);
+                                          const struct SpheraVec3 *vertices, uint32_t count);
 
-/**
- * Draws a direction with the bilinear warp from the random numbers `u0`, `u1` in
- * [0, 1) (values outside are clamped by the library). The pdf is the warp's density
- * divided by the solid angle, per steradian.
- *
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
- * and when the direction lies at or below the horizon (z <= 0). `dir` is always a
- * finite unit vector.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraHartBilinearPolygon` written by
- * `sphera_hart_bilinear_polygon_prepare`.
- */
+/* Draws a direction with the bilinear warp from the random numbers `u0`, `u1` in [0, 1). The pdf
+ * is the warp's density divided by the solid angle, per steradian.
+ * No sample also when the direction lies at or below the horizon (z <= 0). */
 struct SpheraSample sphera_hart_bilinear_polygon_sample(const struct SpheraHartBilinearPolygon *polygon,
-                                                        float u0,
-                                                        float u1);
+                                                        float u0, float u1);
 
-/**
- * The density per steradian with which `sphera_hart_bilinear_polygon_sample` produces
- * the direction `dir` (need not be normalised); 0 outside the polygon and at or below
- * the horizon (z <= 0).
- *
- * Returns 0 when `polygon` is null or empty.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraHartBilinearPolygon` written by
- * `sphera_hart_bilinear_polygon_prepare`.
- */
+/* The density per steradian with which `sphera_hart_bilinear_polygon_sample` produces the
+ * direction `dir` (need not be normalised); 0 outside the polygon and at or below the horizon (z
+ * <= 0). */
 float sphera_hart_bilinear_polygon_pdf(const struct SpheraHartBilinearPolygon *polygon,
                                        struct SpheraVec3 dir);
 
-/**
- * Prepares the biquadratic warp of Hart et al. 2020 for the convex polygon
- * `vertices[0..count]` (positions relative to the shading point, not normalised, either
- * winding): solid angle sampling whose primary square is warped by the biquadratic
- * density through the cosine at the directions of its 3×3 grid points {0, 1/2, 1}²,
- * written in Bernstein form with negative control points clamped to 0 so that it is
- * non-negative. It approximates cosine-weighted sampling (the pdf is exact for the
- * samples drawn, but not proportional to the cosine). The polygon is not clipped:
- * samples that land below the horizon are returned as "no sample" (pdf 0), and when the
- * cosine is 0 at all grid points the warp is uniform (plain solid angle sampling).
- *
- * Returns `false` when `out` is null, when `vertices` is null, when `count` lies
- * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
- * when the polygon subtends no solid angle. Unless `out` is null, a `false` return
- * writes the empty polygon into `*out`: its samples have pdf 0 and its `pdf` is 0,
- * whatever `*out` held before.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one
- * `SpheraHartBiquadraticPolygon`; `vertices` must be null or point to `count` readable
- * `SpheraVec3`s.
- */
+/* Prepares the biquadratic warp of Hart et al. 2020 for the convex polygon `vertices[0..count]`:
+ * solid angle sampling whose primary square is warped by the biquadratic density through the
+ * cosine at its 3×3 grid points {0, 1/2, 1}² (Bernstein form, negative control points clamped to
+ * 0), which approximates cosine-weighted sampling (the pdf is exact for the samples drawn). The
+ * polygon is not clipped: samples below the horizon are no sample, and when the cosine is 0 at
+ * all grid points the warp is uniform.
+ * Returns `false` also when the polygon subtends no solid angle. */
 bool sphera_hart_biquadratic_polygon_prepare(struct SpheraHartBiquadraticPolygon *out,
-                                             const struct SpheraVec3 *vertices,
-                                             uint32_t count);
+                                             const struct SpheraVec3 *vertices, uint32_t count);
 
-/**
- * Draws a direction with the biquadratic warp from the random numbers `u0`, `u1` in
- * [0, 1) (values outside are clamped by the library). The pdf is the warp's density
- * divided by the solid angle, per steradian.
- *
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
- * and when the direction lies at or below the horizon (z <= 0). `dir` is always a
- * finite unit vector.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraHartBiquadraticPolygon` written by
- * `sphera_hart_biquadratic_polygon_prepare`.
- */
+/* Draws a direction with the biquadratic warp from the random numbers `u0`, `u1` in [0, 1). The
+ * pdf is the warp's density divided by the solid angle, per steradian.
+ * No sample also when the direction lies at or below the horizon (z <= 0). */
 struct SpheraSample sphera_hart_biquadratic_polygon_sample(const struct SpheraHartBiquadraticPolygon *polygon,
-                                                           float u0,
-                                                           float u1);
+                                                           float u0, float u1);
 
-/**
- * The density per steradian with which `sphera_hart_biquadratic_polygon_sample`
- * produces the direction `dir` (need not be normalised); 0 outside the polygon and at
- * or below the horizon (z <= 0).
- *
- * Returns 0 when `polygon` is null or empty.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraHartBiquadraticPolygon` written by
- * `sphera_hart_biquadratic_polygon_prepare`.
- */
+/* The density per steradian with which `sphera_hart_biquadratic_polygon_sample` produces the
+ * direction `dir` (need not be normalised); 0 outside the polygon and at or below the horizon (z
+ * <= 0). */
 float sphera_hart_biquadratic_polygon_pdf(const struct SpheraHartBiquadraticPolygon *polygon,
                                           struct SpheraVec3 dir);
 
-/**
- * Prepares clipped solid angle sampling for the convex polygon `vertices[0..count]`
- * (positions relative to the shading point, not normalised, either winding): the
- * polygon is clipped to the upper hemisphere (z >= 0) and the part above the horizon
- * is sampled uniformly in solid angle.
- *
- * Returns `false` when `out` is null, when `vertices` is null, when `count` lies
- * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite,
- * when nothing of the polygon lies above the horizon, when a polygon of
- * `SPHERA_MAX_POLYGON_VERTICES` vertices needs clipping (the result could have one
- * vertex more than the limit), or when the clipped polygon subtends no solid angle.
- * Unless `out` is null, a `false` return writes the empty polygon into `*out`: its
- * samples have pdf 0, its `pdf` is 0 and its solid angle is 0, whatever `*out` held
- * before.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one
- * `SpheraClippedSolidAnglePolygon`; `vertices` must be null or point to `count`
- * readable `SpheraVec3`s that do not overlap `*out`.
- */
+/* Prepares clipped solid angle sampling for the convex polygon `vertices[0..count]` (not
+ * normalised): the polygon is clipped to the upper hemisphere (z >= 0) and the part above the
+ * horizon is sampled uniformly in solid angle.
+ * Returns `false` also when nothing of the polygon lies above the horizon, when a polygon of
+ * `SPHERA_MAX_POLYGON_VERTICES` vertices needs clipping (the result could have one vertex more
+ * than the limit), or when the clipped polygon subtends no solid angle. */
 bool sphera_clipped_solid_angle_polygon_prepare(struct SpheraClippedSolidAnglePolygon *out,
-                                                const struct SpheraVec3 *vertices,
-                                                uint32_t count);
+                                                const struct SpheraVec3 *vertices, uint32_t count);
 
-/**
- * Draws a direction uniformly distributed in the solid angle of the part of `polygon`
- * above the horizon from the random numbers `u0`, `u1` in [0, 1) (values outside are
- * clamped by the library). The pdf of the sample is 1 / (clipped solid angle) per
- * steradian, and the direction has z >= 0.
- *
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty.
- * `dir` is always a finite unit vector.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraClippedSolidAnglePolygon` written by
- * `sphera_clipped_solid_angle_polygon_prepare`.
- */
+/* Draws a direction uniformly distributed in the solid angle of the part of `polygon` above the
+ * horizon from the random numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / (clipped
+ * solid angle) per steradian, and the direction has z >= 0. */
 struct SpheraSample sphera_clipped_solid_angle_polygon_sample(const struct SpheraClippedSolidAnglePolygon *polygon,
-                                                              float u0,
-                                                              float u1);
+                                                              float u0, float u1);
 
-/**
- * The density per steradian with which `sphera_clipped_solid_angle_polygon_sample`
- * produces the unit direction `dir`: 1 / (clipped solid angle) inside the part of the
- * polygon above the horizon, 0 elsewhere.
- *
- * Returns 0 when `polygon` is null or empty.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraClippedSolidAnglePolygon` written by
- * `sphera_clipped_solid_angle_polygon_prepare`.
- */
+/* The density per steradian with which `sphera_clipped_solid_angle_polygon_sample` produces the
+ * unit direction `dir`: 1 / (clipped solid angle) inside the part of the polygon above the
+ * horizon, 0 elsewhere. */
 float sphera_clipped_solid_angle_polygon_pdf(const struct SpheraClippedSolidAnglePolygon *polygon,
                                              struct SpheraVec3 dir);
 
-/**
- * The solid angle (in steradians) of the part of the polygon above the horizon.
- *
- * Returns 0 when `polygon` is null or empty.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraClippedSolidAnglePolygon` written by
- * `sphera_clipped_solid_angle_polygon_prepare`.
- */
+/* The solid angle (in steradians) of the part of the polygon above the horizon. */
 float sphera_clipped_solid_angle_polygon_solid_angle(const struct SpheraClippedSolidAnglePolygon *polygon);
 
-/**
- * Prepares projected solid angle sampling (Peters 2021) for the convex polygon
- * `vertices[0..count]`: positions relative to the shading point in the local frame
- * (z = normal), not normalised, in either winding. The part below the horizon is
- * clipped away. Polygons smaller than 1e-2 rad across, and nearly edge-on slivers,
- * are sampled by warped solid angle sampling instead (exact for its own pdf, which
- * deviates from cos θ / Φ by less than 1e-4 relative).
- *
- * Returns `false` when `out` is null, when `vertices` is null, when `count` lies
- * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite,
- * when `count` is `SPHERA_MAX_POLYGON_VERTICES` and the polygon crosses the horizon (a
- * 9th vertex would be needed), when nothing of the polygon lies above the horizon, and
- * when its projected solid angle is zero (for example when the shading point lies in
- * the polygon's plane). Unless `out` is null, a `false` return writes the empty polygon
- * into `*out`: its samples have pdf 0, its `pdf` is 0 and its projected solid angle is
- * 0, whatever `*out` held before.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one
- * `SpheraProjectedSolidAnglePolygon`; `vertices` must be null or point to `count`
- * readable `SpheraVec3`s that do not overlap `*out`.
- */
-bool sphera_projected_polygon_prepare(struct SpheraProjectedSolidAnglePolygon *out,
-                                      const struct SpheraVec3 *vertices,
-                                      uint32_t count);
+/* Prepares projected solid angle sampling (Peters 2021) of the polygon's part above the horizon.
+ * Polygons under 1e-2 rad across and edge-on slivers take warped solid angle sampling (its pdf
+ * within 1e-4 relative of cos θ / Φ). Returns `false` also when a polygon of
+ * `SPHERA_MAX_POLYGON_VERTICES` crosses the horizon (a 9th vertex would be needed), and when the
+ * projected solid angle above the horizon is zero. */
+bool sphera_projected_polygon_prepare(struct SpheraProjectedPolygon *out,
+                                      const struct SpheraVec3 *vertices, uint32_t count);
 
-/**
- * `sphera_projected_polygon_prepare` for the biased variant: the sector areas use a
- * fast `atan` (relative error below 1.4e-4 per sector, amplified where inner and outer
- * sector areas nearly cancel), so the projected solid angle and with it every pdf is
- * off by about that much. **Biased.** Same contract as
- * `sphera_projected_polygon_prepare`. Use with `sphera_projected_polygon_sample_fast`.
- *
- * # Safety
- *
- * As for `sphera_projected_polygon_prepare`.
- */
-bool sphera_projected_polygon_prepare_fast(struct SpheraProjectedSolidAnglePolygon *out,
-                                           const struct SpheraVec3 *vertices,
-                                           uint32_t count);
+/* `sphera_projected_polygon_prepare` for the biased variant: the sector areas use a fast `atan`
+ * (relative error below 1.4e-4 per sector, amplified where inner and outer sector areas nearly
+ * cancel), so the projected solid angle and with it every pdf is off by about that much.
+ * **Biased.** Same contract as `sphera_projected_polygon_prepare`. Use with
+ * `sphera_projected_polygon_sample_fast`. */
+bool sphera_projected_polygon_prepare_fast(struct SpheraProjectedPolygon *out,
+                                           const struct SpheraVec3 *vertices, uint32_t count);
 
-/**
- * Draws a direction with density cos θ / Φ inside the polygon from the random numbers
- * `u0`, `u1` in [0, 1) (values outside, and NaN, are clamped by the library). The pdf
- * is per steradian, `dir.z / Φ`, equal to `sphera_projected_polygon_pdf(polygon, dir)`
- * bit for bit wherever that finds the direction inside the polygon. For polygons under
- * 1e-2 rad (the small-polygon sampler) the draws follow `dir.z / Φ` within 0.2 s²
- * relative (2e-5; s is the polygon's angular size). Where a polygon crosses the horizon,
- * its clipped part is accurate to the f32 rounding of the horizon points: Φ within about
- * 6e-8 / w relative for a clipped part w radians wide (solid angle over perimeter).
- *
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
- * and for a draw that lands exactly on the horizon (`cos θ = 0`, possible only for
- * polygons that touch it). `dir` is always a finite unit vector.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
- * `sphera_projected_polygon_prepare` or `sphera_projected_polygon_prepare_fast`.
- */
-struct SpheraSample sphera_projected_polygon_sample(const struct SpheraProjectedSolidAnglePolygon *polygon,
-                                                    float u0,
-                                                    float u1);
+/* Draws a direction with density cos θ / Φ inside the polygon; its pdf `dir.z / Φ` is
+ * `sphera_projected_polygon_pdf` at `dir`, bit for bit. Small polygons (under 1e-2 rad) follow
+ * `dir.z / Φ` within 0.2 s² relative (s: angular size); a clipped part w radians wide has Φ
+ * within about 6e-8 / w relative. No sample for a draw exactly on the horizon. */
+struct SpheraSample sphera_projected_polygon_sample(const struct SpheraProjectedPolygon *polygon,
+                                                    float u0, float u1);
 
-/**
- * The biased variant of `sphera_projected_polygon_sample`: no refinement iterations
- * (the azimuth is the closed-form initial guess of Peters' Proposition 3, within a few
- * hundredths of a radian of the exact one). **Biased**: the returned pdf is that of the
- * exact distribution, `dir.z / Φ`, not the density with which this function actually
- * places its samples; the bias is the distance between the two. Same contract as
- * `sphera_projected_polygon_sample`.
- *
- * # Safety
- *
- * As for `sphera_projected_polygon_sample`.
- */
-struct SpheraSample sphera_projected_polygon_sample_fast(const struct SpheraProjectedSolidAnglePolygon *polygon,
-                                                         float u0,
-                                                         float u1);
+/* The biased variant of `sphera_projected_polygon_sample`: no refinement iterations (the azimuth
+ * is the closed-form initial guess of Peters' Proposition 3, within a few hundredths of a radian
+ * of the exact one). **Biased**: the returned pdf is that of the exact distribution,
+ * `dir.z / Φ`, not the density with which this function actually places its samples; the bias is
+ * the distance between the two. Same contract as `sphera_projected_polygon_sample`. */
+struct SpheraSample sphera_projected_polygon_sample_fast(const struct SpheraProjectedPolygon *polygon,
+                                                         float u0, float u1);
 
-/**
- * The density per steradian with which `sphera_projected_polygon_sample` produces the
- * direction `dir` (need not be normalised): `dir.z / Φ` inside the polygon, 0 outside
- * it, at or below the horizon, and for a zero or non-finite `dir`. For polygons under
- * 1e-2 rad (the small-polygon sampler) directions outside by at most the smaller of 16
- * ulps (1.9e-6 rad) and 2e-5 of the polygon's width count as inside.
- *
- * Returns 0 when `polygon` is null or empty.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
- * a `sphera_projected_polygon_prepare*` function.
- */
-float sphera_projected_polygon_pdf(const struct SpheraProjectedSolidAnglePolygon *polygon,
+/* The density per steradian with which `sphera_projected_polygon_sample` produces the direction
+ * `dir` (need not be normalised): `dir.z / Φ` inside the polygon, 0 outside it, at or below the
+ * horizon, and for a zero or non-finite `dir`. For polygons under 1e-2 rad (the small-polygon
+ * sampler) directions outside by at most the smaller of 16 ulps (1.9e-6 rad) and 2e-5 of the
+ * polygon's width count as inside. */
+float sphera_projected_polygon_pdf(const struct SpheraProjectedPolygon *polygon,
                                    struct SpheraVec3 dir);
 
-/**
- * The projected solid angle Φ = ∫ cos θ dω of the polygon's part above the horizon, in
- * steradians (the irradiance from a unit-radiance polygon). Returns 0 when `polygon`
- * is null or empty.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
- * a `sphera_projected_polygon_prepare*` function.
- */
-float sphera_projected_polygon_projected_solid_angle(const struct SpheraProjectedSolidAnglePolygon *polygon);
+/* The projected solid angle Φ = ∫ cos θ dω of the polygon's part above the horizon, in
+ * steradians (the irradiance from a unit-radiance polygon). */
+float sphera_projected_polygon_projected_solid_angle(const struct SpheraProjectedPolygon *polygon);
 
-/**
- * Prepares Arvo's projected solid angle sampling (the baseline of Peters 2021: the same
- * sectors, with the azimuth found by Newton's method on the sector's area function) for
- * the convex polygon `vertices[0..count]`. Same input and contract as
- * `sphera_projected_polygon_prepare`, without the small-polygon alternative.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraArvoProjectedPolygon`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
- */
+/* Prepares Arvo's projected solid angle sampling (the baseline of Peters 2021: the same sectors,
+ * with the azimuth found by Newton's method on the sector's area function) for the convex
+ * polygon `vertices[0..count]`. Same input and contract as `sphera_projected_polygon_prepare`,
+ * without the small-polygon alternative. */
 bool sphera_arvo_projected_polygon_prepare(struct SpheraArvoProjectedPolygon *out,
-                                           const struct SpheraVec3 *vertices,
-                                           uint32_t count);
+                                           const struct SpheraVec3 *vertices, uint32_t count);
 
-/**
- * Draws a direction with density cos θ / Φ by Arvo's method from `u0`, `u1` in [0, 1)
- * (clamped by the library); the pdf is `dir.z / Φ`, as
- * `sphera_arvo_projected_polygon_pdf` gives it for the direction. Returns
- * `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or empty, for a draw exactly on
- * the horizon, and when the f32 construction puts the direction outside the polygon. A
- * baseline: **unreliable for polygons below about 2e-3 rad across**, where such draws
- * are many (measured on quads at distance 1: 0.06% of the draws at 2e-3 rad across,
- * 5.9% at 2e-4, 79% at 2e-5). `dir` is always a finite unit vector.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraArvoProjectedPolygon` written by
- * `sphera_arvo_projected_polygon_prepare`.
- */
+/* Draws a direction with density cos θ / Φ by Arvo's method from `u0`, `u1` in [0, 1); the pdf
+ * is `dir.z / Φ`, as `sphera_arvo_projected_polygon_pdf` gives it for the direction. No sample
+ * also for a draw exactly on the horizon, and when the f32 construction puts the direction
+ * outside the polygon. A baseline: **unreliable for polygons below about 2e-3 rad across**,
+ * where such draws are many (measured on quads at distance 1: 0.06% of the draws at 2e-3 rad
+ * across, 5.9% at 2e-4, 79% at 2e-5). */
 struct SpheraSample sphera_arvo_projected_polygon_sample(const struct SpheraArvoProjectedPolygon *polygon,
-                                                         float u0,
-                                                         float u1);
+                                                         float u0, float u1);
 
-/**
- * `dir.z / Φ` inside the polygon and above the horizon, 0 otherwise (and 0 when
- * `polygon` is null or empty, or `dir` is zero or not finite).
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraArvoProjectedPolygon` written by
- * `sphera_arvo_projected_polygon_prepare`.
- */
+/* `dir.z / Φ` inside the polygon and above the horizon, 0 otherwise (and 0 when `polygon` is
+ * null or empty, or `dir` is zero or not finite). */
 float sphera_arvo_projected_polygon_pdf(const struct SpheraArvoProjectedPolygon *polygon,
                                         struct SpheraVec3 dir);
 
-/**
- * The projected solid angle Φ in steradians (0 when `polygon` is null or empty).
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraArvoProjectedPolygon` written by
- * `sphera_arvo_projected_polygon_prepare`.
- */
+/* The projected solid angle Φ in steradians (0 when `polygon` is null or empty). */
 float sphera_arvo_projected_polygon_projected_solid_angle(const struct SpheraArvoProjectedPolygon *polygon);
 
-/**
- * Prepares the GGX microfacet BRDF (Trowbridge–Reitz distribution, height-correlated
- * Smith masking-shadowing, Schlick Fresnel) with perceptual roughness `roughness`
- * (`α = roughness²`) and Fresnel reflectance `f0` at normal incidence per RGB channel.
- *
- * `roughness` is clamped to [0, 1] and `α` to the range from `SPHERA_GGX_MIN_ALPHA`
- * to 1; each channel of `f0` is clamped to [0, 1]. Returns `false` when `out` is null,
- * and when `roughness` or a channel of `f0` is NaN or infinite; the latter still
- * writes a usable BRDF into `*out` (a NaN roughness counts as the smoothest,
- * `α = SPHERA_GGX_MIN_ALPHA`; NaN channels of `f0` count as 0; infinities are
- * clamped).
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraGgxBrdf`.
- */
+/* Prepares the GGX BRDF with perceptual roughness `roughness` (`α = roughness²`) and Fresnel
+ * reflectance `f0` at normal incidence per RGB channel. `roughness` is clamped to [0, 1] and `α`
+ * to [`SPHERA_GGX_MIN_ALPHA`, 1]; each channel of `f0` is clamped to [0, 1]. Returns `false`
+ * when `out` is null, and when `roughness` or a channel of `f0` is NaN or infinite; the latter
+ * still writes a usable BRDF (a NaN roughness counts as the smoothest, NaN channels of `f0` as
+ * 0, infinities are clamped). */
 bool sphera_ggx_brdf_prepare(struct SpheraGgxBrdf *out, float roughness, struct SpheraVec3 f0);
 
-/**
- * The GGX BRDF `f(wo, wi) = F D G2 / (4 cos θo cos θi)` per RGB channel, without the
- * cosine `cos θi`. Symmetric in `wo` and `wi`.
- *
- * Returns (0, 0, 0) when `brdf` is null, when either direction lies at or below the
- * horizon (z <= 0), is zero or is not finite. Never returns NaN or infinities.
- *
- * # Safety
- *
- * `brdf` must be null or point to a `SpheraGgxBrdf` written by
- * `sphera_ggx_brdf_prepare`.
- */
-struct SpheraVec3 sphera_ggx_eval(const struct SpheraGgxBrdf *brdf,
-                                  struct SpheraVec3 wo,
-                                  struct SpheraVec3 wi);
+/* The GGX BRDF `f(wo, wi) = F D G2 / (4 cos θo cos θi)` per RGB channel, without the cosine
+ * `cos θi`. Symmetric in `wo` and `wi`.
+ * Returns (0, 0, 0) when `brdf` is null, when either direction lies at or below the horizon (z
+ * <= 0), is zero or is not finite. Never returns NaN or infinities. */
+struct SpheraVec3 sphera_ggx_brdf_eval(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo,
+                                       struct SpheraVec3 wi);
 
-/**
- * `D G2 / (4 cos θo cos θi)`: `sphera_ggx_eval` with Fresnel F = 1 (a scalar).
- *
- * Returns 0 in the cases where `sphera_ggx_eval` returns (0, 0, 0).
- *
- * # Safety
- *
- * `brdf` must be null or point to a `SpheraGgxBrdf` written by
- * `sphera_ggx_brdf_prepare`.
- */
-float sphera_ggx_eval_without_fresnel(const struct SpheraGgxBrdf *brdf,
-                                      struct SpheraVec3 wo,
-                                      struct SpheraVec3 wi);
+/* `D G2 / (4 cos θo cos θi)`: `sphera_ggx_brdf_eval` with Fresnel F = 1 (a scalar).
+ * Returns 0 in the cases where `sphera_ggx_brdf_eval` returns (0, 0, 0). */
+float sphera_ggx_brdf_eval_without_fresnel(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo,
+                                           struct SpheraVec3 wi);
 
-/**
- * Draws `wi` by sampling the GGX distribution of normals visible from `wo` (Heitz
- * 2018) and reflecting `wo` on the sampled normal, from the random numbers `u0`, `u1`
- * in [0, 1) (values outside are clamped by the library, NaN counts as 0). The pdf is
- * `G1(wo) D(h) / (4 cos θo)` per steradian and equals `sphera_ggx_pdf(brdf, wo, dir)`.
- *
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `brdf` is null, when `wo`
- * lies at or below the horizon, is zero or is not finite, and when the reflected
- * direction lies at or below the horizon. The last case happens with positive
- * probability (about half the draws for roughness 1 at normal incidence): the pdf
- * then integrates to less than 1 over the upper hemisphere. Count such a draw as a
- * sample that contributes 0; do not renormalise the pdf.
- *
- * # Safety
- *
- * `brdf` must be null or point to a `SpheraGgxBrdf` written by
- * `sphera_ggx_brdf_prepare`.
- */
-struct SpheraSample sphera_ggx_sample(const struct SpheraGgxBrdf *brdf,
-                                      struct SpheraVec3 wo,
-                                      float u0,
-                                      float u1);
+/* Draws `wi`: `wo` reflected on a normal drawn from GGX's visible normals (Dupuy and Benyoub
+ * 2023), pdf `G1(wo) D(h) / (4 cos θo)` = `sphera_ggx_brdf_pdf(brdf, wo, dir)`. No sample for a
+ * `wo` that is not finite, zero or at or below the horizon, and for a reflection at or below the
+ * horizon (about half the draws at roughness 1 and normal incidence: count it as a sample that
+ * contributes 0; do not renormalise the pdf). */
+struct SpheraSample sphera_ggx_brdf_sample(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo,
+                                           float u0, float u1);
 
-/**
- * The density per steradian with which `sphera_ggx_sample` draws `wi` given `wo`:
+/* The density per steradian with which `sphera_ggx_brdf_sample` draws `wi` given `wo`:
  * `G1(wo) D(h) / (4 cos θo)` with `h` the half vector of `wo` and `wi`.
- *
- * Returns 0 when `brdf` is null, and when either direction lies at or below the
- * horizon, is zero or is not finite.
- *
- * # Safety
- *
- * `brdf` must be null or point to a `SpheraGgxBrdf` written by
- * `sphera_ggx_brdf_prepare`.
- */
-float sphera_ggx_pdf(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo, struct SpheraVec3 wi);
+ * Returns 0 when `brdf` is null, and when either direction lies at or below the horizon, is zero
+ * or is not finite. */
+float sphera_ggx_brdf_pdf(const struct SpheraGgxBrdf *brdf, struct SpheraVec3 wo,
+                          struct SpheraVec3 wi);
 
-/**
- * The Lambertian BRDF `albedo / π` per RGB channel (each channel of `albedo` clamped
- * to [0, 1], NaN to 0), without the cosine `cos θi`.
- *
- * Returns (0, 0, 0) when either direction lies at or below the horizon (z <= 0), is
- * zero or is not finite.
- */
-struct SpheraVec3 sphera_lambert_eval(struct SpheraVec3 albedo,
-                                      struct SpheraVec3 wo,
+/* The Lambertian BRDF `albedo / π` per RGB channel (each channel of `albedo` clamped to [0, 1],
+ * NaN to 0), without the cosine `cos θi`.
+ * Returns (0, 0, 0) when either direction lies at or below the horizon (z <= 0), is zero or is
+ * not finite. */
+struct SpheraVec3 sphera_lambert_eval(struct SpheraVec3 albedo, struct SpheraVec3 wo,
                                       struct SpheraVec3 wi);
 
-/**
- * Draws a direction with density `cos θ / π` (cosine-weighted, by the concentric disk
- * mapping) from the random numbers `u0`, `u1` in [0, 1) (values outside are clamped by
- * the library, NaN counts as 0). Every draw lies strictly above the horizon and its
- * pdf equals `sphera_lambert_pdf(dir)`.
- */
+/* Draws a direction with density `cos θ / π` (cosine-weighted, by the concentric disk mapping)
+ * from the random numbers `u0`, `u1` in [0, 1). Every draw lies strictly above the horizon and
+ * its pdf equals `sphera_lambert_pdf(dir)`. */
 struct SpheraSample sphera_lambert_sample(float u0, float u1);
 
-/**
- * The density `max(0, cos θ) / π` per steradian with which `sphera_lambert_sample`
- * draws `wi`. Returns 0 when `wi` is zero or not finite.
- */
+/* The density `max(0, cos θ) / π` per steradian with which `sphera_lambert_sample` draws `wi`.
+ * Returns 0 when `wi` is zero or not finite. */
 float sphera_lambert_pdf(struct SpheraVec3 wi);
 
-/**
- * The balance heuristic `p_this / (p_this + p_other)`. The weights of the two
- * techniques sum to one wherever either pdf is positive.
- */
+/* The balance heuristic `p_this / (p_this + p_other)`. The weights of the two techniques sum to
+ * one wherever either pdf is positive. */
 float sphera_mis_balance(float p_this, float p_other);
 
-/**
- * The power heuristic with exponent 2, `p_this² / (p_this² + p_other²)`, computed
- * without overflow. The weights sum to one wherever either pdf is positive.
- */
+/* The power heuristic with exponent 2, `p_this² / (p_this² + p_other²)`, computed without
+ * overflow. The weights sum to one wherever either pdf is positive. */
 float sphera_mis_power(float p_this, float p_other);
 
-/**
- * The weighted balance heuristic of Peters 2021,
- * `c_this p_this / (c_this p_this + c_other p_other)`, where `c_this`, `c_other` >= 0
- * are the techniques' unoccluded contributions. Falls back to the balance heuristic
- * where `c_this p_this + c_other p_other = 0`. The weights sum to one wherever either
- * pdf is positive.
- */
+/* The weighted balance heuristic of Peters 2021,
+ * `c_this p_this / (c_this p_this + c_other p_other)`, where `c_this`, `c_other` >= 0 are the
+ * techniques' unoccluded contributions. Falls back to the balance heuristic where
+ * `c_this p_this + c_other p_other = 0`. The weights sum to one wherever either pdf is positive. */
 float sphera_mis_weighted_balance(float p_this, float c_this, float p_other, float c_other);
 
-/**
- * The contribution of a sample under optimal MIS as specialised by Peters 2021
- * (supplement B.1): `v c_this + (f - v (c_this p_this + c_other p_other)) /
- * (p_this + p_other)`, where `f` is the integrand at the sample and `v` in [0, 1] an
- * estimate of the visibility. This is already divided by the pdf: add the
- * contributions of one sample of each technique. It can be negative and is non-zero
- * where `f = 0`; the sum is unbiased for any `v`. A draw that failed (pdf 0)
- * contributes 0: do not call this for it.
- */
-float sphera_mis_optimal_contribution(float f,
-                                      float p_this,
-                                      float c_this,
-                                      float p_other,
-                                      float c_other,
-                                      float v);
+/* The contribution of a sample under optimal MIS as specialised by Peters 2021 (supplement B.1):
+ * `v c_this + (f - v (c_this p_this + c_other p_other)) / (p_this + p_other)`, where `f` is the
+ * integrand at the sample and `v` in [0, 1] an estimate of the visibility. This is already
+ * divided by the pdf: add the contributions of one sample of each technique. It can be negative
+ * and is non-zero where `f = 0`; the sum is unbiased for any `v`. A draw that failed (pdf 0)
+ * contributes 0: do not call this for it. */
+float sphera_mis_optimal_contribution(float f, float p_this, float c_this, float p_other,
+                                      float c_other, float v);
 
-/**
- * The contribution of a sample under clamped optimal MIS (Peters 2021, supplement
- * B.3): `f (v c_this / (c_this p_this + c_other p_other) + (1 - v) / (p_this +
- * p_other))`, already divided by the pdf; `v` = `SPHERA_MIS_DEFAULT_VISIBILITY` in
- * the paper. Equals `f * sphera_mis_clamped_optimal_weight(...) / p_this`. Unbiased
- * for any `v`.
- */
-float sphera_mis_clamped_optimal_contribution(float f,
-                                              float p_this,
-                                              float c_this,
-                                              float p_other,
-                                              float c_other,
-                                              float v);
+/* The contribution of a sample under clamped optimal MIS (Peters 2021, supplement B.3):
+ * `f (v c_this / (c_this p_this + c_other p_other) + (1 - v) / (p_this + p_other))`, already
+ * divided by the pdf; `v` = `SPHERA_MIS_DEFAULT_VISIBILITY` in the paper. Equals
+ * `f * sphera_mis_clamped_optimal_weight(...) / p_this`. Unbiased for any `v`. */
+float sphera_mis_clamped_optimal_contribution(float f, float p_this, float c_this, float p_other,
+                                              float c_other, float v);
 
-/**
- * The weight of clamped optimal MIS, `p_this (v c_this / (c_this p_this + c_other
- * p_other) + (1 - v) / (p_this + p_other))`: `v` times the weighted balance heuristic
- * plus `1 - v` times the balance heuristic. `v = 0` gives the balance heuristic,
- * `v = 1` the weighted balance heuristic. The weights sum to one wherever either pdf
- * is positive.
- */
-float sphera_mis_clamped_optimal_weight(float p_this,
-                                        float c_this,
-                                        float p_other,
-                                        float c_other,
+/* The weight of clamped optimal MIS,
+ * `p_this (v c_this / (c_this p_this + c_other p_other) + (1 - v) / (p_this + p_other))`: `v`
+ * times the weighted balance heuristic plus `1 - v` times the balance heuristic. `v = 0` gives
+ * the balance heuristic, `v = 1` the weighted balance heuristic. The weights sum to one wherever
+ * either pdf is positive. */
+float sphera_mis_clamped_optimal_weight(float p_this, float c_this, float p_other, float c_other,
                                         float v);
 
-/**
- * Looks up the LTC fitted to GGX `f(wo, ω) cos θ` (Fresnel 1; isotropic GGX with
- * height-correlated Smith masking-shadowing, `α = roughness²`) for the view direction
- * `wo` (local frame, towards the viewer, need not be normalised) and `roughness` in
- * [0, 1] (clamped; NaN counts as 0). The table is interpolated bilinearly in
- * `√α = roughness` and `√(1 − cos θ)`, and rotated to the view's azimuth.
- *
- * Returns `false` when `out` is null, or when `wo` is not finite, zero, or at or below
- * the horizon (`wo.z <= 0`); in the second case `*out` is set to the plain cosine
- * (`M = I`, albedo 1, fresnel 0).
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraLtc`.
- */
-bool sphera_ltc_ggx(struct SpheraLtc *out, struct SpheraVec3 wo, float roughness);
+/* Looks up the LTC fitted to GGX `f(wo, ω) cos θ` (Fresnel 1, `α = roughness²`) for the view
+ * `wo` (towards the viewer, need not be normalised) and `roughness` in [0, 1] (clamped; NaN
+ * counts as 0), interpolated bilinearly in `roughness` and `√(1 − cos θ)` and rotated to the
+ * view's azimuth.
+ * Returns `false` when `out` is null, or when `wo` is not finite, zero, or at or below the
+ * horizon; in the second case `*out` is set to the plain cosine (`M = I`, albedo 1, fresnel 0). */
+bool sphera_ltc_prepare(struct SpheraLtc *out, struct SpheraVec3 wo, float roughness);
 
-/**
- * The LTC's density per steradian at `dir` over the whole sphere (`dir` is normalised
- * first): `D(ω) = max(0, (M⁻¹ω)_z) det M⁻¹ / (π |M⁻¹ω|⁴)`. 0 for a null `ltc` and for
- * zero or non-finite `dir`.
- *
- * # Safety
- *
- * `ltc` must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`.
- */
-float sphera_ltc_density(const struct SpheraLtc *ltc,
-                         struct SpheraVec3 dir);
+/* The LTC's density per steradian at `dir` over the whole sphere (`dir` is normalised first):
+ * `D(ω) = max(0, (M⁻¹ω)_z) det M⁻¹ / (π |M⁻¹ω|⁴)`. 0 for a null `ltc` and for zero or non-finite
+ * `dir`. */
+float sphera_ltc_eval(const struct SpheraLtc *ltc, struct SpheraVec3 dir);
 
-/**
- * GGX's directional albedo with Schlick's Fresnel for the reflectance at normal
- * incidence `f0` (per channel, clamped to [0, 1], NaN counting as 0, as in
- * `sphera_ggx_brdf_prepare`): `f0 (albedo − fresnel) + fresnel`, from the fitted
- * integrals; always finite. Unshadowed GGX shading of a polygonal light with radiance `L`
- * is `L × sphera_ltc_specular_albedo(ltc, f0) × sphera_ltc_polygon_integral(polygon)`.
- * A null `ltc` gives (0, 0, 0).
- *
- * # Safety
- *
- * `ltc` must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`.
- */
+/* GGX's directional albedo with Schlick's Fresnel for `f0` (per channel, clamped as in
+ * `sphera_ggx_brdf_prepare`): `f0 (albedo − fresnel) + fresnel`; always finite, (0, 0, 0) for a
+ * null `ltc`. Unshadowed GGX shading of a polygonal light of radiance `L` is
+ * `L × sphera_ltc_specular_albedo(ltc, f0) × sphera_ltc_polygon_integral(polygon)`. */
 struct SpheraVec3 sphera_ltc_specular_albedo(const struct SpheraLtc *ltc, struct SpheraVec3 f0);
 
-/**
- * Prepares the LTC `*ltc` restricted to the convex polygon `vertices[0..count]`
- * (positions relative to the shading point in the local frame, either winding, 3 to
- * `SPHERA_MAX_POLYGON_VERTICES`): the polygon is transformed by `M⁻¹`, clipped to the
- * horizon of that space, and prepared for projected solid angle sampling.
- *
- * Returns `false` when `out`, `ltc` or `vertices` is null, when `count` lies outside
- * 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is not finite, when the
- * vertices are collinear or the shading point lies in the polygon's plane, when nothing
- * of the transformed polygon lies above the horizon (the LTC has no mass in the
- * polygon), and when the transformed polygon has `SPHERA_MAX_POLYGON_VERTICES`
- * vertices and crosses the horizon. Unless `out` is null, a `false` return writes the
- * empty polygon: no samples, pdf 0, integral 0.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraLtcPolygon`; `ltc`
- * must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`; `vertices` must
- * be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
- */
-bool sphera_ltc_polygon_prepare(struct SpheraLtcPolygon *out,
-                                const struct SpheraLtc *ltc,
-                                const struct SpheraVec3 *vertices,
-                                uint32_t count);
+/* Prepares the LTC `*ltc` restricted to the convex polygon `vertices[0..count]`: the polygon is
+ * transformed by `M⁻¹`, clipped to the horizon of that space, and prepared for projected solid
+ * angle sampling.
+ * Returns `false` also when `ltc` is null, when the vertices are collinear or the shading point
+ * lies in the polygon's plane, when nothing of the transformed polygon lies above the horizon
+ * (the LTC has no mass in the polygon), and when the transformed polygon has
+ * `SPHERA_MAX_POLYGON_VERTICES` vertices and crosses the horizon. */
+bool sphera_ltc_polygon_prepare(struct SpheraLtcPolygon *out, const struct SpheraLtc *ltc,
+                                const struct SpheraVec3 *vertices, uint32_t count);
 
-/**
- * Draws a direction with density `D(ω) / ∫_P D` inside the polygon, from `u0`, `u1`
- * in [0, 1) (clamped by the library). The direction may lie at or below the horizon
- * (`dir.z <= 0`) where the LTC puts a little mass; the BRDF is zero there, so such a
- * sample contributes nothing, and it must not be discarded and redrawn (the pdf counts
- * it). The pdf is `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit (MIS weights rely
- * on it). A draw that the f32 round trip through the LTC's matrix throws outside the
- * polygon (by more than the slack of `sphera_ltc_polygon_pdf`) is pulled towards the
- * polygon's inside until the pdf accepts it: a bias confined to a band of that rounding
- * along the boundary. Returns `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or
- * empty, and where even the pulled draw is rejected (a polygon smaller than the round
- * trip's rounding); `dir` is always a finite unit vector.
- *
- * # Safety
- *
- * `polygon` must be null or point to a `SpheraLtcPolygon` written by
- * `sphera_ltc_polygon_prepare`.
- */
-struct SpheraSample sphera_ltc_polygon_sample(const struct SpheraLtcPolygon *polygon,
-                                              float u0,
+/* Draws a direction with density `D(ω) / ∫_P D` inside the polygon. It may lie at or below the
+ * horizon, where the LTC puts a little mass and the BRDF is zero: such a sample contributes
+ * nothing and must not be redrawn (the pdf counts it). The pdf is
+ * `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit: a draw that the f32 round trip through the
+ * LTC's matrix throws outside the polygon (beyond the pdf's slack) is pulled inward until the
+ * pdf accepts it, a bias confined to a band of that rounding along the boundary. No sample also
+ * where even the pulled draw is rejected (a polygon smaller than that rounding). */
+struct SpheraSample sphera_ltc_polygon_sample(const struct SpheraLtcPolygon *polygon, float u0,
                                               float u1);
 
-/**
- * The density of `sphera_ltc_polygon_sample` at `dir` (normalised first): `D(ω) /
- * ∫_P D` inside the polygon, 0 outside, for a null or empty `polygon`, and for zero or
- * non-finite `dir`. Directions outside the polygon by at most a slack (in the LTC's
- * cosine space, where the polygon is transformed by the inverse matrix) count as
- * inside, where rounding puts samples: the smaller of 1e-5 rad and 2e-5 of the
- * transformed polygon's width (projected solid angle over perimeter), so that the pdf
- * integrates to 1 within 2e-5 over the sphere.
- *
- * # Safety
- *
- * As for `sphera_ltc_polygon_sample`.
- */
+/* The density of `sphera_ltc_polygon_sample` at `dir` (normalised first): `D(ω) / ∫_P D` inside
+ * the polygon, 0 outside, for a null or empty `polygon`, and for zero or non-finite `dir`.
+ * Directions outside the polygon by at most a slack (in the LTC's cosine space, where the
+ * polygon is transformed by the inverse matrix) count as inside, where rounding puts samples:
+ * the smaller of 1e-5 rad and 2e-5 of the transformed polygon's width (projected solid angle
+ * over perimeter), so that the pdf integrates to 1 within 2e-5 over the sphere. */
 float sphera_ltc_polygon_pdf(const struct SpheraLtcPolygon *polygon, struct SpheraVec3 dir);
 
-/**
- * `∫_P D dω`, the LTC's mass inside the polygon, in [0, 1]: the projected solid angle
- * of the transformed polygon over π (Heitz et al. 2016), clamped to 1. 0 for a null or
- * empty `polygon`.
- *
- * # Safety
- *
- * As for `sphera_ltc_polygon_sample`.
- */
+/* `∫_P D dω`, the LTC's mass inside the polygon, in [0, 1]: the projected solid angle of the
+ * transformed polygon over π (Heitz et al. 2016), clamped to 1. 0 for a null or empty `polygon`. */
 float sphera_ltc_polygon_integral(const struct SpheraLtcPolygon *polygon);
 
-/**
- * Prepares a polygonal light at a shading point for both techniques of Peters 2021:
- * technique 0 samples `cos θ` inside the polygon (projected solid angle sampling),
- * technique 1 samples the LTC fitted to GGX (`material->roughness`, view `wo`) inside
- * the polygon. `vertices[0..count]` are positions relative to the shading point in the
- * local frame (z = normal), convex, either winding, 3 to `SPHERA_MAX_POLYGON_VERTICES`;
- * `wo` points towards the viewer (normalised here). `heuristic` is one of
- * `SPHERA_MIS_*` (any other number is an error: see below); `visibility`
- * is `v` of (clamped) optimal MIS, clamped to [0, 1], NaN meaning 1/2 (Peters' default).
- * Material albedos and F0 are clamped to [0, 1], roughness as in `sphera_ltc_ggx`;
- * `f0 = (0, 0, 0)` means a Lambertian surface without a GGX layer.
- *
- * Returns `false` when `out`, `vertices` or `material` is null, when `heuristic` is
- * not one of `SPHERA_MIS_BALANCE`, `SPHERA_MIS_POWER`, `SPHERA_MIS_WEIGHTED_BALANCE`,
- * `SPHERA_MIS_CLAMPED_OPTIMAL` and `SPHERA_MIS_OPTIMAL` (0 to 4; no heuristic is
- * chosen in its place), when `count` lies
- * outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when `wo` is not finite or not above the
- * horizon, and when neither technique can sample the polygon (non-finite or collinear
- * vertices, nothing above the horizon, the shading point in its plane). A technique
- * that cannot sample the polygon on its own gets zero weight and draws no samples.
- * Unless `out` is null, a `false` return writes a light whose samples are all "no
- * sample" (pdf 0, zero contributions).
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraPolygonLight`;
- * `vertices` must be null or point to `count` readable `SpheraVec3`s; `material` must
- * be null or point to a `SpheraMaterial`.
- */
-bool sphera_polygon_light_prepare(struct SpheraPolygonLight *out,
-                                  const struct SpheraVec3 *vertices,
-                                  uint32_t count,
-                                  struct SpheraVec3 wo,
-                                  const struct SpheraMaterial *material,
-                                  uint32_t heuristic,
+/* Prepares a polygonal light for Peters 2021's two techniques: 0, projected solid angle
+ * sampling; 1, the LTC of GGX (`material->roughness`, view `wo`). `heuristic` is a
+ * `SPHERA_MIS_*` value; `visibility` is `v` of (clamped) optimal MIS, clamped to [0, 1], NaN
+ * meaning 1/2. Albedos and F0 are clamped to [0, 1]; `f0 = (0, 0, 0)` is Lambertian. Returns
+ * `false` also for a null `material`, an unknown `heuristic`, a `wo` not above the horizon, and
+ * a polygon neither technique can sample; a technique that cannot sample it alone gets zero
+ * weight. */
+bool sphera_polygon_light_prepare(struct SpheraPolygonLight *out, const struct SpheraVec3 *vertices,
+                                  uint32_t count, struct SpheraVec3 wo,
+                                  const struct SpheraMaterial *material, uint32_t heuristic,
                                   float visibility);
 
-/**
- * Draws a sample from technique `technique` (0: projected solid angle sampling, 1:
- * the GGX LTC; other values: no sample) with `u0`, `u1` in [0, 1) (clamped), weighted
- * for the estimator that takes one sample from each technique. The reflected radiance
- * of a light of radiance `L` is estimated by summing, over one sample of technique 0
- * and one of technique 1, `L × (V(dir) × visible + unoccluded)`, with `V` the light's
- * visibility along `dir` (trace a shadow ray only when `visible` is non-zero).
- * `unoccluded` is non-zero only for `SPHERA_MIS_OPTIMAL`.
- *
- * `pdf` is the density of the technique that drew the sample; 0 means no sample (both
- * parts 0). Directions at or below the horizon (the LTC's mass below the surface)
- * come with their pdf and zero contributions. All outputs are finite; `dir` is a unit
- * vector. A null `light` gives no sample.
- *
- * # Safety
- *
- * `light` must be null or point to a `SpheraPolygonLight` written by
- * `sphera_polygon_light_prepare`.
- */
+/* Draws a sample from technique `technique` (0: projected solid angle sampling, 1: the GGX LTC;
+ * other values: no sample), weighted for the estimator that sums, over one sample of technique 0
+ * and one of technique 1, `L × (V(dir) × visible + unoccluded)` for a light of radiance `L` with
+ * visibility `V` along `dir` (trace a shadow ray only when `visible` is non-zero; `unoccluded`
+ * is non-zero only for `SPHERA_MIS_OPTIMAL`). `pdf` is the density of the technique that drew
+ * the sample; no sample has both parts 0. Directions at or below the horizon come with their pdf
+ * and zero contributions. All outputs are finite. */
 struct SpheraLightSample sphera_polygon_light_sample(const struct SpheraPolygonLight *light,
-                                                     uint32_t technique,
-                                                     float u0,
-                                                     float u1);
+                                                     uint32_t technique, float u0, float u1);
 
-/**
- * The unshadowed shading per unit radiance in closed form: `ρ Φ / π` (exact) plus
- * GGX's directional albedo times the LTC's mass in the polygon (Heitz et al. 2016),
- * per channel. (0, 0, 0) for a null or empty `light`.
- *
- * # Safety
- *
- * As for `sphera_polygon_light_sample`.
- */
+/* The unshadowed shading per unit radiance in closed form: `ρ Φ / π` (exact) plus GGX's
+ * directional albedo times the LTC's mass in the polygon (Heitz et al. 2016), per channel. (0,
+ * 0, 0) for a null or empty `light`. */
 struct SpheraVec3 sphera_polygon_light_unshadowed(const struct SpheraPolygonLight *light);
 
-/**
- * The pivot phase function `1/(4π) ((1 − g²)/(1 + g² − 2g mu))²` (Eq. 25), per
- * steradian, with `1 − g² = (1 − g)(1 + g)` and the denominator as a sum of
- * non-negative terms (relative error about 1e-6 up to |g| = 1 − 2⁻²⁰). `g` is clamped
- * to [−(1 − 2⁻²⁰), 1 − 2⁻²⁰] (NaN counts as 0): beyond, the function is that of
- * ±(1 − 2⁻²⁰), whose peak at mu = ±1 is 2⁴⁰/π ≈ 3.5e11 per steradian. `mu` is clamped
- * to [−1, 1]. Always finite.
- */
-float sphera_phase_pivot(float mu,
-                         float g);
+/* The pivot phase function `1/(4π) ((1 − g²)/(1 + g² − 2g mu))²` (Eq. 25), per steradian, with
+ * `1 − g² = (1 − g)(1 + g)` and the denominator as a sum of non-negative terms (relative error
+ * about 1e-6 up to |g| = 1 − 2⁻²⁰). `g` is clamped to [−(1 − 2⁻²⁰), 1 − 2⁻²⁰] (NaN counts as 0):
+ * beyond, the function is that of ±(1 − 2⁻²⁰), whose peak at mu = ±1 is 2⁴⁰/π ≈ 3.5e11 per
+ * steradian. `mu` is clamped to [−1, 1]. Always finite. */
+float sphera_phase_pivot(float mu, float g);
 
-/**
- * The Henyey–Greenstein phase function `1/(4π) (1 − g²)/(1 + g² − 2g mu)^(3/2)`
- * (Eq. 26), per steradian. Always finite.
- */
+/* The Henyey–Greenstein phase function `1/(4π) (1 − g²)/(1 + g² − 2g mu)^(3/2)` (Eq. 26), per
+ * steradian. Always finite. */
 float sphera_phase_henyey_greenstein(float mu, float g);
 
-/**
- * The pivot parameter whose phase function looks like Henyey–Greenstein with parameter
- * `g` (the rational fit of Eq. 27–28). In (−1, 1).
- */
+/* The pivot parameter whose phase function looks like Henyey–Greenstein with parameter `g` (the
+ * rational fit of Eq. 27–28). In (−1, 1). */
 float sphera_phase_pivot_from_henyey_greenstein(float g);
 
-/**
- * The mean cosine of the pivot phase function with parameter `g`: 4g/3 for small g,
- * → ±1 as g → ±1; not g. Always finite.
- */
+/* The mean cosine of the pivot phase function with parameter `g`: 4g/3 for small g, → ±1 as g →
+ * ±1; not g. Always finite. */
 float sphera_phase_pivot_mean_cosine(float g);
 
-/**
- * Samples the pivot phase function around the direction `wo` (normalised here) with
- * `u0`, `u1` in [0, 1) (clamped); the pdf is the phase function's value. No sample
- * (pdf 0, dir (0, 0, 1)) for a zero or non-finite `wo`.
- */
+/* Samples the pivot phase function around the direction `wo` (normalised here) with `u0`, `u1`
+ * in [0, 1) (clamped); the pdf is the phase function's value. No sample (pdf 0, dir (0, 0, 1))
+ * for a zero or non-finite `wo`. */
 struct SpheraSample sphera_phase_pivot_sample(struct SpheraVec3 wo, float g, float u0, float u1);
 
-/**
- * Samples Henyey–Greenstein around `wo`; as `sphera_phase_pivot_sample`. For |g| < 1e-4
- * the direction is uniform (relative deviation from HG below 3e-4).
- */
-struct SpheraSample sphera_phase_henyey_greenstein_sample(struct SpheraVec3 wo,
-                                                          float g,
-                                                          float u0,
+/* Samples Henyey–Greenstein around `wo`; as `sphera_phase_pivot_sample`. For |g| < 1e-4 the
+ * direction is uniform (relative deviation from HG below 3e-4). */
+struct SpheraSample sphera_phase_henyey_greenstein_sample(struct SpheraVec3 wo, float g, float u0,
                                                           float u1);
 
-/**
- * The pivot phase function (pivot `g·wo`, `wo` normalised, `g` clamped as in
- * `sphera_phase_pivot`) restricted to a sphere light's cap (Section 6.2): sample and
- * evaluate it with `sphera_sptd_in_cap_*`. Returns `false` (writing a sampler without
- * samples) for a zero or non-finite `wo` or an empty cap; does nothing for a null
- * `out`.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraSptdInCap`.
- */
-bool sphera_phase_pivot_in_cap_prepare(struct SpheraSptdInCap *out,
-                                       struct SpheraVec3 wo,
-                                       float g,
-                                       struct SpheraCap cap);
+/* The pivot phase function (pivot `g·wo`, `wo` normalised, `g` clamped as in
+ * `sphera_phase_pivot`) restricted to a sphere light's cap (Section 6.2): sample and evaluate it
+ * with `sphera_sptd_in_cap_*`. Returns `false` (writing a sampler without samples) for a zero or
+ * non-finite `wo` or an empty cap; does nothing for a null `out`. */
+bool sphera_sptd_in_cap_prepare_pivot_phase(struct SpheraSptdInCap *out, struct SpheraVec3 wo,
+                                            float g, struct SpheraCap cap);
 
-/**
- * The cap of directions that a sphere of `radius` centered at `center` (relative to
- * the shading point) subtends: `sin θ = radius / |center|`, with `1 − cos θ` kept to
- * full relative precision for tiny or distant spheres. The whole sphere
- * (`one_minus_cos = 2`) when the shading point is inside or on the sphere; the empty
- * cap (solid angle 0, no samples) for a non-finite center or a radius that is not
- * finite and positive.
- */
+/* The cap of directions that a sphere of `radius` centered at `center` (relative to the shading
+ * point) subtends: `sin θ = radius / |center|`, with `1 − cos θ` kept to full relative precision
+ * for tiny or distant spheres. The whole sphere (`one_minus_cos = 2`) when the shading point is
+ * inside or on the sphere; the empty cap (solid angle 0, no samples) for a non-finite center or
+ * a radius that is not finite and positive. */
 struct SpheraCap sphera_cap_from_sphere(struct SpheraVec3 center, float radius);
 
-/**
- * The cap around `axis` (normalised) with `cos θ = cos_theta` (clamped to [-1, 1]); the
- * empty cap for a non-finite or zero axis or a NaN `cos_theta`. The smaller of
- * `1 ∓ cos θ` is exact: a cap wider than a hemisphere keeps its hole `1 + cos θ`.
- */
+/* The cap around `axis` (normalised) with `cos θ = cos_theta` (clamped to [-1, 1]); the empty
+ * cap for a non-finite or zero axis or a NaN `cos_theta`. The smaller of `1 ∓ cos θ` is exact: a
+ * cap wider than a hemisphere keeps its hole `1 + cos θ`. */
 struct SpheraCap sphera_cap_from_axis_cos(struct SpheraVec3 axis, float cos_theta);
 
-/**
- * The solid angle `2π (1 − cos θ)` of a cap, in [0, 4π].
- */
+/* The solid angle `2π (1 − cos θ)` of a cap, in [0, 4π]. */
 float sphera_cap_solid_angle(struct SpheraCap cap);
 
-/**
- * Whether `dir` (any non-zero finite vector) points into the cap, boundary included.
- */
+/* Whether `dir` (any non-zero finite vector) points into the cap, boundary included. */
 bool sphera_cap_contains(struct SpheraCap cap, struct SpheraVec3 dir);
 
-/**
- * Draws a direction uniformly in solid angle inside the cap (`u0`, `u1` in [0, 1),
- * clamped). pdf 0 (and `dir = (0, 0, 1)`) for an empty cap.
- */
+/* Draws a direction uniformly in solid angle inside the cap (`u0`, `u1` in [0, 1), clamped). pdf
+ * 0 (and `dir = (0, 0, 1)`) for an empty cap. */
 struct SpheraSample sphera_cap_sample_uniform(struct SpheraCap cap, float u0, float u1);
 
-/**
- * The density of `sphera_cap_sample_uniform`: `1 / Ω` inside the cap, 0 outside.
- */
+/* The density of `sphera_cap_sample_uniform`: `1 / Ω` inside the cap, 0 outside. */
 float sphera_cap_pdf(struct SpheraCap cap, struct SpheraVec3 dir);
 
-/**
- * The exact solid angle of the intersection of two caps (disjoint, nested, lens, or
- * both wider than a hemisphere with a union covering the sphere).
- */
+/* The exact solid angle of the intersection of two caps (disjoint, nested, lens, or both wider
+ * than a hemisphere with a union covering the sphere). */
 float sphera_cap_intersection_solid_angle(struct SpheraCap a, struct SpheraCap b);
 
-/**
- * The Oat–Sander approximation of `sphera_cap_intersection_solid_angle` (Eq. 37–38
- * of Dupuy et al. 2017), for caps up to about a hemisphere; exact for disjoint and
- * nested caps.
- */
+/* The Oat–Sander approximation of `sphera_cap_intersection_solid_angle` (Eq. 37–38 of Dupuy et
+ * al. 2017), for caps up to about a hemisphere; exact for disjoint and nested caps. */
 float sphera_cap_intersection_solid_angle_oat_sander(struct SpheraCap a, struct SpheraCap b);
 
-/**
- * Prepares uniform sampling of the cap that the sphere of radius `radius` centred at
- * `center` (relative to the shading point) subtends; the whole sphere of directions
- * when the shading point is inside or on the sphere. The cap is that of
- * `sphera_cap_from_sphere`, exact to a few ulps down to 1e-12 sr and below.
- *
- * Returns `false` when `out` is null, when a coordinate of `center` is NaN or
- * infinite, or when `radius` is not finite and positive; unless `out` is null, a
- * `false` return writes the empty value into `*out` (no sample, pdf 0, solid angle 0).
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraSolidAngleSphere`.
- */
-bool sphera_solid_angle_sphere_prepare(struct SpheraSolidAngleSphere *out,
-                                       struct SpheraVec3 center,
+/* Prepares uniform sampling of the cap of `sphera_cap_from_sphere(center, radius)` (the whole
+ * sphere from inside; exact down to 1e-12 sr). Returns `false` also for a non-finite `center` or
+ * a `radius` that is not finite and positive. */
+bool sphera_solid_angle_sphere_prepare(struct SpheraSolidAngleSphere *out, struct SpheraVec3 center,
                                        float radius);
 
-/**
- * Prepares uniform sampling of any cap (made valid first, as every `sphera_cap_*`
- * function does). Returns `false` when `out` is null or the cap is empty; unless
- * `out` is null, a `false` return writes the empty value into `*out`.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraSolidAngleSphere`.
- */
+/* Prepares uniform sampling of any cap (made valid first). Returns `false` also for an empty
+ * cap. */
 bool sphera_solid_angle_sphere_prepare_cap(struct SpheraSolidAngleSphere *out,
                                            struct SpheraCap cap);
 
-/**
- * Draws a direction uniformly in solid angle inside the prepared cap from `u0`, `u1`
- * in [0, 1) (clamped by the library); its pdf is 1 / solid angle. Bit for bit the
- * sample of `sphera_cap_sample_uniform` for the same cap.
- *
- * Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `sphere` is null or empty.
- *
- * # Safety
- *
- * `sphere` must be null or point to a `SpheraSolidAngleSphere` written by a
- * `sphera_solid_angle_sphere_prepare*` function.
- */
+/* A direction uniform in solid angle inside the cap, pdf 1 / solid angle: bit for bit the sample
+ * of `sphera_cap_sample_uniform` for the same cap. */
 struct SpheraSample sphera_solid_angle_sphere_sample(const struct SpheraSolidAngleSphere *sphere,
-                                                     float u0,
-                                                     float u1);
+                                                     float u0, float u1);
 
-/**
- * The density per steradian of `sphera_solid_angle_sphere_sample` at `dir` (need not
- * be normalised): 1 / solid angle inside the cap (boundary included), 0 outside; every
- * sample's pdf is this value at its direction, bit for bit. Returns 0 when `sphere` is
- * null or empty and for a zero or non-finite `dir`.
- *
- * # Safety
- *
- * `sphere` must be null or point to a `SpheraSolidAngleSphere` written by a
- * `sphera_solid_angle_sphere_prepare*` function.
- */
+/* The density of `sphera_solid_angle_sphere_sample` at `dir`: 1 / solid angle inside the cap
+ * (boundary included), 0 outside; bit for bit every sample's pdf. */
 float sphera_solid_angle_sphere_pdf(const struct SpheraSolidAngleSphere *sphere,
                                     struct SpheraVec3 dir);
 
-/**
- * The solid angle in steradians of the prepared cap; 0 when `sphere` is null or empty.
- *
- * # Safety
- *
- * `sphere` must be null or point to a `SpheraSolidAngleSphere` written by a
- * `sphera_solid_angle_sphere_prepare*` function.
- */
+/* The solid angle of the prepared cap in steradians. */
 float sphera_solid_angle_sphere_solid_angle(const struct SpheraSolidAngleSphere *sphere);
 
-/**
- * The pivot transformation `g(dir)`: the second intersection with the unit sphere of
- * the line from `dir` (normalised) through `pivot`. `|pivot| ≥ 1` is clamped to
- * `1 − 2⁻²⁰`; a non-finite pivot counts as the origin (`g(dir) = −dir`); a zero or
- * non-finite `dir` gives `(0, 0, 1)`.
- */
+/* The pivot transformation `g(dir)`: the second intersection with the unit sphere of the line
+ * from `dir` (normalised) through `pivot`. `|pivot| ≥ 1` is clamped to `1 − 2⁻²⁰`; a non-finite
+ * pivot counts as the origin (`g(dir) = −dir`); a zero or non-finite `dir` gives `(0, 0, 1)`. */
 struct SpheraVec3 sphera_pivot_transform(struct SpheraVec3 dir, struct SpheraVec3 pivot);
 
-/**
- * The Jacobian `((1 − |pivot|²) / |dir − pivot|²)²` of the pivot transformation at
- * `dir` (normalised); 0 for a zero or non-finite `dir`. Pivots as in
- * `sphera_pivot_transform`.
- */
+/* The Jacobian `((1 − |pivot|²) / |dir − pivot|²)²` of the pivot transformation at `dir`
+ * (normalised); 0 for a zero or non-finite `dir`. Pivots as in `sphera_pivot_transform`. */
 float sphera_pivot_jacobian(struct SpheraVec3 dir, struct SpheraVec3 pivot);
 
-/**
- * The image of a cap under the pivot transformation: a cap, which may be wider than a
- * hemisphere. Pivots as in `sphera_pivot_transform`.
- */
-struct SpheraCap sphera_pivot_cap(struct SpheraCap cap, struct SpheraVec3 pivot);
+/* The image of a cap under the pivot transformation: a cap, which may be wider than a
+ * hemisphere. Pivots as in `sphera_pivot_transform`. */
+struct SpheraCap sphera_pivot_transform_cap(struct SpheraCap cap, struct SpheraVec3 pivot);
 
-/**
- * The SPTD density `D(ω) = D_std(g(ω)) J(ω)` (Eq. 8) at `dir` (normalised); 0 for a
- * zero or non-finite `dir`, and 0 when `base` is not `SPHERA_SPTD_UNIFORM` or
- * `SPHERA_SPTD_CLAMPED_COSINE`.
- */
-float sphera_sptd_eval(struct SpheraVec3 pivot,
-                       uint32_t base,
-                       struct SpheraVec3 cosine_axis,
+/* The SPTD density `D(ω) = D_std(g(ω)) J(ω)` (Eq. 8) at `dir` (normalised); 0 for a zero or
+ * non-finite `dir`, and 0 when `base` is not `SPHERA_SPTD_UNIFORM` or
+ * `SPHERA_SPTD_CLAMPED_COSINE`. */
+float sphera_sptd_eval(struct SpheraVec3 pivot, uint32_t base, struct SpheraVec3 cosine_axis,
                        struct SpheraVec3 dir);
 
-/**
- * Draws `g(ω_i)` with `ω_i` from the base over the whole sphere; the pdf is
- * `sphera_sptd_eval` at the returned direction, bit for bit. pdf 0 (no sample) where
- * the density underflows, and when `base` is not `SPHERA_SPTD_UNIFORM` or
- * `SPHERA_SPTD_CLAMPED_COSINE`.
- */
-struct SpheraSample sphera_sptd_sample(struct SpheraVec3 pivot,
-                                       uint32_t base,
-                                       struct SpheraVec3 cosine_axis,
-                                       float u0,
-                                       float u1);
+/* Draws `g(ω_i)` with `ω_i` from the base over the whole sphere; the pdf is `sphera_sptd_eval`
+ * at the returned direction, bit for bit. pdf 0 (no sample) where the density underflows, and
+ * when `base` is not `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`. */
+struct SpheraSample sphera_sptd_sample(struct SpheraVec3 pivot, uint32_t base,
+                                       struct SpheraVec3 cosine_axis, float u0, float u1);
 
-/**
- * `∫_C D = ∫_{g(C)} D_std` (Eq. 10), in [0, 1], exact; 0 when `base` is not
- * `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`.
- */
-float sphera_sptd_integral_over_cap(struct SpheraVec3 pivot,
-                                    uint32_t base,
-                                    struct SpheraVec3 cosine_axis,
-                                    struct SpheraCap cap);
+/* `∫_C D = ∫_{g(C)} D_std` (Eq. 10), in [0, 1], exact; 0 when `base` is not
+ * `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`. */
+float sphera_sptd_integral_over_cap(struct SpheraVec3 pivot, uint32_t base,
+                                    struct SpheraVec3 cosine_axis, struct SpheraCap cap);
 
-/**
- * `∫_{A ∩ B} D = ∫_{g(A) ∩ g(B)} D_std` (Eq. 11), in [0, 1], exact; 0 when `base` is
- * not `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`.
- */
-float sphera_sptd_integral_over_cap_intersection(struct SpheraVec3 pivot,
-                                                 uint32_t base,
-                                                 struct SpheraVec3 cosine_axis,
-                                                 struct SpheraCap a,
+/* `∫_{A ∩ B} D = ∫_{g(A) ∩ g(B)} D_std` (Eq. 11), in [0, 1], exact; 0 when `base` is not
+ * `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`. */
+float sphera_sptd_integral_over_cap_intersection(struct SpheraVec3 pivot, uint32_t base,
+                                                 struct SpheraVec3 cosine_axis, struct SpheraCap a,
                                                  struct SpheraCap b);
 
-/**
- * Prepares the SPTD restricted to `cap` and normalised there: samples `g(ω_i)` with
- * `ω_i` from the base inside `g(C)`, density `D(ω)/∫_C D` inside `C`. For the
- * clamped-cosine base this holds for every cap, also when `g(C)` crosses the base's
- * horizon or is wider than a hemisphere: `ω_i` is drawn from the clamped cosine in
- * `g(C) ∩ H_a` (exactly, through its orthographic projection), and the pdf is 0 where
- * `g(ω)` is below the horizon. Returns `false` (and writes a sampler without samples,
- * pdf 0) when `base` is not `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`, and
- * when `∫_C D` is 0 or its inverse overflows. Does nothing and returns
- * `false` when `out` is null.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraSptdInCap`.
- */
-bool sphera_sptd_in_cap_prepare(struct SpheraSptdInCap *out,
-                                struct SpheraVec3 pivot,
-                                uint32_t base,
-                                struct SpheraVec3 cosine_axis,
-                                struct SpheraCap cap);
+/* Prepares the SPTD restricted to `cap` and normalised there: `g(ω_i)` with `ω_i` from the base
+ * in `g(C)` (for the clamped cosine, in `g(C) ∩ H_a`, also across the base's horizon or wider
+ * than a hemisphere), density `D(ω)/∫_C D` in `C`. Returns `false` also for a `base` that is not
+ * a `SPHERA_SPTD_*` value, and when `∫_C D` is 0 or overflows. */
+bool sphera_sptd_in_cap_prepare(struct SpheraSptdInCap *out, struct SpheraVec3 pivot, uint32_t base,
+                                struct SpheraVec3 cosine_axis, struct SpheraCap cap);
 
-/**
- * Draws a direction of a prepared SPTD in a cap (`u0`, `u1` clamped into [0, 1)).
- * pdf 0 for a null pointer, a failed prepare, or a sample that rounding moved out of
- * the cap.
- *
- * # Safety
- *
- * `prepared` must be null or point to a `SpheraSptdInCap` written by
- * `sphera_sptd_in_cap_prepare` or `sphera_phase_pivot_in_cap_prepare`.
- */
-struct SpheraSample sphera_sptd_in_cap_sample(const struct SpheraSptdInCap *prepared,
-                                              float u0,
+/* Draws a direction of a prepared SPTD in a cap (`u0`, `u1` clamped into [0, 1)). pdf 0 for a
+ * null pointer, a failed prepare, or a sample that rounding moved out of the cap. */
+struct SpheraSample sphera_sptd_in_cap_sample(const struct SpheraSptdInCap *prepared, float u0,
                                               float u1);
 
-/**
- * The density of `sphera_sptd_in_cap_sample` at `dir`: 0 outside the cap, where the
- * clamped-cosine base is 0 at `g(dir)`, and for a null pointer.
- *
- * # Safety
- *
- * As for `sphera_sptd_in_cap_sample`.
- */
+/* The density of `sphera_sptd_in_cap_sample` at `dir`: 0 outside the cap, where the
+ * clamped-cosine base is 0 at `g(dir)`, and for a null pointer. */
 float sphera_sptd_in_cap_pdf(const struct SpheraSptdInCap *prepared, struct SpheraVec3 dir);
 
-/**
- * `∫_C D` of a prepared SPTD in a cap (for the pivot phase function, `∫_C f_pivot`:
- * the zero-variance estimate of an unoccluded light of unit radiance); 0 for null.
- *
- * # Safety
- *
- * As for `sphera_sptd_in_cap_sample`.
- */
+/* `∫_C D` of a prepared SPTD in a cap (for the pivot phase function, `∫_C f_pivot`: the
+ * zero-variance estimate of an unoccluded light of unit radiance); 0 for null. */
 float sphera_sptd_in_cap_integral(const struct SpheraSptdInCap *prepared);
 
-/**
- * The uniform SPTD fitted to GGX `f cos θ` (the pivot table, 64×64, bilinear) for the
- * view `wo` (local frame, normalised) and roughness `r = √α` (clamped to [0, 1], NaN as
- * 0). Returns `false` (writing a zero pivot and albedo) when `wo` is not finite, zero
- * or at or below the horizon; does nothing for a null `out`.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraGgxPivot`.
- */
-bool sphera_ggx_pivot_lookup(struct SpheraGgxPivot *out, struct SpheraVec3 wo, float roughness);
+/* The uniform SPTD fitted to GGX `f cos θ` (the pivot table, 64×64, bilinear) for the view `wo`
+ * (local frame, normalised) and roughness `r = √α` (clamped to [0, 1], NaN as 0). Returns
+ * `false` (writing a zero pivot and albedo) when `wo` is not finite, zero or at or below the
+ * horizon; does nothing for a null `out`. */
+bool sphera_ggx_pivot_from_view(struct SpheraGgxPivot *out, struct SpheraVec3 wo, float roughness);
 
-/**
- * Prepares real-time GGX shading of sphere lights (BIASED: the fitted SPTD
- * approximates GGX; errors are tabulated in docs/sphere-lights.md) for the view `wo`, roughness
- * `r = √α` and Fresnel `f0` (each channel clamped to [0, 1], NaN as 0). Returns
- * `false` (writing a shading that returns zero) when `wo` is not finite, zero, or at
- * or below the horizon; does nothing for a null `out`.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraSphereLightShading`.
- */
-bool sphera_sphere_light_shading_prepare(struct SpheraSphereLightShading *out,
-                                         struct SpheraVec3 wo,
-                                         float roughness,
-                                         struct SpheraVec3 f0);
+/* Prepares real-time GGX shading of sphere lights (BIASED: the fitted SPTD approximates GGX;
+ * errors are tabulated in docs/sphere-lights.md) for the view `wo`, roughness `r = √α` and
+ * Fresnel `f0` (each channel clamped to [0, 1], NaN as 0). Returns `false` (writing a shading
+ * that returns zero) when `wo` is not finite, zero, or at or below the horizon; does nothing for
+ * a null `out`. */
+bool sphera_sphere_light_shading_prepare(struct SpheraSphereLightShading *out, struct SpheraVec3 wo,
+                                         float roughness, struct SpheraVec3 f0);
 
-/**
- * `∫_{C ∩ H} f cos θ dω ≈ albedo_F Ω(g(C) ∩ g(H))/4π` per unit radiance (Eq. 19,
- * BIASED), RGB, for the cap `light` of a sphere light; multiply by its radiance. Zero
- * for a null pointer or an empty cap.
- *
- * # Safety
- *
- * `shading` must be null or point to a `SpheraSphereLightShading` written by
- * `sphera_sphere_light_shading_prepare`.
- */
-struct SpheraVec3 sphera_sphere_light_shade(const struct SpheraSphereLightShading *shading,
-                                            struct SpheraCap light);
+/* `∫_{C ∩ H} f cos θ dω ≈ albedo_F Ω(g(C) ∩ g(H))/4π` per unit radiance (Eq. 19, BIASED), RGB,
+ * for the cap `light` of a sphere light; multiply by its radiance. Zero for a null pointer or an
+ * empty cap. */
+struct SpheraVec3 sphera_sphere_light_shading_eval(const struct SpheraSphereLightShading *shading,
+                                                   struct SpheraCap light);
 
-/**
- * Specular occlusion with a bent cone `visibility` (Eq. 23, BIASED):
- * `albedo_F Ω(g(C) ∩ g(V))/4π`; the bent cone replaces the upper hemisphere (pass the
- * hemisphere `(0, 0, 1)`, `cos θ = 0`, for an unoccluded point). Zero for a null
- * pointer.
- *
- * # Safety
- *
- * As for `sphera_sphere_light_shade`.
- */
-struct SpheraVec3 sphera_sphere_light_shade_occluded(const struct SpheraSphereLightShading *shading,
-                                                     struct SpheraCap light,
-                                                     struct SpheraCap visibility);
+/* Specular occlusion with a bent cone `visibility` (Eq. 23, BIASED):
+ * `albedo_F Ω(g(C) ∩ g(V))/4π`; the bent cone replaces the upper hemisphere (pass the hemisphere
+ * `(0, 0, 1)`, `cos θ = 0`, for an unoccluded point). Zero for a null pointer. */
+struct SpheraVec3 sphera_sphere_light_shading_eval_occluded(const struct SpheraSphereLightShading *shading,
+                                                            struct SpheraCap light,
+                                                            struct SpheraCap visibility);
 
-/**
- * Specular occlusion by the separable approximation (Eq. 21–22, BIASED; the baseline
- * of `sphera_sphere_light_shade_occluded`): the unoccluded shading
- * `sphera_sphere_light_shade` times the fraction of the BRDF lobe inside the bent cone,
- * `Ω(g(V) ∩ g(H)) / Ω(g(H))`. It lets light through a cone that holds the lobe but not
- * the light (shadow leaking). Equals `sphera_sphere_light_shade` for the hemisphere
- * `(0, 0, 1)`, `cos θ = 0`. Zero for a null pointer.
- *
- * # Safety
- *
- * As for `sphera_sphere_light_shade`.
- */
-struct SpheraVec3 sphera_sphere_light_shade_occluded_separable(const struct SpheraSphereLightShading *shading,
-                                                               struct SpheraCap light,
-                                                               struct SpheraCap visibility);
+/* Specular occlusion by the separable approximation (Eq. 21–22, BIASED; the baseline of
+ * `sphera_sphere_light_shading_eval_occluded`): the unoccluded shading
+ * `sphera_sphere_light_shading_eval` times the fraction of the BRDF lobe inside the bent cone,
+ * `Ω(g(V) ∩ g(H)) / Ω(g(H))`. It lets light through a cone that holds the lobe but not the light
+ * (shadow leaking). Equals `sphera_sphere_light_shading_eval` for the hemisphere `(0, 0, 1)`,
+ * `cos θ = 0`. Zero for a null pointer. */
+struct SpheraVec3 sphera_sphere_light_shading_eval_occluded_separable(const struct SpheraSphereLightShading *shading,
+                                                                      struct SpheraCap light,
+                                                                      struct SpheraCap visibility);
 
-/**
- * Prepares joint BRDF–light sampling of a sphere light (Section 6.1): the fitted SPTD
- * restricted to the light's cap, or uniform cap sampling when the pivoted cap is
- * smaller than 1e-3 sr (`sphera_sphere_light_sampler_uses_sptd` tells which). A cap
- * that crosses the horizon is sampled above it only (the SPTD over the cap's part above
- * the horizon, through the intersection of the two caps' images): no sample is wasted
- * below the horizon. Combine with `sphera_ggx_sample` by MIS. `center` is relative to
- * the shading point, `wo` points to the viewer, roughness as in
- * `sphera_ggx_pivot_lookup`. Returns `false` (writing a sampler without samples) for an
- * empty cap (non-finite center, radius not finite and positive), a cap wholly below the
- * horizon, or a `wo` at or below the horizon; does nothing for null `out`.
- *
- * # Safety
- *
- * `out` must be null or point to writable memory for one `SpheraSphereLightSampler`.
- */
+/* Prepares joint BRDF–light sampling of a sphere light (Section 6.1): the fitted SPTD in the
+ * light's cap above the horizon, or uniform cap sampling when the pivoted cap is under 1e-3 sr
+ * (`_uses_sptd` tells which); combine with `sphera_ggx_brdf_sample` by MIS. Returns `false` also
+ * for an empty cap (bad center or radius), a cap wholly below the horizon, or a `wo` at or below
+ * it. */
 bool sphera_sphere_light_sampler_prepare(struct SpheraSphereLightSampler *out,
-                                         struct SpheraVec3 center,
-                                         float radius,
-                                         struct SpheraVec3 wo,
-                                         float roughness);
+                                         struct SpheraVec3 center, float radius,
+                                         struct SpheraVec3 wo, float roughness);
 
-/**
- * Draws a direction in the light's cap above the horizon; its pdf is
- * `sphera_sphere_light_sampler_pdf` at
- * the direction, bit for bit (a draw that rounding puts just outside the cap is returned
- * as no sample). pdf 0 for null or a failed prepare.
- *
- * # Safety
- *
- * `sampler` must be null or point to a `SpheraSphereLightSampler` written by
- * `sphera_sphere_light_sampler_prepare`.
- */
+/* Draws a direction in the light's cap above the horizon; its pdf is
+ * `sphera_sphere_light_sampler_pdf` at the direction, bit for bit (a draw that rounding puts
+ * just outside the cap is returned as no sample). pdf 0 for null or a failed prepare. */
 struct SpheraSample sphera_sphere_light_sampler_sample(const struct SpheraSphereLightSampler *sampler,
-                                                       float u0,
-                                                       float u1);
+                                                       float u0, float u1);
 
-/**
- * The density of `sphera_sphere_light_sampler_sample` at `dir`; 0 outside the cap and
- * for null.
- *
- * # Safety
- *
- * As for `sphera_sphere_light_sampler_sample`.
- */
+/* The density of `sphera_sphere_light_sampler_sample` at `dir`; 0 outside the cap and for null. */
 float sphera_sphere_light_sampler_pdf(const struct SpheraSphereLightSampler *sampler,
                                       struct SpheraVec3 dir);
 
-/**
- * Whether the sampler draws from the SPTD (`true`) or uniformly in the cap (the
- * fallback for pivoted caps under 1e-3 sr); `false` for null.
- *
- * # Safety
- *
- * As for `sphera_sphere_light_sampler_sample`.
- */
+/* Whether the sampler draws from the SPTD (`true`) or uniformly in the cap (the fallback for
+ * pivoted caps under 1e-3 sr); `false` for null. */
 bool sphera_sphere_light_sampler_uses_sptd(const struct SpheraSphereLightSampler *sampler);
 
-/**
- * Writes an empty accumulator whose sums are taken relative to `origin` (a
- * non-finite origin counts as the world origin; choose a point near the VPLs, such as
- * the centre of the scene, to keep the variance precise). `false` when `accumulator`
- * is null.
- *
- * # Safety
- *
- * `accumulator` must be null or point to writable memory for a
- * `SpheraVsglAccumulator`.
- */
-bool sphera_vsgl_accumulator_init(struct SpheraVsglAccumulator *accumulator,
-                                  struct SpheraVec3 origin);
+/* Writes an empty accumulator whose sums are taken relative to `origin` (a non-finite origin
+ * counts as the world origin; choose a point near the VPLs, such as the centre of the scene, to
+ * keep the variance precise). `false` when `accumulator` is null. */
+bool sphera_vsgl_accumulator_new(struct SpheraVsglAccumulator *accumulator,
+                                 struct SpheraVec3 origin);
 
-/**
- * Adds one VPL. `false` (nothing added) when a pointer is null or the VPL has a
- * non-finite position, normal, direction or roughness, a zero normal or direction, or
- * sums that overflow; negative or NaN power and reflectance channels count as 0.
- *
- * # Safety
- *
- * `accumulator` must be null or point to a valid `SpheraVsglAccumulator` (from
- * `sphera_vsgl_accumulator_init`); `vpl` null or valid.
- */
+/* Adds one VPL. `false` (nothing added) when a pointer is null or the VPL has a non-finite
+ * position, normal, direction or roughness, a zero normal or direction, or sums that overflow;
+ * negative or NaN power and reflectance channels count as 0. */
 bool sphera_vsgl_accumulator_add_vpl(struct SpheraVsglAccumulator *accumulator,
                                      const struct SpheraVpl *vpl);
 
-/**
- * Adds a texel of sums taken relative to the accumulator's origin (a mip texel).
- * `false` (nothing added) when a pointer is null or a sum is not finite.
- *
- * # Safety
- *
- * As `sphera_vsgl_accumulator_add_vpl`, with `texel` null or valid.
- */
+/* Adds a texel of sums taken relative to the accumulator's origin (a mip texel). `false`
+ * (nothing added) when a pointer is null or a sum is not finite. */
 bool sphera_vsgl_accumulator_add_texel(struct SpheraVsglAccumulator *accumulator,
                                        const struct SpheraVsglTexel *texel);
 
-/**
- * Adds the sums of `other` (moved to the accumulator's origin). `false` (nothing
- * added) when a pointer is null or the moved sums are not finite. `other` may equal
- * `accumulator` (the sums then double).
- *
- * # Safety
- *
- * Both pointers null or valid `SpheraVsglAccumulator`s.
- */
+/* Adds the sums of `other` (moved to the accumulator's origin). `false` (nothing added) when a
+ * pointer is null or the moved sums are not finite. `other` may equal `accumulator` (the sums
+ * then double). */
 bool sphera_vsgl_accumulator_merge(struct SpheraVsglAccumulator *accumulator,
                                    const struct SpheraVsglAccumulator *other);
 
-/**
- * The VSGL of the sums: normalised diffuse and specular SGs (Toksvig), RGB powers,
- * mean and variance (0 for a single VPL: treat as a point light). An empty VSGL (zero
- * powers, mean at the origin) for a null pointer, no power or non-finite sums.
- *
- * # Safety
- *
- * `accumulator` null or valid.
- */
+/* The VSGL of the sums: normalised diffuse and specular SGs (Toksvig), RGB powers, mean and
+ * variance (0 for a single VPL: treat as a point light). An empty VSGL (zero powers, mean at the
+ * origin) for a null pointer, no power or non-finite sums. */
 struct SpheraVsgl sphera_vsgl_accumulator_finish(const struct SpheraVsglAccumulator *accumulator);
 
-/**
- * Writes the sums of one VPL relative to `origin` into `*texel` (a level-0 texel of a
- * pyramid). `false`, with the zero texel written when `texel` is non-null, when `vpl`
- * is null or rejected (see `sphera_vsgl_accumulator_add_vpl`) or `origin` is not
- * finite.
- *
- * # Safety
- *
- * `vpl` null or valid; `texel` null or writable.
- */
-bool sphera_vsgl_texel_from_vpl(const struct SpheraVpl *vpl,
-                                struct SpheraVec3 origin,
+/* Writes the sums of one VPL relative to `origin` into `*texel` (a level-0 texel of a pyramid).
+ * `false`, with the zero texel written when `texel` is non-null, when `vpl` is null or rejected
+ * (see `sphera_vsgl_accumulator_add_vpl`) or `origin` is not finite. */
+bool sphera_vsgl_texel_from_vpl(const struct SpheraVpl *vpl, struct SpheraVec3 origin,
                                 struct SpheraVsglTexel *texel);
 
-/**
- * The number of texels of the mip pyramid of a `size × size` map, `(4 size² − 1)/3`,
- * or 0 when `size` is not a power of two in `1..=16384`.
- */
+/* The number of texels of the mip pyramid of a `size × size` map, `(4 size² − 1)/3`, or 0 when
+ * `size` is not a power of two in `1..=16384`. */
 size_t sphera_vsgl_pyramid_texel_count(uint32_t size);
 
-/**
- * Cluster `i` of `cluster_count` by filtered importance sampling (Tokuyoshi 2016,
- * Section 3.3 and Algorithm 1) from the random point `(u0, u1)` (clamped to [0, 1)):
- * an image position drawn in proportion to the texels' `weight`, the mip level where
- * the kernel holds `kernel_scale / cluster_count` of the total weight (`iterations`
- * bisection steps, capped at 32), and the trilinearly filtered sums there, weighted so
- * that the `cluster_count` VSGLs carry the map's total luminance exactly.
- *
- * `texels` holds the pyramid: level 0 (`size × size`, row-major) then each coarser
- * level down to 1×1, every texel the sum of its four children, all relative to
- * `origin`; `texel_count` must be at least `sphera_vsgl_pyramid_texel_count(size)`.
- * An empty VSGL (zero powers) when `texels` is null, `size` unsupported,
- * `texel_count` too small, `origin` not finite, `cluster_count` 0, `kernel_scale` not
- * finite and positive, or the map has no weight.
- *
- * # Safety
- *
- * `texels` null or pointing to `texel_count` readable, initialised texels.
- */
-struct SpheraVsgl sphera_vsgl_fis_select(const struct SpheraVsglTexel *texels,
-                                         size_t texel_count,
-                                         uint32_t size,
-                                         struct SpheraVec3 origin,
-                                         uint32_t cluster_count,
-                                         float kernel_scale,
-                                         uint32_t iterations,
-                                         float u0,
-                                         float u1);
+/* Cluster `i` of `cluster_count` by filtered importance sampling (Tokuyoshi 2016, Section 3.3
+ * and Algorithm 1) from the random point `(u0, u1)` (clamped to [0, 1)): an image position drawn
+ * in proportion to the texels' `weight`, the mip level where the kernel holds
+ * `kernel_scale / cluster_count` of the total weight (`iterations` bisection steps, capped at
+ * 32), and the trilinearly filtered sums there, weighted so that the `cluster_count` VSGLs carry
+ * the map's total luminance exactly.
+ * `texels` holds the pyramid: level 0 (`size × size`, row-major) then each coarser level down to
+ * 1×1, every texel the sum of its four children, all relative to `origin`; `texel_count` must be
+ * at least `sphera_vsgl_pyramid_texel_count(size)`. An empty VSGL (zero powers) when `texels` is
+ * null, `size` unsupported, `texel_count` too small, `origin` not finite, `cluster_count` 0,
+ * `kernel_scale` not finite and positive, or the map has no weight.
+ * Safety: `texels` null or pointing to `texel_count` readable, initialised texels. */
+struct SpheraVsgl sphera_vsgl_fis_select(const struct SpheraVsglTexel *texels, size_t texel_count,
+                                         uint32_t size, struct SpheraVec3 origin,
+                                         uint32_t cluster_count, float kernel_scale,
+                                         uint32_t iterations, float u0, float u1);
 
-/**
- * The SG `amplitude · exp(sharpness (ω·axis − 1))` (axis normalised, sharpness clamped
- * to [0, SPHERA_SG_MAX_SHARPNESS], amplitude stored as its logarithm; an amplitude
- * `<= 0` or NaN gives amplitude 0). A zero or non-finite axis gives the zero SG.
- */
+/* The SG `amplitude · exp(sharpness (ω·axis − 1))` (axis normalised, sharpness clamped to [0,
+ * SPHERA_SG_MAX_SHARPNESS], amplitude stored as its logarithm; an amplitude `<= 0` or NaN gives
+ * amplitude 0). A zero or non-finite axis gives the zero SG. */
 struct SpheraSg sphera_sg_new(struct SpheraVec3 axis, float sharpness, float amplitude);
 
-/**
- * The SG's value at `dir` (normalised; 0 for a zero or non-finite `dir`).
- */
+/* The SG's value at `dir` (normalised; 0 for a zero or non-finite `dir`). */
 float sphera_sg_eval(struct SpheraSg sg, struct SpheraVec3 dir);
 
-/**
- * `A(λ) = 2π/λ (1 − e^{−2λ})`, the integral of an SG of amplitude 1 (`4π` at
- * `λ = 0`; NaN or negative `λ` counts as 0).
- */
+/* `A(λ) = 2π/λ (1 − e^{−2λ})`, the integral of an SG of amplitude 1 (`4π` at `λ = 0`; NaN or
+ * negative `λ` counts as 0). */
 float sphera_sg_integral(float sharpness);
 
-/**
- * The product of two SGs, an SG (sharpness 0 when the axes cancel).
- */
+/* The product of two SGs, an SG (sharpness 0 when the axes cancel). */
 struct SpheraSg sphera_sg_product(struct SpheraSg a, struct SpheraSg b);
 
-/**
- * `∫ a(ω) b(ω) dω`, the integral of the product of two SGs.
- */
+/* `∫ a(ω) b(ω) dω`, the integral of the product of two SGs. */
 float sphera_sg_inner_product(struct SpheraSg a, struct SpheraSg b);
 
-/**
- * Draws a direction from the normalised SG (von Mises–Fisher distribution; the
- * amplitude is ignored). `u0`, `u1` in [0, 1) (clamped). pdf 0 (and `dir = (0, 0, 1)`)
- * for the zero SG built from an invalid axis.
- */
-struct SpheraSample sphera_sg_vmf_sample(struct SpheraSg sg, float u0, float u1);
+/* Draws a direction from the normalised SG (von Mises–Fisher distribution; the amplitude is
+ * ignored). `u0`, `u1` in [0, 1) (clamped). pdf 0 (and `dir = (0, 0, 1)`) for the zero SG built
+ * from an invalid axis. */
+struct SpheraSample sphera_vmf_sample(struct SpheraSg sg, float u0, float u1);
 
-/**
- * The density per steradian of `sphera_sg_vmf_sample` at `dir` (normalised; 0 for a
- * zero or non-finite `dir`).
- */
-float sphera_sg_vmf_pdf(struct SpheraSg sg, struct SpheraVec3 dir);
+/* The density per steradian of `sphera_vmf_sample` at `dir` (normalised; 0 for a zero or
+ * non-finite `dir`). */
+float sphera_vmf_pdf(struct SpheraSg sg, struct SpheraVec3 dir);
 
-/**
- * Writes to `u[0]`, `u[1]` the random numbers that `sphera_sg_vmf_sample` maps to
- * `dir` and returns true; returns false (writing nothing) for a null `u`, a zero or
- * non-finite `dir`, or an SG with an invalid axis.
- *
- * # Safety
- *
- * `u` must be null or point to two writable `float`s.
- */
-bool sphera_sg_vmf_invert(struct SpheraSg sg, struct SpheraVec3 dir, float *u);
+/* Writes to `u[0]`, `u[1]` the random numbers that `sphera_vmf_sample` maps to `dir` and returns
+ * true; returns false (writing nothing) for a null `u`, a zero or non-finite `dir`, or an SG
+ * with an invalid axis.
+ * Safety: `u` must be null or point to two writable `float`s. */
+bool sphera_vmf_invert(struct SpheraSg sg, struct SpheraVec3 dir, float *u);
 
-/**
- * The diffuse lobe `G(ω, n, λ_d)/A(λ_d)` (Eq. 1 without `R_d`); the zero SG for a zero
- * or non-finite normal.
- */
-struct SpheraSg sphera_sg_diffuse_lobe(struct SpheraVec3 normal);
+/* The diffuse lobe `G(ω, n, λ_d)/A(λ_d)` (Eq. 1 without `R_d`); the zero SG for a zero or
+ * non-finite normal. */
+struct SpheraSg sphera_sg_from_lambert(struct SpheraVec3 normal);
 
-/**
- * The GGX specular lobe of Eq. 2 without `R_s`: axis `ξ_s = 2(ω'·n)n − ω'`, sharpness
- * `(2/α²)/(4|ξ_s·n|)` (`|ξ_s·n|` at least 1e-4, `α` clamped to [1e-3, 1]), amplitude
- * `1/A(λ_s)`. `toward_incoming` is `ω'`. The zero SG for invalid vectors.
- */
-struct SpheraSg sphera_sg_specular_lobe(struct SpheraVec3 normal,
-                                        struct SpheraVec3 toward_incoming,
+/* The GGX specular lobe of Eq. 2 without `R_s`: axis `ξ_s = 2(ω'·n)n − ω'`, sharpness
+ * `(2/α²)/(4|ξ_s·n|)` (`|ξ_s·n|` at least 1e-4, `α` clamped to [1e-3, 1]), amplitude `1/A(λ_s)`.
+ * `toward_incoming` is `ω'`. The zero SG for invalid vectors. */
+struct SpheraSg sphera_sg_from_ggx(struct SpheraVec3 normal, struct SpheraVec3 toward_incoming,
+                                   float alpha);
+
+/* As `sphera_sg_from_ggx` with amplitude 1 (the warped unnormalised NDF). */
+struct SpheraSg sphera_sg_from_ggx_unnormalized(struct SpheraVec3 normal,
+                                                struct SpheraVec3 toward_incoming, float alpha);
+
+/* The Beckmann specular lobe of Eq. 2 without `R_s`: the paper's `λ_h = 2/α²` holds for Beckmann
+ * as for GGX, so this is `sphera_sg_from_ggx` with the same `α` (Beckmann's roughness); the
+ * lobes differ in their error (docs/sg-error.md). */
+struct SpheraSg sphera_sg_from_beckmann(struct SpheraVec3 normal, struct SpheraVec3 toward_incoming,
                                         float alpha);
 
-/**
- * As `sphera_sg_specular_lobe` with amplitude 1 (the warped unnormalised NDF).
- */
-struct SpheraSg sphera_sg_specular_lobe_unnormalized(struct SpheraVec3 normal,
+/* As `sphera_sg_from_beckmann` with amplitude 1 (the warped unnormalised NDF). */
+struct SpheraSg sphera_sg_from_beckmann_unnormalized(struct SpheraVec3 normal,
                                                      struct SpheraVec3 toward_incoming,
                                                      float alpha);
 
-/**
- * The Beckmann specular lobe of Eq. 2 without `R_s`: the paper's `λ_h = 2/α²` holds
- * for Beckmann as for GGX, so this is `sphera_sg_specular_lobe` with the same `α`
- * (Beckmann's roughness); the lobes differ in their error (docs/sg-error.md).
- */
-struct SpheraSg sphera_sg_beckmann_lobe(struct SpheraVec3 normal,
-                                        struct SpheraVec3 toward_incoming,
-                                        float alpha);
-
-/**
- * As `sphera_sg_beckmann_lobe` with amplitude 1 (the warped unnormalised NDF).
- */
-struct SpheraSg sphera_sg_beckmann_lobe_unnormalized(struct SpheraVec3 normal,
-                                                     struct SpheraVec3 toward_incoming,
-                                                     float alpha);
-
-/**
- * The incoming radiance SG of a VSGL (Eq. 6–7): `lobe` holds `c_v` (amplitude),
- * `ξ_v` and `λ_v`; `mean` is the positional mean relative to the shading point,
- * `variance` the positional variance `σ_v² = E‖y − μ‖²` (the VSGL's; the planar Gaussian
- * of Eq. 3 gets `σ_v²/2`, its per-axis variance, where the paper writes `σ_v²`: README,
- * issue 20). A variance of 0 (or NaN, or negative) is a point
- * light (sharpness clamped, inverse-square energy kept); a mean at the shading point
- * with variance 0, a non-finite mean or an infinite variance give the zero SG.
- */
-struct SpheraSg sphera_sg_incoming_radiance(struct SpheraSg lobe,
-                                            struct SpheraVec3 mean,
+/* The incoming radiance SG of a VSGL (Eq. 6–7): `lobe` holds `c_v` (amplitude), `ξ_v` and `λ_v`;
+ * `mean` is the positional mean relative to the shading point, `variance` the positional
+ * variance `σ_v² = E‖y − μ‖²` (the planar Gaussian of Eq. 3 gets `σ_v²/2`, its per-axis
+ * variance). A variance of 0 (or NaN, or negative) is a point light (sharpness clamped,
+ * inverse-square energy kept); a mean at the shading point with variance 0, a non-finite mean or
+ * an infinite variance give the zero SG. */
+struct SpheraSg sphera_sg_incoming_radiance(struct SpheraSg lobe, struct SpheraVec3 mean,
                                             float variance);
 
-/**
- * Diffuse shading `V R_d ∫ L_in G(ω, n, λ_d)/A(λ_d) dω` (product integral with the
- * diffuse SG). `visibility` is clamped to [0, 1] (NaN to 0), `r_d` to [0, FLT_MAX].
- */
-float sphera_sg_diffuse_shading_product(struct SpheraSg incoming,
-                                        struct SpheraVec3 normal,
-                                        float r_d,
-                                        float visibility);
+/* Diffuse shading `V R_d ∫ L_in G(ω, n, λ_d)/A(λ_d) dω` (product integral with the diffuse SG).
+ * `visibility` is clamped to [0, 1] (NaN to 0), `r_d` to [0, FLT_MAX]. */
+float sphera_sg_diffuse_shading_product(struct SpheraSg incoming, struct SpheraVec3 normal,
+                                        float r_d, float visibility);
 
-/**
- * Diffuse shading `V (c_in R_d/π) A(λ_in) max(ξ_in·n, 0)` (the cosine taken at the
- * lobe's axis).
- */
-float sphera_sg_diffuse_shading_constant_cosine(struct SpheraSg incoming,
-                                                struct SpheraVec3 normal,
-                                                float r_d,
-                                                float visibility);
+/* Diffuse shading `V (c_in R_d/π) A(λ_in) max(ξ_in·n, 0)` (the cosine taken at the lobe's axis). */
+float sphera_sg_diffuse_shading_constant_cosine(struct SpheraSg incoming, struct SpheraVec3 normal,
+                                                float r_d, float visibility);
 
-/**
- * Diffuse shading `V (2 c_in R_d/λ_in) max(ξ_in·n, 0)`: the constant-cosine form with
- * `A(λ) ≈ 2π/λ`, for `λ_in ≳ 2` only (it diverges as `λ_in → 0`; finite, at most
- * FLT_MAX).
- */
-float sphera_sg_diffuse_shading_sharp_lobe(struct SpheraSg incoming,
-                                           struct SpheraVec3 normal,
-                                           float r_d,
-                                           float visibility);
+/* Diffuse shading `V (2 c_in R_d/λ_in) max(ξ_in·n, 0)`: the constant-cosine form with
+ * `A(λ) ≈ 2π/λ`, for `λ_in ≳ 2` only (it diverges as `λ_in → 0`; finite, at most FLT_MAX). */
+float sphera_sg_diffuse_shading_sharp_lobe(struct SpheraSg incoming, struct SpheraVec3 normal,
+                                           float r_d, float visibility);
 
-/**
- * GGX specular shading `V c_in C(ξ_in) ∫ G_in Ĝ dω` through the ASG fit of the lobe
- * (Section 4.2). `view` points toward the viewer; `α = roughness²` (clamped to
- * [1e-3, 1]); `f0` is Schlick's reflectance of one channel (clamped to [0, 1]). 0
- * when the view or `ξ_in` lies at or below the horizon.
- */
-float sphera_sg_specular_shading(struct SpheraSg incoming,
-                                 struct SpheraVec3 normal,
-                                 struct SpheraVec3 view,
-                                 float roughness,
-                                 float f0,
+/* GGX specular shading `V c_in C(ξ_in) ∫ G_in Ĝ dω` through the ASG fit of the lobe (Section
+ * 4.2). `view` points toward the viewer; `α = roughness²` (clamped to [1e-3, 1]); `f0` is
+ * Schlick's reflectance of one channel (clamped to [0, 1]). 0 when the view or `ξ_in` lies at or
+ * below the horizon. */
+float sphera_sg_specular_shading(struct SpheraSg incoming, struct SpheraVec3 normal,
+                                 struct SpheraVec3 view, float roughness, float f0,
                                  float visibility);
 
-/**
- * As `sphera_sg_specular_shading` with the isotropic SG fit of Eq. 2 instead of the
- * ASG.
- */
-float sphera_sg_specular_shading_sg(struct SpheraSg incoming,
-                                    struct SpheraVec3 normal,
-                                    struct SpheraVec3 view,
-                                    float roughness,
-                                    float f0,
+/* As `sphera_sg_specular_shading` with the isotropic SG fit of Eq. 2 instead of the ASG. */
+float sphera_sg_specular_shading_sg(struct SpheraSg incoming, struct SpheraVec3 normal,
+                                    struct SpheraVec3 view, float roughness, float f0,
                                     float visibility);
 
-/**
- * Beckmann specular shading: as `sphera_sg_specular_shading` with Beckmann's NDF and
- * Smith term (`α = roughness²` is Beckmann's `α`); the ASG fit is
- * `sphera_asg_beckmann_lobe`.
- */
-float sphera_sg_beckmann_specular_shading(struct SpheraSg incoming,
-                                          struct SpheraVec3 normal,
-                                          struct SpheraVec3 view,
-                                          float roughness,
-                                          float f0,
+/* Beckmann specular shading: as `sphera_sg_specular_shading` with Beckmann's NDF and Smith term
+ * (`α = roughness²` is Beckmann's `α`); the ASG fit is `sphera_asg_from_beckmann`. */
+float sphera_sg_beckmann_specular_shading(struct SpheraSg incoming, struct SpheraVec3 normal,
+                                          struct SpheraVec3 view, float roughness, float f0,
                                           float visibility);
 
-/**
- * As `sphera_sg_beckmann_specular_shading` with the isotropic SG fit of Eq. 2
- * (`sphera_sg_beckmann_lobe_unnormalized`) instead of the ASG.
- */
-float sphera_sg_beckmann_specular_shading_sg(struct SpheraSg incoming,
-                                             struct SpheraVec3 normal,
-                                             struct SpheraVec3 view,
-                                             float roughness,
-                                             float f0,
+/* As `sphera_sg_beckmann_specular_shading` with the isotropic SG fit of Eq. 2
+ * (`sphera_sg_from_beckmann_unnormalized`) instead of the ASG. */
+float sphera_sg_beckmann_specular_shading_sg(struct SpheraSg incoming, struct SpheraVec3 normal,
+                                             struct SpheraVec3 view, float roughness, float f0,
                                              float visibility);
 
-/**
- * The ASG `amplitude · max(ω·z, 0) · exp(−η_x (ω·x)² − η_y (ω·y)²)` with `z`
- * normalised, `x` made orthogonal to it and `y = z × x`; bandwidths clamped to
- * [0, SPHERA_SG_MAX_SHARPNESS], amplitude to [0, FLT_MAX] (NaN to 0). The zero ASG for
- * a zero or non-finite `z`.
- */
-struct SpheraAsg sphera_asg_new(struct SpheraVec3 x,
-                                struct SpheraVec3 z,
-                                float eta_x,
-                                float eta_y,
+/* The ASG `amplitude · max(ω·z, 0) · exp(−η_x (ω·x)² − η_y (ω·y)²)` with `z` normalised, `x`
+ * made orthogonal to it and `y = z × x`; bandwidths clamped to [0, SPHERA_SG_MAX_SHARPNESS],
+ * amplitude to [0, FLT_MAX] (NaN to 0). The zero ASG for a zero or non-finite `z`. */
+struct SpheraAsg sphera_asg_new(struct SpheraVec3 x, struct SpheraVec3 z, float eta_x, float eta_y,
                                 float amplitude);
 
-/**
- * The ASG's value at `dir` (normalised; 0 for a zero or non-finite `dir`).
- */
+/* The ASG's value at `dir` (normalised; 0 for a zero or non-finite `dir`). */
 float sphera_asg_eval(struct SpheraAsg asg, struct SpheraVec3 dir);
 
-/**
- * The approximate integral `a π/√(η_x η_y)`, at most `a π` (accurate to 1 % for
- * bandwidths above ~4.6; too high for small ones).
- */
+/* The approximate integral `a π/√(η_x η_y)`, at most `a π` (accurate to 1 % for bandwidths above
+ * ~4.6; too high for small ones). */
 float sphera_asg_integral(struct SpheraAsg asg);
 
-/**
- * `∫ G Ĝ dω` for an SG `c e^{λ(ω·ξ − 1)}` and an ASG by the boxed formula of Section
- * 4.2, `c π Ĝ(ξ; η_x ν/(η_x + ν), η_y ν/(η_y + ν)) / √((η_x + ν)(η_y + ν))` with
- * `ν = λ/2`, except that the factor `1/√((η_x + ν)(η_y + ν))` is capped at 1 (where
- * `(η_x + ν)(η_y + ν) < 1`), as `sphera_asg_integral` caps at `a π`: the result is at
- * most `c a π`. 0 when the SG's axis lies at or behind the ASG's horizon (`ξ·z ≤ 0`).
- */
+/* `∫ G Ĝ dω` for an SG `c e^{λ(ω·ξ − 1)}` and an ASG by the boxed formula of Section 4.2,
+ * `c π Ĝ(ξ; η_x ν/(η_x + ν), η_y ν/(η_y + ν)) / √((η_x + ν)(η_y + ν))` with `ν = λ/2`, except
+ * that the factor `1/√((η_x + ν)(η_y + ν))` is capped at 1 (where `(η_x + ν)(η_y + ν) < 1`), as
+ * `sphera_asg_integral` caps at `a π`: the result is at most `c a π`. 0 when the SG's axis lies
+ * at or behind the ASG's horizon (`ξ·z ≤ 0`). */
 float sphera_asg_convolve_sg(struct SpheraAsg asg, struct SpheraSg sg);
 
-/**
- * The ASG fit (amplitude 1) of GGX's warped unnormalised NDF at a shading point:
- * `z` the reflection of `view` about `normal`, `η_x = 1/(4α²)` in the plane of
- * incidence and `η_y = 1/(4α² cos²θ_o)` across it. The zero ASG for invalid vectors.
- */
-struct SpheraAsg sphera_asg_ggx_lobe(struct SpheraVec3 normal, struct SpheraVec3 view, float alpha);
+/* The ASG fit (amplitude 1) of GGX's warped unnormalised NDF at a shading point: `z` the
+ * reflection of `view` about `normal`, `η_x = 1/(4α²)` in the plane of incidence and
+ * `η_y = 1/(4α² cos²θ_o)` across it. The zero ASG for invalid vectors. */
+struct SpheraAsg sphera_asg_from_ggx(struct SpheraVec3 normal, struct SpheraVec3 view, float alpha);
 
-/**
- * The ASG fit (amplitude 1) of Beckmann's warped unnormalised NDF at a shading point:
- * built from the same `λ_h = 2/α²`, so the same ASG as `sphera_asg_ggx_lobe`.
- */
-struct SpheraAsg sphera_asg_beckmann_lobe(struct SpheraVec3 normal,
-                                          struct SpheraVec3 view,
+/* The ASG fit (amplitude 1) of Beckmann's warped unnormalised NDF at a shading point: built from
+ * the same `λ_h = 2/α²`, so the same ASG as `sphera_asg_from_ggx`. */
+struct SpheraAsg sphera_asg_from_beckmann(struct SpheraVec3 normal, struct SpheraVec3 view,
                                           float alpha);
 
 #ifdef __cplusplus

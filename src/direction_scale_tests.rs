@@ -1,6 +1,6 @@
-//! Issue 17, 5: direction arguments need not be normalised, but `sphera_ltc_density` and
+//! Issue 17, 5: direction arguments need not be normalised, but `sphera_ltc_eval` and
 //! `sphera_sptd_eval` returned 0 for directions of length 2⁻¹⁰⁰, 2¹⁰⁰, 2¹²⁶ and 2⁻¹⁴⁰
-//! (denormal components), and `sphera_ltc_ggx`, `sphera_ggx_pivot_lookup`,
+//! (denormal components), and `sphera_ltc_prepare`, `sphera_ggx_pivot_from_view`,
 //! `sphera_sphere_light_shading_prepare` and `sphera_sphere_light_sampler_prepare`
 //! returned `false` for views of length 1e20 and more: `|v|²` overflowed or underflowed.
 //! Every direction argument now goes through one helper that divides by the largest
@@ -46,11 +46,11 @@ fn prepared<T>(prepare: impl FnOnce(*mut T) -> bool) -> (bool, T) {
 
 fn ltc(view: SpheraVec3) -> (bool, Ltc) {
     // SAFETY: `out` points to writable memory for one `Ltc`.
-    prepared(|out| unsafe { sphera_ltc_ggx(out, view, 0.5) })
+    prepared(|out| unsafe { sphera_ltc_prepare(out, view, 0.5) })
 }
 fn pivot(view: SpheraVec3) -> (bool, GgxPivot) {
     // SAFETY: as above.
-    prepared(|out| unsafe { sphera_ggx_pivot_lookup(out, view, 0.5) })
+    prepared(|out| unsafe { sphera_ggx_pivot_from_view(out, view, 0.5) })
 }
 fn shading(view: SpheraVec3) -> (bool, SphereLightShading) {
     let f0 = Vec3::new(0.04, 0.5, 0.9).into();
@@ -110,14 +110,14 @@ fn direction_arguments_of_any_length_give_the_results_of_the_unit_direction() {
         let shaded = s.shade(&light);
         let d3: Vec3 = d.into();
         vec![
-            ("sphera_ltc_ggx ok", ok_ltc as u32 as f32),
-            ("sphera_ltc_ggx density", l.density(probe)),
-            ("sphera_ltc_ggx albedo", l.albedo()),
-            ("sphera_ggx_pivot_lookup ok", ok_pivot as u32 as f32),
-            ("sphera_ggx_pivot_lookup pivot.x", p.pivot.x),
-            ("sphera_ggx_pivot_lookup pivot.y", p.pivot.y),
-            ("sphera_ggx_pivot_lookup pivot.z", p.pivot.z),
-            ("sphera_ggx_pivot_lookup albedo", p.albedo),
+            ("sphera_ltc_prepare ok", ok_ltc as u32 as f32),
+            ("sphera_ltc_prepare density", l.density(probe)),
+            ("sphera_ltc_prepare albedo", l.albedo()),
+            ("sphera_ggx_pivot_from_view ok", ok_pivot as u32 as f32),
+            ("sphera_ggx_pivot_from_view pivot.x", p.pivot.x),
+            ("sphera_ggx_pivot_from_view pivot.y", p.pivot.y),
+            ("sphera_ggx_pivot_from_view pivot.z", p.pivot.z),
+            ("sphera_ggx_pivot_from_view albedo", p.albedo),
             (
                 "sphera_sphere_light_shading_prepare ok",
                 ok_shading as u32 as f32,
@@ -129,9 +129,7 @@ fn direction_arguments_of_any_length_give_the_results_of_the_unit_direction() {
             ),
             ("sphera_sphere_light_sampler_prepare pdf", m.pdf(light.axis)),
             // SAFETY: `fixed_ltc`, `polygon` and `in_cap` are valid prepared values.
-            ("sphera_ltc_density", unsafe {
-                sphera_ltc_density(&fixed_ltc, d)
-            }),
+            ("sphera_ltc_eval", unsafe { sphera_ltc_eval(&fixed_ltc, d) }),
             ("sphera_ltc_polygon_pdf", unsafe {
                 sphera_ltc_polygon_pdf(&polygon, d)
             }),

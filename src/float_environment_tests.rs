@@ -5,7 +5,7 @@
 //! reruns its whole suite under FTZ|DAZ through the C ABI.)
 
 use crate::Vec3;
-use crate::polygon::{ProjectedSolidAnglePolygon, SolidAnglePolygon};
+use crate::polygon::{ProjectedPolygon, SolidAnglePolygon};
 use crate::sphere::Cap;
 use crate::testing::*;
 
@@ -84,7 +84,7 @@ fn solid_angle_and_projected_sampling_follow_their_densities_under_ftz_daz() {
             let n = crate::polygon::clip_to_upper_hemisphere(&mut v, vertices.len());
             v[..n].to_vec()
         };
-        let projected = ProjectedSolidAnglePolygon::new(vertices).expect("valid");
+        let projected = ProjectedPolygon::new(vertices).expect("valid");
         let report = run_polygon_sampler(
             &clipped,
             6,
@@ -133,7 +133,7 @@ fn estimators_of_solid_angles_are_unbiased_under_ftz_daz() {
         circle_polygon(4, [0.3, 0.0, 1e5], [0.0, 0.0, 1.0], 0.56, false),
     ] {
         let solid_angle = SolidAnglePolygon::new(&vertices).expect("valid");
-        let projected = ProjectedSolidAnglePolygon::new(&vertices).expect("valid");
+        let projected = ProjectedPolygon::new(&vertices).expect("valid");
         let mut estimate = Estimate::default();
         for _ in 0..20_000 {
             let s = solid_angle.sample([rng.uniform_f32(), rng.uniform_f32()]);

@@ -271,9 +271,9 @@ static SpheraCap g_bent_cone; /* the bent cone of the occluded shading rows */
 #define RT_SHADE_PREPARE(out, in)                                                                              \
   (sphera_sphere_light_shading_prepare(&(out)->shading, vec3((in)->wo), (in)->roughness, splat3(0.04f)),      \
    (out)->light = sphera_cap_from_sphere(vec3((in)->center), (in)->radius))
-#define RT_SHADE_SAMPLE(p, u0, u1) ((void)(u0), (void)(u1), from_rgb(sphera_sphere_light_shade(&(p)->shading, (p)->light)))
+#define RT_SHADE_SAMPLE(p, u0, u1) ((void)(u0), (void)(u1), from_rgb(sphera_sphere_light_shading_eval(&(p)->shading, (p)->light)))
 #define RT_SHADE_BENT_SAMPLE(p, u0, u1) \
-  ((void)(u0), (void)(u1), from_rgb(sphera_sphere_light_shade_occluded(&(p)->shading, (p)->light, g_bent_cone)))
+  ((void)(u0), (void)(u1), from_rgb(sphera_sphere_light_shading_eval_occluded(&(p)->shading, (p)->light, g_bent_cone)))
 
 /* brdf */
 
@@ -286,7 +286,7 @@ struct Ggx {
 };
 #define GGX_PREPARE(out, in) \
   (sphera_ggx_brdf_prepare(&(out)->brdf, (in)->roughness, splat3(0.04f)), (out)->wo = vec3((in)->wo))
-#define GGX_SAMPLE(p, u0, u1) sphera_ggx_sample(&(p)->brdf, (p)->wo, u0, u1)
+#define GGX_SAMPLE(p, u0, u1) sphera_ggx_brdf_sample(&(p)->brdf, (p)->wo, u0, u1)
 
 /* The pdf rows: the density of the input's direction, returned as a sample. */
 struct VndfPdfC {
@@ -309,7 +309,7 @@ struct GgxPdf {
 };
 #define GGX_PDF_PREPARE(out, in) (GGX_PREPARE(&(out)->ggx, in), (out)->wi = vec3((in)->dir))
 #define GGX_PDF_SAMPLE(p, u0, u1) \
-  ((void)(u0), (void)(u1), pdf_as_sample((p)->wi, sphera_ggx_pdf(&(p)->ggx.brdf, (p)->ggx.wo, (p)->wi)))
+  ((void)(u0), (void)(u1), pdf_as_sample((p)->wi, sphera_ggx_brdf_pdf(&(p)->ggx.brdf, (p)->ggx.wo, (p)->wi)))
 
 struct Nothing {
   int unused;
@@ -327,7 +327,7 @@ struct Nothing {
 
 static void ltc_polygon_prepare(SpheraLtcPolygon *out, const Input *in) {
   SpheraLtc ltc;
-  sphera_ltc_ggx(&ltc, vec3(in->wo), in->roughness);
+  sphera_ltc_prepare(&ltc, vec3(in->wo), in->roughness);
   sphera_ltc_polygon_prepare(out, &ltc, LIB_VERTS(in), (uint32_t)in->n);
 }
 #define LTC_POLYGON_PREPARE(out, in) ltc_polygon_prepare(out, in)
@@ -417,7 +417,7 @@ typedef struct {
   X(ggx_pdf, BRDF, c_vndf_pdf, struct GgxPdf, GGX_PDF_PREPARE, GGX_PDF_SAMPLE)                        \
   X(c_cosine, BRDF, c_cosine, struct Nothing, NO_PREPARE, C_COSINE_SAMPLE)                            \
   X(lambert, BRDF, c_cosine, struct Nothing, NO_PREPARE, LAMBERT_SAMPLE)                              \
-  X(projected, POLYGONS, projected, SpheraProjectedSolidAnglePolygon, PROJECTED_PREPARE, PROJECTED_SAMPLE) \
+  X(projected, POLYGONS, projected, SpheraProjectedPolygon, PROJECTED_PREPARE, PROJECTED_SAMPLE) \
   X(ltc_polygon, POLYGONS, projected, SpheraLtcPolygon, LTC_POLYGON_PREPARE, LTC_POLYGON_SAMPLE)      \
   X(light_balance, POLYGONS, projected, SpheraPolygonLight, LIGHT_BALANCE_PREPARE, LIGHT_SAMPLE)      \
   X(light_weighted_balance, POLYGONS, projected, SpheraPolygonLight, LIGHT_WEIGHTED_PREPARE, LIGHT_SAMPLE) \
@@ -590,12 +590,12 @@ static int check_c_cone(const Pool *pool) {
 }
 
 /* GGX visible-normal sampling: every sample a unit vector; above the horizon, the C pdf
- * function agrees with sphera_ggx_pdf at the sample (2e-3) and so does the pdf that the
+ * function agrees with sphera_ggx_brdf_pdf at the sample (2e-3) and so does the pdf that the
  * sample carries (1e-2: its half vector is the sampled normal, not (wo + wi) normalised,
  * whose rounding the narrowest lobes amplify to about 1e-3); the C pdf function agrees
- * with sphera_ggx_pdf at the input's direction (2e-3); and for the first 16 views, over all 4096 (u0, u1), the
+ * with sphera_ggx_brdf_pdf at the input's direction (2e-3); and for the first 16 views, over all 4096 (u0, u1), the
  * means of the direction's x and z (0 for no sample) agree with those of
- * sphera_ggx_sample within five standard errors of their difference (from the two
+ * sphera_ggx_brdf_sample within five standard errors of their difference (from the two
  * samples' variances, as if independent). */
 static int check_c_vndf(const Pool *pool) {
   int i, j, bad = 0;
@@ -613,10 +613,10 @@ static int check_c_vndf(const Pool *pool) {
       wi[0] = s.dir.x;
       wi[1] = s.dir.y;
       wi[2] = s.dir.z;
-      float expected = sphera_ggx_pdf(&brdf, vec3(in->wo), s.dir);
+      float expected = sphera_ggx_brdf_pdf(&brdf, vec3(in->wo), s.dir);
       if (!relative_ok(vndf_pdf(&g, wi), expected, 2e-3f) || !relative_ok(s.pdf, expected, 1e-2f)) bad++;
     }
-    if (!relative_ok(vndf_pdf(&g, in->dir), sphera_ggx_pdf(&brdf, vec3(in->wo), vec3(in->dir)), 2e-3f)) bad++;
+    if (!relative_ok(vndf_pdf(&g, in->dir), sphera_ggx_brdf_pdf(&brdf, vec3(in->wo), vec3(in->dir)), 2e-3f)) bad++;
   }
   if (bad) fprintf(stderr, "FAILED: GGX visible-normal sampling: %d views with a wrong pdf or direction\n", bad);
   for (i = 0; i < 16; i++) {
@@ -631,7 +631,7 @@ static int check_c_vndf(const Pool *pool) {
     for (j = 0; j < U_COUNT; j++) {
       SpheraSample s[2];
       s[0] = vndf_sample(&g, g_u[j][0], g_u[j][1]);
-      s[1] = sphera_ggx_sample(&brdf, vec3(in->wo), g_u[j][0], g_u[j][1]);
+      s[1] = sphera_ggx_brdf_sample(&brdf, vec3(in->wo), g_u[j][0], g_u[j][1]);
       for (c = 0; c < 2; c++) {
         double x = s[c].pdf > 0.0f ? s[c].dir.x : 0.0, z = s[c].pdf > 0.0f ? s[c].dir.z : 0.0;
         sums[c][0] += x;

@@ -161,9 +161,9 @@ typedef struct {
     sphera_solid_angle_polygon_sample, LIB_VERTS, 0)                                                           \
   X(clipped_solid_angle, SpheraClippedSolidAnglePolygon, sphera_clipped_solid_angle_polygon_prepare,           \
     sphera_clipped_solid_angle_polygon_sample, LIB_VERTS, 1)                                                   \
-  X(projected, SpheraProjectedSolidAnglePolygon, sphera_projected_polygon_prepare,                             \
+  X(projected, SpheraProjectedPolygon, sphera_projected_polygon_prepare,                             \
     sphera_projected_polygon_sample, LIB_VERTS, 1)                                                             \
-  X(projected_fast, SpheraProjectedSolidAnglePolygon, sphera_projected_polygon_prepare_fast,                   \
+  X(projected_fast, SpheraProjectedPolygon, sphera_projected_polygon_prepare_fast,                   \
     sphera_projected_polygon_sample_fast, LIB_VERTS, 1)                                                        \
   X(arvo, SpheraArvoPolygon, sphera_arvo_polygon_prepare, sphera_arvo_polygon_sample, LIB_VERTS, 0)            \
   X(hart_bilinear, SpheraHartBilinearPolygon, sphera_hart_bilinear_polygon_prepare,                            \

@@ -53,7 +53,7 @@ static bool segment_free(const Scene *scene, struct RTCIntersectContext *context
 static float3 material_eval(const Material *m, SpheraVec3 wo, SpheraVec3 wi) {
     if (!(wi.z > 0.0f) || !(wo.z > 0.0f)) return f3(0, 0, 0);
     float3 f = f3_scale(m->diffuse, 1.0f / PI_F);
-    if (m->roughness > 0.0f) f = f3_add(f, fv(sphera_ggx_eval(&m->ggx, wo, wi)));
+    if (m->roughness > 0.0f) f = f3_add(f, fv(sphera_ggx_brdf_eval(&m->ggx, wo, wi)));
     return f;
 }
 
@@ -61,7 +61,7 @@ static float3 material_eval(const Material *m, SpheraVec3 wo, SpheraVec3 wi) {
  * fitted LTC table): the specular reflectance R_s of a VPL. */
 static float3 specular_albedo(const Material *m, SpheraVec3 wo) {
     SpheraLtc ltc;
-    if (!(m->roughness > 0.0f) || !sphera_ltc_ggx(&ltc, wo, m->roughness)) return f3(0, 0, 0);
+    if (!(m->roughness > 0.0f) || !sphera_ltc_prepare(&ltc, wo, m->roughness)) return f3(0, 0, 0);
     return fv(sphera_ltc_specular_albedo(&ltc, sv(m->specular)));
 }
 
@@ -210,11 +210,11 @@ static void reference_row(void *context, struct RTCIntersectContext *rtc, uint32
             splitmix64(&state);
             for (uint32_t s = 0; s < job->spp; ++s) {
                 float u0 = uniform(&state), u1 = uniform(&state);
-                SpheraSample sample = u0 < q ? sphera_ggx_sample(&m->ggx, hit->wo, u0 / q, u1)
+                SpheraSample sample = u0 < q ? sphera_ggx_brdf_sample(&m->ggx, hit->wo, u0 / q, u1)
                                              : sphera_lambert_sample((u0 - q) / (1.0f - q), u1);
                 if (!(sample.pdf > 0.0f) || !(sample.dir.z > 0.0f)) continue;
                 float pdf = (1.0f - q) * sphera_lambert_pdf(sample.dir);
-                if (q > 0.0f) pdf += q * sphera_ggx_pdf(&m->ggx, hit->wo, sample.dir);
+                if (q > 0.0f) pdf += q * sphera_ggx_brdf_pdf(&m->ggx, hit->wo, sample.dir);
                 if (!(pdf > 0.0f)) continue;
                 float3 f = material_eval(m, hit->wo, sample.dir);
                 float3 dir = frame_to_world(&hit->frame, sample.dir);
@@ -455,7 +455,7 @@ static bool cluster_kmeans(const Rsm *rsm, const IndirectSettings *s, uint64_t *
         cx[5 * i + 2] = v->position.x;
         cx[5 * i + 3] = v->position.y;
         cx[5 * i + 4] = v->position.z;
-        sphera_vsgl_accumulator_init(&acc[i], v->position);
+        sphera_vsgl_accumulator_new(&acc[i], v->position);
     }
     if (running > 0.0)
         for (uint32_t k = 0; k < m; ++k) {
@@ -528,7 +528,7 @@ static float3 receiver_quadrature(SpheraSg incoming, const CameraHit *hit, const
     float3 sum = f3(0, 0, 0);
     for (int i = 0; i < 8; ++i)
         for (int j = 0; j < 8; ++j) {
-            SpheraSample s = sphera_sg_vmf_sample(incoming, (i + 0.5f) / 8.0f, (j + 0.5f) / 8.0f);
+            SpheraSample s = sphera_vmf_sample(incoming, (i + 0.5f) / 8.0f, (j + 0.5f) / 8.0f);
             if (!(s.pdf > 0.0f)) continue;
             SpheraVec3 wi = frame_to_local(&hit->frame, fv(s.dir));
             if (!(wi.z > 0.0f)) continue;
@@ -605,9 +605,9 @@ static float3 shade_vpls(const Scene *scene, struct RTCIntersectContext *rtc,
         if (variant & VARIANT_SG_EMISSION) {
             /* Eq. 1 and 2: Φ∘R_d G_d/A_d + Φ∘R_s G_s/A_s. */
             SpheraVec3 toward = sv(f3_scale(l, -1.0f));
-            float gd = sphera_sg_eval(sphera_sg_diffuse_lobe(vpl->normal), toward);
+            float gd = sphera_sg_eval(sphera_sg_from_lambert(vpl->normal), toward);
             float gs = sphera_sg_eval(
-                sphera_sg_specular_lobe(vpl->normal, vpl->toward_incoming, vpl->roughness),
+                sphera_sg_from_ggx(vpl->normal, vpl->toward_incoming, vpl->roughness),
                 toward);
             emitted = f3_mul(fv(vpl->power), f3_add(f3_scale(fv(vpl->diffuse_reflectance), gd),
                                                     f3_scale(fv(vpl->specular_reflectance), gs)));
@@ -728,9 +728,9 @@ static float3 shade_exact_lobes(const ShadeJob *job, const CameraHit *hit, float
         float length = f3_length(out);
         if (!(length > 0.0f)) continue;
         SpheraVec3 toward = sv(f3_scale(out, 1.0f / length));
-        float gd = sphera_sg_eval(sphera_sg_diffuse_lobe(vpl->normal), toward);
+        float gd = sphera_sg_eval(sphera_sg_from_lambert(vpl->normal), toward);
         float gs = sphera_sg_eval(
-            sphera_sg_specular_lobe(vpl->normal, vpl->toward_incoming, vpl->roughness), toward);
+            sphera_sg_from_ggx(vpl->normal, vpl->toward_incoming, vpl->roughness), toward);
         emitted[i] = f3_add(emitted[i],
                             f3_mul(fv(vpl->power), f3_add(f3_scale(fv(vpl->diffuse_reflectance), gd),
                                                           f3_scale(fv(vpl->specular_reflectance), gs))));
@@ -844,7 +844,7 @@ bool indirect_render_vsgl(const Scene *scene, const SpotLight *spot,
                 for (uint32_t k = 0; k < s->rsm_size * s->rsm_size; ++k) {
                     if (!rsm.valid[k]) continue;
                     SpheraVsglAccumulator a;
-                    sphera_vsgl_accumulator_init(&a, rsm.vpls[k].position);
+                    sphera_vsgl_accumulator_new(&a, rsm.vpls[k].position);
                     if (sphera_vsgl_accumulator_add_vpl(&a, &rsm.vpls[k]))
                         per_vpl[count++] = sphera_vsgl_accumulator_finish(&a);
                 }

@@ -50,7 +50,7 @@ static float rng_float(Rng *rng) {
 static float3 brdf_specular(const Material *m, float3 wo, float3 wi) {
     if (!(m->roughness > 0.0f)) return f3(0, 0, 0);
     SpheraVec3 o = {wo.x, wo.y, wo.z}, i = {wi.x, wi.y, wi.z};
-    SpheraVec3 f = sphera_ggx_eval(&m->ggx, o, i);
+    SpheraVec3 f = sphera_ggx_brdf_eval(&m->ggx, o, i);
     return f3(f.x, f.y, f.z);
 }
 
@@ -78,7 +78,7 @@ static void brdf_sampler_init(BrdfSampler *b, const Material *m, float3 wo) {
     b->wo.z = wo.z;
     b->specular_probability = 0.0f;
     SpheraLtc ltc;
-    if (m->roughness > 0.0f && sphera_ltc_ggx(&ltc, b->wo, m->roughness)) {
+    if (m->roughness > 0.0f && sphera_ltc_prepare(&ltc, b->wo, m->roughness)) {
         SpheraVec3 f0 = {m->specular.x, m->specular.y, m->specular.z};
         SpheraVec3 a = sphera_ltc_specular_albedo(&ltc, f0);
         float specular = luminance(f3(a.x, a.y, a.z)), diffuse = luminance(m->diffuse);
@@ -89,7 +89,7 @@ static void brdf_sampler_init(BrdfSampler *b, const Material *m, float3 wo) {
 static float brdf_sampler_pdf(const BrdfSampler *b, SpheraVec3 wi) {
     float q = b->specular_probability;
     float p = (1.0f - q) * sphera_lambert_pdf(wi);
-    if (q > 0.0f) p += q * sphera_ggx_pdf(&b->material->ggx, b->wo, wi);
+    if (q > 0.0f) p += q * sphera_ggx_brdf_pdf(&b->material->ggx, b->wo, wi);
     return p;
 }
 
@@ -97,7 +97,7 @@ static SpheraSample brdf_sampler_sample(const BrdfSampler *b, float u0, float u1
     float q = b->specular_probability;
     SpheraSample s;
     if (u0 < q)
-        s = sphera_ggx_sample(&b->material->ggx, b->wo, u0 / q, u1);
+        s = sphera_ggx_brdf_sample(&b->material->ggx, b->wo, u0 / q, u1);
     else
         s = sphera_lambert_sample((u0 - q) / (1.0f - q), u1);
     if (s.pdf > 0.0f) s.pdf = brdf_sampler_pdf(b, s.dir);
@@ -212,7 +212,7 @@ static float3 pair_estimate(const Scene *scene, struct RTCIntersectContext *cont
     float3 sum = f3(0, 0, 0);
     if (technique == TECHNIQUE_BRDF_BALANCE || technique == TECHNIQUE_BRDF_POWER) {
         bool power = technique == TECHNIQUE_BRDF_POWER;
-        const SpheraProjectedSolidAnglePolygon *polygon = &prepared->u.projected;
+        const SpheraProjectedPolygon *polygon = &prepared->u.projected;
         /* light sampling */
         SpheraSample a = sphera_projected_polygon_sample(polygon, u0, u1);
         if (a.pdf > 0.0f) {
@@ -308,10 +308,10 @@ static float3 sphere_sptd_specular_estimate(const Scene *scene, struct RTCInters
     float u0 = rng_float(rng), u1 = rng_float(rng);
     SpheraSample a = sphera_sphere_light_sampler_sample(sampler, u0, u1);
     if (a.pdf > 0.0f && a.dir.z > 0.0f)
-        sum = balance_term(scene, context, hit, light, a, sphera_ggx_pdf(&m->ggx, wo, a.dir),
+        sum = balance_term(scene, context, hit, light, a, sphera_ggx_brdf_pdf(&m->ggx, wo, a.dir),
                            BRDF_SPECULAR);
     float v0 = rng_float(rng), v1 = rng_float(rng);
-    SpheraSample b = sphera_ggx_sample(&m->ggx, wo, v0, v1);
+    SpheraSample b = sphera_ggx_brdf_sample(&m->ggx, wo, v0, v1);
     float light_pdf = b.pdf > 0.0f ? sphera_sphere_light_sampler_pdf(sampler, b.dir) : 0.0f;
     if (light_pdf > 0.0f && b.dir.z > 0.0f)
         sum = f3_add(sum, balance_term(scene, context, hit, light, b, light_pdf, BRDF_SPECULAR));
@@ -355,7 +355,7 @@ static float3 sphere_projected_estimate(const Scene *scene, struct RTCIntersectC
 /* One light sample of sphere_realtime (BIASED): the Lambert layer as in sphere_cap
  * (one uniform cap sample, unbiased), plus the GGX layer as
  *   L * S(C) * V,
- * where S(C) = sphera_sphere_light_shade, the fitted SPTD's integral over the cap
+ * where S(C) = sphera_sphere_light_shading_eval, the fitted SPTD's integral over the cap
  * clipped to the horizon (Dupuy et al. 2017, Eq. 19; includes cos and Fresnel), and V
  * is the visibility of one direction uniform in the cap above the horizon: the cap
  * sample when it lies above the horizon (its shadow ray is shared), else the first of
@@ -390,7 +390,7 @@ static float3 sphere_realtime_estimate(const Scene *scene, struct RTCIntersectCo
         visible = unoccluded(scene, context, hit, light, frame_to_world(&hit->frame, b.dir));
     }
     if (visible > 0.0f) {
-        float3 specular = to_float3(sphera_sphere_light_shade(shading, cap));
+        float3 specular = to_float3(sphera_sphere_light_shading_eval(shading, cap));
         sum = f3_add(sum, f3_scale(f3_mul(light->radiance, specular), visible));
     }
     return sum;
@@ -442,8 +442,8 @@ static bool bent_cone(const Scene *scene, struct RTCIntersectContext *context, c
 /* One light sample of sphere_occlusion or sphere_occlusion_separable (BIASED): the
  * Lambert layer as in sphere_cap (one uniform cap sample and its shadow ray), plus the
  * GGX layer as L * S, where S is the SPTD's specular occlusion of the light's cap by
- * the bent cone `cone` (Eq. 23, sphera_sphere_light_shade_occluded) or its separable
- * baseline (Eq. 21-22, sphera_sphere_light_shade_occluded_separable). No shadow ray for
+ * the bent cone `cone` (Eq. 23, sphera_sphere_light_shading_eval_occluded) or its separable
+ * baseline (Eq. 21-22, sphera_sphere_light_shading_eval_occluded_separable). No shadow ray for
  * the GGX layer: the bent cone stands for the visibility. */
 static float3 sphere_occlusion_estimate(const Scene *scene, struct RTCIntersectContext *context,
                                         const Hit *hit, const Light *light, SpheraCap cap,
@@ -461,8 +461,8 @@ static float3 sphere_occlusion_estimate(const Scene *scene, struct RTCIntersectC
     }
     if (!shading || !cone) return sum;
     SpheraVec3 specular = separable
-                              ? sphera_sphere_light_shade_occluded_separable(shading, cap, *cone)
-                              : sphera_sphere_light_shade_occluded(shading, cap, *cone);
+                              ? sphera_sphere_light_shading_eval_occluded_separable(shading, cap, *cone)
+                              : sphera_sphere_light_shading_eval_occluded(shading, cap, *cone);
     return f3_add(sum, f3_mul(light->radiance, to_float3(specular)));
 }
 
@@ -647,7 +647,7 @@ static float3 shade(const Scene *scene, struct RTCIntersectContext *context, con
  * (w towards the light; forward scattering when w = camera_dir) is estimated by
  * - medium_pivot: one sample of the pivot phase function with pivot g_p
  *   = sphera_phase_pivot_from_henyey_greenstein(g) (Eq. 27-28) restricted to the cap
- *   (sphera_phase_pivot_in_cap_prepare, Section 6.2), estimate HG L T / pdf: unbiased,
+ *   (sphera_sptd_in_cap_prepare_pivot_phase, Section 6.2), estimate HG L T / pdf: unbiased,
  *   as the pdf is positive in the whole cap;
  * - medium_hg_cap and the reference: one HG sample and one uniform cap sample,
  *   balance heuristic;
@@ -680,7 +680,7 @@ static float3 in_scattering(const Scene *scene, struct RTCIntersectContext *cont
             if (technique == TECHNIQUE_MEDIUM_PIVOT) {
                 SpheraSptdInCap pivot;
                 *samples += 1;
-                if (!sphera_phase_pivot_in_cap_prepare(
+                if (!sphera_sptd_in_cap_prepare_pivot_phase(
                         &pivot, to_sphera(d), sphera_phase_pivot_from_henyey_greenstein(g), cap))
                     continue;
                 SpheraSample a = sphera_sptd_in_cap_sample(&pivot, u0, u1);

@@ -14,7 +14,7 @@ typedef struct PreparedLight {
         SpheraHartBilinearPolygon bilinear;
         SpheraHartBiquadraticPolygon biquadratic;
         SpheraArvoProjectedPolygon arvo_projected;
-        SpheraProjectedSolidAnglePolygon projected;
+        SpheraProjectedPolygon projected;
         SpheraPolygonLight polygon_light;
     } u;
     /* The reference technique on a GGX material: u.polygon_light (weighted balance);

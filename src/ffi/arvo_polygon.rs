@@ -7,17 +7,13 @@ use crate::polygon::baselines::ArvoPolygon;
 /// Prepares Arvo's 1995 baseline for the convex polygon `vertices[0..count]`: uniform
 /// sampling of the solid angle, triangle by triangle.
 ///
-/// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
-/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
-/// when the polygon subtends no solid angle, in particular when its vertices lie exactly
-/// in a plane through the shading point (decided exactly, at any tilt). Unless `out` is
-/// null, a `false` return writes the empty polygon into `*out`: its samples have pdf 0,
-/// its `pdf` is 0 and its solid angle is 0, whatever `*out` held before.
+/// Returns `false` also when the polygon subtends no solid angle, in particular when its
+/// vertices lie exactly in a plane through the shading point (decided exactly, at any
+/// tilt).
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraArvoPolygon`;
-/// `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_arvo_polygon_prepare(
     out: *mut ArvoPolygon,
@@ -29,21 +25,17 @@ pub unsafe extern "C" fn sphera_arvo_polygon_prepare(
 }
 
 /// Draws a direction uniformly distributed in the solid angle of `polygon` with Arvo's
-/// method from the random numbers `u0`, `u1` in [0, 1) (values outside are clamped by
-/// the library). The pdf of the sample is 1 / solid angle per steradian, as
-/// `sphera_arvo_polygon_pdf` gives it for the direction.
+/// method from the random numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / solid
+/// angle per steradian, as `sphera_arvo_polygon_pdf` gives it for the direction.
 ///
-/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty, and
-/// when Arvo's construction in f32 puts the direction outside the polygon. A baseline:
-/// **unreliable for polygons below about 1e-2 rad across**, where such draws are many
-/// (measured on quads at distance 1: 0.25% of the draws at 2e-2 rad across, 7.6% at
-/// 2e-3, 20% at 2e-4) and its f32 solid angle is inaccurate (docs/polygon-lights.md). `dir` is always a
-/// finite unit vector.
+/// No sample also when Arvo's construction in f32 puts the direction outside the polygon. A
+/// baseline: **unreliable for polygons below about 1e-2 rad across**, where such draws are
+/// many (measured on quads at distance 1: 0.25% of the draws at 2e-2 rad across, 7.6% at
+/// 2e-3, 20% at 2e-4) and its f32 solid angle is inaccurate (docs/polygon-lights.md).
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraArvoPolygon` written by
-/// `sphera_arvo_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_arvo_polygon_sample(
     polygon: *const ArvoPolygon,
@@ -61,12 +53,9 @@ pub unsafe extern "C" fn sphera_arvo_polygon_sample(
 /// The density per steradian with which `sphera_arvo_polygon_sample` produces the unit
 /// direction `dir`: 1 / solid angle inside the polygon, 0 outside it.
 ///
-/// Returns 0 when `polygon` is null or empty.
-///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraArvoPolygon` written by
-/// `sphera_arvo_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_arvo_polygon_pdf(
     polygon: *const ArvoPolygon,
@@ -79,12 +68,9 @@ pub unsafe extern "C" fn sphera_arvo_polygon_pdf(
 /// The solid angle (in steradians) that the polygon subtends, as Arvo's method computes
 /// it.
 ///
-/// Returns 0 when `polygon` is null or empty.
-///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraArvoPolygon` written by
-/// `sphera_arvo_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_arvo_polygon_solid_angle(polygon: *const ArvoPolygon) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.

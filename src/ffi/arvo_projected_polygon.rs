@@ -12,8 +12,7 @@ use crate::polygon::baselines::ArvoProjectedPolygon;
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraArvoProjectedPolygon`;
-/// `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_arvo_projected_polygon_prepare(
     out: *mut ArvoProjectedPolygon,
@@ -24,19 +23,16 @@ pub unsafe extern "C" fn sphera_arvo_projected_polygon_prepare(
     unsafe { prepare(out, vertices, count, ArvoProjectedPolygon::prepare) }
 }
 
-/// Draws a direction with density cos θ / Φ by Arvo's method from `u0`, `u1` in [0, 1)
-/// (clamped by the library); the pdf is `dir.z / Φ`, as
-/// `sphera_arvo_projected_polygon_pdf` gives it for the direction. Returns
-/// `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or empty, for a draw exactly on
-/// the horizon, and when the f32 construction puts the direction outside the polygon. A
-/// baseline: **unreliable for polygons below about 2e-3 rad across**, where such draws
-/// are many (measured on quads at distance 1: 0.06% of the draws at 2e-3 rad across,
-/// 5.9% at 2e-4, 79% at 2e-5). `dir` is always a finite unit vector.
+/// Draws a direction with density cos θ / Φ by Arvo's method from `u0`, `u1` in [0, 1); the
+/// pdf is `dir.z / Φ`, as `sphera_arvo_projected_polygon_pdf` gives it for the direction.
+/// No sample also for a draw exactly on the horizon, and when the f32 construction puts the
+/// direction outside the polygon. A baseline: **unreliable for polygons below about 2e-3
+/// rad across**, where such draws are many (measured on quads at distance 1: 0.06% of the
+/// draws at 2e-3 rad across, 5.9% at 2e-4, 79% at 2e-5).
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraArvoProjectedPolygon` written by
-/// `sphera_arvo_projected_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_arvo_projected_polygon_sample(
     polygon: *const ArvoProjectedPolygon,
@@ -56,8 +52,7 @@ pub unsafe extern "C" fn sphera_arvo_projected_polygon_sample(
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraArvoProjectedPolygon` written by
-/// `sphera_arvo_projected_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_arvo_projected_polygon_pdf(
     polygon: *const ArvoProjectedPolygon,
@@ -71,8 +66,7 @@ pub unsafe extern "C" fn sphera_arvo_projected_polygon_pdf(
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraArvoProjectedPolygon` written by
-/// `sphera_arvo_projected_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_arvo_projected_polygon_projected_solid_angle(
     polygon: *const ArvoProjectedPolygon,

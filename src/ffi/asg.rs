@@ -45,14 +45,14 @@ pub extern "C" fn sphera_asg_convolve_sg(asg: Asg, sg: Sg) -> f32 {
 /// `z` the reflection of `view` about `normal`, `η_x = 1/(4α²)` in the plane of
 /// incidence and `η_y = 1/(4α² cos²θ_o)` across it. The zero ASG for invalid vectors.
 #[unsafe(no_mangle)]
-pub extern "C" fn sphera_asg_ggx_lobe(normal: SpheraVec3, view: SpheraVec3, alpha: f32) -> Asg {
+pub extern "C" fn sphera_asg_from_ggx(normal: SpheraVec3, view: SpheraVec3, alpha: f32) -> Asg {
     Asg::ggx_lobe(normal.into(), view.into(), alpha)
 }
 
 /// The ASG fit (amplitude 1) of Beckmann's warped unnormalised NDF at a shading point:
-/// built from the same `λ_h = 2/α²`, so the same ASG as `sphera_asg_ggx_lobe`.
+/// built from the same `λ_h = 2/α²`, so the same ASG as `sphera_asg_from_ggx`.
 #[unsafe(no_mangle)]
-pub extern "C" fn sphera_asg_beckmann_lobe(
+pub extern "C" fn sphera_asg_from_beckmann(
     normal: SpheraVec3,
     view: SpheraVec3,
     alpha: f32,

@@ -5,25 +5,17 @@ use super::types::{SpheraSample, SpheraVec3, with_ref};
 use crate::Sample;
 use crate::polygon::ClippedSolidAnglePolygon;
 
-/// Prepares clipped solid angle sampling for the convex polygon `vertices[0..count]`
-/// (positions relative to the shading point, not normalised, either winding): the
-/// polygon is clipped to the upper hemisphere (z >= 0) and the part above the horizon
-/// is sampled uniformly in solid angle.
+/// Prepares clipped solid angle sampling for the convex polygon `vertices[0..count]` (not
+/// normalised): the polygon is clipped to the upper hemisphere (z >= 0) and the part above
+/// the horizon is sampled uniformly in solid angle.
 ///
-/// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
-/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite,
-/// when nothing of the polygon lies above the horizon, when a polygon of
-/// `SPHERA_MAX_POLYGON_VERTICES` vertices needs clipping (the result could have one
+/// Returns `false` also when nothing of the polygon lies above the horizon, when a polygon
+/// of `SPHERA_MAX_POLYGON_VERTICES` vertices needs clipping (the result could have one
 /// vertex more than the limit), or when the clipped polygon subtends no solid angle.
-/// Unless `out` is null, a `false` return writes the empty polygon into `*out`: its
-/// samples have pdf 0, its `pdf` is 0 and its solid angle is 0, whatever `*out` held
-/// before.
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one
-/// `SpheraClippedSolidAnglePolygon`; `vertices` must be null or point to `count`
-/// readable `SpheraVec3`s that do not overlap `*out`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_prepare(
     out: *mut ClippedSolidAnglePolygon,
@@ -35,17 +27,12 @@ pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_prepare(
 }
 
 /// Draws a direction uniformly distributed in the solid angle of the part of `polygon`
-/// above the horizon from the random numbers `u0`, `u1` in [0, 1) (values outside are
-/// clamped by the library). The pdf of the sample is 1 / (clipped solid angle) per
-/// steradian, and the direction has z >= 0.
-///
-/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty.
-/// `dir` is always a finite unit vector.
+/// above the horizon from the random numbers `u0`, `u1` in [0, 1). The pdf of the sample is
+/// 1 / (clipped solid angle) per steradian, and the direction has z >= 0.
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraClippedSolidAnglePolygon` written by
-/// `sphera_clipped_solid_angle_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_sample(
     polygon: *const ClippedSolidAnglePolygon,
@@ -64,12 +51,9 @@ pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_sample(
 /// produces the unit direction `dir`: 1 / (clipped solid angle) inside the part of the
 /// polygon above the horizon, 0 elsewhere.
 ///
-/// Returns 0 when `polygon` is null or empty.
-///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraClippedSolidAnglePolygon` written by
-/// `sphera_clipped_solid_angle_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_pdf(
     polygon: *const ClippedSolidAnglePolygon,
@@ -81,12 +65,9 @@ pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_pdf(
 
 /// The solid angle (in steradians) of the part of the polygon above the horizon.
 ///
-/// Returns 0 when `polygon` is null or empty.
-///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraClippedSolidAnglePolygon` written by
-/// `sphera_clipped_solid_angle_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_solid_angle(
     polygon: *const ClippedSolidAnglePolygon,

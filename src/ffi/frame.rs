@@ -21,7 +21,7 @@ const IDENTITY: Frame = Frame {
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraFrame`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_frame_from_normal(out: *mut Frame, normal: SpheraVec3) -> bool {
     if out.is_null() {
@@ -38,8 +38,7 @@ pub unsafe extern "C" fn sphera_frame_from_normal(out: *mut Frame, normal: Spher
 ///
 /// # Safety
 ///
-/// `frame` must be null or point to a `SpheraFrame` (e.g. one written by
-/// `sphera_frame_from_normal`).
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_frame_to_local(frame: *const Frame, v: SpheraVec3) -> SpheraVec3 {
     // SAFETY: the caller guarantees that a non-null `frame` points to a valid frame.
@@ -51,8 +50,7 @@ pub unsafe extern "C" fn sphera_frame_to_local(frame: *const Frame, v: SpheraVec
 ///
 /// # Safety
 ///
-/// `frame` must be null or point to a `SpheraFrame` (e.g. one written by
-/// `sphera_frame_from_normal`).
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_frame_to_world(frame: *const Frame, v: SpheraVec3) -> SpheraVec3 {
     // SAFETY: the caller guarantees that a non-null `frame` points to a valid frame.

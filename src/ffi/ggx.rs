@@ -11,20 +11,16 @@ const _: () = assert!(SPHERA_GGX_MIN_ALPHA == crate::brdf::ggx::MIN_ALPHA);
 
 // ---- GGX ---------------------------------------------------------------------------
 
-/// Prepares the GGX microfacet BRDF (Trowbridge–Reitz distribution, height-correlated
-/// Smith masking-shadowing, Schlick Fresnel) with perceptual roughness `roughness`
-/// (`α = roughness²`) and Fresnel reflectance `f0` at normal incidence per RGB channel.
-///
-/// `roughness` is clamped to [0, 1] and `α` to the range from `SPHERA_GGX_MIN_ALPHA`
-/// to 1; each channel of `f0` is clamped to [0, 1]. Returns `false` when `out` is null,
-/// and when `roughness` or a channel of `f0` is NaN or infinite; the latter still
-/// writes a usable BRDF into `*out` (a NaN roughness counts as the smoothest,
-/// `α = SPHERA_GGX_MIN_ALPHA`; NaN channels of `f0` count as 0; infinities are
-/// clamped).
+/// Prepares the GGX BRDF with perceptual roughness `roughness` (`α = roughness²`) and
+/// Fresnel reflectance `f0` at normal incidence per RGB channel. `roughness` is clamped to
+/// [0, 1] and `α` to [`SPHERA_GGX_MIN_ALPHA`, 1]; each channel of `f0` is clamped to [0,
+/// 1]. Returns `false` when `out` is null, and when `roughness` or a channel of `f0` is NaN
+/// or infinite; the latter still writes a usable BRDF (a NaN roughness counts as the
+/// smoothest, NaN channels of `f0` as 0, infinities are clamped).
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraGgxBrdf`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ggx_brdf_prepare(
     out: *mut GgxBrdf,
@@ -48,10 +44,9 @@ pub unsafe extern "C" fn sphera_ggx_brdf_prepare(
 ///
 /// # Safety
 ///
-/// `brdf` must be null or point to a `SpheraGgxBrdf` written by
-/// `sphera_ggx_brdf_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_ggx_eval(
+pub unsafe extern "C" fn sphera_ggx_brdf_eval(
     brdf: *const GgxBrdf,
     wo: SpheraVec3,
     wi: SpheraVec3,
@@ -64,16 +59,15 @@ pub unsafe extern "C" fn sphera_ggx_eval(
     }
 }
 
-/// `D G2 / (4 cos θo cos θi)`: `sphera_ggx_eval` with Fresnel F = 1 (a scalar).
+/// `D G2 / (4 cos θo cos θi)`: `sphera_ggx_brdf_eval` with Fresnel F = 1 (a scalar).
 ///
-/// Returns 0 in the cases where `sphera_ggx_eval` returns (0, 0, 0).
+/// Returns 0 in the cases where `sphera_ggx_brdf_eval` returns (0, 0, 0).
 ///
 /// # Safety
 ///
-/// `brdf` must be null or point to a `SpheraGgxBrdf` written by
-/// `sphera_ggx_brdf_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_ggx_eval_without_fresnel(
+pub unsafe extern "C" fn sphera_ggx_brdf_eval_without_fresnel(
     brdf: *const GgxBrdf,
     wo: SpheraVec3,
     wi: SpheraVec3,
@@ -86,24 +80,17 @@ pub unsafe extern "C" fn sphera_ggx_eval_without_fresnel(
     }
 }
 
-/// Draws `wi` by sampling the GGX distribution of normals visible from `wo` (Heitz
-/// 2018) and reflecting `wo` on the sampled normal, from the random numbers `u0`, `u1`
-/// in [0, 1) (values outside are clamped by the library, NaN counts as 0). The pdf is
-/// `G1(wo) D(h) / (4 cos θo)` per steradian and equals `sphera_ggx_pdf(brdf, wo, dir)`.
-///
-/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `brdf` is null, when `wo`
-/// lies at or below the horizon, is zero or is not finite, and when the reflected
-/// direction lies at or below the horizon. The last case happens with positive
-/// probability (about half the draws for roughness 1 at normal incidence): the pdf
-/// then integrates to less than 1 over the upper hemisphere. Count such a draw as a
-/// sample that contributes 0; do not renormalise the pdf.
+/// Draws `wi`: `wo` reflected on a normal drawn from GGX's visible normals (Dupuy and
+/// Benyoub 2023), pdf `G1(wo) D(h) / (4 cos θo)` = `sphera_ggx_brdf_pdf(brdf, wo, dir)`.
+/// No sample for a `wo` that is not finite, zero or at or below the horizon, and for a
+/// reflection at or below the horizon (about half the draws at roughness 1 and normal
+/// incidence: count it as a sample that contributes 0; do not renormalise the pdf).
 ///
 /// # Safety
 ///
-/// `brdf` must be null or point to a `SpheraGgxBrdf` written by
-/// `sphera_ggx_brdf_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_ggx_sample(
+pub unsafe extern "C" fn sphera_ggx_brdf_sample(
     brdf: *const GgxBrdf,
     wo: SpheraVec3,
     u0: f32,
@@ -117,7 +104,7 @@ pub unsafe extern "C" fn sphera_ggx_sample(
     }
 }
 
-/// The density per steradian with which `sphera_ggx_sample` draws `wi` given `wo`:
+/// The density per steradian with which `sphera_ggx_brdf_sample` draws `wi` given `wo`:
 /// `G1(wo) D(h) / (4 cos θo)` with `h` the half vector of `wo` and `wi`.
 ///
 /// Returns 0 when `brdf` is null, and when either direction lies at or below the
@@ -125,10 +112,9 @@ pub unsafe extern "C" fn sphera_ggx_sample(
 ///
 /// # Safety
 ///
-/// `brdf` must be null or point to a `SpheraGgxBrdf` written by
-/// `sphera_ggx_brdf_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_ggx_pdf(
+pub unsafe extern "C" fn sphera_ggx_brdf_pdf(
     brdf: *const GgxBrdf,
     wo: SpheraVec3,
     wi: SpheraVec3,

@@ -6,24 +6,17 @@ use crate::Sample;
 use crate::polygon::baselines::{HartBilinearPolygon, HartBiquadraticPolygon};
 
 /// Prepares the bilinear warp of Hart et al. 2020 for the convex polygon
-/// `vertices[0..count]` (positions relative to the shading point, not normalised, either
-/// winding): solid angle sampling whose primary square is warped by the bilinear
-/// density through the cosine at the directions of its four corners. It approximates
-/// cosine-weighted sampling (the pdf is exact for the samples drawn, but not
-/// proportional to the cosine). The polygon is not clipped: samples that land below the
-/// horizon are returned as "no sample" (pdf 0), and when the cosine is 0 at all four
-/// corners the warp is uniform (plain solid angle sampling).
+/// `vertices[0..count]`: solid angle sampling whose primary square is warped by the
+/// bilinear density through the cosine at its four corners, which approximates
+/// cosine-weighted sampling (the pdf is exact for the samples drawn). The polygon is not
+/// clipped: samples below the horizon are no sample, and when the cosine is 0 at all four
+/// corners the warp is uniform.
 ///
-/// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
-/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
-/// when the polygon subtends no solid angle. Unless `out` is null, a `false` return
-/// writes the empty polygon into `*out`: its samples have pdf 0 and its `pdf` is 0,
-/// whatever `*out` held before.
+/// Returns `false` also when the polygon subtends no solid angle.
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraHartBilinearPolygon`;
-/// `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_hart_bilinear_polygon_prepare(
     out: *mut HartBilinearPolygon,
@@ -34,18 +27,14 @@ pub unsafe extern "C" fn sphera_hart_bilinear_polygon_prepare(
     unsafe { prepare(out, vertices, count, HartBilinearPolygon::prepare) }
 }
 
-/// Draws a direction with the bilinear warp from the random numbers `u0`, `u1` in
-/// [0, 1) (values outside are clamped by the library). The pdf is the warp's density
-/// divided by the solid angle, per steradian.
+/// Draws a direction with the bilinear warp from the random numbers `u0`, `u1` in [0, 1).
+/// The pdf is the warp's density divided by the solid angle, per steradian.
 ///
-/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
-/// and when the direction lies at or below the horizon (z <= 0). `dir` is always a
-/// finite unit vector.
+/// No sample also when the direction lies at or below the horizon (z <= 0).
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraHartBilinearPolygon` written by
-/// `sphera_hart_bilinear_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_hart_bilinear_polygon_sample(
     polygon: *const HartBilinearPolygon,
@@ -64,12 +53,9 @@ pub unsafe extern "C" fn sphera_hart_bilinear_polygon_sample(
 /// the direction `dir` (need not be normalised); 0 outside the polygon and at or below
 /// the horizon (z <= 0).
 ///
-/// Returns 0 when `polygon` is null or empty.
-///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraHartBilinearPolygon` written by
-/// `sphera_hart_bilinear_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_hart_bilinear_polygon_pdf(
     polygon: *const HartBilinearPolygon,
@@ -80,26 +66,17 @@ pub unsafe extern "C" fn sphera_hart_bilinear_polygon_pdf(
 }
 
 /// Prepares the biquadratic warp of Hart et al. 2020 for the convex polygon
-/// `vertices[0..count]` (positions relative to the shading point, not normalised, either
-/// winding): solid angle sampling whose primary square is warped by the biquadratic
-/// density through the cosine at the directions of its 3×3 grid points {0, 1/2, 1}²,
-/// written in Bernstein form with negative control points clamped to 0 so that it is
-/// non-negative. It approximates cosine-weighted sampling (the pdf is exact for the
-/// samples drawn, but not proportional to the cosine). The polygon is not clipped:
-/// samples that land below the horizon are returned as "no sample" (pdf 0), and when the
-/// cosine is 0 at all grid points the warp is uniform (plain solid angle sampling).
+/// `vertices[0..count]`: solid angle sampling whose primary square is warped by the
+/// biquadratic density through the cosine at its 3×3 grid points {0, 1/2, 1}² (Bernstein
+/// form, negative control points clamped to 0), which approximates cosine-weighted sampling
+/// (the pdf is exact for the samples drawn). The polygon is not clipped: samples below the
+/// horizon are no sample, and when the cosine is 0 at all grid points the warp is uniform.
 ///
-/// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
-/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
-/// when the polygon subtends no solid angle. Unless `out` is null, a `false` return
-/// writes the empty polygon into `*out`: its samples have pdf 0 and its `pdf` is 0,
-/// whatever `*out` held before.
+/// Returns `false` also when the polygon subtends no solid angle.
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one
-/// `SpheraHartBiquadraticPolygon`; `vertices` must be null or point to `count` readable
-/// `SpheraVec3`s.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_hart_biquadratic_polygon_prepare(
     out: *mut HartBiquadraticPolygon,
@@ -110,18 +87,14 @@ pub unsafe extern "C" fn sphera_hart_biquadratic_polygon_prepare(
     unsafe { prepare(out, vertices, count, HartBiquadraticPolygon::prepare) }
 }
 
-/// Draws a direction with the biquadratic warp from the random numbers `u0`, `u1` in
-/// [0, 1) (values outside are clamped by the library). The pdf is the warp's density
-/// divided by the solid angle, per steradian.
+/// Draws a direction with the biquadratic warp from the random numbers `u0`, `u1` in [0,
+/// 1). The pdf is the warp's density divided by the solid angle, per steradian.
 ///
-/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
-/// and when the direction lies at or below the horizon (z <= 0). `dir` is always a
-/// finite unit vector.
+/// No sample also when the direction lies at or below the horizon (z <= 0).
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraHartBiquadraticPolygon` written by
-/// `sphera_hart_biquadratic_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_hart_biquadratic_polygon_sample(
     polygon: *const HartBiquadraticPolygon,
@@ -140,12 +113,9 @@ pub unsafe extern "C" fn sphera_hart_biquadratic_polygon_sample(
 /// produces the direction `dir` (need not be normalised); 0 outside the polygon and at
 /// or below the horizon (z <= 0).
 ///
-/// Returns 0 when `polygon` is null or empty.
-///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraHartBiquadraticPolygon` written by
-/// `sphera_hart_biquadratic_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_hart_biquadratic_polygon_pdf(
     polygon: *const HartBiquadraticPolygon,

@@ -21,9 +21,8 @@ pub extern "C" fn sphera_lambert_eval(
 }
 
 /// Draws a direction with density `cos θ / π` (cosine-weighted, by the concentric disk
-/// mapping) from the random numbers `u0`, `u1` in [0, 1) (values outside are clamped by
-/// the library, NaN counts as 0). Every draw lies strictly above the horizon and its
-/// pdf equals `sphera_lambert_pdf(dir)`.
+/// mapping) from the random numbers `u0`, `u1` in [0, 1). Every draw lies strictly above
+/// the horizon and its pdf equals `sphera_lambert_pdf(dir)`.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_lambert_sample(u0: f32, u1: f32) -> SpheraSample {
     Lambert::default().sample([u0, u1]).into()

@@ -7,21 +7,20 @@ use crate::brdf::Ltc;
 use crate::polygon::LtcPolygon;
 use crate::{Sample, Vec3};
 
-/// Looks up the LTC fitted to GGX `f(wo, ω) cos θ` (Fresnel 1; isotropic GGX with
-/// height-correlated Smith masking-shadowing, `α = roughness²`) for the view direction
-/// `wo` (local frame, towards the viewer, need not be normalised) and `roughness` in
-/// [0, 1] (clamped; NaN counts as 0). The table is interpolated bilinearly in
-/// `√α = roughness` and `√(1 − cos θ)`, and rotated to the view's azimuth.
+/// Looks up the LTC fitted to GGX `f(wo, ω) cos θ` (Fresnel 1, `α = roughness²`) for the
+/// view `wo` (towards the viewer, need not be normalised) and `roughness` in [0, 1]
+/// (clamped; NaN counts as 0), interpolated bilinearly in `roughness` and `√(1 − cos θ)`
+/// and rotated to the view's azimuth.
 ///
-/// Returns `false` when `out` is null, or when `wo` is not finite, zero, or at or below
-/// the horizon (`wo.z <= 0`); in the second case `*out` is set to the plain cosine
-/// (`M = I`, albedo 1, fresnel 0).
+/// Returns `false` when `out` is null, or when `wo` is not finite, zero, or at or below the
+/// horizon; in the second case `*out` is set to the plain cosine (`M = I`, albedo 1,
+/// fresnel 0).
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraLtc`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_ltc_ggx(out: *mut Ltc, wo: SpheraVec3, roughness: f32) -> bool {
+pub unsafe extern "C" fn sphera_ltc_prepare(out: *mut Ltc, wo: SpheraVec3, roughness: f32) -> bool {
     if out.is_null() {
         return false;
     }
@@ -37,23 +36,21 @@ pub unsafe extern "C" fn sphera_ltc_ggx(out: *mut Ltc, wo: SpheraVec3, roughness
 ///
 /// # Safety
 ///
-/// `ltc` must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_ltc_density(ltc: *const Ltc, dir: SpheraVec3) -> f32 {
+pub unsafe extern "C" fn sphera_ltc_eval(ltc: *const Ltc, dir: SpheraVec3) -> f32 {
     // SAFETY: the caller guarantees that a non-null `ltc` points to a valid value.
     unsafe { with_ref(ltc, 0.0, |ltc| ltc.density(dir.into())) }
 }
 
-/// GGX's directional albedo with Schlick's Fresnel for the reflectance at normal
-/// incidence `f0` (per channel, clamped to [0, 1], NaN counting as 0, as in
-/// `sphera_ggx_brdf_prepare`): `f0 (albedo − fresnel) + fresnel`, from the fitted
-/// integrals; always finite. Unshadowed GGX shading of a polygonal light with radiance `L`
-/// is `L × sphera_ltc_specular_albedo(ltc, f0) × sphera_ltc_polygon_integral(polygon)`.
-/// A null `ltc` gives (0, 0, 0).
+/// GGX's directional albedo with Schlick's Fresnel for `f0` (per channel, clamped as in
+/// `sphera_ggx_brdf_prepare`): `f0 (albedo − fresnel) + fresnel`; always finite, (0, 0, 0)
+/// for a null `ltc`. Unshadowed GGX shading of a polygonal light of radiance `L` is
+/// `L × sphera_ltc_specular_albedo(ltc, f0) × sphera_ltc_polygon_integral(polygon)`.
 ///
 /// # Safety
 ///
-/// `ltc` must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ltc_specular_albedo(ltc: *const Ltc, f0: SpheraVec3) -> SpheraVec3 {
     // SAFETY: the caller guarantees that a non-null `ltc` points to a valid value.
@@ -68,24 +65,18 @@ pub unsafe extern "C" fn sphera_ltc_specular_albedo(ltc: *const Ltc, f0: SpheraV
     }
 }
 
-/// Prepares the LTC `*ltc` restricted to the convex polygon `vertices[0..count]`
-/// (positions relative to the shading point in the local frame, either winding, 3 to
-/// `SPHERA_MAX_POLYGON_VERTICES`): the polygon is transformed by `M⁻¹`, clipped to the
-/// horizon of that space, and prepared for projected solid angle sampling.
+/// Prepares the LTC `*ltc` restricted to the convex polygon `vertices[0..count]`: the
+/// polygon is transformed by `M⁻¹`, clipped to the horizon of that space, and prepared for
+/// projected solid angle sampling.
 ///
-/// Returns `false` when `out`, `ltc` or `vertices` is null, when `count` lies outside
-/// 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is not finite, when the
-/// vertices are collinear or the shading point lies in the polygon's plane, when nothing
-/// of the transformed polygon lies above the horizon (the LTC has no mass in the
-/// polygon), and when the transformed polygon has `SPHERA_MAX_POLYGON_VERTICES`
-/// vertices and crosses the horizon. Unless `out` is null, a `false` return writes the
-/// empty polygon: no samples, pdf 0, integral 0.
+/// Returns `false` also when `ltc` is null, when the vertices are collinear or the shading
+/// point lies in the polygon's plane, when nothing of the transformed polygon lies above
+/// the horizon (the LTC has no mass in the polygon), and when the transformed polygon has
+/// `SPHERA_MAX_POLYGON_VERTICES` vertices and crosses the horizon.
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraLtcPolygon`; `ltc`
-/// must be null or point to a `SpheraLtc` written by `sphera_ltc_ggx`; `vertices` must
-/// be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ltc_polygon_prepare(
     out: *mut LtcPolygon,
@@ -110,22 +101,18 @@ pub unsafe extern "C" fn sphera_ltc_polygon_prepare(
     }
 }
 
-/// Draws a direction with density `D(ω) / ∫_P D` inside the polygon, from `u0`, `u1`
-/// in [0, 1) (clamped by the library). The direction may lie at or below the horizon
-/// (`dir.z <= 0`) where the LTC puts a little mass; the BRDF is zero there, so such a
-/// sample contributes nothing, and it must not be discarded and redrawn (the pdf counts
-/// it). The pdf is `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit (MIS weights rely
-/// on it). A draw that the f32 round trip through the LTC's matrix throws outside the
-/// polygon (by more than the slack of `sphera_ltc_polygon_pdf`) is pulled towards the
-/// polygon's inside until the pdf accepts it: a bias confined to a band of that rounding
-/// along the boundary. Returns `{dir = (0, 0, 1), pdf = 0}` when `polygon` is null or
-/// empty, and where even the pulled draw is rejected (a polygon smaller than the round
-/// trip's rounding); `dir` is always a finite unit vector.
+/// Draws a direction with density `D(ω) / ∫_P D` inside the polygon. It may lie at or below
+/// the horizon, where the LTC puts a little mass and the BRDF is zero: such a sample
+/// contributes nothing and must not be redrawn (the pdf counts it). The pdf is
+/// `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit: a draw that the f32 round trip
+/// through the LTC's matrix throws outside the polygon (beyond the pdf's slack) is pulled
+/// inward until the pdf accepts it, a bias confined to a band of that rounding along the
+/// boundary. No sample also where even the pulled draw is rejected (a polygon smaller than
+/// that rounding).
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraLtcPolygon` written by
-/// `sphera_ltc_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ltc_polygon_sample(
     polygon: *const LtcPolygon,
@@ -150,7 +137,7 @@ pub unsafe extern "C" fn sphera_ltc_polygon_sample(
 ///
 /// # Safety
 ///
-/// As for `sphera_ltc_polygon_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ltc_polygon_pdf(
     polygon: *const LtcPolygon,
@@ -166,7 +153,7 @@ pub unsafe extern "C" fn sphera_ltc_polygon_pdf(
 ///
 /// # Safety
 ///
-/// As for `sphera_ltc_polygon_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_ltc_polygon_integral(polygon: *const LtcPolygon) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.

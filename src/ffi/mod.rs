@@ -4,13 +4,28 @@
 //!
 //! Every exported function is `extern "C"` with an unmangled `sphera_` name; the header
 //! `include/sphera.h` is generated from these declarations by cbindgen
-//! (`cargo run -p sphera-tools --bin generate_header`). The contract shared by all
-//! functions:
+//! (`cargo run -p sphera-tools --bin generate_header`). The conventions shared by all
+//! functions, which the header's preamble states and each function's documentation does
+//! not repeat (a `# Safety` section that says only "Pointers as in the conventions" is left
+//! out of the header):
 //!
-//! - a null pointer never crashes: getters return 0, `prepare` returns `false`;
-//! - a `prepare` (or `sphera_frame_from_normal`) that returns `false` still writes a
-//!   well-defined value into `*out` (the `EMPTY` polygon, the identity frame);
-//! - random numbers are passed through unchanged (the core clamps them to `[0, 1)`);
+//! - directions are in a local shading frame whose z axis is the surface normal; light
+//!   geometry is relative to the shading point; pdfs are per steradian;
+//! - random numbers `u0`, `u1` lie in `[0, 1)`; they are passed through unchanged and the
+//!   core clamps other values into it (NaN as 0);
+//! - "no sample" is `{dir = (0, 0, 1), pdf = 0}`; a sampled `dir` is always a finite unit
+//!   vector;
+//! - pointers: no function crashes on a null pointer (each says what it does then); a
+//!   non-null pointer points to one value of its type (`count` for an array), writable for
+//!   an output, readable for an input, and inputs do not overlap the output; a prepared
+//!   value was written by a function that prepares it (a failed prepare included);
+//! - polygons: `vertices[0..count]` are convex, either winding, `3 <= count <=
+//!   SPHERA_MAX_POLYGON_VERTICES`; a `prepare` returns `false` for a null `out` or
+//!   `vertices`, a count out of range or a non-finite coordinate, and in the cases its
+//!   documentation lists;
+//! - a failed `prepare` still writes `*out` (unless null), whatever it held: the empty value,
+//!   with no samples, pdf 0 and measures (solid angle, integral) 0; given a null or empty
+//!   prepared value, samplers return no sample and the other functions 0 or `false`;
 //! - no Rust panic crosses the boundary (the core does not panic, and the static
 //!   library's panic handler aborts).
 

@@ -72,9 +72,9 @@ pub extern "C" fn sphera_phase_henyey_greenstein_sample(
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraSptdInCap`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_phase_pivot_in_cap_prepare(
+pub unsafe extern "C" fn sphera_sptd_in_cap_prepare_pivot_phase(
     out: *mut SptdInCap,
     wo: SpheraVec3,
     g: f32,

@@ -22,6 +22,6 @@ pub extern "C" fn sphera_pivot_jacobian(dir: SpheraVec3, pivot: SpheraVec3) -> f
 /// The image of a cap under the pivot transformation: a cap, which may be wider than a
 /// hemisphere. Pivots as in `sphera_pivot_transform`.
 #[unsafe(no_mangle)]
-pub extern "C" fn sphera_pivot_cap(cap: Cap, pivot: SpheraVec3) -> Cap {
+pub extern "C" fn sphera_pivot_transform_cap(cap: Cap, pivot: SpheraVec3) -> Cap {
     pivot_cap(&cap.sanitized(), pivot.into())
 }

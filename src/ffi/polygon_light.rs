@@ -29,33 +29,17 @@ const _: () = {
     assert!(SPHERA_MIS_OPTIMAL == MisHeuristic::Optimal as u32);
 };
 
-/// Prepares a polygonal light at a shading point for both techniques of Peters 2021:
-/// technique 0 samples `cos θ` inside the polygon (projected solid angle sampling),
-/// technique 1 samples the LTC fitted to GGX (`material->roughness`, view `wo`) inside
-/// the polygon. `vertices[0..count]` are positions relative to the shading point in the
-/// local frame (z = normal), convex, either winding, 3 to `SPHERA_MAX_POLYGON_VERTICES`;
-/// `wo` points towards the viewer (normalised here). `heuristic` is one of
-/// `SPHERA_MIS_*` (any other number is an error: see below); `visibility`
-/// is `v` of (clamped) optimal MIS, clamped to [0, 1], NaN meaning 1/2 (Peters' default).
-/// Material albedos and F0 are clamped to [0, 1], roughness as in `sphera_ltc_ggx`;
-/// `f0 = (0, 0, 0)` means a Lambertian surface without a GGX layer.
-///
-/// Returns `false` when `out`, `vertices` or `material` is null, when `heuristic` is
-/// not one of `SPHERA_MIS_BALANCE`, `SPHERA_MIS_POWER`, `SPHERA_MIS_WEIGHTED_BALANCE`,
-/// `SPHERA_MIS_CLAMPED_OPTIMAL` and `SPHERA_MIS_OPTIMAL` (0 to 4; no heuristic is
-/// chosen in its place), when `count` lies
-/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when `wo` is not finite or not above the
-/// horizon, and when neither technique can sample the polygon (non-finite or collinear
-/// vertices, nothing above the horizon, the shading point in its plane). A technique
-/// that cannot sample the polygon on its own gets zero weight and draws no samples.
-/// Unless `out` is null, a `false` return writes a light whose samples are all "no
-/// sample" (pdf 0, zero contributions).
+/// Prepares a polygonal light for Peters 2021's two techniques: 0, projected solid angle
+/// sampling; 1, the LTC of GGX (`material->roughness`, view `wo`). `heuristic` is a
+/// `SPHERA_MIS_*` value; `visibility` is `v` of (clamped) optimal MIS, clamped to [0, 1],
+/// NaN meaning 1/2. Albedos and F0 are clamped to [0, 1]; `f0 = (0, 0, 0)` is Lambertian.
+/// Returns `false` also for a null `material`, an unknown `heuristic`, a `wo` not above the
+/// horizon, and a polygon neither technique can sample; a technique that cannot sample it
+/// alone gets zero weight.
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraPolygonLight`;
-/// `vertices` must be null or point to `count` readable `SpheraVec3`s; `material` must
-/// be null or point to a `SpheraMaterial`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_polygon_light_prepare(
     out: *mut PolygonLight,
@@ -85,23 +69,17 @@ pub unsafe extern "C" fn sphera_polygon_light_prepare(
     prepared.is_some()
 }
 
-/// Draws a sample from technique `technique` (0: projected solid angle sampling, 1:
-/// the GGX LTC; other values: no sample) with `u0`, `u1` in [0, 1) (clamped), weighted
-/// for the estimator that takes one sample from each technique. The reflected radiance
-/// of a light of radiance `L` is estimated by summing, over one sample of technique 0
-/// and one of technique 1, `L × (V(dir) × visible + unoccluded)`, with `V` the light's
-/// visibility along `dir` (trace a shadow ray only when `visible` is non-zero).
-/// `unoccluded` is non-zero only for `SPHERA_MIS_OPTIMAL`.
-///
-/// `pdf` is the density of the technique that drew the sample; 0 means no sample (both
-/// parts 0). Directions at or below the horizon (the LTC's mass below the surface)
-/// come with their pdf and zero contributions. All outputs are finite; `dir` is a unit
-/// vector. A null `light` gives no sample.
+/// Draws a sample from technique `technique` (0: projected solid angle sampling, 1: the GGX
+/// LTC; other values: no sample), weighted for the estimator that sums, over one sample of
+/// technique 0 and one of technique 1, `L × (V(dir) × visible + unoccluded)` for a light of
+/// radiance `L` with visibility `V` along `dir` (trace a shadow ray only when `visible` is
+/// non-zero; `unoccluded` is non-zero only for `SPHERA_MIS_OPTIMAL`). `pdf` is the density
+/// of the technique that drew the sample; no sample has both parts 0. Directions at or
+/// below the horizon come with their pdf and zero contributions. All outputs are finite.
 ///
 /// # Safety
 ///
-/// `light` must be null or point to a `SpheraPolygonLight` written by
-/// `sphera_polygon_light_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_polygon_light_sample(
     light: *const PolygonLight,
@@ -122,7 +100,7 @@ pub unsafe extern "C" fn sphera_polygon_light_sample(
 ///
 /// # Safety
 ///
-/// As for `sphera_polygon_light_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_polygon_light_unshadowed(light: *const PolygonLight) -> SpheraVec3 {
     if light.is_null() {

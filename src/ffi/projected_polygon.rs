@@ -8,37 +8,25 @@
 use super::polygon::prepare;
 use super::types::{SpheraSample, SpheraVec3, with_ref};
 use crate::Sample;
-use crate::polygon::ProjectedSolidAnglePolygon;
+use crate::polygon::ProjectedPolygon;
 
-/// Prepares projected solid angle sampling (Peters 2021) for the convex polygon
-/// `vertices[0..count]`: positions relative to the shading point in the local frame
-/// (z = normal), not normalised, in either winding. The part below the horizon is
-/// clipped away. Polygons smaller than 1e-2 rad across, and nearly edge-on slivers,
-/// are sampled by warped solid angle sampling instead (exact for its own pdf, which
-/// deviates from cos θ / Φ by less than 1e-4 relative).
-///
-/// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
-/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite,
-/// when `count` is `SPHERA_MAX_POLYGON_VERTICES` and the polygon crosses the horizon (a
-/// 9th vertex would be needed), when nothing of the polygon lies above the horizon, and
-/// when its projected solid angle is zero (for example when the shading point lies in
-/// the polygon's plane). Unless `out` is null, a `false` return writes the empty polygon
-/// into `*out`: its samples have pdf 0, its `pdf` is 0 and its projected solid angle is
-/// 0, whatever `*out` held before.
+/// Prepares projected solid angle sampling (Peters 2021) of the polygon's part above the
+/// horizon. Polygons under 1e-2 rad across and edge-on slivers take warped solid angle
+/// sampling (its pdf within 1e-4 relative of cos θ / Φ). Returns `false` also when a
+/// polygon of `SPHERA_MAX_POLYGON_VERTICES` crosses the horizon (a 9th vertex would be
+/// needed), and when the projected solid angle above the horizon is zero.
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one
-/// `SpheraProjectedSolidAnglePolygon`; `vertices` must be null or point to `count`
-/// readable `SpheraVec3`s that do not overlap `*out`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_prepare(
-    out: *mut ProjectedSolidAnglePolygon,
+    out: *mut ProjectedPolygon,
     vertices: *const SpheraVec3,
     count: u32,
 ) -> bool {
     // SAFETY: forwarded from the caller.
-    unsafe { prepare(out, vertices, count, ProjectedSolidAnglePolygon::prepare) }
+    unsafe { prepare(out, vertices, count, ProjectedPolygon::prepare) }
 }
 
 /// `sphera_projected_polygon_prepare` for the biased variant: the sector areas use a
@@ -49,44 +37,28 @@ pub unsafe extern "C" fn sphera_projected_polygon_prepare(
 ///
 /// # Safety
 ///
-/// As for `sphera_projected_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_prepare_fast(
-    out: *mut ProjectedSolidAnglePolygon,
+    out: *mut ProjectedPolygon,
     vertices: *const SpheraVec3,
     count: u32,
 ) -> bool {
     // SAFETY: forwarded from the caller.
-    unsafe {
-        prepare(
-            out,
-            vertices,
-            count,
-            ProjectedSolidAnglePolygon::prepare_fast_biased,
-        )
-    }
+    unsafe { prepare(out, vertices, count, ProjectedPolygon::prepare_fast_biased) }
 }
 
-/// Draws a direction with density cos θ / Φ inside the polygon from the random numbers
-/// `u0`, `u1` in [0, 1) (values outside, and NaN, are clamped by the library). The pdf
-/// is per steradian, `dir.z / Φ`, equal to `sphera_projected_polygon_pdf(polygon, dir)`
-/// bit for bit wherever that finds the direction inside the polygon. For polygons under
-/// 1e-2 rad (the small-polygon sampler) the draws follow `dir.z / Φ` within 0.2 s²
-/// relative (2e-5; s is the polygon's angular size). Where a polygon crosses the horizon,
-/// its clipped part is accurate to the f32 rounding of the horizon points: Φ within about
-/// 6e-8 / w relative for a clipped part w radians wide (solid angle over perimeter).
-///
-/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty,
-/// and for a draw that lands exactly on the horizon (`cos θ = 0`, possible only for
-/// polygons that touch it). `dir` is always a finite unit vector.
+/// Draws a direction with density cos θ / Φ inside the polygon; its pdf `dir.z / Φ` is
+/// `sphera_projected_polygon_pdf` at `dir`, bit for bit. Small polygons (under 1e-2 rad)
+/// follow `dir.z / Φ` within 0.2 s² relative (s: angular size); a clipped part w radians
+/// wide has Φ within about 6e-8 / w relative. No sample for a draw exactly on the horizon.
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
-/// `sphera_projected_polygon_prepare` or `sphera_projected_polygon_prepare_fast`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_sample(
-    polygon: *const ProjectedSolidAnglePolygon,
+    polygon: *const ProjectedPolygon,
     u0: f32,
     u1: f32,
 ) -> SpheraSample {
@@ -107,10 +79,10 @@ pub unsafe extern "C" fn sphera_projected_polygon_sample(
 ///
 /// # Safety
 ///
-/// As for `sphera_projected_polygon_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_sample_fast(
-    polygon: *const ProjectedSolidAnglePolygon,
+    polygon: *const ProjectedPolygon,
     u0: f32,
     u1: f32,
 ) -> SpheraSample {
@@ -128,15 +100,12 @@ pub unsafe extern "C" fn sphera_projected_polygon_sample_fast(
 /// 1e-2 rad (the small-polygon sampler) directions outside by at most the smaller of 16
 /// ulps (1.9e-6 rad) and 2e-5 of the polygon's width count as inside.
 ///
-/// Returns 0 when `polygon` is null or empty.
-///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
-/// a `sphera_projected_polygon_prepare*` function.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_pdf(
-    polygon: *const ProjectedSolidAnglePolygon,
+    polygon: *const ProjectedPolygon,
     dir: SpheraVec3,
 ) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
@@ -144,16 +113,14 @@ pub unsafe extern "C" fn sphera_projected_polygon_pdf(
 }
 
 /// The projected solid angle Φ = ∫ cos θ dω of the polygon's part above the horizon, in
-/// steradians (the irradiance from a unit-radiance polygon). Returns 0 when `polygon`
-/// is null or empty.
+/// steradians (the irradiance from a unit-radiance polygon).
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraProjectedSolidAnglePolygon` written by
-/// a `sphera_projected_polygon_prepare*` function.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_projected_polygon_projected_solid_angle(
-    polygon: *const ProjectedSolidAnglePolygon,
+    polygon: *const ProjectedPolygon,
 ) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
     unsafe { with_ref(polygon, 0.0, |polygon| polygon.projected_solid_angle()) }

@@ -1,5 +1,5 @@
 //! Spherical Gaussians, vMF sampling, lobe fits, ASGs and VSGL shading (Tokuyoshi
-//! 2016): `sphera_sg_*` and `sphera_asg_*`.
+//! 2016): `sphera_sg_*`, `sphera_vmf_*` and `sphera_asg_*`.
 //!
 //! SGs and ASGs are passed by value. One built by hand in C may hold anything: every
 //! function first makes it valid (`Sg::sanitized`, `Asg::sanitized`): a zero or
@@ -68,20 +68,20 @@ pub extern "C" fn sphera_sg_inner_product(a: Sg, b: Sg) -> f32 {
 /// amplitude is ignored). `u0`, `u1` in [0, 1) (clamped). pdf 0 (and `dir = (0, 0, 1)`)
 /// for the zero SG built from an invalid axis.
 #[unsafe(no_mangle)]
-pub extern "C" fn sphera_sg_vmf_sample(sg: Sg, u0: f32, u1: f32) -> SpheraSample {
+pub extern "C" fn sphera_vmf_sample(sg: Sg, u0: f32, u1: f32) -> SpheraSample {
     // Not sanitised: an invalid axis must give "no sample" rather than the zero SG's
     // axis (`vmf_sample` checks the axis and clamps the sharpness itself).
     vmf_sample(&sg, [u0, u1]).into()
 }
 
-/// The density per steradian of `sphera_sg_vmf_sample` at `dir` (normalised; 0 for a
+/// The density per steradian of `sphera_vmf_sample` at `dir` (normalised; 0 for a
 /// zero or non-finite `dir`).
 #[unsafe(no_mangle)]
-pub extern "C" fn sphera_sg_vmf_pdf(sg: Sg, dir: SpheraVec3) -> f32 {
+pub extern "C" fn sphera_vmf_pdf(sg: Sg, dir: SpheraVec3) -> f32 {
     vmf_pdf(&sg, dir.into())
 }
 
-/// Writes to `u[0]`, `u[1]` the random numbers that `sphera_sg_vmf_sample` maps to
+/// Writes to `u[0]`, `u[1]` the random numbers that `sphera_vmf_sample` maps to
 /// `dir` and returns true; returns false (writing nothing) for a null `u`, a zero or
 /// non-finite `dir`, or an SG with an invalid axis.
 ///
@@ -89,7 +89,7 @@ pub extern "C" fn sphera_sg_vmf_pdf(sg: Sg, dir: SpheraVec3) -> f32 {
 ///
 /// `u` must be null or point to two writable `float`s.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_sg_vmf_invert(sg: Sg, dir: SpheraVec3, u: *mut f32) -> bool {
+pub unsafe extern "C" fn sphera_vmf_invert(sg: Sg, dir: SpheraVec3, u: *mut f32) -> bool {
     if u.is_null() {
         return false;
     }
@@ -109,7 +109,7 @@ pub unsafe extern "C" fn sphera_sg_vmf_invert(sg: Sg, dir: SpheraVec3, u: *mut f
 /// The diffuse lobe `G(ω, n, λ_d)/A(λ_d)` (Eq. 1 without `R_d`); the zero SG for a zero
 /// or non-finite normal.
 #[unsafe(no_mangle)]
-pub extern "C" fn sphera_sg_diffuse_lobe(normal: SpheraVec3) -> Sg {
+pub extern "C" fn sphera_sg_from_lambert(normal: SpheraVec3) -> Sg {
     diffuse_lobe_normalized(normal.into())
 }
 
@@ -117,7 +117,7 @@ pub extern "C" fn sphera_sg_diffuse_lobe(normal: SpheraVec3) -> Sg {
 /// `(2/α²)/(4|ξ_s·n|)` (`|ξ_s·n|` at least 1e-4, `α` clamped to [1e-3, 1]), amplitude
 /// `1/A(λ_s)`. `toward_incoming` is `ω'`. The zero SG for invalid vectors.
 #[unsafe(no_mangle)]
-pub extern "C" fn sphera_sg_specular_lobe(
+pub extern "C" fn sphera_sg_from_ggx(
     normal: SpheraVec3,
     toward_incoming: SpheraVec3,
     alpha: f32,
@@ -125,9 +125,9 @@ pub extern "C" fn sphera_sg_specular_lobe(
     specular_lobe_normalized(normal.into(), toward_incoming.into(), alpha)
 }
 
-/// As `sphera_sg_specular_lobe` with amplitude 1 (the warped unnormalised NDF).
+/// As `sphera_sg_from_ggx` with amplitude 1 (the warped unnormalised NDF).
 #[unsafe(no_mangle)]
-pub extern "C" fn sphera_sg_specular_lobe_unnormalized(
+pub extern "C" fn sphera_sg_from_ggx_unnormalized(
     normal: SpheraVec3,
     toward_incoming: SpheraVec3,
     alpha: f32,
@@ -136,10 +136,10 @@ pub extern "C" fn sphera_sg_specular_lobe_unnormalized(
 }
 
 /// The Beckmann specular lobe of Eq. 2 without `R_s`: the paper's `λ_h = 2/α²` holds
-/// for Beckmann as for GGX, so this is `sphera_sg_specular_lobe` with the same `α`
+/// for Beckmann as for GGX, so this is `sphera_sg_from_ggx` with the same `α`
 /// (Beckmann's roughness); the lobes differ in their error (docs/sg-error.md).
 #[unsafe(no_mangle)]
-pub extern "C" fn sphera_sg_beckmann_lobe(
+pub extern "C" fn sphera_sg_from_beckmann(
     normal: SpheraVec3,
     toward_incoming: SpheraVec3,
     alpha: f32,
@@ -147,9 +147,9 @@ pub extern "C" fn sphera_sg_beckmann_lobe(
     beckmann_lobe_normalized(normal.into(), toward_incoming.into(), alpha)
 }
 
-/// As `sphera_sg_beckmann_lobe` with amplitude 1 (the warped unnormalised NDF).
+/// As `sphera_sg_from_beckmann` with amplitude 1 (the warped unnormalised NDF).
 #[unsafe(no_mangle)]
-pub extern "C" fn sphera_sg_beckmann_lobe_unnormalized(
+pub extern "C" fn sphera_sg_from_beckmann_unnormalized(
     normal: SpheraVec3,
     toward_incoming: SpheraVec3,
     alpha: f32,
@@ -157,13 +157,12 @@ pub extern "C" fn sphera_sg_beckmann_lobe_unnormalized(
     beckmann_lobe(normal.into(), toward_incoming.into(), alpha)
 }
 
-/// The incoming radiance SG of a VSGL (Eq. 6–7): `lobe` holds `c_v` (amplitude),
-/// `ξ_v` and `λ_v`; `mean` is the positional mean relative to the shading point,
-/// `variance` the positional variance `σ_v² = E‖y − μ‖²` (the VSGL's; the planar Gaussian
-/// of Eq. 3 gets `σ_v²/2`, its per-axis variance, where the paper writes `σ_v²`: README,
-/// issue 20). A variance of 0 (or NaN, or negative) is a point
-/// light (sharpness clamped, inverse-square energy kept); a mean at the shading point
-/// with variance 0, a non-finite mean or an infinite variance give the zero SG.
+/// The incoming radiance SG of a VSGL (Eq. 6–7): `lobe` holds `c_v` (amplitude), `ξ_v` and
+/// `λ_v`; `mean` is the positional mean relative to the shading point, `variance` the
+/// positional variance `σ_v² = E‖y − μ‖²` (the planar Gaussian of Eq. 3 gets `σ_v²/2`, its
+/// per-axis variance). A variance of 0 (or NaN, or negative) is a point light (sharpness
+/// clamped, inverse-square energy kept); a mean at the shading point with variance 0, a
+/// non-finite mean or an infinite variance give the zero SG.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_sg_incoming_radiance(lobe: Sg, mean: SpheraVec3, variance: f32) -> Sg {
     incoming_radiance(&lobe, mean.into(), variance)
@@ -252,7 +251,7 @@ pub extern "C" fn sphera_sg_specular_shading_sg(
 
 /// Beckmann specular shading: as `sphera_sg_specular_shading` with Beckmann's NDF and
 /// Smith term (`α = roughness²` is Beckmann's `α`); the ASG fit is
-/// `sphera_asg_beckmann_lobe`.
+/// `sphera_asg_from_beckmann`.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_sg_beckmann_specular_shading(
     incoming: Sg,
@@ -273,7 +272,7 @@ pub extern "C" fn sphera_sg_beckmann_specular_shading(
 }
 
 /// As `sphera_sg_beckmann_specular_shading` with the isotropic SG fit of Eq. 2
-/// (`sphera_sg_beckmann_lobe_unnormalized`) instead of the ASG.
+/// (`sphera_sg_from_beckmann_unnormalized`) instead of the ASG.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_sg_beckmann_specular_shading_sg(
     incoming: Sg,

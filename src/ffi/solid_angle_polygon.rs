@@ -6,21 +6,16 @@ use crate::Sample;
 use crate::polygon::SolidAnglePolygon;
 
 /// Prepares the solid angle sampler (Peters 2021) for the convex polygon
-/// `vertices[0..count]`: positions relative to the shading point, not normalised, in
-/// either winding. The polygon need not be clipped; clip it first with
-/// `sphera_polygon_clip` to sample only the part above the horizon.
+/// `vertices[0..count]` (not normalised). The polygon need not be clipped; clip it first
+/// with `sphera_polygon_clip` to sample only the part above the horizon.
 ///
-/// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
-/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite, or
-/// when the polygon subtends no solid angle, in particular when its vertices lie exactly
-/// in a plane through the shading point (decided exactly, at any tilt). Unless `out` is
-/// null, a `false` return writes the empty polygon into `*out`: its samples have pdf 0,
-/// its `pdf` is 0 and its solid angle is 0, whatever `*out` held before.
+/// Returns `false` also when the polygon subtends no solid angle, in particular when its
+/// vertices lie exactly in a plane through the shading point (decided exactly, at any
+/// tilt).
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraSolidAnglePolygon`;
-/// `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_solid_angle_polygon_prepare(
     out: *mut SolidAnglePolygon,
@@ -31,17 +26,12 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_prepare(
     unsafe { prepare(out, vertices, count, SolidAnglePolygon::prepare) }
 }
 
-/// Draws a direction uniformly distributed in the solid angle of `polygon` from the
-/// random numbers `u0`, `u1` in [0, 1) (values outside are clamped by the library).
-/// The pdf of the sample is 1 / solid angle per steradian.
-///
-/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty.
-/// `dir` is always a finite unit vector.
+/// Draws a direction uniformly distributed in the solid angle of `polygon` from the random
+/// numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / solid angle per steradian.
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
-/// `sphera_solid_angle_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_solid_angle_polygon_sample(
     polygon: *const SolidAnglePolygon,
@@ -63,12 +53,11 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_sample(
 /// solid angle over perimeter), 0 outside it. Every sample's pdf is this function's
 /// value at its direction, bit for bit.
 ///
-/// Returns 0 when `polygon` is null or empty, and for a zero or non-finite `dir`.
+/// Returns 0 also for a zero or non-finite `dir`.
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
-/// `sphera_solid_angle_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_solid_angle_polygon_pdf(
     polygon: *const SolidAnglePolygon,
@@ -80,12 +69,9 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_pdf(
 
 /// The solid angle (in steradians) that the polygon subtends.
 ///
-/// Returns 0 when `polygon` is null or empty.
-///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
-/// `sphera_solid_angle_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_solid_angle_polygon_solid_angle(
     polygon: *const SolidAnglePolygon,
@@ -103,9 +89,7 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_solid_angle(
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraSolidAnglePolygon` written by
-/// `sphera_solid_angle_polygon_prepare`; `u0` and `u1` must each be null or point to a
-/// writable `float`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_solid_angle_polygon_invert(
     polygon: *const SolidAnglePolygon,

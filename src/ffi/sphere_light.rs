@@ -12,9 +12,9 @@ use crate::sphere::{Cap, GgxPivot, SphereLightSampler, SphereLightShading};
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraGgxPivot`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_ggx_pivot_lookup(
+pub unsafe extern "C" fn sphera_ggx_pivot_from_view(
     out: *mut GgxPivot,
     wo: SpheraVec3,
     roughness: f32,
@@ -40,7 +40,7 @@ pub unsafe extern "C" fn sphera_ggx_pivot_lookup(
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraSphereLightShading`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_shading_prepare(
     out: *mut SphereLightShading,
@@ -71,10 +71,9 @@ pub unsafe extern "C" fn sphera_sphere_light_shading_prepare(
 ///
 /// # Safety
 ///
-/// `shading` must be null or point to a `SpheraSphereLightShading` written by
-/// `sphera_sphere_light_shading_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_sphere_light_shade(
+pub unsafe extern "C" fn sphera_sphere_light_shading_eval(
     shading: *const SphereLightShading,
     light: Cap,
 ) -> SpheraVec3 {
@@ -89,9 +88,9 @@ pub unsafe extern "C" fn sphera_sphere_light_shade(
 ///
 /// # Safety
 ///
-/// As for `sphera_sphere_light_shade`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_sphere_light_shade_occluded(
+pub unsafe extern "C" fn sphera_sphere_light_shading_eval_occluded(
     shading: *const SphereLightShading,
     light: Cap,
     visibility: Cap,
@@ -106,17 +105,17 @@ pub unsafe extern "C" fn sphera_sphere_light_shade_occluded(
 }
 
 /// Specular occlusion by the separable approximation (Eq. 21–22, BIASED; the baseline
-/// of `sphera_sphere_light_shade_occluded`): the unoccluded shading
-/// `sphera_sphere_light_shade` times the fraction of the BRDF lobe inside the bent cone,
+/// of `sphera_sphere_light_shading_eval_occluded`): the unoccluded shading
+/// `sphera_sphere_light_shading_eval` times the fraction of the BRDF lobe inside the bent cone,
 /// `Ω(g(V) ∩ g(H)) / Ω(g(H))`. It lets light through a cone that holds the lobe but not
-/// the light (shadow leaking). Equals `sphera_sphere_light_shade` for the hemisphere
+/// the light (shadow leaking). Equals `sphera_sphere_light_shading_eval` for the hemisphere
 /// `(0, 0, 1)`, `cos θ = 0`. Zero for a null pointer.
 ///
 /// # Safety
 ///
-/// As for `sphera_sphere_light_shade`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_sphere_light_shade_occluded_separable(
+pub unsafe extern "C" fn sphera_sphere_light_shading_eval_occluded_separable(
     shading: *const SphereLightShading,
     light: Cap,
     visibility: Cap,
@@ -130,20 +129,15 @@ pub unsafe extern "C" fn sphera_sphere_light_shade_occluded_separable(
     .into()
 }
 
-/// Prepares joint BRDF–light sampling of a sphere light (Section 6.1): the fitted SPTD
-/// restricted to the light's cap, or uniform cap sampling when the pivoted cap is
-/// smaller than 1e-3 sr (`sphera_sphere_light_sampler_uses_sptd` tells which). A cap
-/// that crosses the horizon is sampled above it only (the SPTD over the cap's part above
-/// the horizon, through the intersection of the two caps' images): no sample is wasted
-/// below the horizon. Combine with `sphera_ggx_sample` by MIS. `center` is relative to
-/// the shading point, `wo` points to the viewer, roughness as in
-/// `sphera_ggx_pivot_lookup`. Returns `false` (writing a sampler without samples) for an
-/// empty cap (non-finite center, radius not finite and positive), a cap wholly below the
-/// horizon, or a `wo` at or below the horizon; does nothing for null `out`.
+/// Prepares joint BRDF–light sampling of a sphere light (Section 6.1): the fitted SPTD in
+/// the light's cap above the horizon, or uniform cap sampling when the pivoted cap is under
+/// 1e-3 sr (`_uses_sptd` tells which); combine with `sphera_ggx_brdf_sample` by MIS.
+/// Returns `false` also for an empty cap (bad center or radius), a cap wholly below the
+/// horizon, or a `wo` at or below it.
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraSphereLightSampler`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_sampler_prepare(
     out: *mut SphereLightSampler,
@@ -168,8 +162,7 @@ pub unsafe extern "C" fn sphera_sphere_light_sampler_prepare(
 ///
 /// # Safety
 ///
-/// `sampler` must be null or point to a `SpheraSphereLightSampler` written by
-/// `sphera_sphere_light_sampler_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_sampler_sample(
     sampler: *const SphereLightSampler,
@@ -185,7 +178,7 @@ pub unsafe extern "C" fn sphera_sphere_light_sampler_sample(
 ///
 /// # Safety
 ///
-/// As for `sphera_sphere_light_sampler_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_sampler_pdf(
     sampler: *const SphereLightSampler,
@@ -200,7 +193,7 @@ pub unsafe extern "C" fn sphera_sphere_light_sampler_pdf(
 ///
 /// # Safety
 ///
-/// As for `sphera_sphere_light_sampler_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sphere_light_sampler_uses_sptd(
     sampler: *const SphereLightSampler,

@@ -85,19 +85,14 @@ pub extern "C" fn sphera_sptd_integral_over_cap_intersection(
     sptd(pivot, base, cosine_axis).map_or(0.0, |d| d.integral_over_cap_intersection(&a, &b))
 }
 
-/// Prepares the SPTD restricted to `cap` and normalised there: samples `g(ω_i)` with
-/// `ω_i` from the base inside `g(C)`, density `D(ω)/∫_C D` inside `C`. For the
-/// clamped-cosine base this holds for every cap, also when `g(C)` crosses the base's
-/// horizon or is wider than a hemisphere: `ω_i` is drawn from the clamped cosine in
-/// `g(C) ∩ H_a` (exactly, through its orthographic projection), and the pdf is 0 where
-/// `g(ω)` is below the horizon. Returns `false` (and writes a sampler without samples,
-/// pdf 0) when `base` is not `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`, and
-/// when `∫_C D` is 0 or its inverse overflows. Does nothing and returns
-/// `false` when `out` is null.
+/// Prepares the SPTD restricted to `cap` and normalised there: `g(ω_i)` with `ω_i` from the
+/// base in `g(C)` (for the clamped cosine, in `g(C) ∩ H_a`, also across the base's horizon
+/// or wider than a hemisphere), density `D(ω)/∫_C D` in `C`. Returns `false` also for a
+/// `base` that is not a `SPHERA_SPTD_*` value, and when `∫_C D` is 0 or overflows.
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraSptdInCap`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sptd_in_cap_prepare(
     out: *mut SptdInCap,
@@ -121,8 +116,7 @@ pub unsafe extern "C" fn sphera_sptd_in_cap_prepare(
 ///
 /// # Safety
 ///
-/// `prepared` must be null or point to a `SpheraSptdInCap` written by
-/// `sphera_sptd_in_cap_prepare` or `sphera_phase_pivot_in_cap_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sptd_in_cap_sample(
     prepared: *const SptdInCap,
@@ -138,7 +132,7 @@ pub unsafe extern "C" fn sphera_sptd_in_cap_sample(
 ///
 /// # Safety
 ///
-/// As for `sphera_sptd_in_cap_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sptd_in_cap_pdf(
     prepared: *const SptdInCap,
@@ -153,7 +147,7 @@ pub unsafe extern "C" fn sphera_sptd_in_cap_pdf(
 ///
 /// # Safety
 ///
-/// As for `sphera_sptd_in_cap_sample`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_sptd_in_cap_integral(prepared: *const SptdInCap) -> f32 {
     // SAFETY: forwarded from the caller.

@@ -8,18 +8,13 @@ use crate::polygon::baselines::TurkPolygon;
 /// uniformly distributed over the polygon's area, with the density converted to solid
 /// angle.
 ///
-/// Returns `false` when `out` is null, when `vertices` is null, when `count` lies
-/// outside 3..=`SPHERA_MAX_POLYGON_VERTICES`, when a coordinate is NaN or infinite,
-/// when a coordinate exceeds about 1e18 (2^60) (so that the edge
+/// Returns `false` also when a coordinate exceeds about 1e18 (2^60) (so that the edge
 /// planes that `sphera_turk_polygon_pdf` computes stay finite), or when the polygon is
-/// degenerate. Unless `out` is null, a `false` return writes the empty polygon into
-/// `*out`: its samples have pdf 0, its `pdf` is 0 and its area is 0, whatever `*out`
-/// held before.
+/// degenerate.
 ///
 /// # Safety
 ///
-/// `out` must be null or point to writable memory for one `SpheraTurkPolygon`;
-/// `vertices` must be null or point to `count` readable `SpheraVec3`s that do not overlap `*out`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_turk_polygon_prepare(
     out: *mut TurkPolygon,
@@ -30,19 +25,15 @@ pub unsafe extern "C" fn sphera_turk_polygon_prepare(
     unsafe { prepare(out, vertices, count, TurkPolygon::prepare) }
 }
 
-/// Draws a direction towards a point uniformly distributed over the polygon's area from
-/// the random numbers `u0`, `u1` in [0, 1) (values outside are clamped by the library).
-/// The pdf is distance² / (area · |cos θ|) per steradian, with θ the angle between the
-/// direction and the polygon's normal, computed as `sphera_turk_polygon_pdf` computes it:
-/// equal to it bit for bit wherever that finds the direction inside the polygon.
-///
-/// Returns `{dir = (0, 0, 1), pdf = 0}` (no sample) when `polygon` is null or empty.
-/// `dir` is always a finite unit vector.
+/// Draws a direction towards a point uniformly distributed over the polygon's area from the
+/// random numbers `u0`, `u1` in [0, 1). The pdf is distance² / (area · |cos θ|) per
+/// steradian, with θ the angle between the direction and the polygon's normal, computed as
+/// `sphera_turk_polygon_pdf` computes it: equal to it bit for bit wherever that finds the
+/// direction inside the polygon.
 ///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraTurkPolygon` written by
-/// `sphera_turk_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_turk_polygon_sample(
     polygon: *const TurkPolygon,
@@ -60,12 +51,9 @@ pub unsafe extern "C" fn sphera_turk_polygon_sample(
 /// The density per steradian with which `sphera_turk_polygon_sample` produces the unit
 /// direction `dir`; 0 when `dir` misses the polygon.
 ///
-/// Returns 0 when `polygon` is null or empty.
-///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraTurkPolygon` written by
-/// `sphera_turk_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_turk_polygon_pdf(
     polygon: *const TurkPolygon,
@@ -77,12 +65,9 @@ pub unsafe extern "C" fn sphera_turk_polygon_pdf(
 
 /// The area of the polygon (in squared units of the vertex coordinates).
 ///
-/// Returns 0 when `polygon` is null or empty.
-///
 /// # Safety
 ///
-/// `polygon` must be null or point to a `SpheraTurkPolygon` written by
-/// `sphera_turk_polygon_prepare`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_turk_polygon_area(polygon: *const TurkPolygon) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.

@@ -9,13 +9,10 @@ pub extern "C" fn sphera_has_hardware_fma() -> bool {
     HAS_HARDWARE_FMA
 }
 
-/// The library's version and build as a NUL-terminated string: the `version` of its
-/// `Cargo.toml` (`MAJOR.MINOR.PATCH`), followed by `+fma` in a build that uses hardware
-/// fused multiply-add (`sphera_has_hardware_fma()`), e.g. `"0.1.0"` or `"0.1.0+fma"`.
-/// The two builds give results that differ in the last bits (the determinism table,
-/// `ffi-tests/determinism_table.txt`, records the default build), so a cache of images
-/// or values computed with the library must key on this whole string, not on the
-/// version alone. The pointer is to static storage: never free it.
+/// The library's version and build as a NUL-terminated string in static storage (never free
+/// it): `Cargo.toml`'s `MAJOR.MINOR.PATCH`, followed by `+fma` in a build that uses
+/// hardware fused multiply-add, e.g. `"0.1.0+fma"`. The two builds differ in the last bits,
+/// so a cache of results must key on this whole string.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_version() -> *const core::ffi::c_char {
     // `concat!` appends the terminating NUL at compile time, so the bytes form a
@@ -49,17 +46,14 @@ const VERSION_MAJOR: u32 = parse_version_number(env!("CARGO_PKG_VERSION_MAJOR"))
 const VERSION_MINOR: u32 = parse_version_number(env!("CARGO_PKG_VERSION_MINOR"));
 
 /// Whether this library serves a program compiled against the header of version
-/// `major.minor`; call it as
-/// `sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR)` once at start-up
-/// to catch a header and a library from different releases (the `SPHERA_VERSION_*`
-/// macros are the header's version, `sphera_version()` the library's).
+/// `major.minor`: call `sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR)`
+/// once at start-up.
 ///
-/// Returns `true` when `major` equals the library's major version and either the
-/// major version is 0 and `minor` equals the library's minor version (before 1.0 every
-/// minor release may change the prepared structs and the functions), or the major
-/// version is 1 or more and `minor` is at most the library's minor version (a later
-/// minor release only adds). The patch number is not compared: patch releases change
-/// neither layouts nor contracts. `false` otherwise.
+/// Returns `true` when `major` equals the library's major version and either the major
+/// version is 0 and `minor` equals the library's minor version (before 1.0 a minor release
+/// may change the prepared structs and the functions), or the major version is 1 or more
+/// and `minor` is at most the library's (a later minor release only adds); the patch number
+/// is not compared. `false` otherwise.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_check_version(major: u32, minor: u32) -> bool {
     major == VERSION_MAJOR

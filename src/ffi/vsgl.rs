@@ -18,10 +18,9 @@ use crate::vsgl::{Vpl, Vsgl, VsglAccumulator, VsglPyramid, VsglTexel, fis_select
 ///
 /// # Safety
 ///
-/// `accumulator` must be null or point to writable memory for a
-/// `SpheraVsglAccumulator`.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_vsgl_accumulator_init(
+pub unsafe extern "C" fn sphera_vsgl_accumulator_new(
     accumulator: *mut VsglAccumulator,
     origin: SpheraVec3,
 ) -> bool {
@@ -39,8 +38,7 @@ pub unsafe extern "C" fn sphera_vsgl_accumulator_init(
 ///
 /// # Safety
 ///
-/// `accumulator` must be null or point to a valid `SpheraVsglAccumulator` (from
-/// `sphera_vsgl_accumulator_init`); `vpl` null or valid.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_vsgl_accumulator_add_vpl(
     accumulator: *mut VsglAccumulator,
@@ -59,7 +57,7 @@ pub unsafe extern "C" fn sphera_vsgl_accumulator_add_vpl(
 ///
 /// # Safety
 ///
-/// As `sphera_vsgl_accumulator_add_vpl`, with `texel` null or valid.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_vsgl_accumulator_add_texel(
     accumulator: *mut VsglAccumulator,
@@ -80,7 +78,7 @@ pub unsafe extern "C" fn sphera_vsgl_accumulator_add_texel(
 ///
 /// # Safety
 ///
-/// Both pointers null or valid `SpheraVsglAccumulator`s.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_vsgl_accumulator_merge(
     accumulator: *mut VsglAccumulator,
@@ -102,7 +100,7 @@ pub unsafe extern "C" fn sphera_vsgl_accumulator_merge(
 ///
 /// # Safety
 ///
-/// `accumulator` null or valid.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_vsgl_accumulator_finish(
     accumulator: *const VsglAccumulator,
@@ -118,7 +116,7 @@ pub unsafe extern "C" fn sphera_vsgl_accumulator_finish(
 ///
 /// # Safety
 ///
-/// `vpl` null or valid; `texel` null or writable.
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sphera_vsgl_texel_from_vpl(
     vpl: *const Vpl,

@@ -166,10 +166,10 @@ pub(crate) fn ellipse_area_in_sector(u: Vec2, s0: Vec2, s1: Vec2) -> f32 {
 /// [`ellipse_area_in_sector`] from `det = det(s0, s1)`, `dot = s0 · s1` and the dot
 /// products `t0 = u · s0`, `t1 = u · s1`, so that `s0ᵀ C s1 = dot + t0 t1`. For an ellipse
 /// with large `u` (a great circle passing near the zenith) `u · s` cancels badly when
-/// computed from the rounded `u`; [`ProjectedSolidAnglePolygon`] computes it from the
+/// computed from the rounded `u`; [`ProjectedPolygon`] computes it from the
 /// vertex positions instead.
 ///
-/// [`ProjectedSolidAnglePolygon`]: super::ProjectedSolidAnglePolygon
+/// [`ProjectedPolygon`]: super::ProjectedPolygon
 #[inline(always)]
 pub(crate) fn ellipse_area(u: Vec2, det: f32, dot: f32, t0: f32, t1: f32) -> f32 {
     if is_degenerate(u) {

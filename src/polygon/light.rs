@@ -19,7 +19,7 @@ use crate::brdf::Ltc;
 use crate::brdf::ggx::GgxBrdf;
 use crate::mis;
 use crate::polygon::LtcPolygon;
-use crate::polygon::ProjectedSolidAnglePolygon;
+use crate::polygon::ProjectedPolygon;
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 
 /// A surface's BRDF: Lambert with albedo `diffuse`, plus GGX with reflectance `f0` at
@@ -107,7 +107,7 @@ impl LightSample {
 #[derive(Clone, Copy, Debug)]
 pub struct PolygonLight {
     /// Technique 0: projected solid angle sampling.
-    diffuse: ProjectedSolidAnglePolygon,
+    diffuse: ProjectedPolygon,
     /// Technique 1: the GGX LTC inside the polygon.
     specular: LtcPolygon,
     brdf: GgxBrdf,
@@ -130,7 +130,7 @@ impl PolygonLight {
     ///
     /// cbindgen:ignore
     pub const EMPTY: PolygonLight = PolygonLight {
-        diffuse: ProjectedSolidAnglePolygon::EMPTY,
+        diffuse: ProjectedPolygon::EMPTY,
         specular: LtcPolygon::EMPTY,
         brdf: GgxBrdf {
             alpha: 1.0,
@@ -171,13 +171,13 @@ impl PolygonLight {
         let f0 = material.f0.max(Vec3::ZERO).min(Vec3::ONE);
         let brdf = GgxBrdf::new(material.roughness, f0);
         let ltc = Ltc::ggx(wo, material.roughness)?;
-        let diffuse = ProjectedSolidAnglePolygon::new(vertices);
+        let diffuse = ProjectedPolygon::new(vertices);
         let specular = LtcPolygon::new(&ltc, vertices);
         if diffuse.is_none() && specular.is_none() {
             return None;
         }
         let has_specular = f0.max_element() > 0.0;
-        let diffuse = diffuse.unwrap_or(ProjectedSolidAnglePolygon::EMPTY);
+        let diffuse = diffuse.unwrap_or(ProjectedPolygon::EMPTY);
         // A Lambertian surface has nothing for the LTC to sample.
         let specular = specular
             .filter(|_| has_specular)

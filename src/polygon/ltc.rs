@@ -12,7 +12,7 @@
 //! `D(ω) / ∫_P D`. As in Heitz 2016, the polygon is clipped to the horizon of the
 //! transformed space (`(M⁻¹ω)_z > 0`, where `D` lives), not of the shading frame: the
 //! LTC may place a little mass below the surface, and such samples carry a zero BRDF.
-use super::ProjectedSolidAnglePolygon;
+use super::ProjectedPolygon;
 use crate::brdf::Ltc;
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 
@@ -91,7 +91,7 @@ fn round_trip_tolerance(transformed: &[Vec3], projected_solid_angle: f32) -> f32
 pub struct LtcPolygon {
     ltc: Ltc,
     /// The transformed polygon `M⁻¹P`, clipped to its horizon.
-    transformed: ProjectedSolidAnglePolygon,
+    transformed: ProjectedPolygon,
     /// How far (radians, in the cosine's space) outside the transformed polygon `pdf`
     /// continues the density: the smaller of `ROUND_TRIP_TOLERANCE` and
     /// `TOLERANCE_PER_WIDTH` of the polygon's width (0 when empty).
@@ -104,13 +104,13 @@ impl LtcPolygon {
     /// cbindgen:ignore
     pub const EMPTY: LtcPolygon = LtcPolygon {
         ltc: Ltc::IDENTITY,
-        transformed: ProjectedSolidAnglePolygon::EMPTY,
+        transformed: ProjectedPolygon::EMPTY,
         tolerance: 0.0,
     };
 
     /// Prepares `ltc` restricted to the convex polygon with the given vertices (relative
     /// to the shading point, local frame, either winding, 3 to 8 of them). Returns `None`
-    /// where [`ProjectedSolidAnglePolygon::new`] does for the transformed polygon: bad
+    /// where [`ProjectedPolygon::new`] does for the transformed polygon: bad
     /// counts or coordinates, nothing of it where the LTC lives (`(M⁻¹ω)_z > 0`), or the
     /// shading point in its plane.
     ///

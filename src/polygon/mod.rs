@@ -28,7 +28,7 @@ mod sorting_networks_generated;
 pub use clip::clip_to_upper_hemisphere;
 pub use clipped_solid_angle::ClippedSolidAnglePolygon;
 pub use ltc::LtcPolygon;
-pub use projected::ProjectedSolidAnglePolygon;
+pub use projected::ProjectedPolygon;
 pub use solid_angle::SolidAnglePolygon;
 
 /// The end of every in-place `prepare`: keeps the value that preparation completed, or

@@ -44,7 +44,7 @@ use glam::Vec4;
 /// 60% of the cost. Sectors whose outer ellipse's area exceeds 200 times the sector's
 /// area (ill-conditioned, near the polygon's azimuthal ends or the horizon) get a second
 /// iteration, and so do sectors whose ellipses touch or nearly touch at an end (a vertex
-/// on or just above the horizon at the polygon's azimuthal end; issue 17, 2). [`sample_with_iterations`](ProjectedSolidAnglePolygon::sample_with_iterations)
+/// on or just above the horizon at the polygon's azimuthal end; issue 17, 2). [`sample_with_iterations`](ProjectedPolygon::sample_with_iterations)
 /// takes any count.
 pub const REFINEMENT_ITERATIONS: u32 = 1;
 
@@ -63,7 +63,7 @@ pub const MAX_REFINEMENT_ITERATIONS: u32 = 8;
 /// Algorithm 4 (ellipses paired with sectors, sector areas).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ProjectedSolidAnglePolygon {
+pub struct ProjectedPolygon {
     /// The sectors of Algorithm 4 in counter-clockwise order or, for small polygons, the
     /// warped solid angle sampler: one storage for either.
     pieces: ProjectedPieces,
@@ -141,7 +141,7 @@ impl core::fmt::Debug for ProjectedPieces {
     }
 }
 
-impl Default for ProjectedSolidAnglePolygon {
+impl Default for ProjectedPolygon {
     fn default() -> Self {
         Self::EMPTY
     }
@@ -182,7 +182,7 @@ fn sector_determinants(
     dets
 }
 
-impl ProjectedSolidAnglePolygon {
+impl ProjectedPolygon {
     /// The state of a polygon that could not be prepared: samples have `pdf == 0`, and the
     /// pdf of every direction is 0.
     pub const EMPTY: Self = Self {

@@ -39,7 +39,7 @@ fn reference_projected_solid_angle(v: &[Vec3]) -> f64 {
 
 /// The factor by which the decentral case amplifies rounding errors: the sum of the
 /// outer sector areas over Φ (1 in the central case and for small polygons).
-fn condition(p: &ProjectedSolidAnglePolygon) -> f64 {
+fn condition(p: &ProjectedPolygon) -> f64 {
     if p.central != 0 || p.is_small != 0 {
         return 1.0;
     }
@@ -55,7 +55,7 @@ fn condition(p: &ProjectedSolidAnglePolygon) -> f64 {
 /// The relative error bound of the projected solid angle: a few roundings, amplified by
 /// the condition in the decentral case (about 1.5e-7 × condition measured), or the relative O(s⁴) of the small-polygon
 /// sampler's Gauss rule (for the chord s from the first vertex).
-fn error_bound(p: &ProjectedSolidAnglePolygon, v: &[Vec3]) -> f64 {
+fn error_bound(p: &ProjectedPolygon, v: &[Vec3]) -> f64 {
     if p.is_small != 0 {
         // The small-polygon sampler integrates over the fan of solid angle sampling, so
         // it is as accurate as that (slivers lose precision there too).
@@ -97,8 +97,8 @@ fn clipped(v: &[Vec3]) -> Vec<Vec3> {
 
 /// Runs the chi-square test, containment and pdf consistency checks on one polygon.
 fn assert_cosine_distributed(vertices: &[Vec3], samples: u64, seed: u64, what: &str) {
-    let polygon = ProjectedSolidAnglePolygon::new(vertices)
-        .unwrap_or_else(|| panic!("{what}: prepare failed"));
+    let polygon =
+        ProjectedPolygon::new(vertices).unwrap_or_else(|| panic!("{what}: prepare failed"));
     let reference = reference_projected_solid_angle(vertices);
     let relative = (polygon.projected_solid_angle() as f64 - reference).abs() / reference;
     assert!(
@@ -182,7 +182,7 @@ fn samples_follow_the_cosine_on_central_and_decentral_polygons_of_3_to_8_vertice
             } else {
                 vertices
             };
-            let Some(polygon) = ProjectedSolidAnglePolygon::new(&vertices) else {
+            let Some(polygon) = ProjectedPolygon::new(&vertices) else {
                 continue;
             };
             if polygon.central != 0 {
@@ -205,7 +205,7 @@ fn projected_solid_angle_matches_lamberts_formula_on_random_polygons() {
         let radius = rng.log_uniform(-2.0, 0.5) as f32;
         let v = random_polygon(&mut rng, n, radius);
         let reference = reference_projected_solid_angle(&v);
-        match ProjectedSolidAnglePolygon::new(&v) {
+        match ProjectedPolygon::new(&v) {
             Some(p) => {
                 let e = (p.projected_solid_angle() as f64 - reference).abs() / reference;
                 // Relative to the bound 2e-6 + 3ε × condition (a few roundings of the
@@ -252,7 +252,7 @@ fn sampled_azimuths_match_an_f64_inversion_of_the_azimuthal_cdf() {
         let n = 3 + rng.below(6) as usize;
         let radius = 0.2 + rng.uniform_f32();
         let v = random_polygon(&mut rng, n, radius);
-        let Some(polygon) = ProjectedSolidAnglePolygon::new(&v) else {
+        let Some(polygon) = ProjectedPolygon::new(&v) else {
             continue;
         };
         if polygon.central != 0 || polygon.is_small != 0 {
@@ -299,7 +299,7 @@ fn solid_angle_estimator_with_projected_samples_is_unbiased() {
     let mut rng = Rng::new(5);
     for k in 0..6 {
         let v = random_polygon(&mut rng, 3 + k, 0.8);
-        let Some(polygon) = ProjectedSolidAnglePolygon::new(&v) else {
+        let Some(polygon) = ProjectedPolygon::new(&v) else {
             continue;
         };
         let reference = solid_angle_polygon_f64(&clip_d3(&to_d3(&v), [0.0, 0.0, 1.0]));
@@ -329,7 +329,7 @@ fn estimator_of_a_varying_emission_has_the_quadrature_mean_and_variance() {
         if v.iter().any(|p| p.z <= 0.0) {
             continue;
         }
-        let Some(polygon) = ProjectedSolidAnglePolygon::new(&v) else {
+        let Some(polygon) = ProjectedPolygon::new(&v) else {
             continue;
         };
         let phi = projected_solid_angle_polygon_f64(&v);
@@ -370,7 +370,7 @@ fn an_edge_through_the_zenith_gives_the_central_case_with_an_empty_sector() {
         Vec3::new(-0.4, 0.7, 1.0),
     ];
     for vertices in [v.to_vec(), reversed(&v)] {
-        let polygon = ProjectedSolidAnglePolygon::new(&vertices).expect("valid");
+        let polygon = ProjectedPolygon::new(&vertices).expect("valid");
         assert_eq!(polygon.central, 1);
         assert!(polygon.sector_area.contains(&0.0));
         assert_cosine_distributed(&vertices, 60_000, 1, "edge through the zenith");
@@ -395,7 +395,7 @@ fn edges_on_great_circles_through_the_zenith_give_empty_end_sectors() {
     ];
     for (v, degenerate) in [(&one[..], 1), (&two[..], 2)] {
         for vertices in [v.to_vec(), reversed(v)] {
-            let polygon = ProjectedSolidAnglePolygon::new(&vertices).expect("valid");
+            let polygon = ProjectedPolygon::new(&vertices).expect("valid");
             assert_eq!(polygon.central, 0);
             let marked = polygon.sectors()[..3]
                 .iter()
@@ -435,8 +435,8 @@ fn shading_point_in_the_polygon_plane_gives_no_polygon() {
         Vec3::new(1.0, 2.0, 1.5),
     ];
     for v in [&vertical[..], &tilted[..]] {
-        assert_eq!(ProjectedSolidAnglePolygon::new(v), None);
-        let empty = ProjectedSolidAnglePolygon::EMPTY;
+        assert_eq!(ProjectedPolygon::new(v), None);
+        let empty = ProjectedPolygon::EMPTY;
         assert_eq!(empty.sample([0.5, 0.5]).pdf, 0.0);
         assert!(empty.sample([0.5, 0.5]).dir.is_finite());
         assert_eq!(empty.pdf(Vec3::Z), 0.0);
@@ -466,16 +466,16 @@ fn polygons_touching_and_crossing_the_horizon() {
     for v in [&touching[..], &crossing[..], &crossing_central[..]] {
         for vertices in [v.to_vec(), reversed(v)] {
             assert_cosine_distributed(&vertices, 60_000, 4, "horizon");
-            let polygon = ProjectedSolidAnglePolygon::new(&vertices).unwrap();
+            let polygon = ProjectedPolygon::new(&vertices).unwrap();
             assert_eq!(polygon.pdf(Vec3::new(1.0, 0.0, -0.1)), 0.0);
         }
     }
     // Entirely below the horizon, and 8 vertices that would need a 9th after clipping.
     let below: Vec<Vec3> = crossing.iter().map(|v| Vec3::new(v.x, v.y, -1.0)).collect();
-    assert_eq!(ProjectedSolidAnglePolygon::new(&below), None);
+    assert_eq!(ProjectedPolygon::new(&below), None);
     let eight = circle_polygon(8, [0.0, 0.0, 0.1], [0.3, 0.0, 1.0], 1.0, false);
     assert!(eight.iter().any(|v| v.z < 0.0) && eight.iter().any(|v| v.z > 0.0));
-    assert_eq!(ProjectedSolidAnglePolygon::new(&eight), None);
+    assert_eq!(ProjectedPolygon::new(&eight), None);
 }
 
 #[test]
@@ -509,7 +509,7 @@ fn extreme_random_numbers_give_valid_samples() {
     ];
     for k in 0..40 {
         let v = random_polygon(&mut rng, 3 + k % 6, 0.7);
-        let Some(polygon) = ProjectedSolidAnglePolygon::new(&v) else {
+        let Some(polygon) = ProjectedPolygon::new(&v) else {
             continue;
         };
         for &a in &extremes {
@@ -545,18 +545,14 @@ fn bad_input_is_rejected() {
         Vec3::new(0.2, 0.6, 0.9),
     ];
     for v in invalid_polygons(&triangle) {
-        assert_eq!(ProjectedSolidAnglePolygon::new(&v), None, "{v:?}");
-        assert_eq!(
-            ProjectedSolidAnglePolygon::new_fast_biased(&v),
-            None,
-            "{v:?}"
-        );
+        assert_eq!(ProjectedPolygon::new(&v), None, "{v:?}");
+        assert_eq!(ProjectedPolygon::new_fast_biased(&v), None, "{v:?}");
     }
     for v in valid_edge_case_polygons() {
-        let polygon = ProjectedSolidAnglePolygon::new(&v).expect("valid");
+        let polygon = ProjectedPolygon::new(&v).expect("valid");
         assert!(polygon.projected_solid_angle() > 0.0);
     }
-    let polygon = ProjectedSolidAnglePolygon::new(&triangle).unwrap();
+    let polygon = ProjectedPolygon::new(&triangle).unwrap();
     for d in [
         Vec3::ZERO,
         Vec3::splat(f32::NAN),
@@ -574,8 +570,8 @@ fn biased_variant_stays_close_to_the_exact_distribution() {
     for k in 0..200 {
         let v = random_polygon(&mut rng, 3 + k % 6, 0.7);
         let (Some(exact), Some(fast)) = (
-            ProjectedSolidAnglePolygon::new(&v),
-            ProjectedSolidAnglePolygon::new_fast_biased(&v),
+            ProjectedPolygon::new(&v),
+            ProjectedPolygon::new_fast_biased(&v),
         ) else {
             continue;
         };
@@ -601,7 +597,7 @@ fn tiny_polygons_keep_their_accuracy() {
         for k in 0..30 {
             let v = random_polygon(&mut rng, 3 + k % 6, radius);
             let reference = reference_projected_solid_angle(&v);
-            let polygon = ProjectedSolidAnglePolygon::new(&v).expect("tiny but valid");
+            let polygon = ProjectedPolygon::new(&v).expect("tiny but valid");
             assert_eq!(polygon.is_small, 1);
             let e = (polygon.projected_solid_angle() as f64 - reference).abs() / reference;
             assert!(
@@ -617,8 +613,7 @@ fn tiny_polygons_keep_their_accuracy() {
             "1e{exponent}: median {}",
             errors[errors.len() / 2]
         );
-        let polygon =
-            ProjectedSolidAnglePolygon::new(&random_polygon(&mut rng, 5, radius)).unwrap();
+        let polygon = ProjectedPolygon::new(&random_polygon(&mut rng, 5, radius)).unwrap();
         let mut outside = 0;
         for _ in 0..10_000 {
             let s = polygon.sample([rng.uniform_f32(), rng.uniform_f32()]);
@@ -656,8 +651,8 @@ fn random_and_degenerate_input_never_gives_nan_or_panics() {
             _ => {}
         }
         for polygon in [
-            ProjectedSolidAnglePolygon::new(&v),
-            ProjectedSolidAnglePolygon::new_fast_biased(&v),
+            ProjectedPolygon::new(&v),
+            ProjectedPolygon::new_fast_biased(&v),
         ]
         .into_iter()
         .flatten()
@@ -686,7 +681,7 @@ fn small_polygons_follow_the_cosine_through_the_warped_solid_angle_sampler() {
     let mut tested = 0;
     for n in [3, 4, 6, 8] {
         let v = random_polygon(&mut rng, n, 0.01);
-        let polygon = ProjectedSolidAnglePolygon::new(&v).expect("valid");
+        let polygon = ProjectedPolygon::new(&v).expect("valid");
         assert_eq!(polygon.is_small, 1);
         assert_cosine_distributed(&v, 60_000, n as u64, &format!("small, {n} vertices"));
         tested += 1;
@@ -698,7 +693,7 @@ fn small_polygons_follow_the_cosine_through_the_warped_solid_angle_sampler() {
         Vec3::new(1.0, 0.0, 0.003),
     ];
     for v in [at_horizon.to_vec(), reversed(&at_horizon)] {
-        let polygon = ProjectedSolidAnglePolygon::new(&v).expect("valid");
+        let polygon = ProjectedPolygon::new(&v).expect("valid");
         assert_eq!(polygon.is_small, 1);
         assert_cosine_distributed(&v, 60_000, 7, "small, crossing the horizon");
         tested += 1;
@@ -717,8 +712,8 @@ fn a_sector_of_nearly_pi_has_finite_quarter_directions() {
         Vec3::new(2.323_557_1, -2.946_931_7e38, 4.999_999_3e29),
     ];
     for polygon in [
-        ProjectedSolidAnglePolygon::new(&v),
-        ProjectedSolidAnglePolygon::new_fast_biased(&v),
+        ProjectedPolygon::new(&v),
+        ProjectedPolygon::new_fast_biased(&v),
     ]
     .into_iter()
     .flatten()
@@ -755,8 +750,8 @@ fn a_vertex_on_the_z_axis_gives_no_nan_in_the_sectors() {
         Vec3::new(-2.0, f32::MAX, 0.0),
     ];
     for polygon in [
-        ProjectedSolidAnglePolygon::new(&v),
-        ProjectedSolidAnglePolygon::new_fast_biased(&v),
+        ProjectedPolygon::new(&v),
+        ProjectedPolygon::new_fast_biased(&v),
     ]
     .into_iter()
     .flatten()
@@ -783,7 +778,7 @@ fn directions_are_unit_in_a_sector_of_nearly_pi() {
         Vec3::new(6.523_162, 90_094.2, -2.671_959_4),
         Vec3::new(4.245_271, 90_094.19, -2.671_959),
     ];
-    let polygon = ProjectedSolidAnglePolygon::new(&v).expect("part above the horizon");
+    let polygon = ProjectedPolygon::new(&v).expect("part above the horizon");
     let mut worst = 0.0f32;
     for i in 0..32 {
         for j in 0..32 {
@@ -835,7 +830,7 @@ fn pdf_accepts_samples_next_to_an_edge_that_clipping_made_tiny() {
         ],
     ];
     for vertices in &polygons {
-        let polygon = ProjectedSolidAnglePolygon::new(vertices).unwrap();
+        let polygon = ProjectedPolygon::new(vertices).unwrap();
         let mut rng = Rng::new(7);
         let mut denied = 0;
         for _ in 0..10_000 {
@@ -860,7 +855,7 @@ fn a_vertex_on_the_horizon_that_clipping_repeats_keeps_the_pdf_right() {
         Vec3::new(2.6874998e0, -1.0000269e5, 0e0),
         Vec3::new(6.25e-2, -9.9999e4, 2.625e0),
     ];
-    let p = ProjectedSolidAnglePolygon::new(&v).expect("valid polygon");
+    let p = ProjectedPolygon::new(&v).expect("valid polygon");
     assert!(p.uses_small_polygon_sampler());
     let phi = p.projected_solid_angle();
     let mut worst = 0.0f32;
@@ -894,11 +889,11 @@ fn small_polygons_take_the_small_polygon_path_and_ordinary_ones_the_sectors() {
             Vec3::new(0.3 - half, 0.2 + half, 1.0),
         ]
     };
-    let ordinary = ProjectedSolidAnglePolygon::new(&square(0.2)).expect("valid polygon");
+    let ordinary = ProjectedPolygon::new(&square(0.2)).expect("valid polygon");
     assert!(!ordinary.uses_small_polygon_sampler());
-    let tiny = ProjectedSolidAnglePolygon::new(&square(1e-5)).expect("valid polygon");
+    let tiny = ProjectedPolygon::new(&square(1e-5)).expect("valid polygon");
     assert!(tiny.uses_small_polygon_sampler());
-    assert!(!ProjectedSolidAnglePolygon::EMPTY.uses_small_polygon_sampler());
+    assert!(!ProjectedPolygon::EMPTY.uses_small_polygon_sampler());
 }
 
 /// Issue 16 (1): `∫ pdf dω` of the small-polygon path by quadrature within 1e-4 of 1 at
@@ -915,7 +910,7 @@ fn the_small_polygon_pdf_integrates_to_one_and_every_sample_has_its_pdf() {
         ("8e-10 sr", 1.6e-5, 1e-4),
     ] {
         let v = quad(size);
-        let p = ProjectedSolidAnglePolygon::new(&v).expect("prepared");
+        let p = ProjectedPolygon::new(&v).expect("prepared");
         assert!(p.uses_small_polygon_sampler(), "{name}");
         assert_pdf_integrates_to_one_and_samples_have_their_pdf(
             name,
@@ -1007,7 +1002,7 @@ fn straddling_polygons_are_sampled_inside_the_clipped_polygon_with_the_cosine_de
         if solid_angle_polygon_f64(&clipped) / perimeter < MIN_WIDTH {
             continue;
         }
-        let Some(polygon) = ProjectedSolidAnglePolygon::new(&v) else {
+        let Some(polygon) = ProjectedPolygon::new(&v) else {
             // Only for 8 vertices, which clipping cannot extend to 9 (documented), or a
             // clipped part of 3 vertices whose f32 horizon points coincide.
             assert!(n == 8 || clipped.len() == 3, "{v:?}");
@@ -1065,7 +1060,7 @@ fn a_sector_beside_a_nearly_degenerate_ellipse_is_sampled_inside() {
         .iter()
         .map(|b| Vec3::from_array(b.map(f32::from_bits)))
         .collect();
-    let polygon = ProjectedSolidAnglePolygon::new(&v).expect("a valid pentagon");
+    let polygon = ProjectedPolygon::new(&v).expect("a valid pentagon");
     assert!(!polygon.uses_small_polygon_sampler() && polygon.central == 0);
     let p = to_d3(&v);
     let mut rng = Rng::new(17);
@@ -1103,7 +1098,7 @@ fn sectors_beside_edges_through_near_the_zenith_are_sampled_inside() {
         );
         let normal = rng.unit_vector_f32();
         let v = ellipse_polygon(&mut rng, n, center, normal, radius, 0.5);
-        let Some(polygon) = ProjectedSolidAnglePolygon::new(&v) else {
+        let Some(polygon) = ProjectedPolygon::new(&v) else {
             continue;
         };
         if polygon.uses_small_polygon_sampler() || polygon.central != 0 {
@@ -1169,7 +1164,7 @@ fn samples_reach_a_vertex_on_the_horizon_at_an_azimuthal_end() {
     let samples = 6_000_000u64;
     let shares = [5e-5, 5e-4, 5e-3];
     for (index, vertices) in polygons.iter().enumerate() {
-        let polygon = ProjectedSolidAnglePolygon::new(vertices).expect("a valid polygon");
+        let polygon = ProjectedPolygon::new(vertices).expect("a valid polygon");
         assert!(polygon.central == 0 && !polygon.uses_small_polygon_sampler());
         let p = clip_d3(&to_d3(vertices), [0.0, 0.0, 1.0]);
         let n = p.len();
@@ -1270,7 +1265,7 @@ fn azimuths_next_to_a_vertex_on_the_horizon_match_an_f64_inversion() {
             ),
         ];
         for (vertices, vertex_last) in &polygons {
-            let polygon = ProjectedSolidAnglePolygon::new(vertices).expect("a valid polygon");
+            let polygon = ProjectedPolygon::new(vertices).expect("a valid polygon");
             assert!(polygon.central == 0 && !polygon.uses_small_polygon_sampler());
             let p = clip_d3(&to_d3(vertices), [0.0, 0.0, 1.0]);
             let base = p[0][1].atan2(p[0][0]);

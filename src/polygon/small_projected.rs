@@ -1,6 +1,6 @@
 //! Cosine-weighted sampling of *small* polygons: solid angle sampling (Algorithm 5) with
 //! an exact warp per fan triangle towards a density that is linear in the position on the
-//! triangle. This is the alternative that [`ProjectedSolidAnglePolygon`] switches to when
+//! triangle. This is the alternative that [`ProjectedPolygon`] switches to when
 //! a polygon spans less than [`SMALL_EXTENT`] radians, where the ellipse construction in
 //! `f32` loses precision (see its documentation).
 //!
@@ -23,7 +23,7 @@
 //! `ℓ / Φ̃` with `Φ̃ = Σ Ω_k z̄_k` (this sampler's [`pdf`](SmallPolygonCosineSampler::pdf),
 //! through the inverse of solid angle sampling), and `ℓ / Φ̃` differs from the ideal
 //! `ω_z / Φ` by relative `O(s²)` (below 0.2 s², 2e-5 at the switch-over size).
-//! [`ProjectedSolidAnglePolygon`](super::ProjectedSolidAnglePolygon) reports `ω_z / Φ` itself, from the direction's own `z`
+//! [`ProjectedPolygon`](super::ProjectedPolygon) reports `ω_z / Φ` itself, from the direction's own `z`
 //! (see its `pdf`): the warp's density evaluated at an `f32` direction loses the relative
 //! precision of `ω_z` next to the horizon. The projected solid angle `Φ` is computed in
 //! closed form per triangle (see `mean_cosine`), to relative `O(s⁴)`.
@@ -34,13 +34,13 @@ use crate::{Sample, Vec3};
 
 /// The angular extent (sine of the largest angle between the first vertex and another)
 /// below which
-/// [`ProjectedSolidAnglePolygon`] uses this sampler: 1e-2 rad, polygons up to about 1e-4
+/// [`ProjectedPolygon`] uses this sampler: 1e-2 rad, polygons up to about 1e-4
 /// sr. There the ellipse construction's areas lose about `3e-7 × condition` of relative
 /// precision (the condition, outer area over Φ, grows like `1/s`: 100 to 500 at this
 /// size), while this sampler's pdf deviates from `ω_z / Φ` by at most `0.2 s²` = 2e-5 and
 /// its `Φ` is accurate to `O(s⁴)`.
 ///
-/// [`ProjectedSolidAnglePolygon`]: super::ProjectedSolidAnglePolygon
+/// [`ProjectedPolygon`]: super::ProjectedPolygon
 pub const SMALL_EXTENT: f32 = 1e-2;
 
 /// The largest squared extent for which a sliver (a polygon seen nearly edge-on, whose

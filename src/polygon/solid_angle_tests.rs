@@ -631,9 +631,9 @@ fn polygons_in_planes_through_the_shading_point_get_no_samples_in_any_family() {
             check("Hart biquadratic", p.is_some(), &|u| {
                 p.as_ref().unwrap().sample(u)
             });
-            let p = ProjectedSolidAnglePolygon::new(&v);
+            let p = ProjectedPolygon::new(&v);
             check("projected", p.is_some(), &|u| p.as_ref().unwrap().sample(u));
-            let mut p = ProjectedSolidAnglePolygon::EMPTY;
+            let mut p = ProjectedPolygon::EMPTY;
             let ok = p.prepare_fast_biased(&v);
             check("projected fast", ok, &|u| p.sample(u));
             let p = ArvoProjectedPolygon::new(&v);

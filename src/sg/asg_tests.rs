@@ -186,7 +186,7 @@ fn convolution_caps_its_normalisation_factor_at_one_as_the_header_says() {
     assert!(value * 3.0 < capped / (sx * sy).sqrt());
     let header = include_str!("../../include/sphera.h");
     let end = header.find("sphera_asg_convolve_sg(").expect("declared");
-    let doc = &header[header[..end].rfind("/**").expect("documented")..end];
+    let doc = &header[header[..end].rfind("/*").expect("documented")..end];
     assert!(
         doc.contains("capped at 1") && doc.contains("most `c a π`"),
         "the header does not say that the factor is capped: {doc}"

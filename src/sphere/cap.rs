@@ -43,12 +43,10 @@ use crate::sample::{INWARD_PULLS, ONE_MINUS_ULP, clamp_random};
 use core::f32::consts::{PI, TAU};
 use glam::Vec3;
 
-/// A spherical cap `{ω : ω·axis ≥ cos θ}` with `1 − cos θ` and `1 + cos θ` both stored
-/// to full relative precision: the smaller of the two is authoritative and the other
-/// is `2 −` it. A cap built by hand is made valid by every function that takes it: from
-/// `one_minus_cos`, except that a cap wider than a hemisphere keeps an `one_plus_cos`
-/// that agrees with `2 − one_minus_cos` to `2⁻²²` (and recomputes `one_minus_cos` from
-/// it).
+/// A spherical cap `{ω : ω·axis ≥ cos θ}` with `1 ∓ cos θ` both to full relative
+/// precision: the smaller is authoritative, the other `2 −` it. Every function makes a cap
+/// built by hand valid, from `one_minus_cos` (a wide cap keeps an `one_plus_cos` within
+/// `2⁻²²` of `2 − one_minus_cos`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cap {
@@ -57,10 +55,8 @@ pub struct Cap {
     /// `1 − cos θ` in `[0, 2]`: 0 for an empty cap, 1 for a hemisphere, 2 for the whole
     /// sphere. Authoritative for caps up to a hemisphere (`one_minus_cos ≤ 1`).
     pub one_minus_cos: f32,
-    /// `1 + cos θ = 2 − one_minus_cos` in `[0, 2]`, the size of the cap's hole: 2 for an
-    /// empty cap, 0 for the whole sphere. Authoritative for caps wider than a hemisphere
-    /// (`one_minus_cos > 1`), whose hole it keeps to full relative precision (near 2,
-    /// `one_minus_cos` keeps only `ulp(2)` of it).
+    /// `1 + cos θ` in `[0, 2]`, the cap's hole: 2 for an empty cap, 0 for the whole
+    /// sphere. Authoritative for caps wider than a hemisphere (`one_minus_cos > 1`).
     pub one_plus_cos: f32,
     /// `sin²θ = (1 − cos θ)(1 + cos θ)` in `[0, 1]`.
     pub sin2: f32,

@@ -160,16 +160,12 @@ impl SphereLightShading {
     }
 }
 
-/// Light sampling of a sphere light by the fitted SPTD restricted to its cap
-/// (Section 6.1), with the paper's fallback to uniform cap sampling when
-/// `Ω(g(C)) < 10⁻³`. Combine it with [`crate::brdf::GgxBrdf::sample`] by MIS; its pdf is
-/// per steradian and 0 outside the cap.
-///
-/// A cap that crosses the horizon is sampled in `C ∩ H` only (issue 20, 1: SPTDs over
-/// sets of caps, Sec. 4): uniformly in the intersection of the images `g(C) ∩ g(H)`
-/// ([`CapIntersection`]), mapped back by `g`, with density `J(ω) / Ω(g(C) ∩ g(H))` (and
-/// uniformly in `C ∩ H` for the fallback), so that no sample is wasted below the
-/// horizon, where the BRDF is 0.
+/// Light sampling of a sphere light by the fitted SPTD restricted to its cap (Section 6.1),
+/// with the paper's fallback to uniform cap sampling when `Ω(g(C)) < 10⁻³`; combine it with
+/// [`crate::brdf::GgxBrdf::sample`] by MIS. Its pdf is per steradian and 0 outside the cap.
+/// A cap that crosses the horizon is sampled in `C ∩ H` only, uniformly in `g(C) ∩ g(H)`
+/// mapped back by `g` (density `J(ω) / Ω(g(C) ∩ g(H))`; the fallback uniformly in `C ∩ H`),
+/// so that no sample is wasted below the horizon.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SphereLightSampler {

@@ -42,6 +42,8 @@ impl Default for SolidAngleSphere {
 impl SolidAngleSphere {
     /// The value of a light that could not be prepared: no sample, `pdf` 0, solid
     /// angle 0.
+    ///
+    /// cbindgen:ignore
     pub const EMPTY: SolidAngleSphere = SolidAngleSphere {
         cap: Cap::EMPTY,
         tangent: Vec3::X,

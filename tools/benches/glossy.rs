@@ -30,7 +30,7 @@ use sphera::brdf::ggx::GgxBrdf;
 use sphera::brdf::lambert::Lambert;
 use sphera::mis;
 use sphera::polygon::light::{Material, MisHeuristic, PolygonLight};
-use sphera::polygon::{ProjectedSolidAnglePolygon, SolidAnglePolygon};
+use sphera::polygon::{ProjectedPolygon, SolidAnglePolygon};
 use sphera::{Sample, Vec3};
 use sphera_tools::bench::Rng;
 use std::f32::consts::PI;
@@ -98,8 +98,8 @@ fn random_configuration(rng: &mut Rng, roughness: f32) -> Configuration {
             roughness,
         };
         let light = PolygonLight::new(&polygon, wo, &material, MisHeuristic::Balance, 0.5);
-        let above_horizon = ProjectedSolidAnglePolygon::new(&polygon).is_some()
-            && SolidAnglePolygon::new(&polygon).is_some();
+        let above_horizon =
+            ProjectedPolygon::new(&polygon).is_some() && SolidAnglePolygon::new(&polygon).is_some();
         if above_horizon && light.is_some_and(|l| luminance(l.unshadowed()) > 1e-6) {
             return Configuration {
                 polygon,
@@ -193,7 +193,7 @@ const ESTIMATORS: [(&str, Estimator); 8] = [
 /// Everything an estimator needs, prepared once per configuration.
 struct Prepared {
     brdf: Brdf,
-    projected: ProjectedSolidAnglePolygon,
+    projected: ProjectedPolygon,
     solid_angle: SolidAnglePolygon,
     lights: Vec<(MisHeuristic, PolygonLight)>,
 }
@@ -214,7 +214,7 @@ fn prepare(c: &Configuration) -> Prepared {
     .collect();
     Prepared {
         brdf: Brdf::new(c),
-        projected: ProjectedSolidAnglePolygon::new(&c.polygon).expect("valid"),
+        projected: ProjectedPolygon::new(&c.polygon).expect("valid"),
         solid_angle: SolidAnglePolygon::new(&c.polygon).expect("valid"),
         lights,
     }
@@ -400,13 +400,13 @@ fn timing_table() {
     };
     let projected_only = time(&|c, u, _| {
         let brdf = Brdf::new(c);
-        let p = ProjectedSolidAnglePolygon::new(&c.polygon).unwrap();
+        let p = ProjectedPolygon::new(&c.polygon).unwrap();
         let s = p.sample(u);
         brdf.eval_cos(s.dir) / s.pdf
     });
     let brdf_and_projected = time(&|c, u, v| {
         let brdf = Brdf::new(c);
-        let p = ProjectedSolidAnglePolygon::new(&c.polygon).unwrap();
+        let p = ProjectedPolygon::new(&c.polygon).unwrap();
         let s = p.sample(u);
         let b = brdf.sample(v);
         let mut sum =

@@ -38,7 +38,7 @@
 use sphera::polygon::baselines::{
     ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
 };
-use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon};
+use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon};
 use sphera::{Sample, Vec3};
 use sphera_tools::bench::Rng;
 use sphera_tools::reference::{self, D3};
@@ -183,7 +183,7 @@ technique!(ClippedSolidAnglePolygon, "clipped solid angle");
 technique!(HartBilinearPolygon, "Hart bilinear");
 technique!(HartBiquadraticPolygon, "Hart biquadratic");
 technique!(
-    ProjectedSolidAnglePolygon,
+    ProjectedPolygon,
     "projected (ours)",
     projected_solid_angle: Projected
 );
@@ -196,12 +196,12 @@ technique!(
 /// The biased variant of projected solid angle sampling: fast `atan` in `prepare`, no
 /// refinement iterations per sample.
 #[derive(Clone, Copy)]
-struct BiasedProjected(ProjectedSolidAnglePolygon);
+struct BiasedProjected(ProjectedPolygon);
 impl Technique for BiasedProjected {
     const NAME: &'static str = "projected, biased";
     #[inline(always)]
     fn prepare(vertices: &[Vec3]) -> Option<Self> {
-        ProjectedSolidAnglePolygon::new_fast_biased(vertices).map(Self)
+        ProjectedPolygon::new_fast_biased(vertices).map(Self)
     }
     #[inline(always)]
     fn sample(&self, u: [f32; 2]) -> Sample {
@@ -334,7 +334,7 @@ fn speed_table() {
         speed_of::<ArvoPolygon>(),
         speed_of::<HartBilinearPolygon>(),
         speed_of::<HartBiquadraticPolygon>(),
-        speed_of::<ProjectedSolidAnglePolygon>(),
+        speed_of::<ProjectedPolygon>(),
         speed_of::<BiasedProjected>(),
         speed_of::<ArvoProjectedPolygon>(),
     ];
@@ -415,7 +415,7 @@ fn iteration_error_table() {
             .iter()
             .flat_map(|a| unit.iter().map(|b| reference::norm(reference::sub(*a, *b))))
             .fold(0.0, f64::max);
-        let Some(polygon) = ProjectedSolidAnglePolygon::new(&v) else {
+        let Some(polygon) = ProjectedPolygon::new(&v) else {
             continue;
         };
         // The small-polygon path (also taken by slivers) ignores the iteration count.
@@ -423,7 +423,7 @@ fn iteration_error_table() {
         let iterated = probes
             .iter()
             .any(|&u| polygon.sample_with_iterations(u, 0) != polygon.sample_with_iterations(u, 2));
-        let Some(fast) = ProjectedSolidAnglePolygon::new_fast_biased(&v) else {
+        let Some(fast) = ProjectedPolygon::new_fast_biased(&v) else {
             continue;
         };
         if extent > 0.02 && iterated {
@@ -679,7 +679,7 @@ fn near_hemisphere_cases(rng: &mut Rng) -> Vec<Case> {
 fn projected_accuracy_table() {
     // One line per technique.
     let techniques = [
-        accuracy_of::<ProjectedSolidAnglePolygon>(),
+        accuracy_of::<ProjectedPolygon>(),
         accuracy_of::<SolidAnglePolygon>(),
     ];
     println!("## Accuracy per decade of solid angle: projected and solid angle sampling\n");
@@ -716,8 +716,7 @@ fn projected_accuracy_table() {
         let small = cases
             .iter()
             .filter(|c| {
-                ProjectedSolidAnglePolygon::new(&c.vertices)
-                    .is_some_and(|p| p.uses_small_polygon_sampler())
+                ProjectedPolygon::new(&c.vertices).is_some_and(|p| p.uses_small_polygon_sampler())
             })
             .count();
         let small = format!("{:.1}%", 100.0 * small as f64 / cases.len().max(1) as f64);
@@ -803,7 +802,7 @@ fn variance_table() {
         variance_of::<ClippedSolidAnglePolygon>(),
         variance_of::<HartBilinearPolygon>(),
         variance_of::<HartBiquadraticPolygon>(),
-        variance_of::<ProjectedSolidAnglePolygon>(),
+        variance_of::<ProjectedPolygon>(),
         variance_of::<BiasedProjected>(),
         variance_of::<ArvoProjectedPolygon>(),
     ];

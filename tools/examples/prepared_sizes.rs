@@ -12,7 +12,7 @@ use sphera::ffi::*;
 use sphera::polygon::baselines::{
     ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, TurkPolygon,
 };
-use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon};
+use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon};
 
 /// Bytes of `T` that `prepare` writes for these vertices (see the module docs).
 fn bytes_written<T>(
@@ -90,10 +90,7 @@ fn main() {
         "SpheraHartBilinearPolygon",
         sphera_hart_bilinear_polygon_prepare,
     );
-    row::<ProjectedSolidAnglePolygon>(
-        "SpheraProjectedSolidAnglePolygon",
-        sphera_projected_polygon_prepare,
-    );
+    row::<ProjectedPolygon>("SpheraProjectedPolygon", sphera_projected_polygon_prepare);
     row::<ArvoProjectedPolygon>(
         "SpheraArvoProjectedPolygon",
         sphera_arvo_projected_polygon_prepare,

@@ -1,6 +1,6 @@
 //! Profiling harness: prepares central polygons in a loop (`perf record`).
 use sphera::Vec3;
-use sphera::polygon::ProjectedSolidAnglePolygon;
+use sphera::polygon::ProjectedPolygon;
 use std::hint::black_box;
 
 fn main() {
@@ -25,7 +25,7 @@ fn main() {
     let mut sum = 0.0f32;
     for _ in 0..4000 {
         for v in &polygons {
-            if let Some(p) = ProjectedSolidAnglePolygon::new(black_box(v)) {
+            if let Some(p) = ProjectedPolygon::new(black_box(v)) {
                 sum += p.projected_solid_angle();
             }
         }

@@ -1,6 +1,6 @@
 //! Profiling harness: samples decentral polygons in a loop (`perf record`).
 use sphera::Vec3;
-use sphera::polygon::ProjectedSolidAnglePolygon;
+use sphera::polygon::ProjectedPolygon;
 use std::hint::black_box;
 
 fn main() {
@@ -20,7 +20,7 @@ fn main() {
                 c + Vec3::new(0.4 * a.cos(), 0.4 * a.sin(), 0.2 * a.sin())
             })
             .collect();
-        if let Some(p) = ProjectedSolidAnglePolygon::new(&v) {
+        if let Some(p) = ProjectedPolygon::new(&v) {
             polygons.push(p);
         }
     }

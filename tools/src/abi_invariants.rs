@@ -41,7 +41,7 @@ use sphera::polygon::baselines::{
     ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
 };
 use sphera::polygon::light::{LightSample, Material, PolygonLight};
-use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon};
+use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon};
 use sphera::sphere::Cap;
 
 /// Floats that break numerical code: NaN, infinities, signed zeros, denormals, the
@@ -868,7 +868,7 @@ pub fn polygon_entry_points(data: &[u8]) {
         tolerance: 0.0,
         above_horizon: true,
         min_plane_ratio: GRAZING,
-        ..Family::<ProjectedSolidAnglePolygon>::new(
+        ..Family::<ProjectedPolygon>::new(
             "projected",
             sphera_projected_polygon_prepare,
             sphera_projected_polygon_sample,
@@ -881,7 +881,7 @@ pub fn polygon_entry_points(data: &[u8]) {
         tolerance: 0.0,
         above_horizon: true,
         min_plane_ratio: GRAZING,
-        ..Family::<ProjectedSolidAnglePolygon>::new(
+        ..Family::<ProjectedPolygon>::new(
             "projected_fast",
             sphera_projected_polygon_prepare_fast,
             sphera_projected_polygon_sample_fast,
@@ -928,22 +928,22 @@ pub fn ltc_and_light_entry_points(data: &[u8]) {
 
     // SAFETY: null is allowed; `out` is writable.
     unsafe {
-        assert!(!sphera_ltc_ggx(std::ptr::null_mut(), wo, roughness));
-        assert_eq!(sphera_ltc_density(std::ptr::null(), wo), 0.0);
+        assert!(!sphera_ltc_prepare(std::ptr::null_mut(), wo, roughness));
+        assert_eq!(sphera_ltc_eval(std::ptr::null(), wo), 0.0);
         assert_eq!(
             sphera_ltc_specular_albedo(std::ptr::null(), vec3(1.0, 1.0, 1.0)),
             vec3(0.0, 0.0, 0.0)
         );
     }
     // SAFETY: `out` is writable.
-    let (ltc, ltc_ok) = unsafe { prepared::<Ltc>(|out| sphera_ltc_ggx(out, wo, roughness)) };
+    let (ltc, ltc_ok) = unsafe { prepared::<Ltc>(|out| sphera_ltc_prepare(out, wo, roughness)) };
     assert_words_finite(&ltc, "ltc");
     if !is_finite3(wo) || !(wo.z > 0.0) {
         assert!(!ltc_ok, "ltc accepted wo = {wo:?}");
     }
     for &probe in &probes {
         // SAFETY: valid pointer.
-        let d = unsafe { sphera_ltc_density(&ltc, probe) };
+        let d = unsafe { sphera_ltc_eval(&ltc, probe) };
         assert_density(d, "ltc density");
     }
     let f0 = input.vec3();
@@ -1251,7 +1251,7 @@ pub fn sphere_entry_points(data: &[u8]) {
                 );
             }
         }
-        let image = sphera_pivot_cap(cap, pivot);
+        let image = sphera_pivot_transform_cap(cap, pivot);
         assert_cap_valid(&image, "pivot cap");
     }
     let exact = sphera_cap_intersection_solid_angle(a, b);
@@ -1332,7 +1332,7 @@ fn decode_sg(input: &mut Input) -> sphera::sg::Sg {
 /// decoded inputs, raw SGs included (any axis, sharpness and log amplitude): every
 /// output finite, densities and shading values non-negative, the product an SG with
 /// finite fields, the inner product symmetric, and vMF samples consistent with
-/// `sphera_sg_vmf_pdf` (relative 1e-3; the sampler draws `1 − cos θ` and the pdf
+/// `sphera_vmf_pdf` (relative 1e-3; the sampler draws `1 − cos θ` and the pdf
 /// evaluates `exp(−λ t)` from the returned direction: both are the same function of
 /// `t` up to the rounding of the direction, amplified by `λ |dt|` near sharp lobes —
 /// hence the floor proportional to the pdf's sharpness).
@@ -1355,10 +1355,10 @@ pub fn sg_entry_points(data: &[u8]) {
         assert_density(sphera_sg_integral(sg.sharpness), "A(λ)");
         for &probe in &probes {
             assert_density(sphera_sg_eval(sg, probe), name);
-            assert_density(sphera_sg_vmf_pdf(sg, probe), name);
+            assert_density(sphera_vmf_pdf(sg, probe), name);
             let mut u = [0.0f32; 2];
             // SAFETY: `u` holds two floats.
-            let inverted = unsafe { sphera_sg_vmf_invert(sg, probe, u.as_mut_ptr()) };
+            let inverted = unsafe { sphera_vmf_invert(sg, probe, u.as_mut_ptr()) };
             if inverted {
                 assert!(
                     u.iter().all(|x| (0.0..1.0).contains(x)),
@@ -1367,11 +1367,11 @@ pub fn sg_entry_points(data: &[u8]) {
             }
         }
         for &(u0, u1) in &pairs {
-            let sample = sphera_sg_vmf_sample(sg, u0, u1);
+            let sample = sphera_vmf_sample(sg, u0, u1);
             let what = format!("{name} vMF u = ({u0:e}, {u1:e}) {sg:?}");
             assert_sample(sample, &what);
             if sample.pdf > 0.0 {
-                let evaluated = sphera_sg_vmf_pdf(sg, sample.dir);
+                let evaluated = sphera_vmf_pdf(sg, sample.dir);
                 let sharpness = if sg.sharpness.is_nan() {
                     0.0
                 } else {
@@ -1398,11 +1398,11 @@ pub fn sg_entry_points(data: &[u8]) {
         "inner product not symmetric: {ab} vs {ba}"
     );
     for lobe in [
-        sphera_sg_diffuse_lobe(normal),
-        sphera_sg_specular_lobe(normal, view, alpha),
-        sphera_sg_specular_lobe_unnormalized(normal, view, alpha),
-        sphera_sg_beckmann_lobe(normal, view, alpha),
-        sphera_sg_beckmann_lobe_unnormalized(normal, view, alpha),
+        sphera_sg_from_lambert(normal),
+        sphera_sg_from_ggx(normal, view, alpha),
+        sphera_sg_from_ggx_unnormalized(normal, view, alpha),
+        sphera_sg_from_beckmann(normal, view, alpha),
+        sphera_sg_from_beckmann_unnormalized(normal, view, alpha),
     ] {
         assert_words_finite(&lobe, "lobe");
     }
@@ -1423,9 +1423,9 @@ pub fn sg_entry_points(data: &[u8]) {
     }
     let asg = sphera_asg_new(normal, view, scalars[0], scalars[1], scalars[2]);
     assert_words_finite(&asg, "asg");
-    let ggx = sphera_asg_ggx_lobe(normal, view, alpha);
+    let ggx = sphera_asg_from_ggx(normal, view, alpha);
     assert_words_finite(&ggx, "ggx asg");
-    let beckmann = sphera_asg_beckmann_lobe(normal, view, alpha);
+    let beckmann = sphera_asg_from_beckmann(normal, view, alpha);
     assert_words_finite(&beckmann, "beckmann asg");
     for asg in [asg, ggx, beckmann] {
         assert_density(sphera_asg_integral(asg), "ASG integral");
@@ -1459,7 +1459,7 @@ pub fn vsgl_entry_points(data: &[u8]) {
     let vpls: Vec<sphera::vsgl::Vpl> = (0..count).map(|_| decode_vpl(&mut input)).collect();
     let mut accumulator = MaybeUninit::<sphera::vsgl::VsglAccumulator>::uninit();
     // SAFETY: init writes the accumulator.
-    let ok = unsafe { sphera_vsgl_accumulator_init(accumulator.as_mut_ptr(), origin) };
+    let ok = unsafe { sphera_vsgl_accumulator_new(accumulator.as_mut_ptr(), origin) };
     assert!(ok, "init");
     // SAFETY: initialised above.
     let mut accumulator = unsafe { accumulator.assume_init() };
@@ -1703,7 +1703,7 @@ pub fn sptd_entry_points(data: &[u8]) {
             axis,
             a
         ));
-        assert!(!sphera_phase_pivot_in_cap_prepare(
+        assert!(!sphera_sptd_in_cap_prepare_pivot_phase(
             std::ptr::null_mut(),
             wo,
             g,
@@ -1723,19 +1723,20 @@ pub fn sptd_entry_points(data: &[u8]) {
     assert!(base != 2 || !ok, "sptd in cap prepared with base 2");
     check_sptd_in_cap(&in_cap, ok, &pairs, &probes, "sptd in cap");
     // SAFETY: `out` is writable.
-    let (phase, ok) =
-        unsafe { prepared::<SptdInCap>(|out| sphera_phase_pivot_in_cap_prepare(out, wo, g, b)) };
+    let (phase, ok) = unsafe {
+        prepared::<SptdInCap>(|out| sphera_sptd_in_cap_prepare_pivot_phase(out, wo, g, b))
+    };
     check_sptd_in_cap(&phase, ok, &pairs, &probes, "pivot phase in cap");
 
     // The GGX pivot table.
     // SAFETY: null is allowed; `out` is writable.
     unsafe {
-        assert!(!sphera_ggx_pivot_lookup(
+        assert!(!sphera_ggx_pivot_from_view(
             std::ptr::null_mut(),
             wo,
             roughness
         ));
-        let (fit, ok) = prepared::<GgxPivot>(|out| sphera_ggx_pivot_lookup(out, wo, roughness));
+        let (fit, ok) = prepared::<GgxPivot>(|out| sphera_ggx_pivot_from_view(out, wo, roughness));
         assert_words_finite(&fit, "ggx pivot");
         if ok {
             let p = to_f64(fit.pivot.into());
@@ -1760,13 +1761,13 @@ pub fn sptd_entry_points(data: &[u8]) {
             f0
         ));
         let zero = vec3(0.0, 0.0, 0.0);
-        assert_eq!(sphera_sphere_light_shade(std::ptr::null(), a), zero);
+        assert_eq!(sphera_sphere_light_shading_eval(std::ptr::null(), a), zero);
         assert_eq!(
-            sphera_sphere_light_shade_occluded(std::ptr::null(), a, b),
+            sphera_sphere_light_shading_eval_occluded(std::ptr::null(), a, b),
             zero
         );
         assert_eq!(
-            sphera_sphere_light_shade_occluded_separable(std::ptr::null(), a, b),
+            sphera_sphere_light_shading_eval_occluded_separable(std::ptr::null(), a, b),
             zero
         );
         let (shading, ok) = prepared::<SphereLightShading>(|out| {
@@ -1774,13 +1775,13 @@ pub fn sptd_entry_points(data: &[u8]) {
         });
         assert_words_finite(&shading, "shading");
         for (value, what) in [
-            (sphera_sphere_light_shade(&shading, a), "shade"),
+            (sphera_sphere_light_shading_eval(&shading, a), "shade"),
             (
-                sphera_sphere_light_shade_occluded(&shading, a, b),
+                sphera_sphere_light_shading_eval_occluded(&shading, a, b),
                 "shade occluded",
             ),
             (
-                sphera_sphere_light_shade_occluded_separable(&shading, a, b),
+                sphera_sphere_light_shading_eval_occluded_separable(&shading, a, b),
                 "shade occluded separable",
             ),
         ] {

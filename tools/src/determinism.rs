@@ -51,7 +51,7 @@ use sphera::polygon::baselines::{
     ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
 };
 use sphera::polygon::light::{Material, PolygonLight};
-use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon};
+use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon};
 use sphera::sg::Sg;
 use sphera::sphere::{SphereLightSampler, SphereLightShading, SptdInCap};
 use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, VsglTexel};
@@ -112,9 +112,9 @@ pub fn table() -> String {
          # tools/src/determinism.rs.\n",
     );
     let mut ltc = std::mem::MaybeUninit::<Ltc>::uninit();
-    // SAFETY: `out` is writable; `sphera_ltc_ggx` writes it.
+    // SAFETY: `out` is writable; `sphera_ltc_prepare` writes it.
     let ltc = unsafe {
-        sphera_ltc_ggx(ltc.as_mut_ptr(), v3(0.3, 0.1, 0.9), 0.4);
+        sphera_ltc_prepare(ltc.as_mut_ptr(), v3(0.3, 0.1, 0.9), 0.4);
         ltc.assume_init()
     };
     let material = Material {
@@ -182,13 +182,13 @@ pub fn table() -> String {
         );
         family!(
             "projected",
-            ProjectedSolidAnglePolygon,
+            ProjectedPolygon,
             sphera_projected_polygon_prepare,
             sphera_projected_polygon_sample
         );
         family!(
             "projected_fast",
-            ProjectedSolidAnglePolygon,
+            ProjectedPolygon,
             sphera_projected_polygon_prepare_fast,
             sphera_projected_polygon_sample_fast
         );
@@ -246,7 +246,7 @@ pub fn table() -> String {
         for wo in views {
             for (u0, u1) in PAIRS {
                 // SAFETY: prepared above.
-                let s = unsafe { sphera_ggx_sample(&brdf, wo, u0, u1) };
+                let s = unsafe { sphera_ggx_brdf_sample(&brdf, wo, u0, u1) };
                 let head = format!("ggx {} {}", hex(roughness), hex3(wo));
                 sample_record(&mut out, head, u0, u1, s);
             }
@@ -379,7 +379,7 @@ fn sphere_records(out: &mut String) {
             let cap = sphera_cap_from_sphere(center, radius);
             // SAFETY: `out` is writable.
             let value: SptdInCap =
-                prepared(|o| unsafe { sphera_phase_pivot_in_cap_prepare(o, wo, g, cap) });
+                prepared(|o| unsafe { sphera_sptd_in_cap_prepare_pivot_phase(o, wo, g, cap) });
             for (u0, u1) in PAIRS {
                 // SAFETY: prepared above.
                 let s = unsafe { sphera_sptd_in_cap_sample(&value, u0, u1) };
@@ -430,8 +430,8 @@ fn sphere_records(out: &mut String) {
                     let light = sphera_cap_from_sphere(center, radius);
                     let cone = sphera_cap_from_axis_cos(cone_axis, cone_cos);
                     (
-                        sphera_sphere_light_shade(&shading, light),
-                        sphera_sphere_light_shade_occluded(&shading, light, cone),
+                        sphera_sphere_light_shading_eval(&shading, light),
+                        sphera_sphere_light_shading_eval_occluded(&shading, light, cone),
                     )
                 };
                 writeln!(
@@ -465,7 +465,7 @@ fn sg_records(out: &mut String) {
     for (axis, sharpness, amplitude) in lobes {
         let sg = sphera_sg_new(axis, sharpness, amplitude);
         for (u0, u1) in PAIRS {
-            let s = sphera_sg_vmf_sample(sg, u0, u1);
+            let s = sphera_vmf_sample(sg, u0, u1);
             let head = format!("vmf {} {}", hex3(axis), hex(sharpness));
             sample_record(out, head, u0, u1, s);
         }
@@ -492,7 +492,7 @@ fn sg_records(out: &mut String) {
                 let mean = v3(0.5, -1.0, 2.0);
                 let variance = 0.3f32;
                 let incoming = sphera_sg_incoming_radiance(sg, mean, variance);
-                let asg = sphera_asg_ggx_lobe(normal, view, roughness * roughness);
+                let asg = sphera_asg_from_ggx(normal, view, roughness * roughness);
                 writeln!(
                     out,
                     "sg_shading {} {} {} {} {} {} {} {} {} {} {} {} {} {} {}",
@@ -562,7 +562,7 @@ fn vsgl_records(out: &mut String) {
     for (first, count) in [(0usize, 1usize), (0, 2), (1, 5), (0, 6)] {
         // SAFETY: valid pointers throughout.
         let vsgl = unsafe {
-            let mut acc: VsglAccumulator = prepared(|o| sphera_vsgl_accumulator_init(o, origin));
+            let mut acc: VsglAccumulator = prepared(|o| sphera_vsgl_accumulator_new(o, origin));
             for vpl in &vpls[first..first + count] {
                 sphera_vsgl_accumulator_add_vpl(&mut acc, vpl);
             }
@@ -577,7 +577,7 @@ fn vsgl_records(out: &mut String) {
             .iter()
             .map(|vpl| prepared(|o| sphera_vsgl_texel_from_vpl(vpl, origin, o)))
             .collect();
-        let mut acc: VsglAccumulator = prepared(|o| sphera_vsgl_accumulator_init(o, origin));
+        let mut acc: VsglAccumulator = prepared(|o| sphera_vsgl_accumulator_new(o, origin));
         for texel in &level0 {
             sphera_vsgl_accumulator_add_texel(&mut acc, texel);
         }

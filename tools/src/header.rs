@@ -66,7 +66,7 @@ fn opaque_types() -> Vec<Opaque> {
     };
     use sphera::polygon::light::PolygonLight;
     use sphera::polygon::{
-        ClippedSolidAnglePolygon, LtcPolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
+        ClippedSolidAnglePolygon, LtcPolygon, ProjectedPolygon, SolidAnglePolygon,
     };
     use sphera::sphere::light::{SphereLightSampler, SphereLightShading};
     use sphera::sphere::solid_angle_sphere::SolidAngleSphere;
@@ -78,7 +78,7 @@ fn opaque_types() -> Vec<Opaque> {
         opaque::<HartBilinearPolygon>("SpheraHartBilinearPolygon"),
         opaque::<HartBiquadraticPolygon>("SpheraHartBiquadraticPolygon"),
         opaque::<ClippedSolidAnglePolygon>("SpheraClippedSolidAnglePolygon"),
-        opaque::<ProjectedSolidAnglePolygon>("SpheraProjectedSolidAnglePolygon"),
+        opaque::<ProjectedPolygon>("SpheraProjectedPolygon"),
         opaque::<ArvoProjectedPolygon>("SpheraArvoProjectedPolygon"),
         opaque::<GgxBrdf>("SpheraGgxBrdf"),
         opaque::<Ltc>("SpheraLtc"),
@@ -144,13 +144,11 @@ fn for_c_users(header: &str) -> String {
                 o.align
             );
             out.push(line.to_string());
-            out.push("  /**".to_string());
             out.push(format!(
-                "   * Opaque: {} bytes that only the functions preparing a {name} write; the layout is private and may change between versions.",
+                "  uint32_t opaque[{}]; /* {} bytes, private: see the preamble */",
+                o.size / 4,
                 o.size
             ));
-            out.push("   */".to_string());
-            out.push(format!("  uint32_t opaque[{}];", o.size / 4));
             out.push(lines[end].to_string());
             i = end + 1;
             continue;
@@ -167,7 +165,190 @@ fn for_c_users(header: &str) -> String {
     }
     let mut text = out.join("\n");
     text.push('\n');
-    plain_links(&text)
+    compact(&plain_links(&text))
+}
+
+/// The width to which the header's doc comments are reflowed, and within which
+/// declarations are packed.
+const WIDTH: usize = 100;
+
+/// The header in compact form: each doc comment (`/** … */`) reflowed to [`WIDTH`]
+/// columns as `/* … */` with its text from the first line, paragraphs on new lines
+/// without blank lines between them, and rustdoc's `# Safety` heading as a `Safety:`
+/// lead-in; a struct field's one-line comment after the field when both fit; no blank line
+/// between one macro and the next (their comments separate them); a function's
+/// parameters packed onto as few lines as fit.
+fn compact(header: &str) -> String {
+    let lines: Vec<&str> = header.lines().collect();
+    let mut out: Vec<String> = Vec::with_capacity(lines.len());
+    let mut i = 0;
+    while i < lines.len() {
+        let line = lines[i];
+        if line.trim_start() == "/**" {
+            let indent = &line[..line.len() - 3];
+            let end = (i..lines.len())
+                .find(|&j| lines[j].trim_start() == "*/")
+                .expect("an unterminated doc comment in the generated header");
+            let body: Vec<&str> = lines[i + 1..end]
+                .iter()
+                .map(|l| {
+                    let l = l.strip_prefix(indent).unwrap_or(l).trim_start();
+                    let l = l.strip_prefix('*').unwrap_or(l);
+                    l.strip_prefix(' ').unwrap_or(l)
+                })
+                .collect();
+            let comment = reflow_comment(indent, &body);
+            i = end + 1;
+            // A field with a one-line comment: the comment follows the field.
+            let next = lines.get(i).copied().unwrap_or("");
+            let is_field = !indent.is_empty()
+                && next.starts_with(indent)
+                && next.ends_with(';')
+                && !next.contains('(');
+            if is_field && comment.len() == 1 {
+                let trailing = format!("{next} {}", comment[0].trim_start());
+                if trailing.chars().count() <= WIDTH {
+                    out.push(trailing);
+                    i += 1;
+                    continue;
+                }
+            }
+            out.extend(comment);
+            continue;
+        }
+        if line.ends_with(',') && line.contains('(') && !line.starts_with(' ') {
+            // A declaration whose parameters cbindgen put one per line.
+            let end = (i..lines.len())
+                .find(|&j| lines[j].ends_with(");"))
+                .expect("an unterminated declaration in the generated header");
+            out.extend(pack_parameters(&lines[i..=end]));
+            i = end + 1;
+            continue;
+        }
+        // A blank line between a macro and the next macro's comment goes.
+        let next_is_macro = || {
+            (i + 1..lines.len())
+                .find(|&j| !lines[j].starts_with("/*") && !lines[j].starts_with(" *"))
+                .is_some_and(|j| j > i + 1 && lines[j].starts_with("#define "))
+        };
+        if line.is_empty()
+            && out.last().is_some_and(|l| l.starts_with("#define "))
+            && next_is_macro()
+        {
+            i += 1;
+            continue;
+        }
+        out.push(line.to_string());
+        i += 1;
+    }
+    let mut text = out.join("\n");
+    text.push('\n');
+    text
+}
+
+/// A function's `# Safety` section that says only that its pointers follow the conventions
+/// of `sphera::ffi`: the header leaves it out, since its preamble states those conventions
+/// (cbindgen.toml, `header`).
+const CONVENTIONAL_SAFETY: &str =
+    "Safety: Pointers as in the conventions of the C ABI (`crate::ffi`).";
+
+/// A doc comment's lines (without their ` * `) as a compact `/* … */` comment at
+/// `indent`: paragraphs reflowed to [`WIDTH`] columns, each on a new line.
+fn reflow_comment(indent: &str, body: &[&str]) -> Vec<String> {
+    let mut paragraphs: Vec<String> = Vec::new();
+    let mut current = String::new();
+    let mut lead_in = String::new();
+    for line in body.iter().map(|l| l.trim()) {
+        if line.is_empty() {
+            if !current.is_empty() {
+                paragraphs.push(std::mem::take(&mut current));
+            }
+        } else if let Some(heading) = line.strip_prefix("# ") {
+            if !current.is_empty() {
+                paragraphs.push(std::mem::take(&mut current));
+            }
+            lead_in = format!("{heading}:");
+        } else {
+            if current.is_empty() {
+                current = std::mem::take(&mut lead_in);
+            }
+            if !current.is_empty() {
+                current.push(' ');
+            }
+            current.push_str(line);
+        }
+    }
+    if !current.is_empty() {
+        paragraphs.push(current);
+    }
+    paragraphs.retain(|p| p != CONVENTIONAL_SAFETY);
+    let first = format!("{indent}/* ");
+    let rest = format!("{indent} * ");
+    let mut out: Vec<String> = Vec::new();
+    for paragraph in &paragraphs {
+        let mut line = if out.is_empty() {
+            first.clone()
+        } else {
+            rest.clone()
+        };
+        let mut empty = true;
+        for word in words(paragraph) {
+            // Room for the closing ` */` on every line keeps the last one within WIDTH.
+            if !empty && line.chars().count() + 1 + word.chars().count() + 3 > WIDTH {
+                out.push(std::mem::replace(&mut line, rest.clone()));
+                empty = true;
+            }
+            if !empty {
+                line.push(' ');
+            }
+            line.push_str(&word);
+            empty = false;
+        }
+        out.push(line);
+    }
+    match out.last_mut() {
+        Some(last) => last.push_str(" */"),
+        None => out.push(format!("{indent}/* */")),
+    }
+    out
+}
+
+/// The words of a paragraph, a code span (`` `…` ``) with its spaces being one word.
+fn words(paragraph: &str) -> Vec<String> {
+    let mut words: Vec<String> = Vec::new();
+    let mut in_code = false;
+    for piece in paragraph.split(' ').filter(|w| !w.is_empty()) {
+        match words.last_mut() {
+            Some(last) if in_code => {
+                last.push(' ');
+                last.push_str(piece);
+            }
+            _ => words.push(piece.to_string()),
+        }
+        if piece.matches('`').count() % 2 == 1 {
+            in_code = !in_code;
+        }
+    }
+    words
+}
+
+/// A declaration that cbindgen wrote with one parameter per line, with the parameters
+/// packed onto as few lines as fit in [`WIDTH`] columns (aligned after the `(`).
+fn pack_parameters(lines: &[&str]) -> Vec<String> {
+    let head = lines[0];
+    let open = head.find('(').expect("a declaration has a '('") + 1;
+    let align = " ".repeat(open);
+    let mut out = vec![head.to_string()];
+    for parameter in lines[1..].iter().map(|l| l.trim()) {
+        let last = out.last_mut().expect("the head is there");
+        if last.chars().count() + 1 + parameter.chars().count() <= WIDTH {
+            last.push(' ');
+            last.push_str(parameter);
+        } else {
+            out.push(format!("{align}{parameter}"));
+        }
+    }
+    out
 }
 
 /// Rustdoc's intra-doc links as plain text: `[`x`](target)` and `[x](target)` become
@@ -253,11 +434,8 @@ pub fn version_macros(version: &str) -> String {
     };
     format!(
         "
-/*
- * The version of this header, from the library's Cargo.toml. The library says its own
- * with sphera_version(); check at start-up that the two agree with
- * sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR).
- */
+/* The header's version (the library's Cargo.toml); check at start-up that the library agrees
+ * with sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR). */
 #define SPHERA_VERSION_MAJOR {major}
 #define SPHERA_VERSION_MINOR {minor}
 #define SPHERA_VERSION_PATCH {patch}

@@ -9,8 +9,9 @@ use sphera_tools::repository_root;
 fn exported_functions(header: &str) -> Vec<String> {
     let mut names: Vec<String> = Vec::new();
     for line in header.lines() {
-        let line = line.trim_start();
-        if line.starts_with('*') || line.starts_with("/*") || line.starts_with("#") {
+        // The code before any trailing comment.
+        let line = line.trim_start().split("/*").next().unwrap_or_default();
+        if line.starts_with('*') || line.starts_with("#") {
             continue;
         }
         let Some(start) = line.find("sphera_") else {

@@ -535,9 +535,7 @@ fn struct_layouts_match_rust() {
         ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
     };
     use sphera::polygon::light::{LightSample, Material, PolygonLight};
-    use sphera::polygon::{
-        ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
-    };
+    use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon};
     use sphera::sg::{Asg, Sg};
     use sphera::sphere::{
         Cap, GgxPivot, SolidAngleSphere, SphereLightSampler, SphereLightShading, SptdInCap,
@@ -594,12 +592,12 @@ fn struct_layouts_match_rust() {
             align_of::<ClippedSolidAnglePolygon>(),
         ),
         (
-            "sizeof(SpheraProjectedSolidAnglePolygon)",
-            size_of::<ProjectedSolidAnglePolygon>(),
+            "sizeof(SpheraProjectedPolygon)",
+            size_of::<ProjectedPolygon>(),
         ),
         (
-            "alignof(SpheraProjectedSolidAnglePolygon)",
-            align_of::<ProjectedSolidAnglePolygon>(),
+            "alignof(SpheraProjectedPolygon)",
+            align_of::<ProjectedPolygon>(),
         ),
         (
             "sizeof(SpheraArvoProjectedPolygon)",
@@ -704,7 +702,7 @@ fn struct_layouts_match_rust() {
         "SpheraHartBilinearPolygon",
         "SpheraHartBiquadraticPolygon",
         "SpheraClippedSolidAnglePolygon",
-        "SpheraProjectedSolidAnglePolygon",
+        "SpheraProjectedPolygon",
         "SpheraArvoProjectedPolygon",
         "SpheraGgxBrdf",
         "SpheraLtc",

@@ -23,7 +23,7 @@ use sphera::polygon::baselines::{
     ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
 };
 use sphera::polygon::light::{Material, MisHeuristic, PolygonLight};
-use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon};
+use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon};
 use sphera::sphere::{
     Cap, SolidAngleSphere, SphereLightSampler, SphereLightShading, Sptd, SptdInCap,
 };
@@ -273,9 +273,9 @@ fn corrupted_polygon_values_neither_hang_nor_panic() {
             );
         }
         polygon_case!(
-            "ProjectedSolidAnglePolygon",
-            ProjectedSolidAnglePolygon,
-            ProjectedSolidAnglePolygon::new(v).unwrap(),
+            "ProjectedPolygon",
+            ProjectedPolygon,
+            ProjectedPolygon::new(v).unwrap(),
             |p| p.projected_solid_angle()
                 + p.sample_fast([0.3, 0.6]).pdf
                 + p.sample_with_iterations([0.9, 0.2], 3).pdf
@@ -285,9 +285,9 @@ fn corrupted_polygon_values_neither_hang_nor_panic() {
             .map(|&x| Vec3::new(0.1, 0.2, 1.0) + 1e-4 * x)
             .collect();
         polygon_case!(
-            "ProjectedSolidAnglePolygon (small)",
-            ProjectedSolidAnglePolygon,
-            ProjectedSolidAnglePolygon::new(&tiny).unwrap(),
+            "ProjectedPolygon (small)",
+            ProjectedPolygon,
+            ProjectedPolygon::new(&tiny).unwrap(),
             |p| p.projected_solid_angle()
         );
         if let Some(arvo) = ArvoProjectedPolygon::new(v) {

@@ -38,8 +38,9 @@ fn every_name_in_the_header_is_prefixed() {
             .find_map(|p| line.strip_prefix(p))
         {
             names.push(rest.split_whitespace().next().unwrap_or("").to_string());
-        } else if !line.starts_with('*') && !line.starts_with("/*") && line.contains('(') {
-            // A declaration `type name(...`: the identifier right before the first '('.
+        } else if !line.starts_with('*') && line.split("/*").next().unwrap().contains('(') {
+            // A declaration `type name(...` (before any trailing comment): the identifier
+            // right before the first '('.
             let before = &line[..line.find('(').unwrap()];
             if let Some(name) = before
                 .split(|c: char| !(c.is_alphanumeric() || c == '_'))
@@ -68,7 +69,7 @@ fn every_name_in_the_header_is_prefixed() {
         "a rustdoc link is left in the header"
     );
     assert!(
-        header.contains("typedef struct SpheraProjectedSolidAnglePolygon {\n  /**\n   * Opaque"),
+        header.contains("typedef struct SpheraProjectedPolygon {\n  uint32_t opaque["),
         "prepared values are not opaque"
     );
 }

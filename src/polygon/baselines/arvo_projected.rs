@@ -1,6 +1,6 @@
 //! Arvo's projected solid angle sampling of polygons, the baseline of Peters 2021 (Table
 //! A.2, "Proj., Arvo"): the same sectors and areas as
-//! [`ProjectedSolidAnglePolygon`](crate::polygon::ProjectedSolidAnglePolygon), but the
+//! [`ProjectedPolygon`](crate::polygon::ProjectedPolygon), but the
 //! azimuth within a sector comes from inverting its area function `F(φ)` numerically, as
 //! Arvo (2001) does, instead of Peters' homogeneous quadratics.
 //!
@@ -17,7 +17,7 @@
 
 use super::super::ellipse::{add2, det2, dot2, rotate, scale2};
 use super::super::ellipse_sector::{AreaPrecision, point_between_ellipses};
-use super::super::projected::ProjectedSolidAnglePolygon;
+use super::super::projected::ProjectedPolygon;
 use crate::sample::{clamp_random, select_piece};
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
 
@@ -28,7 +28,7 @@ pub const NEWTON_STEPS: u32 = 8;
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ArvoProjectedPolygon {
-    sectors: ProjectedSolidAnglePolygon,
+    sectors: ProjectedPolygon,
     /// The angle of each sector in radians.
     sector_angle: [f32; MAX_POLYGON_VERTICES],
 }
@@ -42,12 +42,12 @@ impl Default for ArvoProjectedPolygon {
 impl ArvoProjectedPolygon {
     /// The state of a polygon that could not be prepared: samples have `pdf == 0`.
     pub const EMPTY: Self = Self {
-        sectors: ProjectedSolidAnglePolygon::EMPTY,
+        sectors: ProjectedPolygon::EMPTY,
         sector_angle: [0.0; MAX_POLYGON_VERTICES],
     };
 
     /// Prepares the polygon (same input and rejections as
-    /// [`ProjectedSolidAnglePolygon::new`], but without the small-polygon alternative).
+    /// [`ProjectedPolygon::new`], but without the small-polygon alternative).
     #[must_use]
     pub fn new(vertices: &[Vec3]) -> Option<Self> {
         let mut polygon = Self::EMPTY;
