@@ -435,6 +435,16 @@ typedef struct SpheraSptdInCap {
 } SpheraSptdInCap;
 
 /**
+ * Two caps prepared for uniform sampling of their union.
+ */
+typedef struct SpheraCapUnion {
+  /**
+   * Opaque: 160 bytes that only the functions preparing a SpheraCapUnion write; the layout is private and may change between versions.
+   */
+  uint32_t opaque[40];
+} SpheraCapUnion;
+
+/**
  * The uniform SPTD fitted to GGX `f cos θ` at one view and roughness.
  */
 typedef struct SpheraGgxPivot {
@@ -1820,6 +1830,50 @@ float sphera_cap_intersection_solid_angle(struct SpheraCap a, struct SpheraCap b
 float sphera_cap_intersection_solid_angle_oat_sander(struct SpheraCap a, struct SpheraCap b);
 
 /**
+ * Prepares uniform sampling of `a ∪ b` (two lights' caps seen from one point, for
+ * example). Returns `false` (and writes a union without samples, pdf 0, solid angle 0)
+ * when the union is empty or `1 / Ω(A ∪ B)` overflows. Does nothing and returns `false`
+ * when `out` is null.
+ *
+ * # Safety
+ *
+ * `out` must be null or point to writable memory for one `SpheraCapUnion`.
+ */
+bool sphera_cap_union_prepare(struct SpheraCapUnion *out, struct SpheraCap a, struct SpheraCap b);
+
+/**
+ * Draws a direction uniformly in `A ∪ B` (`u0`, `u1` clamped into [0, 1)), pdf
+ * `1 / Ω(A ∪ B)`. pdf 0 (no sample) for a null pointer or a failed prepare.
+ *
+ * # Safety
+ *
+ * `prepared` must be null or point to a `SpheraCapUnion` written by
+ * `sphera_cap_union_prepare`.
+ */
+struct SpheraSample sphera_cap_union_sample(const struct SpheraCapUnion *prepared,
+                                            float u0,
+                                            float u1);
+
+/**
+ * The density of `sphera_cap_union_sample` at `dir`: `1 / Ω(A ∪ B)` inside either cap,
+ * 0 outside, for a zero or non-finite `dir` and for a null pointer.
+ *
+ * # Safety
+ *
+ * As for `sphera_cap_union_sample`.
+ */
+float sphera_cap_union_pdf(const struct SpheraCapUnion *prepared, struct SpheraVec3 dir);
+
+/**
+ * `Ω(A ∪ B)` in steradians, in [0, 4π]; 0 for a null pointer or a failed prepare.
+ *
+ * # Safety
+ *
+ * As for `sphera_cap_union_sample`.
+ */
+float sphera_cap_union_solid_angle(const struct SpheraCapUnion *prepared);
+
+/**
  * The pivot transformation `g(dir)`: the second intersection with the unit sphere of
  * the line from `dir` (normalised) through `pivot`. `|pivot| ≥ 1` is clamped to
  * `1 − 2⁻²⁰`; a non-finite pivot counts as the origin (`g(dir) = −dir`); a zero or
@@ -1880,6 +1934,30 @@ float sphera_sptd_integral_over_cap_intersection(struct SpheraVec3 pivot,
                                                  struct SpheraVec3 cosine_axis,
                                                  struct SpheraCap a,
                                                  struct SpheraCap b);
+
+/**
+ * `∫_{A ∪ B} D = ∫_{g(A) ∪ g(B)} D_std` (Eq. 11), in [0, 1], exact, as
+ * `∫_A D + ∫_B D − ∫_{A ∩ B} D`; an empty cap is the empty set. 0 when `base` is not
+ * `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`, and when a cap is malformed
+ * (non-finite or zero axis, NaN `one_minus_cos`).
+ */
+float sphera_sptd_integral_over_cap_union(struct SpheraVec3 pivot,
+                                          uint32_t base,
+                                          struct SpheraVec3 cosine_axis,
+                                          struct SpheraCap a,
+                                          struct SpheraCap b);
+
+/**
+ * `∫ D` over the complement of `cap`, `∫_{comp g(C)} D_std` (Eq. 11), in [0, 1], exact:
+ * `1 − ∫_C D` (both bases integrate to 1 over the sphere), computed over the complement
+ * cap so that a small hole keeps its relative precision; 1 for the empty cap. 0 when
+ * `base` is not `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`, and when the cap
+ * is malformed (non-finite or zero axis, NaN `one_minus_cos`).
+ */
+float sphera_sptd_integral_over_cap_complement(struct SpheraVec3 pivot,
+                                               uint32_t base,
+                                               struct SpheraVec3 cosine_axis,
+                                               struct SpheraCap cap);
 
 /**
  * Prepares the SPTD restricted to `cap` and normalised there: samples `g(ω_i)` with

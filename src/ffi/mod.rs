@@ -56,6 +56,8 @@ mod phase;
 
 mod cap;
 
+mod cap_union;
+
 mod pivot;
 
 mod sptd;
@@ -72,6 +74,7 @@ pub use arvo_polygon::*;
 pub use arvo_projected_polygon::*;
 pub use asg::*;
 pub use cap::*;
+pub use cap_union::*;
 pub use clipped_solid_angle_polygon::*;
 pub use frame::*;
 pub use ggx::*;

@@ -85,6 +85,36 @@ pub extern "C" fn sphera_sptd_integral_over_cap_intersection(
     sptd(pivot, base, cosine_axis).map_or(0.0, |d| d.integral_over_cap_intersection(&a, &b))
 }
 
+/// `∫_{A ∪ B} D = ∫_{g(A) ∪ g(B)} D_std` (Eq. 11), in [0, 1], exact, as
+/// `∫_A D + ∫_B D − ∫_{A ∩ B} D`; an empty cap is the empty set. 0 when `base` is not
+/// `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`, and when a cap is malformed
+/// (non-finite or zero axis, NaN `one_minus_cos`).
+#[unsafe(no_mangle)]
+pub extern "C" fn sphera_sptd_integral_over_cap_union(
+    pivot: SpheraVec3,
+    base: u32,
+    cosine_axis: SpheraVec3,
+    a: Cap,
+    b: Cap,
+) -> f32 {
+    sptd(pivot, base, cosine_axis).map_or(0.0, |d| d.integral_over_cap_union(&a, &b))
+}
+
+/// `∫ D` over the complement of `cap`, `∫_{comp g(C)} D_std` (Eq. 11), in [0, 1], exact:
+/// `1 − ∫_C D` (both bases integrate to 1 over the sphere), computed over the complement
+/// cap so that a small hole keeps its relative precision; 1 for the empty cap. 0 when
+/// `base` is not `SPHERA_SPTD_UNIFORM` or `SPHERA_SPTD_CLAMPED_COSINE`, and when the cap
+/// is malformed (non-finite or zero axis, NaN `one_minus_cos`).
+#[unsafe(no_mangle)]
+pub extern "C" fn sphera_sptd_integral_over_cap_complement(
+    pivot: SpheraVec3,
+    base: u32,
+    cosine_axis: SpheraVec3,
+    cap: Cap,
+) -> f32 {
+    sptd(pivot, base, cosine_axis).map_or(0.0, |d| d.integral_over_cap_complement(&cap))
+}
+
 /// Prepares the SPTD restricted to `cap` and normalised there: samples `g(ω_i)` with
 /// `ω_i` from the base inside `g(C)`, density `D(ω)/∫_C D` inside `C`. For the
 /// clamped-cosine base this holds for every cap, also when `g(C)` crosses the base's

@@ -68,6 +68,7 @@ fn opaque_types() -> Vec<Opaque> {
     use sphera::polygon::{
         ClippedSolidAnglePolygon, LtcPolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
     };
+    use sphera::sphere::CapUnion;
     use sphera::sphere::light::{SphereLightSampler, SphereLightShading};
     use sphera::sphere::sptd::SptdInCap;
     vec![
@@ -84,6 +85,7 @@ fn opaque_types() -> Vec<Opaque> {
         opaque::<LtcPolygon>("SpheraLtcPolygon"),
         opaque::<PolygonLight>("SpheraPolygonLight"),
         opaque::<SptdInCap>("SpheraSptdInCap"),
+        opaque::<CapUnion>("SpheraCapUnion"),
         opaque::<SphereLightShading>("SpheraSphereLightShading"),
         opaque::<SphereLightSampler>("SpheraSphereLightSampler"),
     ]

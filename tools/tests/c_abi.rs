@@ -539,7 +539,9 @@ fn struct_layouts_match_rust() {
         ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon,
     };
     use sphera::sg::{Asg, Sg};
-    use sphera::sphere::{Cap, GgxPivot, SphereLightSampler, SphereLightShading, SptdInCap};
+    use sphera::sphere::{
+        Cap, CapUnion, GgxPivot, SphereLightSampler, SphereLightShading, SptdInCap,
+    };
     use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, VsglTexel};
 
     let expected: Vec<(&str, usize)> = vec![
@@ -630,6 +632,8 @@ fn struct_layouts_match_rust() {
         ("offsetof(SpheraCap, sin2)", offset_of!(Cap, sin2)),
         ("sizeof(SpheraSptdInCap)", size_of::<SptdInCap>()),
         ("alignof(SpheraSptdInCap)", align_of::<SptdInCap>()),
+        ("sizeof(SpheraCapUnion)", size_of::<CapUnion>()),
+        ("alignof(SpheraCapUnion)", align_of::<CapUnion>()),
         ("sizeof(SpheraGgxPivot)", size_of::<GgxPivot>()),
         (
             "offsetof(SpheraGgxPivot, albedo)",
@@ -702,6 +706,7 @@ fn struct_layouts_match_rust() {
         "SpheraPolygonLight",
         "SpheraCap",
         "SpheraSptdInCap",
+        "SpheraCapUnion",
         "SpheraSphereLightSampler",
         "SpheraVpl",
         "SpheraVsglTexel",

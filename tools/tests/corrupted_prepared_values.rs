@@ -24,7 +24,7 @@ use sphera::polygon::baselines::{
 };
 use sphera::polygon::light::{Material, MisHeuristic, PolygonLight};
 use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedSolidAnglePolygon, SolidAnglePolygon};
-use sphera::sphere::{Cap, SphereLightSampler, SphereLightShading, Sptd, SptdInCap};
+use sphera::sphere::{Cap, CapUnion, SphereLightSampler, SphereLightShading, Sptd, SptdInCap};
 
 /// The words written over each word of a prepared value in turn.
 const HOSTILE_WORDS: [u32; 12] = [
@@ -382,6 +382,18 @@ fn corrupted_sphere_values_neither_hang_nor_panic() {
     }
     assert!(in_caps >= 2, "only {in_caps} SPTDs in a cap prepared");
     assert_eq!(clipped, 1, "the clipped sampler was not corrupted");
+    // The union of two lights' caps (issue 20, 1): its `B ∩ Ā` piece is a bounded
+    // Newton iteration.
+    let other = Cap::from_sphere(Vec3::new(0.8, 0.1, 2.0), 0.6);
+    let union = CapUnion::new(&cap, &other).expect("the union prepares");
+    corrupt_every_word("CapUnion", union, |s: &CapUnion| {
+        let mut sum = s.solid_angle();
+        for u in US {
+            let x = s.sample_uniform(u);
+            sum += x.pdf + x.dir.x + s.pdf(x.dir) + s.invert(x.dir).map_or(0.0, |u| u[0]);
+        }
+        std::hint::black_box(sum)
+    });
     let wo = Vec3::new(0.4, 0.0, 0.9).normalize();
     let sampler = SphereLightSampler::new(Vec3::new(0.3, 0.2, 2.0), 0.5, wo, 0.4).unwrap();
     corrupt_every_word("SphereLightSampler", sampler, |s: &SphereLightSampler| {
