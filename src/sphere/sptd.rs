@@ -14,7 +14,10 @@
 //! Because `g` is an involution that maps caps to caps ([`pivot_cap`]), the integral of
 //! `D` over a cap `C` is the integral of the base over the image cap (Eq. 10), and over
 //! an intersection of caps, the integral of the base over the intersection of the
-//! images (Eq. 11, `g(A ∩ B) = g(A) ∩ g(B)` for a bijection). Sampling `D` inside `C`
+//! images (Eq. 11, `g(A ∩ B) = g(A) ∩ g(B)` for a bijection); over a union, the
+//! paper's algebra `∫_A + ∫_B − ∫_{A ∩ B}`, and over a complement, the integral over
+//! the complement of the image (`g(Ā)` is the complement of `g(A)`, a cap; both bases
+//! integrate to 1 over the sphere, so it is `1 − ∫_A D`). Sampling `D` inside `C`
 //! draws `ω_i` from the base restricted to `g(C)` and returns `g(ω_i)`, with density
 //! `D(ω) / ∫_C D` ([`SptdInCap`]).
 //!
