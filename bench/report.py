@@ -93,8 +93,9 @@ FULL = {"width": 256, "height": 192, "ref_spp": 512, "spp": 16, "budget_ms": 150
 QUICK = {"width": 64, "height": 48, "ref_spp": 128, "spp": 4, "budget_ms": 150.0}
 # Full mode without --ref-spp: scenes whose reference technique is efficient enough for
 # fewer passes (spheres: sphere_sptd's estimator, whose reference noise at 256 passes is
-# about half of sphere_cap_brdf's at 512), which keeps the full report near 4.5 minutes.
-FULL_REF_SPP = {"spheres": 256}
+# about half of sphere_cap_brdf's at 512; overlap: the same reference), which keeps the
+# full report near 4.5 minutes.
+FULL_REF_SPP = {"spheres": 256, "overlap": 256}
 REF_SEED = 1          # seed of reference renders
 RUN_SEED = 2          # seed of technique renders (independent of the reference's noise)
 BASELINE = "turk"     # technique the speed-up is relative to

@@ -15,7 +15,11 @@
  * 4. The `occlusion` well: specular occlusion by SPTDs in a traced bent cone (Eq. 23)
  *    keeps out the light that the wall hides from the floor in front of the well, where
  *    the separable approximation (Eq. 21-22) lets it through.
- * 5. One unoccluded quad light over a white Lambert floor: projected solid angle
+ * 5. Two intersecting sphere lights of equal radiance (`overlap`) sampled as one light:
+ *    uniformly in the union of their caps (sphere_union) and by the mixture of either
+ *    light's cap (sphere_mixture) agree with a cap sample per light (sphere_cap), and
+ *    the union has the lower variance at equal samples.
+ * 6. One unoccluded quad light over a white Lambert floor: projected solid angle
  *    sampling gives every pixel the same value in every pass, so the per-pixel
  *    variance is zero up to float rounding (the central claim of Peters 2021), while
  *    solid angle sampling of the same scene is visibly noisy (so the test can fail).
