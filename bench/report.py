@@ -43,7 +43,7 @@ import time
 import indirect_report
 
 SCENES = ("cornell", "polygons", "polygons@8", "hard", "glossy", "spheres", "slab",
-          "occlusion")  # name@K: K per light
+          "occlusion", "overlap")  # name@K: K per light
 # The techniques that combine two samples by MIS (BRDF or LTC sampling with projected
 # solid angle sampling) matter on glossy surfaces: they run on the `glossy` scene, with
 # the light samplers they are built from; the other scenes compare the light samplers.
@@ -64,7 +64,13 @@ SLAB_TECHNIQUES = ("sphere_cap",) + MEDIUM_TECHNIQUES
 # (Eq. 21-22), beside the ray-traced estimators.
 OCCLUSION_TECHNIQUES = ("sphere_cap", "sphere_cap_brdf", "sphere_realtime",
                         "sphere_occlusion", "sphere_occlusion_separable")
-SCENE_BASELINE = {"spheres": "sphere_cap", "slab": "sphere_cap", "occlusion": "sphere_cap"}
+# Sets of caps (Dupuy et al. 2017, Sec. 4; issue 20, 1): the `overlap` scene, two
+# intersecting sphere lights of equal radiance sampled as one light, uniformly in the
+# union of their caps (sphere_union) against picking one light with probability 1/2
+# (sphere_mixture, the baseline of its speed-up), beside a cap sample per light.
+OVERLAP_TECHNIQUES = ("sphere_cap", "sphere_mixture", "sphere_union")
+SCENE_BASELINE = {"spheres": "sphere_cap", "slab": "sphere_cap", "occlusion": "sphere_cap",
+                  "overlap": "sphere_mixture"}
 
 
 def techniques_for(scene, techs):
@@ -78,15 +84,18 @@ def techniques_for(scene, techs):
         return [t for t in techs if t[0] in SLAB_TECHNIQUES]
     if name == "occlusion":
         return [t for t in techs if t[0] in OCCLUSION_TECHNIQUES]
+    if name == "overlap":
+        return [t for t in techs if t[0] in OVERLAP_TECHNIQUES]
     return [t for t in techs
             if t[0] not in MIS_TECHNIQUES + SPHERE_TECHNIQUES + MEDIUM_TECHNIQUES
-            + OCCLUSION_TECHNIQUES]
+            + OCCLUSION_TECHNIQUES + OVERLAP_TECHNIQUES]
 FULL = {"width": 256, "height": 192, "ref_spp": 512, "spp": 16, "budget_ms": 1500.0}
 QUICK = {"width": 64, "height": 48, "ref_spp": 128, "spp": 4, "budget_ms": 150.0}
 # Full mode without --ref-spp: scenes whose reference technique is efficient enough for
 # fewer passes (spheres: sphere_sptd's estimator, whose reference noise at 256 passes is
-# about half of sphere_cap_brdf's at 512), which keeps the full report near 4.5 minutes.
-FULL_REF_SPP = {"spheres": 256}
+# about half of sphere_cap_brdf's at 512; overlap: the same reference), which keeps the
+# full report near 4.5 minutes.
+FULL_REF_SPP = {"spheres": 256, "overlap": 256}
 REF_SEED = 1          # seed of reference renders
 RUN_SEED = 2          # seed of technique renders (independent of the reference's noise)
 BASELINE = "turk"     # technique the speed-up is relative to
@@ -448,7 +457,7 @@ def write_html(path, info, results, s):
     width = s["width"] * max(1, round(192 / s["width"]))
     parts = [f"<p>{html.escape(k)}: {html.escape(v)}</p>" for k, v in info]
     parts.append("<p>" + EXPLANATION.format(spp=s["spp"], budget=s["budget_ms"],
-                                            base=BASELINE + " (sphere_cap on spheres)") + "</p>")
+                                            base=BASELINE + " (sphere_cap on the sphere-light scenes, sphere_mixture on overlap)") + "</p>")
     for res in results:
         sc, rows = file_name(res["scene"]), res["rows"]
         top = [figure(f"{sc}-reference.png", f"reference ({res['ref_spp']} passes)", width)]
@@ -489,7 +498,7 @@ def write_markdown(path, info, results):
     lines = ["# sphera: speed versus error of light sampling", ""]
     lines += [f"- {k}: {v}" for k, v in info]
     lines += ["", f"MSE corrected = max(RMSE^2 - reference variance of the mean, 0); "
-              f"efficiency = 1 / (MSE corrected x seconds); speed-up relative to {BASELINE} (sphere_cap on spheres).",
+              f"efficiency = 1 / (MSE corrected x seconds); speed-up relative to {BASELINE} (sphere_cap on the sphere-light scenes, sphere_mixture on overlap).",
               ""]
     for res in results:
         lines += [f"## {res['scene']}", "", md_table(res["rows"]), ""]

@@ -761,6 +761,45 @@ static void sphere_suite(void) {
       EXPECT(exact <= smaller * 1.0001f + 1e-6f);
     }
   }
+  /* Unions of all pairs: a failed prepare writes a union without samples; every sample
+   * is finite, inside the union and has pdf(dir) == pdf bit for bit. */
+  for (k = 0; k < cap_count; k++) {
+    for (j = 0; j < cap_count; j++) {
+      SpheraCapUnion u;
+      int ok;
+      float omega;
+      memset(&u, 0xff, sizeof u);
+      ok = sphera_cap_union_prepare(&u, caps[k], caps[j]);
+      omega = sphera_cap_union_solid_angle(&u);
+      calls += 2;
+      expect_words_not_nan(&u, sizeof u);
+      EXPECT(isfinite(omega) && omega >= 0.0f && omega <= 12.566371f * 1.0001f);
+      if (!ok) EXPECT(omega == 0.0f);
+      for (d = 0; d < DIRECTION_COUNT; d++) {
+        expect_density(sphera_cap_union_pdf(&u, directions[d]));
+        calls++;
+      }
+      for (d = 0; d < pair_count(0); d++) {
+        float u0, u1, p;
+        SpheraSample s;
+        pair(d, 0, &u0, &u1);
+        s = sphera_cap_union_sample(&u, u0, u1);
+        calls++;
+        expect_sample(s);
+        if (!ok) EXPECT(is_no_sample(s));
+        if (s.pdf > 0.0f) {
+          p = sphera_cap_union_pdf(&u, s.dir);
+          calls++;
+          EXPECT(memcmp(&p, &s.pdf, sizeof p) == 0);
+        }
+      }
+    }
+  }
+  EXPECT(!sphera_cap_union_prepare(NULL, caps[0], caps[1]));
+  EXPECT(is_no_sample(sphera_cap_union_sample(NULL, 0.5f, 0.5f)));
+  EXPECT(sphera_cap_union_pdf(NULL, directions[0]) == 0.0f);
+  EXPECT(sphera_cap_union_solid_angle(NULL) == 0.0f);
+  calls += 4;
   /* Pivots of norm 0, 1 - ulp, 1, 2, NaN, inf, denormal, in every direction. */
   {
     float norms[8] = {0.0f, 0.0f, 1.0f, 2.0f, 0.0f, 0.0f, 1e-45f, 0.5f};
@@ -948,10 +987,16 @@ static void sptd_suite(void) {
           float whole = sphera_sptd_integral_over_cap(pivots[k], bases[b], axis, hard_caps[c]);
           float both = sphera_sptd_integral_over_cap_intersection(
               pivots[k], bases[b], axis, hard_caps[c], hard_caps[(c + 3) % hard_cap_count]);
-          calls += 2;
+          float either = sphera_sptd_integral_over_cap_union(
+              pivots[k], bases[b], axis, hard_caps[c], hard_caps[(c + 3) % hard_cap_count]);
+          float outside = sphera_sptd_integral_over_cap_complement(pivots[k], bases[b], axis,
+                                                                   hard_caps[c]);
+          calls += 4;
           EXPECT(isfinite(whole) && whole >= 0.0f && whole <= 1.00001f);
           EXPECT(isfinite(both) && both >= 0.0f && both <= 1.00001f);
-          if (b >= 2) EXPECT(whole == 0.0f && both == 0.0f);
+          EXPECT(isfinite(either) && either >= 0.0f && either <= 1.00001f);
+          EXPECT(isfinite(outside) && outside >= 0.0f && outside <= 1.00001f);
+          if (b >= 2) EXPECT(whole == 0.0f && both == 0.0f && either == 0.0f && outside == 0.0f);
           memset(&in_cap, 0xff, sizeof in_cap);
           ok = sphera_sptd_in_cap_prepare(&in_cap, pivots[k], bases[b], axis, hard_caps[c]);
           calls++;

@@ -1,5 +1,6 @@
 /* C ABI tests of sphere caps and the pivot transformation (sphera_cap_*, sphera_pivot_*),
- * and of spheres prepared for solid angle sampling (sphera_solid_angle_sphere_*). */
+ * of spheres prepared for solid angle sampling (sphera_solid_angle_sphere_*) and of unions
+ * of caps (sphera_cap_union_*). */
 #include <string.h>
 
 #include "check.h"
@@ -86,6 +87,70 @@ static void check_intersections(void) {
               2.0 * PI_D * ((1.0 - (double)cos_small) - hole), 1e-5);
     CHECK_REL(sphera_cap_intersection_solid_angle(small, wide),
               2.0 * PI_D * ((1.0 - (double)cos_small) - hole), 1e-5);
+  }
+}
+
+/* Uniform sampling of the union of two caps: pdf 1/Omega(A u B) inside either cap,
+ * Omega(A u B) = Omega(A) + Omega(B) - Omega(A n B), the samples inside the union with
+ * pdf(dir) == pdf, the share of samples in A against Omega(A)/Omega(A u B), null
+ * pointers and bad input. */
+static void check_union(void) {
+  SpheraCap a = sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, 1.0f), 0.8f);
+  SpheraCap b = sphera_cap_from_axis_cos(vec3(0.6f, 0.0f, 0.8f), 0.7f);
+  SpheraCap far = sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, -1.0f), 0.9f);
+  SpheraCapUnion u;
+  double expected = (double)sphera_cap_solid_angle(a) + sphera_cap_solid_angle(b) -
+                    sphera_cap_intersection_solid_angle(a, b);
+  const float bad[] = {NAN, INFINITY, -INFINITY, 0.0f, -1.0f, 1e30f, 3e38f, 1e-45f};
+  const int nbad = (int)(sizeof(bad) / sizeof(bad[0]));
+  int i, j, in_a = 0, n = 0;
+  CHECK(sphera_cap_union_prepare(&u, a, b));
+  CHECK_REL(sphera_cap_union_solid_angle(&u), expected, 1e-5);
+  for (i = 0; i < 100; i++) {
+    for (j = 0; j < 100; j++) {
+      SpheraSample s = sphera_cap_union_sample(&u, (i + 0.5f) / 100.0f, (j + 0.5f) / 100.0f);
+      CHECK(s.pdf > 0.0f);
+      CHECK(sphera_cap_contains(a, s.dir) || sphera_cap_contains(b, s.dir));
+      CHECK(sphera_cap_union_pdf(&u, s.dir) == s.pdf);
+      in_a += sphera_cap_contains(a, s.dir);
+      n++;
+    }
+  }
+  CHECK_REL(1.0f / sphera_cap_union_pdf(&u, a.axis), expected, 1e-5);
+  CHECK_ABS((double)in_a / n, sphera_cap_solid_angle(a) / expected, 0.02);
+  CHECK(sphera_cap_union_pdf(&u, vec3(0.0f, 0.0f, -1.0f)) == 0.0f);
+  /* Disjoint caps: the sum; a cap and its complement: the sphere. */
+  CHECK(sphera_cap_union_prepare(&u, a, far));
+  CHECK_REL(sphera_cap_union_solid_angle(&u), 2.0 * PI_D * (0.2 + 0.1), 1e-5);
+  CHECK(sphera_cap_union_prepare(&u, a, sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, -1.0f), -0.8f)));
+  CHECK_REL(sphera_cap_union_solid_angle(&u), 4.0 * PI_D, 1e-5);
+  /* Null pointers and empty unions. */
+  CHECK(!sphera_cap_union_prepare(NULL, a, b));
+  CHECK(sphera_cap_union_sample(NULL, 0.5f, 0.5f).pdf == 0.0f);
+  CHECK(sphera_cap_union_pdf(NULL, a.axis) == 0.0f);
+  CHECK(sphera_cap_union_solid_angle(NULL) == 0.0f);
+  memset(&u, 0xff, sizeof u);
+  CHECK(!sphera_cap_union_prepare(&u, sphera_cap_from_sphere(a.axis, -1.0f),
+                                  sphera_cap_from_sphere(a.axis, NAN)));
+  CHECK(sphera_cap_union_sample(&u, 0.5f, 0.5f).pdf == 0.0f);
+  CHECK(sphera_cap_union_pdf(&u, a.axis) == 0.0f);
+  CHECK(sphera_cap_union_solid_angle(&u) == 0.0f);
+  /* Bad input anywhere: finite. */
+  for (i = 0; i < nbad; i++) {
+    for (j = 0; j < nbad; j++) {
+      SpheraVec3 v = vec3(bad[i], 0.5f, bad[j]);
+      SpheraCap garbage;
+      SpheraSample s;
+      garbage.axis = v;
+      garbage.one_minus_cos = bad[j];
+      garbage.one_plus_cos = bad[i];
+      garbage.sin2 = bad[j];
+      sphera_cap_union_prepare(&u, garbage, b);
+      s = sphera_cap_union_sample(&u, bad[i], bad[j]);
+      CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf) && s.pdf >= 0.0f);
+      CHECK(isfinite(sphera_cap_union_pdf(&u, v)));
+      CHECK(isfinite(sphera_cap_union_solid_angle(&u)));
+    }
   }
 }
 
@@ -214,6 +279,7 @@ int main(void) {
   check_good_caps();
   check_solid_angle_sphere();
   check_intersections();
+  check_union();
   check_pivot();
   check_bad_input();
   return check_summary();

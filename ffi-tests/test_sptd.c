@@ -52,6 +52,83 @@ static void check_sptd_in_cap(void) {
             sphera_sptd_integral_over_cap(pivot, SPHERA_SPTD_CLAMPED_COSINE, z, cap), 1e-4);
 }
 
+/* Unions and complements of caps (Eq. 11, issue 20, 1): the values against closed
+ * forms in double (pivot at the origin: g is the antipodal map, so the uniform base
+ * integrates to the solid angle over 4 pi; coaxial caps), the set identities, and
+ * malformed caps, an unknown base and non-finite input giving 0. */
+static void check_unions_and_complements(void) {
+  SpheraVec3 origin = vec3(0.0f, 0.0f, 0.0f), pivot = vec3(0.3f, 0.0f, 0.6f);
+  SpheraVec3 z = vec3(0.0f, 0.0f, 1.0f);
+  SpheraCap a = sphera_cap_from_axis_cos(z, 0.5f);                      /* 1 - cos = 0.5 */
+  SpheraCap inner = sphera_cap_from_axis_cos(z, 0.8f);                  /* inside a */
+  SpheraCap below = sphera_cap_from_axis_cos(vec3(0.0f, 0.0f, -1.0f), 0.9f); /* disjoint */
+  SpheraCap light = sphera_cap_from_sphere(vec3(1.0f, 0.5f, 3.0f), 1.0f);
+  SpheraCap malformed = a;
+  const uint32_t bases[2] = {SPHERA_SPTD_UNIFORM, SPHERA_SPTD_CLAMPED_COSINE};
+  const float bad[] = {NAN, INFINITY, -INFINITY, 0.0f, -1.0f, 1e30f, 3e38f, 1e-45f};
+  const int n = (int)(sizeof(bad) / sizeof(bad[0]));
+  int b, i, k;
+  /* Uniform base, pivot at the origin: solid angles over 4 pi. */
+  CHECK_REL(sphera_sptd_integral_over_cap_union(origin, SPHERA_SPTD_UNIFORM, z, a, inner),
+            0.5 / 2.0, 1e-6);
+  CHECK_REL(sphera_sptd_integral_over_cap_union(origin, SPHERA_SPTD_UNIFORM, z, a, below),
+            (0.5 + 0.1) / 2.0, 1e-5);
+  CHECK_REL(sphera_sptd_integral_over_cap_complement(origin, SPHERA_SPTD_UNIFORM, z, a),
+            1.5 / 2.0, 1e-6);
+  /* Clamped cosine about z, pivot at the origin: the images lie about -z, a below the
+   * horizon (0) and `below`'s image the cap of 1 - cos = 0.1 about z: 1 - cos^2 = 0.19. */
+  CHECK_ABS(sphera_sptd_integral_over_cap_union(origin, SPHERA_SPTD_CLAMPED_COSINE, z, a, below),
+            0.19, 1e-6);
+  CHECK_ABS(sphera_sptd_integral_over_cap_complement(origin, SPHERA_SPTD_CLAMPED_COSINE, z, below),
+            1.0 - 0.19, 1e-6);
+  for (b = 0; b < 2; b++) {
+    float in_a = sphera_sptd_integral_over_cap(pivot, bases[b], z, a);
+    float in_light = sphera_sptd_integral_over_cap(pivot, bases[b], z, light);
+    float both = sphera_sptd_integral_over_cap_intersection(pivot, bases[b], z, a, light);
+    SpheraCap empty = sphera_cap_from_sphere(vec3(0.0f, 0.0f, 1.0f), -1.0f);
+    CHECK_ABS(sphera_sptd_integral_over_cap_union(pivot, bases[b], z, a, light),
+              in_a + in_light - both, 2e-6);
+    CHECK_ABS(sphera_sptd_integral_over_cap_union(pivot, bases[b], z, light, a),
+              in_a + in_light - both, 2e-6);
+    CHECK_ABS(sphera_sptd_integral_over_cap_union(pivot, bases[b], z, a, a), in_a, 2e-6);
+    CHECK_ABS(sphera_sptd_integral_over_cap_complement(pivot, bases[b], z, a), 1.0 - in_a, 2e-6);
+    /* The empty cap is the empty set; its complement the whole sphere. */
+    CHECK_ABS(sphera_sptd_integral_over_cap_union(pivot, bases[b], z, empty, a), in_a, 0.0);
+    CHECK_ABS(sphera_sptd_integral_over_cap_complement(pivot, bases[b], z, empty), 1.0, 1e-6);
+  }
+  /* Malformed caps and an unknown base: 0. */
+  malformed.one_minus_cos = NAN;
+  CHECK(sphera_sptd_integral_over_cap_union(pivot, SPHERA_SPTD_UNIFORM, z, malformed, a) == 0.0f);
+  CHECK(sphera_sptd_integral_over_cap_union(pivot, SPHERA_SPTD_UNIFORM, z, a, malformed) == 0.0f);
+  CHECK(sphera_sptd_integral_over_cap_complement(pivot, SPHERA_SPTD_UNIFORM, z, malformed) == 0.0f);
+  malformed = a;
+  malformed.axis = vec3(INFINITY, 0.0f, 1.0f);
+  CHECK(sphera_sptd_integral_over_cap_complement(pivot, SPHERA_SPTD_CLAMPED_COSINE, z, malformed) == 0.0f);
+  malformed.axis = vec3(0.0f, 0.0f, 0.0f);
+  CHECK(sphera_sptd_integral_over_cap_union(pivot, SPHERA_SPTD_CLAMPED_COSINE, z, a, malformed) == 0.0f);
+  CHECK(sphera_sptd_integral_over_cap_union(pivot, 2u, z, a, light) == 0.0f);
+  CHECK(sphera_sptd_integral_over_cap_complement(pivot, UINT32_MAX, z, a) == 0.0f);
+  /* Non-finite and extreme input anywhere: finite, in [0, 1]. */
+  for (i = 0; i < n; i++) {
+    for (k = 0; k < n; k++) {
+      SpheraVec3 v = vec3(bad[i], 0.5f, bad[k]);
+      SpheraCap garbage;
+      float u, c;
+      garbage.axis = v;
+      garbage.one_minus_cos = bad[k];
+      garbage.one_plus_cos = bad[i];
+      garbage.sin2 = bad[k];
+      for (b = 0; b < 3; b++) {
+        u = sphera_sptd_integral_over_cap_union(v, (uint32_t)b, v, garbage, light);
+        c = sphera_sptd_integral_over_cap_complement(v, (uint32_t)b, v, garbage);
+        CHECK(isfinite(u) && u >= 0.0f && u <= 1.0f);
+        CHECK(isfinite(c) && c >= 0.0f && c <= 1.0f);
+        if (b == 2) CHECK(u == 0.0f && c == 0.0f);
+      }
+    }
+  }
+}
+
 /* An unknown base number is an error, not a silent uniform base: density 0, no sample,
  * integrals 0 and a failed prepare, where the uniform base (checked alongside with the
  * same arguments) gives positive values. */
@@ -219,6 +296,7 @@ static void check_bad_input(void) {
 int main(void) {
   check_sptd_in_cap();
   check_unknown_base();
+  check_unions_and_complements();
   check_sphere_light();
   check_phase_in_cap();
   check_bad_input();

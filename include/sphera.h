@@ -4,8 +4,8 @@
  *     (sphera_solid_angle_polygon_*, sphera_projected_polygon_*), LTC sampling of GGX
  *     inside polygons (sphera_ltc_*), the one-call polygon light with MIS
  *     (sphera_polygon_light_*), and the baselines (Turk, Arvo, Hart et al.).
- *   - Sphere lights (Dupuy et al. 2017): caps (sphera_cap_*), uniform sampling of a
- *     prepared sphere (sphera_solid_angle_sphere_*), SPTDs (sphera_sptd_*), joint
+ *   - Sphere lights (Dupuy et al. 2017): caps and their unions (sphera_cap_*), uniform
+ *     sampling of a prepared sphere (sphera_solid_angle_sphere_*), SPTDs (sphera_sptd_*), joint
  *     BRDF-light sampling (sphera_sphere_light_sampler_*), real-time shading and
  *     specular occlusion (sphera_sphere_light_shading_*), the pivot phase function
  *     (sphera_phase_*).
@@ -256,6 +256,11 @@ typedef struct SpheraSolidAngleSphere {
   uint32_t opaque[13]; /* 52 bytes, private: see the preamble */
 } SpheraSolidAngleSphere;
 
+/* Two caps prepared for uniform sampling of their union. */
+typedef struct SpheraCapUnion {
+  uint32_t opaque[40]; /* 160 bytes, private: see the preamble */
+} SpheraCapUnion;
+
 /* The uniform SPTD fitted to GGX `f cos θ` at one view and roughness. */
 typedef struct SpheraGgxPivot {
   SpheraVec3 pivot; /* The pivot `r_p` in the local frame (`|r_p| < 1`). */
@@ -363,13 +368,10 @@ typedef struct SpheraAsg {
 extern "C" {
 #endif // __cplusplus
 
-/* Clips the convex polygon `vertices[0..count]` to the upper hemisphere (z >= 0) in place and
- * returns the new vertex count: 0 when nothing lies above the horizon, otherwise 3 to
- * `SPHERA_MAX_POLYGON_VERTICES`. New vertices lie exactly on z = 0; the winding is kept. A
- * polygon of `SPHERA_MAX_POLYGON_VERTICES` vertices gives 0 unless it lies entirely above the
- * horizon (z > 0), since clipping could need one vertex more than the array holds. Returns 0 and
- * leaves the array untouched when `vertices` is null or `count` lies outside
- * 3..=`SPHERA_MAX_POLYGON_VERTICES`.
+/* Clips the convex polygon `vertices[0..count]` to z >= 0 in place and returns the new count: 0
+ * when nothing lies above the horizon (or for a null `vertices` or a `count` out of range), else
+ * 3 to `SPHERA_MAX_POLYGON_VERTICES`. New vertices lie exactly on z = 0, winding kept. A polygon
+ * of the maximum count gives 0 unless wholly above the horizon (no room for a vertex).
  * Safety: `vertices` must be null or point to an array of `SPHERA_MAX_POLYGON_VERTICES` writable
  * `SpheraVec3`s whose first `count` are initialised (the clipped polygon may have more vertices
  * than the input). */
@@ -436,13 +438,9 @@ float sphera_turk_polygon_area(const struct SpheraTurkPolygon *polygon);
 bool sphera_arvo_polygon_prepare(struct SpheraArvoPolygon *out, const struct SpheraVec3 *vertices,
                                  uint32_t count);
 
-/* Draws a direction uniformly distributed in the solid angle of `polygon` with Arvo's method
- * from the random numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / solid angle per
- * steradian, as `sphera_arvo_polygon_pdf` gives it for the direction.
- * No sample also when Arvo's construction in f32 puts the direction outside the polygon. A
- * baseline: **unreliable for polygons below about 1e-2 rad across**, where such draws are many
- * (measured on quads at distance 1: 0.25% of the draws at 2e-2 rad across, 7.6% at 2e-3, 20% at
- * 2e-4) and its f32 solid angle is inaccurate (docs/polygon-lights.md). */
+/* Draws a direction uniform in solid angle by Arvo's method, pdf 1 / solid angle. A baseline:
+ * **unreliable below about 1e-2 rad across**, where its f32 construction puts many draws outside
+ * the polygon (no sample: 7.6% of draws at 2e-3 rad) and its solid angle is inaccurate. */
 struct SpheraSample sphera_arvo_polygon_sample(const struct SpheraArvoPolygon *polygon, float u0,
                                                float u1);
 
@@ -477,13 +475,9 @@ bool sphera_has_hardware_fma(void);
  * results must key on this whole string. */
 const char *sphera_version(void);
 
-/* Whether this library serves a program compiled against the header of version `major.minor`:
- * call `sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR)` once at start-up.
- * Returns `true` when `major` equals the library's major version and either the major version is
- * 0 and `minor` equals the library's minor version (before 1.0 a minor release may change the
- * prepared structs and the functions), or the major version is 1 or more and `minor` is at most
- * the library's (a later minor release only adds); the patch number is not compared. `false`
- * otherwise. */
+/* Whether this library serves a program built against header `major.minor` (call once with
+ * `SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR`): same major, and before 1.0 the same minor, from
+ * 1.0 on a minor at most the library's. The patch number is not compared. */
 bool sphera_check_version(uint32_t major, uint32_t minor);
 
 /* Prepares the bilinear warp of Hart et al. 2020 for the convex polygon `vertices[0..count]`:
@@ -507,13 +501,9 @@ struct SpheraSample sphera_hart_bilinear_polygon_sample(const struct SpheraHartB
 float sphera_hart_bilinear_polygon_pdf(const struct SpheraHartBilinearPolygon *polygon,
                                        struct SpheraVec3 dir);
 
-/* Prepares the biquadratic warp of Hart et al. 2020 for the convex polygon `vertices[0..count]`:
- * solid angle sampling whose primary square is warped by the biquadratic density through the
- * cosine at its 3×3 grid points {0, 1/2, 1}² (Bernstein form, negative control points clamped to
- * 0), which approximates cosine-weighted sampling (the pdf is exact for the samples drawn). The
- * polygon is not clipped: samples below the horizon are no sample, and when the cosine is 0 at
- * all grid points the warp is uniform.
- * Returns `false` also when the polygon subtends no solid angle. */
+/* Prepares Hart et al. 2020's biquadratic warp of solid angle sampling (the cosine at the 3×3
+ * grid {0, 1/2, 1}², negative control points clamped), close to cosine-weighted sampling; its
+ * pdf is exact. Not clipped: samples below the horizon are no sample. */
 bool sphera_hart_biquadratic_polygon_prepare(struct SpheraHartBiquadraticPolygon *out,
                                              const struct SpheraVec3 *vertices, uint32_t count);
 
@@ -728,32 +718,21 @@ float sphera_ltc_eval(const struct SpheraLtc *ltc, struct SpheraVec3 dir);
  * `L × sphera_ltc_specular_albedo(ltc, f0) × sphera_ltc_polygon_integral(polygon)`. */
 struct SpheraVec3 sphera_ltc_specular_albedo(const struct SpheraLtc *ltc, struct SpheraVec3 f0);
 
-/* Prepares the LTC `*ltc` restricted to the convex polygon `vertices[0..count]`: the polygon is
- * transformed by `M⁻¹`, clipped to the horizon of that space, and prepared for projected solid
- * angle sampling.
- * Returns `false` also when `ltc` is null, when the vertices are collinear or the shading point
- * lies in the polygon's plane, when nothing of the transformed polygon lies above the horizon
- * (the LTC has no mass in the polygon), and when the transformed polygon has
- * `SPHERA_MAX_POLYGON_VERTICES` vertices and crosses the horizon. */
+/* Prepares the LTC `*ltc` in the polygon: transformed by `M⁻¹`, clipped to that space's horizon,
+ * prepared for projected solid angle sampling. Returns `false` also for a null `ltc` and when
+ * the transformed polygon has no mass above its horizon (or needs a 9th vertex). */
 bool sphera_ltc_polygon_prepare(struct SpheraLtcPolygon *out, const struct SpheraLtc *ltc,
                                 const struct SpheraVec3 *vertices, uint32_t count);
 
-/* Draws a direction with density `D(ω) / ∫_P D` inside the polygon. It may lie at or below the
- * horizon, where the LTC puts a little mass and the BRDF is zero: such a sample contributes
- * nothing and must not be redrawn (the pdf counts it). The pdf is
- * `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit: a draw that the f32 round trip through the
- * LTC's matrix throws outside the polygon (beyond the pdf's slack) is pulled inward until the
- * pdf accepts it, a bias confined to a band of that rounding along the boundary. No sample also
- * where even the pulled draw is rejected (a polygon smaller than that rounding). */
+/* Draws a direction with density `D(ω) / ∫_P D` in the polygon, `sphera_ltc_polygon_pdf` at it
+ * bit for bit (a draw that rounding throws outside is pulled inward). One at or below the
+ * horizon contributes nothing and must not be redrawn. */
 struct SpheraSample sphera_ltc_polygon_sample(const struct SpheraLtcPolygon *polygon, float u0,
                                               float u1);
 
-/* The density of `sphera_ltc_polygon_sample` at `dir` (normalised first): `D(ω) / ∫_P D` inside
- * the polygon, 0 outside, for a null or empty `polygon`, and for zero or non-finite `dir`.
- * Directions outside the polygon by at most a slack (in the LTC's cosine space, where the
- * polygon is transformed by the inverse matrix) count as inside, where rounding puts samples:
- * the smaller of 1e-5 rad and 2e-5 of the transformed polygon's width (projected solid angle
- * over perimeter), so that the pdf integrates to 1 within 2e-5 over the sphere. */
+/* The density of `sphera_ltc_polygon_sample` at `dir`: `D(ω) / ∫_P D` inside the polygon, up to
+ * a slack in the LTC's cosine space (the smaller of 1e-5 rad and 2e-5 of the polygon's width)
+ * where rounding puts samples; 0 outside. */
 float sphera_ltc_polygon_pdf(const struct SpheraLtcPolygon *polygon, struct SpheraVec3 dir);
 
 /* `∫_P D dω`, the LTC's mass inside the polygon, in [0, 1]: the projected solid angle of the
@@ -772,13 +751,10 @@ bool sphera_polygon_light_prepare(struct SpheraPolygonLight *out, const struct S
                                   const struct SpheraMaterial *material, uint32_t heuristic,
                                   float visibility);
 
-/* Draws a sample from technique `technique` (0: projected solid angle sampling, 1: the GGX LTC;
- * other values: no sample), weighted for the estimator that sums, over one sample of technique 0
- * and one of technique 1, `L × (V(dir) × visible + unoccluded)` for a light of radiance `L` with
- * visibility `V` along `dir` (trace a shadow ray only when `visible` is non-zero; `unoccluded`
- * is non-zero only for `SPHERA_MIS_OPTIMAL`). `pdf` is the density of the technique that drew
- * the sample; no sample has both parts 0. Directions at or below the horizon come with their pdf
- * and zero contributions. All outputs are finite. */
+/* Draws a sample of technique `technique` (0: projected solid angle, 1: the GGX LTC), weighted
+ * so that one sample of each gives `L × (V(dir) × visible + unoccluded)` (trace a shadow ray
+ * only where `visible` is non-zero; `unoccluded` is non-zero only for `SPHERA_MIS_OPTIMAL`);
+ * `pdf` is the drawing technique's. Directions at or below the horizon contribute 0. */
 struct SpheraLightSample sphera_polygon_light_sample(const struct SpheraPolygonLight *light,
                                                      uint32_t technique, float u0, float u1);
 
@@ -880,6 +856,21 @@ float sphera_solid_angle_sphere_pdf(const struct SpheraSolidAngleSphere *sphere,
 /* The solid angle of the prepared cap in steradians. */
 float sphera_solid_angle_sphere_solid_angle(const struct SpheraSolidAngleSphere *sphere);
 
+/* Prepares uniform sampling of `a ∪ b` (two lights' caps, for example). Returns `false` also
+ * when the union is empty or `1 / Ω(A ∪ B)` overflows. */
+bool sphera_cap_union_prepare(struct SpheraCapUnion *out, struct SpheraCap a, struct SpheraCap b);
+
+/* A direction uniform in `A ∪ B`, pdf `1 / Ω(A ∪ B)`. */
+struct SpheraSample sphera_cap_union_sample(const struct SpheraCapUnion *prepared, float u0,
+                                            float u1);
+
+/* The density of `sphera_cap_union_sample` at `dir`: `1 / Ω(A ∪ B)` inside either cap, 0
+ * outside. */
+float sphera_cap_union_pdf(const struct SpheraCapUnion *prepared, struct SpheraVec3 dir);
+
+/* `Ω(A ∪ B)` in steradians, in [0, 4π]. */
+float sphera_cap_union_solid_angle(const struct SpheraCapUnion *prepared);
+
 /* The pivot transformation `g(dir)`: the second intersection with the unit sphere of the line
  * from `dir` (normalised) through `pivot`. `|pivot| ≥ 1` is clamped to `1 − 2⁻²⁰`; a non-finite
  * pivot counts as the origin (`g(dir) = −dir`); a zero or non-finite `dir` gives `(0, 0, 1)`. */
@@ -915,6 +906,17 @@ float sphera_sptd_integral_over_cap(struct SpheraVec3 pivot, uint32_t base,
 float sphera_sptd_integral_over_cap_intersection(struct SpheraVec3 pivot, uint32_t base,
                                                  struct SpheraVec3 cosine_axis, struct SpheraCap a,
                                                  struct SpheraCap b);
+
+/* `∫_{A ∪ B} D` (Eq. 11) as `∫_A D + ∫_B D − ∫_{A ∩ B} D`, in [0, 1]. 0 for an unknown `base`
+ * and a malformed cap (non-finite or zero axis, NaN `one_minus_cos`). */
+float sphera_sptd_integral_over_cap_union(struct SpheraVec3 pivot, uint32_t base,
+                                          struct SpheraVec3 cosine_axis, struct SpheraCap a,
+                                          struct SpheraCap b);
+
+/* `∫ D` over the complement of `cap` (Eq. 11), `1 − ∫_C D` computed over the complement cap (a
+ * small hole keeps its precision); 1 for the empty cap, 0 as for the union. */
+float sphera_sptd_integral_over_cap_complement(struct SpheraVec3 pivot, uint32_t base,
+                                               struct SpheraVec3 cosine_axis, struct SpheraCap cap);
 
 /* Prepares the SPTD restricted to `cap` and normalised there: `g(ω_i)` with `ω_i` from the base
  * in `g(C)` (for the clamped cosine, in `g(C) ∩ H_a`, also across the base's horizon or wider
@@ -964,11 +966,8 @@ struct SpheraVec3 sphera_sphere_light_shading_eval_occluded(const struct SpheraS
                                                             struct SpheraCap visibility);
 
 /* Specular occlusion by the separable approximation (Eq. 21–22, BIASED; the baseline of
- * `sphera_sphere_light_shading_eval_occluded`): the unoccluded shading
- * `sphera_sphere_light_shading_eval` times the fraction of the BRDF lobe inside the bent cone,
- * `Ω(g(V) ∩ g(H)) / Ω(g(H))`. It lets light through a cone that holds the lobe but not the light
- * (shadow leaking). Equals `sphera_sphere_light_shading_eval` for the hemisphere `(0, 0, 1)`,
- * `cos θ = 0`. Zero for a null pointer. */
+ * `_eval_occluded`): unoccluded shading times the lobe's fraction `Ω(g(V) ∩ g(H)) / Ω(g(H))`
+ * inside the bent cone `V`; it leaks light through a cone that holds the lobe but not the light. */
 struct SpheraVec3 sphera_sphere_light_shading_eval_occluded_separable(const struct SpheraSphereLightShading *shading,
                                                                       struct SpheraCap light,
                                                                       struct SpheraCap visibility);
@@ -1034,17 +1033,13 @@ bool sphera_vsgl_texel_from_vpl(const struct SpheraVpl *vpl, struct SpheraVec3 o
  * `size` is not a power of two in `1..=16384`. */
 size_t sphera_vsgl_pyramid_texel_count(uint32_t size);
 
-/* Cluster `i` of `cluster_count` by filtered importance sampling (Tokuyoshi 2016, Section 3.3
- * and Algorithm 1) from the random point `(u0, u1)` (clamped to [0, 1)): an image position drawn
- * in proportion to the texels' `weight`, the mip level where the kernel holds
- * `kernel_scale / cluster_count` of the total weight (`iterations` bisection steps, capped at
- * 32), and the trilinearly filtered sums there, weighted so that the `cluster_count` VSGLs carry
- * the map's total luminance exactly.
- * `texels` holds the pyramid: level 0 (`size × size`, row-major) then each coarser level down to
- * 1×1, every texel the sum of its four children, all relative to `origin`; `texel_count` must be
- * at least `sphera_vsgl_pyramid_texel_count(size)`. An empty VSGL (zero powers) when `texels` is
- * null, `size` unsupported, `texel_count` too small, `origin` not finite, `cluster_count` 0,
- * `kernel_scale` not finite and positive, or the map has no weight.
+/* Cluster `i` of `cluster_count` by filtered importance sampling (Tokuyoshi 2016, Sec. 3.3,
+ * Algorithm 1) from `(u0, u1)`: a position drawn in proportion to the texels' `weight`, the mip
+ * level where the kernel holds `kernel_scale / cluster_count` of the weight (`iterations`
+ * bisection steps, at most 32), the filtered sums there, weighted so that the VSGLs carry the
+ * map's luminance exactly. `texels`: the pyramid (level 0 `size × size` row-major, then each
+ * coarser level to 1×1, sums of four children, relative to `origin`), at least
+ * `sphera_vsgl_pyramid_texel_count(size)` of them. An empty VSGL for bad arguments or no weight.
  * Safety: `texels` null or pointing to `texel_count` readable, initialised texels. */
 struct SpheraVsgl sphera_vsgl_fis_select(const struct SpheraVsglTexel *texels, size_t texel_count,
                                          uint32_t size, struct SpheraVec3 origin,

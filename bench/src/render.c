@@ -551,6 +551,77 @@ static float3 shade_sphere(const Scene *scene, struct RTCIntersectContext *conte
     return f3_scale(sum, 1.0f / (float)k);
 }
 
+/* The distance along the world direction `dir` from `origin` to the nearer
+ * intersection with the sphere of `light`, or INFINITY when the ray misses it. */
+static float sphere_distance(float3 origin, float3 dir, const Light *light) {
+    float3 oc = f3_sub(origin, light->center);
+    float b = f3_dot(oc, dir), c = f3_dot(oc, oc) - light->radius * light->radius;
+    float discriminant = b * b - c;
+    if (!(discriminant >= 0.0f) || !(b < 0.0f)) return INFINITY;
+    return c / (-b + sqrtf(discriminant));
+}
+
+/* Whether lights `a` and `b` are two sphere lights of equal radiance, which
+ * sphere_union and sphere_mixture sample as one light. */
+static bool is_sphere_pair(const Light *a, const Light *b) {
+    return a->radius > 0.0f && b->radius > 0.0f && a->radiance.x == b->radiance.x &&
+           a->radiance.y == b->radiance.y && a->radiance.z == b->radiance.z;
+}
+
+/* The reflected radiance from two sphere lights of equal radiance L, sampled as one
+ * light whose directions are the union of their caps A and B, k samples:
+ * - sphere_union: uniform in A u B (sphera_cap_union_*, Dupuy et al. 2017 Sec. 4: sets
+ *   of caps), pdf 1 / Omega(A u B);
+ * - sphere_mixture (its baseline): light A or B with probability 1/2 (u0 picks it and
+ *   is rescaled), uniform in its cap, pdf the mixture (p_A + p_B) / 2, so that a
+ *   direction in A n B counts once with the density of both draws.
+ * Either way a direction of the union sees the light that its ray meets first (in
+ * A n B the nearer sphere hides the other), with radiance L, so the estimate
+ * f L cos V / pdf is unbiased for the two lights together. */
+static float3 shade_sphere_pair(const Scene *scene, struct RTCIntersectContext *context,
+                                const Hit *hit, const Light *a, const Light *b,
+                                Technique technique, uint32_t k, Rng *rng, uint64_t *samples) {
+    float3 ca = f3_sub(a->center, hit->position), cb = f3_sub(b->center, hit->position);
+    if (f3_dot(ca, ca) <= a->radius * a->radius || f3_dot(cb, cb) <= b->radius * b->radius)
+        return f3(0, 0, 0);
+    SpheraCap cap_a = sphera_cap_from_sphere(frame_to_local(&hit->frame, ca), a->radius);
+    SpheraCap cap_b = sphera_cap_from_sphere(frame_to_local(&hit->frame, cb), b->radius);
+    const Material *m = &scene->materials[hit->material];
+    bool use_union = technique == TECHNIQUE_SPHERE_UNION;
+    /* Prepared once per pair at this point, for k samples. */
+    SpheraCapUnion both;
+    if (use_union && !sphera_cap_union_prepare(&both, cap_a, cap_b)) return f3(0, 0, 0);
+    float3 sum = f3(0, 0, 0);
+    for (uint32_t s = 0; s < k; ++s) {
+        float u0 = rng_float(rng), u1 = rng_float(rng);
+        SpheraSample x;
+        *samples += 1;
+        if (use_union) {
+            x = sphera_cap_union_sample(&both, u0, u1);
+        } else {
+            bool first = u0 < 0.5f;
+            x = sphera_cap_sample_uniform(first ? cap_a : cap_b, first ? 2.0f * u0 : 2.0f * u0 - 1.0f,
+                                          u1);
+            if (x.pdf > 0.0f)
+                x.pdf = 0.5f * (sphera_cap_pdf(cap_a, x.dir) + sphera_cap_pdf(cap_b, x.dir));
+        }
+        if (!(x.pdf > 0.0f) || !(x.dir.z > 0.0f)) continue;
+        bool in_a = sphera_cap_contains(cap_a, x.dir), in_b = sphera_cap_contains(cap_b, x.dir);
+        const Light *seen = in_a ? a : b;
+        if (in_a && in_b) {
+            float3 dir = frame_to_world(&hit->frame, x.dir);
+            seen = sphere_distance(hit->origin, dir, a) <= sphere_distance(hit->origin, dir, b) ? a
+                                                                                                : b;
+        } else if (!in_a && !in_b) {
+            continue;
+        }
+        float3 f = brdf_part(m, hit->wo, x.dir, BRDF_WHOLE);
+        float3 radiance = light_cosine(scene, context, hit, seen, x.dir);
+        sum = f3_add(sum, f3_scale(f3_mul(radiance, f), 1.0f / x.pdf));
+    }
+    return f3_scale(sum, 1.0f / (float)k);
+}
+
 /* The estimate of the radiance reflected at `hit` from all lights, with `k` samples
  * per light. */
 static float3 shade(const Scene *scene, struct RTCIntersectContext *context, const Hit *hit,
@@ -585,6 +656,13 @@ static float3 shade(const Scene *scene, struct RTCIntersectContext *context, con
     float3 sum = f3(0, 0, 0);
     for (uint32_t l = 0; l < scene->light_count; ++l) {
         const Light *light = &scene->lights[l];
+        if ((technique == TECHNIQUE_SPHERE_UNION || technique == TECHNIQUE_SPHERE_MIXTURE) &&
+            l + 1 < scene->light_count && is_sphere_pair(light, &scene->lights[l + 1])) {
+            sum = f3_add(sum, shade_sphere_pair(scene, context, hit, light, &scene->lights[l + 1],
+                                                technique, k, rng, samples));
+            ++l;
+            continue;
+        }
         if (light->radius > 0.0f) {
             sum = f3_add(sum, shade_sphere(scene, context, hit, light, technique, k, &brdf,
                                            sphere_shading, bent, rng, samples));

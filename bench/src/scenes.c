@@ -27,6 +27,9 @@ const SceneInfo scene_info[] = {
     {"occlusion", "a GGX floor at the bottom of a round well, reflecting a sphere light that "
                   "the well's wall partly hides (specular occlusion, Dupuy et al. 2017 "
                   "Sec. 5.4)"},
+    {"overlap", "two intersecting sphere lights of equal radiance over a Lambert and a GGX "
+                "floor, whose caps overlap from every point (sphere_union against "
+                "sphere_mixture)"},
 };
 const uint32_t scene_count = sizeof scene_info / sizeof scene_info[0];
 
@@ -367,6 +370,28 @@ static bool build_slab(Builder *b, float aspect) {
     return ok;
 }
 
+/* Two intersecting sphere lights of equal radiance (a double bulb): from every point
+ * their caps overlap, in a part that grows towards the direction of the line through
+ * their centres. sphere_union samples the union of the caps uniformly; sphere_mixture
+ * picks one light with probability 1/2 and doubles the density in the overlap. A box
+ * on the floor casts a partial shadow; the GGX half shows the highlights. */
+static bool build_overlap(Builder *b, float aspect) {
+    Scene *s = b->scene;
+    add_material(s, f3(0, 0, 0), f3(0, 0, 0), 0);
+    uint32_t matte = add_material(s, f3(0.6f, 0.6f, 0.6f), f3(0, 0, 0), 0);
+    uint32_t glossy = add_material(s, f3(0.2f, 0.2f, 0.2f), f3(0.5f, 0.5f, 0.5f), 0.5f);
+    uint32_t wall = add_material(s, f3(0.5f, 0.5f, 0.5f), f3(0, 0, 0), 0);
+    bool ok = add_quad(b, f3(-6, 0, -6), f3(-6, 0, 6), f3(0, 0, 6), f3(0, 0, -6), matte) &&
+              add_quad(b, f3(0, 0, -6), f3(0, 0, 6), f3(6, 0, 6), f3(6, 0, -6), glossy) &&
+              add_quad(b, f3(-6, 0, -6), f3(6, 0, -6), f3(6, 4, -6), f3(-6, 4, -6), wall);
+    ok = ok && add_box(b, f3(-1.9f, 0, 0.4f), f3(-1.3f, 0.6f, 1.0f), wall);
+    ok = ok && add_sphere_light(b, f3(-0.35f, 1.3f, -0.8f), 0.5f, f3(6, 5.5f, 5)) &&
+         add_sphere_light(b, f3(0.35f, 1.45f, -0.6f), 0.5f, f3(6, 5.5f, 5));
+    set_camera(s, f3(0, 2.2f, 6.0f), f3(0, 0.6f, -1.0f), 55.0f, aspect);
+    s->ray_epsilon = 2e-4f;
+    return ok;
+}
+
 /* Specular occlusion (Dupuy et al. 2017, Sec. 5.4, Fig. 11): a GGX floor (roughness
  * 0.35, nearly no Lambert layer) at the bottom of a round well (radius 2 m, walls
  * 1.6 m high, 32 facets), whose visibility from the floor is the well's opening: a cone
@@ -510,6 +535,7 @@ bool scene_create_with_obj(Scene *s, const char *name, float aspect, const char 
     else if (strcmp(name, "spheres") == 0) ok = build_spheres(&b, aspect);
     else if (strcmp(name, "slab") == 0) ok = build_slab(&b, aspect);
     else if (strcmp(name, "occlusion") == 0) ok = build_occlusion(&b, aspect);
+    else if (strcmp(name, "overlap") == 0) ok = build_overlap(&b, aspect);
     else if (strcmp(name, "indirect") == 0) ok = build_indirect(&b, aspect);
     else {
         fprintf(stderr, "sphera-trace: unknown scene '%s' (see --list-scenes)\n", name);

@@ -56,6 +56,14 @@ const TechniqueInfo technique_info[TECHNIQUE_COUNT] = {
     {"medium_hg_cap", false,
      "medium in-scattering from sphere lights: one HG and one uniform cap sample, balance "
      "heuristic; surfaces as sphere_cap_brdf"},
+    {"sphere_union", false,
+     "two overlapping sphere lights of equal radiance as one: one sample uniform in the union of "
+     "their caps (SpheraCapUnion, Dupuy et al. 2017 Sec. 4: sets of caps), pdf 1/Omega(A u B); "
+     "other sphere lights as sphere_cap"},
+    {"sphere_mixture", false,
+     "two overlapping sphere lights of equal radiance as one: one light with probability 1/2, "
+     "one sample uniform in its cap, pdf the mixture (pdf_A + pdf_B)/2 (baseline of "
+     "sphere_union); other sphere lights as sphere_cap"},
     {"reference", false,
      "reference images: projected sampling on Lambertian surfaces, one projected and one LTC sample with the weighted balance heuristic on GGX ones; sphere lights as sphere_sptd, medium in-scattering as medium_hg_cap"},
 };
@@ -112,6 +120,8 @@ bool technique_prepare(Technique technique, PreparedLight *out, const SpheraVec3
     case TECHNIQUE_SPHERE_OCCLUSION_SEPARABLE:
     case TECHNIQUE_MEDIUM_PIVOT:
     case TECHNIQUE_MEDIUM_HG_CAP:
+    case TECHNIQUE_SPHERE_UNION:
+    case TECHNIQUE_SPHERE_MIXTURE:
         return sphera_projected_polygon_prepare(&out->u.projected, vertices, count);
     case TECHNIQUE_PROJECTED_FAST:
         return sphera_projected_polygon_prepare_fast(&out->u.projected, vertices, count);
@@ -156,7 +166,9 @@ SpheraSample technique_sample(Technique technique, const PreparedLight *p, float
     case TECHNIQUE_SPHERE_OCCLUSION:
     case TECHNIQUE_SPHERE_OCCLUSION_SEPARABLE:
     case TECHNIQUE_MEDIUM_PIVOT:
-    case TECHNIQUE_MEDIUM_HG_CAP: return sphera_projected_polygon_sample(&p->u.projected, u0, u1);
+    case TECHNIQUE_MEDIUM_HG_CAP:
+    case TECHNIQUE_SPHERE_UNION:
+    case TECHNIQUE_SPHERE_MIXTURE: return sphera_projected_polygon_sample(&p->u.projected, u0, u1);
     case TECHNIQUE_PROJECTED_FAST:
         return sphera_projected_polygon_sample_fast(&p->u.projected, u0, u1);
     case TECHNIQUE_BRDF_BALANCE:

@@ -53,6 +53,11 @@ typedef enum Technique {
     /* In-scattering in a medium (sphere lights; elsewhere as sphere_cap_brdf): */
     TECHNIQUE_MEDIUM_PIVOT,        /* the pivot phase function sampled in the light's cap */
     TECHNIQUE_MEDIUM_HG_CAP,       /* one HG and one uniform cap sample, balance heuristic */
+    /* Two sphere lights of equal radiance (consecutive in the scene) as one light; other
+     * sphere lights as sphere_cap: */
+    TECHNIQUE_SPHERE_UNION,        /* uniform in the union of the two caps (SpheraCapUnion) */
+    TECHNIQUE_SPHERE_MIXTURE,      /* one light with probability 1/2, uniform in its cap;
+                                      pdf the mixture (baseline of sphere_union) */
     TECHNIQUE_REFERENCE,           /* solid angle + projected, multi-sample MIS */
     TECHNIQUE_COUNT
 } Technique;

@@ -24,14 +24,9 @@ pub unsafe extern "C" fn sphera_arvo_polygon_prepare(
     unsafe { prepare(out, vertices, count, ArvoPolygon::prepare) }
 }
 
-/// Draws a direction uniformly distributed in the solid angle of `polygon` with Arvo's
-/// method from the random numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / solid
-/// angle per steradian, as `sphera_arvo_polygon_pdf` gives it for the direction.
-///
-/// No sample also when Arvo's construction in f32 puts the direction outside the polygon. A
-/// baseline: **unreliable for polygons below about 1e-2 rad across**, where such draws are
-/// many (measured on quads at distance 1: 0.25% of the draws at 2e-2 rad across, 7.6% at
-/// 2e-3, 20% at 2e-4) and its f32 solid angle is inaccurate (docs/polygon-lights.md).
+/// Draws a direction uniform in solid angle by Arvo's method, pdf 1 / solid angle. A baseline:
+/// **unreliable below about 1e-2 rad across**, where its f32 construction puts many draws outside
+/// the polygon (no sample: 7.6% of draws at 2e-3 rad) and its solid angle is inaccurate.
 ///
 /// # Safety
 ///

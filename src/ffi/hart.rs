@@ -65,14 +65,9 @@ pub unsafe extern "C" fn sphera_hart_bilinear_polygon_pdf(
     unsafe { with_ref(polygon, 0.0, |polygon| polygon.pdf(dir.into())) }
 }
 
-/// Prepares the biquadratic warp of Hart et al. 2020 for the convex polygon
-/// `vertices[0..count]`: solid angle sampling whose primary square is warped by the
-/// biquadratic density through the cosine at its 3×3 grid points {0, 1/2, 1}² (Bernstein
-/// form, negative control points clamped to 0), which approximates cosine-weighted sampling
-/// (the pdf is exact for the samples drawn). The polygon is not clipped: samples below the
-/// horizon are no sample, and when the cosine is 0 at all grid points the warp is uniform.
-///
-/// Returns `false` also when the polygon subtends no solid angle.
+/// Prepares Hart et al. 2020's biquadratic warp of solid angle sampling (the cosine at the
+/// 3×3 grid {0, 1/2, 1}², negative control points clamped), close to cosine-weighted sampling;
+/// its pdf is exact. Not clipped: samples below the horizon are no sample.
 ///
 /// # Safety
 ///

@@ -65,14 +65,9 @@ pub unsafe extern "C" fn sphera_ltc_specular_albedo(ltc: *const Ltc, f0: SpheraV
     }
 }
 
-/// Prepares the LTC `*ltc` restricted to the convex polygon `vertices[0..count]`: the
-/// polygon is transformed by `M⁻¹`, clipped to the horizon of that space, and prepared for
-/// projected solid angle sampling.
-///
-/// Returns `false` also when `ltc` is null, when the vertices are collinear or the shading
-/// point lies in the polygon's plane, when nothing of the transformed polygon lies above
-/// the horizon (the LTC has no mass in the polygon), and when the transformed polygon has
-/// `SPHERA_MAX_POLYGON_VERTICES` vertices and crosses the horizon.
+/// Prepares the LTC `*ltc` in the polygon: transformed by `M⁻¹`, clipped to that space's horizon,
+/// prepared for projected solid angle sampling. Returns `false` also for a null `ltc` and when the
+/// transformed polygon has no mass above its horizon (or needs a 9th vertex).
 ///
 /// # Safety
 ///
@@ -101,14 +96,9 @@ pub unsafe extern "C" fn sphera_ltc_polygon_prepare(
     }
 }
 
-/// Draws a direction with density `D(ω) / ∫_P D` inside the polygon. It may lie at or below
-/// the horizon, where the LTC puts a little mass and the BRDF is zero: such a sample
-/// contributes nothing and must not be redrawn (the pdf counts it). The pdf is
-/// `sphera_ltc_polygon_pdf(polygon, dir)` bit for bit: a draw that the f32 round trip
-/// through the LTC's matrix throws outside the polygon (beyond the pdf's slack) is pulled
-/// inward until the pdf accepts it, a bias confined to a band of that rounding along the
-/// boundary. No sample also where even the pulled draw is rejected (a polygon smaller than
-/// that rounding).
+/// Draws a direction with density `D(ω) / ∫_P D` in the polygon, `sphera_ltc_polygon_pdf` at it
+/// bit for bit (a draw that rounding throws outside is pulled inward). One at or below the
+/// horizon contributes nothing and must not be redrawn.
 ///
 /// # Safety
 ///
@@ -127,13 +117,9 @@ pub unsafe extern "C" fn sphera_ltc_polygon_sample(
     }
 }
 
-/// The density of `sphera_ltc_polygon_sample` at `dir` (normalised first): `D(ω) /
-/// ∫_P D` inside the polygon, 0 outside, for a null or empty `polygon`, and for zero or
-/// non-finite `dir`. Directions outside the polygon by at most a slack (in the LTC's
-/// cosine space, where the polygon is transformed by the inverse matrix) count as
-/// inside, where rounding puts samples: the smaller of 1e-5 rad and 2e-5 of the
-/// transformed polygon's width (projected solid angle over perimeter), so that the pdf
-/// integrates to 1 within 2e-5 over the sphere.
+/// The density of `sphera_ltc_polygon_sample` at `dir`: `D(ω) / ∫_P D` inside the polygon, up to
+/// a slack in the LTC's cosine space (the smaller of 1e-5 rad and 2e-5 of the polygon's width)
+/// where rounding puts samples; 0 outside.
 ///
 /// # Safety
 ///

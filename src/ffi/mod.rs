@@ -73,6 +73,8 @@ mod cap;
 
 mod solid_angle_sphere;
 
+mod cap_union;
+
 mod pivot;
 
 mod sptd;
@@ -89,6 +91,7 @@ pub use arvo_polygon::*;
 pub use arvo_projected_polygon::*;
 pub use asg::*;
 pub use cap::*;
+pub use cap_union::*;
 pub use clipped_solid_angle_polygon::*;
 pub use frame::*;
 pub use ggx::*;

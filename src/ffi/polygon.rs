@@ -56,13 +56,10 @@ unsafe fn polygon_slice<'a>(vertices: *const SpheraVec3, count: u32) -> &'a [Vec
     unsafe { core::slice::from_raw_parts(vertices.cast::<Vec3>(), count) }
 }
 
-/// Clips the convex polygon `vertices[0..count]` to the upper hemisphere (z >= 0) in place
-/// and returns the new vertex count: 0 when nothing lies above the horizon, otherwise 3 to
-/// `SPHERA_MAX_POLYGON_VERTICES`. New vertices lie exactly on z = 0; the winding is kept. A
-/// polygon of `SPHERA_MAX_POLYGON_VERTICES` vertices gives 0 unless it lies entirely above
-/// the horizon (z > 0), since clipping could need one vertex more than the array holds.
-/// Returns 0 and leaves the array untouched when `vertices` is null or `count` lies outside
-/// 3..=`SPHERA_MAX_POLYGON_VERTICES`.
+/// Clips the convex polygon `vertices[0..count]` to z >= 0 in place and returns the new count:
+/// 0 when nothing lies above the horizon (or for a null `vertices` or a `count` out of range),
+/// else 3 to `SPHERA_MAX_POLYGON_VERTICES`. New vertices lie exactly on z = 0, winding kept. A
+/// polygon of the maximum count gives 0 unless wholly above the horizon (no room for a vertex).
 ///
 /// # Safety
 ///

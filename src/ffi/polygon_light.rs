@@ -69,13 +69,10 @@ pub unsafe extern "C" fn sphera_polygon_light_prepare(
     prepared.is_some()
 }
 
-/// Draws a sample from technique `technique` (0: projected solid angle sampling, 1: the GGX
-/// LTC; other values: no sample), weighted for the estimator that sums, over one sample of
-/// technique 0 and one of technique 1, `L × (V(dir) × visible + unoccluded)` for a light of
-/// radiance `L` with visibility `V` along `dir` (trace a shadow ray only when `visible` is
-/// non-zero; `unoccluded` is non-zero only for `SPHERA_MIS_OPTIMAL`). `pdf` is the density
-/// of the technique that drew the sample; no sample has both parts 0. Directions at or
-/// below the horizon come with their pdf and zero contributions. All outputs are finite.
+/// Draws a sample of technique `technique` (0: projected solid angle, 1: the GGX LTC), weighted
+/// so that one sample of each gives `L × (V(dir) × visible + unoccluded)` (trace a shadow ray only
+/// where `visible` is non-zero; `unoccluded` is non-zero only for `SPHERA_MIS_OPTIMAL`); `pdf` is
+/// the drawing technique's. Directions at or below the horizon contribute 0.
 ///
 /// # Safety
 ///

@@ -104,12 +104,9 @@ pub unsafe extern "C" fn sphera_sphere_light_shading_eval_occluded(
     .into()
 }
 
-/// Specular occlusion by the separable approximation (Eq. 21–22, BIASED; the baseline
-/// of `sphera_sphere_light_shading_eval_occluded`): the unoccluded shading
-/// `sphera_sphere_light_shading_eval` times the fraction of the BRDF lobe inside the bent cone,
-/// `Ω(g(V) ∩ g(H)) / Ω(g(H))`. It lets light through a cone that holds the lobe but not
-/// the light (shadow leaking). Equals `sphera_sphere_light_shading_eval` for the hemisphere
-/// `(0, 0, 1)`, `cos θ = 0`. Zero for a null pointer.
+/// Specular occlusion by the separable approximation (Eq. 21–22, BIASED; the baseline of
+/// `_eval_occluded`): unoccluded shading times the lobe's fraction `Ω(g(V) ∩ g(H)) / Ω(g(H))`
+/// inside the bent cone `V`; it leaks light through a cone that holds the lobe but not the light.
 ///
 /// # Safety
 ///

@@ -85,6 +85,31 @@ pub extern "C" fn sphera_sptd_integral_over_cap_intersection(
     sptd(pivot, base, cosine_axis).map_or(0.0, |d| d.integral_over_cap_intersection(&a, &b))
 }
 
+/// `∫_{A ∪ B} D` (Eq. 11) as `∫_A D + ∫_B D − ∫_{A ∩ B} D`, in [0, 1]. 0 for an unknown
+/// `base` and a malformed cap (non-finite or zero axis, NaN `one_minus_cos`).
+#[unsafe(no_mangle)]
+pub extern "C" fn sphera_sptd_integral_over_cap_union(
+    pivot: SpheraVec3,
+    base: u32,
+    cosine_axis: SpheraVec3,
+    a: Cap,
+    b: Cap,
+) -> f32 {
+    sptd(pivot, base, cosine_axis).map_or(0.0, |d| d.integral_over_cap_union(&a, &b))
+}
+
+/// `∫ D` over the complement of `cap` (Eq. 11), `1 − ∫_C D` computed over the complement
+/// cap (a small hole keeps its precision); 1 for the empty cap, 0 as for the union.
+#[unsafe(no_mangle)]
+pub extern "C" fn sphera_sptd_integral_over_cap_complement(
+    pivot: SpheraVec3,
+    base: u32,
+    cosine_axis: SpheraVec3,
+    cap: Cap,
+) -> f32 {
+    sptd(pivot, base, cosine_axis).map_or(0.0, |d| d.integral_over_cap_complement(&cap))
+}
+
 /// Prepares the SPTD restricted to `cap` and normalised there: `g(ω_i)` with `ω_i` from the
 /// base in `g(C)` (for the clamped cosine, in `g(C) ∩ H_a`, also across the base's horizon
 /// or wider than a hemisphere), density `D(ω)/∫_C D` in `C`. Returns `false` also for a

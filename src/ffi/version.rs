@@ -45,15 +45,9 @@ const VERSION_MAJOR: u32 = parse_version_number(env!("CARGO_PKG_VERSION_MAJOR"))
 /// The library's minor version.
 const VERSION_MINOR: u32 = parse_version_number(env!("CARGO_PKG_VERSION_MINOR"));
 
-/// Whether this library serves a program compiled against the header of version
-/// `major.minor`: call `sphera_check_version(SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR)`
-/// once at start-up.
-///
-/// Returns `true` when `major` equals the library's major version and either the major
-/// version is 0 and `minor` equals the library's minor version (before 1.0 a minor release
-/// may change the prepared structs and the functions), or the major version is 1 or more
-/// and `minor` is at most the library's (a later minor release only adds); the patch number
-/// is not compared. `false` otherwise.
+/// Whether this library serves a program built against header `major.minor` (call once with
+/// `SPHERA_VERSION_MAJOR, SPHERA_VERSION_MINOR`): same major, and before 1.0 the same minor,
+/// from 1.0 on a minor at most the library's. The patch number is not compared.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_check_version(major: u32, minor: u32) -> bool {
     major == VERSION_MAJOR

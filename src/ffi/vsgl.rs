@@ -140,19 +140,13 @@ pub extern "C" fn sphera_vsgl_pyramid_texel_count(size: u32) -> usize {
     VsglPyramid::texel_count(size)
 }
 
-/// Cluster `i` of `cluster_count` by filtered importance sampling (Tokuyoshi 2016,
-/// Section 3.3 and Algorithm 1) from the random point `(u0, u1)` (clamped to [0, 1)):
-/// an image position drawn in proportion to the texels' `weight`, the mip level where
-/// the kernel holds `kernel_scale / cluster_count` of the total weight (`iterations`
-/// bisection steps, capped at 32), and the trilinearly filtered sums there, weighted so
-/// that the `cluster_count` VSGLs carry the map's total luminance exactly.
-///
-/// `texels` holds the pyramid: level 0 (`size × size`, row-major) then each coarser
-/// level down to 1×1, every texel the sum of its four children, all relative to
-/// `origin`; `texel_count` must be at least `sphera_vsgl_pyramid_texel_count(size)`.
-/// An empty VSGL (zero powers) when `texels` is null, `size` unsupported,
-/// `texel_count` too small, `origin` not finite, `cluster_count` 0, `kernel_scale` not
-/// finite and positive, or the map has no weight.
+/// Cluster `i` of `cluster_count` by filtered importance sampling (Tokuyoshi 2016, Sec. 3.3,
+/// Algorithm 1) from `(u0, u1)`: a position drawn in proportion to the texels' `weight`, the
+/// mip level where the kernel holds `kernel_scale / cluster_count` of the weight (`iterations`
+/// bisection steps, at most 32), the filtered sums there, weighted so that the VSGLs carry the
+/// map's luminance exactly. `texels`: the pyramid (level 0 `size × size` row-major, then each
+/// coarser level to 1×1, sums of four children, relative to `origin`), at least
+/// `sphera_vsgl_pyramid_texel_count(size)` of them. An empty VSGL for bad arguments or no weight.
 ///
 /// # Safety
 ///

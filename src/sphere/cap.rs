@@ -281,6 +281,16 @@ impl Cap {
         Cap::from_axis_one_minus_cos(self.axis, t)
     }
 
+    /// Whether this is not a cap at all: a non-finite or zero axis or a NaN
+    /// `one_minus_cos`, exactly the input that [`Cap::sanitized`] turns into
+    /// [`Cap::EMPTY`] for being invalid (a valid empty cap, `one_minus_cos = 0` about a
+    /// finite axis, is a cap). Functions whose result for the empty set is not 0 (the
+    /// integral over a complement or a union) report such input as 0 instead.
+    #[inline]
+    pub fn is_malformed(&self) -> bool {
+        self.one_minus_cos.is_nan() || !self.axis.is_finite() || self.axis == Vec3::ZERO
+    }
+
     /// `cos θ`, from the authoritative one of `1 ∓ cos θ` (exact for both).
     #[inline]
     pub fn cos(&self) -> f32 {

@@ -21,6 +21,7 @@ use crate::sample::{clamp_inverted, clamp_random};
 use glam::Vec3;
 
 /// Two caps prepared for uniform sampling of their union.
+#[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CapUnion {
     /// `A`, sampled with probability `first_share`.
@@ -38,6 +39,18 @@ pub struct CapUnion {
 }
 
 impl CapUnion {
+    /// The empty union: no samples, pdf 0, solid angle 0 (what a failed prepare writes).
+    ///
+    /// cbindgen:ignore
+    pub const EMPTY: CapUnion = CapUnion {
+        first: Cap::EMPTY,
+        rest: CapIntersection::EMPTY,
+        first_share: 0.0,
+        solid_angle: 0.0,
+        density: 0.0,
+        second: Cap::EMPTY,
+    };
+
     /// Prepares uniform sampling of `a ∪ b` (both sanitized here). `None` when the union
     /// is empty or its density `1 / Ω` is not finite.
     #[must_use]

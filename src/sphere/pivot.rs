@@ -139,7 +139,10 @@ pub fn pivot_cap(cap: &Cap, pivot: Vec3) -> Cap {
         return Cap::EMPTY;
     }
     let pivot = valid_pivot(pivot);
-    if cap.one_minus_cos >= 2.0 {
+    // The whole sphere by its hole: a cap whose hole `1 + cos θ` is below `ulp(2)/2`
+    // (7.5e-7 sr) has `one_minus_cos = 2` but keeps its hole (issue 20, 1: the SPTD
+    // over the complement of such a cap is the integral over that hole).
+    if !(cap.one_plus_cos > 0.0) {
         return Cap {
             axis: transform(cap.axis, pivot),
             ..Cap::WHOLE_SPHERE

@@ -14,7 +14,10 @@
 //! Because `g` is an involution that maps caps to caps ([`pivot_cap`]), the integral of
 //! `D` over a cap `C` is the integral of the base over the image cap (Eq. 10), and over
 //! an intersection of caps, the integral of the base over the intersection of the
-//! images (Eq. 11, `g(A ∩ B) = g(A) ∩ g(B)` for a bijection). Sampling `D` inside `C`
+//! images (Eq. 11, `g(A ∩ B) = g(A) ∩ g(B)` for a bijection); over a union, the
+//! paper's algebra `∫_A + ∫_B − ∫_{A ∩ B}`, and over a complement, the integral over
+//! the complement of the image (`g(Ā)` is the complement of `g(A)`, a cap; both bases
+//! integrate to 1 over the sphere, so it is `1 − ∫_A D`). Sampling `D` inside `C`
 //! draws `ω_i` from the base restricted to `g(C)` and returns `g(ω_i)`, with density
 //! `D(ω) / ∫_C D` ([`SptdInCap`]).
 //!
@@ -216,6 +219,60 @@ impl Sptd {
         };
         integral.max(0.0).min(1.0)
     }
+
+    /// `∫_{A ∪ B} D(ω) dω = ∫_{g(A) ∪ g(B)} D_std` (Eq. 11; `g` is a bijection, so
+    /// `g(A ∪ B) = g(A) ∪ g(B)`), in `[0, 1]`, by the paper's algebra
+    /// `∫_A + ∫_B − ∫_{A ∩ B}` with the exact integrals over the images. The difference
+    /// does not lose relative precision: the union is at least the larger of `∫_A` and
+    /// `∫_B`, so the rounding of the three terms is a few ulps of the result (the form
+    /// `∫_A + ∫_{B ∩ Ā}` that [`CapUnion`](super::CapUnion) samples would take the
+    /// complement of a small `g(A)` as a cap wider than a hemisphere, whose boundary
+    /// arcs against a small `g(B)` keep only `ulp(2)`). Disjoint, nested, identical and
+    /// complementary caps and caps wider than a hemisphere need no special case. The
+    /// caps are sanitized first; an empty cap is the empty set (the union is the other
+    /// cap), but a malformed one (non-finite or zero axis, NaN `one_minus_cos`:
+    /// [`Cap::is_malformed`]) is an error, reported as 0.
+    pub fn integral_over_cap_union(&self, a: &Cap, b: &Cap) -> f32 {
+        if a.is_malformed() || b.is_malformed() {
+            return 0.0;
+        }
+        let image_a = pivot_cap(&a.sanitized(), self.pivot);
+        let image_b = pivot_cap(&b.sanitized(), self.pivot);
+        let (in_a, in_b, in_both) = match self.base {
+            SptdBase::Uniform => (
+                image_a.solid_angle() * INV_4PI,
+                image_b.solid_angle() * INV_4PI,
+                cap_intersection_solid_angle(&image_a, &image_b) * INV_4PI,
+            ),
+            SptdBase::ClampedCosine => (
+                clamped_cosine_over_cap(&image_a, self.cosine_axis) * FRAC_1_PI,
+                clamped_cosine_over_cap(&image_b, self.cosine_axis) * FRAC_1_PI,
+                clamped_cosine_over_caps(&image_a, &image_b, self.cosine_axis) * FRAC_1_PI,
+            ),
+        };
+        let (in_a, in_b) = (in_a.max(0.0), in_b.max(0.0));
+        // Rounding keeps the union between the larger piece and the sum.
+        (in_a + in_b - in_both.max(0.0).min(in_a.min(in_b)))
+            .max(in_a.max(in_b))
+            .min(1.0)
+    }
+
+    /// `∫_{Ā} D(ω) dω = ∫_{comp g(A)} D_std` (Eq. 11 with `g(Ā) = comp g(A)`), in
+    /// `[0, 1]`. Both bases are normalised over the sphere (Eq. 9: the uniform
+    /// `1/4π` over `S²`, the clamped cosine `max(0, ω·a)/π` over its hemisphere, which
+    /// is all of its support), so this is `1 − ∫_A D`; it is computed directly over the
+    /// complement cap (which keeps `1 ∓ cos` exact), so a cap that leaves only a tiny
+    /// hole keeps the hole's integral to full relative precision, where `1 − ∫_A D`
+    /// would keep only `ulp(1)`. The cap is sanitized first: the complement of the
+    /// empty cap is the whole sphere (1); a malformed cap ([`Cap::is_malformed`]) is an
+    /// error, reported as 0.
+    pub fn integral_over_cap_complement(&self, cap: &Cap) -> f32 {
+        if cap.is_malformed() {
+            return 0.0;
+        }
+        let image = pivot_cap(&cap.sanitized(), self.pivot).complement();
+        self.base_integral_over_cap(&image).max(0.0).min(1.0)
+    }
 }
 
 /// `∫_C max(0, ω·a) dω` for a cap `C` (axis `c`, half-angle `θ`) and a unit `a`: the
@@ -287,13 +344,19 @@ impl Arc {
     };
 }
 
-/// Whether the circles of two caps coincide (to `1e-6` in `1 − cos`): `Some(true)`
-/// for the same cap, `Some(false)` for complementary caps (the same circle bounding
-/// opposite sides), `None` otherwise.
+/// Whether the circles of two caps coincide: `Some(true)` for the same cap (to `1e-6`
+/// of the circle's size `min(1 − cos, 1 + cos)` in `1 − cos`), `Some(false)` for
+/// complementary caps (the same circle bounding opposite sides, to `1e-6` in
+/// `1 − cos`), `None` otherwise. The first tolerance is relative: an absolute `1e-6`
+/// took two caps of 1e-8 sr whose centres are half a radius apart for the same cap
+/// (their `1 − cos` are 1.6e-9), and their intersection for the whole of one (issue 20,
+/// 1: the SPTD over a union of tiny caps). The second stays absolute: for nearly
+/// antipodal axes `arc_inside` forms `K` with `t_d` near 2, which keeps only `ulp(2)`.
 fn same_circle(p: &Cap, q: &Cap) -> Option<bool> {
     const TOLERANCE: f32 = 1e-6;
+    let tolerance = TOLERANCE * p.one_minus_cos.min(p.one_plus_cos);
     let t_d = 0.5 * (p.axis - q.axis).length_squared();
-    if t_d <= TOLERANCE && (p.one_minus_cos - q.one_minus_cos).abs() <= TOLERANCE {
+    if t_d <= tolerance && (p.one_minus_cos - q.one_minus_cos).abs() <= tolerance {
         Some(true)
     } else if t_d >= 2.0 - TOLERANCE && (p.one_minus_cos - q.one_plus_cos).abs() <= TOLERANCE {
         Some(false)
@@ -387,12 +450,33 @@ fn intersect_arcs(p: Arc, q: Arc) -> [Option<Arc>; 2] {
 /// This identity (`∫_R n dA = ½ ∮ r × dr`) holds for any region, so caps wider than a
 /// hemisphere and regions that are not simply connected need no special case. A cap
 /// whose circle coincides with another's is handled apart (see `same_circle`).
+///
+/// The position `r = ω − p` is taken from a point `p` near the region, the axis of the
+/// smallest of the three caps (`∮ p × dω = 0` on a closed boundary, so the value is
+/// the same): with `p = 0` a crossing point that the two circles through it place
+/// `δ` apart (each from its own arc angles) costs `|ω × δ| ≈ δ`, which for two
+/// overlapping caps of 1e-8 sr (radius 5.6e-5, region ~1e-9 sr) was 35% of the
+/// region (issue 20, 1); from `p` it costs `|ω − p| δ`, of the order of the region's
+/// radius times `δ`. Over an arc, with `ω = cos θ c + sin θ e(φ)` and
+/// `q = cos θ c − p`: `∫ (ω − p) × dω = sin²θ c Δφ + sin θ q × (e(φ₂) − e(φ₁))`, with
+/// `e(φ₂) − e(φ₁) = 2 sin(Δφ/2) (−sin φ_m t + cos φ_m b)` at the arc's middle `φ_m`
+/// (no cancellation for short arcs) and `q = (c − p) − (1 − cos θ) c` for caps up to
+/// a hemisphere (small when `c` is near `p`).
 pub fn clamped_cosine_over_caps(a_cap: &Cap, b_cap: &Cap, a: Vec3) -> f32 {
     if !(a_cap.one_minus_cos > 0.0) || !(b_cap.one_minus_cos > 0.0) {
         return 0.0;
     }
     let horizon = Cap::from_axis_one_minus_cos(a, 1.0);
     let caps = [*a_cap, *b_cap, horizon];
+    // The horizon's `1 − cos` is 1, so the smallest cap is at most a hemisphere.
+    let mut origin = horizon.axis;
+    let mut smallest = horizon.one_minus_cos;
+    for c in [a_cap, b_cap] {
+        if c.one_minus_cos < smallest {
+            smallest = c.one_minus_cos;
+            origin = c.axis;
+        }
+    }
     let mut total = Vec3::ZERO;
     for (i, ci) in caps.iter().enumerate() {
         let ci = *ci;
@@ -438,11 +522,16 @@ pub fn clamped_cosine_over_caps(a_cap: &Cap, b_cap: &Cap, a: Vec3) -> f32 {
             }
             arcs = next;
         }
+        let q = if ci.one_minus_cos <= 1.0 {
+            (ci.axis - origin) - ci.axis * ci.one_minus_cos
+        } else {
+            ci.axis * cos_i - origin
+        };
         for arc in arcs.iter().flatten() {
-            let (s1, c1) = libm::sincosf(arc.start);
-            let (s2, c2) = libm::sincosf(arc.start + arc.length);
-            total += ci.axis * (ci.sin2 * arc.length)
-                - (t * (s2 - s1) - b * (c2 - c1)) * (sin_i * cos_i);
+            let half = 0.5 * arc.length;
+            let (sin_m, cos_m) = libm::sincosf(arc.start + half);
+            let chord = (b * cos_m - t * sin_m) * (2.0 * libm::sinf(half));
+            total += ci.axis * (ci.sin2 * arc.length) + q.cross(chord) * sin_i;
         }
     }
     (0.5 * total.dot(a)).max(0.0).min(PI)
@@ -889,3 +978,7 @@ impl SptdInCap {
 #[cfg(test)]
 #[path = "sptd_tests.rs"]
 mod tests;
+
+#[cfg(test)]
+#[path = "sptd_set_tests.rs"]
+mod set_tests;

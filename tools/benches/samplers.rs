@@ -207,6 +207,52 @@ fn main() {
             "two-cap union: pdf",
             time_ns(|i| unions[i].2.map_or(0.0, |union| union.pdf(views[i]))),
         ),
+        // SPTD integrals over sets of caps (Eq. 10-11; issue 20, 1), two lights' caps
+        // under random pivots; the single cap and the intersection for comparison.
+        (
+            "uniform SPTD integral over a cap",
+            time_ns(|i| Sptd::uniform(pivots[i]).integral_over_cap(&unions[i].0)),
+        ),
+        (
+            "uniform SPTD integral over a cap intersection",
+            time_ns(|i| {
+                let (a, b, _) = &unions[i];
+                Sptd::uniform(pivots[i]).integral_over_cap_intersection(a, b)
+            }),
+        ),
+        (
+            "uniform SPTD integral over a cap union",
+            time_ns(|i| {
+                let (a, b, _) = &unions[i];
+                Sptd::uniform(pivots[i]).integral_over_cap_union(a, b)
+            }),
+        ),
+        (
+            "uniform SPTD integral over a cap complement",
+            time_ns(|i| Sptd::uniform(pivots[i]).integral_over_cap_complement(&unions[i].0)),
+        ),
+        (
+            "clamped-cosine SPTD integral over a cap",
+            time_ns(|i| cosine_sptds[i].integral_over_cap(&unions[i].0)),
+        ),
+        (
+            "clamped-cosine SPTD integral over a cap intersection",
+            time_ns(|i| {
+                let (a, b, _) = &unions[i];
+                cosine_sptds[i].integral_over_cap_intersection(a, b)
+            }),
+        ),
+        (
+            "clamped-cosine SPTD integral over a cap union",
+            time_ns(|i| {
+                let (a, b, _) = &unions[i];
+                cosine_sptds[i].integral_over_cap_union(a, b)
+            }),
+        ),
+        (
+            "clamped-cosine SPTD integral over a cap complement",
+            time_ns(|i| cosine_sptds[i].integral_over_cap_complement(&unions[i].0)),
+        ),
         (
             "clamped-cosine SPTD in a cap, image across the horizon: new + sample",
             time_ns(|i| {

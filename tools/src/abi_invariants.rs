@@ -42,7 +42,7 @@ use sphera::polygon::baselines::{
 };
 use sphera::polygon::light::{LightSample, Material, PolygonLight};
 use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon};
-use sphera::sphere::Cap;
+use sphera::sphere::{Cap, CapUnion as SpheraCapUnion};
 
 /// Floats that break numerical code: NaN, infinities, signed zeros, denormals, the
 /// extremes of the range, 1e±30, and values next to 0, 1 and -1.
@@ -1267,6 +1267,39 @@ pub fn sphere_entry_points(data: &[u8]) {
         approximate <= 4.0 * std::f32::consts::PI * (1.0 + 1e-6),
         "oat-sander {approximate}"
     );
+    // The union of the two caps: finite, at most the sphere, samples inside with
+    // pdf(dir) == pdf bit for bit.
+    let mut union = MaybeUninit::<SpheraCapUnion>::uninit();
+    // SAFETY: `union` is writable; the prepare always writes it.
+    let (ok, union) = unsafe {
+        let ok = sphera_cap_union_prepare(union.as_mut_ptr(), a, b);
+        (ok, union.assume_init())
+    };
+    assert_words_not_nan(&union, "cap union");
+    // SAFETY: `union` was written by the prepare.
+    let omega = unsafe { sphera_cap_union_solid_angle(&union) };
+    assert!(
+        omega.is_finite() && (0.0..=4.0 * std::f32::consts::PI * (1.0 + 1e-4)).contains(&omega),
+        "union solid angle {omega}"
+    );
+    for &(u0, u1) in &pairs {
+        // SAFETY: as above.
+        let sample = unsafe { sphera_cap_union_sample(&union, u0, u1) };
+        let what = format!("union sample u = ({u0:e}, {u1:e}) of {a:?} and {b:?}");
+        assert_sample(sample, &what);
+        if !ok {
+            assert_no_sample(sample, &what);
+        }
+        if sample.pdf > 0.0 {
+            // SAFETY: as above.
+            let evaluated = unsafe { sphera_cap_union_pdf(&union, sample.dir) };
+            assert!(
+                evaluated.to_bits() == sample.pdf.to_bits(),
+                "{what}: pdf {} but pdf(dir) {evaluated}",
+                sample.pdf
+            );
+        }
+    }
 
     // Pivot.
     for &probe in &probes {
@@ -1681,6 +1714,14 @@ pub fn sptd_entry_points(data: &[u8]) {
         (
             sphera_sptd_integral_over_cap_intersection(pivot, base, axis, a, b),
             "integral over a ∩ b",
+        ),
+        (
+            sphera_sptd_integral_over_cap_union(pivot, base, axis, a, b),
+            "integral over a ∪ b",
+        ),
+        (
+            sphera_sptd_integral_over_cap_complement(pivot, base, axis, a),
+            "integral over the complement of a",
         ),
     ] {
         assert!(

@@ -68,6 +68,7 @@ fn opaque_types() -> Vec<Opaque> {
     use sphera::polygon::{
         ClippedSolidAnglePolygon, LtcPolygon, ProjectedPolygon, SolidAnglePolygon,
     };
+    use sphera::sphere::CapUnion;
     use sphera::sphere::light::{SphereLightSampler, SphereLightShading};
     use sphera::sphere::solid_angle_sphere::SolidAngleSphere;
     use sphera::sphere::sptd::SptdInCap;
@@ -86,6 +87,7 @@ fn opaque_types() -> Vec<Opaque> {
         opaque::<PolygonLight>("SpheraPolygonLight"),
         opaque::<SptdInCap>("SpheraSptdInCap"),
         opaque::<SolidAngleSphere>("SpheraSolidAngleSphere"),
+        opaque::<CapUnion>("SpheraCapUnion"),
         opaque::<SphereLightShading>("SpheraSphereLightShading"),
         opaque::<SphereLightSampler>("SpheraSphereLightSampler"),
     ]

@@ -538,7 +538,8 @@ fn struct_layouts_match_rust() {
     use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon};
     use sphera::sg::{Asg, Sg};
     use sphera::sphere::{
-        Cap, GgxPivot, SolidAngleSphere, SphereLightSampler, SphereLightShading, SptdInCap,
+        Cap, CapUnion, GgxPivot, SolidAngleSphere, SphereLightSampler, SphereLightShading,
+        SptdInCap,
     };
     use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, VsglTexel};
 
@@ -638,6 +639,8 @@ fn struct_layouts_match_rust() {
             "alignof(SpheraSolidAngleSphere)",
             align_of::<SolidAngleSphere>(),
         ),
+        ("sizeof(SpheraCapUnion)", size_of::<CapUnion>()),
+        ("alignof(SpheraCapUnion)", align_of::<CapUnion>()),
         ("sizeof(SpheraGgxPivot)", size_of::<GgxPivot>()),
         (
             "offsetof(SpheraGgxPivot, albedo)",
@@ -711,6 +714,7 @@ fn struct_layouts_match_rust() {
         "SpheraCap",
         "SpheraSptdInCap",
         "SpheraSolidAngleSphere",
+        "SpheraCapUnion",
         "SpheraSphereLightSampler",
         "SpheraVpl",
         "SpheraVsglTexel",

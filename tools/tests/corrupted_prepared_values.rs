@@ -25,7 +25,7 @@ use sphera::polygon::baselines::{
 use sphera::polygon::light::{Material, MisHeuristic, PolygonLight};
 use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon};
 use sphera::sphere::{
-    Cap, SolidAngleSphere, SphereLightSampler, SphereLightShading, Sptd, SptdInCap,
+    Cap, CapUnion, SolidAngleSphere, SphereLightSampler, SphereLightShading, Sptd, SptdInCap,
 };
 
 /// The words written over each word of a prepared value in turn.
@@ -393,6 +393,18 @@ fn corrupted_sphere_values_neither_hang_nor_panic() {
             sum += x.pdf + x.dir.x + s.pdf(x.dir) + s.invert(x.dir).map_or(0.0, |u| u[0]);
         }
         std::hint::black_box(sum + s.solid_angle())
+    });
+    // The union of two lights' caps (issue 20, 1): its `B ∩ Ā` piece is a bounded
+    // Newton iteration.
+    let other = Cap::from_sphere(Vec3::new(0.8, 0.1, 2.0), 0.6);
+    let union = CapUnion::new(&cap, &other).expect("the union prepares");
+    corrupt_every_word("CapUnion", union, |s: &CapUnion| {
+        let mut sum = s.solid_angle();
+        for u in US {
+            let x = s.sample_uniform(u);
+            sum += x.pdf + x.dir.x + s.pdf(x.dir) + s.invert(x.dir).map_or(0.0, |u| u[0]);
+        }
+        std::hint::black_box(sum)
     });
     let wo = Vec3::new(0.4, 0.0, 0.9).normalize();
     let sampler = SphereLightSampler::new(Vec3::new(0.3, 0.2, 2.0), 0.5, wo, 0.4).unwrap();
