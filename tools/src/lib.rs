@@ -16,7 +16,6 @@ pub mod fast_function_fitter;
 pub mod header;
 pub mod ltc_fitter;
 pub mod pivot_fitter;
-pub mod reference;
 pub mod sg_error;
 pub mod sorting_network_generator;
 pub mod sphere_shading_error;

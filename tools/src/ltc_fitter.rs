@@ -72,18 +72,8 @@ pub const EVALUATION_LATTICE: (usize, usize) = (10946, 6765);
 /// A direction or any 3-vector.
 pub type V3 = [f64; 3];
 
-pub(crate) fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-pub(crate) fn add(a: V3, b: V3) -> V3 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-pub(crate) fn scale(a: V3, s: f64) -> V3 {
-    [a[0] * s, a[1] * s, a[2] * s]
-}
-fn normalize(a: V3) -> V3 {
-    scale(a, 1.0 / dot(a, a).sqrt())
-}
+pub(crate) use sphera_test_support::{add, dot, normalize, scale};
+pub use sphera_test_support::{gauss_legendre, graded_panels};
 
 /// The α of table row `i`: r² with r = i / 63, floored at [`MIN_ALPHA`].
 pub fn cell_alpha(i: usize) -> f64 {
@@ -176,61 +166,6 @@ impl Ggx {
         let h = normalize([self.alpha * hs[0], self.alpha * hs[1], hs[2]]);
         add(scale(h, 2.0 * dot(self.view, h)), scale(self.view, -1.0))
     }
-}
-
-/// Gauss–Legendre nodes and weights of order `m` on [0, 1] (Newton's iteration on the
-/// three-term recurrence of the Legendre polynomials).
-pub fn gauss_legendre(m: usize) -> Vec<(f64, f64)> {
-    (0..m)
-        .map(|i| {
-            let mut x = libm::cos(PI * (i as f64 + 0.75) / (m as f64 + 0.5));
-            let mut derivative = 1.0;
-            for _ in 0..100 {
-                let (mut p0, mut p1) = (1.0, x);
-                for k in 2..=m {
-                    let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-                    p0 = p1;
-                    p1 = p2;
-                }
-                derivative = m as f64 * (x * p1 - p0) / (x * x - 1.0);
-                let dx = p1 / derivative;
-                x -= dx;
-                if dx.abs() < 1e-15 {
-                    break;
-                }
-            }
-            (
-                0.5 * (1.0 + x),
-                1.0 / ((1.0 - x * x) * derivative * derivative),
-            )
-        })
-        .collect()
-}
-
-/// Panels covering [l, r]: halves, each refined geometrically (`levels` halvings)
-/// towards its end if that end is flagged.
-pub fn graded_panels(
-    l: f64,
-    r: f64,
-    grade_left: bool,
-    grade_right: bool,
-    levels: usize,
-) -> Vec<(f64, f64)> {
-    let mid = 0.5 * (l + r);
-    let mut bounds = vec![l];
-    if grade_left {
-        bounds.extend(
-            (1..=levels)
-                .rev()
-                .map(|k| l + (mid - l) * libm::ldexp(1.0, -(k as i32))),
-        );
-    }
-    bounds.push(mid);
-    if grade_right {
-        bounds.extend((1..=levels).map(|k| r - (r - mid) * libm::ldexp(1.0, -(k as i32))));
-    }
-    bounds.push(r);
-    bounds.windows(2).map(|w| (w[0], w[1])).collect()
 }
 
 /// Gauss–Legendre order per panel of [`hemisphere_rule`].
@@ -973,8 +908,9 @@ pub static LTC_TABLE: [[f32; 6]; LTC_TABLE_SIZE * LTC_TABLE_SIZE] = [
     out
 }
 
-/// The cells of a rendered table, read back from its lines `[..], // (i, j)`.
-pub fn parse_table(text: &str) -> Vec<[f32; 6]> {
+/// The cells of a rendered table (`N` values a cell: 6 for the LTC table, 3 for the
+/// pivot table), read back from its lines `[..], // (i, j)`.
+pub fn parse_table<const N: usize>(text: &str) -> Vec<[f32; N]> {
     let mut table = Vec::with_capacity(TABLE_SIZE * TABLE_SIZE);
     for line in text.lines() {
         let Some(rest) = line.strip_prefix("    [") else {
@@ -991,7 +927,10 @@ pub fn parse_table(text: &str) -> Vec<[f32; 6]> {
             format!("({}, {})", k / TABLE_SIZE, k % TABLE_SIZE),
             "cells out of order"
         );
-        table.push(values.try_into().expect("six values per cell"));
+        let cell: [f32; N] = values
+            .try_into()
+            .unwrap_or_else(|_| panic!("{N} values per cell"));
+        table.push(cell);
     }
     assert_eq!(table.len(), TABLE_SIZE * TABLE_SIZE, "cell count");
     table

@@ -557,24 +557,5 @@ pub fn runtime_line(text: &str) -> String {
 
 /// The cells of a rendered table, read back from its lines `[..], // (i, j)`.
 pub fn parse_table(text: &str) -> Vec<[f32; 3]> {
-    let mut table = Vec::with_capacity(TABLE_SIZE * TABLE_SIZE);
-    for line in text.lines() {
-        let Some(rest) = line.strip_prefix("    [") else {
-            continue;
-        };
-        let (numbers, label) = rest.split_once("], // ").expect("a cell line");
-        let values: Vec<f32> = numbers
-            .split(", ")
-            .map(|x| x.parse().expect("an f32 literal"))
-            .collect();
-        let k = table.len();
-        assert_eq!(
-            label,
-            format!("({}, {})", k / TABLE_SIZE, k % TABLE_SIZE),
-            "cells out of order"
-        );
-        table.push(values.try_into().expect("three values per cell"));
-    }
-    assert_eq!(table.len(), TABLE_SIZE * TABLE_SIZE, "cell count");
-    table
+    ltc_fitter::parse_table(text)
 }

@@ -19,34 +19,7 @@ use sphera::sg::{
 };
 use std::f64::consts::PI;
 
-type D3 = [f64; 3];
-
-fn normalize(a: D3) -> D3 {
-    let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
-    [a[0] / l, a[1] / l, a[2] / l]
-}
-
-fn to_f32(a: D3) -> Vec3 {
-    Vec3::new(a[0] as f32, a[1] as f32, a[2] as f32)
-}
-
-/// An orthonormal frame around `c` (f64, its own construction).
-fn frame(c: D3) -> (D3, D3) {
-    let helper = if c[0].abs() < 0.6 {
-        [1.0, 0.0, 0.0]
-    } else {
-        [0.0, 1.0, 0.0]
-    };
-    let cross = |a: D3, b: D3| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
-    let t = normalize(cross(helper, c));
-    (t, cross(c, t))
-}
+use sphera_test_support::{D3, dot, frame_f64 as frame, normalize, to_f32};
 
 /// `∫_{S²} f(ω) dω` by a product grid in `(t = 1 − ω·c, φ)` around `c`: in `t`, the
 /// panel `[0, t0]` and `n` geometrically growing panels from `t0` to 2
@@ -99,10 +72,6 @@ pub fn integrate(c: D3, lambda: f64, n: usize, f: &dyn Fn(D3) -> f64) -> f64 {
 fn sg64(axis: D3, l: f64, w: D3) -> f64 {
     let e = [w[0] - axis[0], w[1] - axis[1], w[2] - axis[2]];
     (-0.5 * l * (e[0] * e[0] + e[1] * e[1] + e[2] * e[2])).exp()
-}
-
-fn dot(a: D3, b: D3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// Beckmann's Smith `Λ` in f64 (Walter et al. 2007): `a = cos θ/(α sin θ)`,
