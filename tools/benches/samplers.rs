@@ -22,8 +22,8 @@ use sphera::sphere::{Cap, CapIntersection, CapUnion, Sptd, SptdInCap, pivot_cap,
 use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, fis_select, luminance};
 use sphera::{Sample, Vec3};
 use sphera_test_support::Rng;
-use sphera_tools::vsgl_kmeans::{KMeansMetric, kmeans_vsgls};
-use sphera_tools::vsgl_pyramid::VsglPyramidBuffer;
+use sphera_tools::measurements::vsgl_kmeans::{KMeansMetric, kmeans_vsgls};
+use sphera_tools::measurements::vsgl_pyramid::VsglPyramidBuffer;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -31,7 +31,7 @@ const INPUTS: usize = 4096;
 const REPEATS: usize = 31;
 
 fn time_ns(run: impl Fn(usize) -> f32) -> f64 {
-    sphera_tools::bench::time_ns(INPUTS, REPEATS, run)
+    sphera_tools::measurements::bench::time_ns(INPUTS, REPEATS, run)
 }
 
 fn value(s: Sample) -> f32 {

@@ -273,7 +273,7 @@ const INPUTS: usize = 4096;
 const REPEATS: usize = 31;
 
 fn time_ns(run: impl Fn(usize) -> f32) -> f64 {
-    sphera_tools::bench::time_ns(INPUTS, REPEATS, run)
+    sphera_tools::measurements::bench::time_ns(INPUTS, REPEATS, run)
 }
 
 fn timing_table(rng: &mut Rng) {

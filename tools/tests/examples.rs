@@ -255,7 +255,7 @@ fn installed_examples_build_with_cmake_and_pkg_config() {
     .to_vec();
     if cfg!(target_os = "linux") {
         // The soname: libsphera.so.MAJOR.MINOR before 1.0, libsphera.so.MAJOR after.
-        let version = sphera_tools::header::package_version();
+        let version = sphera_tools::generators::header::package_version();
         let numbers: Vec<&str> = version.split('.').collect();
         let soname = if numbers[0] == "0" {
             format!("libsphera.so.0.{}", numbers[1])

@@ -5,7 +5,7 @@
 //! The BRDF and the LTC density are written out again here from their definitions (in
 //! the table's documentation), independently of the fitter's stable forms.
 use sphera_test_support::{gauss_legendre, graded_bounds};
-use sphera_tools::ltc_fitter::{self, TABLE_SIZE};
+use sphera_tools::fitters::ltc_fitter::{self, TABLE_SIZE};
 use std::f64::consts::PI;
 
 // Generated code keeps its own layout (as `src/polygon/mod.rs` does for its generated

@@ -6,7 +6,7 @@
 //! The SPTD density is written out again here from its definition (the table's
 //! documentation), independently of the fitter's stable form.
 use sphera_test_support::{gauss_legendre, graded_bounds};
-use sphera_tools::{ltc_fitter, pivot_fitter, pivot_fitter::TABLE_SIZE};
+use sphera_tools::fitters::{ltc_fitter, pivot_fitter, pivot_fitter::TABLE_SIZE};
 use std::f64::consts::PI;
 
 // Generated code keeps its own layout (as `src/polygon/mod.rs` does for its generated

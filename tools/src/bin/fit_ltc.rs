@@ -4,7 +4,7 @@
 //! all cores; the output does not depend on the thread count). With `--render-only` it
 //! keeps the committed cells and only re-measures their errors and rewrites the
 //! documentation (for changes of the renderer, not of the fit).
-use sphera_tools::ltc_fitter::{self, TABLE_SIZE};
+use sphera_tools::fitters::ltc_fitter::{self, TABLE_SIZE};
 use std::time::Instant;
 
 fn main() {

@@ -4,7 +4,7 @@
 //! (default: all cores; the output does not depend on the thread count). With
 //! `--render-only` it keeps the committed cells and runtime line and only re-measures the
 //! errors and rewrites the documentation.
-use sphera_tools::{ltc_fitter, pivot_fitter};
+use sphera_tools::fitters::{ltc_fitter, pivot_fitter};
 use std::time::Instant;
 
 fn main() {

@@ -12,7 +12,7 @@
 //! The table: `cargo run --release -p sphera-tools --bin sphere_shading_error >
 //! docs/sphere-shading-error.md` (about 20 s); `tools/tests/sphere_shading.rs` bounds the
 //! errors on part of the grid.
-use crate::ltc_fitter::{Ggx, V3};
+use crate::fitters::ltc_fitter::{Ggx, V3};
 use std::f64::consts::PI;
 
 /// One configuration of the grid.
