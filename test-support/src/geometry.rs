@@ -180,3 +180,23 @@ pub fn angle_outside(v: &[D3], dir: D3) -> f64 {
     }
     worst
 }
+
+/// The part of the f32 polygon above the horizon, by Sutherland–Hodgman in f64 with the
+/// strict rule `z > 0` (also for 8 vertices, where the result may have 9), the new
+/// vertices rounded to f32 and exactly on z = 0: the polygon an f32 sampler sees.
+pub fn clip_to_upper_hemisphere_f32(vertices: &[Vec3]) -> Vec<Vec3> {
+    let n = vertices.len();
+    let mut out = Vec::new();
+    for i in 0..n {
+        let (a, b) = (d3(vertices[i]), d3(vertices[(i + 1) % n]));
+        if a[2] > 0.0 {
+            out.push(vertices[i]);
+        }
+        if (a[2] > 0.0) != (b[2] > 0.0) {
+            let t = a[2] / (a[2] - b[2]);
+            let p = add(a, scale(sub(b, a), t));
+            out.push(Vec3::new(p[0] as f32, p[1] as f32, 0.0));
+        }
+    }
+    out
+}
