@@ -898,6 +898,16 @@ pub static LTC_TABLE: [[f32; 6]; LTC_TABLE_SIZE * LTC_TABLE_SIZE] = [
         extremes = extremes(table),
         size = TABLE_SIZE,
     ));
+    push_cell_lines(&mut out, table, cell_line);
+    out
+}
+
+/// The cell lines `[..], // (i, j)` of a rendered table, row by row, and its end.
+pub fn push_cell_lines<T>(
+    out: &mut String,
+    table: &[T],
+    cell_line: impl Fn(usize, usize, &T) -> String,
+) {
     for i in 0..TABLE_SIZE {
         for j in 0..TABLE_SIZE {
             out.push_str(&cell_line(i, j, &table[i * TABLE_SIZE + j]));
@@ -905,7 +915,27 @@ pub static LTC_TABLE: [[f32; 6]; LTC_TABLE_SIZE * LTC_TABLE_SIZE] = [
         }
     }
     out.push_str("];\n");
-    out
+}
+
+/// The command line of `fit_ltc` and `fit_pivot`: `--threads N` (default: all cores; the
+/// output does not depend on it) and `--render-only`. Returns `(threads, render_only)`.
+pub fn fitter_arguments() -> (usize, bool) {
+    let mut threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut render_only = false;
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        match arg.as_str() {
+            "--render-only" => render_only = true,
+            "--threads" => {
+                threads = args
+                    .next()
+                    .and_then(|n| n.parse().ok())
+                    .expect("--threads takes a positive integer")
+            }
+            other => panic!("unknown argument {other:?} (--threads N, --render-only)"),
+        }
+    }
+    (threads, render_only)
 }
 
 /// The cells of a rendered table (`N` values a cell: 6 for the LTC table, 3 for the

@@ -537,13 +537,7 @@ pub static PIVOT_TABLE: [[f32; 3]; PIVOT_TABLE_SIZE * PIVOT_TABLE_SIZE] = [
         extremes = extremes(table),
         size = TABLE_SIZE,
     ));
-    for i in 0..TABLE_SIZE {
-        for j in 0..TABLE_SIZE {
-            out.push_str(&cell_line(i, j, &table[i * TABLE_SIZE + j]));
-            out.push('\n');
-        }
-    }
-    out.push_str("];\n");
+    ltc_fitter::push_cell_lines(&mut out, table, cell_line);
     out
 }
 
