@@ -405,13 +405,8 @@ fn vsgl_table(rng: &mut Rng, us: &[[f32; 2]]) {
             .sum()
     });
     let kmeans_ms = frame(&|| {
-        let mut state = 1u64;
-        let mut uniform = || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = Rng(1);
+        let mut uniform = || rng.uniform();
         let metric = KMeansMetric::for_clusters(CLUSTERS as usize, 6.4);
         kmeans_vsgls(&vpls, SIZE, CLUSTERS as usize, metric, &mut uniform)
             .vsgls
@@ -430,13 +425,8 @@ fn vsgl_table(rng: &mut Rng, us: &[[f32; 2]]) {
     let fis: Vec<Vsgl> = (0..CLUSTERS as usize)
         .map(|i| fis_select(&pyramid, CLUSTERS, 1.0, 8, us[i]))
         .collect();
-    let mut state = 1u64;
-    let mut uniform = || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = Rng(1);
+    let mut uniform = || rng.uniform();
     let metric = KMeansMetric::for_clusters(CLUSTERS as usize, 6.4);
     let kmeans = kmeans_vsgls(&vpls, SIZE, CLUSTERS as usize, metric, &mut uniform).vsgls;
     let stats = |vsgls: &[Vsgl]| {
