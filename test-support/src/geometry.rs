@@ -1,6 +1,6 @@
 //! f64 spherical geometry of planar polygons seen from the origin: solid angles,
 //! projected solid angles, clipping, containment. Written independently of the f32 core.
-use crate::vector::{D3, add, cross, d3, dot, norm, normalize, scale, sub};
+use crate::vector::{D3, add, cross, d3, dot, norm, scale, sub};
 use glam::Vec3;
 
 /// Solid angle of the planar triangle `a, b, c` (positions relative to the viewpoint)
@@ -47,10 +47,12 @@ pub fn projected_solid_angle_d3(p: &[D3]) -> f64 {
         let c = cross(p[i], sub(p[j], p[i]));
         // The angle from the positions, so that tiny polygons (where Lambert's terms
         // cancel by a factor of up to 1e7) keep f64 precision: |p_i × p_j| = |c|.
-        // Repeated vertices contribute nothing.
-        if norm(c) > 0.0 {
-            let angle = norm(c).atan2(dot(p[i], p[j]));
-            sum += angle * normalize(c)[2];
+        // Repeated vertices contribute nothing. `angle · c_z / |c|` with one division (the
+        // tools' form; the tests' `normalize(c)[2]` rounded twice, which the cancellation
+        // amplifies into the report's printed digits).
+        let length = norm(c);
+        if length > 0.0 {
+            sum += length.atan2(dot(p[i], p[j])) * c[2] / length;
         }
     }
     0.5 * sigma * sum
