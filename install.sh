@@ -41,7 +41,7 @@ echo "install.sh: building the release static library" >&2
 library="$target_dir/release/libsphera.a"
 [ -f "$library" ] || { echo "install.sh: the build did not produce $library" >&2; exit 1; }
 
-# The version of the header, which tools/src/header.rs writes from Cargo.toml.
+# The version of the header, which tools/src/generators/header.rs writes from Cargo.toml.
 version="$(sed -n 's/^#define SPHERA_VERSION_STRING "\(.*\)"$/\1/p' "$root/include/sphera.h")"
 [ -n "$version" ] || { echo "install.sh: no SPHERA_VERSION_STRING in include/sphera.h" >&2; exit 1; }
 major="${version%%.*}"

@@ -2,7 +2,7 @@
  * ffi-tests/determinism_table.txt (written through the Rust entry points by
  * `cargo run -p sphera-tools --bin generate_determinism_table`) with the functions of
  * libsphera.a and requires bit-identical outputs. The record format is documented in
- * tools/src/determinism.rs. */
+ * tools/src/generators/determinism.rs. */
 #include <stdlib.h>
 #include <string.h>
 

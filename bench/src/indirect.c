@@ -412,7 +412,7 @@ static void cluster_fis(const Rsm *rsm, const IndirectSettings *s, uint64_t *sta
     }
 }
 
-/* k-means of Section 5 (one assignment pass, as tools/src/vsgl_kmeans.rs): N centres
+/* k-means of Section 5 (one assignment pass, as tools/src/measurements/vsgl_kmeans.rs): N centres
  * drawn among the texels in proportion to their weight (with replacement), every texel
  * with weight assigned to the nearest centre in
  * d² = |x_a − x_b|²/h_image² + |y_a − y_b|²/h_world², h_image = 1/√N,

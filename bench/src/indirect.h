@@ -7,7 +7,7 @@
  * mip pyramid of sums (`sphera_vsgl_fis_select`'s layout); (3) N clusters by FIS
  * (`sphera_vsgl_fis_select`, Hammersley points) or by one k-means pass (Section 5:
  * centres drawn in proportion to importance, every texel to its nearest centre in the
- * metric |Δx|²/h_image² + |Δy|²/h_world², no iteration; as tools/src/vsgl_kmeans.rs);
+ * metric |Δx|²/h_image² + |Δy|²/h_world², no iteration; as tools/src/measurements/vsgl_kmeans.rs);
  * (4) at every camera hit, per VSGL, the incoming-radiance SG (Eq. 6-7), constant-
  * cosine diffuse and ASG specular shading (`sphera_sg_*`), times the visibility of the
  * VSGL's mean (one shadow ray). Biased by design (lobe fits, visibility of the mean).

@@ -1,8 +1,8 @@
-//! Fuzz target: `sphera_tools::abi_invariants::sphere_entry_points` on libFuzzer's bytes.
+//! Fuzz target: `sphera_tools::invariants::abi_invariants::sphere_entry_points` on libFuzzer's bytes.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    sphera_tools::abi_invariants::sphere_entry_points(data);
+    sphera_tools::invariants::abi_invariants::sphere_entry_points(data);
 });

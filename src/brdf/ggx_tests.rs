@@ -232,10 +232,6 @@ fn integrate_over_half_vectors(
     total
 }
 
-fn to_f32(v: D3) -> Vec3 {
-    Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32)
-}
-
 // ---- the distribution of samples ----------------------------------------------------
 
 const CELLS: usize = 24;

@@ -8,7 +8,7 @@
 //!
 //! `D(ω) = max(0, (M⁻¹ω)_z) |det M⁻¹| / (π ‖M⁻¹ω‖⁴)`.
 //!
-//! The table (`ltc_table.rs`, fitted by `tools/src/ltc_fitter.rs`) gives, per roughness
+//! The table (`ltc_table.rs`, fitted by `tools/src/fitters/ltc_fitter.rs`) gives, per roughness
 //! `r = √α` and view `t = √(1 − cos θ_o)`, the inverse matrix in the frame where the
 //! view lies in the xz-plane, `M⁻¹ = [[a, 0, b], [0, c, 0], [d, 0, 1]]`, such that
 //! `D ≈ f(ω_o, ω) cos θ / albedo` for GGX with `F = 1`, and the integrals `albedo` and

@@ -36,7 +36,7 @@ pub fn atan2_upper_half_plane(y: f32, x: f32) -> f32 {
 }
 
 /// `atan(t)` for `t` in `[0, 1]`: `t + t³ P(t²)` with the degree-8 polynomial `P`
-/// fitted for relative error by `tools/src/fast_function_fitter.rs` (relative minimax
+/// fitted for relative error by `tools/src/fitters/fast_function_fitter.rs` (relative minimax
 /// error of the `f32` coefficients 2.7e-9, a fortieth of `f32::EPSILON`), evaluated by
 /// Horner's rule in `f32`. Adding the correction `t³ P(t²)` (at most 22 % of the result)
 /// to the exact `t` last keeps the final rounding the dominant one.

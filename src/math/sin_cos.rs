@@ -26,7 +26,7 @@ const THREE_PI_4: f32 = 3.0 * FRAC_PI_4;
 /// rounding error is kept as `r_lo` for a first-order correction; every output that tends to zero (`sin` at 0 and π, `cos` at π/2) comes from
 /// `sin r ≈ r` and keeps its relative precision. `sin r = r + r³ P(r²)` and
 /// `cos r = 1 - r²/2 + r⁴ Q(r²)` (degrees 7 and 8) are fitted by
-/// `tools/src/fast_function_fitter.rs` (relative errors of the `f32` coefficients 4e-9
+/// `tools/src/fitters/fast_function_fitter.rs` (relative errors of the `f32` coefficients 4e-9
 /// and 1.2e-10) and evaluated by Horner's rule without fused multiply-add, so `+fma`
 /// builds give the same bits; `1 - r²/2` is compensated (its rounding error added back).
 ///

@@ -144,9 +144,7 @@ pub(crate) fn clipped_edge_planes(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::testing::Rng;
-
-    type D3 = [f64; 3];
+    use crate::testing::{D3, Rng};
 
     /// One vertex of the reference output and the input vertices it was computed from.
     struct RefVertex {

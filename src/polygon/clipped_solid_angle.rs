@@ -151,23 +151,6 @@ mod tests {
         circle_polygon(n, [0.3, -0.2, 1.0], [0.3, -0.2, -1.0], 0.9, reversed)
     }
 
-    /// The part above the horizon by Sutherland–Hodgman in f64, new vertices on z = 0.
-    fn clipped_f64(vertices: &[Vec3]) -> Vec<Vec3> {
-        let n = vertices.len();
-        let mut out = Vec::new();
-        for i in 0..n {
-            let (a, b) = (d3(vertices[i]), d3(vertices[(i + 1) % n]));
-            if a[2] > 0.0 {
-                out.push(vertices[i]);
-            }
-            if (a[2] > 0.0) != (b[2] > 0.0) {
-                let p = add(a, scale(sub(b, a), a[2] / (a[2] - b[2])));
-                out.push(Vec3::new(p[0] as f32, p[1] as f32, 0.0));
-            }
-        }
-        out
-    }
-
     fn cell_solid_angle(c: &[D3; 3]) -> f64 {
         solid_angle_triangle_f64(c[0], c[1], c[2])
     }
@@ -181,7 +164,7 @@ mod tests {
                     ("above", above(n, reversed)),
                 ] {
                     let polygon = ClippedSolidAnglePolygon::new(&vertices).expect("valid");
-                    let part = clipped_f64(&vertices);
+                    let part = clip_to_upper_hemisphere_f32(&vertices);
                     let what = format!("{name} {n}-gon reversed={reversed}");
                     let report = run_polygon_sampler(
                         &part,
@@ -220,7 +203,10 @@ mod tests {
             for reversed in [false, true] {
                 let vertices = crossing(n, reversed);
                 let polygon = ClippedSolidAnglePolygon::new(&vertices).unwrap();
-                let part: Vec<D3> = clipped_f64(&vertices).iter().map(|&v| d3(v)).collect();
+                let part: Vec<D3> = clip_to_upper_hemisphere_f32(&vertices)
+                    .iter()
+                    .map(|&v| d3(v))
+                    .collect();
                 let reference = solid_angle_polygon_f64(&part);
                 let full =
                     solid_angle_polygon_f64(&vertices.iter().map(|&v| d3(v)).collect::<Vec<_>>());
@@ -252,7 +238,8 @@ mod tests {
                     assert!(s.pdf > 0.0);
                     estimate.add(s.dir.z as f64 / s.pdf as f64);
                 }
-                let reference = projected_solid_angle_polygon_f64(&clipped_f64(&vertices));
+                let reference =
+                    projected_solid_angle_polygon_f64(&clip_to_upper_hemisphere_f32(&vertices));
                 estimate.assert_mean_is(reference, 5.0, 1e-5, &format!("{n}-gon {reversed}"));
             }
         }

@@ -6,31 +6,13 @@ use super::*;
 use crate::polygon::SolidAnglePolygon;
 use crate::testing::*;
 
-/// The part of the f64 polygon `p` on the non-negative side of the plane through the
-/// origin with normal `n` (Sutherland–Hodgman).
-fn clip_d3(p: &[D3], n: D3) -> Vec<D3> {
-    let mut out = Vec::new();
-    for i in 0..p.len() {
-        let (a, b) = (p[i], p[(i + 1) % p.len()]);
-        let (da, db) = (dot(a, n), dot(b, n));
-        if da >= 0.0 {
-            out.push(a);
-        }
-        if (da >= 0.0) != (db >= 0.0) {
-            let t = da / (da - db);
-            out.push(add(a, scale(sub(b, a), t)));
-        }
-    }
-    out
-}
-
 fn to_d3(v: &[Vec3]) -> Vec<D3> {
     v.iter().map(|&x| d3(x)).collect()
 }
 
 /// Projected solid angle of the polygon's part above the horizon, in f64.
 fn reference_projected_solid_angle(v: &[Vec3]) -> f64 {
-    let clipped = clip_d3(&to_d3(v), [0.0, 0.0, 1.0]);
+    let clipped = clip_by_plane(&to_d3(v), [0.0, 0.0, 1.0]);
     if clipped.len() < 3 {
         return 0.0;
     }
@@ -231,7 +213,7 @@ fn azimuth_of_area(p: &[D3], from: f64, to: f64, target: f64) -> f64 {
         let mid = 0.5 * (lo + hi);
         // Keep the part clockwise of azimuth `mid` (det(e_mid, ω_xy) <= 0).
         let n = [mid.sin(), -mid.cos(), 0.0];
-        let part = clip_d3(p, n);
+        let part = clip_by_plane(p, n);
         let area = if part.len() >= 3 {
             projected_solid_angle_d3(&part).abs()
         } else {
@@ -259,7 +241,7 @@ fn sampled_azimuths_match_an_f64_inversion_of_the_azimuthal_cdf() {
             continue;
         }
         let tolerance = 1e-4 + 1e-6 * condition(&polygon);
-        let p = clip_d3(&to_d3(&v), [0.0, 0.0, 1.0]);
+        let p = clip_by_plane(&to_d3(&v), [0.0, 0.0, 1.0]);
         // Azimuth bracket: the vertices' azimuths relative to the first one.
         let base = p[0][1].atan2(p[0][0]);
         let relative = |q: &D3| {
@@ -302,7 +284,7 @@ fn solid_angle_estimator_with_projected_samples_is_unbiased() {
         let Some(polygon) = ProjectedPolygon::new(&v) else {
             continue;
         };
-        let reference = solid_angle_polygon_f64(&clip_d3(&to_d3(&v), [0.0, 0.0, 1.0]));
+        let reference = solid_angle_polygon_f64(&clip_by_plane(&to_d3(&v), [0.0, 0.0, 1.0]));
         let mut estimate = Estimate::default();
         for _ in 0..200_000 {
             let s = polygon.sample([rng.uniform_f32(), rng.uniform_f32()]);
@@ -333,8 +315,8 @@ fn estimator_of_a_varying_emission_has_the_quadrature_mean_and_variance() {
             continue;
         };
         let phi = projected_solid_angle_polygon_f64(&v);
-        let first = integrate_over_polygon_f64(&v, 64, |w| f(w) * w[2]);
-        let second = integrate_over_polygon_f64(&v, 64, |w| f(w) * f(w) * w[2]);
+        let first = integrate_over_polygon_f64(&to_d3(&v), 64, |w| f(w) * w[2]);
+        let second = integrate_over_polygon_f64(&to_d3(&v), 64, |w| f(w) * f(w) * w[2]);
         let variance = phi * second - first * first;
         let mut estimate = Estimate::default();
         for _ in 0..40_000 {
@@ -983,7 +965,7 @@ fn straddling_polygons_are_sampled_inside_the_clipped_polygon_with_the_cosine_de
         if !(v.iter().any(|p| p.z < 0.0) && v.iter().any(|p| p.z > 0.0)) {
             continue;
         }
-        let clipped = clip_d3(&to_d3(&v), [0.0, 0.0, 1.0]);
+        let clipped = clip_by_plane(&to_d3(&v), [0.0, 0.0, 1.0]);
         // Nearly edge-on slivers whose f32 vertices, out of their plane by rounding, are
         // not convex as seen from the shading point have no inside to test against.
         let convex = |p: &[D3]| p.iter().all(|&q| angle_outside(p, q) <= 1e-12);
@@ -1166,7 +1148,7 @@ fn samples_reach_a_vertex_on_the_horizon_at_an_azimuthal_end() {
     for (index, vertices) in polygons.iter().enumerate() {
         let polygon = ProjectedPolygon::new(vertices).expect("a valid polygon");
         assert!(polygon.central == 0 && !polygon.uses_small_polygon_sampler());
-        let p = clip_d3(&to_d3(vertices), [0.0, 0.0, 1.0]);
+        let p = clip_by_plane(&to_d3(vertices), [0.0, 0.0, 1.0]);
         let n = p.len();
         let phi = projected_solid_angle_d3(&p);
         // The clipped vertex at (0.168, 0.529, 0), and its neighbours.
@@ -1267,7 +1249,7 @@ fn azimuths_next_to_a_vertex_on_the_horizon_match_an_f64_inversion() {
         for (vertices, vertex_last) in &polygons {
             let polygon = ProjectedPolygon::new(vertices).expect("a valid polygon");
             assert!(polygon.central == 0 && !polygon.uses_small_polygon_sampler());
-            let p = clip_d3(&to_d3(vertices), [0.0, 0.0, 1.0]);
+            let p = clip_by_plane(&to_d3(vertices), [0.0, 0.0, 1.0]);
             let base = p[0][1].atan2(p[0][0]);
             let relative = |q: &D3| {
                 let a = q[1].atan2(q[0]) - base;

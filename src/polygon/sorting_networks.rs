@@ -24,7 +24,7 @@
 //! `cargo run --release -p sphera-tools --bin generate_sorting_networks`, whose
 //! exhaustive search proves for every size that no network with fewer comparators
 //! exists and that no network with as many comparators has fewer layers (see
-//! `tools/src/sorting_network_generator.rs`). By the 0-1 principle, a network sorts all
+//! `tools/src/generators/sorting_network_generator.rs`). By the 0-1 principle, a network sorts all
 //! bitonic sequences with ties iff it sorts those of distinct values, so ties cost no
 //! extra comparator.
 

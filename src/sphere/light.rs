@@ -2,7 +2,7 @@
 //! Sections 5 and 6.1).
 //!
 //! [`GgxPivot::lookup`] reads the pivot table (`brdf/pivot_table.rs`, fitted by
-//! `tools/src/pivot_fitter.rs`): for a view `ω_o` and roughness `r = √α`, the pivot
+//! `tools/src/fitters/pivot_fitter.rs`): for a view `ω_o` and roughness `r = √α`, the pivot
 //! `r_p` of the uniform SPTD `D ≈ f cos θ / albedo` and the albedo `∫ f cos θ dω`
 //! (Fresnel = 1), interpolated bilinearly like the LTC table and rotated to the view's
 //! azimuth.

@@ -32,7 +32,7 @@ use sphera::mis;
 use sphera::polygon::light::{Material, MisHeuristic, PolygonLight};
 use sphera::polygon::{ProjectedPolygon, SolidAnglePolygon};
 use sphera::{Sample, Vec3};
-use sphera_tools::bench::Rng;
+use sphera_test_support::Rng;
 use std::f32::consts::PI;
 use std::hint::black_box;
 use std::time::Instant;
@@ -56,9 +56,9 @@ struct Configuration {
 fn random_configuration(rng: &mut Rng, roughness: f32) -> Configuration {
     loop {
         let n = 3 + (rng.next_u64() % 4) as usize;
-        let elevation = (rng.uniform() * 80.0 - 5.0).to_radians();
-        let azimuth = rng.uniform() * 2.0 * PI;
-        let distance = 1.0 + 3.0 * rng.uniform();
+        let elevation = (rng.uniform_f32() * 80.0 - 5.0).to_radians();
+        let azimuth = rng.uniform_f32() * 2.0 * PI;
+        let distance = 1.0 + 3.0 * rng.uniform_f32();
         let centre = distance
             * Vec3::new(
                 elevation.cos() * azimuth.cos(),
@@ -70,23 +70,23 @@ fn random_configuration(rng: &mut Rng, roughness: f32) -> Configuration {
         let normal = (facing
             + 0.8
                 * Vec3::new(
-                    rng.uniform() - 0.5,
-                    rng.uniform() - 0.5,
-                    rng.uniform() - 0.5,
+                    rng.uniform_f32() - 0.5,
+                    rng.uniform_f32() - 0.5,
+                    rng.uniform_f32() - 0.5,
                 ))
         .normalize();
         let a = normal.any_orthonormal_vector();
         let b = normal.cross(a);
-        let radius = 0.1 + 0.65 * rng.uniform();
-        let phase = rng.uniform() * 2.0 * PI;
+        let radius = 0.1 + 0.65 * rng.uniform_f32();
+        let phase = rng.uniform_f32() * 2.0 * PI;
         let polygon: Vec<Vec3> = (0..n)
             .map(|k| {
                 let t = phase + 2.0 * PI * k as f32 / n as f32;
                 centre + radius * (t.cos() * a + t.sin() * b)
             })
             .collect();
-        let view_elevation = (90.0 - 80.0 * rng.uniform()).to_radians();
-        let view_azimuth = rng.uniform() * 2.0 * PI;
+        let view_elevation = (90.0 - 80.0 * rng.uniform_f32()).to_radians();
+        let view_azimuth = rng.uniform_f32() * 2.0 * PI;
         let wo = Vec3::new(
             view_elevation.cos() * view_azimuth.cos(),
             view_elevation.cos() * view_azimuth.sin(),

@@ -28,7 +28,7 @@
 //!    and the bias of its mean.
 //!
 //! The f64 references (Lambert's formula with angles from positions, clipping by
-//! planes, bisection) are in `sphera_tools::reference`, independent of the core. Each
+//! planes, bisection) are in `sphera_test_support`, independent of the core. Each
 //! table lists its techniques one per line; a new sampler with `new`, `sample` (and
 //! for the accuracy table `projected_solid_angle` or `solid_angle`) joins by one
 //! `technique!` line and one line per table.
@@ -40,8 +40,8 @@ use sphera::polygon::baselines::{
 };
 use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon};
 use sphera::{Sample, Vec3};
-use sphera_tools::bench::Rng;
-use sphera_tools::reference::{self, D3};
+use sphera_test_support::Rng;
+use sphera_test_support::{self as reference, D3};
 use std::f32::consts::{PI, TAU};
 use std::hint::black_box;
 use std::time::Instant;
@@ -59,10 +59,10 @@ fn polygon_in_plane(
 ) -> Vec<Vec3> {
     let (t, b) = sphera::math::orthonormal_basis(normal);
     let aspect = rng.range(min_aspect, 1.0);
-    let offset = rng.uniform() * TAU;
+    let offset = rng.uniform_f32() * TAU;
     (0..n)
         .map(|i| {
-            let angle = offset + TAU * (i as f32 + 0.4 * rng.uniform()) / n as f32;
+            let angle = offset + TAU * (i as f32 + 0.4 * rng.uniform_f32()) / n as f32;
             center + t * (radius * angle.cos()) + b * (radius * aspect * angle.sin())
         })
         .collect()
@@ -71,7 +71,7 @@ fn polygon_in_plane(
 /// A random convex polygon with `n` vertices on an ellipse above the shading point, in
 /// a plane tilted from the horizontal by up to about 30°.
 fn random_polygon(rng: &mut Rng, n: usize, center: Vec3, radius: f32) -> Vec<Vec3> {
-    let normal = Vec3::new(rng.uniform() - 0.5, rng.uniform() - 0.5, 1.0).normalize();
+    let normal = Vec3::new(rng.uniform_f32() - 0.5, rng.uniform_f32() - 0.5, 1.0).normalize();
     polygon_in_plane(rng, n, center, normal, radius, 0.5)
 }
 
@@ -278,11 +278,11 @@ fn speed_polygons(rng: &mut Rng, placement: Placement, n: usize) -> Vec<Vec<Vec3
         let v = match placement {
             Placement::Mixed => {
                 let c = Vec3::new(
-                    rng.uniform() - 0.5,
-                    rng.uniform() - 0.5,
-                    0.5 + rng.uniform(),
+                    rng.uniform_f32() - 0.5,
+                    rng.uniform_f32() - 0.5,
+                    0.5 + rng.uniform_f32(),
                 );
-                let radius = 0.3 + 0.5 * rng.uniform();
+                let radius = 0.3 + 0.5 * rng.uniform_f32();
                 random_polygon(rng, n, c, radius)
             }
             Placement::Central => {
@@ -296,7 +296,7 @@ fn speed_polygons(rng: &mut Rng, placement: Placement, n: usize) -> Vec<Vec<Vec3
                 random_polygon(rng, n, c, radius)
             }
             Placement::Decentral => {
-                let dir = direction(rng.range(0.35, 1.25), rng.uniform() * TAU);
+                let dir = direction(rng.range(0.35, 1.25), rng.uniform_f32() * TAU);
                 let distance = rng.range(0.5, 1.5);
                 let normal = tilted(rng, dir, 0.5);
                 let radius = rng.range(0.1, 0.5) * distance;
@@ -344,7 +344,7 @@ fn speed_table() {
     println!("|---|---|---:|---:|---:|---:|---:|---:|");
     let mut rng = Rng(42);
     let us: Vec<[f32; 2]> = (0..POLYGONS * SAMPLES_PER_POLYGON)
-        .map(|_| [rng.uniform(), rng.uniform()])
+        .map(|_| [rng.uniform_f32(), rng.uniform_f32()])
         .collect();
     let sets = [
         (Placement::Mixed, 3, "mixed"),
@@ -395,7 +395,7 @@ fn iteration_error_table() {
     let mut polygons = Vec::new();
     while polygons.len() < ITERATION_POLYGONS {
         let n = 3 + polygons.len() % 5;
-        let dir = direction(rng.range(-0.2, 1.3), rng.uniform() * TAU);
+        let dir = direction(rng.range(-0.2, 1.3), rng.uniform_f32() * TAU);
         let normal = tilted(&mut rng, dir, 0.7);
         let radius = rng.range(0.03, 0.7);
         let v = polygon_in_plane(&mut rng, n, dir, normal, radius, 0.3);
@@ -403,7 +403,7 @@ fn iteration_error_table() {
         if reference::polygon_contains(&d, ZENITH) {
             continue;
         }
-        let clipped = reference::clip_to_upper_hemisphere(&d);
+        let clipped = reference::clip_to_upper_hemisphere_f64(&d);
         if clipped.len() < 3 {
             continue;
         }
@@ -434,10 +434,10 @@ fn iteration_error_table() {
     // absolute, backward relative.
     let mut errors: [[Vec<f64>; 3]; 6] = Default::default();
     for (clipped, polygon, fast) in &polygons {
-        let total = reference::projected_solid_angle(clipped);
+        let total = reference::projected_solid_angle_d3(clipped);
         let (lo, hi) = reference::azimuth_range(clipped);
         for _ in 0..ITERATION_SAMPLES {
-            let u = [rng.uniform(), rng.uniform()];
+            let u = [rng.uniform_f32(), rng.uniform_f32()];
             let target = u[0] as f64 * total;
             let expected = reference::azimuth_of_projected_solid_angle(clipped, lo, hi, target);
             for (iterations, e) in errors.iter_mut().enumerate() {
@@ -503,18 +503,18 @@ fn arvo_accuracy_table() {
         while ours.len() < 200 {
             // A polygon of about the target solid angle, at least three times its own
             // size away; kept only when its exact Ω falls into the decade.
-            let target = 10f64.powf(decade as f64 + rng.uniform() as f64);
+            let target = 10f64.powf(decade as f64 + rng.uniform_f32() as f64);
             let size = (2.0 * target).sqrt().min(0.4) as f32;
             let distance = (size as f64 / (2.0 * target).sqrt()) as f32;
             let dir = Vec3::new(
-                rng.uniform() - 0.5,
-                rng.uniform() - 0.5,
-                0.2 + rng.uniform(),
+                rng.uniform_f32() - 0.5,
+                rng.uniform_f32() - 0.5,
+                0.2 + rng.uniform_f32(),
             )
             .normalize();
             let v = random_polygon(&mut rng, 3 + ours.len() % 2, dir * distance, size);
             let d = to_d3(&v);
-            let exact = reference::polygon_solid_angle(&d);
+            let exact = reference::solid_angle_polygon_f64(&d);
             if exact.log10().floor() as i32 != decade {
                 continue;
             }
@@ -525,7 +525,7 @@ fn arvo_accuracy_table() {
             fast_path += (a.careful_paths() == 0) as usize;
             arvo.push((b.solid_angle() as f64 - exact).abs() / exact);
             for _ in 0..400 {
-                let u = [rng.uniform(), rng.uniform()];
+                let u = [rng.uniform_f32(), rng.uniform_f32()];
                 total += 1;
                 ours_out += !reference::polygon_contains(&d, dir_d3(&a.sample(u))) as u64;
                 arvo_out += !reference::polygon_contains(&d, dir_d3(&b.sample(u))) as u64;
@@ -589,7 +589,7 @@ fn measure_accuracy<T: Technique>(cases: &[Case], rng: &mut Rng) -> Option<Accur
             .errors
             .push((prepared.integral() as f64 - exact).abs() / exact);
         for _ in 0..DECADE_SAMPLES {
-            let s = prepared.sample([rng.uniform(), rng.uniform()]);
+            let s = prepared.sample([rng.uniform_f32(), rng.uniform_f32()]);
             accuracy.samples += 1;
             if !s.dir.is_finite() || !s.pdf.is_finite() || (s.pdf <= 0.0 && s.dir.z > 0.0) {
                 accuracy.non_finite += 1;
@@ -614,7 +614,7 @@ fn measure_accuracy<T: Technique>(cases: &[Case], rng: &mut Rng) -> Option<Accur
 fn decade_cases(rng: &mut Rng, decade: i32) -> Vec<Case> {
     let mut cases = Vec::new();
     while cases.len() < DECADE_POLYGONS {
-        let target = 10f32.powf(decade as f32 + rng.uniform());
+        let target = 10f32.powf(decade as f32 + rng.uniform_f32());
         // The angular radius of a cap of that solid angle.
         let angle = (2.0 * (target / (4.0 * PI)).sqrt().asin()).min(1.4);
         let dir = match cases.len() % 3 {
@@ -624,9 +624,9 @@ fn decade_cases(rng: &mut Rng, decade: i32) -> Vec<Case> {
                 1.0,
             )
             .normalize(),
-            1 => direction(rng.range(0.1, 1.5), rng.uniform() * TAU),
-            _ if decade >= -3 => direction(rng.range(-1.0, 1.0) * angle, rng.uniform() * TAU),
-            _ => direction(rng.range(1.5, 4.0) * angle, rng.uniform() * TAU),
+            1 => direction(rng.range(0.1, 1.5), rng.uniform_f32() * TAU),
+            _ if decade >= -3 => direction(rng.range(-1.0, 1.0) * angle, rng.uniform_f32() * TAU),
+            _ => direction(rng.range(1.5, 4.0) * angle, rng.uniform_f32() * TAU),
         };
         let normal = tilted(rng, dir, 0.6);
         let v = polygon_in_plane(rng, 3 + cases.len() % 5, dir, normal, angle.tan(), 0.3);
@@ -634,18 +634,18 @@ fn decade_cases(rng: &mut Rng, decade: i32) -> Vec<Case> {
         if !is_convex(&d) {
             continue;
         }
-        let clipped = reference::clip_to_upper_hemisphere(&d);
+        let clipped = reference::clip_to_upper_hemisphere_f64(&d);
         if clipped.len() < 3 {
             continue;
         }
-        let solid_angle_above = reference::polygon_solid_angle(&clipped);
+        let solid_angle_above = reference::solid_angle_polygon_f64(&clipped);
         if solid_angle_above.log10().floor() as i32 != decade {
             continue;
         }
         cases.push(Case {
             vertices: v,
-            solid_angle: reference::polygon_solid_angle(&d),
-            projected: reference::projected_solid_angle(&clipped),
+            solid_angle: reference::solid_angle_polygon_f64(&d),
+            projected: reference::projected_solid_angle_d3(&clipped),
             d,
         });
     }
@@ -662,12 +662,12 @@ fn near_hemisphere_cases(rng: &mut Rng) -> Vec<Case> {
         let normal = tilted(rng, Vec3::Z, 0.02);
         let v = polygon_in_plane(rng, 3 + cases.len() % 5, center, normal, radius, 0.7);
         let d = to_d3(&v);
-        let clipped = reference::clip_to_upper_hemisphere(&d);
-        let projected = reference::projected_solid_angle(&clipped);
+        let clipped = reference::clip_to_upper_hemisphere_f64(&d);
+        let projected = reference::projected_solid_angle_d3(&clipped);
         if projected > 3.0 {
             cases.push(Case {
                 vertices: v,
-                solid_angle: reference::polygon_solid_angle(&d),
+                solid_angle: reference::solid_angle_polygon_f64(&d),
                 projected,
                 d,
             });
@@ -810,14 +810,14 @@ fn variance_table() {
     let configurations: Vec<(Vec<Vec3>, f64)> = (0..VARIANCE_CONFIGURATIONS)
         .map(|i| {
             loop {
-                let dir = direction(rng.range(-0.15, 1.5), rng.uniform() * TAU);
+                let dir = direction(rng.range(-0.15, 1.5), rng.uniform_f32() * TAU);
                 let normal = tilted(&mut rng, dir, 0.8);
                 let radius = rng.range(0.1, 1.5);
                 let v = polygon_in_plane(&mut rng, 3 + i % 5, dir, normal, radius, 0.3);
-                let clipped = reference::clip_to_upper_hemisphere(&to_d3(&v));
-                let projected = reference::projected_solid_angle(&clipped);
+                let clipped = reference::clip_to_upper_hemisphere_f64(&to_d3(&v));
+                let projected = reference::projected_solid_angle_d3(&clipped);
                 if projected > 1e-6 {
-                    let integral = reference::integrate_over_polygon(&clipped, 32, |w| {
+                    let integral = reference::integrate_over_polygon_f64(&clipped, 32, |w| {
                         emission(w) * w[2].max(0.0)
                     });
                     break (v, integral);
@@ -830,7 +830,7 @@ fn variance_table() {
         .filter(|(v, _)| v.iter().any(|p| p.z < 0.0))
         .count();
     let us: Vec<[f32; 2]> = (0..VARIANCE_SAMPLES)
-        .map(|_| [rng.uniform(), rng.uniform()])
+        .map(|_| [rng.uniform_f32(), rng.uniform_f32()])
         .collect();
     let results: Vec<(&str, Variances)> = techniques
         .iter()

@@ -21,9 +21,9 @@ use sphera::sphere::phase;
 use sphera::sphere::{Cap, CapIntersection, CapUnion, Sptd, SptdInCap, pivot_cap, pivot_transform};
 use sphera::vsgl::{Vpl, Vsgl, VsglAccumulator, fis_select, luminance};
 use sphera::{Sample, Vec3};
-use sphera_tools::bench::Rng;
-use sphera_tools::vsgl_kmeans::{KMeansMetric, kmeans_vsgls};
-use sphera_tools::vsgl_pyramid::VsglPyramidBuffer;
+use sphera_test_support::Rng;
+use sphera_tools::measurements::vsgl_kmeans::{KMeansMetric, kmeans_vsgls};
+use sphera_tools::measurements::vsgl_pyramid::VsglPyramidBuffer;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -31,7 +31,7 @@ const INPUTS: usize = 4096;
 const REPEATS: usize = 31;
 
 fn time_ns(run: impl Fn(usize) -> f32) -> f64 {
-    sphera_tools::bench::time_ns(INPUTS, REPEATS, run)
+    sphera_tools::measurements::bench::time_ns(INPUTS, REPEATS, run)
 }
 
 fn value(s: Sample) -> f32 {
@@ -41,7 +41,7 @@ fn value(s: Sample) -> f32 {
 fn main() {
     let mut rng = Rng(7);
     let us: Vec<[f32; 2]> = (0..INPUTS)
-        .map(|_| [rng.uniform(), rng.uniform()])
+        .map(|_| [rng.uniform_f32(), rng.uniform_f32()])
         .collect();
     let views: Vec<Vec3> = (0..INPUTS)
         .map(|_| {
@@ -52,8 +52,8 @@ fn main() {
     let spheres: Vec<(Vec3, f32)> = (0..INPUTS)
         .map(|_| {
             (
-                rng.direction() * (1.0 + 9.0 * rng.uniform()),
-                0.05 + 0.9 * rng.uniform(),
+                rng.direction() * (1.0 + 9.0 * rng.uniform_f32()),
+                0.05 + 0.9 * rng.uniform_f32(),
             )
         })
         .collect();
@@ -62,7 +62,7 @@ fn main() {
         .map(|&(c, r)| Cap::from_sphere(c, r))
         .collect();
     let pivots: Vec<Vec3> = (0..INPUTS)
-        .map(|_| rng.direction() * (0.95 * rng.uniform()))
+        .map(|_| rng.direction() * (0.95 * rng.uniform_f32()))
         .collect();
     let ggx = GgxBrdf::new(0.3, Vec3::splat(0.04));
     let lambert = Lambert::new(Vec3::splat(0.5));
@@ -81,8 +81,8 @@ fn main() {
         .map(|_| {
             Sg::new(
                 rng.direction(),
-                10f32.powf(4.0 * rng.uniform() - 1.0),
-                1.0 + rng.uniform(),
+                10f32.powf(4.0 * rng.uniform_f32() - 1.0),
+                1.0 + rng.uniform_f32(),
             )
         })
         .collect();
@@ -91,7 +91,7 @@ fn main() {
         .map(|&wo| Asg::ggx_lobe(Vec3::Z, wo, 0.09))
         .collect();
     let vsgl_means: Vec<Vec3> = (0..INPUTS)
-        .map(|_| rng.direction() * (1.0 + 9.0 * rng.uniform()))
+        .map(|_| rng.direction() * (1.0 + 9.0 * rng.uniform_f32()))
         .collect();
     let incoming: Vec<Sg> = (0..INPUTS)
         .map(|i| incoming_radiance(&sgs[i], vsgl_means[i], 0.1))
@@ -143,11 +143,11 @@ fn main() {
     let across_caps: Vec<Cap> = cosine_sptds
         .iter()
         .map(|sptd| {
-            let t = 0.01 + 1.49 * cap_rng.uniform();
-            let k = 1.8 * cap_rng.uniform() - 0.9;
+            let t = 0.01 + 1.49 * cap_rng.uniform_f32();
+            let k = 1.8 * cap_rng.uniform_f32() - 0.9;
             let cos_beta = k * (t * (2.0 - t)).sqrt();
             let sin_beta = (1.0 - cos_beta * cos_beta).sqrt();
-            let phi = std::f32::consts::TAU * cap_rng.uniform();
+            let phi = std::f32::consts::TAU * cap_rng.uniform_f32();
             let axis = Vec3::new(sin_beta * phi.cos(), sin_beta * phi.sin(), cos_beta);
             pivot_cap(&Cap::from_axis_one_minus_cos(axis, t), sptd.pivot)
         })
@@ -381,13 +381,13 @@ fn vsgl_table(rng: &mut Rng, us: &[[f32; 2]]) {
             let (x, y) = ((k % SIZE) as f32, (k / SIZE) as f32);
             let normal = (rng.direction() + Vec3::new(0.0, 0.0, 1.5)).normalize();
             Vpl {
-                position: Vec3::new(x * 0.1, y * 0.1, rng.uniform()),
+                position: Vec3::new(x * 0.1, y * 0.1, rng.uniform_f32()),
                 normal,
-                power: Vec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * 4.0,
+                power: Vec3::new(rng.uniform_f32(), rng.uniform_f32(), rng.uniform_f32()) * 4.0,
                 diffuse_reflectance: Vec3::splat(0.6),
                 specular_reflectance: Vec3::splat(0.04),
                 toward_incoming: (normal + rng.direction() * 0.5).normalize(),
-                roughness: 0.1 + 0.8 * rng.uniform(),
+                roughness: 0.1 + 0.8 * rng.uniform_f32(),
             }
         })
         .collect();
@@ -451,13 +451,8 @@ fn vsgl_table(rng: &mut Rng, us: &[[f32; 2]]) {
             .sum()
     });
     let kmeans_ms = frame(&|| {
-        let mut state = 1u64;
-        let mut uniform = || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = Rng(1);
+        let mut uniform = || rng.uniform();
         let metric = KMeansMetric::for_clusters(CLUSTERS as usize, 6.4);
         kmeans_vsgls(&vpls, SIZE, CLUSTERS as usize, metric, &mut uniform)
             .vsgls
@@ -476,13 +471,8 @@ fn vsgl_table(rng: &mut Rng, us: &[[f32; 2]]) {
     let fis: Vec<Vsgl> = (0..CLUSTERS as usize)
         .map(|i| fis_select(&pyramid, CLUSTERS, 1.0, 8, us[i]))
         .collect();
-    let mut state = 1u64;
-    let mut uniform = || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = Rng(1);
+    let mut uniform = || rng.uniform();
     let metric = KMeansMetric::for_clusters(CLUSTERS as usize, 6.4);
     let kmeans = kmeans_vsgls(&vpls, SIZE, CLUSTERS as usize, metric, &mut uniform).vsgls;
     let stats = |vsgls: &[Vsgl]| {

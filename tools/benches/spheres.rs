@@ -12,7 +12,7 @@ use sphera::sphere::phase::{
 };
 use sphera::sphere::{Cap, pivot_cap};
 use sphera::{Sample, Vec3};
-use sphera_tools::bench::Rng;
+use sphera_test_support::Rng;
 
 /// A light configuration: view, sphere center and radius.
 struct Config {
@@ -27,25 +27,25 @@ struct Config {
 fn configs(rng: &mut Rng, count: usize, highlight: bool) -> Vec<Config> {
     (0..count)
         .map(|_| {
-            let cos_o = 0.1 + 0.9 * rng.uniform();
-            let phi = 2.0 * std::f32::consts::PI * rng.uniform();
+            let cos_o = 0.1 + 0.9 * rng.uniform_f32();
+            let phi = 2.0 * std::f32::consts::PI * rng.uniform_f32();
             let sin_o = (1.0 - cos_o * cos_o).sqrt();
             let wo = Vec3::new(sin_o * phi.cos(), sin_o * phi.sin(), cos_o);
             let dir = if highlight {
                 let mirror = Vec3::new(-wo.x, -wo.y, wo.z);
                 let jitter = Vec3::new(
-                    rng.uniform() - 0.5,
-                    rng.uniform() - 0.5,
-                    rng.uniform() - 0.5,
+                    rng.uniform_f32() - 0.5,
+                    rng.uniform_f32() - 0.5,
+                    rng.uniform_f32() - 0.5,
                 );
                 (mirror + jitter * 0.5).normalize()
             } else {
-                let z = rng.uniform() * 1.1 - 0.1;
-                let a = 2.0 * std::f32::consts::PI * rng.uniform();
+                let z = rng.uniform_f32() * 1.1 - 0.1;
+                let a = 2.0 * std::f32::consts::PI * rng.uniform_f32();
                 let s = (1.0 - z * z).max(0.0).sqrt();
                 Vec3::new(s * a.cos(), s * a.sin(), z)
             };
-            let sin = 10f32.powf(-2.0 + 1.7 * rng.uniform());
+            let sin = 10f32.powf(-2.0 + 1.7 * rng.uniform_f32());
             Config {
                 wo,
                 center: dir * 4.0,
@@ -273,7 +273,7 @@ const INPUTS: usize = 4096;
 const REPEATS: usize = 31;
 
 fn time_ns(run: impl Fn(usize) -> f32) -> f64 {
-    sphera_tools::bench::time_ns(INPUTS, REPEATS, run)
+    sphera_tools::measurements::bench::time_ns(INPUTS, REPEATS, run)
 }
 
 fn timing_table(rng: &mut Rng) {

@@ -1,17 +1,13 @@
 //! Profiling harness: samples decentral polygons in a loop (`perf record`).
 use sphera::Vec3;
 use sphera::polygon::ProjectedPolygon;
+use sphera_test_support::Rng;
 use std::hint::black_box;
 
 fn main() {
     let mut polygons = Vec::new();
-    let mut seed = 1u64;
-    let mut next = || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((seed >> 40) as f32) / (1u64 << 24) as f32
-    };
+    let mut rng = Rng(1);
+    let mut next = || rng.uniform_f32();
     while polygons.len() < 256 {
         let c = Vec3::new(1.5 + next(), next() - 0.5, 0.8 + next());
         let v: Vec<Vec3> = (0..4)

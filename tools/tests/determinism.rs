@@ -7,7 +7,7 @@
 fn determinism_table_is_current() {
     let path = sphera_tools::repository_root().join("ffi-tests/determinism_table.txt");
     let committed = std::fs::read_to_string(&path).expect("read the determinism table");
-    let now = sphera_tools::determinism::table();
+    let now = sphera_tools::generators::determinism::table();
     if committed != now {
         let first = committed
             .lines()

@@ -108,28 +108,7 @@ fn numbers(output: &str, label: &str) -> Vec<f64> {
         .collect()
 }
 
-type D3 = [f64; 3];
-
-fn sub(a: D3, b: D3) -> D3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: D3, b: D3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: D3, b: D3) -> D3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn normalize(a: D3) -> D3 {
-    let length = dot(a, a).sqrt();
-    [a[0] / length, a[1] / length, a[2] / length]
-}
+use sphera_test_support::{D3, cross, dot, normalize, sub};
 
 /// Lambert's formula: the projected solid angle `Φ = ½ Σ θ_i n·(v_i × v_{i+1})/|…|` of a
 /// polygon wholly above the horizon of `normal` at `point`, in f64.
@@ -276,7 +255,7 @@ fn installed_examples_build_with_cmake_and_pkg_config() {
     .to_vec();
     if cfg!(target_os = "linux") {
         // The soname: libsphera.so.MAJOR.MINOR before 1.0, libsphera.so.MAJOR after.
-        let version = sphera_tools::header::package_version();
+        let version = sphera_tools::generators::header::package_version();
         let numbers: Vec<&str> = version.split('.').collect();
         let soname = if numbers[0] == "0" {
             format!("libsphera.so.0.{}", numbers[1])

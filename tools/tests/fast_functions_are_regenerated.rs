@@ -6,7 +6,7 @@ fn committed_fast_function_coefficients_are_the_fitter_output() {
     let path = sphera_tools::repository_root().join("src/math/fast_functions_generated.rs");
     let committed = std::fs::read_to_string(&path)
         .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
-    let generated = sphera_tools::fast_function_fitter::generate();
+    let generated = sphera_tools::fitters::fast_function_fitter::generate();
     assert!(
         committed == generated,
         "{} is stale: refresh it with \

@@ -1,11 +1,11 @@
 //! Replays every committed fuzz input through the invariant checks of
-//! `sphera_tools::abi_invariants`, the same code the fuzz targets in `fuzz/` run: the
+//! `sphera_tools::invariants::abi_invariants`, the same code the fuzz targets in `fuzz/` run: the
 //! minimised corpora (`fuzz/corpus/<target>/`) and the inputs that once broke an
 //! invariant (`fuzz/regressions/<target>/`). A normal `cargo test`, no fuzzer needed.
 
 use std::path::Path;
 
-use sphera_tools::abi_invariants::{
+use sphera_tools::invariants::abi_invariants::{
     ltc_and_light_entry_points, polygon_entry_points, sg_entry_points, sphere_entry_points,
     sptd_entry_points, vsgl_entry_points,
 };

@@ -2,8 +2,8 @@
 
 #[test]
 fn committed_header_matches_a_fresh_generation() {
-    let path = sphera_tools::header::header_path();
-    let fresh = sphera_tools::header::generate();
+    let path = sphera_tools::generators::header::header_path();
+    let fresh = sphera_tools::generators::header::generate();
     let committed = std::fs::read_to_string(&path).unwrap_or_default();
     if committed != fresh {
         let first_difference = committed
@@ -27,7 +27,8 @@ fn committed_header_matches_a_fresh_generation() {
 /// rustdoc links).
 #[test]
 fn every_name_in_the_header_is_prefixed() {
-    let header = std::fs::read_to_string(sphera_tools::header::header_path()).expect("header");
+    let header =
+        std::fs::read_to_string(sphera_tools::generators::header::header_path()).expect("header");
     let mut names = Vec::new();
     for line in header.lines() {
         let line = line.trim_start();
@@ -78,7 +79,7 @@ fn every_name_in_the_header_is_prefixed() {
 /// (`sphera_version()`, compiled from Cargo.toml's `version`), number by number.
 #[test]
 fn version_macros_match_the_library() {
-    let header = std::fs::read_to_string(sphera_tools::header::header_path())
+    let header = std::fs::read_to_string(sphera_tools::generators::header::header_path())
         .expect("read include/sphera.h");
     let macro_value = |name: &str| -> String {
         let prefix = format!("#define {name} ");
@@ -104,7 +105,7 @@ fn version_macros_match_the_library() {
     assert_eq!(macro_value("SPHERA_VERSION_MAJOR"), numbers[0]);
     assert_eq!(macro_value("SPHERA_VERSION_MINOR"), numbers[1]);
     assert_eq!(macro_value("SPHERA_VERSION_PATCH"), numbers[2]);
-    assert_eq!(sphera_tools::header::package_version(), version);
+    assert_eq!(sphera_tools::generators::header::package_version(), version);
     assert!(sphera::ffi::sphera_check_version(
         numbers[0].parse().unwrap(),
         numbers[1].parse().unwrap()
@@ -114,7 +115,7 @@ fn version_macros_match_the_library() {
 /// The generator's macros for a few versions, and its refusal of malformed ones.
 #[test]
 fn version_macros_are_generated_from_the_version() {
-    let macros = sphera_tools::header::version_macros("12.3.45-rc.1");
+    let macros = sphera_tools::generators::header::version_macros("12.3.45-rc.1");
     for line in [
         "#define SPHERA_VERSION_MAJOR 12",
         "#define SPHERA_VERSION_MINOR 3",
@@ -127,7 +128,8 @@ fn version_macros_are_generated_from_the_version() {
         );
     }
     for bad in ["1.2", "1.x.3", "", "1.2.3.4"] {
-        let result = std::panic::catch_unwind(|| sphera_tools::header::version_macros(bad));
+        let result =
+            std::panic::catch_unwind(|| sphera_tools::generators::header::version_macros(bad));
         assert!(result.is_err(), "{bad:?} accepted");
     }
 }

@@ -4,7 +4,8 @@
 //!
 //! The BRDF and the LTC density are written out again here from their definitions (in
 //! the table's documentation), independently of the fitter's stable forms.
-use sphera_tools::ltc_fitter::{self, TABLE_SIZE};
+use sphera_test_support::{gauss_legendre, graded_bounds};
+use sphera_tools::fitters::ltc_fitter::{self, TABLE_SIZE};
 use std::f64::consts::PI;
 
 // Generated code keeps its own layout (as `src/polygon/mod.rs` does for its generated
@@ -108,49 +109,13 @@ fn ltc_density(v: &[f32; 6], w: [f64; 3]) -> f64 {
     (o[2] / len).max(0.0) / PI * det.abs() / (len * len * len)
 }
 
-/// Gauss–Legendre rule of order 16 on [0, 1], by Newton's iteration.
-fn gauss16() -> Vec<(f64, f64)> {
-    let m = 16;
-    (0..m)
-        .map(|i| {
-            let mut x = (PI * (i as f64 + 0.75) / (m as f64 + 0.5)).cos();
-            let mut dp = 0.0;
-            for _ in 0..50 {
-                let (mut p0, mut p1) = (1.0, x);
-                for k in 2..=m {
-                    let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-                    (p0, p1) = (p1, p2);
-                }
-                dp = m as f64 * (x * p1 - p0) / (x * x - 1.0);
-                x -= p1 / dp;
-            }
-            (0.5 * (1.0 + x), 1.0 / ((1.0 - x * x) * dp * dp))
-        })
-        .collect()
-}
-
-/// Bounds of [l, r] halving `levels` times towards each flagged end (from the middle).
-fn graded(l: f64, r: f64, toward_l: bool, toward_r: bool, levels: i32) -> Vec<f64> {
-    let mid = 0.5 * (l + r);
-    let mut bounds = vec![l];
-    if toward_l {
-        bounds.extend((1..=levels).rev().map(|k| l + (mid - l) * 0.5f64.powi(k)));
-    }
-    bounds.push(mid);
-    if toward_r {
-        bounds.extend((1..=levels).map(|k| r - (r - mid) * 0.5f64.powi(k)));
-    }
-    bounds.push(r);
-    bounds
-}
-
 /// ∫ D over the sphere by a product rule in polar coordinates (θ, φ) whose pole is the
 /// normal n ∝ (d, 0, 1) of the plane where M⁻¹ω has z = 0: D vanishes for θ > π/2,
 /// with a kink at θ = π/2, so θ only runs over [0, π/2]. D peaks near p = M z ∝ (−b, 0, a),
 /// at (θp, φp); the panels in θ halve towards θp and π/2, those in φ towards φp, 16
 /// Gauss–Legendre points per panel.
 fn integrate_density(v: &[f32; 6]) -> f64 {
-    let rule = gauss16();
+    let rule = gauss_legendre(16);
     let [a, b, _, d] = [v[0], v[1], v[2], v[3]].map(f64::from);
     let norm = (1.0 + d * d).sqrt();
     let n = [d / norm, 0.0, 1.0 / norm];
@@ -160,20 +125,28 @@ fn integrate_density(v: &[f32; 6]) -> f64 {
     let (px, pz) = (p[0] * t1[0] + p[2] * t1[2], p[0] * n[0] + p[2] * n[2]);
     let theta_p = px.abs().atan2(pz);
     let phi_p = if px >= 0.0 { 0.0 } else { PI };
-    let mut thetas = graded(0.0, theta_p, false, true, 40);
+    let mut thetas = graded_bounds(0.0, theta_p, false, true, 40);
     thetas.pop();
-    thetas.extend(graded(theta_p, 0.5 * PI, true, true, 40));
+    thetas.extend(graded_bounds(theta_p, 0.5 * PI, true, true, 40));
     let phis: Vec<f64> = if phi_p == 0.0 {
-        graded(0.0, PI, true, false, 40)
+        graded_bounds(0.0, PI, true, false, 40)
             .into_iter()
-            .chain(graded(PI, 2.0 * PI, false, true, 40).into_iter().skip(1))
+            .chain(
+                graded_bounds(PI, 2.0 * PI, false, true, 40)
+                    .into_iter()
+                    .skip(1),
+            )
             .collect()
     } else {
-        graded(0.0, 2.0 * PI, true, true, 0)
+        graded_bounds(0.0, 2.0 * PI, true, true, 0)
             .into_iter()
             .take(1)
-            .chain(graded(0.0, PI, false, true, 40).into_iter().skip(1))
-            .chain(graded(PI, 2.0 * PI, true, false, 40).into_iter().skip(1))
+            .chain(graded_bounds(0.0, PI, false, true, 40).into_iter().skip(1))
+            .chain(
+                graded_bounds(PI, 2.0 * PI, true, false, 40)
+                    .into_iter()
+                    .skip(1),
+            )
             .collect()
     };
     let mut total = 0.0;

@@ -5,7 +5,8 @@
 //!
 //! The SPTD density is written out again here from its definition (the table's
 //! documentation), independently of the fitter's stable form.
-use sphera_tools::{ltc_fitter, pivot_fitter, pivot_fitter::TABLE_SIZE};
+use sphera_test_support::{gauss_legendre, graded_bounds};
+use sphera_tools::fitters::{ltc_fitter, pivot_fitter, pivot_fitter::TABLE_SIZE};
 use std::f64::consts::PI;
 
 // Generated code keeps its own layout (as `src/polygon/mod.rs` does for its generated
@@ -112,62 +113,26 @@ fn sptd_density(v: &[f32; 3], w: [f64; 3]) -> f64 {
     j * j / (4.0 * PI)
 }
 
-/// Gauss–Legendre rule of order 16 on [0, 1], by Newton's iteration.
-fn gauss16() -> Vec<(f64, f64)> {
-    let m = 16;
-    (0..m)
-        .map(|i| {
-            let mut x = (PI * (i as f64 + 0.75) / (m as f64 + 0.5)).cos();
-            let mut dp = 0.0;
-            for _ in 0..50 {
-                let (mut p0, mut p1) = (1.0, x);
-                for k in 2..=m {
-                    let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-                    (p0, p1) = (p1, p2);
-                }
-                dp = m as f64 * (x * p1 - p0) / (x * x - 1.0);
-                x -= p1 / dp;
-            }
-            (0.5 * (1.0 + x), 1.0 / ((1.0 - x * x) * dp * dp))
-        })
-        .collect()
-}
-
-/// Bounds of [l, r] halving `levels` times towards each flagged end (from the middle).
-fn graded(l: f64, r: f64, toward_l: bool, toward_r: bool, levels: i32) -> Vec<f64> {
-    let mid = 0.5 * (l + r);
-    let mut bounds = vec![l];
-    if toward_l {
-        bounds.extend((1..=levels).rev().map(|k| l + (mid - l) * 0.5f64.powi(k)));
-    }
-    bounds.push(mid);
-    if toward_r {
-        bounds.extend((1..=levels).map(|k| r - (r - mid) * 0.5f64.powi(k)));
-    }
-    bounds.push(r);
-    bounds
-}
-
 /// ∫ D over the whole sphere by a product rule in the table's polar coordinates (θ from
 /// the normal z, φ from +x): the peak, the pivot's direction, is at θ = |θp| and φ = π
 /// (θp < 0) or 0; the panels in θ halve towards it (from both sides) and those in φ
 /// towards its azimuth, 16 Gauss–Legendre points per panel.
 fn integrate_density(v: &[f32; 3]) -> f64 {
-    let rule = gauss16();
+    let rule = gauss_legendre(16);
     let theta_p = f64::from(v[1]).abs();
     let phi_p = if v[1] < 0.0 { PI } else { 0.0 };
     let mut thetas = if theta_p > 0.0 {
-        graded(0.0, theta_p, false, true, 40)
+        graded_bounds(0.0, theta_p, false, true, 40)
     } else {
         vec![0.0]
     };
     thetas.pop();
-    thetas.extend(graded(theta_p, PI, true, false, 40));
+    thetas.extend(graded_bounds(theta_p, PI, true, false, 40));
     // φ over [φp − π, φp + π], refined towards φp (the middle).
-    let phis: Vec<f64> = graded(phi_p - PI, phi_p, false, true, 40)
+    let phis: Vec<f64> = graded_bounds(phi_p - PI, phi_p, false, true, 40)
         .into_iter()
         .chain(
-            graded(phi_p, phi_p + PI, true, false, 40)
+            graded_bounds(phi_p, phi_p + PI, true, false, 40)
                 .into_iter()
                 .skip(1),
         )

@@ -1,8 +1,8 @@
-//! The SG error table on a reduced grid (`tools/src/sg_error.rs`, full table in
+//! The SG error table on a reduced grid (`tools/src/measurements/sg_error.rs`, full table in
 //! `docs/sg-error.md`): the exact closed forms must match the f64 quadrature to 1e-4,
 //! and the approximations must stay within the bounds measured by the full table, in
 //! the regimes where they are meant to be used.
-use sphera_tools::sg_error::{Sample, is_exact, measure};
+use sphera_tools::measurements::sg_error::{Sample, is_exact, measure};
 
 /// Which measurements of a quantity a bound applies to.
 type Filter<'a> = &'a dyn Fn(&Sample) -> bool;
@@ -63,7 +63,7 @@ fn reduced_error_table_stays_within_the_measured_bounds() {
 }
 
 /// Issue 20 (6): the Beckmann lobe (the paper's `λ_h = 2/α²`, the GGX lobe's functions)
-/// against the f64 Beckmann BRDF of `tools/src/sg_error.rs`. On the reflection direction
+/// against the f64 Beckmann BRDF of `tools/src/measurements/sg_error.rs`. On the reflection direction
 /// both fits are within 10 % for roughness up to 0.5 at every sharpness up to 1e2
 /// (measured 7.2 %; GGX's reach 18 %), and at roughness 0.1 the ASG is within 1e-3 at
 /// every sharpness (measured 1.4e-4). Along the normal the SG has Beckmann's shape (L1

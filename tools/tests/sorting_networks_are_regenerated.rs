@@ -6,7 +6,7 @@ fn committed_sorting_networks_are_the_generator_output() {
     let path = sphera_tools::repository_root().join("src/polygon/sorting_networks_generated.rs");
     let committed = std::fs::read_to_string(&path)
         .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
-    let generated = sphera_tools::sorting_network_generator::generate();
+    let generated = sphera_tools::generators::sorting_network_generator::generate();
     assert!(
         committed == generated,
         "{} is stale: refresh it with \

@@ -1,14 +1,14 @@
 //! Bounds on the error of real-time sphere-light shading with the fitted SPTD
 //! (`SphereLightShading`, Dupuy et al. 2017 Eq. 19) against the f64 Monte Carlo reference
-//! of `sphera_tools::sphere_shading_error`, on the part of the grid where the paper's
+//! of `sphera_tools::measurements::sphere_shading_error`, on the part of the grid where the paper's
 //! approximation is good (lights in the mirror direction, views up to 30°, r ≤ 0.5) and
 //! everywhere against the measured maxima, so that a regression of the fit or of the pivoted-cap pipeline
 //! shows. The full table is `docs/sphere-shading-error.md`.
 use sphera::Vec3;
 use sphera::sphere::Cap;
 use sphera::sphere::light::SphereLightShading;
-use sphera_tools::ltc_fitter::Ggx;
-use sphera_tools::sphere_shading_error::{configs, reference};
+use sphera_tools::fitters::ltc_fitter::Ggx;
+use sphera_tools::measurements::sphere_shading_error::{configs, reference};
 
 #[test]
 fn shading_error_stays_within_the_measured_bounds() {

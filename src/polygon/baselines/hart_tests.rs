@@ -72,25 +72,6 @@ fn polygon(shape: Shape, n: usize, reversed: bool) -> Vec<Vec3> {
     v
 }
 
-/// The part of the polygon above the horizon, by Sutherland–Hodgman in f64 (also for
-/// 8 vertices, where the result may have 9), with the new vertices exactly on z = 0.
-fn clipped(vertices: &[Vec3]) -> Vec<Vec3> {
-    let n = vertices.len();
-    let mut out = Vec::new();
-    for i in 0..n {
-        let (a, b) = (d3(vertices[i]), d3(vertices[(i + 1) % n]));
-        if a[2] > 0.0 {
-            out.push(vertices[i]);
-        }
-        if (a[2] > 0.0) != (b[2] > 0.0) {
-            let t = a[2] / (a[2] - b[2]);
-            let p = add(a, scale(sub(b, a), t));
-            out.push(Vec3::new(p[0] as f32, p[1] as f32, 0.0));
-        }
-    }
-    out
-}
-
 /// How far (radians) `dir` lies outside the polygon: the largest angle by which it is on
 /// the outer side of an edge plane, 0 or less inside.
 fn outside_angle(vertices: &[Vec3], dir: Vec3) -> f64 {
@@ -152,7 +133,7 @@ fn check_distribution<W: Warp>(shape: Shape, seed: u64) {
         for reversed in [false, true] {
             let vertices = polygon(shape, n, reversed);
             let warp = W::new(&vertices).expect("valid polygon");
-            let above = clipped(&vertices);
+            let above = clip_to_upper_hemisphere_f32(&vertices);
             let subdivisions = 8;
             let total = total_probability(&warp, &above, subdivisions);
             let what = format!("{} {shape:?} {n}-gon reversed={reversed}", W::NAME);
@@ -339,7 +320,8 @@ fn cosine_estimator_matches_the_projected_solid_angle() {
                             0.0
                         });
                     }
-                    let reference = projected_solid_angle_polygon_f64(&clipped(&vertices));
+                    let reference =
+                        projected_solid_angle_polygon_f64(&clip_to_upper_hemisphere_f32(&vertices));
                     estimate.assert_mean_is(
                         reference,
                         5.0,

@@ -1,10 +1,10 @@
 //! Writes the fast functions' polynomial coefficients
-//! `src/math/fast_functions_generated.rs` (see `tools/src/fast_function_fitter.rs`), after
+//! `src/math/fast_functions_generated.rs` (see `tools/src/fitters/fast_function_fitter.rs`), after
 //! a table of the minimax errors for neighbouring coefficient counts.
 //!
 //! Run with `cargo run --release -p sphera-tools --bin fit_fast_functions`; with `--check`
 //! it writes nothing and fails if the committed file differs from the fitter's output.
-use sphera_tools::fast_function_fitter;
+use sphera_tools::fitters::fast_function_fitter;
 
 fn main() {
     let path = sphera_tools::repository_root().join("src/math/fast_functions_generated.rs");

@@ -4,25 +4,11 @@
 //! all cores; the output does not depend on the thread count). With `--render-only` it
 //! keeps the committed cells and only re-measures their errors and rewrites the
 //! documentation (for changes of the renderer, not of the fit).
-use sphera_tools::ltc_fitter::{self, TABLE_SIZE};
+use sphera_tools::fitters::ltc_fitter::{self, TABLE_SIZE};
 use std::time::Instant;
 
 fn main() {
-    let mut threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let mut render_only = false;
-    let mut args = std::env::args().skip(1);
-    while let Some(arg) = args.next() {
-        match arg.as_str() {
-            "--render-only" => render_only = true,
-            "--threads" => {
-                threads = args
-                    .next()
-                    .and_then(|n| n.parse().ok())
-                    .expect("--threads takes a positive integer")
-            }
-            other => panic!("unknown argument {other:?} (--threads N, --render-only)"),
-        }
-    }
+    let (threads, render_only) = ltc_fitter::fitter_arguments();
     let path = sphera_tools::repository_root().join("src/brdf/ltc_table.rs");
     let table = if render_only {
         let text = std::fs::read_to_string(&path)

@@ -4,25 +4,11 @@
 //! (default: all cores; the output does not depend on the thread count). With
 //! `--render-only` it keeps the committed cells and runtime line and only re-measures the
 //! errors and rewrites the documentation.
-use sphera_tools::{ltc_fitter, pivot_fitter};
+use sphera_tools::fitters::{ltc_fitter, pivot_fitter};
 use std::time::Instant;
 
 fn main() {
-    let mut threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let mut render_only = false;
-    let mut args = std::env::args().skip(1);
-    while let Some(arg) = args.next() {
-        match arg.as_str() {
-            "--render-only" => render_only = true,
-            "--threads" => {
-                threads = args
-                    .next()
-                    .and_then(|n| n.parse().ok())
-                    .expect("--threads takes a positive integer")
-            }
-            other => panic!("unknown argument {other:?} (--threads N, --render-only)"),
-        }
-    }
+    let (threads, render_only) = ltc_fitter::fitter_arguments();
     let root = sphera_tools::repository_root();
     let path = root.join("src/brdf/pivot_table.rs");
     let ltc_path = root.join("src/brdf/ltc_table.rs");

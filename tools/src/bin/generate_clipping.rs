@@ -1,7 +1,7 @@
 //! Writes the in-situ clipping code `src/polygon/clip_generated.rs` (supplement A.1).
 //!
 //! Run with `cargo run -p sphera-tools --bin generate_clipping`.
-use sphera_tools::clipping_generator;
+use sphera_tools::generators::clipping_generator;
 
 fn main() {
     let path = sphera_tools::repository_root().join("src/polygon/clip_generated.rs");

@@ -3,8 +3,8 @@
 //! Run with `cargo run -p sphera-tools --bin generate_header`.
 
 fn main() {
-    let path = sphera_tools::header::header_path();
-    let header = sphera_tools::header::generate();
+    let path = sphera_tools::generators::header::header_path();
+    let header = sphera_tools::generators::header::generate();
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir)
             .unwrap_or_else(|error| panic!("cannot create {}: {error}", dir.display()));

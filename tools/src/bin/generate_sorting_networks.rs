@@ -2,7 +2,7 @@
 //! (supplement A.6).
 //!
 //! Run with `cargo run --release -p sphera-tools --bin generate_sorting_networks`.
-use sphera_tools::sorting_network_generator;
+use sphera_tools::generators::sorting_network_generator;
 use std::time::Instant;
 
 fn main() {

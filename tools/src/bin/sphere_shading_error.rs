@@ -1,13 +1,13 @@
 //! Writes the error table of real-time sphere-light shading (see
-//! `sphera_tools::sphere_shading_error`): `cargo run --release -p sphera-tools --bin
+//! `sphera_tools::measurements::sphere_shading_error`): `cargo run --release -p sphera-tools --bin
 //! sphere_shading_error > docs/sphere-shading-error.md` (about 20 s).
 use sphera::Vec3;
 use sphera::sphere::light::SphereLightShading;
 use sphera::sphere::{
     Cap, cap_intersection_solid_angle, cap_intersection_solid_angle_oat_sander, pivot_cap,
 };
-use sphera_tools::ltc_fitter::{Ggx, V3};
-use sphera_tools::sphere_shading_error::{configs, directions, normalize, reference};
+use sphera_tools::fitters::ltc_fitter::{Ggx, V3};
+use sphera_tools::measurements::sphere_shading_error::{configs, directions, normalize, reference};
 
 fn v3(v: V3) -> Vec3 {
     Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32)

@@ -109,7 +109,7 @@ pub fn table() -> String {
     let mut out = String::from(
         "# sphera determinism table: f32 bit patterns in hex. Regenerate with\n\
          # `cargo run -p sphera-tools --bin generate_determinism_table`; format in\n\
-         # tools/src/determinism.rs.\n",
+         # tools/src/generators/determinism.rs.\n",
     );
     let mut ltc = std::mem::MaybeUninit::<Ltc>::uninit();
     // SAFETY: `out` is writable; `sphera_ltc_prepare` writes it.

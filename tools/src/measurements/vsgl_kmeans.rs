@@ -145,16 +145,7 @@ pub fn kmeans_vsgls(
 mod tests {
     use super::*;
 
-    struct Rng(u64);
-    impl Rng {
-        fn uniform(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
+    use sphera_test_support::Rng;
 
     /// Two flat patches far apart in the world but adjacent in the image.
     fn two_patches(size: usize) -> Vec<Vpl> {

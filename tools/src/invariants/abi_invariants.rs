@@ -176,17 +176,7 @@ fn to_f64(v: SpheraVec3) -> [f64; 3] {
     [v.x as f64, v.y as f64, v.z as f64]
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
+use sphera_test_support::{cross, dot};
 
 fn length(a: [f64; 3]) -> f64 {
     dot(a, a).sqrt()

@@ -12,7 +12,7 @@
 //! The table: `cargo run --release -p sphera-tools --bin sphere_shading_error >
 //! docs/sphere-shading-error.md` (about 20 s); `tools/tests/sphere_shading.rs` bounds the
 //! errors on part of the grid.
-use crate::ltc_fitter::{Ggx, V3};
+use crate::fitters::ltc_fitter::{Ggx, V3};
 use std::f64::consts::PI;
 
 /// One configuration of the grid.
@@ -25,14 +25,8 @@ pub struct Config {
     pub center: V3,
 }
 
-pub fn normalize(v: V3) -> V3 {
-    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    [v[0] / l, v[1] / l, v[2] / l]
-}
-
-fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
+pub use sphera_test_support::normalize;
+use sphera_test_support::{dot, frame_f64};
 
 /// The light directions of the grid for a view elevation θo (view in the xz plane).
 pub fn directions(theta_o: f64) -> [(&'static str, V3); 4] {
@@ -80,20 +74,7 @@ pub fn configs() -> Vec<Config> {
 
 /// A uniform direction of the cap (axis `a`, `1 − cos = t_max`) in f64.
 fn cap_direction(a: V3, t_max: f64, u0: f64, u1: f64) -> V3 {
-    let helper = if a[0].abs() < 0.6 {
-        [1.0, 0.0, 0.0]
-    } else {
-        [0.0, 1.0, 0.0]
-    };
-    let cross = |p: V3, q: V3| -> V3 {
-        [
-            p[1] * q[2] - p[2] * q[1],
-            p[2] * q[0] - p[0] * q[2],
-            p[0] * q[1] - p[1] * q[0],
-        ]
-    };
-    let t = normalize(cross(helper, a));
-    let b = cross(a, t);
+    let (t, b) = frame_f64(a);
     let tt = u0 * t_max;
     let s = (tt * (2.0 - tt)).max(0.0).sqrt();
     let phi = 2.0 * PI * u1;
