@@ -217,16 +217,6 @@ typedef struct SpheraLightSample {
   SpheraVec3 unoccluded;
 } SpheraLightSample;
 
-/* A spherical pivot-transformed distribution (Eq. 8): a base distribution and a pivot. Build it
- * with `Sptd::uniform` or `Sptd::clamped_cosine`, which make the pivot valid (non-finite →
- * origin, `|r_p|` clamped below 1). */
-typedef struct SpheraSptd {
-  SpheraVec3 pivot; /* The pivot `r_p`, `|r_p| ≤ 1 − 2⁻²⁰`. */
-  /* The unit axis `a` of the clamped-cosine base (`z` for the uniform base). */
-  SpheraVec3 cosine_axis;
-  SpheraSptdBase base; /* Which base distribution. */
-} SpheraSptd;
-
 /* A spherical cap `{ω : ω·axis ≥ cos θ}` with `1 ∓ cos θ` both to full relative precision: the
  * smaller is authoritative, the other `2 −` it. Every function makes a cap built by hand valid,
  * from `one_minus_cos` (a wide cap keeps an `one_plus_cos` within `2⁻²²` of
@@ -242,14 +232,6 @@ typedef struct SpheraCap {
   float sin2; /* `sin²θ = (1 − cos θ)(1 + cos θ)` in `[0, 1]`. */
 } SpheraCap;
 
-/* An SPTD restricted to a cap `C` and normalised there: a prepared sampler (Section 4.2,
- * importance sampling over spherical caps). Samples are `ω = g(ω_i)` with `ω_i` drawn from the
- * base inside `g(C)`; the density is `D(ω) / ∫_C D` inside `C` and 0 outside. For the uniform
- * base it is `J(ω) / Ω(g(C))`. */
-typedef struct SpheraSptdInCap {
-  uint32_t opaque[29]; /* 116 bytes, private: see the preamble */
-} SpheraSptdInCap;
-
 /* A sphere light (or any cap) prepared for uniform sampling in solid angle: the cap, its frame
  * and its density. */
 typedef struct SpheraSolidAngleSphere {
@@ -260,6 +242,24 @@ typedef struct SpheraSolidAngleSphere {
 typedef struct SpheraCapUnion {
   uint32_t opaque[40]; /* 160 bytes, private: see the preamble */
 } SpheraCapUnion;
+
+/* A spherical pivot-transformed distribution (Eq. 8): a base distribution and a pivot. Build it
+ * with `Sptd::uniform` or `Sptd::clamped_cosine`, which make the pivot valid (non-finite →
+ * origin, `|r_p|` clamped below 1). */
+typedef struct SpheraSptd {
+  SpheraVec3 pivot; /* The pivot `r_p`, `|r_p| ≤ 1 − 2⁻²⁰`. */
+  /* The unit axis `a` of the clamped-cosine base (`z` for the uniform base). */
+  SpheraVec3 cosine_axis;
+  SpheraSptdBase base; /* Which base distribution. */
+} SpheraSptd;
+
+/* An SPTD restricted to a cap `C` and normalised there: a prepared sampler (Section 4.2,
+ * importance sampling over spherical caps). Samples are `ω = g(ω_i)` with `ω_i` drawn from the
+ * base inside `g(C)`; the density is `D(ω) / ∫_C D` inside `C` and 0 outside. For the uniform
+ * base it is `J(ω) / Ω(g(C))`. */
+typedef struct SpheraSptdInCap {
+  uint32_t opaque[29]; /* 116 bytes, private: see the preamble */
+} SpheraSptdInCap;
 
 /* The uniform SPTD fitted to GGX `f cos θ` at one view and roughness. */
 typedef struct SpheraGgxPivot {
@@ -792,13 +792,6 @@ struct SpheraSample sphera_phase_pivot_sample(struct SpheraVec3 wo, float g, flo
 struct SpheraSample sphera_phase_henyey_greenstein_sample(struct SpheraVec3 wo, float g, float u0,
                                                           float u1);
 
-/* The pivot phase function (pivot `g·wo`, `wo` normalised, `g` clamped as in
- * `sphera_phase_pivot`) restricted to a sphere light's cap (Section 6.2): sample and evaluate it
- * with `sphera_sptd_in_cap_*`. Returns `false` (writing a sampler without samples) for a zero or
- * non-finite `wo` or an empty cap; does nothing for a null `out`. */
-bool sphera_sptd_in_cap_prepare_pivot_phase(struct SpheraSptdInCap *out, struct SpheraVec3 wo,
-                                            float g, struct SpheraCap cap);
-
 /* The cap of directions that a sphere of `radius` centered at `center` (relative to the shading
  * point) subtends: `sin θ = radius / |center|`, with `1 − cos θ` kept to full relative precision
  * for tiny or distant spheres. The whole sphere (`one_minus_cos = 2`) when the shading point is
@@ -938,6 +931,13 @@ float sphera_sptd_in_cap_pdf(const struct SpheraSptdInCap *prepared, struct Sphe
  * zero-variance estimate of an unoccluded light of unit radiance); 0 for null. */
 float sphera_sptd_in_cap_integral(const struct SpheraSptdInCap *prepared);
 
+/* The pivot phase function (pivot `g·wo`, `wo` normalised, `g` clamped as in
+ * `sphera_phase_pivot`) restricted to a sphere light's cap (Section 6.2): sample and evaluate it
+ * with `sphera_sptd_in_cap_*`. Returns `false` (writing a sampler without samples) for a zero or
+ * non-finite `wo` or an empty cap; does nothing for a null `out`. */
+bool sphera_sptd_in_cap_prepare_pivot_phase(struct SpheraSptdInCap *out, struct SpheraVec3 wo,
+                                            float g, struct SpheraCap cap);
+
 /* The uniform SPTD fitted to GGX `f cos θ` (the pivot table, 64×64, bilinear) for the view `wo`
  * (local frame, normalised) and roughness `r = √α` (clamped to [0, 1], NaN as 0). Returns
  * `false` (writing a zero pivot and albedo) when `wo` is not finite, zero or at or below the
@@ -1064,21 +1064,6 @@ struct SpheraSg sphera_sg_product(struct SpheraSg a, struct SpheraSg b);
 /* `∫ a(ω) b(ω) dω`, the integral of the product of two SGs. */
 float sphera_sg_inner_product(struct SpheraSg a, struct SpheraSg b);
 
-/* Draws a direction from the normalised SG (von Mises–Fisher distribution; the amplitude is
- * ignored). `u0`, `u1` in [0, 1) (clamped). pdf 0 (and `dir = (0, 0, 1)`) for the zero SG built
- * from an invalid axis. */
-struct SpheraSample sphera_vmf_sample(struct SpheraSg sg, float u0, float u1);
-
-/* The density per steradian of `sphera_vmf_sample` at `dir` (normalised; 0 for a zero or
- * non-finite `dir`). */
-float sphera_vmf_pdf(struct SpheraSg sg, struct SpheraVec3 dir);
-
-/* Writes to `u[0]`, `u[1]` the random numbers that `sphera_vmf_sample` maps to `dir` and returns
- * true; returns false (writing nothing) for a null `u`, a zero or non-finite `dir`, or an SG
- * with an invalid axis.
- * Safety: `u` must be null or point to two writable `float`s. */
-bool sphera_vmf_invert(struct SpheraSg sg, struct SpheraVec3 dir, float *u);
-
 /* The diffuse lobe `G(ω, n, λ_d)/A(λ_d)` (Eq. 1 without `R_d`); the zero SG for a zero or
  * non-finite normal. */
 struct SpheraSg sphera_sg_from_lambert(struct SpheraVec3 normal);
@@ -1151,6 +1136,21 @@ float sphera_sg_beckmann_specular_shading(struct SpheraSg incoming, struct Spher
 float sphera_sg_beckmann_specular_shading_sg(struct SpheraSg incoming, struct SpheraVec3 normal,
                                              struct SpheraVec3 view, float roughness, float f0,
                                              float visibility);
+
+/* Draws a direction from the normalised SG (von Mises–Fisher distribution; the amplitude is
+ * ignored). `u0`, `u1` in [0, 1) (clamped). pdf 0 (and `dir = (0, 0, 1)`) for the zero SG built
+ * from an invalid axis. */
+struct SpheraSample sphera_vmf_sample(struct SpheraSg sg, float u0, float u1);
+
+/* The density per steradian of `sphera_vmf_sample` at `dir` (normalised; 0 for a zero or
+ * non-finite `dir`). */
+float sphera_vmf_pdf(struct SpheraSg sg, struct SpheraVec3 dir);
+
+/* Writes to `u[0]`, `u[1]` the random numbers that `sphera_vmf_sample` maps to `dir` and returns
+ * true; returns false (writing nothing) for a null `u`, a zero or non-finite `dir`, or an SG
+ * with an invalid axis.
+ * Safety: `u` must be null or point to two writable `float`s. */
+bool sphera_vmf_invert(struct SpheraSg sg, struct SpheraVec3 dir, float *u);
 
 /* The ASG `amplitude · max(ω·z, 0) · exp(−η_x (ω·x)² − η_y (ω·y)²)` with `z` normalised, `x`
  * made orthogonal to it and `y = z × x`; bandwidths clamped to [0, SPHERA_SG_MAX_SHARPNESS],

@@ -85,6 +85,8 @@ mod vsgl;
 
 mod sg;
 
+mod vmf;
+
 mod asg;
 
 pub use arvo_polygon::*;
@@ -111,6 +113,7 @@ pub use sptd::*;
 pub use turk_polygon::*;
 pub use types::*;
 pub use version::*;
+pub use vmf::*;
 pub use vsgl::*;
 
 /// The precompiled `core` of hosted targets is built with unwinding, and its object

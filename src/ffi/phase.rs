@@ -4,8 +4,6 @@
 //! (−1, 1) (|g| ≤ 1 − 2⁻²⁰, NaN counts as 0); `mu` is clamped to [−1, 1].
 use super::types::{SpheraSample, SpheraVec3};
 use crate::sphere::phase;
-use crate::sphere::phase::pivot_phase_in_cap;
-use crate::sphere::{Cap, SptdInCap};
 
 /// The pivot phase function `1/(4π) ((1 − g²)/(1 + g² − 2g mu))²` (Eq. 25), per
 /// steradian, with `1 − g² = (1 − g)(1 + g)` and the denominator as a sum of
@@ -62,29 +60,4 @@ pub extern "C" fn sphera_phase_henyey_greenstein_sample(
     u1: f32,
 ) -> SpheraSample {
     phase::sample_henyey_greenstein(wo.into(), g, [u0, u1]).into()
-}
-
-/// The pivot phase function (pivot `g·wo`, `wo` normalised, `g` clamped as in
-/// `sphera_phase_pivot`) restricted to a sphere light's cap (Section 6.2): sample and
-/// evaluate it with `sphera_sptd_in_cap_*`. Returns `false` (writing a sampler without
-/// samples) for a zero or non-finite `wo` or an empty cap; does nothing for a null
-/// `out`.
-///
-/// # Safety
-///
-/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_sptd_in_cap_prepare_pivot_phase(
-    out: *mut SptdInCap,
-    wo: SpheraVec3,
-    g: f32,
-    cap: Cap,
-) -> bool {
-    if out.is_null() {
-        return false;
-    }
-    let prepared = pivot_phase_in_cap(wo.into(), g, &cap);
-    // SAFETY: `out` is non-null and the caller guarantees it is writable.
-    unsafe { out.write(prepared.unwrap_or(SptdInCap::EMPTY)) };
-    prepared.is_some()
 }

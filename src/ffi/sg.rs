@@ -1,5 +1,5 @@
 //! Spherical Gaussians, vMF sampling, lobe fits, ASGs and VSGL shading (Tokuyoshi
-//! 2016): `sphera_sg_*`, `sphera_vmf_*` and `sphera_asg_*`.
+//! 2016): `sphera_sg_*`.
 //!
 //! SGs and ASGs are passed by value. One built by hand in C may hold anything: every
 //! function first makes it valid (`Sg::sanitized`, `Asg::sanitized`): a zero or
@@ -8,7 +8,7 @@
 //! log amplitude as amplitude 0; an ASG's frame is rebuilt from `x` and `z` (a zero or
 //! non-finite `z` gives the zero ASG). Outputs are always finite and non-negative
 //! (values are at most `FLT_MAX`).
-use super::types::{SpheraSample, SpheraVec3};
+use super::types::SpheraVec3;
 use crate::sg::lobes::{
     DIFFUSE_LOBE_SHARPNESS, beckmann_lobe, beckmann_lobe_normalized, diffuse_lobe_normalized,
     specular_lobe, specular_lobe_normalized,
@@ -19,7 +19,6 @@ use crate::sg::shading::{
     diffuse_shading_product, diffuse_shading_sharp_lobe, incoming_radiance, specular_shading,
     specular_shading_sg,
 };
-use crate::sg::vmf::{vmf_invert, vmf_pdf, vmf_sample};
 
 /// The largest sharpness of an SG (and bandwidth of an ASG): a lobe 1e-4 rad wide.
 pub const SPHERA_SG_MAX_SHARPNESS: f32 = 1e8;
@@ -62,48 +61,6 @@ pub extern "C" fn sphera_sg_product(a: Sg, b: Sg) -> Sg {
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_sg_inner_product(a: Sg, b: Sg) -> f32 {
     a.sanitized().inner_product(&b.sanitized())
-}
-
-/// Draws a direction from the normalised SG (von Mises–Fisher distribution; the
-/// amplitude is ignored). `u0`, `u1` in [0, 1) (clamped). pdf 0 (and `dir = (0, 0, 1)`)
-/// for the zero SG built from an invalid axis.
-#[unsafe(no_mangle)]
-pub extern "C" fn sphera_vmf_sample(sg: Sg, u0: f32, u1: f32) -> SpheraSample {
-    // Not sanitised: an invalid axis must give "no sample" rather than the zero SG's
-    // axis (`vmf_sample` checks the axis and clamps the sharpness itself).
-    vmf_sample(&sg, [u0, u1]).into()
-}
-
-/// The density per steradian of `sphera_vmf_sample` at `dir` (normalised; 0 for a
-/// zero or non-finite `dir`).
-#[unsafe(no_mangle)]
-pub extern "C" fn sphera_vmf_pdf(sg: Sg, dir: SpheraVec3) -> f32 {
-    vmf_pdf(&sg, dir.into())
-}
-
-/// Writes to `u[0]`, `u[1]` the random numbers that `sphera_vmf_sample` maps to
-/// `dir` and returns true; returns false (writing nothing) for a null `u`, a zero or
-/// non-finite `dir`, or an SG with an invalid axis.
-///
-/// # Safety
-///
-/// `u` must be null or point to two writable `float`s.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn sphera_vmf_invert(sg: Sg, dir: SpheraVec3, u: *mut f32) -> bool {
-    if u.is_null() {
-        return false;
-    }
-    match vmf_invert(&sg, dir.into()) {
-        Some(values) => {
-            // SAFETY: the caller guarantees two writable floats at `u`.
-            unsafe {
-                u.write(values[0]);
-                u.add(1).write(values[1]);
-            }
-            true
-        }
-        None => false,
-    }
 }
 
 /// The diffuse lobe `G(ω, n, λ_d)/A(λ_d)` (Eq. 1 without `R_d`); the zero SG for a zero

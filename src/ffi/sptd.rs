@@ -8,6 +8,7 @@
 //! becomes `(0, 0, 1)`). Pivots with `|r_p| ≥ 1` are clamped to `1 − 2⁻²⁰`, non-finite
 //! ones count as the origin. Caps are sanitized as in `sphera_cap_*`.
 use super::types::{SpheraSample, SpheraVec3, with_ref};
+use crate::sphere::phase::pivot_phase_in_cap;
 use crate::sphere::{Cap, Sptd, SptdBase, SptdInCap};
 
 /// The uniform base distribution `1/4π` (Eq. 16).
@@ -177,4 +178,29 @@ pub unsafe extern "C" fn sphera_sptd_in_cap_pdf(
 pub unsafe extern "C" fn sphera_sptd_in_cap_integral(prepared: *const SptdInCap) -> f32 {
     // SAFETY: forwarded from the caller.
     unsafe { with_ref(prepared, 0.0, |p| p.integral) }
+}
+
+/// The pivot phase function (pivot `g·wo`, `wo` normalised, `g` clamped as in
+/// `sphera_phase_pivot`) restricted to a sphere light's cap (Section 6.2): sample and
+/// evaluate it with `sphera_sptd_in_cap_*`. Returns `false` (writing a sampler without
+/// samples) for a zero or non-finite `wo` or an empty cap; does nothing for a null
+/// `out`.
+///
+/// # Safety
+///
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_sptd_in_cap_prepare_pivot_phase(
+    out: *mut SptdInCap,
+    wo: SpheraVec3,
+    g: f32,
+    cap: Cap,
+) -> bool {
+    if out.is_null() {
+        return false;
+    }
+    let prepared = pivot_phase_in_cap(wo.into(), g, &cap);
+    // SAFETY: `out` is non-null and the caller guarantees it is writable.
+    unsafe { out.write(prepared.unwrap_or(SptdInCap::EMPTY)) };
+    prepared.is_some()
 }

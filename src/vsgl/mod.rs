@@ -16,3 +16,7 @@ pub use fis::{FisCluster, VsglPyramid, fis_cluster, fis_select};
 mod accumulator_tests;
 #[cfg(test)]
 mod fis_tests;
+
+#[cfg(test)]
+#[path = "shading_tests.rs"]
+mod shading_tests;
