@@ -107,7 +107,7 @@ fn direction_arguments_of_any_length_give_the_results_of_the_unit_direction() {
         let (ok_pivot, p) = pivot(v);
         let (ok_shading, s) = shading(v);
         let (ok_sampler, m) = sampler(v);
-        let shaded = s.shade(&light);
+        let shaded = s.eval(&light);
         let d3: Vec3 = d.into();
         vec![
             ("sphera_ltc_prepare ok", ok_ltc as u32 as f32),

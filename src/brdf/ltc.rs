@@ -12,7 +12,7 @@
 //! `r = √α` and view `t = √(1 − cos θ_o)`, the inverse matrix in the frame where the
 //! view lies in the xz-plane, `M⁻¹ = [[a, 0, b], [0, c, 0], [d, 0, 1]]`, such that
 //! `D ≈ f(ω_o, ω) cos θ / albedo` for GGX with `F = 1`, and the integrals `albedo` and
-//! `fresnel` that turn it into shading with Schlick's Fresnel. [`Ltc::ggx`] interpolates
+//! `fresnel` that turn it into shading with Schlick's Fresnel. [`Ltc::from_ggx`] interpolates
 //! it bilinearly (as Heitz et al. interpolate their inverse matrices) and rotates it
 //! about the normal to the view's azimuth.
 use crate::Vec3;
@@ -54,7 +54,7 @@ impl Ltc {
     /// need not be normalised) and roughness `r = √α`, clamped to `[0, 1]` (NaN counts as
     /// 0; below the table's smallest α the first row is used). Returns `None` when `wo` is
     /// not finite, zero, or at or below the horizon.
-    pub fn ggx(wo: Vec3, roughness: f32) -> Option<Ltc> {
+    pub fn from_ggx(wo: Vec3, roughness: f32) -> Option<Ltc> {
         let (x, y, cos_phi, sin_phi) = super::table_coordinates(wo, roughness)?;
         let entry = super::table_bilinear(&LTC_TABLE, LTC_TABLE_SIZE, x, y);
         Self::from_view_frame(entry, cos_phi, sin_phi)

@@ -46,7 +46,7 @@ pub extern "C" fn sphera_asg_convolve_sg(asg: Asg, sg: Sg) -> f32 {
 /// incidence and `η_y = 1/(4α² cos²θ_o)` across it. The zero ASG for invalid vectors.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_asg_from_ggx(normal: SpheraVec3, view: SpheraVec3, alpha: f32) -> Asg {
-    Asg::ggx_lobe(normal.into(), view.into(), alpha)
+    Asg::from_ggx(normal.into(), view.into(), alpha)
 }
 
 /// The ASG fit (amplitude 1) of Beckmann's warped unnormalised NDF at a shading point:
@@ -57,5 +57,5 @@ pub extern "C" fn sphera_asg_from_beckmann(
     view: SpheraVec3,
     alpha: f32,
 ) -> Asg {
-    Asg::beckmann_lobe(normal.into(), view.into(), alpha)
+    Asg::from_beckmann(normal.into(), view.into(), alpha)
 }

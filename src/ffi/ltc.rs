@@ -24,7 +24,7 @@ pub unsafe extern "C" fn sphera_ltc_prepare(out: *mut Ltc, wo: SpheraVec3, rough
     if out.is_null() {
         return false;
     }
-    let ltc = Ltc::ggx(wo.into(), roughness);
+    let ltc = Ltc::from_ggx(wo.into(), roughness);
     // SAFETY: `out` is non-null and the caller guarantees it is writable.
     unsafe { out.write(ltc.unwrap_or(Ltc::IDENTITY)) };
     ltc.is_some()

@@ -22,7 +22,7 @@ pub unsafe extern "C" fn sphera_ggx_pivot_from_view(
     if out.is_null() {
         return false;
     }
-    let fit = GgxPivot::lookup(wo.into(), roughness);
+    let fit = GgxPivot::from_view(wo.into(), roughness);
     let empty = GgxPivot {
         pivot: Vec3::ZERO,
         albedo: 0.0,
@@ -78,7 +78,7 @@ pub unsafe extern "C" fn sphera_sphere_light_shading_eval(
     light: Cap,
 ) -> SpheraVec3 {
     // SAFETY: forwarded from the caller.
-    unsafe { with_ref(shading, Vec3::ZERO, |s| s.shade(&light)) }.into()
+    unsafe { with_ref(shading, Vec3::ZERO, |s| s.eval(&light)) }.into()
 }
 
 /// Specular occlusion with a bent cone `visibility` (Eq. 23, BIASED):
@@ -98,7 +98,7 @@ pub unsafe extern "C" fn sphera_sphere_light_shading_eval_occluded(
     // SAFETY: forwarded from the caller.
     unsafe {
         with_ref(shading, Vec3::ZERO, |s| {
-            s.shade_occluded(&light, &visibility)
+            s.eval_occluded(&light, &visibility)
         })
     }
     .into()
@@ -120,7 +120,7 @@ pub unsafe extern "C" fn sphera_sphere_light_shading_eval_occluded_separable(
     // SAFETY: forwarded from the caller.
     unsafe {
         with_ref(shading, Vec3::ZERO, |s| {
-            s.shade_occluded_separable(&light, &visibility)
+            s.eval_occluded_separable(&light, &visibility)
         })
     }
     .into()

@@ -170,7 +170,7 @@ impl PolygonLight {
         let diffuse_albedo = material.diffuse.max(Vec3::ZERO).min(Vec3::ONE);
         let f0 = material.f0.max(Vec3::ZERO).min(Vec3::ONE);
         let brdf = GgxBrdf::new(material.roughness, f0);
-        let ltc = Ltc::ggx(wo, material.roughness)?;
+        let ltc = Ltc::from_ggx(wo, material.roughness)?;
         let diffuse = ProjectedPolygon::new(vertices);
         let specular = LtcPolygon::new(&ltc, vertices);
         if diffuse.is_none() && specular.is_none() {

@@ -221,7 +221,7 @@ fn sample_pdf_is_the_pdf_of_the_sampled_direction() {
     for trial in 0..3000 {
         let theta = 1.55 * rng.uniform() as f32;
         let wo = Vec3::new(theta.sin(), 0.0, theta.cos());
-        let ltc = Ltc::ggx(wo, rng.uniform() as f32).expect("above the horizon");
+        let ltc = Ltc::from_ggx(wo, rng.uniform() as f32).expect("above the horizon");
         let center = d3(rng.unit_vector_f32());
         let distance = 10f64.powf(4.0 * rng.uniform() - 1.0);
         let radius = 10f64.powf(-6.0 * rng.uniform()) * distance;
@@ -304,7 +304,7 @@ fn integrals_of_polygons_seen_edge_on_stay_at_most_one() {
                     theta.cos(),
                 );
                 for roughness in [0.0, 0.01, 0.05, 0.2, 0.6] {
-                    let ltc = Ltc::ggx(wo, roughness).unwrap();
+                    let ltc = Ltc::from_ggx(wo, roughness).unwrap();
                     if let Some(p) = LtcPolygon::new(&ltc, vertices) {
                         worst = worst.max(p.integral());
                     }
@@ -429,7 +429,7 @@ fn the_pdf_integrates_to_one_and_every_sample_has_its_pdf() {
             16,
         ),
     ] {
-        let ltc = Ltc::ggx(view(theta), roughness).expect("above the horizon");
+        let ltc = Ltc::from_ggx(view(theta), roughness).expect("above the horizon");
         // A negative size: the quad of that size seen nearly edge-on.
         let v = if size > 0.0 {
             quad(center, size)

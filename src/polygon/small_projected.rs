@@ -1,6 +1,6 @@
 //! Cosine-weighted sampling of *small* polygons: solid angle sampling (Algorithm 5) with
 //! an exact warp per fan triangle towards a density that is linear in the position on the
-//! triangle. This is the alternative that [`ProjectedPolygon`] switches to when
+//! triangle. This is the alternative that [`ProjectedPolygon`](super::ProjectedPolygon) switches to when
 //! a polygon spans less than [`SMALL_EXTENT`] radians, where the ellipse construction in
 //! `f32` loses precision (see its documentation).
 //!

@@ -196,7 +196,7 @@ impl Asg {
     /// module documentation): `z = ξ_s = 2(ω_o·n)n − ω_o`, `y ∝ n × ξ_s`, `x = y × z`,
     /// `η_x = λ_h/8`, `η_y = λ_h/(8 cos²θ_o)`, `λ_h = 2/α²` (`α` clamped as in
     /// [`crate::sg::lobes`]). [`Asg::ZERO`] for a zero or non-finite normal or view.
-    pub fn ggx_lobe(normal: Vec3, view: Vec3, alpha: f32) -> Asg {
+    pub fn from_ggx(normal: Vec3, view: Vec3, alpha: f32) -> Asg {
         let Some((n, z, cos)) = reflection(normal, view) else {
             return Asg::ZERO;
         };
@@ -215,8 +215,8 @@ impl Asg {
     /// The ASG fit of Beckmann's unnormalised NDF warped to directions: the derivation
     /// above starts from the SG `e^{−λ_h/2 |h − n|²}` with the paper's `λ_h = 2/α²`,
     /// which is Beckmann's as well as GGX's ([`crate::sg::lobes`]), so this is
-    /// [`Asg::ggx_lobe`] with the same `α`.
-    pub fn beckmann_lobe(normal: Vec3, view: Vec3, alpha: f32) -> Asg {
-        Asg::ggx_lobe(normal, view, alpha)
+    /// [`Asg::from_ggx`] with the same `α`.
+    pub fn from_beckmann(normal: Vec3, view: Vec3, alpha: f32) -> Asg {
+        Asg::from_ggx(normal, view, alpha)
     }
 }

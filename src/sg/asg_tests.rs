@@ -98,7 +98,7 @@ fn ggx_fit_matches_the_warped_ndf_sg_near_the_reflection() {
         let t = deg.to_radians();
         let view = Vec3::new(t.sin(), 0.0, t.cos());
         let alpha = 0.1;
-        let asg = Asg::ggx_lobe(n, view, alpha);
+        let asg = Asg::from_ggx(n, view, alpha);
         let lh = 2.0 / (alpha as f64 * alpha as f64);
         assert!((asg.z - Vec3::new(-t.sin(), 0.0, t.cos())).length() < 1e-6);
         assert!(asg.eta_y >= asg.eta_x * 0.999);
@@ -116,7 +116,7 @@ fn ggx_fit_matches_the_warped_ndf_sg_near_the_reflection() {
             );
         }
     }
-    assert_eq!(Asg::ggx_lobe(Vec3::ZERO, Vec3::Z, 0.5), Asg::ZERO);
+    assert_eq!(Asg::from_ggx(Vec3::ZERO, Vec3::Z, 0.5), Asg::ZERO);
 }
 
 #[test]

@@ -55,7 +55,7 @@
 //! value (Beckmann is a Gaussian of the slope, without GGX's heavy tail). So the
 //! Beckmann lobes [`beckmann_lobe`] and [`beckmann_lobe_normalized`] are the GGX lobes'
 //! functions with the same `α` (and so is the ASG fit
-//! [`Asg::beckmann_lobe`](crate::sg::asg::Asg::beckmann_lobe)); no constant is fitted.
+//! [`Asg::from_beckmann`](crate::sg::asg::Asg::from_beckmann)); no constant is fitted.
 //! What differs is `C(ω)` (Beckmann's Smith term,
 //! [`beckmann_lobe_factor`](crate::sg::shading::beckmann_lobe_factor)) and the error:
 //! `docs/sg-error.md` measures the lobe against an f64 Beckmann BRDF: along the normal

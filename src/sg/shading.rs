@@ -57,7 +57,7 @@
 //!
 //! GGX's `ρ_s cos = F D G2/(4 cos θ_o)` with `D = D̂/(πα²)` (`D̂` the NDF scaled to
 //! maximum 1) splits into the lobe shape `D̂ ≈` SG or ASG of [`crate::sg::lobes`] /
-//! [`Asg::ggx_lobe`], and
+//! [`Asg::from_ggx`], and
 //!
 //! ```text
 //! C(ω) = F(ω_o·h) G2(ω_o, ω) / (4 π α² cos θ_o),
@@ -291,7 +291,7 @@ fn specular_factor(
 }
 
 /// `V c_in C(ξ_in) ∫ G(ω, ξ_in, λ_in) Ĝ(ω) dω`: specular shading by the boxed formula of
-/// Section 4.2 with the ASG fit [`Asg::ggx_lobe`] of the GGX lobe at the shading point.
+/// Section 4.2 with the ASG fit [`Asg::from_ggx`] of the GGX lobe at the shading point.
 pub fn specular_shading(
     incoming: &Sg,
     normal: Vec3,
@@ -309,10 +309,10 @@ pub fn specular_shading(
         visibility,
         ggx_lobe_factor,
     );
-    asg_shading(factor, normal, view, Asg::ggx_lobe)
+    asg_shading(factor, normal, view, Asg::from_ggx)
 }
 
-/// [`specular_shading`] for Beckmann's NDF: the ASG fit [`Asg::beckmann_lobe`] and
+/// [`specular_shading`] for Beckmann's NDF: the ASG fit [`Asg::from_beckmann`] and
 /// [`beckmann_lobe_factor`].
 pub fn beckmann_specular_shading(
     incoming: &Sg,
@@ -331,7 +331,7 @@ pub fn beckmann_specular_shading(
         visibility,
         beckmann_lobe_factor,
     );
-    asg_shading(factor, normal, view, Asg::beckmann_lobe)
+    asg_shading(factor, normal, view, Asg::from_beckmann)
 }
 
 /// `c ∫ G_in Ĝ dω` for the ASG fit `lobe` at the shading point (0 without a factor).

@@ -1,7 +1,7 @@
 //! Sphere lights over GGX surfaces with the fitted uniform SPTD (Dupuy et al. 2017,
 //! Sections 5 and 6.1).
 //!
-//! [`GgxPivot::lookup`] reads the pivot table (`brdf/pivot_table.rs`, fitted by
+//! [`GgxPivot::from_view`] reads the pivot table (`brdf/pivot_table.rs`, fitted by
 //! `tools/src/fitters/pivot_fitter.rs`): for a view `ω_o` and roughness `r = √α`, the pivot
 //! `r_p` of the uniform SPTD `D ≈ f cos θ / albedo` and the albedo `∫ f cos θ dω`
 //! (Fresnel = 1), interpolated bilinearly like the LTC table and rotated to the view's
@@ -18,7 +18,7 @@
 //! `V` (the visibility cap): `L · albedo · Ω(g(C) ∩ g(V)) / 4π`, the triple product of
 //! BRDF, light and visibility; for an unoccluded point `V = H` and both agree. Its
 //! baseline, the separable approximation of Eq. 21–22
-//! ([`SphereLightShading::shade_occluded_separable`]), multiplies the unoccluded shading
+//! ([`SphereLightShading::eval_occluded_separable`]), multiplies the unoccluded shading
 //! by the fraction of the BRDF lobe inside the cone. The
 //! Fresnel factor is the LTC table's Schlick-weighted albedo ([`Ltc::specular_albedo`]),
 //! so the result is RGB.
@@ -65,7 +65,7 @@ impl GgxPivot {
     /// The fit for the view `wo` (local frame, need not be normalised) and roughness
     /// `r = √α` (clamped to `[0, 1]`, NaN as 0). `None` when `wo` is not finite, zero,
     /// or at or below the horizon.
-    pub fn lookup(wo: Vec3, roughness: f32) -> Option<GgxPivot> {
+    pub fn from_view(wo: Vec3, roughness: f32) -> Option<GgxPivot> {
         let (x, y, cos_phi, sin_phi) = table_coordinates(wo, roughness)?;
         let [norm, elevation, albedo] = table_bilinear(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y);
         let (sin_e, cos_e) = libm::sincosf(elevation);
@@ -104,8 +104,8 @@ impl SphereLightShading {
     /// reflectance at normal incidence `f0` for the view `wo`. `None` when `wo` is not
     /// finite, zero, or at or below the horizon.
     pub fn new(wo: Vec3, roughness: f32, f0: Vec3) -> Option<SphereLightShading> {
-        let fit = GgxPivot::lookup(wo, roughness)?;
-        let ltc = Ltc::ggx(wo, roughness)?;
+        let fit = GgxPivot::from_view(wo, roughness)?;
+        let ltc = Ltc::from_ggx(wo, roughness)?;
         let f0 = if f0.is_finite() {
             f0.max(Vec3::ZERO).min(Vec3::ONE)
         } else {
@@ -120,7 +120,7 @@ impl SphereLightShading {
 
     /// `∫_{C ∩ H} f cos θ dω ≈ albedo_F · Ω(g(C) ∩ g(H)) / 4π` per unit radiance
     /// (Eq. 19), for the cap `C` of a light (sanitized here).
-    pub fn shade(&self, light: &Cap) -> Vec3 {
+    pub fn eval(&self, light: &Cap) -> Vec3 {
         let image = pivot_cap(&light.sanitized(), self.fit.pivot);
         self.specular_albedo
             * (cap_intersection_solid_angle(&image, &self.horizon_image) * (0.25 / PI))
@@ -129,23 +129,23 @@ impl SphereLightShading {
     /// Specular occlusion with a bent cone `visibility` (Eq. 23): `∫_{C ∩ V} f cos θ dω
     /// ≈ albedo_F · Ω(g(C) ∩ g(V)) / 4π`. The bent cone takes the place of the upper
     /// hemisphere (an unoccluded point's bent cone is `H`, and then this equals
-    /// [`SphereLightShading::shade`]).
-    pub fn shade_occluded(&self, light: &Cap, visibility: &Cap) -> Vec3 {
+    /// [`SphereLightShading::eval`]).
+    pub fn eval_occluded(&self, light: &Cap, visibility: &Cap) -> Vec3 {
         let image = pivot_cap(&light.sanitized(), self.fit.pivot);
         let visible = pivot_cap(&visibility.sanitized(), self.fit.pivot);
         self.specular_albedo * (cap_intersection_solid_angle(&image, &visible) * (0.25 / PI))
     }
 
     /// Specular occlusion by the separable approximation that Eq. 23 improves on
-    /// (Eq. 21–22; the baseline of [`shade_occluded`](Self::shade_occluded)):
+    /// (Eq. 21–22; the baseline of [`eval_occluded`](Self::eval_occluded)):
     /// `L_o ≈ (V_f / f̄) · L_f`, the unoccluded shading `L_f` of
-    /// [`shade`](Self::shade) times the fraction of the BRDF lobe inside the bent cone,
+    /// [`eval`](Self::eval) times the fraction of the BRDF lobe inside the bent cone,
     /// `V_f / f̄ = ∫_{V ∩ H} D / ∫_H D = Ω(g(V) ∩ g(H)) / Ω(g(H))`, the same SPTD `D`
     /// standing for `f cos θ` in both factors, so that the two methods differ only in
     /// the separation. It neglects the correlation of visibility and light: a bent cone
     /// that holds most of the lobe but not the light lets the light through (shadow
     /// leaking, the paper's Fig. 11 d). Equals `shade` for `V = H`.
-    pub fn shade_occluded_separable(&self, light: &Cap, visibility: &Cap) -> Vec3 {
+    pub fn eval_occluded_separable(&self, light: &Cap, visibility: &Cap) -> Vec3 {
         let visible = pivot_cap(&visibility.sanitized(), self.fit.pivot);
         let lobe = self.horizon_image.solid_angle();
         let inside = cap_intersection_solid_angle(&visible, &self.horizon_image);
@@ -156,7 +156,7 @@ impl SphereLightShading {
         } else {
             0.0
         };
-        self.shade(light) * fraction
+        self.eval(light) * fraction
     }
 }
 
@@ -225,7 +225,7 @@ impl SphereLightSampler {
         if !(cap.one_minus_cos > 0.0) {
             return None;
         }
-        let fit = GgxPivot::lookup(wo, roughness)?;
+        let fit = GgxPivot::from_view(wo, roughness)?;
         Self::with_pivot(&cap, fit.pivot)
     }
 

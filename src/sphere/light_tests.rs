@@ -43,7 +43,7 @@ fn lookup_matches_the_table_at_cells_and_turns_with_the_view() {
         let t = j as f32 / 63.0;
         let cos = if j == 63 { 1e-4 } else { 1.0 - t * t };
         let wo = Vec3::new((1.0 - cos * cos).sqrt(), 0.0, cos);
-        let fit = GgxPivot::lookup(wo, r).unwrap();
+        let fit = GgxPivot::from_view(wo, r).unwrap();
         let [norm, elevation, albedo] = PIVOT_TABLE[i * 64 + j];
         assert!((fit.pivot.length() - norm).abs() < 2e-4, "({i}, {j})");
         let expected = Vec3::new(elevation.sin(), 0.0, elevation.cos()) * norm;
@@ -61,15 +61,15 @@ fn lookup_matches_the_table_at_cells_and_turns_with_the_view() {
                 v.z,
             )
         };
-        let turned = GgxPivot::lookup(rotate(wo), r).unwrap();
+        let turned = GgxPivot::from_view(rotate(wo), r).unwrap();
         assert!(
             (turned.pivot - rotate(fit.pivot)).length() < 1e-4,
             "({i}, {j})"
         );
     }
-    assert!(GgxPivot::lookup(Vec3::new(1.0, 0.0, 0.0), 0.5).is_none());
-    assert!(GgxPivot::lookup(Vec3::new(f32::NAN, 0.0, 1.0), 0.5).is_none());
-    assert!(GgxPivot::lookup(Vec3::Z, f32::NAN).is_some());
+    assert!(GgxPivot::from_view(Vec3::new(1.0, 0.0, 0.0), 0.5).is_none());
+    assert!(GgxPivot::from_view(Vec3::new(f32::NAN, 0.0, 1.0), 0.5).is_none());
+    assert!(GgxPivot::from_view(Vec3::Z, f32::NAN).is_some());
 }
 
 #[test]
@@ -93,7 +93,7 @@ fn real_time_shading_is_the_pivoted_probability_of_the_clipped_cap() {
                 }
                 let p = hits as f64 / n as f64;
                 let expected = shading.fit.albedo as f64 * p;
-                let value = shading.shade(&cap);
+                let value = shading.eval(&cap);
                 let sigma = shading.fit.albedo as f64 * (p * (1.0 - p) / n as f64).sqrt();
                 assert!(
                     (value.x as f64 - expected).abs()
@@ -103,24 +103,24 @@ fn real_time_shading_is_the_pivoted_probability_of_the_clipped_cap() {
                 assert_eq!(value.x, value.y);
                 // The bent cone of an unoccluded point is the upper hemisphere.
                 let horizon = Cap::from_axis_cos(Vec3::Z, 0.0);
-                assert_eq!(shading.shade_occluded(&cap, &horizon), value);
+                assert_eq!(shading.eval_occluded(&cap, &horizon), value);
                 // A bent cone away from the light blocks it.
                 let away = Cap::from_axis_cos(-cap.axis, 0.999);
                 if cap.one_minus_cos < 1.0 {
-                    assert_eq!(shading.shade_occluded(&cap, &away), Vec3::ZERO, "{name}");
+                    assert_eq!(shading.eval_occluded(&cap, &away), Vec3::ZERO, "{name}");
                 }
                 // A narrower bent cone never lets more light through.
                 let narrow = Cap::from_axis_cos(Vec3::new(0.2, 0.0, 1.0), 0.5);
-                assert!(shading.shade_occluded(&cap, &narrow).x <= value.x + 1e-6);
+                assert!(shading.eval_occluded(&cap, &narrow).x <= value.x + 1e-6);
                 // The separable baseline (Eq. 21–22): the unoccluded shading for V = H,
                 // a fraction of it for a narrower cone, nothing for a cone below the
                 // horizon.
-                let separable = shading.shade_occluded_separable(&cap, &horizon);
+                let separable = shading.eval_occluded_separable(&cap, &horizon);
                 assert!((separable.x - value.x).abs() <= 1e-6 * value.x, "{name}");
-                let fraction = shading.shade_occluded_separable(&cap, &narrow).x;
+                let fraction = shading.eval_occluded_separable(&cap, &narrow).x;
                 assert!((0.0..=value.x * (1.0 + 1e-6)).contains(&fraction), "{name}");
                 let below = Cap::from_axis_cos(-Vec3::Z, 0.9);
-                assert_eq!(shading.shade_occluded_separable(&cap, &below), Vec3::ZERO);
+                assert_eq!(shading.eval_occluded_separable(&cap, &below), Vec3::ZERO);
             }
         }
     }
@@ -168,7 +168,7 @@ fn joint_sptd_and_brdf_sampling_is_unbiased_and_beats_uniform_cap_sampling_in_th
             for (name, center, radius) in lights(wo) {
                 let cap = Cap::from_sphere(center, radius);
                 let sampler = SphereLightSampler::new(center, radius, wo, roughness).unwrap();
-                let pivoted = pivot_cap(&cap, GgxPivot::lookup(wo, roughness).unwrap().pivot);
+                let pivoted = pivot_cap(&cap, GgxPivot::from_view(wo, roughness).unwrap().pivot);
                 assert_eq!(
                     sampler.uses_sptd(),
                     pivoted.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE
@@ -302,8 +302,8 @@ fn bad_input_gives_none_or_finite_values() {
         axis: Vec3::splat(f32::NAN),
         ..Cap::WHOLE_SPHERE
     };
-    assert_eq!(shading.shade(&nan_cap), Vec3::ZERO);
-    assert!(shading.shade(&Cap::WHOLE_SPHERE).is_finite());
+    assert_eq!(shading.eval(&nan_cap), Vec3::ZERO);
+    assert!(shading.eval(&Cap::WHOLE_SPHERE).is_finite());
     let sampler =
         SphereLightSampler::new(Vec3::new(0.0, 0.5, 2.0), 0.3, Vec3::new(0.5, 0.0, 0.5), 0.0)
             .unwrap();
@@ -428,7 +428,7 @@ fn occlusion_of_a_light_whose_image_is_nearly_the_whole_sphere() {
                 let cone_image = pivot_image_f64(d3(cone.axis), cone.one_minus_cos as f64, pivot);
                 let expected = fit.albedo as f64 * cap_intersection_f64(light_image, cone_image)
                     / (4.0 * core::f64::consts::PI);
-                let value = shading.shade_occluded(&light, &cone).x as f64;
+                let value = shading.eval_occluded(&light, &cone).x as f64;
                 let error = (value - expected).abs() / expected;
                 let (kind, bound) = if tilt == 0.0 {
                     (0, AROUND_THE_NORMAL[r])
@@ -474,9 +474,9 @@ fn separable_occlusion_leaks_light_that_the_triple_product_blocks() {
         }
     });
     assert_eq!(exact, 0.0);
-    assert_eq!(shading.shade_occluded(&light, &cone), Vec3::ZERO);
-    let leaked = shading.shade_occluded_separable(&light, &cone).x;
-    let open = shading.shade(&light).x;
+    assert_eq!(shading.eval_occluded(&light, &cone), Vec3::ZERO);
+    let leaked = shading.eval_occluded_separable(&light, &cone).x;
+    let open = shading.eval(&light).x;
     assert!(open > 0.0 && leaked > 0.5 * open, "{leaked} of {open}");
     // The light inside the cone: both near the reference (the SPTD fit's error, a few
     // percent at this view and roughness), the triple product closer.
@@ -488,8 +488,8 @@ fn separable_occlusion_leaks_light_that_the_triple_product_blocks() {
             0.0
         }
     });
-    let triple = shading.shade_occluded(&light, &cone).x as f64;
-    let separable = shading.shade_occluded_separable(&light, &cone).x as f64;
+    let triple = shading.eval_occluded(&light, &cone).x as f64;
+    let separable = shading.eval_occluded_separable(&light, &cone).x as f64;
     let (e_triple, e_separable) = (
         (triple - reference).abs() / reference,
         (separable - reference).abs() / reference,
@@ -512,7 +512,7 @@ fn a_light_across_the_horizon_is_sampled_above_it_only() {
     for (degrees, roughness) in [(30.0, 0.5), (60.0, 0.3), (0.0, 0.8)] {
         let wo = view(degrees);
         let brdf = GgxBrdf::new(roughness, Vec3::ONE);
-        let pivot = GgxPivot::lookup(wo, roughness).unwrap().pivot;
+        let pivot = GgxPivot::from_view(wo, roughness).unwrap().pivot;
         let m = mirror(wo);
         let low = Vec3::new(m.x, m.y, 0.0).normalize_or(Vec3::X);
         for (name, center, radius) in [

@@ -121,7 +121,7 @@ struct Brdf {
 
 impl Brdf {
     fn new(c: &Configuration) -> Brdf {
-        let ltc = Ltc::ggx(c.wo, c.material.roughness).expect("view above the horizon");
+        let ltc = Ltc::from_ggx(c.wo, c.material.roughness).expect("view above the horizon");
         let specular = luminance(ltc.specular_albedo(c.material.f0));
         let diffuse = luminance(c.material.diffuse);
         Brdf {

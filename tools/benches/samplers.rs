@@ -74,7 +74,9 @@ fn main() {
     ];
     let ltc_polygons: Vec<LtcPolygon> = views
         .iter()
-        .map(|&wo| LtcPolygon::new(&Ltc::ggx(wo, 0.3).unwrap(), &quad).unwrap_or(LtcPolygon::EMPTY))
+        .map(|&wo| {
+            LtcPolygon::new(&Ltc::from_ggx(wo, 0.3).unwrap(), &quad).unwrap_or(LtcPolygon::EMPTY)
+        })
         .collect();
 
     let sgs: Vec<Sg> = (0..INPUTS)
@@ -88,7 +90,7 @@ fn main() {
         .collect();
     let asgs: Vec<Asg> = views
         .iter()
-        .map(|&wo| Asg::ggx_lobe(Vec3::Z, wo, 0.09))
+        .map(|&wo| Asg::from_ggx(Vec3::Z, wo, 0.09))
         .collect();
     let vsgl_means: Vec<Vec3> = (0..INPUTS)
         .map(|_| rng.direction() * (1.0 + 9.0 * rng.uniform_f32()))
@@ -301,8 +303,8 @@ fn main() {
             time_ns(|i| value(ltc_polygons[i].sample(us[i]))),
         ),
         (
-            "LTC: lookup (Ltc::ggx)",
-            time_ns(|i| Ltc::ggx(views[i], 0.3).map_or(0.0, |l| l.albedo())),
+            "LTC: lookup (Ltc::from_ggx)",
+            time_ns(|i| Ltc::from_ggx(views[i], 0.3).map_or(0.0, |l| l.albedo())),
         ),
         ("SG: eval", time_ns(|i| sgs[i].eval(views[i]))),
         (

@@ -360,11 +360,11 @@ fn timing_table(rng: &mut Rng) {
         ),
         (
             "real-time shading: shade one light",
-            time_ns(|i| shadings[i].shade(&caps[i]).x),
+            time_ns(|i| shadings[i].eval(&caps[i]).x),
         ),
         (
             "real-time shading: shade with a bent cone",
-            time_ns(|i| shadings[i].shade_occluded(&caps[i], &bent).x),
+            time_ns(|i| shadings[i].eval_occluded(&caps[i], &bent).x),
         ),
         (
             "pivot cap (g(C))",

@@ -293,7 +293,7 @@ fn corrupted_polygon_values_neither_hang_nor_panic() {
         if let Some(arvo) = ArvoProjectedPolygon::new(v) {
             polygon_case!("ArvoProjectedPolygon", ArvoProjectedPolygon, arvo, |_| 0.0);
         }
-        let ltc = Ltc::ggx(Vec3::new(0.3, 0.0, 0.95).normalize(), 0.4).unwrap();
+        let ltc = Ltc::from_ggx(Vec3::new(0.3, 0.0, 0.95).normalize(), 0.4).unwrap();
         polygon_case!(
             "LtcPolygon",
             LtcPolygon,
@@ -423,7 +423,7 @@ fn corrupted_sphere_values_neither_hang_nor_panic() {
         move |s: &SphereLightShading| {
             let light = Cap::from_sphere(Vec3::new(0.3, 0.2, 2.0), 0.5);
             let visibility = Cap::from_axis_cos(Vec3::new(0.0, 0.3, 1.0).normalize(), 0.8);
-            std::hint::black_box(s.shade(&light).x + s.shade_occluded(&light, &visibility).x)
+            std::hint::black_box(s.eval(&light).x + s.eval_occluded(&light, &visibility).x)
         },
     );
     assert_no_failures();
@@ -436,7 +436,7 @@ fn corrupted_brdf_and_vsgl_values_neither_hang_nor_panic() {
     use sphera::vsgl::fis::{VsglPyramid, fis_select};
     silence_reader_panics();
     let wo = Vec3::new(0.4, 0.0, 0.9).normalize();
-    let ltc = Ltc::ggx(wo, 0.4).unwrap();
+    let ltc = Ltc::from_ggx(wo, 0.4).unwrap();
     corrupt_every_word("Ltc", ltc, |l: &Ltc| {
         let mut sum = l.albedo() + l.fresnel() + l.inverse_determinant();
         for d in directions() {

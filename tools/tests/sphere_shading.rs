@@ -27,7 +27,7 @@ fn shading_error_stays_within_the_measured_bounds() {
         let center = Vec3::new(c.center[0] as f32, c.center[1] as f32, c.center[2] as f32);
         let expected = reference(&ggx, c.center, c.radius, None, 96);
         let shading = SphereLightShading::new(wo, c.roughness, Vec3::ONE).unwrap();
-        let value = shading.shade(&Cap::from_sphere(center, c.radius as f32)).x as f64;
+        let value = shading.eval(&Cap::from_sphere(center, c.radius as f32)).x as f64;
         let relative = (value - expected).abs() / expected;
         let what = format!(
             "r {} θo {} {}: {value} vs {expected}",

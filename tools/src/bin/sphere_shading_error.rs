@@ -59,7 +59,7 @@ fn main() {
         let shading =
             SphereLightShading::new(wo, c.roughness, Vec3::ONE).expect("view above the horizon");
         let cap = Cap::from_sphere(v3(c.center), c.radius as f32);
-        let exact = shading.shade(&cap).x as f64;
+        let exact = shading.eval(&cap).x as f64;
         let image = pivot_cap(&cap, shading.fit.pivot);
         let quarter = 0.25 / std::f32::consts::PI;
         let albedo = shading.fit.albedo;
@@ -174,8 +174,8 @@ fn main() {
          blocked): cones of half-angle 30°, 45° and 60° about an axis tilted 20° from the normal \
          towards the light or away from it; lights in the mirror direction (radius 0.25 and 1 at \
          distance 2, 0.25 at distance 8); views 0° to 80°. Eq. 23 is \
-         `albedo · Ω(g(C) ∩ g(V))/4π` (`shade_occluded`); Eq. 21 is the unoccluded shading times \
-         the lobe's fraction in the cone, `Ω(g(V) ∩ g(H))/Ω(g(H))` (`shade_occluded_separable`, \
+         `albedo · Ω(g(C) ∩ g(V))/4π` (`eval_occluded`); Eq. 21 is the unoccluded shading times \
+         the lobe's fraction in the cone, `Ω(g(V) ∩ g(H))/Ω(g(H))` (`eval_occluded_separable`, \
          the same SPTD for the BRDF in both). Relative error (mean / max) for configurations \
          whose occluded reference is at least 1% of the unoccluded one; where it is below \
          (the cone hides the light), the light let through as a fraction of the unoccluded \
@@ -209,8 +209,8 @@ fn main() {
                         let open = reference(&ggx, center, radius, None, n / 2);
                         let cap = Cap::from_sphere(v3(center), radius as f32);
                         let cone = Cap::from_axis_one_minus_cos(v3(cone_axis), t as f32);
-                        let a = shading.shade_occluded(&cap, &cone).x as f64;
-                        let b = shading.shade_occluded_separable(&cap, &cone).x as f64;
+                        let a = shading.eval_occluded(&cap, &cone).x as f64;
+                        let b = shading.eval_occluded_separable(&cap, &cone).x as f64;
                         if occluded < 0.01 * open {
                             triple_leak.add(a / open);
                             separable_leak.add(b / open);

@@ -232,7 +232,7 @@ pub fn measure(reduced: bool) -> Vec<Sample> {
         // ASG × SG: the GGX ASG at 45° view, roughness 0.3, an SG of sharpness λ at the
         // reflection direction and 0.1 rad off it.
         let view = [0.5f64.sqrt(), 0.0, 0.5f64.sqrt()];
-        let asg = Asg::ggx_lobe(Vec3::Z, to_f32(view), 0.09);
+        let asg = Asg::from_ggx(Vec3::Z, to_f32(view), 0.09);
         for offset in [0.0f64, 0.1] {
             let xi = normalize([-(0.5f64.sqrt()) + offset, 0.0, 0.5f64.sqrt()]);
             let sg = Sg::new(to_f32(xi), lf, 1.0);
