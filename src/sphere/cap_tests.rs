@@ -1,17 +1,8 @@
 use super::*;
 use crate::testing::{
-    CHI_SQUARE_ALPHA, D3, Rng, chi_square, d3, dot, frame_f64, norm, normalize, sub,
+    CHI_SQUARE_ALPHA, D3, Rng, chi_square, d3, dot, frame_f64, normalize,
+    sphere_cap_one_minus_cos_f64, sub,
 };
-
-/// `1 − cos θ` of the cap of a sphere, in f64 from the f64 center and radius.
-fn one_minus_cos_f64(center: D3, radius: f64) -> f64 {
-    let d = norm(center);
-    if d <= radius {
-        return 2.0;
-    }
-    let s2 = (radius / d) * (radius / d);
-    s2 / (1.0 + (1.0 - s2).sqrt())
-}
 
 /// `1 − ω·a` in f64 for unit vectors, by `|ω − a|²/2`.
 fn one_minus_dot_f64(w: D3, a: D3) -> f64 {
@@ -44,7 +35,7 @@ fn solid_angle_matches_f64_for_tiny_to_huge_caps_and_scaled_coordinates() {
             continue;
         }
         let cap = Cap::from_sphere(center, radius);
-        let reference = one_minus_cos_f64(d3(center), radius as f64);
+        let reference = sphere_cap_one_minus_cos_f64(d3(center), radius as f64);
         let error = (cap.one_minus_cos as f64 - reference).abs() / reference;
         worst = worst.max(error);
         assert!(
@@ -66,8 +57,10 @@ fn solid_angle_matches_f64_for_tiny_to_huge_caps_and_scaled_coordinates() {
 fn distant_spheres_keep_relative_precision() {
     for &(d, r) in &[(1e6f32, 1.0f32), (1.0, 1e-6), (3.0e7, 0.5), (1e20, 1e14)] {
         let cap = Cap::from_sphere(Vec3::new(0.3 * d, -0.4 * d, 0.866_025_4 * d), r);
-        let reference =
-            one_minus_cos_f64(d3(Vec3::new(0.3 * d, -0.4 * d, 0.866_025_4 * d)), r as f64);
+        let reference = sphere_cap_one_minus_cos_f64(
+            d3(Vec3::new(0.3 * d, -0.4 * d, 0.866_025_4 * d)),
+            r as f64,
+        );
         assert!(
             ((cap.one_minus_cos as f64 - reference) / reference).abs() < 2e-6,
             "{d} {r}: {} vs {reference}",

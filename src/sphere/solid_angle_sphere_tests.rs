@@ -1,18 +1,8 @@
 use super::*;
 use crate::testing::{
-    CHI_SQUARE_ALPHA, D3, Rng, chi_square, d3, dot, frame_f64, norm, normalize, sub,
+    CHI_SQUARE_ALPHA, Rng, chi_square, d3, dot, frame_f64, normalize, sphere_cap_one_minus_cos_f64,
+    sub,
 };
-
-/// `1 − cos θ` of the cap that a sphere subtends, in f64 from the f64 center and radius
-/// (2 from inside the sphere).
-fn one_minus_cos_f64(center: D3, radius: f64) -> f64 {
-    let d = norm(center);
-    if d <= radius {
-        return 2.0;
-    }
-    let s2 = (radius / d) * (radius / d);
-    s2 / (1.0 + (1.0 - s2).sqrt())
-}
 
 /// Chi-square of the samples of a sphere prepared for solid angle sampling, over cells
 /// of equal solid angle in `(1 − ω·a, φ)` of the f64 cap (the f64 axis and `1 − cos θ`
@@ -24,7 +14,7 @@ fn check_sphere(center: Vec3, radius: f32, seed: u64) {
     assert!(sphere.prepare(center, radius), "{center} {radius}");
     let axis = normalize(d3(center));
     let (tangent, bitangent) = frame_f64(axis);
-    let t_max = one_minus_cos_f64(d3(center), radius as f64);
+    let t_max = sphere_cap_one_minus_cos_f64(d3(center), radius as f64);
     let expected_pdf = 1.0 / (2.0 * core::f64::consts::PI * t_max);
     let mut counts = vec![0u64; N * N];
     let mut rng = Rng::new(seed);
@@ -116,8 +106,9 @@ fn tiny_caps_keep_their_solid_angle_and_samples() {
     for distance in [1e3f32, 1e5, 1e6, 1e7] {
         let mut sphere = SolidAngleSphere::EMPTY;
         assert!(sphere.prepare(Vec3::new(0.0, 0.0, distance), 1.0));
-        let exact =
-            2.0 * core::f64::consts::PI * one_minus_cos_f64([0.0, 0.0, distance as f64], 1.0);
+        let exact = 2.0
+            * core::f64::consts::PI
+            * sphere_cap_one_minus_cos_f64([0.0, 0.0, distance as f64], 1.0);
         let relative = (sphere.solid_angle() as f64 - exact).abs() / exact;
         assert!(
             relative < 1e-6,
@@ -187,7 +178,8 @@ fn bad_input_writes_the_empty_value() {
     for scale in [1e-30f32, 1e30] {
         let mut sphere = garbage;
         assert!(sphere.prepare(Vec3::new(0.0, 0.0, 3.0) * scale, scale));
-        let expected = 2.0 * core::f64::consts::PI * one_minus_cos_f64([0.0, 0.0, 3.0], 1.0);
+        let expected =
+            2.0 * core::f64::consts::PI * sphere_cap_one_minus_cos_f64([0.0, 0.0, 3.0], 1.0);
         assert!((sphere.solid_angle() as f64 - expected).abs() < 1e-6 * expected);
         assert!(sphere.sample([0.5, 0.5]).pdf > 0.0);
     }

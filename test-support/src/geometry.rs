@@ -202,3 +202,14 @@ pub fn clip_to_upper_hemisphere_f32(vertices: &[Vec3]) -> Vec<Vec3> {
     }
     out
 }
+
+/// `1 − cos θ` of the cap that a sphere of `radius` centred at `center` subtends, in f64:
+/// `sin²θ / (1 + cos θ)` with `sin θ = radius / |center|`; 2 (the whole sphere) from inside.
+pub fn sphere_cap_one_minus_cos_f64(center: D3, radius: f64) -> f64 {
+    let d = norm(center);
+    if d <= radius {
+        return 2.0;
+    }
+    let s2 = (radius / d) * (radius / d);
+    s2 / (1.0 + (1.0 - s2).sqrt())
+}
