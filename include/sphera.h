@@ -240,7 +240,7 @@ typedef struct SpheraSolidAngleSphere {
 
 /* Two caps prepared for uniform sampling of their union. */
 typedef struct SpheraCapUnion {
-  uint32_t opaque[40]; /* 160 bytes, private: see the preamble */
+  uint32_t opaque[44]; /* 176 bytes, private: see the preamble */
 } SpheraCapUnion;
 
 /* A spherical pivot-transformed distribution (Eq. 8): a base distribution and a pivot. Build it
@@ -281,7 +281,7 @@ typedef struct SpheraSphereLightShading {
  * `g` (density `J(ω) / Ω(g(C) ∩ g(H))`; the fallback uniformly in `C ∩ H`), so that no sample is
  * wasted below the horizon. */
 typedef struct SpheraSphereLightSampler {
-  uint32_t opaque[65]; /* 260 bytes, private: see the preamble */
+  uint32_t opaque[69]; /* 276 bytes, private: see the preamble */
 } SpheraSphereLightSampler;
 
 /* The sums of a cluster of VPLs (tabled in the docs of `sphera::vsgl::accumulator`), relative to

@@ -60,13 +60,13 @@ use core::f32::consts::PI;
 
 /// The half-angle `θ = 2 asin(√(t/2))` of `t = 1 − cos θ`.
 #[inline(always)]
-fn angle_of(t: f32) -> f32 {
+pub(crate) fn angle_of(t: f32) -> f32 {
     2.0 * libm::asinf(libm::sqrtf((0.5 * t).max(0.0).min(1.0)))
 }
 
 /// `1 − a·b` of two unit axes, as `|a − b|²/2`, in `[0, 2]`.
 #[inline(always)]
-fn one_minus_dot(a: crate::Vec3, b: crate::Vec3) -> f32 {
+pub(crate) fn one_minus_dot(a: crate::Vec3, b: crate::Vec3) -> f32 {
     (0.5 * (a - b).length_squared()).min(2.0)
 }
 
@@ -119,6 +119,19 @@ fn at_most_hemispheres(a1: crate::Vec3, t1: f32, a2: crate::Vec3, t2: f32) -> f3
     }
     let td = one_minus_dot(a1, a2);
     let (theta1, theta2, d) = (angle_of(t1), angle_of(t2), angle_of(td));
+    at_most_hemispheres_with_angles([t1, theta1], [t2, theta2], [td, d])
+}
+
+/// [`at_most_hemispheres`] with the half-angles `θᵢ = angle_of(tᵢ)` and the axes' angle
+/// `d = angle_of(t_d)` given (`tᵢ ∈ (0, 1]`): the uniform sampler of an intersection
+/// evaluates it for many `t₁` against one cap, whose `θ₂`, `t_d` and `d` it computes
+/// once ([`CapIntersection`](super::CapIntersection)'s radial inversion).
+#[inline(always)]
+pub(crate) fn at_most_hemispheres_with_angles(
+    [t1, theta1]: [f32; 2],
+    [t2, theta2]: [f32; 2],
+    [td, d]: [f32; 2],
+) -> f32 {
     if d >= theta1 + theta2 {
         return 0.0;
     }

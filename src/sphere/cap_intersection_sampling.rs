@@ -23,7 +23,9 @@
 //! region around a hole), coaxial caps, disjoint caps (no sampler).
 
 use super::cap::Cap;
-use super::cap_intersection::cap_intersection_solid_angle;
+use super::cap_intersection::{
+    angle_of, at_most_hemispheres_with_angles, cap_intersection_solid_angle,
+};
 use crate::Sample;
 use crate::math::orthonormal_basis;
 use crate::sample::{INWARD_PULLS, clamp_inverted, clamp_random};
@@ -51,6 +53,10 @@ pub struct CapIntersection {
     e2: Vec3,
     /// `t_d = 1 − a·b`.
     t_d: f32,
+    /// The cap that `cumulative`'s lens formula pairs with `cap(a, s)`: `B`, or its
+    /// complement when `B` is wider than a hemisphere, as `[1 − cos, half-angle, 1 − a·axis,
+    /// angle between the axes]`.
+    lens_partner: [f32; 4],
     /// The range of `s` that meets `B`: `[s_low, s_high]` within `[0, t_A]`.
     s_low: f32,
     s_high: f32,
@@ -66,12 +72,6 @@ fn one_minus_cos_of(x: f32) -> f32 {
     2.0 * s * s
 }
 
-/// The angle `θ = 2 asin(√(t/2))` of `t = 1 − cos θ`.
-#[inline(always)]
-fn angle_of(t: f32) -> f32 {
-    2.0 * libm::asinf(libm::sqrtf((0.5 * t).max(0.0).min(1.0)))
-}
-
 impl CapIntersection {
     /// The empty intersection: no samples, pdf 0.
     ///
@@ -83,6 +83,7 @@ impl CapIntersection {
         e1: Vec3::X,
         e2: Vec3::Y,
         t_d: 0.0,
+        lens_partner: [0.0; 4],
         s_low: 0.0,
         s_high: 0.0,
         inner: Vec3::Z,
@@ -133,6 +134,14 @@ impl CapIntersection {
         } else {
             one_minus_cos_of(high).min(radial.one_minus_cos)
         };
+        let lens_partner = if other.one_minus_cos <= 1.0 {
+            [other.one_minus_cos, theta_b, t_d, d]
+        } else {
+            // The complement: axis `−b`, `1 − cos = h_B`; `1 − a·(−b) = |a + b|²/2`.
+            let t_c = (0.5 * (other.axis + axis).length_squared()).min(2.0);
+            let h = other.one_plus_cos;
+            [h, angle_of(h), t_c, angle_of(t_c)]
+        };
         let middle = 0.5 * (low + high);
         let (sin_m, cos_m) = libm::sincosf(middle);
         let mut inner = (axis * cos_m + e1 * sin_m).normalize_or(axis);
@@ -151,6 +160,7 @@ impl CapIntersection {
             e1,
             e2,
             t_d,
+            lens_partner,
             s_low,
             s_high: s_high.max(s_low),
             inner,
@@ -158,8 +168,30 @@ impl CapIntersection {
     }
 
     /// `Ω(cap(a, s) ∩ B)`, the unnormalised radial CDF.
+    ///
+    /// Fast path, for `cap(a, s)` at most a hemisphere and narrower than `B`: there
+    /// [`cap_intersection_solid_angle`] takes the lens formula with `cap(a, s)` first,
+    /// against `B` itself or, for `B` wider than a hemisphere, against its complement
+    /// (`Ω(A ∩ B) = Ω(A) − Ω(A ∩ B̄)`; the usual case of a sphere light across the
+    /// horizon, whose pivoted hemisphere is wide). The lens partner's `1 − cos`, its
+    /// half-angle, `t_d` and the axes' angle do not depend on `s` and come from `new`: per
+    /// Newton step one `asin` (of `s`) in place of three, and no cap is built (whose
+    /// axis normalisation cost a division, a square root and a division). The values are
+    /// the general call's up to the last bits of `t_d` (the general call's cap
+    /// normalises the unit axis once more).
     #[inline]
     fn cumulative(&self, s: f32) -> f32 {
+        let t_b = self.other.one_minus_cos;
+        if s > 0.0 && s <= 1.0 && s < t_b {
+            let [t, theta, t_d, d] = self.lens_partner;
+            let lens = at_most_hemispheres_with_angles([s, angle_of(s)], [t, theta], [t_d, d]);
+            if t_b <= 1.0 {
+                return lens;
+            }
+            let omega_s = 2.0 * PI * s;
+            let low = (omega_s + 2.0 * PI * t_b - 4.0 * PI).max(0.0);
+            return (omega_s - lens).max(low).min(omega_s.min(2.0 * PI * t_b));
+        }
         let cap = Cap::from_axis_one_minus_cos(self.radial.axis, s);
         cap_intersection_solid_angle(&cap, &self.other)
     }
