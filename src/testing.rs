@@ -120,8 +120,12 @@ pub fn inside_f64(w: D3, cap: &crate::sphere::Cap) -> bool {
 /// `dω = dt dφ = 2 t_max s ds dφ`: the substitution refines the grid towards the cap's
 /// axis, where peaked integrands (glossy lobes, pivoted densities) concentrate.
 pub fn integrate_over_cap_f64(cap: &crate::sphere::Cap, n: usize, f: impl Fn(D3) -> f64) -> f64 {
-    let a = d3(cap.axis);
-    let t_max = cap.one_minus_cos as f64;
+    integrate_over_cap_axis_f64(d3(cap.axis), cap.one_minus_cos as f64, n, f)
+}
+
+/// [`integrate_over_cap_f64`] over the cap about the unit `a` with `1 − cos θ = t_max`
+/// (an f64 cap, which an f32 `Cap` may not represent).
+pub fn integrate_over_cap_axis_f64(a: D3, t_max: f64, n: usize, f: impl Fn(D3) -> f64) -> f64 {
     let (ds, dphi) = (1.0 / n as f64, core::f64::consts::TAU / (2 * n) as f64);
     let mut sum = 0.0;
     for i in 0..n {

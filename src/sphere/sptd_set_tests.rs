@@ -6,8 +6,8 @@
 
 use super::*;
 use crate::testing::{
-    D3, Rng, cap_intersection_f64, cap_point, d3, dot, normalize, pivot_image_f64,
-    pivot_transform_f64, uniform_direction_f64,
+    D3, Rng, cap_intersection_f64, d3, dot, integrate_over_cap_axis_f64, normalize,
+    pivot_image_f64, pivot_transform_f64, uniform_direction_f64,
 };
 use core::f64::consts::{PI as PI64, TAU as TAU64};
 
@@ -69,20 +69,7 @@ impl Cap64 {
     /// `t ∈ [1, 2 − h]` is integrated from the hole's side in `1 + cos`, so that a tiny
     /// hole keeps its resolution.
     fn integrate(&self, n: usize, f: &dyn Fn(D3) -> f64) -> f64 {
-        let ring = |axis: D3, t_max: f64| -> f64 {
-            let (ds, dphi) = (1.0 / n as f64, TAU64 / (2 * n) as f64);
-            let mut sum = 0.0;
-            for i in 0..n {
-                let s = (i as f64 + 0.5) * ds;
-                let t = t_max * s * s;
-                let mut row = 0.0;
-                for k in 0..2 * n {
-                    row += f(cap_point(axis, t, (k as f64 + 0.5) * dphi));
-                }
-                sum += row * 2.0 * t_max * s;
-            }
-            sum * ds * dphi
-        };
+        let ring = |axis: D3, t_max: f64| integrate_over_cap_axis_f64(axis, t_max, n, f);
         if self.t <= 1.0 {
             ring(self.axis, self.t)
         } else {
