@@ -258,23 +258,22 @@ impl VertexLanes {
     #[inline(always)]
     fn fill(&mut self, vertices: &[Vec3], factor: f32, count: usize) -> bool {
         let lanes = self;
-        let end = (count + 1).next_multiple_of(LANES);
-        for (slot, v) in vertices.iter().enumerate() {
-            lanes.position[0][slot] = v.x;
-            lanes.position[1][slot] = v.y;
-            lanes.position[2][slot] = v.z;
-        }
-        for slot in count..end {
-            for c in 0..3 {
-                lanes.position[c][slot] = lanes.position[c][0];
-            }
-        }
         let factor = Vec4::splat(factor);
         let mut nonzero = true;
-        // The lanes of slots `0..=count` (the last closes the polygon); the slots above
-        // stay 0 and only lanes that the masks leave out read them.
+        // The lanes of slots `0..=count` (the last closes the polygon), built in
+        // registers from the input (slots from `count` on read vertex 0 again) and stored
+        // whole: storing the slots one by one and loading them back four at a time
+        // stalls on the failed store-to-load forwarding. The slots above stay 0 and only
+        // lanes that the masks leave out read them.
         for first in lane_starts(count + 1) {
-            let [x, y, z] = [0, 1, 2].map(|c| load4(&lanes.position[c], first) * factor);
+            let vertex = |j: usize| {
+                let slot = first + j;
+                vertices[if slot < count { slot } else { 0 }]
+            };
+            let [a, b, c, d] = [vertex(0), vertex(1), vertex(2), vertex(3)];
+            let x = Vec4::new(a.x, b.x, c.x, d.x) * factor;
+            let y = Vec4::new(a.y, b.y, c.y, d.y) * factor;
+            let z = Vec4::new(a.z, b.z, c.z, d.z) * factor;
             store4(x, &mut lanes.position[0], first);
             store4(y, &mut lanes.position[1], first);
             store4(z, &mut lanes.position[2], first);
