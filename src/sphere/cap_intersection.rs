@@ -56,6 +56,7 @@
 //! smooth, cheap estimate is enough.
 
 use super::cap::Cap;
+use crate::math::atan2_upper_half_plane;
 use core::f32::consts::PI;
 
 /// The half-angle `θ = 2 asin(√(t/2))` of `t = 1 − cos θ`.
@@ -128,15 +129,32 @@ fn at_most_hemispheres(a1: crate::Vec3, t1: f32, a2: crate::Vec3, t2: f32) -> f3
 /// once ([`CapIntersection`](super::CapIntersection)'s radial inversion).
 #[inline(always)]
 pub(crate) fn at_most_hemispheres_with_angles(
+    first: [f32; 2],
+    second: [f32; 2],
+    axes: [f32; 2],
+) -> f32 {
+    lens_and_half_arc(first, second, axes)[0]
+}
+
+/// [`at_most_hemispheres_with_angles`] and, beside it, the half-width `φ₁` in azimuth of
+/// the first cap's boundary circle inside the second cap: 0 for disjoint caps and for
+/// the second inside the first, π for the first inside the second, and in the lens case
+/// the formula's own `φ₁ = atan2(Y, N₁)` (`cos φ₁ = N₁ / (sin θ₁ sin d)`, the spherical
+/// law of cosines in the triangle of the two axes and a point of the circle). `2 φ₁` is
+/// `dΩ/dt₁`, the slope that the radial inversion of a cap intersection needs: no second
+/// evaluation (an `acos`, a square root and a division) per Newton step.
+#[inline(always)]
+pub(crate) fn lens_and_half_arc(
     [t1, theta1]: [f32; 2],
     [t2, theta2]: [f32; 2],
     [td, d]: [f32; 2],
-) -> f32 {
+) -> [f32; 2] {
     if d >= theta1 + theta2 {
-        return 0.0;
+        return [0.0, 0.0];
     }
     if d <= (theta1 - theta2).abs() {
-        return 2.0 * PI * t1.min(t2);
+        let first_inside = theta1 <= theta2;
+        return [2.0 * PI * t1.min(t2), if first_inside { PI } else { 0.0 }];
     }
     let sin2_1 = (t1 * (2.0 - t1)).max(0.0);
     let sin2_d = (td * (2.0 - td)).max(0.0);
@@ -145,28 +163,35 @@ pub(crate) fn at_most_hemispheres_with_angles(
     // Y² = sin²θ₁ sin²d − N₁², the Gram determinant of (a₁, a₂, P). Where the two terms
     // nearly cancel (Y² below half of them: a tiny cap across a large one's boundary,
     // where both are of order 1 and Y of the order of the tiny cap) their difference
-    // has lost its precision, and the spherical Heron formula
-    // Y² = 4 sin s sin(s − θ₁) sin(s − θ₂) sin(s − d), s = (θ₁ + θ₂ + d)/2, computes it
-    // from the sides' differences instead (issue 16, 4: the plain form gave the whole
-    // tiny cap or 0, 85% off). All four factors are non-negative in the lens case.
+    // has lost its precision. With `P = sin θ₁ sin d`, `Y² = (P − N₁)(P + N₁)`, and by
+    // the law of cosines (`N₁ = cos θ₂ − cos θ₁ cos d`) the factors are differences of
+    // cosines: `P − N₁ = cos(θ₁ − d) − cos θ₂ = 2 sin((θ₁ + θ₂ − d)/2) sin((θ₂ + d − θ₁)/2)`
+    // and `P + N₁ = cos θ₂ − cos(θ₁ + d) = 2 sin((θ₁ + θ₂ + d)/2) sin((θ₁ + d − θ₂)/2)`
+    // (together the spherical Heron formula; issue 16, 4: the plain form gave the whole
+    // tiny cap or 0, 85% off). Only the factor with `N₁`'s sign opposed cancels: it takes
+    // the sines of the sides' differences, the other `P + |N₁|` as it is (above `1.7 P`),
+    // so two `sin` in place of Heron's four. All factors are non-negative in the lens
+    // case.
     let gram = sin2_1 * sin2_d;
     let plain = gram - n1 * n1;
     let y2 = if plain >= 0.5 * gram {
         plain
     } else {
-        let s = 0.5 * (theta1 + theta2 + d);
-        let half_gap = |x: f32| libm::sinf((0.5 * x).max(0.0));
-        4.0 * libm::sinf(s).max(0.0)
-            * half_gap(theta2 + d - theta1)
-            * half_gap(theta1 + d - theta2)
-            * half_gap(theta1 + theta2 - d)
+        let half_sine = |x: f32| libm::sinf((0.5 * x).max(0.0));
+        let cancelling = if n1 >= 0.0 {
+            2.0 * half_sine(theta1 + theta2 - d) * half_sine(theta2 + d - theta1)
+        } else {
+            2.0 * half_sine(theta1 + theta2 + d) * half_sine(theta1 + d - theta2)
+        };
+        cancelling * (libm::sqrtf(gram) + n1.abs())
     };
     let y = libm::sqrtf(y2.max(0.0));
-    let phi1 = libm::atan2f(y, n1);
-    let phi2 = libm::atan2f(y, n2);
-    let excess = 2.0 * libm::atan2f(y, 4.0 - td - t1 - t2);
+    // `Y >= 0`: one `atan` of a ratio per angle, without `atan2f`'s quadrant logic.
+    let phi1 = atan2_upper_half_plane(y, n1);
+    let phi2 = atan2_upper_half_plane(y, n2);
+    let excess = 2.0 * atan2_upper_half_plane(y, 4.0 - td - t1 - t2);
     let area = 2.0 * (phi1 * t1 + phi2 * t2 - excess);
-    area.max(0.0).min(2.0 * PI * t1.min(t2))
+    [area.max(0.0).min(2.0 * PI * t1.min(t2)), phi1]
 }
 
 /// The Oat–Sander approximation of [`cap_intersection_solid_angle`] (Eq. 37–38):

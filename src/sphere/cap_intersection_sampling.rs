@@ -23,9 +23,7 @@
 //! region around a hole), coaxial caps, disjoint caps (no sampler).
 
 use super::cap::Cap;
-use super::cap_intersection::{
-    angle_of, at_most_hemispheres_with_angles, cap_intersection_solid_angle,
-};
+use super::cap_intersection::{angle_of, cap_intersection_solid_angle, lens_and_half_arc};
 use crate::Sample;
 use crate::math::orthonormal_basis;
 use crate::sample::{INWARD_PULLS, clamp_inverted, clamp_random};
@@ -181,19 +179,32 @@ impl CapIntersection {
     /// normalises the unit axis once more).
     #[inline]
     fn cumulative(&self, s: f32) -> f32 {
+        self.cumulative_and_slope(s)[0]
+    }
+
+    /// [`cumulative`](Self::cumulative) and its derivative `2 φ(s)`
+    /// ([`half_arc`](Self::half_arc)): on the fast path, `φ` is the lens formula's own
+    /// half arc (`π − φ` of the circle in the complement when `B` is wide, as
+    /// `Ω(cap ∩ B) = 2πs − Ω(cap ∩ B̄)`); elsewhere `half_arc` computes it.
+    #[inline]
+    fn cumulative_and_slope(&self, s: f32) -> [f32; 2] {
         let t_b = self.other.one_minus_cos;
         if s > 0.0 && s <= 1.0 && s < t_b {
             let [t, theta, t_d, d] = self.lens_partner;
-            let lens = at_most_hemispheres_with_angles([s, angle_of(s)], [t, theta], [t_d, d]);
+            let [lens, phi] = lens_and_half_arc([s, angle_of(s)], [t, theta], [t_d, d]);
             if t_b <= 1.0 {
-                return lens;
+                return [lens, 2.0 * phi];
             }
             let omega_s = 2.0 * PI * s;
             let low = (omega_s + 2.0 * PI * t_b - 4.0 * PI).max(0.0);
-            return (omega_s - lens).max(low).min(omega_s.min(2.0 * PI * t_b));
+            let value = (omega_s - lens).max(low).min(omega_s.min(2.0 * PI * t_b));
+            return [value, 2.0 * (PI - phi)];
         }
         let cap = Cap::from_axis_one_minus_cos(self.radial.axis, s);
-        cap_intersection_solid_angle(&cap, &self.other)
+        [
+            cap_intersection_solid_angle(&cap, &self.other),
+            2.0 * self.half_arc(s),
+        ]
     }
 
     /// `φ(s)`, the half-width in azimuth of the circle at `s` inside `B`.
@@ -243,8 +254,8 @@ impl CapIntersection {
         // linear in s).
         let mut s = low + span * (target / self.solid_angle).max(0.0).min(1.0);
         for _ in 0..MAX_ITERATIONS {
-            let f = self.cumulative(s) - target;
-            let slope = 2.0 * self.half_arc(s);
+            let [value, slope] = self.cumulative_and_slope(s);
+            let f = value - target;
             let next = crate::math::safeguarded_newton_step(s, f, slope, &mut low, &mut high);
             if (next - s).abs() <= 1e-7 * s.max(1e-30) || !(high > low) {
                 return next.max(self.s_low).min(self.s_high);

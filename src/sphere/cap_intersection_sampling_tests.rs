@@ -277,3 +277,49 @@ fn the_pdf_integrates_to_one() {
         assert!((integral - 1.0).abs() < tolerance, "{name}: {integral}");
     }
 }
+
+/// The Newton slope that the lens formula returns beside the CDF (`2 φ(s)`, from its own
+/// `atan2(Y, N₁)`, or `2(π − φ)` against a wide cap's complement) is the derivative of
+/// the CDF: it agrees with `2 half_arc(s)` (an `acos` of the law of cosines) and with a
+/// central difference of `cumulative`, on both fast-path branches and the general one.
+#[test]
+fn the_newton_slope_is_the_derivative_of_the_radial_cdf() {
+    let mut fast_lens = 0;
+    let mut fast_complement = 0;
+    for (name, a, b) in pairs() {
+        let lens = CapIntersection::new(&a, &b).unwrap();
+        let (low, high) = (lens.s_low, lens.s_high);
+        for i in 1..64 {
+            let s = low + (high - low) * (i as f32 / 64.0);
+            let [value, slope] = lens.cumulative_and_slope(s);
+            assert_eq!(value.to_bits(), lens.cumulative(s).to_bits(), "{name}");
+            let on_fast_path = s > 0.0 && s <= 1.0 && s < lens.other.one_minus_cos;
+            if on_fast_path && lens.other.one_minus_cos <= 1.0 {
+                fast_lens += 1;
+            } else if on_fast_path {
+                fast_complement += 1;
+            }
+            let expected = 2.0 * lens.half_arc(s);
+            assert!(
+                (slope - expected).abs() <= 2e-3 * expected.max(1e-2),
+                "{name}: s {s}: slope {slope} against 2 φ {expected}"
+            );
+            // The derivative of F, by a central difference in f64 of f32 evaluations
+            // (a step of 1e-3 of the range: F is smooth inside it).
+            let h = 1e-3 * (high - low);
+            if s - h > low && s + h < high {
+                let difference = (lens.cumulative(s + h) as f64 - lens.cumulative(s - h) as f64)
+                    / (2.0 * h as f64);
+                assert!(
+                    (slope as f64 - difference).abs() <= 2e-2 * difference.abs().max(0.05),
+                    "{name}: s {s}: slope {slope} against the difference {difference}"
+                );
+            }
+        }
+    }
+    // Both branches of the fast path were exercised.
+    assert!(
+        fast_lens > 0 && fast_complement > 0,
+        "{fast_lens} {fast_complement}"
+    );
+}
