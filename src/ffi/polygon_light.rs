@@ -1,7 +1,8 @@
 //! The one-call shading of a polygonal light: projected solid angle sampling and the GGX
 //! LTC inside the polygon, combined by multiple importance sampling
 //! (`sphera_polygon_light_*`).
-use super::types::{SpheraVec3, read_polygon};
+use super::polygon::prepare;
+use super::types::SpheraVec3;
 use crate::Vec3;
 use crate::polygon::light::{LightSample, Material, MisHeuristic, PolygonLight};
 
@@ -50,23 +51,26 @@ pub unsafe extern "C" fn sphera_polygon_light_prepare(
     heuristic: u32,
     visibility: f32,
 ) -> bool {
-    if out.is_null() {
-        return false;
-    }
     let heuristic = MisHeuristic::from_u32(heuristic);
-    // SAFETY: forwarded from the caller.
-    let polygon = unsafe { read_polygon(vertices, count) };
-    let prepared = match (polygon, material.is_null(), heuristic) {
-        (Some((local, n)), false, Some(heuristic)) => {
-            // SAFETY: `material` is non-null and the caller guarantees it is valid.
-            let material = unsafe { &*material };
-            PolygonLight::new(&local[..n], Vec3::from(wo), material, heuristic, visibility)
-        }
-        _ => None,
-    };
-    // SAFETY: `out` is non-null and the caller guarantees it is writable.
-    unsafe { out.write(prepared.unwrap_or(PolygonLight::EMPTY)) };
-    prepared.is_some()
+    // SAFETY: the caller guarantees that a non-null `material` points to a valid value.
+    let material = unsafe { material.as_ref() };
+    // SAFETY: forwarded from the caller. In place (the value is 3476 bytes): the empty
+    // value only on failure.
+    unsafe {
+        prepare(
+            out,
+            vertices,
+            count,
+            |out: &mut PolygonLight, local: &[Vec3]| {
+                if let (Some(material), Some(heuristic)) = (material, heuristic) {
+                    out.prepare(local, Vec3::from(wo), material, heuristic, visibility)
+                } else {
+                    *out = PolygonLight::EMPTY;
+                    false
+                }
+            },
+        )
+    }
 }
 
 /// Draws a sample of technique `technique` (0: projected solid angle, 1: the GGX LTC), weighted

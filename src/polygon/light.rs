@@ -153,6 +153,9 @@ impl PolygonLight {
     /// technique can sample the polygon (bad vertices, nothing above the horizon). A
     /// technique that cannot sample it (for example when the LTC has no mass in the
     /// polygon) gets `c = 0` and draws no samples.
+    ///
+    /// [`prepare`](Self::prepare) does the same in place.
+    #[must_use]
     pub fn new(
         vertices: &[Vec3],
         wo: Vec3,
@@ -160,29 +163,67 @@ impl PolygonLight {
         heuristic: MisHeuristic,
         visibility: f32,
     ) -> Option<Self> {
+        let mut light = Self::EMPTY;
+        light
+            .prepare(vertices, wo, material, heuristic, visibility)
+            .then_some(light)
+    }
+
+    /// [`new`](Self::new) in place: writes the prepared light into `self` and returns
+    /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false` where `new` returns
+    /// `None`. Both techniques are prepared in their own fields (3476 bytes that are
+    /// never copied), and the LTC polygon only for a material with a GGX layer: a
+    /// Lambertian surface gives the LTC no weight (`c_1 = 0`) and no samples, so its
+    /// transformed polygon is not built at all.
+    pub fn prepare(
+        &mut self,
+        vertices: &[Vec3],
+        wo: Vec3,
+        material: &Material,
+        heuristic: MisHeuristic,
+        visibility: f32,
+    ) -> bool {
+        let prepared = self.prepare_or_fail(vertices, wo, material, heuristic, visibility);
+        super::keep_or_empty(self, prepared, Self::EMPTY)
+    }
+
+    /// The body of [`prepare`](Self::prepare); on `false`, `self` holds partial values.
+    #[inline(always)]
+    fn prepare_or_fail(
+        &mut self,
+        vertices: &[Vec3],
+        wo: Vec3,
+        material: &Material,
+        heuristic: MisHeuristic,
+        visibility: f32,
+    ) -> bool {
         if !(3..=MAX_POLYGON_VERTICES).contains(&vertices.len()) {
-            return None;
+            return false;
         }
         let wo = crate::math::normalize_scaled(wo);
         if !(wo.z > 0.0) {
-            return None;
+            return false;
         }
         let diffuse_albedo = material.diffuse.max(Vec3::ZERO).min(Vec3::ONE);
         let f0 = material.f0.max(Vec3::ZERO).min(Vec3::ONE);
-        let brdf = GgxBrdf::new(material.roughness, f0);
-        let ltc = Ltc::from_ggx(wo, material.roughness)?;
-        let diffuse = ProjectedPolygon::new(vertices);
-        let specular = LtcPolygon::new(&ltc, vertices);
-        if diffuse.is_none() && specular.is_none() {
-            return None;
-        }
+        let Some(ltc) = Ltc::from_ggx(wo, material.roughness) else {
+            return false;
+        };
         let has_specular = f0.max_element() > 0.0;
-        let diffuse = diffuse.unwrap_or(ProjectedPolygon::EMPTY);
+        // Each technique in place, its empty value when it cannot sample the polygon.
+        let diffuse_ok = self.diffuse.prepare(vertices);
         // A Lambertian surface has nothing for the LTC to sample.
-        let specular = specular
-            .filter(|_| has_specular)
-            .unwrap_or(LtcPolygon::EMPTY);
-        let lambert = diffuse_albedo * core::f32::consts::FRAC_1_PI;
+        let specular_ok = if has_specular {
+            self.specular.prepare(&ltc, vertices)
+        } else {
+            self.specular = LtcPolygon::EMPTY;
+            false
+        };
+        if !diffuse_ok && !specular_ok {
+            return false;
+        }
+        self.brdf = GgxBrdf::new(material.roughness, f0);
+        self.lambert = diffuse_albedo * core::f32::consts::FRAC_1_PI;
         // Without a GGX layer the specular technique gets c_1 = 0 (no weight under the
         // weighted heuristics) and the BRDF no GGX term.
         let specular_albedo = if has_specular {
@@ -190,26 +231,19 @@ impl PolygonLight {
         } else {
             Vec3::ZERO
         };
-        let contributions = [
-            lambert * diffuse.projected_solid_angle(),
-            specular_albedo * specular.integral(),
+        self.contributions = [
+            self.lambert * self.diffuse.projected_solid_angle(),
+            specular_albedo * self.specular.integral(),
         ];
-        let visibility = if visibility.is_nan() {
+        self.has_specular = has_specular as u32;
+        self.wo = wo;
+        self.heuristic = heuristic as u32;
+        self.visibility = if visibility.is_nan() {
             0.5
         } else {
             visibility.max(0.0).min(1.0)
         };
-        Some(PolygonLight {
-            diffuse,
-            specular,
-            brdf,
-            has_specular: has_specular as u32,
-            lambert,
-            wo,
-            contributions,
-            heuristic: heuristic as u32,
-            visibility,
-        })
+        true
     }
 
     /// The unshadowed shading per unit radiance in closed form, `c_0 + c_1`: exact for
@@ -260,10 +294,15 @@ impl PolygonLight {
             return out;
         }
         let j = technique as usize;
-        let mut p = self.pdfs(wi);
-        // The sample's own technique has the density it was drawn with (pdf() may
-        // round to 0 on the polygon's edge).
-        p[j] = sample.pdf;
+        // The sample's own technique has the density it was drawn with (its own `pdf`
+        // at `wi`, which the LTC polygon's sample has just evaluated, and which the
+        // projected sampler's `pdf` may round to 0 on the polygon's edge): only the
+        // other technique's density is evaluated.
+        let p = if j == 0 {
+            [sample.pdf, self.specular.pdf(wi)]
+        } else {
+            [self.diffuse.pdf(wi), sample.pdf]
+        };
         let specular = if self.has_specular != 0 {
             self.brdf.eval(self.wo, wi)
         } else {

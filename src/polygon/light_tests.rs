@@ -285,3 +285,218 @@ fn an_unknown_stored_heuristic_gives_no_sample() {
         }
     }
 }
+
+/// The light as `new` built it before the in-place `prepare` (issue 18, item 3): both
+/// techniques prepared by value (the LTC polygon also for a Lambertian surface, then
+/// dropped) and the light assembled from them.
+fn prepared_by_value(
+    vertices: &[Vec3],
+    wo: Vec3,
+    material: &Material,
+    heuristic: MisHeuristic,
+    visibility: f32,
+) -> Option<PolygonLight> {
+    if !(3..=crate::MAX_POLYGON_VERTICES).contains(&vertices.len()) {
+        return None;
+    }
+    let wo = crate::math::normalize_scaled(wo);
+    if !(wo.z > 0.0) {
+        return None;
+    }
+    let diffuse_albedo = material.diffuse.max(Vec3::ZERO).min(Vec3::ONE);
+    let f0 = material.f0.max(Vec3::ZERO).min(Vec3::ONE);
+    let brdf = crate::brdf::ggx::GgxBrdf::new(material.roughness, f0);
+    let ltc = Ltc::from_ggx(wo, material.roughness)?;
+    let diffuse = ProjectedPolygon::new(vertices);
+    let specular = LtcPolygon::new(&ltc, vertices);
+    if diffuse.is_none() && specular.is_none() {
+        return None;
+    }
+    let has_specular = f0.max_element() > 0.0;
+    let diffuse = diffuse.unwrap_or(ProjectedPolygon::EMPTY);
+    let specular = specular
+        .filter(|_| has_specular)
+        .unwrap_or(LtcPolygon::EMPTY);
+    let lambert = diffuse_albedo * core::f32::consts::FRAC_1_PI;
+    let specular_albedo = if has_specular {
+        ltc.specular_albedo(f0)
+    } else {
+        Vec3::ZERO
+    };
+    Some(PolygonLight {
+        diffuse,
+        specular,
+        brdf,
+        has_specular: has_specular as u32,
+        lambert,
+        wo,
+        contributions: [
+            lambert * diffuse.projected_solid_angle(),
+            specular_albedo * specular.integral(),
+        ],
+        heuristic: heuristic as u32,
+        visibility: if visibility.is_nan() {
+            0.5
+        } else {
+            visibility.clamp(0.0, 1.0)
+        },
+    })
+}
+
+/// A prepared value's words (`PolygonLight` and its parts hold only `f32` and `u32`
+/// fields, no padding).
+fn words<T: Copy>(value: &T) -> &[u32] {
+    assert_eq!(core::mem::size_of::<T>() % 4, 0);
+    // SAFETY: `T` is one of the `repr(C)` prepared values, of `f32` and `u32` fields
+    // only (no padding: every field is 4-byte aligned and a multiple of 4 bytes), so
+    // its bytes are initialised `u32` words.
+    unsafe {
+        core::slice::from_raw_parts(
+            (value as *const T).cast::<u32>(),
+            core::mem::size_of::<T>() / 4,
+        )
+    }
+}
+
+/// `prepare` writes in place, over whatever the struct held (NaN words, a prepared
+/// light), the value that the by-value path built, bit for bit, and the empty value
+/// where that path failed. The one difference: a Lambertian surface whose polygon
+/// the projected sampler rejects is rejected now, where the old path returned a light
+/// with nothing to sample (its LTC polygon, prepared for nothing, accepted it).
+#[test]
+fn prepare_in_place_writes_what_the_by_value_path_built() {
+    let mut rng = Rng::new(183);
+    let mut garbage = PolygonLight::EMPTY;
+    // SAFETY: as in `words`: any `u32` words are a value of the struct.
+    unsafe {
+        core::slice::from_raw_parts_mut(
+            (&mut garbage as *mut PolygonLight).cast::<u32>(),
+            core::mem::size_of::<PolygonLight>() / 4,
+        )
+        .fill(f32::NAN.to_bits());
+    }
+    let (mut accepted, mut rejected, mut lambertian_rejected) = (0, 0, 0);
+    for i in 0..3000 {
+        let n = 3 + rng.below(6) as usize;
+        // Above, across and below the horizon; sometimes degenerate.
+        let center = [
+            2.0 * rng.uniform() - 1.0,
+            2.0 * rng.uniform() - 1.0,
+            1.6 * rng.uniform() - 0.6,
+        ];
+        let normal = d3(rng.unit_vector_f32());
+        let radius = rng.log_uniform(1e-4, 2.0);
+        let mut polygon = circle_polygon(n, center, normal, radius, rng.below(2) == 0);
+        if i % 97 == 0 {
+            polygon[0] = Vec3::NAN;
+        }
+        let mut wo = rng.unit_vector_f32();
+        wo.z = if i % 53 == 0 { -wo.z.abs() } else { wo.z.abs() };
+        let material = Material {
+            diffuse: Vec3::new(rng.uniform_f32(), rng.uniform_f32(), 0.5),
+            f0: if i % 3 == 0 {
+                Vec3::ZERO
+            } else {
+                Vec3::new(rng.uniform_f32(), 0.04, 1.5)
+            },
+            roughness: rng.uniform_f32(),
+        };
+        let heuristic = HEURISTICS[i % HEURISTICS.len()];
+        let visibility = [0.5, f32::NAN, -1.0, 0.3][i % 4];
+        let old = prepared_by_value(&polygon, wo, &material, heuristic, visibility);
+        for start in [
+            garbage,
+            old.unwrap_or(PolygonLight::EMPTY),
+            PolygonLight::EMPTY,
+        ] {
+            let mut light = start;
+            let ok = light.prepare(&polygon, wo, &material, heuristic, visibility);
+            let new = PolygonLight::new(&polygon, wo, &material, heuristic, visibility);
+            assert_eq!(ok, new.is_some(), "{i}");
+            match old {
+                Some(old) if ok => assert_eq!(words(&light), words(&old), "{i}"),
+                Some(old) => {
+                    // Only a Lambertian light that neither technique samples.
+                    assert_eq!(old.has_specular, 0, "{i}");
+                    assert_eq!(words(&old.diffuse), words(&ProjectedPolygon::EMPTY), "{i}");
+                    assert_eq!(words(&light), words(&PolygonLight::EMPTY), "{i}");
+                    lambertian_rejected += 1;
+                }
+                None => {
+                    assert!(!ok, "{i}");
+                    assert_eq!(words(&light), words(&PolygonLight::EMPTY), "{i}");
+                }
+            }
+            if ok {
+                assert_eq!(words(&light), words(&new.unwrap()), "{i}");
+                accepted += 1;
+            } else {
+                rejected += 1;
+            }
+        }
+    }
+    println!("accepted {accepted}, rejected {rejected} ({lambertian_rejected} Lambertian)");
+    assert!(accepted > 3000 && rejected > 1000, "{accepted} {rejected}");
+}
+
+/// `sample` evaluates only the other technique's density (issue 18, item 3): the
+/// sampled technique's is the sample's own pdf, which its `pdf` gives at the sample's
+/// direction bit for bit (the LTC polygon's sample evaluates it), or 0 where the
+/// projected sampler's `pdf` rounds a sample on the polygon's edge outside; and the
+/// sample's contribution is what the densities of `pdfs` give with that substitution.
+#[test]
+fn a_sample_carries_its_own_techniques_pdf() {
+    let mut rng = Rng::new(1833);
+    let (mut checked, mut on_edge) = (0, 0);
+    for i in 0..300 {
+        let center = [
+            2.0 * rng.uniform() - 1.0,
+            2.0 * rng.uniform() - 1.0,
+            1.4 * rng.uniform() - 0.2,
+        ];
+        let polygon = circle_polygon(
+            3 + i % 6,
+            center,
+            d3(rng.unit_vector_f32()),
+            rng.log_uniform(1e-3, 1.5),
+            i % 2 == 0,
+        );
+        let mut wo = rng.unit_vector_f32();
+        wo.z = wo.z.abs().max(0.05);
+        let material = Material {
+            diffuse: Vec3::splat(0.5),
+            f0: Vec3::splat(0.04),
+            roughness: 0.05 + 0.95 * rng.uniform_f32(),
+        };
+        let Some(light) = PolygonLight::new(&polygon, wo, &material, MisHeuristic::Balance, 0.5)
+        else {
+            continue;
+        };
+        for _ in 0..64 {
+            let u = rng.u2();
+            for technique in 0..2 {
+                let s = light.sample(technique, u);
+                if !(s.pdf > 0.0) || !(s.dir.z > 0.0) {
+                    continue;
+                }
+                let j = technique as usize;
+                let mut p = light.pdfs(s.dir);
+                if technique == 1 {
+                    assert_eq!(p[1].to_bits(), s.pdf.to_bits(), "{i} {u:?}");
+                } else if p[0] != s.pdf {
+                    assert_eq!(p[0], 0.0, "{i} {u:?}");
+                    on_edge += 1;
+                }
+                p[j] = s.pdf;
+                // The balance heuristic's contribution, f / Σ p.
+                let ggx = light.brdf.eval(light.wo, s.dir);
+                let f = (light.lambert + ggx) * s.dir.z;
+                let expected = f * (crate::mis::balance_heuristic(&p, j) / p[j]);
+                assert_eq!(s.visible, expected, "{i} {u:?}");
+                checked += 1;
+            }
+        }
+    }
+    println!("checked {checked} samples ({on_edge} on the projected polygon's edge)");
+    assert!(checked > 10_000, "{checked}");
+}
