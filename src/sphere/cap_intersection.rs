@@ -119,6 +119,55 @@ fn at_most_hemispheres(a1: crate::Vec3, t1: f32, a2: crate::Vec3, t2: f32) -> f3
         return 0.0;
     }
     let td = one_minus_dot(a1, a2);
+    // The disjoint and nested cases without the angles (issue 18, 1: the three `asin`
+    // were most of the cost when a light's image lies inside or outside the other cap).
+    // With `sin(θ/2) = √(t/2)`, `cos(θ/2) = √(h/2)`, `h = 2 − t` (exact for `t ≤ 1`):
+    // `2 sin((θ₁ ± θ₂)/2) = √(t₁h₂) ± √(t₂h₁)` and `2 sin(d/2) = √(2t_d)`. Half of each
+    // angle is in `[0, π/2]`, where `sin` increases, so `d ≥ θ₁ + θ₂` (Eq. 35's first
+    // case) ⇔ `√(2t_d) ≥ √(t₁h₂) + √(t₂h₁)` and `d ≤ |θ₁ − θ₂|` ⇔
+    // `√(2t_d) ≤ |√(t₁h₂) − √(t₂h₁)|`. Decided here only with a margin of 1e-5 of
+    // `√(t₁h₂) + √(t₂h₁)` (then the angles differ by more than 1e-5 (θ₁ + θ₂)/2 against
+    // a rounding of a few 1e-7 of them): the cases below then decide the same way and the
+    // result is the same bits; nearer the boundary the angles decide, as before.
+    let (u, v, w) = (
+        libm::sqrtf(t1 * (2.0 - t2)),
+        libm::sqrtf(t2 * (2.0 - t1)),
+        libm::sqrtf(2.0 * td),
+    );
+    let margin = 1e-5 * (u + v);
+    if w >= u + v + margin {
+        return 0.0;
+    }
+    if w <= (u - v).abs() - margin {
+        return 2.0 * PI * t1.min(t2);
+    }
+    if w >= (u - v).abs() + margin && w <= u + v - margin {
+        // Surely the lens: the angles are needed only by the spherical Heron form of
+        // `Y²` (see below), which the well-conditioned Gram form rarely leaves to.
+        let (gram, plain) = lens_gram(t1, t2, td);
+        if plain >= 0.5 * gram {
+            return lens_area(t1, t2, td, plain)[0];
+        }
+        // The spherical Heron form of `Y²` (below) from the half-angles' sines and
+        // cosines instead of the angles: with `A = θ₁/2`, `B = θ₂/2`, `D = d/2` and
+        // `s = A + B + D`, `Y² = 4 sin s sin(s − θ₁) sin(s − θ₂) sin(s − d)` where
+        // `s − θ₁ = D + (B − A)`, `s − θ₂ = D − (B − A)`, `s − d = (A + B) − D`, and
+        // `2 sin(A ± B) = √(t₁h₂) ± √(t₂h₁)` (`u ± v`), `2 cos(A ± B) = √(h₁h₂) ∓ √(t₁t₂)`,
+        // `sin D = √(t_d/2)`, `cos D = √(1 − t_d/2)`. Each factor is a sum of two
+        // products of such terms: its rounding is a few ulps of 1 where a difference of
+        // angles (of order 1, rounded by `asin`) had the same, with no `asin` or `sin`.
+        let (h1, h2) = (2.0 - t1, 2.0 - t2);
+        let (sin_d, cos_d) = (0.5 * w, libm::sqrtf((1.0 - 0.5 * td).max(0.0)));
+        let (sin_sum, sin_diff) = (0.5 * (u + v), 0.5 * (v - u));
+        let (p, q) = (libm::sqrtf(h1 * h2), libm::sqrtf(t1 * t2));
+        let (cos_sum, cos_diff) = (0.5 * (p - q), 0.5 * (p + q));
+        let sin_s = sin_sum * cos_d + cos_sum * sin_d;
+        let f1 = sin_d * cos_diff + cos_d * sin_diff;
+        let f2 = sin_d * cos_diff - cos_d * sin_diff;
+        let fd = sin_sum * cos_d - cos_sum * sin_d;
+        let y2 = 4.0 * sin_s.max(0.0) * f1.max(0.0) * f2.max(0.0) * fd.max(0.0);
+        return lens_area(t1, t2, td, y2)[0];
+    }
     let (theta1, theta2, d) = (angle_of(t1), angle_of(t2), angle_of(td));
     at_most_hemispheres_with_angles([t1, theta1], [t2, theta2], [td, d])
 }
@@ -156,10 +205,7 @@ pub(crate) fn lens_and_half_arc(
         let first_inside = theta1 <= theta2;
         return [2.0 * PI * t1.min(t2), if first_inside { PI } else { 0.0 }];
     }
-    let sin2_1 = (t1 * (2.0 - t1)).max(0.0);
-    let sin2_d = (td * (2.0 - td)).max(0.0);
-    let n1 = t1 + td - t2 - t1 * td;
-    let n2 = t2 + td - t1 - t2 * td;
+    let (gram, plain) = lens_gram(t1, t2, td);
     // Y² = sin²θ₁ sin²d − N₁², the Gram determinant of (a₁, a₂, P). Where the two terms
     // nearly cancel (Y² below half of them: a tiny cap across a large one's boundary,
     // where both are of order 1 and Y of the order of the tiny cap) their difference
@@ -172,11 +218,10 @@ pub(crate) fn lens_and_half_arc(
     // the sines of the sides' differences, the other `P + |N₁|` as it is (above `1.7 P`),
     // so two `sin` in place of Heron's four. All factors are non-negative in the lens
     // case.
-    let gram = sin2_1 * sin2_d;
-    let plain = gram - n1 * n1;
     let y2 = if plain >= 0.5 * gram {
         plain
     } else {
+        let n1 = t1 + td - t2 - t1 * td;
         let half_sine = |x: f32| libm::sinf((0.5 * x).max(0.0));
         let cancelling = if n1 >= 0.0 {
             2.0 * half_sine(theta1 + theta2 - d) * half_sine(theta2 + d - theta1)
@@ -185,6 +230,24 @@ pub(crate) fn lens_and_half_arc(
         };
         cancelling * (libm::sqrtf(gram) + n1.abs())
     };
+    lens_area(t1, t2, td, y2)
+}
+
+/// `sin²θ₁ sin²d` and `Y² = sin²θ₁ sin²d − N₁²` of the lens case (module documentation).
+#[inline(always)]
+fn lens_gram(t1: f32, t2: f32, td: f32) -> (f32, f32) {
+    let sin2_1 = (t1 * (2.0 - t1)).max(0.0);
+    let sin2_d = (td * (2.0 - td)).max(0.0);
+    let n1 = t1 + td - t2 - t1 * td;
+    let gram = sin2_1 * sin2_d;
+    (gram, gram - n1 * n1)
+}
+
+/// The lens area `2φ₁ t₁ + 2φ₂ t₂ − 2E` (module documentation) from `Y²`, and `φ₁`.
+#[inline(always)]
+fn lens_area(t1: f32, t2: f32, td: f32, y2: f32) -> [f32; 2] {
+    let n1 = t1 + td - t2 - t1 * td;
+    let n2 = t2 + td - t1 - t2 * td;
     let y = libm::sqrtf(y2.max(0.0));
     // `Y >= 0`: one `atan` of a ratio per angle, without `atan2f`'s quadrant logic.
     let phi1 = atan2_upper_half_plane(y, n1);

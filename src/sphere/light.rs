@@ -38,7 +38,7 @@
 use super::cap::Cap;
 use super::cap_intersection::cap_intersection_solid_angle;
 use super::cap_intersection_sampling::CapIntersection;
-use super::pivot::{pivot_cap, pivot_jacobian, pivot_transform};
+use super::pivot::{pivot_cap, pivot_cap_fast, pivot_jacobian, pivot_transform};
 use super::sptd::{Sptd, SptdInCap};
 use crate::Sample;
 use crate::brdf::Ltc;
@@ -113,7 +113,9 @@ impl SphereLightShading {
         };
         Some(SphereLightShading {
             fit,
-            horizon_image: pivot_cap(&Cap::from_axis_one_minus_cos(Vec3::Z, 1.0), fit.pivot),
+            // The same function as `eval_occluded` takes for its bent cone, so that the
+            // bent cone `H` gives `eval` bit for bit.
+            horizon_image: pivot_cap_fast(&Cap::from_axis_one_minus_cos(Vec3::Z, 1.0), fit.pivot).0,
             specular_albedo: ltc.specular_albedo(f0),
         })
     }
@@ -121,7 +123,8 @@ impl SphereLightShading {
     /// `∫_{C ∩ H} f cos θ dω ≈ albedo_F · Ω(g(C) ∩ g(H)) / 4π` per unit radiance
     /// (Eq. 19), for the cap `C` of a light (sanitized here).
     pub fn eval(&self, light: &Cap) -> Vec3 {
-        let image = pivot_cap(&light.sanitized(), self.fit.pivot);
+        // The closed form of the image where it is well conditioned (issue 18, 1).
+        let (image, _) = pivot_cap_fast(&light.sanitized(), self.fit.pivot);
         self.specular_albedo
             * (cap_intersection_solid_angle(&image, &self.horizon_image) * (0.25 / PI))
     }
@@ -131,8 +134,8 @@ impl SphereLightShading {
     /// hemisphere (an unoccluded point's bent cone is `H`, and then this equals
     /// [`SphereLightShading::eval`]).
     pub fn eval_occluded(&self, light: &Cap, visibility: &Cap) -> Vec3 {
-        let image = pivot_cap(&light.sanitized(), self.fit.pivot);
-        let visible = pivot_cap(&visibility.sanitized(), self.fit.pivot);
+        let (image, _) = pivot_cap_fast(&light.sanitized(), self.fit.pivot);
+        let (visible, _) = pivot_cap_fast(&visibility.sanitized(), self.fit.pivot);
         self.specular_albedo * (cap_intersection_solid_angle(&image, &visible) * (0.25 / PI))
     }
 

@@ -198,6 +198,125 @@ pub fn pivot_cap(cap: &Cap, pivot: Vec3) -> Cap {
     Cap::from_axis_one_plus_cos(axis, 2.0 * s * s)
 }
 
+/// What [`pivot_cap_fast`] did: its closed form, or the careful [`pivot_cap`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum PivotPath {
+    /// The closed form (well-conditioned caps).
+    Fast,
+    /// [`pivot_cap`] (empty or whole-sphere caps, images near a hemisphere, images whose
+    /// side is not decided by the rounded image points: tiny images, or the pivot close
+    /// to the cap's boundary).
+    Careful,
+}
+
+/// `|g(ω₁) − g(ω₂)|² / 4` below which the side test of [`pivot_cap_fast`] is not trusted
+/// (see there): `1 − 1/256`, i.e. `|cos ψ'| ≥ 1/16`.
+const FAST_MAX_SIN2: f32 = 1.0 - 1.0 / 256.0;
+
+/// [`pivot_cap`] by a closed form where it is well conditioned, [`pivot_cap`] itself
+/// elsewhere (the real-time shading's per-light image, issue 18, 1). Same contract.
+///
+/// In the plane of the cap's axis (x) and the pivot `p` (y ≥ 0), the boundary points
+/// are `ωᵢ = (cos θ, ∓ sin θ)` and `g(ω) = p − k (ω − p)/|ω − p|²`, `k = 1 − |p|²`
+/// (Eq. 2, the form of [`transform`]). The map `u ↦ u/|u|²` (inversion in the unit
+/// circle) satisfies `|u/|u|² − v/|v|²| = |u − v| / (|u| |v|)`, so with `eᵢ = ωᵢ − p`
+/// and `|ω₁ − ω₂| = 2 sin θ`:
+///
+/// `sin ψ' = |g(ω₁) − g(ω₂)| / 2 = k sin θ / (|e₁| |e₂|)`,
+///
+/// the half-chord of the image circle: the plane is a plane of symmetry, so
+/// `g(ω₁), g(ω₂)` are the ends of a diameter of the image's boundary circle (the two
+/// points of Eq. 6–7). It has no cancellation (`k = (1 − ρ)(1 + ρ)`, the `|eᵢ|` are
+/// lengths of differences), so a tiny image keeps its relative precision, where
+/// `1 − ω'_c·g(ω₁)` of Eq. 7 loses it. Then `|cos ψ'| = √(1 − sin²ψ')` and the stored side
+/// `1 ∓ cos ψ' = sin²ψ' / (1 + |cos ψ'|)`, which is `1 − cos ψ'` for an image up to a
+/// hemisphere (axis `ω'_c`, Eq. 6: the normalised `g(ω₁) + g(ω₂)`) and its hole
+/// `1 + cos ψ'` for a wider one (axis `−ω'_c`; the module documentation explains why
+/// Eq. 6–7 return the complement there).
+///
+/// The side: the image contains `g(ω_c)` (module documentation), which lies on the arc
+/// `g(ω₁) → g(ω₂)` that is the image of the cap's arc. On a circle, a point lies on the
+/// minor arc between two others exactly when the inscribed angle there is obtuse, so the
+/// image is at most a hemisphere when `q = (g(ω₁) − g(ω_c))·(g(ω₂) − g(ω_c)) < 0` and
+/// wider when `q > 0`. Each rounded image point is within `δ = 6e-7` of the exact one
+/// (a few ulps of a normalised vector), so `q` is within `δ(|a| + |b|) + δ²` of the exact
+/// value (`a, b` the two differences): the closed form is used only where
+/// `|q| > 4e-6 (|a| + |b|) + 1e-12`, and where `|cos ψ'| ≥ 1/16` (the axis, the
+/// direction of `g(ω₁) + g(ω₂)`, keeps its precision; near a hemisphere the careful
+/// path's arc lengths are better conditioned). Everything else takes [`pivot_cap`].
+#[inline(always)]
+pub(crate) fn pivot_cap_fast(cap: &Cap, pivot: Vec3) -> (Cap, PivotPath) {
+    // Empty caps and whole spheres (stored by their hole) go the careful way.
+    if !(cap.one_minus_cos > 0.0) || !(cap.one_plus_cos > 0.0) {
+        return (pivot_cap(cap, pivot), PivotPath::Careful);
+    }
+    let p3 = valid_pivot(pivot);
+    let along = p3.dot(cap.axis);
+    let perpendicular = p3 - cap.axis * along;
+    let across2 = perpendicular.length_squared();
+    // The pivot (nearly) on the axis line: the plane is not defined by it (the rounding
+    // of `perpendicular`, about 6e-8, would tilt the tangent out of the tangent plane).
+    if !(across2 > 1e-12) {
+        return (pivot_cap(cap, pivot), PivotPath::Careful);
+    }
+    let across = libm::sqrtf(across2);
+    let tangent = perpendicular * (1.0 / across);
+    let p = Vec2::new(along, across.min(MAX_PIVOT_LENGTH));
+    let sin = libm::sqrtf(cap.sin2.max(0.0).min(1.0));
+    let cos = cap.cos();
+    let e1 = Vec2::new(cos, -sin) - p;
+    let e2 = Vec2::new(cos, sin) - p;
+    let ec = Vec2::X - p;
+    let (l1, l2, lc) = (
+        e1.length_squared(),
+        e2.length_squared(),
+        ec.length_squared(),
+    );
+    let rho2 = p.length_squared();
+    let rho = libm::sqrtf(rho2);
+    let k = (1.0 - rho) * (1.0 + rho);
+    // g(ω) of Eq. 2 (as in `transform_2d`; unit in exact arithmetic, not renormalised:
+    // the side test's bound below allows for the rounding).
+    let g = |e: Vec2, l: f32| p - e * (k / l);
+    let (g1, g2, gc) = (g(e1, l1), g(e2, l2), g(ec, lc));
+    // sin ψ' = k sin θ / (|e₁||e₂|), squared: k² sin²θ / (|e₁|²|e₂|²).
+    let sin2 = (k * k * cap.sin2) / (l1 * l2);
+    let a = g1 - gc;
+    let b = g2 - gc;
+    let q = a.dot(b);
+    let margin = 4e-6 * (a.length() + b.length()) + 1e-12;
+    let mid = g1 + g2;
+    if !(sin2 <= FAST_MAX_SIN2) || !(q.abs() > margin) {
+        return (pivot_cap(cap, pivot), PivotPath::Careful);
+    }
+    // |cos ψ'| ≥ 1/16 here, so |g(ω₁) + g(ω₂)| = 2|cos ψ'| ≥ 1/8 up to rounding: the
+    // normalisation is safe (in 3D: the tangent is orthogonal to the axis only to
+    // 6e-8 / |perpendicular|, and `Cap` wants a unit axis to 1e-6).
+    let mid_axis = cap.axis * mid.x + tangent * mid.y;
+    let mid_axis = mid_axis * (1.0 / mid_axis.length());
+    let abs_cos = libm::sqrtf(1.0 - sin2);
+    // 1 ∓ cos ψ' ≤ 1; the other side 2 − it is exact (Sterbenz), and sin²ψ' = t h as
+    // `Cap::with_sides` stores it.
+    let side = (sin2 / (1.0 + abs_cos)).min(1.0);
+    let other = 2.0 - side;
+    let image = if q < 0.0 {
+        Cap {
+            axis: mid_axis,
+            one_minus_cos: side,
+            one_plus_cos: other,
+            sin2: (side * other).max(0.0).min(1.0),
+        }
+    } else {
+        Cap {
+            axis: -mid_axis,
+            one_minus_cos: other,
+            one_plus_cos: side,
+            sin2: (side * other).max(0.0).min(1.0),
+        }
+    };
+    (image, PivotPath::Fast)
+}
+
 #[cfg(test)]
 #[path = "pivot_tests.rs"]
 mod tests;

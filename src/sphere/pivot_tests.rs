@@ -252,3 +252,141 @@ fn a_wide_image_keeps_its_hole() {
     }
     println!("worst relative error of the hole {worst:e}");
 }
+
+/// The image of a cap in f64 (Eq. 6–7 with the side of the module documentation): the
+/// boundary points in the plane of the axis and the pivot, mapped by the f64 `g`; the
+/// image contains `g(ω_c)`. Returns the axis and `1 − cos ψ'` (up to a hemisphere) or
+/// `1 + cos ψ'` (wider), and whether it is wider.
+fn pivot_cap_f64(cap: &Cap, p: Vec3) -> (D3, f64, bool) {
+    let (a, p64) = (normalize(d3(cap.axis)), d3(p));
+    let along = dot(p64, a);
+    let perp: D3 = core::array::from_fn(|i| p64[i] - along * a[i]);
+    let t = normalize(perp);
+    let one_minus_cos = cap.one_minus_cos as f64;
+    let cos = 1.0 - one_minus_cos;
+    let sin = (one_minus_cos * (2.0 - one_minus_cos)).sqrt();
+    let w1: D3 = core::array::from_fn(|i| cos * a[i] - sin * t[i]);
+    let w2: D3 = core::array::from_fn(|i| cos * a[i] + sin * t[i]);
+    let (g1, g2, gc) = (
+        pivot_transform_f64(w1, p64),
+        pivot_transform_f64(w2, p64),
+        pivot_transform_f64(a, p64),
+    );
+    let m = normalize(core::array::from_fn(|i| g1[i] + g2[i]));
+    let q: f64 = (0..3).map(|i| (g1[i] - gc[i]) * (g2[i] - gc[i])).sum();
+    // |g₁ − g₂|²/4 = sin²ψ'; 1 ∓ cos ψ' = sin²ψ' / (1 + |cos ψ'|).
+    let d2: f64 = (0..3).map(|i| (g1[i] - g2[i]).powi(2)).sum::<f64>() / 4.0;
+    let side = d2 / (1.0 + (1.0 - d2).max(0.0).sqrt());
+    if q < 0.0 {
+        (m, side, false)
+    } else {
+        (m.map(|x| -x), side, true)
+    }
+}
+
+/// The closed form agrees with the f64 image to 2e-5 relative in the stored side
+/// (`1 − cos ψ'`, or the hole), and its axis to 2e-5 rad times the magnification
+/// `(1 + ρ)/(1 − ρ)`, over caps from 1e-6 sr to nearly the sphere and pivots up to
+/// `|r_p| = 0.95`; and with the careful path to the same bounds. Caps that take the
+/// fallback return exactly what `pivot_cap` returns.
+#[test]
+fn fast_pivot_cap_agrees_with_f64_and_the_careful_path() {
+    let mut rng = Rng::new(181);
+    let (mut fast, mut careful) = (0, 0);
+    let mut worst = 0.0f64;
+    for i in 0..20000 {
+        let axis = rng.unit_vector_f32();
+        let t = match i % 3 {
+            0 => rng.log_uniform(-6.5, 0.0) as f32,
+            1 => (2.0 * rng.uniform()) as f32,
+            _ => rng.log_uniform(-3.0, -0.5) as f32,
+        };
+        let cap = Cap::from_axis_one_minus_cos(axis, t);
+        let p = random_pivot(&mut rng, 0.95);
+        let (image, path) = pivot_cap_fast(&cap, p);
+        let reference = pivot_cap(&cap, p);
+        if path == PivotPath::Careful {
+            assert_eq!(image, reference);
+            careful += 1;
+            continue;
+        }
+        fast += 1;
+        let (axis64, side64, wider) = pivot_cap_f64(&cap, p);
+        assert_eq!(image.one_minus_cos > 1.0, wider, "{cap:?} {p:?}: {image:?}");
+        assert_eq!(
+            reference.one_minus_cos > 1.0,
+            wider,
+            "{cap:?} {p:?}: {reference:?}"
+        );
+        let side = if wider {
+            image.one_plus_cos
+        } else {
+            image.one_minus_cos
+        } as f64;
+        let relative = (side - side64).abs() / side64;
+        worst = worst.max(relative);
+        assert!(relative < 2e-5, "{cap:?} {p:?}: {side} vs {side64}");
+        let rho = p.length() as f64;
+        let magnification = (1.0 + rho) / (1.0 - rho);
+        let angle = one_minus_dot_f64(d3(image.axis), axis64)
+            .mul_add(2.0, 0.0)
+            .sqrt();
+        assert!(
+            angle < 2e-5 * magnification,
+            "{cap:?} {p:?}: axis off by {angle}"
+        );
+        let careful_side = if wider {
+            reference.one_plus_cos
+        } else {
+            reference.one_minus_cos
+        } as f64;
+        assert!(
+            (side - careful_side).abs()
+                <= 2e-5 * side64 + 4.0 * f32::EPSILON as f64 * magnification,
+            "{cap:?} {p:?}: fast {image:?} careful {reference:?}"
+        );
+    }
+    println!("fast {fast} careful {careful} worst relative side error {worst:.2e}");
+    // Most caps are well conditioned.
+    assert!(fast > 15000, "{fast} {careful}");
+    assert!(careful > 10, "{fast} {careful}");
+}
+
+/// Which inputs take the closed form and which the careful path.
+#[test]
+fn fast_pivot_cap_paths() {
+    let p = Vec3::new(0.3, 0.1, 0.6);
+    let axis = Vec3::new(0.2, 0.3, 0.9).normalize();
+    // Ordinary lights (sin θ from 0.006 to 0.5): the closed form.
+    for sin in [0.006f32, 0.05, 0.2, 0.5] {
+        let cap = Cap::from_axis_cos(axis, (1.0 - sin * sin).sqrt());
+        assert_eq!(pivot_cap_fast(&cap, p).1, PivotPath::Fast, "{sin}");
+    }
+    // A 1e-12 sr cap: its image's side is below the rounding of the image points.
+    let tiny = Cap::from_axis_one_minus_cos(axis, 1e-12 / (2.0 * PI));
+    assert_eq!(pivot_cap_fast(&tiny, p).1, PivotPath::Careful);
+    // Empty, whole sphere, the pivot on the axis line, the pivot at the origin.
+    assert_eq!(pivot_cap_fast(&Cap::EMPTY, p).1, PivotPath::Careful);
+    assert_eq!(pivot_cap_fast(&Cap::WHOLE_SPHERE, p).1, PivotPath::Careful);
+    // (A pivot on the axis line up to rounding still defines a plane, and any plane
+    // through the axis works: only an exactly zero perpendicular part goes careful.)
+    let on_axis = Cap::from_axis_cos(Vec3::Z, 0.9);
+    assert_eq!(
+        pivot_cap_fast(&on_axis, Vec3::new(0.0, 0.0, 0.5)).1,
+        PivotPath::Careful
+    );
+    assert_eq!(pivot_cap_fast(&on_axis, Vec3::ZERO).1, PivotPath::Careful);
+    // An image at a hemisphere: the upper hemisphere under the pivot through its
+    // boundary's plane (p·z = 0 maps the horizon to a great circle).
+    let upper = Cap::from_axis_one_minus_cos(Vec3::Z, 1.0);
+    assert_eq!(
+        pivot_cap_fast(&upper, Vec3::new(0.5, 0.0, 0.0)).1,
+        PivotPath::Careful
+    );
+    // The pivot right at the cap's boundary: magnified to nearly the whole sphere,
+    // decided by the careful path when the side is unclear.
+    let boundary = Vec3::new(0.0, 0.6, 0.8);
+    let edge = Cap::from_axis_cos(Vec3::Z, 0.8);
+    let (image, _) = pivot_cap_fast(&edge, boundary * 0.999);
+    assert!(image.solid_angle().is_finite());
+}
