@@ -640,25 +640,17 @@ impl SolidAnglePolygon {
         // Bits of the triangles with G0 = 0 and of those with a positive solid angle.
         let (mut flat, mut positive) = (0u32, 0u32);
         let mut angles = [0.0f32; 2 * LANES];
-        let mut write_angles = |first: usize| {
-            let g0 = load4(&fan.signed_g0, first).abs();
-            let g1_plus_g2 = if first == 0 {
-                load4(&self.g1_plus_g2, 0)
-            } else {
-                let mut values = [0.0; LANES];
-                values[..MAX_TRIANGLES - LANES].copy_from_slice(&self.g1_plus_g2[LANES..]);
-                Vec4::from_array(values)
-            };
-            let angle = Vec4::splat(2.0)
-                * crate::math::atan2_upper_half_plane4(g0, g1_plus_g2, triangles - first);
-            store4(angle, &mut angles, first);
-            store_triangle_lanes(g0, &mut self.g0, first);
-            flat |= lane_bits(g0.cmpeq(Vec4::ZERO), first, triangles);
-            positive |= lane_bits(angle.cmpgt(Vec4::ZERO), first, triangles);
-        };
-        write_angles(0);
-        if triangles > LANES {
-            write_angles(LANES);
+        // One triangle at a time: the arc tangents are scalar calls anyway, and the
+        // lanes' round trip (scalar results stored, loaded back as lanes, stored again)
+        // stalled on store-to-load forwarding.
+        #[allow(clippy::needless_range_loop)] // k indexes the fan's and the polygon's arrays
+        for k in 0..triangles {
+            let g0 = fan.signed_g0[k].abs();
+            self.g0[k] = g0;
+            let angle = 2.0 * atan2_upper_half_plane(g0, self.g1_plus_g2[k]);
+            angles[k] = angle;
+            flat |= u32::from(g0 == 0.0) << k;
+            positive |= u32::from(angle > 0.0) << k;
         }
         // All determinants zero (below).
         let edge_on = flat == (1u32 << triangles) - 1;
