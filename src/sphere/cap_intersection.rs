@@ -144,9 +144,9 @@ fn at_most_hemispheres(a1: crate::Vec3, t1: f32, a2: crate::Vec3, t2: f32) -> f3
     if w >= (u - v).abs() + margin && w <= u + v - margin {
         // Surely the lens: the angles are needed only by the spherical Heron form of
         // `Y²` (see below), which the well-conditioned Gram form rarely leaves to.
-        let (gram, plain) = lens_gram(t1, t2, td);
+        let (gram, plain, n1) = lens_gram(t1, t2, td);
         if plain >= 0.5 * gram {
-            return lens_area(t1, t2, td, plain)[0];
+            return lens_area(t1, t2, td, n1, plain)[0];
         }
         // The spherical Heron form of `Y²` (below) from the half-angles' sines and
         // cosines instead of the angles: with `A = θ₁/2`, `B = θ₂/2`, `D = d/2` and
@@ -166,7 +166,7 @@ fn at_most_hemispheres(a1: crate::Vec3, t1: f32, a2: crate::Vec3, t2: f32) -> f3
         let f2 = sin_d * cos_diff - cos_d * sin_diff;
         let fd = sin_sum * cos_d - cos_sum * sin_d;
         let y2 = 4.0 * sin_s.max(0.0) * f1.max(0.0) * f2.max(0.0) * fd.max(0.0);
-        return lens_area(t1, t2, td, y2)[0];
+        return lens_area(t1, t2, td, n1, y2)[0];
     }
     let (theta1, theta2, d) = (angle_of(t1), angle_of(t2), angle_of(td));
     at_most_hemispheres_with_angles([t1, theta1], [t2, theta2], [td, d])
@@ -205,7 +205,7 @@ pub(crate) fn lens_and_half_arc(
         let first_inside = theta1 <= theta2;
         return [2.0 * PI * t1.min(t2), if first_inside { PI } else { 0.0 }];
     }
-    let (gram, plain) = lens_gram(t1, t2, td);
+    let (gram, plain, n1) = lens_gram(t1, t2, td);
     // Y² = sin²θ₁ sin²d − N₁², the Gram determinant of (a₁, a₂, P). Where the two terms
     // nearly cancel (Y² below half of them: a tiny cap across a large one's boundary,
     // where both are of order 1 and Y of the order of the tiny cap) their difference
@@ -221,7 +221,6 @@ pub(crate) fn lens_and_half_arc(
     let y2 = if plain >= 0.5 * gram {
         plain
     } else {
-        let n1 = t1 + td - t2 - t1 * td;
         let half_sine = |x: f32| libm::sinf((0.5 * x).max(0.0));
         let cancelling = if n1 >= 0.0 {
             2.0 * half_sine(theta1 + theta2 - d) * half_sine(theta2 + d - theta1)
@@ -230,23 +229,24 @@ pub(crate) fn lens_and_half_arc(
         };
         cancelling * (libm::sqrtf(gram) + n1.abs())
     };
-    lens_area(t1, t2, td, y2)
+    lens_area(t1, t2, td, n1, y2)
 }
 
-/// `sin²θ₁ sin²d` and `Y² = sin²θ₁ sin²d − N₁²` of the lens case (module documentation).
+/// `sin²θ₁ sin²d`, `Y² = sin²θ₁ sin²d − N₁²` and `N₁ = t₁ + t_d − t₂ − t₁t_d` of the
+/// lens case (module documentation).
 #[inline(always)]
-fn lens_gram(t1: f32, t2: f32, td: f32) -> (f32, f32) {
+fn lens_gram(t1: f32, t2: f32, td: f32) -> (f32, f32, f32) {
     let sin2_1 = (t1 * (2.0 - t1)).max(0.0);
     let sin2_d = (td * (2.0 - td)).max(0.0);
     let n1 = t1 + td - t2 - t1 * td;
     let gram = sin2_1 * sin2_d;
-    (gram, gram - n1 * n1)
+    (gram, gram - n1 * n1, n1)
 }
 
-/// The lens area `2φ₁ t₁ + 2φ₂ t₂ − 2E` (module documentation) from `Y²`, and `φ₁`.
+/// The lens area `2φ₁ t₁ + 2φ₂ t₂ − 2E` (module documentation) from `N₁` and `Y²`, and
+/// `φ₁`.
 #[inline(always)]
-fn lens_area(t1: f32, t2: f32, td: f32, y2: f32) -> [f32; 2] {
-    let n1 = t1 + td - t2 - t1 * td;
+fn lens_area(t1: f32, t2: f32, td: f32, n1: f32, y2: f32) -> [f32; 2] {
     let n2 = t2 + td - t1 - t2 * td;
     let y = libm::sqrtf(y2.max(0.0));
     // `Y >= 0`: one `atan` of a ratio per angle, without `atan2f`'s quadrant logic.
