@@ -235,7 +235,7 @@ typedef struct SpheraCap {
 /* A sphere light (or any cap) prepared for uniform sampling in solid angle: the cap, its frame
  * and its density. */
 typedef struct SpheraSolidAngleSphere {
-  uint32_t opaque[13]; /* 52 bytes, private: see the preamble */
+  uint32_t opaque[12]; /* 48 bytes, private: see the preamble */
 } SpheraSolidAngleSphere;
 
 /* Two caps prepared for uniform sampling of their union. */

@@ -41,7 +41,7 @@ use crate::Sample;
 use crate::math::orthonormal_basis;
 use crate::sample::{INWARD_PULLS, ONE_MINUS_ULP, clamp_random};
 use core::f32::consts::{PI, TAU};
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 /// A spherical cap `{ω : ω·axis ≥ cos θ}` with `1 ∓ cos θ` both to full relative
 /// precision: the smaller is authoritative, the other `2 −` it. Every function makes a cap
@@ -66,6 +66,34 @@ pub struct Cap {
 #[inline(always)]
 fn power_of_two(k: i32) -> f32 {
     f32::from_bits(((127 + k) as u32) << 23)
+}
+
+/// The smallest radius and center distance that [`Cap::from_sphere`] takes without
+/// rescaling, `2⁻²⁹`.
+const SPHERE_RANGE_MIN: f32 = 1.0 / (1u32 << 29) as f32;
+/// The largest, `2²⁹`.
+const SPHERE_RANGE_MAX: f32 = (1u32 << 29) as f32;
+
+/// `d = |center|` when the sphere is seen from outside (`d > r`) and the radius and
+/// `d` lie in `[2⁻²⁹, 2²⁹]` (NaN and infinities fail the comparisons). There, every
+/// square and product of [`Cap::outside_sphere`] is a normal finite number (`r²`,
+/// `|c|² ∈ [2⁻⁵⁸, 2⁵⁸]`, `d (d + q) ≤ 2⁵⁹`), `1 − cos θ = r²/(d (d + q)) ≥ 2⁻¹¹⁷`
+/// and `1/Ω ≤ 2¹¹⁵` are normal and finite, and so the power-of-two rescaling of
+/// [`Cap::from_sphere_careful`] changes no bit: rounding commutes with it in the
+/// normal range, and a square below `2⁻¹²⁶` is absorbed by a sum of at least `2⁻⁵⁸`
+/// either way (a center component below `2⁻¹²⁶` of the largest may round differently
+/// when rescaled; this path keeps it exact).
+#[inline(always)]
+pub(crate) fn sphere_distance_in_range(center: Vec3, radius: f32) -> Option<f32> {
+    let d2 = center.length_squared();
+    let in_range = (SPHERE_RANGE_MIN..=SPHERE_RANGE_MAX).contains(&radius)
+        && (SPHERE_RANGE_MIN * SPHERE_RANGE_MIN..=SPHERE_RANGE_MAX * SPHERE_RANGE_MAX)
+            .contains(&d2);
+    if !in_range {
+        return None;
+    }
+    let d = libm::sqrtf(d2);
+    if d > radius { Some(d) } else { None }
 }
 
 /// A power of two `s` such that `m s` lies in `[1, 2)` for a normal finite positive
@@ -107,6 +135,18 @@ impl Cap {
     /// radius that is not finite and positive.
     #[inline]
     pub fn from_sphere(center: Vec3, radius: f32) -> Cap {
+        // Ordinary spheres take the formula as they come; the rest (bad input, the
+        // shading point inside, huge or tiny coordinates) the careful path.
+        match sphere_distance_in_range(center, radius) {
+            Some(d) => Cap::outside_sphere(center, radius, d),
+            None => Cap::from_sphere_careful(center, radius),
+        }
+    }
+
+    /// [`Cap::from_sphere`] of any input: checked, and rescaled by a power of two
+    /// before squaring.
+    #[inline(never)]
+    pub(crate) fn from_sphere_careful(center: Vec3, radius: f32) -> Cap {
         // `x − x` is 0 for a finite `x` and NaN for an infinite or NaN one: one test of
         // the four numbers (in place of a classification of each).
         #[allow(clippy::eq_op)] // `x − x` on purpose
@@ -135,6 +175,13 @@ impl Cap {
                 ..Cap::WHOLE_SPHERE
             };
         }
+        Cap::outside_sphere(c, r, d)
+    }
+
+    /// The cap of a sphere seen from outside (`d = |c| > r > 0`), with `r²`, `|c|²` and
+    /// the products below normal and finite.
+    #[inline(always)]
+    pub(crate) fn outside_sphere(c: Vec3, r: f32, d: f32) -> Cap {
         // `q = d cos θ = √((d − r)(d + r))` without cancellation, and
         // `1 − cos θ = sin²θ / (1 + cos θ) = r² / (d (d + q))`: one division, exact to a
         // few ulps for tiny caps (no subtraction), and `d + q` has no cancellation (the
@@ -147,9 +194,8 @@ impl Cap {
             // Normalised as `Cap::sanitized` normalises an invalid axis (by the largest
             // component first): unit to a few ulps, which the pivot transformation needs
             // (see `Cap::sanitized`; `c / d` failed a test of the pivot). Written out
-            // without `normalize_by_largest`'s checks, which the rescaled `c` passes
-            // (finite, and its largest component at least `d / √3 > r / √3 > 0`): the
-            // same bits.
+            // without `normalize_by_largest`'s checks, which `c` passes (finite, and its
+            // largest component at least `d / √3 > r / √3 > 0`): the same bits.
             axis: {
                 let scaled = c / c.abs().max_element();
                 scaled * (1.0 / libm::sqrtf(scaled.length_squared()))
@@ -380,60 +426,13 @@ impl Cap {
             return Sample::NONE;
         }
         let (tangent, bitangent) = orthonormal_basis(self.axis);
-        self.sample_uniform_in_frame(tangent, bitangent, pdf, u)
-    }
-
-    /// [`Cap::sample_uniform`] of a non-empty cap with its frame `(tangent, bitangent,
-    /// axis)` (from [`orthonormal_basis`]) and its density `pdf = 1/Ω` given: the body
-    /// that [`SolidAngleSphere`](super::SolidAngleSphere) runs with the frame and the
-    /// density it prepared once.
-    #[inline(always)]
-    pub(crate) fn sample_uniform_in_frame(
-        &self,
-        tangent: Vec3,
-        bitangent: Vec3,
-        pdf: f32,
-        u: [f32; 2],
-    ) -> Sample {
-        let u0 = clamp_random(u[0]);
-        let t = u0 * self.one_minus_cos;
-        // `1 + cos θ' = 2 − t'`; past the hemisphere (`t' > 1`, so `u₀ > 1/2` and
-        // `1 − u₀` is exact) as `h + (1 − u₀) t`, which resolves a small hole.
-        let (one_plus, cos) = if t > 1.0 {
-            let h = self.one_plus_cos + (1.0 - u0) * self.one_minus_cos;
-            (h, h - 1.0)
-        } else {
-            (2.0 - t, 1.0 - t)
-        };
-        let sin = libm::sqrtf((t * one_plus).max(0.0));
-        let (sin_phi, cos_phi) = crate::math::sin_cos_of_turn(clamp_random(u[1]));
-        let dir = tangent * (sin * cos_phi) + bitangent * (sin * sin_phi) + self.axis * cos;
-        // `dir` is a unit vector to a few ulps (the frame is orthonormal around a unit
-        // axis, `sin² + cos² = 1`), and `|axis|²` is within `UNIT_TOLERANCE` of 1: one
-        // Newton step for `1/√(|dir|²)` at 1, `(3 − |dir|²)/2`, leaves an error of
-        // `(3/8) ε²` for `|dir|² = 1 + ε` (below 1e-12), below the rounding of the
-        // product, without a square root or a division.
-        let dir = dir * (1.5 - 0.5 * dir.length_squared());
-        // `contains` for a unit `dir` (which it takes as it is) in a non-empty cap
-        // (`pdf > 0`), without its checks.
-        let inside = if self.one_minus_cos > 1.0 {
-            0.5 * (dir + self.axis).length_squared() >= self.one_plus_cos
-        } else {
-            0.5 * (dir - self.axis).length_squared() <= self.one_minus_cos
-        };
-        if inside {
-            return Sample { dir, pdf };
-        }
-        // Rounding put a sample from the rim just outside (for small caps the rounding
-        // of a unit vector, 6e-8, is a large part of the radius: 10 of 16 draws at
-        // u0 = 1 - 1e-5 for a 1e-7 sr cap), where `pdf` is 0 (issue 16, 4): pulled
-        // towards the axis until inside (`INWARD_PULLS`; a cap below about 1e-6 rad,
-        // which `f32` directions do not resolve, gets its axis).
-        INWARD_PULLS
-            .iter()
-            .map(|&pull| (dir * (1.0 - pull) + self.axis * pull).normalize_or(self.axis))
-            .find(|&pulled| self.contains(pulled))
-            .map_or(Sample::NONE, |dir| Sample { dir, pdf })
+        sample_uniform_in_frame(
+            [self.axis.into(), tangent.into(), bitangent.into()],
+            self.one_minus_cos,
+            self.one_plus_cos,
+            pdf,
+            u,
+        )
     }
 
     /// `1 / Ω`, or 0 when the cap is empty or `1/Ω` is not finite.
@@ -442,8 +441,15 @@ impl Cap {
         if !(self.one_minus_cos > 0.0) {
             return 0.0;
         }
-        let pdf = 1.0 / (TAU * self.one_minus_cos);
+        let pdf = self.one_minus_cos_pdf();
         if pdf.is_finite() { pdf } else { 0.0 }
+    }
+
+    /// `1 / Ω = 1 / (2π (1 − cos θ))` as it stands, unchecked: for a cap whose
+    /// `1 − cos θ` is known to be normal.
+    #[inline(always)]
+    pub(crate) fn one_minus_cos_pdf(&self) -> f32 {
+        1.0 / (TAU * self.one_minus_cos)
     }
 
     /// The density of [`Cap::sample_uniform`]: `1 / Ω` inside the cap, 0 outside.
@@ -481,6 +487,76 @@ impl Cap {
         let u1 = (phi * (0.5 / PI)).max(0.0).min(ONE_MINUS_ULP);
         Some([u0, u1])
     }
+}
+
+/// [`Cap::sample_uniform`] of a non-empty cap `(axis, 1 − cos θ = t, 1 + cos θ = h)`
+/// with its frame `[axis, tangent, bitangent]` (from [`orthonormal_basis`]) and its
+/// density `pdf = 1/Ω` given: the body that [`SolidAngleSphere`](super::SolidAngleSphere)
+/// runs with the frame and the density it prepared once. In `Vec3A` (four lanes, the
+/// fourth ignored), which holds a vector that the prepared sampler loads 16 bytes at a
+/// time without moving it.
+#[inline(always)]
+pub(crate) fn sample_uniform_in_frame(
+    [axis, tangent, bitangent]: [Vec3A; 3],
+    one_minus_cos: f32,
+    one_plus_cos: f32,
+    pdf: f32,
+    u: [f32; 2],
+) -> Sample {
+    let u0 = clamp_random(u[0]);
+    let t = u0 * one_minus_cos;
+    // `1 + cos θ' = 2 − t'`; past the hemisphere (`t' > 1`, so `u₀ > 1/2` and
+    // `1 − u₀` is exact) as `h + (1 − u₀) t`, which resolves a small hole.
+    let (one_plus, cos) = if t > 1.0 {
+        let h = one_plus_cos + (1.0 - u0) * one_minus_cos;
+        (h, h - 1.0)
+    } else {
+        (2.0 - t, 1.0 - t)
+    };
+    let sin = libm::sqrtf((t * one_plus).max(0.0));
+    let (sin_phi, cos_phi) = crate::math::sin_cos_of_turn(clamp_random(u[1]));
+    let dir = tangent * (sin * cos_phi) + bitangent * (sin * sin_phi) + axis * cos;
+    // `dir` is a unit vector to a few ulps (the frame is orthonormal around a unit
+    // axis, `sin² + cos² = 1`), and `|axis|²` is within `UNIT_TOLERANCE` of 1: one
+    // Newton step for `1/√(|dir|²)` at 1, `(3 − |dir|²)/2`, leaves an error of
+    // `(3/8) ε²` for `|dir|² = 1 + ε` (below 1e-12), below the rounding of the
+    // product, without a square root or a division.
+    let dir = dir * (1.5 - 0.5 * dir.length_squared());
+    // `contains` for a unit `dir` (which it takes as it is) in a non-empty cap
+    // (`pdf > 0`), without its checks.
+    let inside = if one_minus_cos > 1.0 {
+        0.5 * (dir + axis).length_squared() >= one_plus_cos
+    } else {
+        0.5 * (dir - axis).length_squared() <= one_minus_cos
+    };
+    if inside {
+        return Sample {
+            dir: dir.into(),
+            pdf,
+        };
+    }
+    let cap = Cap {
+        axis: axis.into(),
+        one_minus_cos,
+        one_plus_cos,
+        sin2: (one_minus_cos * one_plus_cos).max(0.0).min(1.0),
+    };
+    pulled_inside(&cap, dir.into(), pdf)
+}
+
+/// Rounding put a sample from the rim just outside (for small caps the rounding of a
+/// unit vector, 6e-8, is a large part of the radius: 10 of 16 draws at u0 = 1 - 1e-5
+/// for a 1e-7 sr cap), where `pdf` is 0 (issue 16, 4): pulled towards the axis until
+/// inside (`INWARD_PULLS`; a cap below about 1e-6 rad, which `f32` directions do not
+/// resolve, gets its axis). Rare: out of line.
+#[cold]
+#[inline(never)]
+fn pulled_inside(cap: &Cap, dir: Vec3, pdf: f32) -> Sample {
+    INWARD_PULLS
+        .iter()
+        .map(|&pull| (dir * (1.0 - pull) + cap.axis * pull).normalize_or(cap.axis))
+        .find(|&pulled| cap.contains(pulled))
+        .map_or(Sample::NONE, |dir| Sample { dir, pdf })
 }
 
 #[cfg(test)]

@@ -376,3 +376,84 @@ fn sanitized_keeps_valid_caps_and_is_idempotent() {
         assert!((valid.axis.length() - 1.0).abs() < 1e-6, "{cap:?}");
     }
 }
+
+/// Which spheres `Cap::from_sphere` takes without rescaling: seen from outside, radius
+/// and distance in `[2⁻²⁹, 2²⁹]`; bad input, the shading point inside or on the sphere,
+/// and huge or tiny coordinates take the careful path.
+#[test]
+fn the_spheres_that_skip_the_rescaling() {
+    let fast = |c: Vec3, r: f32| super::sphere_distance_in_range(c, r).is_some();
+    assert!(fast(Vec3::new(1.0, 2.0, 3.0), 0.5));
+    assert!(fast(Vec3::new(0.0, 0.0, 1e-8), 2e-9));
+    assert!(fast(Vec3::new(0.0, 5e8, 0.0), 1.0));
+    // Just outside the sphere (the nearly hemispherical cap).
+    assert!(fast(Vec3::new(0.0, 0.0, 1.000_001), 1.0));
+    for (c, r) in [
+        (Vec3::new(0.0, 0.0, 1.0), 1.0),    // on the sphere
+        (Vec3::new(0.0, 0.0, 0.5), 1.0),    // inside
+        (Vec3::ZERO, 1.0),                  // at the center
+        (Vec3::new(0.0, 0.0, 3.0), 1e-9),   // radius below 2⁻²⁹
+        (Vec3::new(0.0, 0.0, 1e9), 1.0),    // distance above 2²⁹
+        (Vec3::new(0.0, 0.0, 1e-9), 1e-10), // distance below 2⁻²⁹
+        (Vec3::new(0.0, 0.0, 3e30), 1e30),  // huge
+        (Vec3::new(0.0, 0.0, 3.0), 0.0),    // no radius
+        (Vec3::new(0.0, 0.0, 3.0), -1.0),   // negative radius
+        (Vec3::new(0.0, 0.0, 3.0), f32::NAN),
+        (Vec3::new(f32::NAN, 0.0, 3.0), 1.0),
+        (Vec3::new(0.0, f32::INFINITY, 3.0), 1.0),
+    ] {
+        assert!(!fast(c, r), "{c} {r}");
+    }
+}
+
+/// Where `Cap::from_sphere` skips the rescaling, it gives the careful path's cap bit
+/// for bit (rounding commutes with a power of two in the normal range), including
+/// centers with components far below the largest, and spheres at both ends of the
+/// range.
+#[test]
+fn the_fast_sphere_cap_is_the_careful_one_bit_for_bit() {
+    let mut rng = Rng::new(59);
+    let mut fast_cases = 0;
+    for i in 0..200_000 {
+        let mut dir = rng.unit_vector_f32();
+        if i % 4 == 1 {
+            // A component far below the others (down to 2⁻⁶⁰ of them).
+            dir.x *= rng.log_uniform(-18.0, 0.0) as f32;
+        }
+        let distance = rng.log_uniform(-8.7, 8.7) as f32;
+        let radius = distance * rng.log_uniform(-8.0, 0.0) as f32;
+        let center = dir * distance;
+        if super::sphere_distance_in_range(center, radius).is_none() {
+            continue;
+        }
+        fast_cases += 1;
+        let careful = Cap::from_sphere_careful(center, radius);
+        assert_eq!(
+            Cap::from_sphere(center, radius),
+            careful,
+            "{center} {radius}"
+        );
+        assert!(careful.uniform_pdf() > 0.0 && careful.uniform_pdf().is_finite());
+    }
+    assert!(fast_cases > 150_000, "{fast_cases}");
+    // The ends of the range: the smallest and largest sphere, and the smallest cap.
+    for (c, r) in [
+        (
+            Vec3::new(0.0, 0.0, 3.0 / (1u32 << 29) as f32),
+            1.0 / (1u32 << 29) as f32,
+        ),
+        (
+            Vec3::new(0.0, 0.0, (1u32 << 29) as f32),
+            (1u32 << 28) as f32,
+        ),
+        (
+            Vec3::new(0.0, 0.0, (1u32 << 29) as f32),
+            1.0 / (1u32 << 29) as f32,
+        ),
+    ] {
+        assert!(super::sphere_distance_in_range(c, r).is_some(), "{c} {r}");
+        let careful = Cap::from_sphere_careful(c, r);
+        assert_eq!(Cap::from_sphere(c, r), careful, "{c} {r}");
+        assert!(careful.uniform_pdf() > 0.0 && careful.uniform_pdf().is_finite());
+    }
+}

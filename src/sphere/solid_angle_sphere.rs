@@ -14,23 +14,29 @@
 //! sample.pdf`.
 
 use super::Cap;
+use super::cap::{sample_uniform_in_frame, sphere_distance_in_range};
 use crate::Sample;
 use crate::math::orthonormal_basis;
-use glam::Vec3;
+use glam::{Vec3, Vec3A, Vec4};
 
 /// A sphere light (or any cap) prepared for uniform sampling in solid angle: the cap,
 /// its frame and its density.
+//
+// Three groups of four numbers, each a vector and a scalar: the prepare writes each
+// group with one 16-byte store and a sample reads it with one 16-byte load. A load that
+// spans several smaller stores cannot take its value from them in flight: it waits
+// until they have reached the cache, which orders the sample after everything before
+// the prepare's stores (docs/speed.md, "Sixth round").
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolidAngleSphere {
-    /// The cap that the light subtends ([`Cap::from_sphere`]).
-    cap: Cap,
-    /// The frame's first tangent, `orthonormal_basis(cap.axis).0`.
-    tangent: Vec3,
-    /// The frame's second tangent.
-    bitangent: Vec3,
-    /// `1 / Ω` (0: empty, no sample).
-    density: f32,
+    /// The cap's unit axis and its `1 − cos θ` ([`Cap::from_sphere`]).
+    axis_and_one_minus_cos: [f32; 4],
+    /// The frame's first tangent, `orthonormal_basis(axis).0`, and the cap's
+    /// `1 + cos θ`.
+    tangent_and_one_plus_cos: [f32; 4],
+    /// The frame's second tangent and `1 / Ω` (0: empty, no sample).
+    bitangent_and_density: [f32; 4],
 }
 
 impl Default for SolidAngleSphere {
@@ -45,10 +51,9 @@ impl SolidAngleSphere {
     ///
     /// cbindgen:ignore
     pub const EMPTY: SolidAngleSphere = SolidAngleSphere {
-        cap: Cap::EMPTY,
-        tangent: Vec3::X,
-        bitangent: Vec3::Y,
-        density: 0.0,
+        axis_and_one_minus_cos: [0.0, 0.0, 1.0, 0.0],
+        tangent_and_one_plus_cos: [1.0, 0.0, 0.0, 2.0],
+        bitangent_and_density: [0.0, 1.0, 0.0, 0.0],
     };
 
     /// Prepares the sphere of radius `radius` centred at `center` (relative to the
@@ -58,8 +63,25 @@ impl SolidAngleSphere {
     /// finite and positive.
     #[inline]
     pub fn prepare(&mut self, center: Vec3, radius: f32) -> bool {
-        // `from_sphere` writes a valid cap (the form `Cap::sanitized` keeps): no check.
-        self.prepare_valid_cap(Cap::from_sphere(center, radius))
+        match sphere_distance_in_range(center, radius) {
+            Some(d) => {
+                // An ordinary sphere seen from outside: `1/Ω` is normal and finite
+                // there (`sphere_distance_in_range`), so no check; the cap stays in
+                // registers on its way to the three stores.
+                let cap = Cap::outside_sphere(center, radius, d);
+                self.write(cap, cap.one_minus_cos_pdf());
+                true
+            }
+            None => self.prepare_careful(center, radius),
+        }
+    }
+
+    /// [`prepare`](Self::prepare) of any input, out of line: the cap of
+    /// [`Cap::from_sphere_careful`] (a valid cap, the form `Cap::sanitized` keeps: no
+    /// check).
+    #[inline(never)]
+    fn prepare_careful(&mut self, center: Vec3, radius: f32) -> bool {
+        self.prepare_valid_cap(Cap::from_sphere_careful(center, radius))
     }
 
     /// Prepares uniform sampling of any cap, in place (made valid first as
@@ -77,27 +99,46 @@ impl SolidAngleSphere {
             *self = Self::EMPTY;
             return false;
         }
-        let (tangent, bitangent) = orthonormal_basis(cap.axis);
-        self.cap = cap;
-        self.tangent = tangent;
-        self.bitangent = bitangent;
-        self.density = density;
+        self.write(cap, density);
         true
+    }
+
+    /// Writes a non-empty cap, its frame and its density `1/Ω`: three 16-byte stores.
+    #[inline(always)]
+    fn write(&mut self, cap: Cap, density: f32) {
+        let (tangent, bitangent) = orthonormal_basis(cap.axis);
+        self.axis_and_one_minus_cos = cap.axis.extend(cap.one_minus_cos).to_array();
+        self.tangent_and_one_plus_cos = tangent.extend(cap.one_plus_cos).to_array();
+        self.bitangent_and_density = bitangent.extend(density).to_array();
+    }
+
+    /// `1 / Ω` (0: empty).
+    #[inline(always)]
+    fn density(&self) -> f32 {
+        self.bitangent_and_density[3]
     }
 
     /// The prepared cap.
     #[inline]
     #[must_use]
     pub fn cap(&self) -> Cap {
-        self.cap
+        let [x, y, z, t] = self.axis_and_one_minus_cos;
+        let h = self.tangent_and_one_plus_cos[3];
+        // A valid cap's `sin2` is `(t h)` clamped (`Cap::sanitized`): not stored.
+        Cap {
+            axis: Vec3::new(x, y, z),
+            one_minus_cos: t,
+            one_plus_cos: h,
+            sin2: (t * h).max(0.0).min(1.0),
+        }
     }
 
     /// The solid angle `Ω` of the cap (0 when empty).
     #[inline]
     #[must_use]
     pub fn solid_angle(&self) -> f32 {
-        if self.density > 0.0 {
-            self.cap.solid_angle()
+        if self.density() > 0.0 {
+            self.cap().solid_angle()
         } else {
             0.0
         }
@@ -109,11 +150,24 @@ impl SolidAngleSphere {
     #[inline]
     #[must_use]
     pub fn sample(&self, u: [f32; 2]) -> Sample {
-        if !(self.density > 0.0) {
+        let bitangent_and_density = Vec4::from_array(self.bitangent_and_density);
+        let density = bitangent_and_density.w;
+        if !(density > 0.0) {
             return Sample::NONE;
         }
-        self.cap
-            .sample_uniform_in_frame(self.tangent, self.bitangent, self.density, u)
+        let axis_and_t = Vec4::from_array(self.axis_and_one_minus_cos);
+        let tangent_and_h = Vec4::from_array(self.tangent_and_one_plus_cos);
+        sample_uniform_in_frame(
+            [
+                Vec3A::from_vec4(axis_and_t),
+                Vec3A::from_vec4(tangent_and_h),
+                Vec3A::from_vec4(bitangent_and_density),
+            ],
+            axis_and_t.w,
+            tangent_and_h.w,
+            density,
+            u,
+        )
     }
 
     /// The density of [`sample`](Self::sample): `1/Ω` inside the cap (boundary
@@ -122,8 +176,8 @@ impl SolidAngleSphere {
     #[inline]
     #[must_use]
     pub fn pdf(&self, dir: Vec3) -> f32 {
-        if self.density > 0.0 && self.cap.contains(dir) {
-            self.density
+        if self.density() > 0.0 && self.cap().contains(dir) {
+            self.density()
         } else {
             0.0
         }
@@ -133,10 +187,10 @@ impl SolidAngleSphere {
     /// `None` outside the cap and for the empty value.
     #[must_use]
     pub fn invert(&self, dir: Vec3) -> Option<[f32; 2]> {
-        if !(self.density > 0.0) {
+        if !(self.density() > 0.0) {
             return None;
         }
-        self.cap.invert(dir)
+        self.cap().invert(dir)
     }
 }
 

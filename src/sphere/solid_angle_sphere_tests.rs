@@ -141,15 +141,15 @@ fn tiny_caps_keep_their_solid_angle_and_samples() {
 #[test]
 fn bad_input_writes_the_empty_value() {
     let garbage = SolidAngleSphere {
-        cap: Cap {
-            axis: Vec3::NAN,
-            one_minus_cos: f32::NAN,
-            one_plus_cos: 7.0,
-            sin2: -1.0,
-        },
-        tangent: Vec3::INFINITY,
-        bitangent: Vec3::NAN,
-        density: f32::NAN,
+        axis_and_one_minus_cos: [f32::NAN, f32::NAN, f32::NAN, f32::NAN],
+        tangent_and_one_plus_cos: [f32::INFINITY, f32::INFINITY, f32::INFINITY, 7.0],
+        bitangent_and_density: [f32::NAN, f32::NAN, f32::NAN, f32::NAN],
+    };
+    let garbage_cap = Cap {
+        axis: Vec3::NAN,
+        one_minus_cos: f32::NAN,
+        one_plus_cos: 7.0,
+        sin2: -1.0,
     };
     for (center, radius) in [
         (Vec3::new(0.0, 0.0, 2.0), 0.0),
@@ -172,7 +172,7 @@ fn bad_input_writes_the_empty_value() {
     assert_eq!(sphere, SolidAngleSphere::EMPTY);
     // A cap built by hand with garbage is made valid first (here: empty).
     let mut sphere = garbage;
-    assert!(!sphere.prepare_cap(garbage.cap));
+    assert!(!sphere.prepare_cap(garbage_cap));
     assert_eq!(sphere, SolidAngleSphere::EMPTY);
     // Huge and tiny coordinates are rescaled, not overflowed.
     for scale in [1e-30f32, 1e30] {
