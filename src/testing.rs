@@ -581,3 +581,35 @@ pub fn ltcs() -> Vec<crate::brdf::Ltc> {
     }
     out
 }
+
+/// A prepared value's words. For the `repr(C)` prepared values, whose fields are all
+/// `f32` and `u32` (no padding).
+pub fn words<T: Copy>(value: &T) -> &[u32] {
+    assert_eq!(core::mem::size_of::<T>() % 4, 0);
+    assert_eq!(core::mem::align_of::<T>(), 4);
+    // SAFETY: `T` is one of the `repr(C)` prepared values, of `f32` and `u32` fields
+    // only (no padding: every field is 4-byte aligned and a multiple of 4 bytes), so
+    // its bytes are initialised `u32` words.
+    unsafe {
+        core::slice::from_raw_parts(
+            (value as *const T).cast::<u32>(),
+            core::mem::size_of::<T>() / 4,
+        )
+    }
+}
+
+/// `value` with every word a NaN: what a C caller's uninitialised or reused struct may
+/// hold, for the tests of prepares that write in place.
+pub fn nan_filled<T: Copy>(mut value: T) -> T {
+    assert_eq!(core::mem::size_of::<T>() % 4, 0);
+    assert_eq!(core::mem::align_of::<T>(), 4);
+    // SAFETY: as in `words`: any `u32` words are a value of such a struct.
+    unsafe {
+        core::slice::from_raw_parts_mut(
+            (&mut value as *mut T).cast::<u32>(),
+            core::mem::size_of::<T>() / 4,
+        )
+        .fill(f32::NAN.to_bits());
+    }
+    value
+}

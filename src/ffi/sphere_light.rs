@@ -143,13 +143,11 @@ pub unsafe extern "C" fn sphera_sphere_light_sampler_prepare(
     wo: SpheraVec3,
     roughness: f32,
 ) -> bool {
-    if out.is_null() {
-        return false;
+    // SAFETY: the caller guarantees that a non-null `out` is writable.
+    match unsafe { out.as_mut() } {
+        Some(out) => out.prepare(center.into(), radius, wo.into(), roughness),
+        None => false,
     }
-    let prepared = SphereLightSampler::new(center.into(), radius, wo.into(), roughness);
-    // SAFETY: `out` is non-null and the caller guarantees it is writable.
-    unsafe { out.write(prepared.unwrap_or(SphereLightSampler::EMPTY)) };
-    prepared.is_some()
 }
 
 /// Draws a direction in the light's cap above the horizon; its pdf is

@@ -127,13 +127,17 @@ pub unsafe extern "C" fn sphera_sptd_in_cap_prepare(
     cosine_axis: SpheraVec3,
     cap: Cap,
 ) -> bool {
-    if out.is_null() {
+    // SAFETY: the caller guarantees that a non-null `out` is writable.
+    let Some(out) = (unsafe { out.as_mut() }) else {
         return false;
+    };
+    match sptd(pivot, base, cosine_axis) {
+        Some(d) => out.prepare(&d, &cap),
+        None => {
+            *out = SptdInCap::EMPTY;
+            false
+        }
     }
-    let prepared = sptd(pivot, base, cosine_axis).and_then(|d| SptdInCap::new(&d, &cap));
-    // SAFETY: `out` is non-null and the caller guarantees it is writable.
-    unsafe { out.write(prepared.unwrap_or(SptdInCap::EMPTY)) };
-    prepared.is_some()
 }
 
 /// Draws a direction of a prepared SPTD in a cap (`u0`, `u1` clamped into [0, 1)).

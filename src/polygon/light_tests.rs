@@ -343,21 +343,6 @@ fn prepared_by_value(
     })
 }
 
-/// A prepared value's words (`PolygonLight` and its parts hold only `f32` and `u32`
-/// fields, no padding).
-fn words<T: Copy>(value: &T) -> &[u32] {
-    assert_eq!(core::mem::size_of::<T>() % 4, 0);
-    // SAFETY: `T` is one of the `repr(C)` prepared values, of `f32` and `u32` fields
-    // only (no padding: every field is 4-byte aligned and a multiple of 4 bytes), so
-    // its bytes are initialised `u32` words.
-    unsafe {
-        core::slice::from_raw_parts(
-            (value as *const T).cast::<u32>(),
-            core::mem::size_of::<T>() / 4,
-        )
-    }
-}
-
 /// `prepare` writes in place, over whatever the struct held (NaN words, a prepared
 /// light), the value that the by-value path built, bit for bit, and the empty value
 /// where that path failed. The one difference: a Lambertian surface whose polygon
@@ -366,15 +351,7 @@ fn words<T: Copy>(value: &T) -> &[u32] {
 #[test]
 fn prepare_in_place_writes_what_the_by_value_path_built() {
     let mut rng = Rng::new(183);
-    let mut garbage = PolygonLight::EMPTY;
-    // SAFETY: as in `words`: any `u32` words are a value of the struct.
-    unsafe {
-        core::slice::from_raw_parts_mut(
-            (&mut garbage as *mut PolygonLight).cast::<u32>(),
-            core::mem::size_of::<PolygonLight>() / 4,
-        )
-        .fill(f32::NAN.to_bits());
-    }
+    let garbage = nan_filled(PolygonLight::EMPTY);
     let (mut accepted, mut rejected, mut lambertian_rejected) = (0, 0, 0);
     for i in 0..3000 {
         let n = 3 + rng.below(6) as usize;

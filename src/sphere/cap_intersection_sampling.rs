@@ -92,6 +92,13 @@ impl CapIntersection {
     /// one.
     #[must_use]
     pub fn new(a: &Cap, b: &Cap) -> Option<CapIntersection> {
+        let mut prepared = CapIntersection::EMPTY;
+        prepared.prepare(a, b).then_some(prepared)
+    }
+
+    /// [`CapIntersection::new`] written in place into `self` (no copy of the prepared
+    /// value); `false` and [`CapIntersection::EMPTY`] written where `new` gives `None`.
+    pub fn prepare(&mut self, a: &Cap, b: &Cap) -> bool {
         let (a, b) = (a.sanitized(), b.sanitized());
         let (radial, other) = if a.one_minus_cos <= b.one_minus_cos {
             (a, b)
@@ -100,7 +107,8 @@ impl CapIntersection {
         };
         let solid_angle = cap_intersection_solid_angle(&radial, &other);
         if !(solid_angle > 0.0) || !(1.0 / solid_angle).is_finite() {
-            return None;
+            *self = CapIntersection::EMPTY;
+            return false;
         }
         let axis = radial.axis;
         let t_d = (0.5 * (other.axis - axis).length_squared()).min(2.0);
@@ -151,7 +159,7 @@ impl CapIntersection {
                 other.axis
             };
         }
-        Some(CapIntersection {
+        *self = CapIntersection {
             radial,
             other,
             solid_angle,
@@ -162,7 +170,8 @@ impl CapIntersection {
             s_low,
             s_high: s_high.max(s_low),
             inner,
-        })
+        };
+        true
     }
 
     /// `Ω(cap(a, s) ∩ B)`, the unnormalised radial CDF.

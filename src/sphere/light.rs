@@ -224,65 +224,92 @@ impl SphereLightSampler {
     /// empty (bad center or radius), lies wholly below the horizon, or `wo` is at or
     /// below the horizon, not finite or zero.
     pub fn new(center: Vec3, radius: f32, wo: Vec3, roughness: f32) -> Option<SphereLightSampler> {
+        let mut sampler = Self::EMPTY;
+        sampler
+            .prepare(center, radius, wo, roughness)
+            .then_some(sampler)
+    }
+
+    /// [`SphereLightSampler::new`] written in place into `self` (no copy of the
+    /// prepared value); `false` and [`SphereLightSampler::EMPTY`] written where `new`
+    /// gives `None`.
+    pub fn prepare(&mut self, center: Vec3, radius: f32, wo: Vec3, roughness: f32) -> bool {
         let cap = Cap::from_sphere(center, radius);
-        if !(cap.one_minus_cos > 0.0) {
-            return None;
+        let prepared = cap.one_minus_cos > 0.0
+            && GgxPivot::from_view(wo, roughness)
+                .is_some_and(|fit| self.prepare_unchecked(&cap, fit.pivot));
+        if !prepared {
+            *self = Self::EMPTY;
         }
-        let fit = GgxPivot::from_view(wo, roughness)?;
-        Self::with_pivot(&cap, fit.pivot)
+        prepared
     }
 
     /// Prepares sampling of a cap with an explicit pivot (any uniform SPTD). `None` for
     /// an empty cap or one wholly below the horizon.
     pub fn with_pivot(cap: &Cap, pivot: Vec3) -> Option<SphereLightSampler> {
+        let mut sampler = Self::EMPTY;
+        sampler.prepare_with_pivot(cap, pivot).then_some(sampler)
+    }
+
+    /// [`SphereLightSampler::with_pivot`] written in place into `self`; `false` and
+    /// [`SphereLightSampler::EMPTY`] written where `with_pivot` gives `None`.
+    pub fn prepare_with_pivot(&mut self, cap: &Cap, pivot: Vec3) -> bool {
+        let prepared = self.prepare_unchecked(cap, pivot);
+        if !prepared {
+            *self = Self::EMPTY;
+        }
+        prepared
+    }
+
+    /// The body of [`SphereLightSampler::prepare_with_pivot`], which leaves `self` partly
+    /// written when it returns `false`.
+    fn prepare_unchecked(&mut self, cap: &Cap, pivot: Vec3) -> bool {
         let cap = cap.sanitized();
         if !(cap.one_minus_cos > 0.0) {
-            return None;
+            return false;
         }
         // Wholly above the horizon: the angle of the axis from the zenith plus the
         // half-angle at most π/2, i.e. cos ≥ sin for a cap up to a hemisphere.
         let above =
             cap.one_minus_cos <= 1.0 && cap.axis.z >= 0.0 && cap.axis.z * cap.axis.z >= cap.sin2;
         if !above {
-            return Self::clipped_to_the_horizon(&cap, pivot);
+            return self.prepare_clipped_to_the_horizon(&cap, pivot);
         }
-        let (sptd, uses_sptd) = match SptdInCap::new(&Sptd::uniform(pivot), &cap) {
-            Some(sptd) if sptd.image.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE => (sptd, true),
-            // The pivot at the origin gives J = 1: the uniform distribution in the cap,
-            // sampled directly below.
-            _ => (SptdInCap::new(&Sptd::uniform(Vec3::ZERO), &cap)?, false),
-        };
-        Some(SphereLightSampler {
-            sptd,
-            uses_sptd: uses_sptd as u32,
-            ..Self::EMPTY
-        })
+        let uses_sptd = self.sptd.prepare(&Sptd::uniform(pivot), &cap)
+            && self.sptd.image.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE;
+        // The pivot at the origin gives J = 1: the uniform distribution in the cap,
+        // sampled directly below.
+        if !uses_sptd && !self.sptd.prepare(&Sptd::uniform(Vec3::ZERO), &cap) {
+            return false;
+        }
+        self.clipped_region = CapIntersection::EMPTY;
+        self.light = Cap::EMPTY;
+        self.pivot = Vec3::ZERO;
+        self.uses_sptd = uses_sptd as u32;
+        self.clipped = 0;
+        true
     }
 
     /// The sampler of a cap that crosses the horizon: the SPTD over `C ∩ H` through the
     /// images' intersection, or uniform in `C ∩ H` where that image is below 1e-3 sr.
-    fn clipped_to_the_horizon(cap: &Cap, pivot: Vec3) -> Option<SphereLightSampler> {
+    fn prepare_clipped_to_the_horizon(&mut self, cap: &Cap, pivot: Vec3) -> bool {
         let horizon = Cap::from_axis_one_minus_cos(Vec3::Z, 1.0);
         let valid_pivot = pivot.is_finite() && pivot.length_squared() < 1.0;
-        let images = if valid_pivot {
-            CapIntersection::new(&pivot_cap(cap, pivot), &pivot_cap(&horizon, pivot))
-        } else {
-            None
-        };
-        let (region, pivot, uses_sptd) = match images {
-            Some(region) if region.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE => {
-                (region, pivot, true)
-            }
-            _ => (CapIntersection::new(cap, &horizon)?, Vec3::ZERO, false),
-        };
-        Some(SphereLightSampler {
-            clipped_region: region,
-            light: *cap,
-            pivot,
-            uses_sptd: uses_sptd as u32,
-            clipped: 1,
-            ..Self::EMPTY
-        })
+        let uses_sptd = valid_pivot
+            && self.clipped_region.prepare(
+                &pivot_cap_fast(cap, pivot).0,
+                &pivot_cap_fast(&horizon, pivot).0,
+            )
+            && self.clipped_region.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE;
+        if !uses_sptd && !self.clipped_region.prepare(cap, &horizon) {
+            return false;
+        }
+        self.sptd = SptdInCap::EMPTY;
+        self.light = *cap;
+        self.pivot = if uses_sptd { pivot } else { Vec3::ZERO };
+        self.uses_sptd = uses_sptd as u32;
+        self.clipped = 1;
+        true
     }
 
     /// The density of the clipped sampler at `dir`: `J(ω)/Ω(g(C) ∩ g(H))` (or

@@ -570,3 +570,65 @@ fn a_light_across_the_horizon_is_sampled_above_it_only() {
         }
     }
 }
+
+/// The sphere light sampler, its SPTD in a cap and its cap intersection are prepared in
+/// place: whatever the struct held before (NaN words, another prepared light, the empty
+/// value), the words written are the same, and a failed prepare leaves the empty value.
+/// Lights above, across and below the horizon, views below it, bad radii.
+#[test]
+fn prepares_in_place_write_every_word() {
+    let mut rng = Rng::new(211);
+    let mut previous = SphereLightSampler::EMPTY;
+    let (mut above, mut clipped, mut failed) = (0, 0, 0);
+    for i in 0..4000 {
+        let center = rng.unit_vector_f32() * rng.log_uniform(0.0, 1.0) as f32;
+        let radius = if i % 101 == 0 {
+            -1.0
+        } else {
+            rng.log_uniform(-2.0, 0.0) as f32
+        };
+        let mut wo = rng.unit_vector_f32();
+        wo.z = if i % 37 == 0 { -wo.z.abs() } else { wo.z.abs() };
+        let roughness = rng.uniform_f32();
+        let mut written = Vec::new();
+        for start in [
+            nan_filled(SphereLightSampler::EMPTY),
+            previous,
+            SphereLightSampler::EMPTY,
+        ] {
+            let mut sampler = start;
+            let ok = sampler.prepare(center, radius, wo, roughness);
+            if !ok {
+                assert_eq!(words(&sampler), words(&SphereLightSampler::EMPTY), "{i}");
+            }
+            written.push((ok, words(&sampler).to_vec()));
+            previous = sampler;
+        }
+        assert!(written.windows(2).all(|w| w[0] == w[1]), "{i}");
+        match (written[0].0, previous.is_clipped()) {
+            (false, _) => failed += 1,
+            (true, false) => above += 1,
+            (true, true) => clipped += 1,
+        }
+        // The SPTD in the light's cap and the cap's intersection with the horizon.
+        let cap = Cap::from_sphere(center, radius);
+        let sptd = Sptd::uniform(rng.unit_vector_f32() * rng.uniform_f32() * 0.9);
+        let horizon = Cap::from_axis_one_minus_cos(Vec3::Z, 1.0);
+        let mut in_cap = [nan_filled(SptdInCap::EMPTY), SptdInCap::EMPTY];
+        let mut region = [nan_filled(CapIntersection::EMPTY), CapIntersection::EMPTY];
+        for k in 0..2 {
+            if !in_cap[k].prepare(&sptd, &cap) {
+                assert_eq!(words(&in_cap[k]), words(&SptdInCap::EMPTY), "{i}");
+            }
+            if !region[k].prepare(&cap, &horizon) {
+                assert_eq!(words(&region[k]), words(&CapIntersection::EMPTY), "{i}");
+            }
+        }
+        assert_eq!(words(&in_cap[0]), words(&in_cap[1]), "{i}");
+        assert_eq!(words(&region[0]), words(&region[1]), "{i}");
+    }
+    assert!(
+        above > 500 && clipped > 200 && failed > 50,
+        "{above} {clipped} {failed}"
+    );
+}

@@ -56,7 +56,7 @@
 use super::cap::Cap;
 use super::cap_intersection::cap_intersection_solid_angle;
 use super::cap_intersection_sampling::MAX_ITERATIONS;
-use super::pivot::{pivot_cap, transform, valid_pivot};
+use super::pivot::{pivot_cap, pivot_cap_fast, transform, valid_pivot};
 use crate::Sample;
 use crate::math::orthonormal_basis;
 use crate::sample::{ONE_MINUS_ULP, clamp_inverted, clamp_random};
@@ -627,13 +627,31 @@ impl SptdInCap {
     /// `(ω_i·a / A) J(ω)`, i.e. `D(ω) / ∫_C D` with `∫_C D = A/π` (stored in
     /// `integral`), 0 where `g(ω)` is below the horizon.
     pub fn new(sptd: &Sptd, cap: &Cap) -> Option<SptdInCap> {
+        let mut prepared = SptdInCap::EMPTY;
+        prepared.prepare(sptd, cap).then_some(prepared)
+    }
+
+    /// [`SptdInCap::new`] written in place into `self` (no copy of the prepared value);
+    /// `false` and [`SptdInCap::EMPTY`] written where `new` gives `None`.
+    pub fn prepare(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
+        let prepared = self.prepare_unchecked(sptd, cap);
+        if !prepared {
+            *self = SptdInCap::EMPTY;
+        }
+        prepared
+    }
+
+    /// The body of [`SptdInCap::prepare`], which leaves `self` partly written when it
+    /// returns `false`.
+    #[inline(always)]
+    fn prepare_unchecked(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
         let cap = cap.sanitized();
-        let image = pivot_cap(&cap, sptd.pivot);
+        let image = pivot_cap_fast(&cap, sptd.pivot).0;
         let integral = sptd.base_integral_over_cap(&image).max(0.0).min(1.0);
         if !(integral > 0.0) || !(1.0 / integral).is_finite() {
-            return None;
+            return false;
         }
-        let mut prepared = SptdInCap {
+        *self = SptdInCap {
             sptd: *sptd,
             cap,
             image,
@@ -644,6 +662,7 @@ impl SptdInCap {
             chord_depth: 0.0,
             tip_depth: 0.0,
         };
+        let prepared = self;
         if sptd.base == SptdBase::ClampedCosine {
             let a = sptd.cosine_axis;
             let cos_beta = image.axis.dot(a);
@@ -679,10 +698,10 @@ impl SptdInCap {
                 prepared.prepare_clipped(cos_beta.max(-1.0).min(1.0), sin_beta.min(1.0));
             }
             if !(prepared.integral > 0.0) || !(1.0 / prepared.integral).is_finite() {
-                return None;
+                return false;
             }
         }
-        Some(prepared)
+        true
     }
 
     /// The clipped sampler's geometry from `cos β = c·a` and `sin β ≥ 0` (`ellipse` and
