@@ -15,7 +15,7 @@
 use super::unit;
 use crate::sample::{ONE_MINUS_ULP, clamp_random};
 use crate::{Sample, Vec3};
-use core::f32::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4};
+use core::f32::consts::FRAC_1_PI;
 
 /// A point uniformly distributed in the unit disk from `u` in `[0, 1)²` by the
 /// concentric mapping (Shirley and Chiu 1997): `a = 2u0 - 1`, `b = 2u1 - 1`; for
@@ -35,12 +35,15 @@ pub(crate) fn concentric_disk(u: [f32; 2]) -> (f32, f32, f32) {
     if a == 0.0 && b == 0.0 {
         return (0.0, 0.0, 0.0);
     }
-    let (radius, angle) = if a.abs() > b.abs() {
-        (a, FRAC_PI_4 * (b / a))
+    // The angle in quarter turns: `π/4 · b/a = π/2 · (b/(2a))`, and
+    // `π/2 − π/4 · a/b = π/2 · (1 − a/(2b))`; both remainders lie in `[−1/2, 1/2]`
+    // and are exact but for the division (no rounded multiple of π).
+    let (radius, quarter_turns, remainder) = if a.abs() > b.abs() {
+        (a, 0, 0.5 * (b / a))
     } else {
-        (b, FRAC_PI_2 - FRAC_PI_4 * (a / b))
+        (b, 1, -0.5 * (a / b))
     };
-    let (sin, cos) = libm::sincosf(angle);
+    let (sin, cos) = crate::math::sin_cos_of_quarter_turns(quarter_turns, remainder);
     (radius * cos, radius * sin, radius.abs())
 }
 

@@ -135,6 +135,17 @@ pub(crate) fn sin_cos_of_turn(u: f32) -> (f32, f32) {
     let rounded = v + ROUNDER;
     let q = rounded.to_bits();
     let r = v - (rounded - ROUNDER);
+    sin_cos_of_quarter_turns(q, r)
+}
+
+/// `(sin, cos)(π/2 (q + r))` for an integer `q` (its two low bits count) and
+/// `|r| ≤ 1/2`: the Taylor polynomials of [`sin_cos_of_turn`] in `r`, rotated by `q`
+/// quarter turns without a branch. For callers whose angle is a known number of
+/// quarter turns plus an exact remainder (the concentric disk map: `π/4 · b/a` is
+/// `r = b/(2a)` quarter turns), so that no rounded multiple of π enters. Same error
+/// bound as [`sin_cos_of_turn`] (its polynomials' error over `|r| ≤ 1/2`).
+#[inline(always)]
+pub(crate) fn sin_cos_of_quarter_turns(q: u32, r: f32) -> (f32, f32) {
     let s = r * r;
     let sin_r = r * horner(s, &SIN_OF_QUARTER_TURNS);
     let cos_r = 1.0 + s * horner(s, &COS_OF_QUARTER_TURNS);
@@ -245,6 +256,26 @@ mod tests {
     fn exhaustive_sin_cos_of_turn_error_bound() {
         let worst = measure_turns(1);
         std::println!("sin_cos_of_turn: worst absolute error {worst:e}");
+        assert!(worst <= 1.0e-7, "{worst:e}");
+    }
+
+    /// `sin_cos_of_quarter_turns` over a dense sweep of `r ∈ [−1/2, 1/2]` (every 64th
+    /// `f32` of each sign, 2⁻¹⁰⁰ and below included) and every `q`: within the bound
+    /// of `sin_cos_of_turn`, whose exhaustive test only reaches the remainders `4u − q`.
+    #[test]
+    fn sin_cos_of_quarter_turns_error_bound() {
+        let mut worst = 0.0f64;
+        for bits in (0..=0.5f32.to_bits()).step_by(64) {
+            for r in [f32::from_bits(bits), -f32::from_bits(bits)] {
+                for q in 0..4u32 {
+                    let angle = core::f64::consts::FRAC_PI_2 * (q as f64 + r as f64);
+                    let (s, c) = sin_cos_of_quarter_turns(q, r);
+                    worst = worst
+                        .max((s as f64 - angle.sin()).abs())
+                        .max((c as f64 - angle.cos()).abs());
+                }
+            }
+        }
         assert!(worst <= 1.0e-7, "{worst:e}");
     }
 

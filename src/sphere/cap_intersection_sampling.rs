@@ -149,7 +149,8 @@ impl CapIntersection {
             [h, angle_of(h), t_c, angle_of(t_c)]
         };
         let middle = 0.5 * (low + high);
-        let (sin_m, cos_m) = libm::sincosf(middle);
+        // `middle` lies in `[0, θ_A] ⊂ [0, π]`.
+        let (sin_m, cos_m) = crate::math::sin_cos_0_to_pi(middle);
         let mut inner = (axis * cos_m + e1 * sin_m).normalize_or(axis);
         if !(radial.contains(inner) && other.contains(inner)) {
             // (A ring around a hole, where the arc's middle may lie in the hole.)
@@ -278,7 +279,9 @@ impl CapIntersection {
     #[inline]
     fn direction(&self, s: f32, psi: f32) -> Vec3 {
         let sin_theta = libm::sqrtf((s * (2.0 - s)).max(0.0));
-        let (sin_psi, cos_psi) = libm::sincosf(psi);
+        // `psi` lies in `[−φ, φ] ⊂ [−π, π]`: the sine is odd, the cosine even.
+        let (sin_psi, cos_psi) = crate::math::sin_cos_0_to_pi(psi.abs());
+        let sin_psi = sin_psi.copysign(psi);
         let axis = self.radial.axis;
         (axis * (1.0 - s) + (self.e1 * cos_psi + self.e2 * sin_psi) * sin_theta).normalize_or(axis)
     }

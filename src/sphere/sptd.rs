@@ -121,7 +121,7 @@ fn jacobian(dir: Vec3, pivot: Vec3) -> f32 {
 fn sample_cosine(axis: Vec3, u: [f32; 2]) -> Vec3 {
     let r2 = clamp_random(u[0]);
     let r = libm::sqrtf(r2);
-    let (sin_phi, cos_phi) = libm::sincosf(TAU * clamp_random(u[1]));
+    let (sin_phi, cos_phi) = crate::math::sin_cos_of_turn(clamp_random(u[1]));
     let (t, b) = orthonormal_basis(axis);
     (t * (r * cos_phi) + b * (r * sin_phi) + axis * libm::sqrtf((1.0 - r2).max(0.0)))
         .normalize_or(axis)
@@ -909,7 +909,7 @@ impl SptdInCap {
                 let a = self.sptd.cosine_axis;
                 let e2 = a.cross(self.e1);
                 let r = libm::sqrtf(clamp_random(u[0]));
-                let (sin_phi, cos_phi) = libm::sincosf(TAU * clamp_random(u[1]));
+                let (sin_phi, cos_phi) = crate::math::sin_cos_of_turn(clamp_random(u[1]));
                 let p = self.e1 * (self.ellipse.x + self.ellipse.y * r * cos_phi)
                     + e2 * (self.ellipse.z * r * sin_phi);
                 (p + a * libm::sqrtf((1.0 - p.length_squared()).max(0.0))).normalize_or(a)
