@@ -263,13 +263,37 @@ impl CapIntersection {
         // A start in proportion to the target (exact for coaxial caps, where F is
         // linear in s).
         let mut s = low + span * (target / self.solid_angle).max(0.0).min(1.0);
+        // The last Newton step's length, for the error estimate below (0 at the start
+        // and after a bisection, which say nothing of the convergence: no estimate).
+        let mut previous_newton_step = 0.0f32;
         for _ in 0..MAX_ITERATIONS {
             let [value, slope] = self.cumulative_and_slope(s);
             let f = value - target;
             let next = crate::math::safeguarded_newton_step(s, f, slope, &mut low, &mut high);
-            if (next - s).abs() <= 1e-7 * s.max(1e-30) || !(high > low) {
+            let step = (next - s).abs();
+            let tolerance = 1e-7 * s.max(1e-30);
+            // Newton's method converges quadratically: after a step of length δₖ from an
+            // error eₖ ≈ δₖ the error is about K δₖ², with K ≈ δₖ / δₖ₋₁² from the
+            // last two Newton steps. Where that estimate, δₖ³ / δₖ₋₁², is below a
+            // sixteenth of the tolerance, the step just taken is the last one: the
+            // evaluations that would confirm it (a step below the tolerance; with the
+            // f32 CDF's rounding noise often several) are saved, 28% of a sample of
+            // the SPTD sphere light sampler. Near a kink of `F` (where the arc begins)
+            // the steps shrink slowly, K is large, and the estimate keeps the loop
+            // going. Measured: `the_radial_inversion_inverts_the_cdf`.
+            if step <= tolerance
+                || step * step * step
+                    <= (tolerance / 16.0) * previous_newton_step * previous_newton_step
+                || !(high > low)
+            {
                 return next.max(self.s_low).min(self.s_high);
             }
+            // A bisection lands on the bracket's midpoint.
+            previous_newton_step = if next == 0.5 * (low + high) {
+                0.0
+            } else {
+                step
+            };
             s = next;
         }
         s.max(self.s_low).min(self.s_high)

@@ -323,3 +323,72 @@ fn the_newton_slope_is_the_derivative_of_the_radial_cdf() {
         "{fast_lens} {fast_complement}"
     );
 }
+
+/// The radial inversion's accuracy: the f32 radial CDF at the `s` that the Newton
+/// iteration returns for `u₀`, normalised, against `u₀` (how well the iteration inverts
+/// the function it evaluates), and the f64 CDF (`cap_intersection_f64` of the f64 caps)
+/// there (how well that function matches the geometry). For every pair and random
+/// sphere lights across the horizon (the SPTD sampler's clipped case: the pivoted
+/// light's image against the pivoted horizon's, wider than a hemisphere), 40,000 draws.
+///
+/// Measured with the stopping rule of `invert_radial` (which saves the evaluations that
+/// confirm a converged step) and, in brackets, with the rule that waits for a step
+/// below the tolerance: the named pairs' worst f32 residual 5.4e-7 (4.9e-7); over all
+/// draws 5.1e-4 (5.1e-4), above 1e-5 in 410 draws (308), f64 error 6.3e-4 (6.0e-4).
+/// The large residuals are the f32 lens formula's, not the iteration's: a small
+/// radial cap (`1 − cos = 5e-4`) across the rim of a wide one, whose radial range is 3%
+/// of its size, has its CDF to a few 1e-4, so that no `s` reaches the target closer.
+#[test]
+fn the_radial_inversion_inverts_the_cdf() {
+    let mut rng = Rng::new(307);
+    let mut cases = pairs();
+    for _ in 0..200 {
+        let light = Cap::from_sphere(
+            rng.unit_vector_f32() * rng.log_uniform(0.0, 0.6) as f32,
+            rng.log_uniform(-1.3, -0.2) as f32,
+        );
+        let pivot = rng.unit_vector_f32() * (0.9 * rng.uniform_f32());
+        let horizon = cap(Vec3::Z, 1.0);
+        let images = (
+            crate::sphere::pivot_cap(&light, pivot),
+            crate::sphere::pivot_cap(&horizon, pivot),
+        );
+        if CapIntersection::new(&images.0, &images.1).is_some() {
+            cases.push(("pivoted light across the horizon", images.0, images.1));
+        }
+    }
+    let (mut worst_f32, mut worst_f64, mut worst_pairs) = (0.0f64, 0.0f64, 0.0f64);
+    let mut above = 0;
+    for (name, a, b) in cases {
+        let lens = CapIntersection::new(&a, &b).unwrap();
+        let radial = |s: f64| (d3(lens.radial.axis), s, 2.0 - s);
+        let other = f64_cap(&lens.other);
+        let total = cap_intersection_f64(radial(lens.radial.one_minus_cos as f64), other);
+        for i in 0..200 {
+            let u0 = if i < 100 {
+                (i as f32 + 0.5) / 100.0
+            } else {
+                rng.uniform_f32()
+            };
+            let s = lens.invert_radial(u0 * lens.solid_angle);
+            let f32_error = (lens.cumulative(s) as f64 / lens.solid_angle as f64 - u0 as f64).abs();
+            let f64_error =
+                (cap_intersection_f64(radial(s as f64), other) / total - u0 as f64).abs();
+            worst_f32 = worst_f32.max(f32_error);
+            if !name.starts_with("pivoted") {
+                worst_pairs = worst_pairs.max(f32_error);
+            }
+            worst_f64 = worst_f64.max(f64_error);
+            if f32_error > 1e-5 {
+                above += 1;
+            }
+        }
+    }
+    std::println!(
+        "worst |F(s)/Ω − u0|: named pairs {worst_pairs:e}; all: f32 {worst_f32:e} \
+         ({above} above 1e-5), f64 {worst_f64:e}"
+    );
+    assert!(worst_pairs <= 1e-6, "{worst_pairs:e}");
+    assert!(worst_f32 <= 6e-4 && above <= 600, "{worst_f32:e} {above}");
+    assert!(worst_f64 <= 1e-3, "{worst_f64:e}");
+}
