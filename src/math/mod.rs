@@ -12,7 +12,7 @@ mod roots;
 mod sin_cos;
 mod unit;
 
-pub use atan::{atan_fast_nonneg, atan_unit, atan2_upper_half_plane};
+pub use atan::{atan_fast_nonneg, atan_unit, atan_unit_estrin, atan2_upper_half_plane};
 pub use bits::{copy_sign, is_sign_negative, sign_mask, with_sign_of_product};
 pub use frame::{Frame, orthonormal_basis};
 pub(crate) use lanes::{

@@ -57,7 +57,7 @@
 
 use super::cap::Cap;
 use crate::math::atan2_upper_half_plane;
-use core::f32::consts::PI;
+use core::f32::consts::{FRAC_PI_2, PI};
 
 /// The half-angle `θ = 2 asin(√(t/2))` of `t = 1 − cos θ`.
 #[inline(always)]
@@ -148,28 +148,34 @@ fn at_most_hemispheres(a1: crate::Vec3, t1: f32, a2: crate::Vec3, t2: f32) -> f3
         if plain >= 0.5 * gram {
             return lens_area(t1, t2, td, n1, plain)[0];
         }
-        // The spherical Heron form of `Y²` (below) from the half-angles' sines and
-        // cosines instead of the angles: with `A = θ₁/2`, `B = θ₂/2`, `D = d/2` and
-        // `s = A + B + D`, `Y² = 4 sin s sin(s − θ₁) sin(s − θ₂) sin(s − d)` where
-        // `s − θ₁ = D + (B − A)`, `s − θ₂ = D − (B − A)`, `s − d = (A + B) − D`, and
-        // `2 sin(A ± B) = √(t₁h₂) ± √(t₂h₁)` (`u ± v`), `2 cos(A ± B) = √(h₁h₂) ∓ √(t₁t₂)`,
-        // `sin D = √(t_d/2)`, `cos D = √(1 − t_d/2)`. Each factor is a sum of two
-        // products of such terms: its rounding is a few ulps of 1 where a difference of
-        // angles (of order 1, rounded by `asin`) had the same, with no `asin` or `sin`.
-        let (h1, h2) = (2.0 - t1, 2.0 - t2);
-        let (sin_d, cos_d) = (0.5 * w, libm::sqrtf((1.0 - 0.5 * td).max(0.0)));
-        let (sin_sum, sin_diff) = (0.5 * (u + v), 0.5 * (v - u));
-        let (p, q) = (libm::sqrtf(h1 * h2), libm::sqrtf(t1 * t2));
-        let (cos_sum, cos_diff) = (0.5 * (p - q), 0.5 * (p + q));
-        let sin_s = sin_sum * cos_d + cos_sum * sin_d;
-        let f1 = sin_d * cos_diff + cos_d * sin_diff;
-        let f2 = sin_d * cos_diff - cos_d * sin_diff;
-        let fd = sin_sum * cos_d - cos_sum * sin_d;
-        let y2 = 4.0 * sin_s.max(0.0) * f1.max(0.0) * f2.max(0.0) * fd.max(0.0);
-        return lens_area(t1, t2, td, n1, y2)[0];
+        return lens_area(t1, t2, td, n1, heron_y2([t1, t2, td], [u, v, w]))[0];
     }
     let (theta1, theta2, d) = (angle_of(t1), angle_of(t2), angle_of(td));
     at_most_hemispheres_with_angles([t1, theta1], [t2, theta2], [td, d])
+}
+
+/// `Y²` of the lens by the spherical Heron form (see [`at_most_hemispheres`]), from
+/// `u = √(t₁h₂)`, `v = √(t₂h₁)`, `w = √(2t_d)`.
+#[inline(always)]
+fn heron_y2([t1, t2, td]: [f32; 3], [u, v, w]: [f32; 3]) -> f32 {
+    // The spherical Heron form of `Y²` (below) from the half-angles' sines and
+    // cosines instead of the angles: with `A = θ₁/2`, `B = θ₂/2`, `D = d/2` and
+    // `s = A + B + D`, `Y² = 4 sin s sin(s − θ₁) sin(s − θ₂) sin(s − d)` where
+    // `s − θ₁ = D + (B − A)`, `s − θ₂ = D − (B − A)`, `s − d = (A + B) − D`, and
+    // `2 sin(A ± B) = √(t₁h₂) ± √(t₂h₁)` (`u ± v`), `2 cos(A ± B) = √(h₁h₂) ∓ √(t₁t₂)`,
+    // `sin D = √(t_d/2)`, `cos D = √(1 − t_d/2)`. Each factor is a sum of two
+    // products of such terms: its rounding is a few ulps of 1 where a difference of
+    // angles (of order 1, rounded by `asin`) had the same, with no `asin` or `sin`.
+    let (h1, h2) = (2.0 - t1, 2.0 - t2);
+    let (sin_d, cos_d) = (0.5 * w, libm::sqrtf((1.0 - 0.5 * td).max(0.0)));
+    let (sin_sum, sin_diff) = (0.5 * (u + v), 0.5 * (v - u));
+    let (p, q) = (libm::sqrtf(h1 * h2), libm::sqrtf(t1 * t2));
+    let (cos_sum, cos_diff) = (0.5 * (p - q), 0.5 * (p + q));
+    let sin_s = sin_sum * cos_d + cos_sum * sin_d;
+    let f1 = sin_d * cos_diff + cos_d * sin_diff;
+    let f2 = sin_d * cos_diff - cos_d * sin_diff;
+    let fd = sin_sum * cos_d - cos_sum * sin_d;
+    4.0 * sin_s.max(0.0) * f1.max(0.0) * f2.max(0.0) * fd.max(0.0)
 }
 
 /// [`at_most_hemispheres`] with the half-angles `θᵢ = angle_of(tᵢ)` and the axes' angle
@@ -255,6 +261,78 @@ fn lens_area(t1: f32, t2: f32, td: f32, n1: f32, y2: f32) -> [f32; 2] {
     let excess = 2.0 * atan2_upper_half_plane(y, 4.0 - td - t1 - t2);
     let area = 2.0 * (phi1 * t1 + phi2 * t2 - excess);
     [area.max(0.0).min(2.0 * PI * t1.min(t2)), phi1]
+}
+
+/// [`at_most_hemispheres`] for the real-time shading (issue 18, 1), from `t₁, t₂ ∈ (0, 1]`
+/// and `t_d`: the case decided without square roots, the lens's arc tangents by
+/// [`atan_unit_estrin`](crate::math::atan_unit_estrin) without a branch on the data;
+/// `None` where the case is not clear (then the caller takes the careful path).
+///
+/// The case without angles: with `u = √(t₁h₂)`, `v = √(t₂h₁)`, `w = √(2t_d)` (see
+/// [`at_most_hemispheres`]) the caps are disjoint when `w ≥ u + v`, nested when
+/// `w ≤ |u − v|` and cross otherwise, i.e. with `X = w² − u² − v² = 2t_d − t₁h₂ − t₂h₁`:
+/// they cross exactly when `X² < 4u²v² = 4 t₁h₁ t₂h₂` (`4u²v² − X² = 4Y²`, the spherical
+/// Heron formula), are disjoint when `X ≥ 0` and nested when `X < 0` otherwise. `X` is a
+/// sum of three terms with one rounding each (and `t_d` comes with a relative error of a
+/// few 1e-7), so its error is below `ε_X = 1e-6` times their magnitudes' sum; the case is
+/// taken only when `(|X| ± ε_X)²` is on the same side of `4u²v²` with a relative margin of
+/// `1e-5` (the rounding of the squares is a few 1e-7). The lens's `Y²` is the Gram form or
+/// the spherical Heron form as in [`at_most_hemispheres`].
+#[inline(always)]
+pub(crate) fn at_most_hemispheres_fast(t1: f32, t2: f32, td: f32) -> Option<f32> {
+    let (h1, h2) = (2.0 - t1, 2.0 - t2);
+    let (uu, vv, ww) = (t1 * h2, t2 * h1, 2.0 * td);
+    let x = ww - uu - vv;
+    let error = 1e-6 * (ww + uu + vv);
+    let four_uv2 = 4.0 * (t1 * h1) * (t2 * h2);
+    let (near, far) = (x.abs() - error, x.abs() + error);
+    // One branch: the clamp folds `near > 0` into the square's test (`0 > 4u²v²` is
+    // false; NaN becomes 0). The branch itself follows the light (a light across the
+    // horizon is a lens, one above it nested), so it is mispredicted often either way.
+    let near = near.max(0.0);
+    if near * near > four_uv2 * (1.0 + 1e-5) {
+        // Disjoint (X > 0) or nested (X < 0).
+        return Some(if x > 0.0 { 0.0 } else { 2.0 * PI * t1.min(t2) });
+    }
+    if !(far * far <= four_uv2 * (1.0 - 1e-5)) {
+        return None;
+    }
+    // Surely the lens.
+    let (gram, plain, n1) = lens_gram(t1, t2, td);
+    let y2 = if plain >= 0.5 * gram {
+        plain
+    } else {
+        let (u, v, w) = (libm::sqrtf(uu), libm::sqrtf(vv), libm::sqrtf(ww));
+        heron_y2([t1, t2, td], [u, v, w])
+    };
+    let n2 = t2 + td - t1 - t2 * td;
+    let y2 = y2.max(0.0);
+    let y = libm::sqrtf(y2);
+    let phi1 = atan2_upper_half_plane_fast(y, y2, n1);
+    let phi2 = atan2_upper_half_plane_fast(y, y2, n2);
+    let excess = 2.0 * atan2_upper_half_plane_fast(y, y2, 4.0 - td - t1 - t2);
+    let area = 2.0 * (phi1 * t1 + phi2 * t2 - excess);
+    Some(area.max(0.0).min(2.0 * PI * t1.min(t2)))
+}
+
+/// [`atan2_upper_half_plane`] of `(y, x)` with `y = √y2 ≥ 0` by
+/// [`atan_unit_estrin`](crate::math::atan_unit_estrin): `atan` of
+/// `min(y, |x|) / max(y, |x|)`, then `π/2 −` it where `y > |x|` and `π −` it where
+/// `x < 0`. The ratio is `y` times `1/|x|` or `|x|/y²`, whose division does not wait for
+/// the square root `y` (the case is decided by `y² > x²`): two roundings instead of one,
+/// so about one ulp more than the ratio of [`atan2_upper_half_plane`]. Clamped to `[0, 1]`
+/// (where `x²` underflows the case can be wrong) and 0 for `y = x = 0` and NaN.
+#[inline(always)]
+fn atan2_upper_half_plane_fast(y: f32, y2: f32, x: f32) -> f32 {
+    let ax = x.abs();
+    let steep = y2 > x * x;
+    let scale = if steep { ax / y2 } else { 1.0 / ax };
+    // NaN (0 · ∞ for y = x = 0) becomes 0.
+    let ratio = (y * scale).max(0.0).min(1.0);
+    let angle = crate::math::atan_unit_estrin(ratio);
+    let angle = if steep { FRAC_PI_2 - angle } else { angle };
+    let angle = if x < 0.0 { PI - angle } else { angle };
+    angle.max(0.0)
 }
 
 /// The Oat–Sander approximation of [`cap_intersection_solid_angle`] (Eq. 37–38):

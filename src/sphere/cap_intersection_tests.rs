@@ -327,3 +327,83 @@ fn the_intersection_is_symmetric() {
         );
     }
 }
+
+/// The shading's `at_most_hemispheres_fast` against `at_most_hemispheres` and the f64
+/// formula on random caps up to hemispheres (1e-6 to 1) at random axis angles: where it
+/// decides, its error (over the smaller cap: a lens's rounding is relative to the terms of
+/// the larger one's size, so a tiny cap across a large one's boundary has the largest)
+/// stays within twice the careful function's worst and 5e-5, disjoint and nested cases
+/// give the careful values exactly; where it does not (`None`), the case is within the
+/// squared test's margin of a boundary.
+#[test]
+fn the_fast_case_and_lens_agree_with_at_most_hemispheres() {
+    let mut rng = Rng::new(1802);
+    let (mut decided, mut undecided) = (0, 0);
+    let (mut worst_fast, mut worst_careful) = (0.0f64, 0.0f64);
+    let angle64 = |t: f32| 2.0 * (0.5 * t as f64).sqrt().asin();
+    for _ in 0..200_000 {
+        let t1 = rng.log_uniform(-6.0, 0.0) as f32;
+        let t2 = rng.log_uniform(-6.0, 0.0) as f32;
+        let td = (2.0 * rng.uniform()) as f32;
+        let careful = at_most_hemispheres_with_angles(
+            [t1, angle_of(t1)],
+            [t2, angle_of(t2)],
+            [td, angle_of(td)],
+        );
+        let smaller = 2.0 * PI * t1.min(t2);
+        let Some(fast) = at_most_hemispheres_fast(t1, t2, td) else {
+            undecided += 1;
+            // Near a boundary: the lens is a small part of the smaller cap or all of it.
+            assert!(
+                careful <= 0.05 * smaller || careful >= 0.95 * smaller,
+                "{t1} {t2} {td}: {careful} of {smaller}"
+            );
+            continue;
+        };
+        decided += 1;
+        if careful == 0.0 || careful == smaller {
+            assert_eq!(fast, careful, "{t1} {t2} {td}");
+        }
+        let exact = reference(angle64(t1), angle64(t2), angle64(td));
+        let scale = smaller as f64;
+        worst_fast = worst_fast.max((fast as f64 - exact).abs() / scale);
+        worst_careful = worst_careful.max((careful as f64 - exact).abs() / scale);
+        assert!(
+            (fast as f64 - exact).abs() <= 5e-5 * scale,
+            "{t1} {t2} {td}: {fast} vs {exact} (careful {careful})"
+        );
+    }
+    println!(
+        "decided {decided}, undecided {undecided}, worst over the smaller cap: fast {worst_fast:.2e}, careful {worst_careful:.2e}"
+    );
+    assert!(worst_fast <= 2.0 * worst_careful.max(1e-6));
+    assert!(undecided < decided / 100, "{decided} {undecided}");
+}
+
+/// The fast `atan2` of the shading's lens against f64 over rays in every direction and
+/// random magnitudes: within 3 ulps of the angle (about one more than
+/// `atan2_upper_half_plane`), exact at 0 and π/2, 0 for `y = x = 0`.
+#[test]
+fn the_fast_upper_half_plane_atan2_matches_f64() {
+    let mut rng = Rng::new(1803);
+    let mut worst = 0.0f64;
+    for i in 0..=1_000_000u32 {
+        let angle = core::f64::consts::PI * i as f64 / 1_000_000.0;
+        let r = rng.log_uniform(-3.0, 1.0);
+        let (y, x) = ((angle.sin().max(0.0) * r) as f32, (angle.cos() * r) as f32);
+        let y2 = y * y;
+        let got = atan2_upper_half_plane_fast(libm::sqrtf(y2), y2, x) as f64;
+        let exact = (libm::sqrtf(y2) as f64).atan2(x as f64);
+        let ulps = (got - exact).abs() / (f32::EPSILON as f64 * exact.max(f64::MIN_POSITIVE));
+        worst = worst.max(if exact > 0.0 { ulps } else { 0.0 });
+        assert!(
+            ulps <= 3.0 || exact == 0.0 && got == 0.0,
+            "{y} {x}: {got} vs {exact}"
+        );
+    }
+    println!("worst {worst:.2} ulps");
+    assert_eq!(atan2_upper_half_plane_fast(0.0, 0.0, 0.0), 0.0);
+    assert_eq!(atan2_upper_half_plane_fast(0.0, 0.0, 2.0), 0.0);
+    assert_eq!(atan2_upper_half_plane_fast(2.0, 4.0, 0.0), FRAC_PI_2);
+    assert_eq!(atan2_upper_half_plane_fast(0.0, 0.0, -2.0), PI);
+}

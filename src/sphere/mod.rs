@@ -11,6 +11,7 @@ pub mod cap_union_sampling;
 pub mod light;
 pub mod phase;
 pub mod pivot;
+mod shading_fast;
 pub mod solid_angle_sphere;
 pub mod sptd;
 
