@@ -10,7 +10,7 @@
 //! ratio to it), so it stays the plain sampler it is: no stratification in solid angle,
 //! and a density that grows without bound at grazing angles.
 use crate::{MAX_POLYGON_VERTICES, Sample};
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 
 const MAX_FAN_TRIANGLES: usize = MAX_POLYGON_VERTICES - 2;
 
@@ -105,22 +105,6 @@ extern "C" fn normalize_scaled_cold(x: f32, y: f32, z: f32) -> Xyz {
     }
 }
 
-/// The larger of `a` and `b` as one `maxss` (`f32::max` also returns the number where
-/// the other is NaN, which costs a comparison and a blend per call). Only for values
-/// whose NaN needs no care: the lengths `reach` and `largest` of `prepare`, where a NaN
-/// coordinate makes the fan's area NaN and the polygon rejected anyway.
-#[inline(always)]
-fn max_fast(a: f32, b: f32) -> f32 {
-    if a > b { a } else { b }
-}
-
-/// The largest absolute coordinate of `v` (see [`max_fast`] for NaN).
-#[inline(always)]
-fn largest_abs(v: Vec3) -> f32 {
-    let a = v.abs();
-    max_fast(max_fast(a.x, a.y), a.z)
-}
-
 /// `x` clamped into [0, 1], NaN to 0: one `maxss` and one `minss` (the comparison forms
 /// below are those instructions' own semantics, NaN giving the second operand).
 #[inline(always)]
@@ -163,16 +147,45 @@ impl TurkPolygon {
     /// [`new`](Self::new) in place: writes the prepared polygon into `self` and returns
     /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false` where `new` returns
     /// `None`. Every field that `sample` and `pdf` read is written, whatever `self` held.
+    #[inline]
     pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
         // Triangles and quads with the count a constant (the copy, the fan and the
-        // unused slots unrolled); 5 to 8 vertices share one body.
-        let prepared = match vertices.len() {
-            3 => self.prepare_or_fail(vertices, 3),
-            4 => self.prepare_or_fail(vertices, 4),
-            count @ 5..=MAX_POLYGON_VERTICES => self.prepare_or_fail(vertices, count),
-            _ => false,
-        };
-        crate::polygon::keep_or_empty(self, prepared, Self::EMPTY)
+        // unused slots unrolled); 5 to 8 vertices share one body. Each its own function,
+        // reached by a tail call, with the failure out of line: the common path needs no
+        // stack frame (the bodies share none of the general body's registers).
+        match vertices.len() {
+            3 => self.prepare_triangle(vertices.try_into().unwrap()),
+            4 => self.prepare_quad(vertices.try_into().unwrap()),
+            5..=MAX_POLYGON_VERTICES => self.prepare_general(vertices),
+            _ => self.fail(),
+        }
+    }
+
+    #[inline(never)]
+    fn prepare_triangle(&mut self, vertices: &[Vec3; 3]) -> bool {
+        self.prepare_or_fail(vertices, 3) || self.fail()
+    }
+
+    #[inline(never)]
+    fn prepare_quad(&mut self, vertices: &[Vec3; 4]) -> bool {
+        self.prepare_or_fail(vertices, 4) || self.fail()
+    }
+
+    #[inline(never)]
+    fn prepare_general(&mut self, vertices: &[Vec3]) -> bool {
+        // (The count's range again, which the caller tested: known here, no bounds
+        // checks below.)
+        let count = vertices.len();
+        (3..=MAX_POLYGON_VERTICES).contains(&count) && self.prepare_or_fail(vertices, count)
+            || self.fail()
+    }
+
+    /// Writes [`EMPTY`](Self::EMPTY) and returns `false`: the failure of `prepare`.
+    #[cold]
+    #[inline(never)]
+    fn fail(&mut self) -> bool {
+        *self = Self::EMPTY;
+        false
     }
 
     /// The body of [`prepare`](Self::prepare); on `false`, `self` holds partial values.
@@ -185,25 +198,47 @@ impl TurkPolygon {
     #[inline(always)]
     fn prepare_or_fail(&mut self, vertices: &[Vec3], count: usize) -> bool {
         let vertices = &vertices[..count];
-        self.vertices[..count].copy_from_slice(vertices);
-        let v0 = vertices[0];
+        // The unused slots as in the empty value (no stale or NaN word is left), written
+        // first: from slot 5 on for the general body (a constant size, no `memset`
+        // call), the vertices written over them below.
+        for v in &mut self.vertices[count.min(5)..] {
+            *v = Vec3::ZERO;
+        }
+        // The vertices are copied one by one as the fan reads them: stores of the widths
+        // that `sample` loads (a load spanning two stores of a `prepare` just before
+        // cannot take its data from the store buffer), and no `memcpy` call.
+        // The fan in 4-lane vectors (`Vec3A`): one instruction per vector operation.
+        self.vertices[0] = vertices[0];
+        self.vertices[1] = vertices[1];
+        let v0 = Vec3A::from(vertices[0]);
+        let mut a = Vec3A::from(vertices[1]) - v0;
         // Twice the (vector) areas of the fan triangles, summed up in `cdf`.
         let mut cdf = [0.0f32; CDF_ENTRIES];
-        let mut normal_sum = Vec3::ZERO;
+        let mut normal_sum = Vec3A::ZERO;
         let mut total = 0.0f32;
-        // The largest coordinate of the vectors from v0 to the other vertices.
-        let mut reach = largest_abs(vertices[1] - v0);
+        // The largest coordinates of the vectors from v0 to the other vertices, per
+        // axis. (`max` and `max_element` are `maxps`, which may drop a NaN: no matter,
+        // as a NaN coordinate makes the fan's area NaN and the polygon rejected.)
+        let mut reach = a.abs();
         for i in 0..count - 2 {
-            let b = vertices[i + 2] - v0;
-            reach = max_fast(reach, largest_abs(b));
-            let c = (vertices[i + 1] - v0).cross(b);
+            self.vertices[i + 2] = vertices[i + 2];
+            let b = Vec3A::from(vertices[i + 2]) - v0;
+            reach = reach.max(b.abs());
+            let c = a.cross(b);
             normal_sum += c;
             total += c.length();
             cdf[i + 1] = total;
+            a = b;
         }
-        // The unused entries repeat the total (above every target: never selected).
-        for entry in &mut cdf[count - 1..] {
-            *entry = total;
+        let reach = reach.max_element();
+        // The unused entries repeat the total (above every target: never selected): for
+        // the general body, the last three entries by a comparison each rather than a
+        // loop of unknown length.
+        #[allow(clippy::needless_range_loop)] // a fixed range that the compiler unrolls
+        for k in count.min(5) - 1..CDF_ENTRIES {
+            if k + 1 >= count {
+                cdf[k] = total;
+            }
         }
         let doubled_area = normal_sum.length();
         let normal = normal_sum * (1.0 / doubled_area);
@@ -217,7 +252,7 @@ impl TurkPolygon {
         // an area below 2^-128); a coordinate beyond 2^60 (|v0|∞ + reach bounds every
         // vertex's), past which the edge planes of `pdf`, `v_i × (v_(i+1) - v_i)`, and
         // their dot products with a direction of components below 2 could overflow.
-        let largest = largest_abs(v0);
+        let largest = v0.abs().max_element();
         // (`normal` is then finite too: each component of `normal_sum` is at most its
         // finite length, `doubled_area`.)
         if !(doubled_area > 0.0
@@ -231,15 +266,11 @@ impl TurkPolygon {
         }
         self.cdf = cdf;
         // Oriented by the sign of d (±1, exact): `facing_normal · P = |d|` on the plane.
-        self.facing_normal = normal * 1.0f32.copysign(plane_offset);
+        self.facing_normal = (normal * 1.0f32.copysign(plane_offset)).into();
         self.density_numerator = 2.0 * plane_offset * plane_offset;
         let checks_samples =
             (!(reach > 0.5 * largest)) as u32 + (!(reach > (1.0 / 128.0) * largest)) as u32;
         self.packed = count as u32 | checks_samples << 8 | ((plane_offset < 0.0) as u32) << 16;
-        // The unused slots as in the empty value: no stale or NaN word is left.
-        for v in &mut self.vertices[count..] {
-            *v = Vec3::ZERO;
-        }
         true
     }
 
@@ -265,16 +296,16 @@ impl TurkPolygon {
     /// the total `T` (the same for the common and the rare path of `sample`, bit for
     /// bit).
     ///
-    /// `u0` needs no clamping of its own: the fraction `a` of the triangle is clamped
-    /// into [0, 1] (NaN to 0), so that any `u` gives a point of the polygon; for `u0` in
-    /// [0, 1) that clamp changes nothing.
+    /// `u1` must lie in [0, 1]. `u0` needs no clamping of its own: the fraction `a` of
+    /// the triangle is clamped into [0, 1] (NaN to 0), so that any `u0` gives a point of
+    /// the polygon; for `u0` in [0, 1) that clamp changes nothing.
     #[inline(always)]
-    fn fan_point(&self, u: [f32; 2], count: usize) -> (Vec3, usize, f32) {
+    fn fan_point(&self, u0: f32, u1: f32, count: usize) -> (Vec3, usize, f32) {
         // Choose a fan triangle by area, then reuse u0 within it. The total is the last
         // entry whatever the count (the unused entries repeat it): a load that does not
         // wait for the count.
         let total = self.cdf[MAX_FAN_TRIANGLES];
-        let target = u[0] * total;
+        let target = u0 * total;
         // The number of fan triangles that end at or before the target, branch-free (the
         // unused entries repeat the total, above the target), at most the last triangle.
         let mut i = 0;
@@ -287,9 +318,6 @@ impl TurkPolygon {
         // the end of its triangle). The clamp takes any other u0 (and the NaN of a
         // zero-area last triangle) into [0, 1].
         let a = clamp_unit((target - low) / (high - low));
-        // (Clamped as every sampler clamps its random numbers; in the form of `a`'s clamp,
-        // the compiler pairs the two clamps into vector instructions and branches.)
-        let u1 = crate::sample::clamp_random(u[1]);
         // Turk's mapping: P = (1 - √a) A + √a (1 - b) B + √a b C.
         let (p0, p1, p2) = (self.vertices[0], self.vertices[i + 1], self.vertices[i + 2]);
         let s = libm::sqrtf(a);
@@ -297,27 +325,33 @@ impl TurkPolygon {
     }
 
     /// The sample of the common case, `None` for the rare one (then
-    /// [`sample_rare`](Self::sample_rare) gives it): polygons whose samples `sample`
-    /// checks against the edge planes (`checks_samples`), and points whose `|P|²` lies
-    /// outside (1e-30, 1e30). Equal to `sample_rare` bit for bit where it gives a sample
-    /// (the same computation without those branches). Without calls, so that the C entry
-    /// point keeps everything in registers and reaches the rare path by a tail call.
+    /// [`sample_rare`](Self::sample_rare) gives it): the empty value, polygons whose
+    /// samples `sample` checks against the edge planes (`checks_samples`), `u1` outside
+    /// [0, 1), points whose `|P|²` lies outside (1e-30, 1e30), and no density (a
+    /// direction that rounding put behind the plane). Equal to `sample_rare` bit for bit
+    /// where it gives a sample (the same computation without those branches). Without
+    /// calls and with one return value, so that the C entry point keeps everything in
+    /// registers and reaches the rare path by a tail call.
     #[inline(always)]
     pub(crate) fn sample_common(&self, u: [f32; 2]) -> Option<Sample> {
         let packed = self.packed;
-        let Some(count) = Self::sampled_count(packed) else {
-            return Some(Sample::NONE);
-        };
-        if packed & 0xFF00 != 0 {
+        // The count (bits 0–7) in 3..=8 and `checks_samples` (bits 8–15) zero, in one
+        // comparison: a nonzero `checks_samples` makes the low half 256 or more.
+        let count = (packed & 0xFFFF) as usize;
+        // u1 in [0, 1), where its clamp changes nothing: as unsigned integers, the bits
+        // of the floats in [0, 1) are those below the bits of 1.0 (`0x3F80_0000`); 1
+        // and above, NaN (above +∞) and negative values (the sign bit) are not.
+        if count.wrapping_sub(3) > MAX_POLYGON_VERTICES - 3 || u[1].to_bits() >= 0x3F80_0000 {
             return None;
         }
-        let (point, _, total) = self.fan_point(u, count);
+        let (point, _, total) = self.fan_point(u[0], u[1], count);
         let distance_squared = point.length_squared();
         if !(distance_squared > 1e-30 && distance_squared < 1e30) {
             return None;
         }
         let dir = point * (1.0 / libm::sqrtf(distance_squared));
-        Some(self.sample_along(dir, total))
+        let pdf = self.density(self.facing_normal.dot(dir), total);
+        is_density(pdf).then_some(Sample { dir, pdf })
     }
 
     /// [`sample`](Self::sample) for every polygon and point, the rare cases included
@@ -328,7 +362,8 @@ impl TurkPolygon {
         let Some(count) = Self::sampled_count(packed) else {
             return Sample::NONE;
         };
-        let (point, i, total) = self.fan_point(u, count);
+        let u1 = crate::sample::clamp_random(u[1]);
+        let (point, i, total) = self.fan_point(u[0], u1, count);
         let mut dir = to_unit(point);
         // `pdf` is 0 outside the polygon up to a slack of a small fraction of the
         // polygon's size (issue 16, 1), and rounding can put a point sampled next to an
@@ -770,7 +805,7 @@ mod tests {
     /// Which polygons and points `sample_common` (the C entry point's inline path)
     /// leaves to `sample_rare`: polygons whose samples are checked against the edge
     /// planes (`checks_samples` 1 or 2), and points whose `|P|²` lies outside
-    /// (1e-30, 1e30); the empty value gives no sample on the common path.
+    /// (1e-30, 1e30); the empty value and `u1` outside [0, 1).
     #[test]
     fn turk_common_and_rare_paths_are_pinned() {
         let u = [0.3, 0.6];
@@ -797,7 +832,16 @@ mod tests {
         assert_eq!(sliver.checks_samples(), 0);
         assert!(sliver.sample_common(u).is_none());
         assert!(sliver.sample(u).pdf > 0.0);
-        assert_eq!(TurkPolygon::EMPTY.sample_common(u), Some(Sample::NONE));
+        // The empty value, u1 outside [0, 1) (u0 outside needs no care: its fraction of
+        // the triangle is clamped on both paths), and a polygon's other side.
+        assert_eq!(TurkPolygon::EMPTY.sample_common(u), None);
+        assert_eq!(TurkPolygon::EMPTY.sample(u), Sample::NONE);
+        for u1 in [1.0, -0.0, -0.5, 2.0, f32::NAN, f32::INFINITY] {
+            assert!(ordinary.sample_common([0.3, u1]).is_none(), "{u1}");
+        }
+        for u0 in [1.0, -0.5, 2.0, f32::NAN] {
+            assert!(ordinary.sample_common([u0, 0.6]).is_some(), "{u0}");
+        }
     }
 
     /// The common path gives `sample_rare`'s sample bit for bit wherever it gives one,
@@ -844,7 +888,7 @@ mod tests {
             }
         }
         assert!(
-            common > 3_000 && rare > 1_000,
+            common > 2_000 && rare > 1_000,
             "{common} common, {rare} rare"
         );
     }
