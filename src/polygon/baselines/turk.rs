@@ -10,7 +10,7 @@
 //! ratio to it), so it stays the plain sampler it is: no stratification in solid angle,
 //! and a density that grows without bound at grazing angles.
 use crate::{MAX_POLYGON_VERTICES, Sample};
-use glam::{Vec3, Vec3A};
+use glam::{Vec3, Vec3A, Vec4};
 
 const MAX_FAN_TRIANGLES: usize = MAX_POLYGON_VERTICES - 2;
 
@@ -43,9 +43,10 @@ pub struct TurkPolygon {
     /// `facing_normal · dir` is `cos θ_light > 0` for a unit direction that meets the
     /// plane in front.
     facing_normal: Vec3,
-    /// `2 d²`, for the signed distance `d` of the plane from the shading point along the
-    /// winding normal (that of the fan's cross products): the numerator of the density.
-    density_numerator: f32,
+    /// `2 d² / T`, for the signed distance `d` of the plane from the shading point along
+    /// the winding normal (that of the fan's cross products) and the total `T` of
+    /// `cdf`: the density is this over `cos³ θ_light`.
+    density_scale: f32,
     /// The vertex count (bits 0–7), `checks_samples` (bits 8–15) and whether `d < 0`
     /// (bit 16: the orientation of the edge tests of `pdf`), in one word: `prepare`
     /// writes it with one store and `sample` reads it with one load (a load spanning two
@@ -129,7 +130,7 @@ impl TurkPolygon {
         vertices: [Vec3::ZERO; MAX_POLYGON_VERTICES],
         cdf: [0.0; CDF_ENTRIES],
         facing_normal: Vec3::Z,
-        density_numerator: 0.0,
+        density_scale: 0.0,
         packed: 0,
     };
 
@@ -264,10 +265,17 @@ impl TurkPolygon {
         {
             return false;
         }
-        self.cdf = cdf;
+        // `sample` loads entries 1 to 4 as one 16-byte vector: written as one too (from a
+        // vector register), as a load spanning several smaller stores of a `prepare`
+        // just before waits for them to reach the cache (quads wrote entry 1 alone and
+        // 2 to 5 together: 40% slower per prepare + sample).
+        self.cdf[0] = 0.0;
+        self.cdf[1..5].copy_from_slice(&Vec4::from_slice(&cdf[1..5]).to_array());
+        self.cdf[5] = cdf[5];
+        self.cdf[6] = cdf[6];
         // Oriented by the sign of d (±1, exact): `facing_normal · P = |d|` on the plane.
         self.facing_normal = (normal * 1.0f32.copysign(plane_offset)).into();
-        self.density_numerator = 2.0 * plane_offset * plane_offset;
+        self.density_scale = 2.0 * plane_offset * plane_offset / total;
         let checks_samples =
             (!(reach > 0.5 * largest)) as u32 + (!(reach > (1.0 / 128.0) * largest)) as u32;
         self.packed = count as u32 | checks_samples << 8 | ((plane_offset < 0.0) as u32) << 16;
@@ -292,27 +300,36 @@ impl TurkPolygon {
         (count.wrapping_sub(3) <= MAX_POLYGON_VERTICES - 3).then_some(count)
     }
 
-    /// The fan triangle `i` that `u0` selects and the point of Turk's mapping in it, and
-    /// the total `T` (the same for the common and the rare path of `sample`, bit for
-    /// bit).
+    /// The point of Turk's mapping in the fan triangle `i` that `u0` selects, and `i`
+    /// (the same for the common and the rare path of `sample`, bit for bit).
     ///
     /// `u1` must lie in [0, 1]. `u0` needs no clamping of its own: the fraction `a` of
     /// the triangle is clamped into [0, 1] (NaN to 0), so that any `u0` gives a point of
     /// the polygon; for `u0` in [0, 1) that clamp changes nothing.
     #[inline(always)]
-    fn fan_point(&self, u0: f32, u1: f32, count: usize) -> (Vec3, usize, f32) {
+    fn fan_point(&self, u0: f32, u1: f32, count: usize) -> (Vec3, usize) {
         // Choose a fan triangle by area, then reuse u0 within it. The total is the last
         // entry whatever the count (the unused entries repeat it): a load that does not
         // wait for the count.
         let total = self.cdf[MAX_FAN_TRIANGLES];
         let target = u0 * total;
-        // The number of fan triangles that end at or before the target, branch-free (the
-        // unused entries repeat the total, above the target), at most the last triangle.
-        let mut i = 0;
-        for end in &self.cdf[1..MAX_FAN_TRIANGLES] {
-            i += (*end <= target) as usize;
-        }
-        let i = i.min(count - 3);
+        // The number of fan triangles that end at or before the target, at most the last
+        // triangle: none to count for a triangle, one comparison for a quad (a branch on
+        // the count, which a renderer's lights of one shape predict), else branch-free.
+        let i = match count {
+            3 => 0,
+            4 => (self.cdf[1] <= target) as usize,
+            _ => {
+                // Branch-free: the unused entries repeat the total, above the target.
+                // (Entries 1 to 4 compared as one vector, which `prepare` writes as one;
+                // entries that a caller's bug corrupted give a wrong count, clamped.)
+                let mut i = 0;
+                for end in &self.cdf[1..MAX_FAN_TRIANGLES] {
+                    i += (*end <= target) as usize;
+                }
+                i.min(count - 3)
+            }
+        };
         let (low, high) = (self.cdf[i], self.cdf[i + 1]);
         // In [0, 1] for u0 in [0, 1): `target - low <= high - low` (the target is at most
         // the end of its triangle). The clamp takes any other u0 (and the NaN of a
@@ -321,7 +338,7 @@ impl TurkPolygon {
         // Turk's mapping: P = (1 - √a) A + √a (1 - b) B + √a b C.
         let (p0, p1, p2) = (self.vertices[0], self.vertices[i + 1], self.vertices[i + 2]);
         let s = libm::sqrtf(a);
-        (p0 + s * ((p1 - p0) + u1 * (p2 - p1)), i, total)
+        (p0 + s * ((p1 - p0) + u1 * (p2 - p1)), i)
     }
 
     /// The sample of the common case, `None` for the rare one (then
@@ -344,13 +361,13 @@ impl TurkPolygon {
         if count.wrapping_sub(3) > MAX_POLYGON_VERTICES - 3 || u[1].to_bits() >= 0x3F80_0000 {
             return None;
         }
-        let (point, _, total) = self.fan_point(u[0], u[1], count);
+        let point = self.fan_point(u[0], u[1], count).0;
         let distance_squared = point.length_squared();
         if !(distance_squared > 1e-30 && distance_squared < 1e30) {
             return None;
         }
         let dir = point * (1.0 / libm::sqrtf(distance_squared));
-        let pdf = self.density(self.facing_normal.dot(dir), total);
+        let pdf = self.density(self.facing_normal.dot(dir));
         is_density(pdf).then_some(Sample { dir, pdf })
     }
 
@@ -363,7 +380,7 @@ impl TurkPolygon {
             return Sample::NONE;
         };
         let u1 = crate::sample::clamp_random(u[1]);
-        let (point, i, total) = self.fan_point(u[0], u1, count);
+        let (point, i) = self.fan_point(u[0], u1, count);
         let mut dir = to_unit(point);
         // `pdf` is 0 outside the polygon up to a slack of a small fraction of the
         // polygon's size (issue 16, 1), and rounding can put a point sampled next to an
@@ -376,7 +393,7 @@ impl TurkPolygon {
                 .checked_inside(dir.x, dir.y, dir.z, point.x, point.y, point.z, i, count)
                 .into();
         }
-        self.sample_along(dir, total)
+        self.sample_along(dir)
     }
 
     /// The sample in direction `dir` (zero, or a unit vector to within 2e-6 in `|dir|²`:
@@ -388,8 +405,8 @@ impl TurkPolygon {
     /// bit wherever `pdf` finds `dir` inside. A zero `dir` (from a non-finite point) has
     /// cosine 0 and no density.
     #[inline(always)]
-    fn sample_along(&self, dir: Vec3, total: f32) -> Sample {
-        let pdf = self.density(self.facing_normal.dot(dir), total);
+    fn sample_along(&self, dir: Vec3) -> Sample {
+        let pdf = self.density(self.facing_normal.dot(dir));
         if is_density(pdf) {
             Sample { dir, pdf }
         } else {
@@ -440,15 +457,15 @@ impl TurkPolygon {
     }
 
     /// `|P|² / (area · cos θ_light)` for the point `P` where a ray with
-    /// `cos θ_light = cosine` meets the polygon's plane, `T` = `total` being twice the
-    /// area: with `|P| = |d| / cos θ_light`, `2 d² / (T cos³ θ_light)` (one division).
-    /// Not a density where `cosine <= 0` or NaN (the ray misses the plane in front: a
-    /// negative, infinite or NaN value) or where it overflows; the callers keep only
-    /// [`is_density`] values. (`2 d²` is below 2^125 by the 2^60 bound of `prepare`, and
-    /// `T ≤ f32::MAX`.)
+    /// `cos θ_light = cosine` meets the polygon's plane, `T` being twice the area: with
+    /// `|P| = |d| / cos θ_light`, `2 d² / (T cos³ θ_light)`, the stored `2 d² / T` over
+    /// `cos³` (one division). Not a density where `cosine <= 0` or NaN (the ray misses
+    /// the plane in front: a negative, infinite or NaN value) or where it overflows; the
+    /// callers keep only [`is_density`] values. (`2 d²` is below 2^125 by the 2^60 bound
+    /// of `prepare`; where `2 d² / T` overflows, every density would.)
     #[inline(always)]
-    fn density(&self, cosine: f32, total: f32) -> f32 {
-        self.density_numerator / ((total * cosine) * (cosine * cosine))
+    fn density(&self, cosine: f32) -> f32 {
+        self.density_scale / (cosine * (cosine * cosine))
     }
 
     /// The vertex count (from `packed`), clamped to the maximum.
@@ -495,7 +512,7 @@ impl TurkPolygon {
         } else {
             self.facing_normal.dot(scaled) / libm::sqrtf(scaled.length_squared())
         };
-        let pdf = self.density(cosine, self.cdf[MAX_FAN_TRIANGLES]);
+        let pdf = self.density(cosine);
         if is_density(pdf) { pdf } else { 0.0 }
     }
 
