@@ -62,11 +62,11 @@ pub struct TurkPolygon {
     packed: u32,
 }
 
-/// A vector as the out-of-line helpers of `sample` take and return it. They are
-/// `extern "C"`: that convention passes the coordinates and returns this struct in
-/// registers (SysV: xmm0–xmm2 in, xmm0–xmm1 out; AAPCS-VFP likewise), where the Rust
-/// convention passes a `Vec3` through memory, so that the common path of `sample` would
-/// store `point` and `dir` to the stack and load them back.
+/// A vector as the out-of-line helpers of the rare path of `sample` take and return it.
+/// They are `extern "C"`: that convention passes the coordinates and returns this struct
+/// in registers (SysV: xmm0–xmm2 in, xmm0–xmm1 out; AAPCS-VFP likewise), where the Rust
+/// convention passes a `Vec3` through memory, so that the caller would store `point` and
+/// `dir` to the stack and load them back around the (untaken) calls.
 #[repr(C)]
 struct Xyz {
     x: f32,
@@ -313,23 +313,7 @@ impl TurkPolygon {
         // wait for the count.
         let total = self.cdf[MAX_FAN_TRIANGLES];
         let target = u0 * total;
-        // The number of fan triangles that end at or before the target, at most the last
-        // triangle: none to count for a triangle, one comparison for a quad (a branch on
-        // the count, which a renderer's lights of one shape predict), else branch-free.
-        let i = match count {
-            3 => 0,
-            4 => (self.cdf[1] <= target) as usize,
-            _ => {
-                // Branch-free: the unused entries repeat the total, above the target.
-                // (Entries 1 to 4 compared as one vector, which `prepare` writes as one;
-                // entries that a caller's bug corrupted give a wrong count, clamped.)
-                let mut i = 0;
-                for end in &self.cdf[1..MAX_FAN_TRIANGLES] {
-                    i += (*end <= target) as usize;
-                }
-                i.min(count - 3)
-            }
-        };
+        let i = self.fan_triangle(target, count);
         let (low, high) = (self.cdf[i], self.cdf[i + 1]);
         // In [0, 1] for u0 in [0, 1): `target - low <= high - low` (the target is at most
         // the end of its triangle). The clamp takes any other u0 (and the NaN of a
@@ -339,6 +323,35 @@ impl TurkPolygon {
         let (p0, p1, p2) = (self.vertices[0], self.vertices[i + 1], self.vertices[i + 2]);
         let s = libm::sqrtf(a);
         (p0 + s * ((p1 - p0) + u1 * (p2 - p1)), i)
+    }
+
+    /// The fan triangle that `target` (u0 times the total) falls into.
+    #[inline(always)]
+    fn fan_triangle(&self, target: f32, count: usize) -> usize {
+        // The number of fan triangles that end at or before the target, at most the last
+        // triangle: none to count for a triangle, one comparison for a quad (a branch on
+        // the count, which a renderer's lights of one shape predict), else branch-free.
+        match count {
+            3 => 0,
+            4 => (self.cdf[1] <= target) as usize,
+            _ => {
+                // Branch-free: the unused entries repeat the total, above the target.
+                // Entries 1 to 4 are loaded as one vector, the one that `prepare` writes
+                // (a load spanning two stores of a `prepare` just before waits for them
+                // to reach the cache; left to itself, the compiler of a build for
+                // AVX-512 loaded entries 2 to 5). Their comparisons give a mask that is
+                // a prefix of ones (the entries never decrease), whose number of ones is
+                // the number of trailing zeros of mask + 1 (not 0: `bsf` or `tzcnt`);
+                // entry 5 is at or below the target only if all before it are. (Entries
+                // that a caller's bug corrupted give a wrong count, at most 5, clamped.)
+                let ends = Vec4::from_slice(&self.cdf[1..5]);
+                let mask = ends.cmple(Vec4::splat(target)).bitmask();
+                let below = core::num::NonZeroU32::MIN
+                    .saturating_add(mask)
+                    .trailing_zeros();
+                (below as usize + (self.cdf[5] <= target) as usize).min(count - 3)
+            }
+        }
     }
 
     /// The sample of the common case, `None` for the rare one (then
@@ -908,6 +921,31 @@ mod tests {
             common > 2_000 && rare > 1_000,
             "{common} common, {rare} rare"
         );
+    }
+
+    /// The fan triangle of a target: the shortcuts of triangles (none to search) and
+    /// quads (one comparison) give the branch-free count of the other polygons, at
+    /// random targets, at the entries themselves, at 0, the total and beyond, and NaN.
+    #[test]
+    fn turk_fan_triangle_shortcuts_match_the_count() {
+        let mut rng = Rng::new(91);
+        for n in 3..=MAX_POLYGON_VERTICES {
+            for reversed in [false, true] {
+                let polygon = TurkPolygon::new(&moderate(n, reversed)).unwrap();
+                let total = polygon.cdf[MAX_FAN_TRIANGLES];
+                let mut targets = vec![0.0, total, 2.0 * total, f32::NAN, -1.0];
+                targets.extend_from_slice(&polygon.cdf);
+                targets.extend((0..200).map(|_| rng.uniform_f32() * total));
+                for target in targets {
+                    let counted = polygon.cdf[1..MAX_FAN_TRIANGLES]
+                        .iter()
+                        .filter(|&&end| end <= target)
+                        .count()
+                        .min(n - 3);
+                    assert_eq!(polygon.fan_triangle(target, n), counted, "{n} {target}");
+                }
+            }
+        }
     }
 
     /// Found by fuzzing: far polygons (up to 1e30 away) gave sample pdfs that differed
