@@ -361,7 +361,7 @@ impl TurkPolygon {
     /// direction that rounding put behind the plane). Equal to `sample_rare` bit for bit
     /// where it gives a sample (the same computation without those branches). Without
     /// calls and with one return value, so that the C entry point keeps everything in
-    /// registers and reaches the rare path by a tail call.
+    /// registers and reaches the rare path by one call on that path only.
     #[inline(always)]
     pub(crate) fn sample_common(&self, u: [f32; 2]) -> Option<Sample> {
         let packed = self.packed;
