@@ -122,7 +122,7 @@ typedef struct SpheraSample {
 
 /* A convex polygon prepared for Turk's area sampling. */
 typedef struct SpheraTurkPolygon {
-  uint32_t opaque[38]; /* 152 bytes, private: see the preamble */
+  uint32_t opaque[36]; /* 144 bytes, private: see the preamble */
 } SpheraTurkPolygon;
 
 /* A convex polygon prepared for Arvo's sampling of its spherical fan triangles. */

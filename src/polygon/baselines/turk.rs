@@ -10,9 +10,12 @@
 //! ratio to it), so it stays the plain sampler it is: no stratification in solid angle,
 //! and a density that grows without bound at grazing angles.
 use crate::{MAX_POLYGON_VERTICES, Sample};
-use glam::Vec3;
+use glam::{Vec3, Vec3A, Vec4};
 
 const MAX_FAN_TRIANGLES: usize = MAX_POLYGON_VERTICES - 2;
+
+/// The entries of `TurkPolygon::cdf`: a leading 0 and one per fan triangle.
+const CDF_ENTRIES: usize = MAX_POLYGON_VERTICES - 1;
 
 /// Slack of the inside test of [`TurkPolygon::pdf`] relative to the scale of the terms
 /// of each edge test (about 16 ulps), so that a direction sampled on an edge counts as
@@ -31,49 +34,104 @@ pub struct TurkPolygon {
     /// computed from them when `pdf` is called, so that `prepare`, which a renderer calls
     /// once per shading point and light, stays as lean as plain area sampling.)
     vertices: [Vec3; MAX_POLYGON_VERTICES],
-    /// Running sums of twice the areas of the fan triangles `(v_0, v_{i+1}, v_{i+2})`
-    /// (the unused entries repeat the total).
-    cdf: [f32; MAX_FAN_TRIANGLES],
-    /// Unit normal of the polygon's plane.
-    normal: Vec3,
-    /// Signed distance of the plane from the shading point along `normal`.
-    plane_offset: f32,
-    area: f32,
-    inv_area: f32,
-    count: u32,
-    /// 1 when `sample` tests its directions against the edge planes (polygons whose
-    /// extent from the first vertex is below half its distance: there the slack of
-    /// `pdf` is a fraction of the polygon's size, below the rounding of a sample next to
-    /// an edge), 2 when the extent is also below 1/128 of the distance (there the inside
-    /// test takes the exact edge planes and a compensated dot product as well), else 0
-    /// (larger polygons, where the slack of 16 ulps covers it).
-    checks_samples: u32,
+    /// `cdf[0] = 0` and `cdf[k + 1]` the running sum of twice the areas of the fan
+    /// triangles `(v_0, v_{i+1}, v_{i+2})` for `i <= k`; the unused entries repeat the
+    /// total `T = cdf[count - 2]`, twice the sampled area. (The leading 0 makes the start
+    /// of every triangle, `cdf[k]`, a load: no branch for the first triangle.)
+    cdf: [f32; CDF_ENTRIES],
+    /// Unit normal of the polygon's plane, oriented away from the shading point:
+    /// `facing_normal · dir` is `cos θ_light > 0` for a unit direction that meets the
+    /// plane in front.
+    facing_normal: Vec3,
+    /// `2 d² / T`, for the signed distance `d` of the plane from the shading point along
+    /// the winding normal (that of the fan's cross products) and the total `T` of
+    /// `cdf`: the density is this over `cos³ θ_light`.
+    density_scale: f32,
+    /// The vertex count (bits 0–7), `checks_samples` (bits 8–15) and whether `d < 0`
+    /// (bit 16: the orientation of the edge tests of `pdf`), in one word: `prepare`
+    /// writes it with one store and `sample` reads it with one load (a load spanning two
+    /// smaller stores of a `prepare` just before cannot take their data from the store
+    /// buffer and waits for them to reach the cache).
+    ///
+    /// `checks_samples` is 1 when `sample` tests its directions against the edge planes
+    /// (polygons whose extent from the first vertex is below half its distance: there
+    /// the slack of `pdf` is a fraction of the polygon's size, below the rounding of a
+    /// sample next to an edge), 2 when the extent is also below 1/128 of the distance
+    /// (there the inside test takes the exact edge planes and a compensated dot product
+    /// as well), else 0 (larger polygons, where the slack of 16 ulps covers it).
+    packed: u32,
+}
+
+/// A vector as the out-of-line helpers of the rare path of `sample` take and return it.
+/// They are `extern "C"`: that convention passes the coordinates and returns this struct
+/// in registers (SysV: xmm0–xmm2 in, xmm0–xmm1 out; AAPCS-VFP likewise), where the Rust
+/// convention passes a `Vec3` through memory, so that the caller would store `point` and
+/// `dir` to the stack and load them back around the (untaken) calls.
+#[repr(C)]
+struct Xyz {
+    x: f32,
+    y: f32,
+    z: f32,
+}
+
+impl From<Xyz> for Vec3 {
+    #[inline(always)]
+    fn from(v: Xyz) -> Vec3 {
+        Vec3::new(v.x, v.y, v.z)
+    }
 }
 
 /// `point / |point|`: |P|² of a far polygon overflows (and of a near one underflows):
-/// found by fuzzing, non-unit directions. Normalised by the largest component there;
-/// zero for a zero or non-finite `point`.
+/// found by fuzzing, non-unit directions. Normalised by the largest component there
+/// (out of line: no sample of an ordinary polygon goes there); zero for a zero or
+/// non-finite `point`.
 #[inline(always)]
 fn to_unit(point: Vec3) -> Vec3 {
     let distance_squared = point.length_squared();
     if distance_squared > 1e-30 && distance_squared < 1e30 {
         point * (1.0 / libm::sqrtf(distance_squared))
     } else {
-        crate::math::normalize_scaled(point)
+        normalize_scaled_cold(point.x, point.y, point.z).into()
     }
+}
+
+#[cold]
+#[inline(never)]
+extern "C" fn normalize_scaled_cold(x: f32, y: f32, z: f32) -> Xyz {
+    let v = crate::math::normalize_scaled(Vec3::new(x, y, z));
+    Xyz {
+        x: v.x,
+        y: v.y,
+        z: v.z,
+    }
+}
+
+/// `x` clamped into [0, 1], NaN to 0: one `maxss` and one `minss` (the comparison forms
+/// below are those instructions' own semantics, NaN giving the second operand).
+#[inline(always)]
+fn clamp_unit(x: f32) -> f32 {
+    let x = if x > 0.0 { x } else { 0.0 };
+    if x < 1.0 { x } else { 1.0 }
+}
+
+/// Whether `pdf` is a density to return: positive and finite. The bits of a positive
+/// finite `f32` are `1..=0x7F7F_FFFF`; minus 1 (wrapping), those and only those are
+/// below `0x7F7F_FFFF`: +0 wraps to `u32::MAX`, +∞ (`0x7F80_0000`) and NaN lie above,
+/// and every negative value has the sign bit set. One integer comparison (the float
+/// form `pdf > 0 && pdf < ∞` compiles to a classification of a dozen instructions).
+#[inline(always)]
+fn is_density(pdf: f32) -> bool {
+    pdf.to_bits().wrapping_sub(1) < 0x7F7F_FFFF
 }
 
 impl TurkPolygon {
     /// The polygon that samples nothing.
     pub const EMPTY: Self = Self {
         vertices: [Vec3::ZERO; MAX_POLYGON_VERTICES],
-        cdf: [1.0; MAX_FAN_TRIANGLES],
-        normal: Vec3::Z,
-        plane_offset: 0.0,
-        area: 0.0,
-        inv_area: 0.0,
-        count: 0,
-        checks_samples: 0,
+        cdf: [0.0; CDF_ENTRIES],
+        facing_normal: Vec3::Z,
+        density_scale: 0.0,
+        packed: 0,
     };
 
     /// Prepares a convex planar polygon (3 to 8 vertices relative to the shading point,
@@ -90,16 +148,45 @@ impl TurkPolygon {
     /// [`new`](Self::new) in place: writes the prepared polygon into `self` and returns
     /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false` where `new` returns
     /// `None`. Every field that `sample` and `pdf` read is written, whatever `self` held.
+    #[inline]
     pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
         // Triangles and quads with the count a constant (the copy, the fan and the
-        // unused slots unrolled); 5 to 8 vertices share one body.
-        let prepared = match vertices.len() {
-            3 => self.prepare_or_fail(vertices, 3),
-            4 => self.prepare_or_fail(vertices, 4),
-            count @ 5..=MAX_POLYGON_VERTICES => self.prepare_or_fail(vertices, count),
-            _ => false,
-        };
-        crate::polygon::keep_or_empty(self, prepared, Self::EMPTY)
+        // unused slots unrolled); 5 to 8 vertices share one body. Each its own function,
+        // reached by a tail call, with the failure out of line: the common path needs no
+        // stack frame (the bodies share none of the general body's registers).
+        match vertices.len() {
+            3 => self.prepare_triangle(vertices.try_into().unwrap()),
+            4 => self.prepare_quad(vertices.try_into().unwrap()),
+            5..=MAX_POLYGON_VERTICES => self.prepare_general(vertices),
+            _ => self.fail(),
+        }
+    }
+
+    #[inline(never)]
+    fn prepare_triangle(&mut self, vertices: &[Vec3; 3]) -> bool {
+        self.prepare_or_fail(vertices, 3) || self.fail()
+    }
+
+    #[inline(never)]
+    fn prepare_quad(&mut self, vertices: &[Vec3; 4]) -> bool {
+        self.prepare_or_fail(vertices, 4) || self.fail()
+    }
+
+    #[inline(never)]
+    fn prepare_general(&mut self, vertices: &[Vec3]) -> bool {
+        // (The count's range again, which the caller tested: known here, no bounds
+        // checks below.)
+        let count = vertices.len();
+        (3..=MAX_POLYGON_VERTICES).contains(&count) && self.prepare_or_fail(vertices, count)
+            || self.fail()
+    }
+
+    /// Writes [`EMPTY`](Self::EMPTY) and returns `false`: the failure of `prepare`.
+    #[cold]
+    #[inline(never)]
+    fn fail(&mut self) -> bool {
+        *self = Self::EMPTY;
+        false
     }
 
     /// The body of [`prepare`](Self::prepare); on `false`, `self` holds partial values.
@@ -112,108 +199,263 @@ impl TurkPolygon {
     #[inline(always)]
     fn prepare_or_fail(&mut self, vertices: &[Vec3], count: usize) -> bool {
         let vertices = &vertices[..count];
-        self.vertices[..count].copy_from_slice(vertices);
-        let v0 = vertices[0];
+        // The unused slots as in the empty value (no stale or NaN word is left), written
+        // first: from slot 5 on for the general body (a constant size, no `memset`
+        // call), the vertices written over them below.
+        for v in &mut self.vertices[count.min(5)..] {
+            *v = Vec3::ZERO;
+        }
+        // The vertices are copied one by one as the fan reads them: stores of the widths
+        // that `sample` loads (a load spanning two stores of a `prepare` just before
+        // cannot take its data from the store buffer), and no `memcpy` call.
+        // The fan in 4-lane vectors (`Vec3A`): one instruction per vector operation.
+        self.vertices[0] = vertices[0];
+        self.vertices[1] = vertices[1];
+        let v0 = Vec3A::from(vertices[0]);
+        let mut a = Vec3A::from(vertices[1]) - v0;
         // Twice the (vector) areas of the fan triangles, summed up in `cdf`.
-        let mut normal_sum = Vec3::ZERO;
+        let mut cdf = [0.0f32; CDF_ENTRIES];
+        let mut normal_sum = Vec3A::ZERO;
         let mut total = 0.0f32;
-        // The largest coordinate of the vectors from v0 to the other vertices.
-        let mut reach = (vertices[1] - v0).abs().max_element();
+        // The largest coordinates of the vectors from v0 to the other vertices, per
+        // axis. (`max` and `max_element` are `maxps`, which may drop a NaN: no matter,
+        // as a NaN coordinate makes the fan's area NaN and the polygon rejected.)
+        let mut reach = a.abs();
         for i in 0..count - 2 {
-            let b = vertices[i + 2] - v0;
-            reach = reach.max(b.abs().max_element());
-            let c = (vertices[i + 1] - v0).cross(b);
+            self.vertices[i + 2] = vertices[i + 2];
+            let b = Vec3A::from(vertices[i + 2]) - v0;
+            reach = reach.max(b.abs());
+            let c = a.cross(b);
             normal_sum += c;
             total += c.length();
-            self.cdf[i] = total;
+            cdf[i + 1] = total;
+            a = b;
+        }
+        let reach = reach.max_element();
+        // The unused entries repeat the total (above every target: never selected): for
+        // the general body, the last three entries by a comparison each rather than a
+        // loop of unknown length.
+        #[allow(clippy::needless_range_loop)] // a fixed range that the compiler unrolls
+        for k in count.min(5) - 1..CDF_ENTRIES {
+            if k + 1 >= count {
+                cdf[k] = total;
+            }
         }
         let doubled_area = normal_sum.length();
         let normal = normal_sum * (1.0 / doubled_area);
-        let area = 0.5 * doubled_area;
         // Signed distance of the plane from the shading point, from the first vertex:
         // rounded by about 4ε |v0| (the normal's rounding and the dot product's).
         let plane_offset = normal.dot(v0);
-        // Rejected: a zero, overflowing or NaN area; a plane through the shading point
-        // within 8ε |v0| (bounded by 8√3 ε times v0's largest coordinate, which cannot
-        // overflow as |v0|² can); a coordinate beyond 2^60 (|v0|∞ + reach bounds every
+        // Rejected: a zero, overflowing or NaN area (`doubled_area`, and the total `T`
+        // that normalises the density); a plane through the shading point within
+        // 8ε |v0| (bounded by 8√3 ε times v0's largest coordinate, which cannot
+        // overflow as |v0|² can), or a non-finite offset (a normal that overflowed for
+        // an area below 2^-128); a coordinate beyond 2^60 (|v0|∞ + reach bounds every
         // vertex's), past which the edge planes of `pdf`, `v_i × (v_(i+1) - v_i)`, and
         // their dot products with a direction of components below 2 could overflow.
         let largest = v0.abs().max_element();
         // (`normal` is then finite too: each component of `normal_sum` is at most its
         // finite length, `doubled_area`.)
-        if !(area > 0.0
-            && area <= f32::MAX
+        if !(doubled_area > 0.0
+            && doubled_area <= f32::MAX
             && total <= f32::MAX
             && largest + reach <= 1.152_921_5e18
-            && plane_offset.abs() > (8.0 * 1.732_050_8 * f32::EPSILON) * largest)
+            && plane_offset.abs() > (8.0 * 1.732_050_8 * f32::EPSILON) * largest
+            && plane_offset.abs() <= f32::MAX)
         {
             return false;
         }
-        self.count = count as u32;
-        self.normal = normal;
-        self.plane_offset = plane_offset;
-        self.area = area;
-        self.inv_area = 1.0 / area;
-        self.checks_samples =
+        // `sample` loads entries 1 to 4 as one 16-byte vector: written as one too (from a
+        // vector register), as a load spanning several smaller stores of a `prepare`
+        // just before waits for them to reach the cache (quads wrote entry 1 alone and
+        // 2 to 5 together: 40% slower per prepare + sample).
+        self.cdf[0] = 0.0;
+        self.cdf[1..5].copy_from_slice(&Vec4::from_slice(&cdf[1..5]).to_array());
+        self.cdf[5] = cdf[5];
+        self.cdf[6] = cdf[6];
+        // Oriented by the sign of d (±1, exact): `facing_normal · P = |d|` on the plane.
+        self.facing_normal = (normal * 1.0f32.copysign(plane_offset)).into();
+        self.density_scale = 2.0 * plane_offset * plane_offset / total;
+        let checks_samples =
             (!(reach > 0.5 * largest)) as u32 + (!(reach > (1.0 / 128.0) * largest)) as u32;
-        // The unused slots as in the empty value: no stale or NaN word is left.
-        for cdf in &mut self.cdf[count - 2..] {
-            *cdf = total;
-        }
-        for v in &mut self.vertices[count..] {
-            *v = Vec3::ZERO;
-        }
+        self.packed = count as u32 | checks_samples << 8 | ((plane_offset < 0.0) as u32) << 16;
         true
     }
 
     /// Draws a direction towards a point uniform in the polygon's area.
     pub fn sample(&self, u: [f32; 2]) -> Sample {
-        let count = crate::polygon::stored_count(self.count, MAX_POLYGON_VERTICES);
-        if count < 3 {
-            return Sample::NONE;
+        match self.sample_common(u) {
+            Some(sample) => sample,
+            None => self.sample_rare(u),
         }
-        let (u0, u1) = (
-            crate::sample::clamp_random(u[0]),
-            crate::sample::clamp_random(u[1]),
-        );
-        // Choose a fan triangle by area, then reuse u0 within it.
-        let triangles = count - 2;
-        let target = u0 * self.cdf[triangles - 1];
-        // The number of fan triangles that end at or before the target, branch-free (the
-        // unused entries repeat the total, above the target), at most the last triangle.
-        let mut i = 0;
-        for end in &self.cdf[..MAX_FAN_TRIANGLES - 1] {
-            i += (*end <= target) as usize;
-        }
-        let i = i.min(triangles - 1);
-        let low = if i == 0 { 0.0 } else { self.cdf[i - 1] };
-        let a = ((target - low) / (self.cdf[i] - low)).min(1.0);
+    }
+
+    /// The vertex count from `packed` when it is 3 to 8 (a prepared polygon's), else
+    /// `None` (the empty value's 0, or a value corrupted by a caller's bug: no sample,
+    /// never an index out of bounds). One comparison: `count - 3` wraps to a huge value
+    /// below 3.
+    #[inline(always)]
+    fn sampled_count(packed: u32) -> Option<usize> {
+        let count = (packed & 0xFF) as usize;
+        (count.wrapping_sub(3) <= MAX_POLYGON_VERTICES - 3).then_some(count)
+    }
+
+    /// The point of Turk's mapping in the fan triangle `i` that `u0` selects, and `i`
+    /// (the same for the common and the rare path of `sample`, bit for bit).
+    ///
+    /// `u1` must lie in [0, 1]. `u0` needs no clamping of its own: the fraction `a` of
+    /// the triangle is clamped into [0, 1] (NaN to 0), so that any `u0` gives a point of
+    /// the polygon; for `u0` in [0, 1) that clamp changes nothing.
+    #[inline(always)]
+    fn fan_point(&self, u0: f32, u1: f32, count: usize) -> (Vec3, usize) {
+        // Choose a fan triangle by area, then reuse u0 within it. The total is the last
+        // entry whatever the count (the unused entries repeat it): a load that does not
+        // wait for the count.
+        let total = self.cdf[MAX_FAN_TRIANGLES];
+        let target = u0 * total;
+        let i = self.fan_triangle(target, count);
+        let (low, high) = (self.cdf[i], self.cdf[i + 1]);
+        // In [0, 1] for u0 in [0, 1): `target - low <= high - low` (the target is at most
+        // the end of its triangle). The clamp takes any other u0 (and the NaN of a
+        // zero-area last triangle) into [0, 1].
+        let a = clamp_unit((target - low) / (high - low));
         // Turk's mapping: P = (1 - √a) A + √a (1 - b) B + √a b C.
         let (p0, p1, p2) = (self.vertices[0], self.vertices[i + 1], self.vertices[i + 2]);
         let s = libm::sqrtf(a);
-        let point = p0 + s * ((p1 - p0) + u1 * (p2 - p1));
+        (p0 + s * ((p1 - p0) + u1 * (p2 - p1)), i)
+    }
+
+    /// The fan triangle that `target` (u0 times the total) falls into.
+    #[inline(always)]
+    fn fan_triangle(&self, target: f32, count: usize) -> usize {
+        // The number of fan triangles that end at or before the target, at most the last
+        // triangle: none to count for a triangle, one comparison for a quad (a branch on
+        // the count, which a renderer's lights of one shape predict), else branch-free.
+        match count {
+            3 => 0,
+            4 => (self.cdf[1] <= target) as usize,
+            _ => {
+                // Branch-free: the unused entries repeat the total, above the target.
+                // Entries 1 to 4 are loaded as one vector, the one that `prepare` writes
+                // (a load spanning two stores of a `prepare` just before waits for them
+                // to reach the cache; left to itself, the compiler of a build for
+                // AVX-512 loaded entries 2 to 5). Their comparisons give a mask that is
+                // a prefix of ones (the entries never decrease), whose number of ones is
+                // the number of trailing zeros of mask + 1 (not 0: `bsf` or `tzcnt`);
+                // entry 5 is at or below the target only if all before it are. (Entries
+                // that a caller's bug corrupted give a wrong count, at most 5, clamped.)
+                let ends = Vec4::from_slice(&self.cdf[1..5]);
+                let mask = ends.cmple(Vec4::splat(target)).bitmask();
+                let below = core::num::NonZeroU32::MIN
+                    .saturating_add(mask)
+                    .trailing_zeros();
+                (below as usize + (self.cdf[5] <= target) as usize).min(count - 3)
+            }
+        }
+    }
+
+    /// The sample of the common case, `None` for the rare one (then
+    /// [`sample_rare`](Self::sample_rare) gives it): the empty value, polygons whose
+    /// samples `sample` checks against the edge planes (`checks_samples`), `u1` outside
+    /// [0, 1), points whose `|P|²` lies outside (1e-30, 1e30), and no density (a
+    /// direction that rounding put behind the plane). Equal to `sample_rare` bit for bit
+    /// where it gives a sample (the same computation without those branches). Without
+    /// calls and with one return value, so that the C entry point keeps everything in
+    /// registers and reaches the rare path by one call on that path only.
+    #[inline(always)]
+    pub(crate) fn sample_common(&self, u: [f32; 2]) -> Option<Sample> {
+        let packed = self.packed;
+        // The count (bits 0–7) in 3..=8 and `checks_samples` (bits 8–15) zero, in one
+        // comparison: a nonzero `checks_samples` makes the low half 256 or more.
+        let count = (packed & 0xFFFF) as usize;
+        // u1 in [0, 1), where its clamp changes nothing: as unsigned integers, the bits
+        // of the floats in [0, 1) are those below the bits of 1.0 (`0x3F80_0000`); 1
+        // and above, NaN (above +∞) and negative values (the sign bit) are not.
+        if count.wrapping_sub(3) > MAX_POLYGON_VERTICES - 3 || u[1].to_bits() >= 0x3F80_0000 {
+            return None;
+        }
+        let point = self.fan_point(u[0], u[1], count).0;
+        let distance_squared = point.length_squared();
+        if !(distance_squared > 1e-30 && distance_squared < 1e30) {
+            return None;
+        }
+        let dir = point * (1.0 / libm::sqrtf(distance_squared));
+        let pdf = self.density(self.facing_normal.dot(dir));
+        is_density(pdf).then_some(Sample { dir, pdf })
+    }
+
+    /// [`sample`](Self::sample) for every polygon and point, the rare cases included
+    /// (see [`sample_common`](Self::sample_common)).
+    #[inline(never)]
+    pub(crate) fn sample_rare(&self, u: [f32; 2]) -> Sample {
+        let packed = self.packed;
+        let Some(count) = Self::sampled_count(packed) else {
+            return Sample::NONE;
+        };
+        let u1 = crate::sample::clamp_random(u[1]);
+        let (point, i) = self.fan_point(u[0], u1, count);
         let mut dir = to_unit(point);
         // `pdf` is 0 outside the polygon up to a slack of a small fraction of the
         // polygon's size (issue 16, 1), and rounding can put a point sampled next to an
         // edge farther out than that for small polygons (`checks_samples`; larger ones
         // have the slack of 16 ulps and skip the test). Such a point is pulled towards
-        // the fan triangle's centroid until inside (`INWARD_PULLS`).
-        if self.checks_samples != 0 && !self.contains_scaled(dir, count) {
-            match self.pulled_inside(point, (p0 + p1 + p2) * (1.0 / 3.0), count) {
-                Some(pulled) => dir = pulled,
-                None => return Sample::NONE,
-            }
+        // the fan triangle's centroid until inside (`INWARD_PULLS`); zero when no pull
+        // gets inside (its cosine 0 gives no density below).
+        if packed & 0xFF00 != 0 {
+            dir = self
+                .checked_inside(dir.x, dir.y, dir.z, point.x, point.y, point.z, i, count)
+                .into();
         }
-        // The pdf as `pdf(dir)` computes it, from the ray's intersection with the plane
-        // rather than from `point`: the two differ by rounding amplified by
-        // `1 / cos θ_light` (found by fuzzing: 3% for far polygons), and MIS needs
-        // `pdf(sample.dir) == sample.pdf`. `pdf` passes a unit direction to
-        // `density_along` as it is (and scales others by a power of two, which
-        // `|dir| / |n · dir|` does not notice): bit for bit wherever `pdf` finds `dir`
-        // inside.
-        // `dir` is finite here (a unit vector, or zero where `point` was not finite), so
-        // a positive pdf, finite by `density_along`, makes a sample.
-        Sample::new_or_none(dir, self.density_along(dir))
+        self.sample_along(dir)
+    }
+
+    /// The sample in direction `dir` (zero, or a unit vector to within 2e-6 in `|dir|²`:
+    /// the normalisations above round it by a few ulps), with the pdf as `pdf(dir)`
+    /// computes it, from the ray's intersection with the plane rather than from the
+    /// sampled point: the two differ by rounding amplified by `1 / cos θ_light` (found
+    /// by fuzzing: 3% for far polygons), and MIS needs `pdf(sample.dir) == sample.pdf`.
+    /// `pdf` takes the cosine of such a direction as `facing_normal · dir` too: bit for
+    /// bit wherever `pdf` finds `dir` inside. A zero `dir` (from a non-finite point) has
+    /// cosine 0 and no density.
+    #[inline(always)]
+    fn sample_along(&self, dir: Vec3) -> Sample {
+        let pdf = self.density(self.facing_normal.dot(dir));
+        if is_density(pdf) {
+            Sample { dir, pdf }
+        } else {
+            Sample::NONE
+        }
+    }
+
+    /// `dir` (the unit direction of `point`, sampled in fan triangle `i`) when `pdf`
+    /// finds it inside, else `point` pulled towards the triangle's centroid until inside,
+    /// else zero. (Coordinates one by one: see [`Xyz`].)
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    extern "C" fn checked_inside(
+        &self,
+        dx: f32,
+        dy: f32,
+        dz: f32,
+        px: f32,
+        py: f32,
+        pz: f32,
+        i: usize,
+        count: usize,
+    ) -> Xyz {
+        let (dir, point) = (Vec3::new(dx, dy, dz), Vec3::new(px, py, pz));
+        let inside = if self.contains_scaled(dir, count) {
+            dir
+        } else {
+            let (p0, p1, p2) = (self.vertices[0], self.vertices[i + 1], self.vertices[i + 2]);
+            self.pulled_inside(point, (p0 + p1 + p2) * (1.0 / 3.0), count)
+                .unwrap_or(Vec3::ZERO)
+        };
+        Xyz {
+            x: inside.x,
+            y: inside.y,
+            z: inside.z,
+        }
     }
 
     /// `point` (a sample just outside `pdf`'s support) pulled towards `centroid` (inside)
@@ -227,32 +469,28 @@ impl TurkPolygon {
             .find(|&pulled| self.contains_scaled(pulled, count))
     }
 
-    /// `|P|² / (area · |cos θ_light|)` for the point `P = t dir` where the ray along `dir`
-    /// meets the polygon's plane `n · P = d`, in the form
-    /// `d² (|dir| / |n · dir|)³ / area` (with `t = d / (n · dir)`, `|P| = |t| |dir|` and
-    /// `cos θ_light = |n · dir| / |dir|`): homogeneous of degree 0 in `dir`. `|dir|` is
-    /// taken as exactly 1 where `|dir|²` is within 2e-6 of 1 (every sample's direction:
-    /// a relative change of the density below 3e-6, and no square root on the sample's
-    /// path); other lengths scale exactly under powers of two. 0 where the ray does not
-    /// meet the plane in front and where the result is not finite.
+    /// `|P|² / (area · cos θ_light)` for the point `P` where a ray with
+    /// `cos θ_light = cosine` meets the polygon's plane, `T` being twice the area: with
+    /// `|P| = |d| / cos θ_light`, `2 d² / (T cos³ θ_light)`, the stored `2 d² / T` over
+    /// `cos³` (one division). Not a density where `cosine <= 0` or NaN (the ray misses
+    /// the plane in front: a negative, infinite or NaN value) or where it overflows; the
+    /// callers keep only [`is_density`] values. (`2 d²` is below 2^125 by the 2^60 bound
+    /// of `prepare`; where `2 d² / T` overflows, every density would.)
     #[inline(always)]
-    fn density_along(&self, dir: Vec3) -> f32 {
-        // In front (t = d / (n · dir) > 0) when `n · dir` has the sign of `d`: the
-        // product with ±1 (`copysign`, exact, so no underflow to zero) is positive.
-        // NaN fails the test.
-        let facing = self.normal.dot(dir) * 1.0f32.copysign(self.plane_offset);
-        if !(facing > 0.0) {
-            return 0.0;
-        }
-        let length_squared = dir.length_squared();
-        let length = if (length_squared - 1.0).abs() <= 2e-6 {
-            1.0
-        } else {
-            libm::sqrtf(length_squared)
-        };
-        let ratio = length / facing;
-        let pdf = self.plane_offset * self.plane_offset * self.inv_area * (ratio * ratio * ratio);
-        if pdf.is_finite() { pdf } else { 0.0 }
+    fn density(&self, cosine: f32) -> f32 {
+        self.density_scale / (cosine * (cosine * cosine))
+    }
+
+    /// The vertex count (from `packed`), clamped to the maximum.
+    #[inline(always)]
+    fn count(&self) -> usize {
+        crate::polygon::stored_count(self.packed & 0xFF, MAX_POLYGON_VERTICES)
+    }
+
+    /// `checks_samples` (from `packed`).
+    #[inline(always)]
+    fn checks_samples(&self) -> u32 {
+        (self.packed >> 8) & 0xFF
     }
 
     /// The density per steradian of [`sample`](Self::sample) in direction `dir` (need
@@ -264,24 +502,31 @@ impl TurkPolygon {
     /// sampled on an edge count as inside; otherwise the ray's intersection with the
     /// polygon's plane gives `|P|² / (area · |cos θ_light|)`.
     pub fn pdf(&self, dir: Vec3) -> f32 {
-        let count = crate::polygon::stored_count(self.count, MAX_POLYGON_VERTICES);
+        let count = self.count();
         let largest = dir.abs().max_element();
         if count < 3 || !(largest > 0.0 && largest.is_finite()) {
             return 0.0;
         }
         // Scaled by a power of two (exact) to a largest component in [1, 2), against
         // overflow and underflow: `2^(127 − E)` for the biased exponent `E`, the bit
-        // trick of the polygon samplers' rescaling. Every test below and
-        // `density_along` scale exactly with it, so the result is that of `dir` itself.
+        // trick of the polygon samplers' rescaling. Every test below and the cosine
+        // scale exactly with it, so the result is that of `dir` itself.
         let biased_exponent = (largest.to_bits() >> 23) & 0xFF;
         let scaled = dir * f32::from_bits(254u32.saturating_sub(biased_exponent).max(1) << 23);
         if !self.contains_scaled(scaled, count) {
             return 0.0;
         }
-        // A unit direction (a sample's) as it is, so that its density is the sample's
-        // bit for bit (`density_along` takes its length as 1); others scaled.
+        // A unit direction (a sample's: `|dir|²` within 2e-6 of 1) as it is, so that its
+        // density is the sample's bit for bit (cosine `facing_normal · dir`, a relative
+        // change of the density below 3e-6); others by their length.
         let unit = (dir.length_squared() - 1.0).abs() <= 2e-6;
-        self.density_along(if unit { dir } else { scaled })
+        let cosine = if unit {
+            self.facing_normal.dot(dir)
+        } else {
+            self.facing_normal.dot(scaled) / libm::sqrtf(scaled.length_squared())
+        };
+        let pdf = self.density(cosine);
+        if is_density(pdf) { pdf } else { 0.0 }
     }
 
     /// Whether the ray along `dir` (largest component in `[1, 2)`, or a unit vector)
@@ -298,7 +543,11 @@ impl TurkPolygon {
     /// 1e-6 sr polygon). Samples that rounding puts outside are pulled in by `sample`.
     #[inline]
     fn contains_scaled(&self, dir: Vec3, count: usize) -> bool {
-        let orientation = if self.plane_offset > 0.0 { 1.0 } else { -1.0 };
+        let orientation = if self.packed & 0x1_0000 == 0 {
+            1.0
+        } else {
+            -1.0
+        };
         let scale = dir.abs().element_sum();
         for i in 0..count {
             let v = self.vertices[i];
@@ -306,7 +555,7 @@ impl TurkPolygon {
             // Tiny polygons (`checks_samples == 2`): the edge's plane to about ε² and a
             // compensated dot product, so that the boundary carries no systematic shift
             // of an ulp (`∫ pdf dω` was 1.00043 at 8e-10 sr with the plain forms).
-            let side = if self.checks_samples >= 2 {
+            let side = if self.checks_samples() >= 2 {
                 let (normal, residual) = crate::math::cross_with_residual(v, edge);
                 orientation * (crate::math::dot_precise(normal, dir) + residual.dot(dir))
             } else {
@@ -324,9 +573,14 @@ impl TurkPolygon {
         true
     }
 
-    /// The polygon's area.
+    /// The polygon's area (half the total `T` of the fan's doubled areas).
     pub fn area(&self) -> f32 {
-        self.area
+        let count = self.count();
+        if count < 3 {
+            0.0
+        } else {
+            0.5 * self.cdf[MAX_FAN_TRIANGLES]
+        }
     }
 }
 
@@ -573,6 +827,122 @@ mod tests {
                             s.pdf
                         );
                     }
+                }
+            }
+        }
+    }
+
+    /// Which polygons and points `sample_common` (the C entry point's inline path)
+    /// leaves to `sample_rare`: polygons whose samples are checked against the edge
+    /// planes (`checks_samples` 1 or 2), and points whose `|P|²` lies outside
+    /// (1e-30, 1e30); the empty value and `u1` outside [0, 1).
+    #[test]
+    fn turk_common_and_rare_paths_are_pinned() {
+        let u = [0.3, 0.6];
+        let ordinary = TurkPolygon::new(&moderate(5, false)).unwrap();
+        assert_eq!(ordinary.checks_samples(), 0);
+        assert!(ordinary.sample_common(u).is_some());
+        // Extent below half the distance (checks 1), and below 1/128 of it (checks 2).
+        for (size, checks) in [(0.1, 1), (1e-3, 2)] {
+            let small = TurkPolygon::new(&scaled_quad(size, 0.1)).unwrap();
+            assert_eq!(small.checks_samples(), checks, "{size}");
+            assert!(small.sample_common(u).is_none(), "{size}");
+        }
+        // |P|² beyond 1e30: a sliver 2e17 long, 1 wide and 1e12 away (no checks: its
+        // extent exceeds its distance). (An accepted polygon whose points are that far,
+        // or within 1e-15 of the shading point, is a sliver: otherwise the squares of
+        // its area in `prepare` overflow or underflow and reject it.)
+        let far = [
+            Vec3::new(-1e17, 0.0, 1e12),
+            Vec3::new(1e17, 0.0, 1e12),
+            Vec3::new(1e17, 1.0, 1e12),
+            Vec3::new(-1e17, 1.0, 1e12),
+        ];
+        let sliver = TurkPolygon::new(&far).unwrap();
+        assert_eq!(sliver.checks_samples(), 0);
+        assert!(sliver.sample_common(u).is_none());
+        assert!(sliver.sample(u).pdf > 0.0);
+        // The empty value, u1 outside [0, 1) (u0 outside needs no care: its fraction of
+        // the triangle is clamped on both paths), and a polygon's other side.
+        assert_eq!(TurkPolygon::EMPTY.sample_common(u), None);
+        assert_eq!(TurkPolygon::EMPTY.sample(u), Sample::NONE);
+        for u1 in [1.0, -0.0, -0.5, 2.0, f32::NAN, f32::INFINITY] {
+            assert!(ordinary.sample_common([0.3, u1]).is_none(), "{u1}");
+        }
+        for u0 in [1.0, -0.5, 2.0, f32::NAN] {
+            assert!(ordinary.sample_common([u0, 0.6]).is_some(), "{u0}");
+        }
+    }
+
+    /// The common path gives `sample_rare`'s sample bit for bit wherever it gives one,
+    /// over random polygons of every size and distance and random numbers including
+    /// the edges of [0, 1) and values outside it.
+    #[test]
+    fn turk_common_path_matches_the_rare_path_bit_for_bit() {
+        let mut rng = Rng::new(77);
+        let odd = [0.0, crate::sample::ONE_MINUS_ULP, 1.0, -0.5, 2.0, f32::NAN];
+        let (mut common, mut rare) = (0u32, 0u32);
+        for trial in 0..3000 {
+            let distance = 10f64.powf(40.0 * rng.uniform() - 20.0);
+            let c = d3(rng.unit_vector_f32());
+            let center = [c[0] * distance, c[1] * distance, c[2] * distance];
+            let radius = distance * 10f64.powf(-3.0 * rng.uniform());
+            let normal = d3(rng.unit_vector_f32());
+            let vertices = circle_polygon(3 + trial % 6, center, normal, radius, trial % 2 == 1);
+            let Some(polygon) = TurkPolygon::new(&vertices) else {
+                continue;
+            };
+            for k in 0..12 {
+                let u = if k < 6 {
+                    [rng.uniform_f32(), rng.uniform_f32()]
+                } else {
+                    [odd[k - 6], odd[(k + trial) % 6]]
+                };
+                let careful = polygon.sample_rare(u);
+                match polygon.sample_common(u) {
+                    Some(fast) => {
+                        common += 1;
+                        assert_eq!(
+                            fast.pdf.to_bits(),
+                            careful.pdf.to_bits(),
+                            "{vertices:?} {u:?}"
+                        );
+                        assert_eq!(
+                            fast.dir.to_array().map(f32::to_bits),
+                            careful.dir.to_array().map(f32::to_bits)
+                        );
+                    }
+                    None => rare += 1,
+                }
+                assert_eq!(polygon.sample(u), careful);
+            }
+        }
+        assert!(
+            common > 2_000 && rare > 1_000,
+            "{common} common, {rare} rare"
+        );
+    }
+
+    /// The fan triangle of a target: the shortcuts of triangles (none to search) and
+    /// quads (one comparison) give the branch-free count of the other polygons, at
+    /// random targets, at the entries themselves, at 0, the total and beyond, and NaN.
+    #[test]
+    fn turk_fan_triangle_shortcuts_match_the_count() {
+        let mut rng = Rng::new(91);
+        for n in 3..=MAX_POLYGON_VERTICES {
+            for reversed in [false, true] {
+                let polygon = TurkPolygon::new(&moderate(n, reversed)).unwrap();
+                let total = polygon.cdf[MAX_FAN_TRIANGLES];
+                let mut targets = vec![0.0, total, 2.0 * total, f32::NAN, -1.0];
+                targets.extend_from_slice(&polygon.cdf);
+                targets.extend((0..200).map(|_| rng.uniform_f32() * total));
+                for target in targets {
+                    let counted = polygon.cdf[1..MAX_FAN_TRIANGLES]
+                        .iter()
+                        .filter(|&&end| end <= target)
+                        .count()
+                        .min(n - 3);
+                    assert_eq!(polygon.fan_triangle(target, n), counted, "{n} {target}");
                 }
             }
         }
