@@ -262,25 +262,7 @@ pub(crate) fn pivot_cap_fast(cap: &Cap, pivot: Vec3) -> (Cap, PivotPath) {
     let across = libm::sqrtf(across2);
     let tangent = perpendicular * (1.0 / across);
     let p = Vec2::new(along, across.min(MAX_PIVOT_LENGTH));
-    let sin = libm::sqrtf(cap.sin2.max(0.0).min(1.0));
-    let cos = cap.cos();
-    let e1 = Vec2::new(cos, -sin) - p;
-    let e2 = Vec2::new(cos, sin) - p;
-    let ec = Vec2::X - p;
-    let (l1, l2, lc) = (
-        e1.length_squared(),
-        e2.length_squared(),
-        ec.length_squared(),
-    );
-    let rho2 = p.length_squared();
-    let rho = libm::sqrtf(rho2);
-    let k = (1.0 - rho) * (1.0 + rho);
-    // g(ω) of Eq. 2 (as in `transform_2d`; unit in exact arithmetic, not renormalised:
-    // the side test's bound below allows for the rounding).
-    let g = |e: Vec2, l: f32| p - e * (k / l);
-    let (g1, g2, gc) = (g(e1, l1), g(e2, l2), g(ec, lc));
-    // sin ψ' = k sin θ / (|e₁||e₂|), squared: k² sin²θ / (|e₁|²|e₂|²).
-    let sin2 = (k * k * cap.sin2) / (l1 * l2);
+    let ([g1, g2, gc], sin2) = images_in_plane(cap, p, p.length_squared());
     let a = g1 - gc;
     let b = g2 - gc;
     let q = a.dot(b);
@@ -315,6 +297,33 @@ pub(crate) fn pivot_cap_fast(cap: &Cap, pivot: Vec3) -> (Cap, PivotPath) {
         }
     };
     (image, PivotPath::Fast)
+}
+
+/// In the plane of a cap's axis (x) and the pivot `p` (y ≥ 0; `rho2 = |r_p|²`), the
+/// images under `g` (Eq. 2, as in `transform_2d`) of the cap's boundary points
+/// `ωᵢ = (cos θ, ∓ sin θ)` and of its center `(1, 0)`, and `sin²ψ'` of the image: with
+/// `eᵢ = ωᵢ − p` and `k = 1 − |r_p|²`, `g(ω) = p − k e / |e|²`, unit in exact arithmetic
+/// and not renormalised (the callers' side tests allow for the rounding), and
+/// `sin ψ' = k sin θ / (|e₁||e₂|)` squared (see [`pivot_cap_fast`]). Shared by
+/// [`pivot_cap_fast`] and the real-time shading's one-pass image
+/// (`shading_fast::pivoted_intersection_fast`).
+#[inline(always)]
+pub(crate) fn images_in_plane(cap: &Cap, p: Vec2, rho2: f32) -> ([Vec2; 3], f32) {
+    let sin = libm::sqrtf(cap.sin2.max(0.0).min(1.0));
+    let cos = cap.cos();
+    let e1 = Vec2::new(cos, -sin) - p;
+    let e2 = Vec2::new(cos, sin) - p;
+    let ec = Vec2::X - p;
+    let (l1, l2, lc) = (
+        e1.length_squared(),
+        e2.length_squared(),
+        ec.length_squared(),
+    );
+    let rho = libm::sqrtf(rho2);
+    let k = (1.0 - rho) * (1.0 + rho);
+    let g = |e: Vec2, l: f32| p - e * (k / l);
+    let sin2 = (k * k * cap.sin2) / (l1 * l2);
+    ([g(e1, l1), g(e2, l2), g(ec, lc)], sin2)
 }
 
 #[cfg(test)]

@@ -30,6 +30,7 @@
 
 use super::cap::Cap;
 use super::cap_intersection::at_most_hemispheres_fast;
+use super::pivot::images_in_plane;
 use core::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
@@ -65,21 +66,7 @@ pub(crate) fn pivoted_intersection_fast(light: &Cap, pivot: &Vec3, clip: &Cap) -
     }
     let across = libm::sqrtf(across2);
     let p = Vec2::new(along, across);
-    let sin = libm::sqrtf(light.sin2.max(0.0).min(1.0));
-    let cos = light.cos();
-    let e1 = Vec2::new(cos, -sin) - p;
-    let e2 = Vec2::new(cos, sin) - p;
-    let ec = Vec2::X - p;
-    let (l1, l2, lc) = (
-        e1.length_squared(),
-        e2.length_squared(),
-        ec.length_squared(),
-    );
-    let rho = libm::sqrtf(rho2);
-    let k = (1.0 - rho) * (1.0 + rho);
-    let g = |e: Vec2, l: f32| p - e * (k / l);
-    let (g1, g2, gc) = (g(e1, l1), g(e2, l2), g(ec, lc));
-    let sin2 = (k * k * light.sin2) / (l1 * l2);
+    let ([g1, g2, gc], sin2) = images_in_plane(light, p, rho2);
     let a = g1 - gc;
     let b = g2 - gc;
     let q = a.dot(b);
