@@ -877,18 +877,26 @@ mod tests {
     /// The common path gives `sample_rare`'s sample bit for bit wherever it gives one,
     /// over random polygons of every size and distance and random numbers including
     /// the edges of [0, 1) and values outside it.
+    /// A convex polygon of `3 + trial % 6` vertices on a circle, at a distance
+    /// log-uniform in `[10^-decades, 10^decades]` in a random direction, of radius that
+    /// distance times `10^-x` with `x` uniform in `[0, shrink]`, facing a random way and
+    /// wound both ways (odd trials reversed).
+    fn random_polygon(rng: &mut Rng, trial: usize, decades: f64, shrink: f64) -> Vec<Vec3> {
+        let distance = 10f64.powf(2.0 * decades * rng.uniform() - decades);
+        let c = d3(rng.unit_vector_f32());
+        let center = [c[0] * distance, c[1] * distance, c[2] * distance];
+        let radius = distance * 10f64.powf(-shrink * rng.uniform());
+        let normal = d3(rng.unit_vector_f32());
+        circle_polygon(3 + trial % 6, center, normal, radius, trial % 2 == 1)
+    }
+
     #[test]
     fn turk_common_path_matches_the_rare_path_bit_for_bit() {
         let mut rng = Rng::new(77);
         let odd = [0.0, crate::sample::ONE_MINUS_ULP, 1.0, -0.5, 2.0, f32::NAN];
         let (mut common, mut rare) = (0u32, 0u32);
         for trial in 0..3000 {
-            let distance = 10f64.powf(40.0 * rng.uniform() - 20.0);
-            let c = d3(rng.unit_vector_f32());
-            let center = [c[0] * distance, c[1] * distance, c[2] * distance];
-            let radius = distance * 10f64.powf(-3.0 * rng.uniform());
-            let normal = d3(rng.unit_vector_f32());
-            let vertices = circle_polygon(3 + trial % 6, center, normal, radius, trial % 2 == 1);
+            let vertices = random_polygon(&mut rng, trial, 20.0, 3.0);
             let Some(polygon) = TurkPolygon::new(&vertices) else {
                 continue;
             };
@@ -958,12 +966,7 @@ mod tests {
         let mut rng = Rng::new(41);
         let (mut drawn, mut on_edge) = (0u32, 0u32);
         for trial in 0..2000 {
-            let distance = 10f64.powf(60.0 * rng.uniform() - 30.0);
-            let c = d3(rng.unit_vector_f32());
-            let center = [c[0] * distance, c[1] * distance, c[2] * distance];
-            let radius = distance * 10f64.powf(-4.0 * rng.uniform());
-            let normal = d3(rng.unit_vector_f32());
-            let vertices = circle_polygon(3 + trial % 6, center, normal, radius, trial % 2 == 1);
+            let vertices = random_polygon(&mut rng, trial, 30.0, 4.0);
             let Some(polygon) = TurkPolygon::new(&vertices) else {
                 continue;
             };
