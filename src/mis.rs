@@ -62,6 +62,8 @@
 //! `[0, 1]` and NaN; unbiasedness with an occluder and with an integrand not of the form
 //! `V Σ c_k p_k`, with techniques that vanish on parts of the domain.
 
+use glam::Vec3A;
+
 /// The default visibility estimate `v = 1/2` of clamped optimal MIS (Peters 2021).
 pub const DEFAULT_VISIBILITY: f32 = 0.5;
 
@@ -355,6 +357,130 @@ pub fn optimal_mis_contribution(
         f / scale.largest / sum
     };
     finite_or_zero(v * (contribution_value(contributions[j]) - mean_c) + balance)
+}
+
+/// The weighted heuristics of two techniques for all three colour channels at once:
+/// [`weighted_balance_heuristic`], [`clamped_optimal_mis_contribution`] and
+/// [`optimal_mis_contribution`] evaluated per channel with per-channel contributions
+/// `c_0`, `c_1`, four lanes wide, with the same operations in the same order as the
+/// scalar functions, so that each channel is bit for bit their result (tested). For the
+/// polygon light (issue 18, 3), whose three scalar evaluations with slices repeated
+/// the pdfs' scaling per channel.
+///
+/// Valid for pdfs `p_j > 0` and `p_{1-j} >= 0`, both finite (every sampler's pdf):
+/// [`TwoTechniques::new`] returns `None` otherwise, and the caller takes the scalar
+/// functions.
+#[derive(Clone, Copy)]
+pub(crate) struct TwoTechniques {
+    /// `r_k = p_k / max p`.
+    ratios: [f32; 2],
+    /// `r_0 + r_1` (at least 1) and its reciprocal.
+    sum: f32,
+    inverse_sum: f32,
+    /// `max p`.
+    largest: f32,
+    /// The sample's technique.
+    j: usize,
+    /// `c_k` with NaN, negative and infinite entries as 0 (`contribution_value`).
+    c: [Vec3A; 2],
+    /// `max(c_0, c_1)` per channel.
+    largest_c: Vec3A,
+    /// `Σ_k (c_k / max c) r_k` per channel (NaN where `max c = 0`).
+    weighted_sum: Vec3A,
+}
+
+/// `contribution_value` per lane: `c` where `0 < c < ∞`, else 0.
+#[inline(always)]
+fn contribution_values(c: Vec3A) -> Vec3A {
+    Vec3A::select(
+        c.cmpgt(Vec3A::ZERO) & c.cmplt(Vec3A::INFINITY),
+        c,
+        Vec3A::ZERO,
+    )
+}
+
+/// Lanes of `x` that are finite, 0 elsewhere (`finite_or_zero` per lane).
+#[inline(always)]
+fn finite_or_zero_lanes(x: Vec3A) -> Vec3A {
+    Vec3A::select(x.is_finite_mask(), x, Vec3A::ZERO)
+}
+
+impl TwoTechniques {
+    /// The shared terms for the sample of technique `j` with densities `pdfs` and
+    /// per-channel contributions `contributions`; `None` unless `pdfs[j] > 0`,
+    /// `pdfs[1 - j] >= 0` and both are finite.
+    #[inline(always)]
+    pub(crate) fn new(pdfs: [f32; 2], contributions: [Vec3A; 2], j: usize) -> Option<Self> {
+        let j = j.min(1);
+        let (p, q) = (pdfs[j], pdfs[1 - j]);
+        if !(p > 0.0 && p < f32::INFINITY && q >= 0.0 && q < f32::INFINITY) {
+            return None;
+        }
+        // As `Scale`: the largest pdf and the ratios to it; their sum is at least 1.
+        let pdfs = [pdf_value(pdfs[0]), pdf_value(pdfs[1])];
+        let largest = pdfs[0].max(pdfs[1]);
+        let ratios = [pdfs[0] / largest, pdfs[1] / largest];
+        let sum = 0.0 + ratios[0] + ratios[1];
+        let c = [
+            contribution_values(contributions[0]),
+            contribution_values(contributions[1]),
+        ];
+        let largest_c = Vec3A::ZERO.max(c[0]).max(c[1]);
+        // As `weighted_share`'s sum, `0 + term_0 + term_1` (the iterator's sum starts at 0).
+        let weighted_sum =
+            Vec3A::ZERO + c[0] / largest_c * ratios[0] + c[1] / largest_c * ratios[1];
+        Some(TwoTechniques {
+            ratios,
+            sum,
+            inverse_sum: 1.0 / sum,
+            largest,
+            j,
+            c,
+            largest_c,
+            weighted_sum,
+        })
+    }
+
+    /// Where the weighted share `c_j r_j / Σ c r` exists (`max c > 0` and `Σ > 0`).
+    #[inline(always)]
+    fn weighted(&self) -> glam::BVec3A {
+        self.largest_c.cmpgt(Vec3A::ZERO) & self.weighted_sum.cmpgt(Vec3A::ZERO)
+    }
+
+    /// `f (w_j / p_j)` per channel with `w_j` [`weighted_balance_heuristic`].
+    #[inline(always)]
+    pub(crate) fn weighted_balance(&self, f: Vec3A, p_j: f32) -> Vec3A {
+        let r = self.ratios[self.j];
+        let share = self.c[self.j] / self.largest_c * r / self.weighted_sum;
+        let balance = Vec3A::splat(r / self.sum);
+        f * (Vec3A::select(self.weighted(), share, balance) / p_j)
+    }
+
+    /// [`clamped_optimal_mis_contribution`] per channel, for `f` and visibility `v`.
+    #[inline(always)]
+    pub(crate) fn clamped_optimal(&self, f: Vec3A, visibility: f32) -> Vec3A {
+        let v = visibility.max(0.0).min(1.0);
+        let blended = v * (self.c[self.j] / self.largest_c) / self.weighted_sum
+            + (1.0 - v) * self.inverse_sum;
+        let factor = Vec3A::select(self.weighted(), blended, Vec3A::splat(self.inverse_sum));
+        let contribution = finite_or_zero_lanes(f / self.largest * factor);
+        // A non-finite f gives 0 (checked before the product in the scalar form).
+        Vec3A::select(f.is_finite_mask(), contribution, Vec3A::ZERO)
+    }
+
+    /// [`optimal_mis_contribution`] per channel with `f = 0`: the part of optimal MIS
+    /// that does not depend on visibility, `v (c_j − Σ c p / Σ p)`.
+    #[inline(always)]
+    pub(crate) fn optimal_unoccluded(&self, visibility: f32) -> Vec3A {
+        let v = visibility.max(0.0).min(1.0);
+        let mean_c = Vec3A::select(
+            self.largest_c.cmpgt(Vec3A::ZERO),
+            self.largest_c * (self.weighted_sum / self.sum),
+            Vec3A::ZERO,
+        );
+        // `+ 0`: the scalar form adds its balance term, `0 / max p / Σ r`.
+        finite_or_zero_lanes(v * (self.c[self.j] - mean_c) + Vec3A::ZERO)
+    }
 }
 
 #[inline(always)]

@@ -617,3 +617,73 @@ fn bad_contributions_visibility_and_integrands_are_handled() {
     assert_eq!(balance_heuristic(&[1.0], 3), 0.0);
     assert_eq!(power_heuristic(&[1.0], 1), 0.0);
 }
+
+/// A contribution or integrand value for the per-channel test: mostly ordinary, with
+/// zeros, negatives, NaN, infinities and the extremes of the range.
+fn random_channel_value(rng: &mut Rng) -> f32 {
+    match rng.below(12) {
+        0 => 0.0,
+        1 => -(rng.log_uniform(-3.0, 3.0) as f32),
+        2 => f32::NAN,
+        3 => f32::INFINITY,
+        4 => rng.log_uniform(-44.0, 38.0) as f32,
+        _ => rng.log_uniform(-3.0, 3.0) as f32,
+    }
+}
+
+#[test]
+fn the_two_technique_channels_are_the_scalar_heuristics_bit_for_bit() {
+    let mut rng = Rng::new(47);
+    let mut compared = 0;
+    for _ in 0..200_000 {
+        let pdfs = random_pdfs(&mut rng, 2, true);
+        let pdfs = [pdfs[0], pdfs[1]];
+        let j = rng.below(2) as usize;
+        let c = [0, 1].map(|_| {
+            Vec3A::new(
+                random_channel_value(&mut rng),
+                random_channel_value(&mut rng),
+                random_channel_value(&mut rng),
+            )
+        });
+        let f = Vec3A::new(
+            random_channel_value(&mut rng),
+            random_channel_value(&mut rng),
+            random_channel_value(&mut rng),
+        );
+        let v = match rng.below(6) {
+            0 => f32::NAN,
+            1 => -0.5,
+            2 => 1.5,
+            _ => rng.uniform() as f32,
+        };
+        let Some(two) = TwoTechniques::new(pdfs, c, j) else {
+            // Only a zero pdf of the sample's own technique is refused here.
+            assert!(!(pdfs[j] > 0.0), "{pdfs:?} {j}");
+            continue;
+        };
+        compared += 1;
+        let (weighted, clamped, unoccluded) = (
+            two.weighted_balance(f, pdfs[j]),
+            two.clamped_optimal(f, v),
+            two.optimal_unoccluded(v),
+        );
+        for k in 0..3 {
+            let ck = [c[0][k], c[1][k]];
+            let expected = [
+                f[k] * (weighted_balance_heuristic(&pdfs, &ck, j) / pdfs[j]),
+                clamped_optimal_mis_contribution(f[k], &pdfs, &ck, v, j),
+                optimal_mis_contribution(0.0, &pdfs, &ck, v, j),
+            ];
+            let got = [weighted[k], clamped[k], unoccluded[k]];
+            for (g, e) in got.iter().zip(expected) {
+                assert!(
+                    g.to_bits() == e.to_bits() || (g.is_nan() && e.is_nan()),
+                    "{got:?} != {expected:?}: pdfs {pdfs:?}, j {j}, c {ck:?}, f {}, v {v}",
+                    f[k]
+                );
+            }
+        }
+    }
+    assert!(compared > 100_000, "{compared}");
+}

@@ -250,12 +250,35 @@ impl GgxBrdf {
     /// the value is not finite (both directions grazing within ~1e-38).
     #[inline(always)]
     fn eval_unit(&self, wo: Vec3, wi: Vec3) -> Option<(f32, f32)> {
-        // wo + wi != 0 for two directions above the horizon.
-        let h = unit(wo + wi)?;
-        let f = self.d_unit(h) / (2.0 * (wi.z * self.r(wo) + wo.z * self.r(wi)));
-        // ωo·h = ωi·h for the half vector; the mean keeps eval exactly symmetric.
-        let cos_d = 0.5 * (wo.dot(h) + wi.dot(h));
+        let s = wo + wi;
+        let (d, length2) = self.d_of_sum(s)?;
+        let f = d / (2.0 * (wi.z * self.r(wo) + wo.z * self.r(wi)));
+        // ωo·h = ωi·h = (1 + ωo·ωi) / |s| = |s| / 2 for unit directions, as
+        // |s|² = 2 (1 + ωo·ωi): no normalisation of s, and exactly symmetric.
+        let cos_d = 0.5 * libm::sqrtf(length2);
         f.is_finite().then_some((f, cos_d))
+    }
+
+    /// `D(h)` for the half vector `h = s / |s|` of `s = ωo + ωi` (unit directions above
+    /// the horizon), and `|s|²`. `D` depends on `h` only through
+    /// `h_x² + h_y² + α² h_z² = (s_x² + s_y² + α² s_z²) / |s|²`, so
+    /// `D(h) = α² |s|⁴ / (π (s_x² + s_y² + α² s_z²)²)` needs neither the square root nor
+    /// the division of normalising `s` (issue 18, 4). Only where `|s|²` is below 1e-20
+    /// (both directions grazing and nearly opposite), whose squares could underflow, is
+    /// `s` normalised first; `None` where it cannot be.
+    #[inline(always)]
+    fn d_of_sum(&self, s: Vec3) -> Option<(f32, f32)> {
+        let (xy2, z2) = (s.x * s.x + s.y * s.y, s.z * s.z);
+        let length2 = xy2 + z2;
+        let d = if length2 > 1e-20 {
+            let a2 = self.alpha * self.alpha;
+            // 1 / (h_x² + h_y² + α² h_z²) for the unit h along s.
+            let inverse = length2 / (xy2 + a2 * z2);
+            a2 * FRAC_1_PI * (inverse * inverse)
+        } else {
+            self.d_unit(unit(s)?)
+        };
+        Some((d, length2))
     }
 
     /// The BRDF `f(ωo, ωi) = F D G2 / (4 ωo,z ωi,z)` per channel (without the cosine
@@ -321,28 +344,12 @@ impl GgxBrdf {
     }
 
     /// `D(h) / (2 (ωo,z + R(ωo)))` with `h = normalize(ωo + ωi)` for unit directions
-    /// above the horizon: the density of [`sample`](Self::sample).
-    ///
-    /// `D` depends on `h` only through `h_x² + h_y² + α² h_z²`, which for `s = ωo + ωi`
-    /// is `(s_x² + s_y² + α² s_z²) / |s|²`: so `D(h) = α² |s|⁴ / (π (s_x² + s_y² + α²
-    /// s_z²)²)` needs neither the square root nor the division of normalising `s`
-    /// (issue 18, 4). Only where `|s|²` is below 1e-20 (both directions grazing and
-    /// nearly opposite), whose squares could underflow, is `s` normalised first.
+    /// above the horizon: the density of [`sample`](Self::sample), with `D(h)` from
+    /// the unnormalised sum ([`d_of_sum`](Self::d_of_sum)).
     #[inline(always)]
     fn pdf_unit(&self, wo: Vec3, wi: Vec3) -> f32 {
-        let s = wo + wi;
-        let (xy2, z2) = (s.x * s.x + s.y * s.y, s.z * s.z);
-        let length2 = xy2 + z2;
-        let d = if length2 > 1e-20 {
-            let a2 = self.alpha * self.alpha;
-            // 1 / (h_x² + h_y² + α² h_z²) for the unit h along s.
-            let inverse = length2 / (xy2 + a2 * z2);
-            a2 * FRAC_1_PI * (inverse * inverse)
-        } else {
-            match unit(s) {
-                Some(h) => self.d_unit(h),
-                None => return 0.0,
-            }
+        let Some((d, _)) = self.d_of_sum(wo + wi) else {
+            return 0.0;
         };
         let pdf = d / (2.0 * (wo.z + self.r(wo)));
         if pdf.is_finite() { pdf } else { 0.0 }

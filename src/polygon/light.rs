@@ -21,6 +21,7 @@ use crate::mis;
 use crate::polygon::LtcPolygon;
 use crate::polygon::ProjectedPolygon;
 use crate::{MAX_POLYGON_VERTICES, Sample, Vec3};
+use glam::Vec3A;
 
 /// A surface's BRDF: Lambert with albedo `diffuse`, plus GGX with reflectance `f0` at
 /// normal incidence (Schlick's Fresnel) and `roughness = √α` in `[0, 1]`. `f0 = (0, 0, 0)`
@@ -317,24 +318,24 @@ impl PolygonLight {
             MisHeuristic::Balance => out.visible = f * balance,
             MisHeuristic::Power => out.visible = f * (mis::power_heuristic(&p, j) / p[j]),
             heuristic => {
-                for k in 0..3 {
-                    let ck = [c[0][k], c[1][k]];
+                // The three channels at once where both pdfs are finite (always, for
+                // the samplers' own pdfs), bit for bit the per-channel loop below.
+                if let Some(two) = mis::TwoTechniques::new(p, [c[0].into(), c[1].into()], j) {
+                    let f = Vec3A::from(f);
                     match heuristic {
                         MisHeuristic::WeightedBalance => {
-                            out.visible[k] =
-                                f[k] * (mis::weighted_balance_heuristic(&p, &ck, j) / p[j]);
+                            out.visible = two.weighted_balance(f, p[j]).into();
                         }
                         MisHeuristic::ClampedOptimal => {
-                            out.visible[k] =
-                                mis::clamped_optimal_mis_contribution(f[k], &p, &ck, v, j);
+                            out.visible = two.clamped_optimal(f, v).into();
                         }
                         _ => {
-                            // Optimal MIS: v c_j + (f − v Σ c p) / Σ p = f / Σ p (the
-                            // balance heuristic, times V) + the rest (independent of V).
-                            out.visible[k] = f[k] * balance;
-                            out.unoccluded[k] = mis::optimal_mis_contribution(0.0, &p, &ck, v, j);
+                            out.visible = (f * balance).into();
+                            out.unoccluded = two.optimal_unoccluded(v).into();
                         }
                     }
+                } else {
+                    Self::weigh_per_channel(&mut out, heuristic, f, &p, &c, v, j, balance);
                 }
             }
         }
@@ -343,6 +344,40 @@ impl PolygonLight {
             out.unoccluded = Vec3::ZERO;
         }
         out
+    }
+
+    /// The weighted heuristics one channel at a time by the scalar functions of
+    /// [`mis`], for pdfs that [`mis::TwoTechniques`] does not take (not finite).
+    #[cold]
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn weigh_per_channel(
+        out: &mut LightSample,
+        heuristic: MisHeuristic,
+        f: Vec3,
+        p: &[f32; 2],
+        c: &[Vec3; 2],
+        v: f32,
+        j: usize,
+        balance: f32,
+    ) {
+        for k in 0..3 {
+            let ck = [c[0][k], c[1][k]];
+            match heuristic {
+                MisHeuristic::WeightedBalance => {
+                    out.visible[k] = f[k] * (mis::weighted_balance_heuristic(p, &ck, j) / p[j]);
+                }
+                MisHeuristic::ClampedOptimal => {
+                    out.visible[k] = mis::clamped_optimal_mis_contribution(f[k], p, &ck, v, j);
+                }
+                _ => {
+                    // Optimal MIS: v c_j + (f − v Σ c p) / Σ p = f / Σ p (the
+                    // balance heuristic, times V) + the rest (independent of V).
+                    out.visible[k] = f[k] * balance;
+                    out.unoccluded[k] = mis::optimal_mis_contribution(0.0, p, &ck, v, j);
+                }
+            }
+        }
     }
 }
 

@@ -234,6 +234,33 @@ impl LtcPolygon {
             return 0.0;
         };
         let w = self.ltc.to_cosine_space(dir);
+        let length2 = w.length_squared();
+        if !(length2 > 1e-18 && length2 < 1e18) {
+            return self.pdf_careful(w);
+        }
+        if !self.transformed.contains_within(w, self.tolerance) {
+            return 0.0;
+        }
+        // `(ω'_z / |ω'|) / Φ' · |det M⁻¹| / |ω'|³` with `ω' = M⁻¹ω` as it is, not
+        // normalised: `ω'_z / |ω'|⁴` needs neither a square root nor a normalisation.
+        // `|ω'|⁴` lies in (1e-36, 1e36) by the test above (normal and finite); a pdf
+        // that still overflows (a huge density) or underflows gives 0.
+        let pdf =
+            w.z * (self.transformed.density * self.ltc.inverse_determinant) / (length2 * length2);
+        if pdf > 0.0 && pdf < f32::INFINITY {
+            pdf
+        } else {
+            0.0
+        }
+    }
+
+    /// [`pdf`](Self::pdf) for a transformed direction whose squared length lies outside
+    /// `(1e-18, 1e18)` (only an `M` or `M⁻¹` with entries beyond 1e9 gives one): the density of
+    /// the transformed polygon at the direction normalised by its largest component,
+    /// divided by `|ω'|³`.
+    #[inline(never)]
+    #[cold]
+    fn pdf_careful(&self, w: Vec3) -> f32 {
         let length = w.length();
         let p = self.transformed.pdf_within(w, self.tolerance);
         if !(p > 0.0) || !(length > 0.0) {

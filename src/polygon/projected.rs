@@ -831,10 +831,30 @@ impl ProjectedPolygon {
         if self.is_small != 0 {
             return dir.z > 0.0 && self.small().contains_within(dir, tolerance);
         }
-        let length = dir.length();
-        let mut inside = self.selectable_sectors > 0 && dir.z > 0.0 && dir.is_finite();
+        let inside = self.selectable_sectors > 0 && dir.z > 0.0 && dir.is_finite();
+        // Fast accept: a direction on the inner side of every edge's plane (every
+        // sample but those within rounding of the boundary) is inside for any slack,
+        // without the lengths of the slack's test (nine square roots).
+        let mut strictly = true;
         for n in &self.edge_normals {
             // Unused slots hold zero normals, whose dot product 0 passes.
+            strictly &= n.dot(dir) >= 0.0;
+        }
+        if strictly || !inside {
+            return inside && strictly;
+        }
+        self.contains_within_slack(dir, tolerance)
+    }
+
+    /// The slack's test of [`contains_within`](Self::contains_within), for a direction
+    /// outside some edge's plane: the sine of its angle to each such great circle
+    /// against `tolerance`. Out of line: it runs only next to the boundary.
+    #[inline(never)]
+    #[cold]
+    fn contains_within_slack(&self, dir: Vec3, tolerance: f32) -> bool {
+        let length = dir.length();
+        let mut inside = true;
+        for n in &self.edge_normals {
             inside &= n.dot(dir) >= -tolerance * n.length() * length;
         }
         inside
