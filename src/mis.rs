@@ -413,7 +413,7 @@ impl TwoTechniques {
     pub(crate) fn new(pdfs: [f32; 2], contributions: [Vec3A; 2], j: usize) -> Option<Self> {
         let j = j.min(1);
         let (p, q) = (pdfs[j], pdfs[1 - j]);
-        if !(p > 0.0 && p < f32::INFINITY && q >= 0.0 && q < f32::INFINITY) {
+        if !(p > 0.0 && p < f32::INFINITY && (0.0..f32::INFINITY).contains(&q)) {
             return None;
         }
         // As `Scale`: the largest pdf and the ratios to it; their sum is at least 1.
