@@ -8,7 +8,11 @@
 /// of `x` that holds the root, and the Newton step `x − residual / slope` is returned
 /// where it lands strictly inside the bracket, the bracket's midpoint otherwise (also
 /// for a zero, negative or non-finite slope, and a NaN step). The bracket halves at
-/// least every other step, so a loop of these steps cannot wander.
+/// least every other step, so a loop of these steps cannot wander. A zero residual
+/// (`x` is the root, as the first Newton step often lands exactly when `F` is nearly
+/// linear) returns `x` and closes the bracket on it: the Newton step is then `x`
+/// itself, which is not strictly inside the bracket `[x, high]`, and bisecting from it
+/// took the two-cap inversion some twenty evaluations back to the root it had.
 #[inline(always)]
 pub(crate) fn safeguarded_newton_step(
     x: f32,
@@ -17,6 +21,10 @@ pub(crate) fn safeguarded_newton_step(
     low: &mut f32,
     high: &mut f32,
 ) -> f32 {
+    if residual == 0.0 {
+        (*low, *high) = (x, x);
+        return x;
+    }
     if residual > 0.0 {
         *high = x;
     } else {

@@ -69,12 +69,15 @@ fn plane_misses_origin(vertices: &[Vec3]) -> bool {
 /// the exact Jacobian of `M`).
 fn round_trip_tolerance(transformed: &[Vec3], projected_solid_angle: f32) -> f32 {
     let count = transformed.len();
+    // Each vertex normalised once (it ends two edges).
+    let mut units = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+    for (u, t) in units.iter_mut().zip(transformed) {
+        *u = crate::math::normalize_scaled(*t);
+    }
     let mut perimeter = 0.0f32;
     for i in 0..count {
         let next = if i + 1 == count { 0 } else { i + 1 };
-        let a = crate::math::normalize_scaled(transformed[i]);
-        let b = crate::math::normalize_scaled(transformed[next]);
-        perimeter += (b - a).length();
+        perimeter += (units[next] - units[i]).length();
     }
     let width = projected_solid_angle / perimeter;
     if width.is_finite() {

@@ -258,6 +258,13 @@ impl CapIntersection {
     /// `s` with `Ω(cap(a, s) ∩ B) = target`, by Newton's method in the bracket
     /// `[s_low, s_high]`, bisecting where a step leaves it.
     fn invert_radial(&self, target: f32) -> f32 {
+        self.invert_radial_counting(target).0
+    }
+
+    /// [`invert_radial`](Self::invert_radial) and the number of evaluations of `F` it
+    /// took (for the tests).
+    #[inline(always)]
+    fn invert_radial_counting(&self, target: f32) -> (f32, u32) {
         let (mut low, mut high) = (self.s_low, self.s_high);
         let span = (high - low).max(0.0);
         // A start in proportion to the target (exact for coaxial caps, where F is
@@ -266,7 +273,7 @@ impl CapIntersection {
         // The last Newton step's length, for the error estimate below (0 at the start
         // and after a bisection, which say nothing of the convergence: no estimate).
         let mut previous_newton_step = 0.0f32;
-        for _ in 0..MAX_ITERATIONS {
+        for evaluations in 1..=MAX_ITERATIONS {
             let [value, slope] = self.cumulative_and_slope(s);
             let f = value - target;
             let next = crate::math::safeguarded_newton_step(s, f, slope, &mut low, &mut high);
@@ -286,7 +293,7 @@ impl CapIntersection {
                     <= (tolerance / 16.0) * previous_newton_step * previous_newton_step
                 || !(high > low)
             {
-                return next.max(self.s_low).min(self.s_high);
+                return (next.max(self.s_low).min(self.s_high), evaluations);
             }
             // A bisection lands on the bracket's midpoint.
             previous_newton_step = if next == 0.5 * (low + high) {
@@ -296,7 +303,7 @@ impl CapIntersection {
             };
             s = next;
         }
-        s.max(self.s_low).min(self.s_high)
+        (s.max(self.s_low).min(self.s_high), MAX_ITERATIONS)
     }
 
     /// The direction at radial coordinate `s` and azimuth `psi` about `a` from `e1`.
