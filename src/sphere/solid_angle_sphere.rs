@@ -9,9 +9,8 @@
 //! warp alone: `1 − cos θ' = u₀ (1 − cos θ)`, `sin θ' = √(t' (2 − t'))`, `φ = 2π u₁`,
 //! mapped by the stored frame. The cap and the sample are exactly those of
 //! [`Cap::from_sphere`] and [`Cap::sample_uniform`], bit for bit (one body, shared):
-//! `1 − cos θ = r² / (d (d + √((d − r)(d + r))))` keeps tiny caps exact to 1e-12 sr
-//! and below, and the rim test with its inward pull keeps `pdf(sample.dir) ==
-//! sample.pdf`.
+//! `1 − cos θ = sin²θ / (1 + cos θ)` keeps tiny caps exact to 1e-12 sr and below, and
+//! the rim test with its inward pull keeps `pdf(sample.dir) == sample.pdf`.
 
 use super::Cap;
 use super::cap::{sample_uniform_in_frame, sphere_distance_in_range};
