@@ -15,8 +15,11 @@ static void check_sptd_in_cap(void) {
   double inverse_sum = 0.0;
   int i, j, n = 0;
   CHECK(sphera_sptd_in_cap_prepare(&prepared, pivot, SPHERA_SPTD_UNIFORM, z, cap));
+  /* The prepared integral takes the closed-form pivot of the cap, the general one the
+   * careful form: each is within 6.2e-7 of an f64 reference here (measured), so they
+   * agree to the sum of the two. */
   CHECK_REL(sphera_sptd_in_cap_integral(&prepared),
-            sphera_sptd_integral_over_cap(pivot, SPHERA_SPTD_UNIFORM, z, cap), 1e-6);
+            sphera_sptd_integral_over_cap(pivot, SPHERA_SPTD_UNIFORM, z, cap), 1.5e-6);
   /* The uniform SPTD is the Jacobian over 4 pi (Eq. 8). */
   CHECK_REL(sphera_sptd_eval(pivot, SPHERA_SPTD_UNIFORM, z, vec3(0.0f, 0.6f, 0.8f)),
             sphera_pivot_jacobian(vec3(0.0f, 0.6f, 0.8f), pivot) / (4.0 * PI_D), 1e-5);
