@@ -437,8 +437,19 @@ impl EllipseSector {
                 }
             }
             let (ko, ki) = (self.outer_root_det, self.inner_root_det);
-            return area(self.outer, ko, det, dot + self.outer_dots()[0] * to, precision)
-                - area(self.inner, ki, det, dot + self.inner_dots()[0] * ti, precision);
+            return area(
+                self.outer,
+                ko,
+                det,
+                dot + self.outer_dots()[0] * to,
+                precision,
+            ) - area(
+                self.inner,
+                ki,
+                det,
+                dot + self.inner_dots()[0] * ti,
+                precision,
+            );
         }
         if self.area_form == QUADRATURE_FORM {
             return self.area_by_quadrature(w);
@@ -817,11 +828,14 @@ impl EllipseSector {
 #[inline(always)]
 fn normalize_magnitude(w: Vec2) -> Vec2 {
     let sum = w[0].abs() + w[1].abs();
-    if sum.is_normal() {
-        scale2(w, f32::from_bits(sum.to_bits() ^ 0x7F80_0000))
+    // A factor of 1 (exact) otherwise, so that both cases multiply: no blend of two
+    // vectors by a mask (the same bits as returning `w` itself).
+    let factor = if sum.is_normal() {
+        f32::from_bits(sum.to_bits() ^ 0x7F80_0000)
     } else {
-        w
-    }
+        1.0
+    };
+    scale2(w, factor)
 }
 
 /// `w` or `-w`, whichever points into the half-plane of the sector's bisector `h`.
