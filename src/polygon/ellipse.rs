@@ -18,7 +18,9 @@
 
 use crate::Vec3;
 use crate::math::is_sign_negative;
-use crate::math::{atan2_upper_half_plane, difference_of_products};
+use crate::math::{
+    atan2_upper_half_plane, difference_of_products, difference_of_products_unless_cancelling,
+};
 
 /// A vector in the plane of the unit disk.
 pub(crate) type Vec2 = [f32; 2];
@@ -136,7 +138,10 @@ pub(crate) fn ellipse_from_normal(n: Vec3) -> Vec2 {
 #[inline(always)]
 pub(crate) fn solve_homogeneous_quadratic(xx: f32, xy_plus_yx: f32, yy: f32) -> Vec2 {
     let b = 0.5 * xy_plus_yx;
-    let discriminant = difference_of_products(b, b, xx, yy).max(0.0);
+    // The plain difference where the products cannot cancel (`xx yy <= 0`, relative
+    // error at most ε; the usual case for the iteration of supplement A.3 in about half
+    // of its steps), the error-free form otherwise.
+    let discriminant = difference_of_products_unless_cancelling(b, b, xx, yy).max(0.0);
     let root = b.abs() + libm::sqrtf(discriminant);
     if b >= 0.0 { [root, -xx] } else { [yy, root] }
 }
@@ -308,5 +313,34 @@ mod tests {
             assert!(scale > 0.0);
             assert!(value.abs() <= 1e-5 * scale, "{xx} {xy} {yy}: {value}");
         }
+    }
+
+    /// Issue 15: the discriminant takes the plain difference `b² - xx yy` exactly where
+    /// `xx yy <= 0` (no cancellation; relative error at most ε) and the error-free form
+    /// where the products have the same sign: pinned on the root's bits.
+    #[test]
+    fn the_discriminant_is_plain_only_where_the_products_cannot_cancel() {
+        let root = |b: f32, discriminant: f32| b.abs() + libm::sqrtf(discriminant.max(0.0));
+        let mut rng = Rng::new(15);
+        let (mut plain, mut careful) = (0, 0);
+        for _ in 0..100_000 {
+            let (xx, xy, yy) = (
+                rng.signed_log_uniform(-3.0, 3.0) as f32,
+                rng.signed_log_uniform(-3.0, 3.0) as f32,
+                rng.signed_log_uniform(-3.0, 3.0) as f32,
+            );
+            let b = 0.5 * xy;
+            let w = solve_homogeneous_quadratic(xx, xy, yy);
+            let got = if b >= 0.0 { w[0] } else { w[1] };
+            let expected = if xx * yy <= 0.0 {
+                plain += 1;
+                root(b, b * b - xx * yy)
+            } else {
+                careful += 1;
+                root(b, difference_of_products(b, b, xx, yy))
+            };
+            assert_eq!(got.to_bits(), expected.to_bits(), "{xx} {xy} {yy}");
+        }
+        assert!(plain > 40_000 && careful > 40_000, "{plain} {careful}");
     }
 }

@@ -426,15 +426,30 @@ impl EllipseSector {
         if is_degenerate(self.outer) || is_degenerate(self.inner) || self.area_form == DIRECT_FORM {
             // The direct form: better when the ellipses differ much (then the two terms
             // of the difference form cancel instead).
-            let area = |u: Vec2, k: f32, t0: f32, t: f32| {
+            // A function rather than a closure, so that it can be inlined (the closure
+            // was called out of line, twice per evaluation).
+            #[inline(always)]
+            fn area(u: Vec2, k: f32, det: f32, x: f32, precision: AreaPrecision) -> f32 {
                 if is_degenerate(u) {
                     0.0
                 } else {
-                    atan2_positive(k * det, dot + t0 * t, precision) * (0.5 / k)
+                    atan2_positive(k * det, x, precision) * (0.5 / k)
                 }
-            };
-            return area(self.outer, self.outer_root_det, self.outer_dots()[0], to)
-                - area(self.inner, self.inner_root_det, self.inner_dots()[0], ti);
+            }
+            let (ko, ki) = (self.outer_root_det, self.inner_root_det);
+            return area(
+                self.outer,
+                ko,
+                det,
+                dot + self.outer_dots()[0] * to,
+                precision,
+            ) - area(
+                self.inner,
+                ki,
+                det,
+                dot + self.inner_dots()[0] * ti,
+                precision,
+            );
         }
         if self.area_form == QUADRATURE_FORM {
             return self.area_by_quadrature(w);
@@ -813,11 +828,14 @@ impl EllipseSector {
 #[inline(always)]
 fn normalize_magnitude(w: Vec2) -> Vec2 {
     let sum = w[0].abs() + w[1].abs();
-    if sum.is_normal() {
-        scale2(w, f32::from_bits(sum.to_bits() ^ 0x7F80_0000))
+    // A factor of 1 (exact) otherwise, so that both cases multiply: no blend of two
+    // vectors by a mask (the same bits as returning `w` itself).
+    let factor = if sum.is_normal() {
+        f32::from_bits(sum.to_bits() ^ 0x7F80_0000)
     } else {
-        w
-    }
+        1.0
+    };
+    scale2(w, factor)
 }
 
 /// `w` or `-w`, whichever points into the half-plane of the sector's bisector `h`.
