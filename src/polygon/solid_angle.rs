@@ -808,6 +808,36 @@ impl SolidAnglePolygon {
             })
     }
 
+    /// The sample of the common case, `None` for the rare one (then
+    /// [`sample`](Self::sample) gives it): the empty value, the narrow polygons whose
+    /// samples `sample` tests (`checks_samples`), and directions that the construction
+    /// left more than 2e-6 off unit length squared (which `sample` renormalises). Equal
+    /// to `sample` bit for bit where it gives a sample (the same computation without
+    /// those branches). Without calls and with one return value, so that the C entry
+    /// point keeps everything in registers and reaches the rare path by one call on that
+    /// path only: the call of `sample` out of line returned the sample through the stack,
+    /// and the caller's 8-byte load of `dir.z` and `pdf` from two 4-byte stores stalled
+    /// on the failed store-to-load forwarding.
+    #[inline(always)]
+    pub(crate) fn sample_common(&self, u: [f32; 2]) -> Option<Sample> {
+        if self.selectable_triangles == 0 || self.checks_samples != 0 {
+            return None;
+        }
+        let (k, local, u1) = self.fan_coordinates(u);
+        let dir = self.direction_in_triangle(k, local, u1);
+        crate::math::is_unit_output(dir).then_some(Sample {
+            dir,
+            pdf: self.density,
+        })
+    }
+
+    /// [`sample`](Self::sample) out of line, for the rare path of the C entry points
+    /// (see [`sample_common`](Self::sample_common)).
+    #[inline(never)]
+    pub(crate) fn sample_rare(&self, u: [f32; 2]) -> Sample {
+        self.sample(u)
+    }
+
     /// [`sample`](Self::sample) without the test of narrow polygons' samples: the
     /// direction of Algorithm 5 as computed, which rounding may put just outside `pdf`'s
     /// support. For the warps that map their own density through it (Hart et al.), whose
@@ -817,13 +847,21 @@ impl SolidAnglePolygon {
         if self.selectable_triangles == 0 {
             return Sample::NONE;
         }
+        let (k, local, u1) = self.fan_coordinates(u);
+        self.sample_in_triangle(k, local, u1)
+    }
+
+    /// The fan triangle `k`, the solid angle `local` from its first edge and the clamped
+    /// `u1` of the random numbers `u`, for a polygon with a selectable triangle.
+    #[inline(always)]
+    fn fan_coordinates(&self, u: [f32; 2]) -> (usize, f32, f32) {
         let (u0, u1) = (clamp_random(u[0]), clamp_random(u[1]));
         let target = u0 * self.solid_angle;
         // Fan triangle k: the number of triangles (among all but the last selectable)
         // that end at or before the target. `<=` skips triangles of zero solid angle.
         let k = select_piece(&self.start, target);
         let local = (target - self.start[k]).max(0.0);
-        self.sample_in_triangle(k, local, u1)
+        (k, local, u1)
     }
 
     /// The solid angle of fan triangle `k`, `2 atan2(G0, G1 + G2)`, computed anew (the
@@ -838,6 +876,25 @@ impl SolidAnglePolygon {
     /// triangle's first edge and at `u1` along the new edge, with pdf `1 / Ω`.
     #[inline(always)]
     pub(crate) fn sample_in_triangle(&self, k: usize, local: f32, u1: f32) -> Sample {
+        let dir = self.direction_in_triangle(k, local, u1);
+        // Where the apex and v2' are nearly antipodal (a shading point just above a
+        // large polygon, close to its plane), b is tiny and known only to an absolute
+        // ulp, so t and with it |dir| can be off by up to about 1e-3 (found by fuzzing:
+        // |dir| = 0.99957); renormalise then. The test leaves every other direction
+        // (|dir|² within 2e-6 of 1) bit for bit as it was.
+        let Some(dir) = crate::math::unit_if_needed_or_none(dir) else {
+            return Sample::NONE;
+        };
+        Sample {
+            dir,
+            pdf: self.density,
+        }
+    }
+
+    /// The direction of [`sample_in_triangle`](Self::sample_in_triangle) before its
+    /// length is checked.
+    #[inline(always)]
+    fn direction_in_triangle(&self, k: usize, local: f32, u1: f32) -> Vec3 {
         let (v0, v1) = (self.vertices[k + 1], self.vertices[0]);
         let (g0, g1_plus_g2, g2) = (self.g0[k], self.g1_plus_g2[k], self.g2[k]);
         // Algorithm 5's r = (G0 cos(A/2) - G1 sin(A/2)) v0 + G2 sin(A/2) v2 bisects the
@@ -861,19 +918,7 @@ impl SolidAnglePolygon {
         let s = 1.0 - u1 * a;
         let s_new = b - 1.0;
         let t = libm::sqrtf(u1 * one_plus_s / b.max(f32::MIN_POSITIVE));
-        let dir = v1 * (s - t * s_new) + new_vertex * t;
-        // Where the apex and v2' are nearly antipodal (a shading point just above a
-        // large polygon, close to its plane), b is tiny and known only to an absolute
-        // ulp, so t and with it |dir| can be off by up to about 1e-3 (found by fuzzing:
-        // |dir| = 0.99957); renormalise then. The test leaves every other direction
-        // (|dir|² within 2e-6 of 1) bit for bit as it was.
-        let Some(dir) = crate::math::unit_if_needed_or_none(dir) else {
-            return Sample::NONE;
-        };
-        Sample {
-            dir,
-            pdf: self.density,
-        }
+        v1 * (s - t * s_new) + new_vertex * t
     }
 
     /// `1 / Ω` for a direction inside the polygon (or on its boundary, or outside it by at
