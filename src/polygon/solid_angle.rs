@@ -809,7 +809,8 @@ impl SolidAnglePolygon {
     }
 
     /// The sample of the common case, `None` for the rare one (then
-    /// [`sample`](Self::sample) gives it): the empty value, the narrow polygons whose
+    /// [`sample`](Self::sample) gives it): `u` outside `[0, 1)²` (which `sample` clamps),
+    /// the empty value, the narrow polygons whose
     /// samples `sample` tests (`checks_samples`), and directions that the construction
     /// left more than 2e-6 off unit length squared (which `sample` renormalises). Equal
     /// to `sample` bit for bit where it gives a sample (the same computation without
@@ -820,11 +821,21 @@ impl SolidAnglePolygon {
     /// on the failed store-to-load forwarding.
     #[inline(always)]
     pub(crate) fn sample_common(&self, u: [f32; 2]) -> Option<Sample> {
-        if self.selectable_triangles == 0 || self.checks_samples != 0 {
+        // `u` in [0, 1)², where `clamp_random` changes nothing: as unsigned integers, the
+        // bits of the floats in [0, 1) are those below the bits of 1.0 (`0x3F80_0000`);
+        // 1 and above, NaN (above +∞) and negative values (the sign bit) are not.
+        let outside = u[0].to_bits().max(u[1].to_bits()) >= 0x3F80_0000;
+        if self.selectable_triangles == 0 || self.checks_samples != 0 || outside {
             return None;
         }
-        let (k, local, u1) = self.fan_coordinates(u);
-        let dir = self.direction_in_triangle(k, local, u1);
+        let target = u[0] * self.solid_angle;
+        let k = select_piece(&self.start, target);
+        // `start[k] <= target` (`select_piece` counts the starts at or below it, and
+        // `start[0] = 0`), so the difference is not negative: no clamp to 0 (a NaN start,
+        // a corrupted value, gives a NaN direction, which the unit test sends to the rare
+        // path).
+        let local = target - self.start[k];
+        let dir = self.direction_in_triangle(k, local, u[1]);
         crate::math::is_unit_output(dir).then_some(Sample {
             dir,
             pdf: self.density,

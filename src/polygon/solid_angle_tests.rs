@@ -804,13 +804,13 @@ fn every_sample_has_its_pdf_at_any_size() {
 
 /// The C entry point's split (issue 15): `sample_common` gives `sample`'s sample bit for
 /// bit wherever it gives one, takes every draw of ordinary polygons (random ones of 3 to
-/// 8 vertices, and `u` at the edges of `[0, 1)`), and leaves to the rare path the empty
-/// value, the narrow polygons whose samples are tested (`checks_samples`) and the
+/// 8 vertices, and `u` at the edges of `[0, 1)`), and leaves to the rare path `u` outside
+/// `[0, 1)²` (NaN and -0 included), the empty value, the narrow polygons whose samples are tested (`checks_samples`) and the
 /// directions renormalised in the huge pentagon just above the shading point.
 #[test]
 fn sample_common_takes_ordinary_draws_and_leaves_the_rare_ones() {
     let mut rng = Rng::new(15);
-    let edges = [0.0, 0.5, ONE_MINUS_ULP, 1.0, -1.0, f32::NAN];
+    let edges = [0.0, 1e-30, 0.5, ONE_MINUS_ULP, 1.0, -1.0, -0.0, f32::NAN];
     let mut narrow = 0;
     for n in 3..=MAX_POLYGON_VERTICES {
         for _ in 0..20 {
@@ -828,7 +828,12 @@ fn sample_common_takes_ordinary_draws_and_leaves_the_rare_ones() {
             }
             for u0 in edges {
                 for u1 in edges {
-                    assert_eq!(p.sample_common([u0, u1]), Some(p.sample([u0, u1])));
+                    // `u` outside [0, 1)² (clamped by `sample`) takes the rare path.
+                    let inside = [u0, u1].iter().all(|u| (0.0..1.0).contains(u))
+                        && u0.is_sign_positive()
+                        && u1.is_sign_positive();
+                    let expected = inside.then(|| p.sample([u0, u1]));
+                    assert_eq!(p.sample_common([u0, u1]), expected, "{u0} {u1}");
                 }
             }
         }
