@@ -29,7 +29,7 @@ use crate::math::{
 };
 use crate::sample::{clamp_inverted, clamp_random, select_piece};
 use crate::{MAX_POLYGON_VERTICES, Vec3};
-use glam::{BVec4A, Vec4};
+use glam::{BVec4A, Vec3A, Vec4};
 
 /// The most fan triangles a polygon has.
 pub(crate) const MAX_TRIANGLES: usize = MAX_POLYGON_VERTICES - 2;
@@ -906,7 +906,15 @@ impl SolidAnglePolygon {
     /// length is checked.
     #[inline(always)]
     fn direction_in_triangle(&self, k: usize, local: f32, u1: f32) -> Vec3 {
-        let (v0, v1) = (self.vertices[k + 1], self.vertices[0]);
+        // In `Vec3A` (a whole SSE register, the fourth lane unused): each lane rounds as
+        // `Vec3`'s component does, and the dot products add `(x x' + y y') + z z'` in
+        // both, so the bits are the same, with fewer shuffles between the three
+        // components (callgrind: 230 -> 213 instructions per sample).
+        let (v0, v1) = (
+            Vec3A::from(self.vertices[k + 1]),
+            Vec3A::from(self.vertices[0]),
+        );
+        let outer_sum = Vec3A::from(self.outer_sum[k]);
         let (g0, g1_plus_g2, g2) = (self.g0[k], self.g1_plus_g2[k], self.g2[k]);
         // Algorithm 5's r = (G0 cos(A/2) - G1 sin(A/2)) v0 + G2 sin(A/2) v2 bisects the
         // arc from v0 to the new vertex v2', the reflection of -v0 about r. Rewritten as
@@ -915,7 +923,7 @@ impl SolidAnglePolygon {
         // are nearly antipodal (a shading point just above a large polygon), where
         // G0 and G1 + G2 are both tiny and G1 alone would be off by an ulp of 1.
         let (sin_half, cos_half) = crate::math::sin_cos_0_to_pi(0.5 * local);
-        let r = v0 * (g0 * cos_half - g1_plus_g2 * sin_half) + self.outer_sum[k] * (g2 * sin_half);
+        let r = v0 * (g0 * cos_half - g1_plus_g2 * sin_half) + outer_sum * (g2 * sin_half);
         let new_vertex = r * (2.0 * v0.dot(r) / r.length_squared()) - v0;
         // Uniform in solid angle along the arc from the apex v1 to v2': the cosine to
         // the apex is s = (1 - ξ1) + ξ1 s'. With a = 1 - s' = |v1 - v2'|²/2 and
@@ -929,7 +937,7 @@ impl SolidAnglePolygon {
         let s = 1.0 - u1 * a;
         let s_new = b - 1.0;
         let t = libm::sqrtf(u1 * one_plus_s / b.max(f32::MIN_POSITIVE));
-        v1 * (s - t * s_new) + new_vertex * t
+        Vec3::from(v1 * (s - t * s_new) + new_vertex * t)
     }
 
     /// `1 / Ω` for a direction inside the polygon (or on its boundary, or outside it by at
