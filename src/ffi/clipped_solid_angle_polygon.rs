@@ -40,11 +40,22 @@ pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_sample(
     u1: f32,
 ) -> SpheraSample {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    unsafe {
-        with_ref(polygon, Sample::NONE.into(), |polygon| {
-            polygon.sample([u0, u1]).into()
-        })
+    let Some(polygon) = (unsafe { polygon.as_ref() }) else {
+        return Sample::NONE.into();
+    };
+    // The common case inline, the rare one by a call out of line (with the entry point's
+    // signature, so that the arguments and the result stay in their registers): only the
+    // rare path sets up a stack frame.
+    match polygon.sample_common([u0, u1]) {
+        Some(sample) => sample.into(),
+        None => sample_rare(polygon, u0, u1),
     }
+}
+
+/// The rare path of `sphera_clipped_solid_angle_polygon_sample`, with its signature.
+#[inline(never)]
+extern "C" fn sample_rare(polygon: &ClippedSolidAnglePolygon, u0: f32, u1: f32) -> SpheraSample {
+    polygon.sample_rare([u0, u1]).into()
 }
 
 /// The density per steradian with which `sphera_clipped_solid_angle_polygon_sample`

@@ -38,14 +38,24 @@ const THREE_PI_4: f32 = 3.0 * FRAC_PI_4;
 #[inline(always)]
 pub fn sin_cos_0_to_pi(x: f32) -> (f32, f32) {
     let x = x.clamp(0.0, PI);
-    let low = x < FRAC_PI_4;
+    if x < FRAC_PI_4 {
+        // `r = x` and `r_lo = 0`, for which the general form below adds `r_lo w = +0`
+        // and subtracts `r_lo r = +0`, which change no bits: the same values without
+        // those operations and without the selections between the reductions (a fan
+        // triangle's sample, whose half angles mostly lie here: 213 -> 199 instructions,
+        // callgrind). The tests below compare the bits with the general form.
+        let s = x * x;
+        let half = 0.5 * s;
+        let w = 1.0 - half;
+        let sin_r = x + (x * s) * horner(s, &SIN_QUARTER);
+        let cos_r = w + (((1.0 - w) - half) + (s * s) * horner(s, &COS_QUARTER));
+        return (sin_r, cos_r);
+    }
     let high = x > THREE_PI_4;
     // The reduced angle r + r_lo: `a` is exact (Sterbenz), `r` the rounded sum with the
     // low part of the constant, and `r_lo` its rounding error, exact by Fast2Sum (`a` is 0
     // or a multiple of an ulp of `x`, at least 6e-8, so |a| >= |low part|).
-    let (r, r_lo) = if low {
-        (x, 0.0)
-    } else if high {
+    let (r, r_lo) = if high {
         let a = PI - x;
         let r = a + PI_LO;
         (r, PI_LO - (r - a))
@@ -66,9 +76,7 @@ pub fn sin_cos_0_to_pi(x: f32) -> (f32, f32) {
     // terms (errors below 0.05 ulp).
     let sin_r = r + ((r * s) * horner(s, &SIN_QUARTER) + r_lo * w);
     let cos_r = w + ((((1.0 - w) - half) + (s * s) * horner(s, &COS_QUARTER)) - r_lo * r);
-    if low {
-        (sin_r, cos_r)
-    } else if high {
+    if high {
         (sin_r, -cos_r)
     } else {
         (cos_r, -sin_r)
@@ -287,6 +295,46 @@ mod tests {
             }
         }
         assert!(worst <= 1.0e-7, "{worst:e}");
+    }
+
+    /// The form that `sin_cos_0_to_pi` evaluates below π/4 before its shortcut: the
+    /// general one with `r = x` and `r_lo = 0`.
+    fn sin_cos_below_quarter_pi_in_general_form(x: f32) -> (f32, f32) {
+        let (r, r_lo) = (x, 0.0f32);
+        let s = r * r;
+        let half = 0.5 * s;
+        let w = 1.0 - half;
+        let sin_r = r + ((r * s) * horner(s, &SIN_QUARTER) + r_lo * w);
+        let cos_r = w + ((((1.0 - w) - half) + (s * s) * horner(s, &COS_QUARTER)) - r_lo * r);
+        (sin_r, cos_r)
+    }
+
+    /// Every `stride`-th `f32` of `[0, π/4)`: the shortcut gives the general form's bits.
+    fn assert_shortcut_matches_general_form(stride: u32) {
+        let last = FRAC_PI_4.to_bits() - 1;
+        sweep(0, last, stride, |first, last, step| {
+            for x in points(first, last, step) {
+                let (s, c) = sin_cos_0_to_pi(x);
+                let (s0, c0) = sin_cos_below_quarter_pi_in_general_form(x);
+                assert_eq!(
+                    (s.to_bits(), c.to_bits()),
+                    (s0.to_bits(), c0.to_bits()),
+                    "{x:e}"
+                );
+            }
+        });
+    }
+
+    #[test]
+    fn shortcut_below_quarter_pi_keeps_the_bits() {
+        assert_shortcut_matches_general_form(61);
+    }
+
+    /// Every `f32` of `[0, π/4)` (about a billion), so ignored by default.
+    #[test]
+    #[ignore]
+    fn exhaustive_shortcut_below_quarter_pi_keeps_the_bits() {
+        assert_shortcut_matches_general_form(1);
     }
 
     #[test]

@@ -69,11 +69,18 @@ pub(crate) fn unit_if_needed(dir: Vec3) -> Vec3 {
 /// length test is finite, as NaN and infinite lengths fail it).
 #[inline(always)]
 pub(crate) fn unit_if_needed_or_none(dir: Vec3) -> Option<Vec3> {
-    let length_squared = dir.length_squared();
-    if (length_squared - 1.0).abs() <= OUTPUT_UNIT_TOLERANCE {
+    if is_unit_output(dir) {
         return Some(dir);
     }
     normalize_by_largest(dir)
+}
+
+/// Whether [`unit_if_needed`] returns `dir` unchanged: `| |dir|² - 1 | <= 2e-6` (false
+/// for non-finite `dir`). For the samplers' common paths, which leave the other
+/// directions to their rare path.
+#[inline(always)]
+pub(crate) fn is_unit_output(dir: Vec3) -> bool {
+    (dir.length_squared() - 1.0).abs() <= OUTPUT_UNIT_TOLERANCE
 }
 
 /// `v / |v|` by the shared helper [`normalize_by_largest`] (tiny vectors,

@@ -109,6 +109,22 @@ impl ClippedSolidAnglePolygon {
         sample
     }
 
+    /// [`sample`](Self::sample) in the common case, `None` in the rare one: that of
+    /// [`SolidAnglePolygon::sample_common`], and a direction below the horizon. Equal to
+    /// `sample` bit for bit where it gives a sample.
+    #[inline(always)]
+    pub(crate) fn sample_common(&self, u: [f32; 2]) -> Option<Sample> {
+        self.clipped
+            .sample_common(u)
+            .filter(|sample| sample.dir.z >= 0.0)
+    }
+
+    /// [`sample`](Self::sample) out of line, for the rare path of the C entry point.
+    #[inline(never)]
+    pub(crate) fn sample_rare(&self, u: [f32; 2]) -> Sample {
+        self.sample(u)
+    }
+
     /// `1 / Ω` for a direction inside the clipped polygon (boundary included), 0
     /// outside, in particular below the horizon. `dir` need not be normalised; a zero or
     /// non-finite `dir` gives 0.

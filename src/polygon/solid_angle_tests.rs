@@ -801,3 +801,71 @@ fn every_sample_has_its_pdf_at_any_size() {
         );
     }
 }
+
+/// The C entry point's split (issue 15): `sample_common` gives `sample`'s sample bit for
+/// bit wherever it gives one, takes every draw of ordinary polygons (random ones of 3 to
+/// 8 vertices, and `u` at the edges of `[0, 1)`), and leaves to the rare path `u` outside
+/// `[0, 1)²` (NaN and -0 included), the empty value, the narrow polygons whose samples are tested (`checks_samples`) and the
+/// directions renormalised in the huge pentagon just above the shading point.
+#[test]
+fn sample_common_takes_ordinary_draws_and_leaves_the_rare_ones() {
+    let mut rng = Rng::new(15);
+    let edges = [0.0, 1e-30, 0.5, ONE_MINUS_ULP, 1.0, -1.0, -0.0, f32::NAN];
+    let mut narrow = 0;
+    for n in 3..=MAX_POLYGON_VERTICES {
+        for _ in 0..20 {
+            let v = random_polygon_above(&mut rng, n, 0.6, 1.0);
+            let p = SolidAnglePolygon::new(&v).expect("valid");
+            if p.checks_samples != 0 {
+                // A narrow one (an edge longer than 5 Ω): its samples are tested.
+                assert_eq!(p.sample_common([0.5, 0.5]), None);
+                narrow += 1;
+                continue;
+            }
+            for _ in 0..50 {
+                let u = [rng.uniform_f32(), rng.uniform_f32()];
+                assert_eq!(p.sample_common(u), Some(p.sample(u)), "{v:?} {u:?}");
+            }
+            for u0 in edges {
+                for u1 in edges {
+                    // `u` outside [0, 1)² (clamped by `sample`) takes the rare path.
+                    let inside = [u0, u1].iter().all(|u| (0.0..1.0).contains(u))
+                        && u0.is_sign_positive()
+                        && u1.is_sign_positive();
+                    let expected = inside.then(|| p.sample([u0, u1]));
+                    assert_eq!(p.sample_common([u0, u1]), expected, "{u0} {u1}");
+                }
+            }
+        }
+    }
+    std::println!("{narrow} of 120 polygons narrow");
+    assert!(narrow <= 40, "{narrow} of 120 polygons narrow");
+    assert_eq!(SolidAnglePolygon::EMPTY.sample_common([0.5, 0.5]), None);
+    let sliver = SolidAnglePolygon::new(&scaled_quad(0.1, 0.9)).unwrap();
+    assert_ne!(sliver.checks_samples, 0);
+    assert_eq!(sliver.sample_common([0.5, 0.5]), None);
+    let huge = SolidAnglePolygon::new(&[
+        Vec3::new(-0.5, -99_998.5, 3.75),
+        Vec3::new(-95_107.195, -30_902.277, 0.373_970_5),
+        Vec3::new(-58_781.734, 80_901.914, -0.927_687_05),
+        Vec3::new(58_775.34, 80_904.47, 1.643_874_5),
+        Vec3::new(95_104.11, -30_898.133, 4.534_843_4),
+    ])
+    .unwrap();
+    assert_eq!(huge.checks_samples, 0);
+    let (mut common, mut rare) = (0, 0);
+    for i in 0..64 {
+        for j in 0..64 {
+            let u = [(i as f32 + 0.5) / 64.0, (j as f32 + 0.5) / 64.0];
+            match huge.sample_common(u) {
+                Some(s) => {
+                    assert_eq!(s, huge.sample(u), "{u:?}");
+                    common += 1;
+                }
+                None => rare += 1,
+            }
+        }
+    }
+    std::println!("huge pentagon: {common} common, {rare} rare");
+    assert!(common > 0 && rare > 0, "{common} common, {rare} rare");
+}
