@@ -316,8 +316,11 @@ mod tests {
     }
 
     /// Issue 15: the discriminant takes the plain difference `b² - xx yy` exactly where
-    /// `xx yy <= 0` (no cancellation; relative error at most ε) and the error-free form
-    /// where the products have the same sign: pinned on the root's bits.
+    /// no cancellation is possible, `xx yy <= 0` or `xx yy` so small against `b²` that
+    /// the rounded sum and difference of the two products are equal (relative error at
+    /// most ε either way), and the error-free form elsewhere: pinned on the root's bits,
+    /// in builds with and without FMA (whose error-free form rounds differently from
+    /// the plain one).
     #[test]
     fn the_discriminant_is_plain_only_where_the_products_cannot_cancel() {
         let root = |b: f32, discriminant: f32| b.abs() + libm::sqrtf(discriminant.max(0.0));
@@ -332,7 +335,8 @@ mod tests {
             let b = 0.5 * xy;
             let w = solve_homogeneous_quadratic(xx, xy, yy);
             let got = if b >= 0.0 { w[0] } else { w[1] };
-            let expected = if xx * yy <= 0.0 {
+            let (p1, p2) = (b * b, xx * yy);
+            let expected = if p2 <= 0.0 || p1 + p2 == p1 - p2 {
                 plain += 1;
                 root(b, b * b - xx * yy)
             } else {
