@@ -1,7 +1,9 @@
 //! C ABI, `sphera_clipped_solid_angle_polygon_*`: solid angle sampling of the part of a
 //! polygon above the horizon.
 use super::polygon::prepare;
-use super::types::{SpheraSample, SpheraVec3, with_ref};
+use super::types::{
+    CommonAndRareSamples, SpheraSample, SpheraVec3, sample_common_or_rare, with_ref,
+};
 use crate::Sample;
 use crate::polygon::ClippedSolidAnglePolygon;
 
@@ -40,22 +42,7 @@ pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_sample(
     u1: f32,
 ) -> SpheraSample {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    let Some(polygon) = (unsafe { polygon.as_ref() }) else {
-        return Sample::NONE.into();
-    };
-    // The common case inline, the rare one by a call out of line (with the entry point's
-    // signature, so that the arguments and the result stay in their registers): only the
-    // rare path sets up a stack frame.
-    match polygon.sample_common([u0, u1]) {
-        Some(sample) => sample.into(),
-        None => sample_rare(polygon, u0, u1),
-    }
-}
-
-/// The rare path of `sphera_clipped_solid_angle_polygon_sample`, with its signature.
-#[inline(never)]
-extern "C" fn sample_rare(polygon: &ClippedSolidAnglePolygon, u0: f32, u1: f32) -> SpheraSample {
-    polygon.sample_rare([u0, u1]).into()
+    unsafe { sample_common_or_rare(polygon, u0, u1) }
 }
 
 /// The density per steradian with which `sphera_clipped_solid_angle_polygon_sample`
@@ -85,4 +72,16 @@ pub unsafe extern "C" fn sphera_clipped_solid_angle_polygon_solid_angle(
 ) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
     unsafe { with_ref(polygon, 0.0, |polygon| polygon.solid_angle()) }
+}
+
+impl CommonAndRareSamples for ClippedSolidAnglePolygon {
+    #[inline(always)]
+    fn sample_common(&self, u: [f32; 2]) -> Option<Sample> {
+        ClippedSolidAnglePolygon::sample_common(self, u)
+    }
+
+    #[inline(always)]
+    fn sample_rare(&self, u: [f32; 2]) -> Sample {
+        ClippedSolidAnglePolygon::sample_rare(self, u)
+    }
 }

@@ -1,7 +1,9 @@
 //! C ABI, `sphera_solid_angle_polygon_*`: solid angle sampling of polygons (Peters 2021,
 //! supplement C).
 use super::polygon::prepare;
-use super::types::{SpheraSample, SpheraVec3, with_ref};
+use super::types::{
+    CommonAndRareSamples, SpheraSample, SpheraVec3, sample_common_or_rare, with_ref,
+};
 use crate::Sample;
 use crate::polygon::SolidAnglePolygon;
 
@@ -39,22 +41,7 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_sample(
     u1: f32,
 ) -> SpheraSample {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    let Some(polygon) = (unsafe { polygon.as_ref() }) else {
-        return Sample::NONE.into();
-    };
-    // The common case inline, the rare one by a call out of line (with the entry point's
-    // signature, so that the arguments and the result stay in their registers): only the
-    // rare path sets up a stack frame.
-    match polygon.sample_common([u0, u1]) {
-        Some(sample) => sample.into(),
-        None => sample_rare(polygon, u0, u1),
-    }
-}
-
-/// The rare path of `sphera_solid_angle_polygon_sample`, with its signature.
-#[inline(never)]
-extern "C" fn sample_rare(polygon: &SolidAnglePolygon, u0: f32, u1: f32) -> SpheraSample {
-    polygon.sample_rare([u0, u1]).into()
+    unsafe { sample_common_or_rare(polygon, u0, u1) }
 }
 
 /// The density per steradian with which `sphera_solid_angle_polygon_sample` produces
@@ -123,4 +110,16 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_invert(
         unsafe { u1.write(v1) };
     }
     inverted.is_some()
+}
+
+impl CommonAndRareSamples for SolidAnglePolygon {
+    #[inline(always)]
+    fn sample_common(&self, u: [f32; 2]) -> Option<Sample> {
+        SolidAnglePolygon::sample_common(self, u)
+    }
+
+    #[inline(always)]
+    fn sample_rare(&self, u: [f32; 2]) -> Sample {
+        SolidAnglePolygon::sample_rare(self, u)
+    }
 }

@@ -1,6 +1,8 @@
 //! C ABI, `sphera_turk_polygon_*`: Turk's area sampling, the baseline.
 use super::polygon::prepare;
-use super::types::{SpheraSample, SpheraVec3, with_ref};
+use super::types::{
+    CommonAndRareSamples, SpheraSample, SpheraVec3, sample_common_or_rare, with_ref,
+};
 use crate::Sample;
 use crate::polygon::baselines::TurkPolygon;
 
@@ -41,22 +43,7 @@ pub unsafe extern "C" fn sphera_turk_polygon_sample(
     u1: f32,
 ) -> SpheraSample {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    let Some(polygon) = (unsafe { polygon.as_ref() }) else {
-        return Sample::NONE.into();
-    };
-    // The common case inline, the rare one by a call out of line (with the entry point's
-    // signature, so that the arguments and the result stay in their registers): only the
-    // rare path sets up a stack frame.
-    match polygon.sample_common([u0, u1]) {
-        Some(sample) => sample.into(),
-        None => sample_rare(polygon, u0, u1),
-    }
-}
-
-/// The rare path of `sphera_turk_polygon_sample`, with its signature.
-#[inline(never)]
-extern "C" fn sample_rare(polygon: &TurkPolygon, u0: f32, u1: f32) -> SpheraSample {
-    polygon.sample_rare([u0, u1]).into()
+    unsafe { sample_common_or_rare(polygon, u0, u1) }
 }
 
 /// The density per steradian with which `sphera_turk_polygon_sample` produces the unit
@@ -83,4 +70,16 @@ pub unsafe extern "C" fn sphera_turk_polygon_pdf(
 pub unsafe extern "C" fn sphera_turk_polygon_area(polygon: *const TurkPolygon) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
     unsafe { with_ref(polygon, 0.0, |polygon| polygon.area()) }
+}
+
+impl CommonAndRareSamples for TurkPolygon {
+    #[inline(always)]
+    fn sample_common(&self, u: [f32; 2]) -> Option<Sample> {
+        TurkPolygon::sample_common(self, u)
+    }
+
+    #[inline(always)]
+    fn sample_rare(&self, u: [f32; 2]) -> Sample {
+        TurkPolygon::sample_rare(self, u)
+    }
 }

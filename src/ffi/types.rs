@@ -87,6 +87,48 @@ pub(crate) unsafe fn with_ref<T, R>(pointer: *const T, default: R, f: impl FnOnc
     }
 }
 
+/// A sampler whose common sample the C entry point runs inline, with the rest (empty
+/// values, rare inputs, careful paths) behind one call: see [`sample_common_or_rare`].
+pub(crate) trait CommonAndRareSamples {
+    /// The sample of an ordinary draw, or `None` where [`sample_rare`](Self::sample_rare)
+    /// must decide; where it gives a sample, the same bits as the sampler's `sample`.
+    fn sample_common(&self, u: [f32; 2]) -> Option<Sample>;
+    /// The sampler's `sample` for every draw (called where `sample_common` gives `None`).
+    fn sample_rare(&self, u: [f32; 2]) -> Sample;
+}
+
+/// The body of a sample entry point of the C ABI for a sampler with a common path: the
+/// common case inline, the rare one by a call out of line with the entry point's
+/// signature (so that the arguments and the result stay in their registers, and only
+/// the rare path sets up a stack frame; returning the sample through the stack had
+/// failed store-to-load forwarding), and the empty sample for a null pointer.
+///
+/// # Safety
+///
+/// `pointer` must be null or point to a valid, initialised `T`.
+#[inline(always)]
+pub(crate) unsafe fn sample_common_or_rare<T: CommonAndRareSamples>(
+    pointer: *const T,
+    u0: f32,
+    u1: f32,
+) -> SpheraSample {
+    // SAFETY: forwarded from the caller.
+    let Some(sampler) = (unsafe { pointer.as_ref() }) else {
+        return Sample::NONE.into();
+    };
+    match sampler.sample_common([u0, u1]) {
+        Some(sample) => sample.into(),
+        None => sample_rare(sampler, u0, u1),
+    }
+}
+
+/// The rare path of [`sample_common_or_rare`], out of line with the entry points'
+/// signature.
+#[inline(never)]
+extern "C" fn sample_rare<T: CommonAndRareSamples>(sampler: &T, u0: f32, u1: f32) -> SpheraSample {
+    sampler.sample_rare([u0, u1]).into()
+}
+
 /// Copies `count` vertices from C memory into a fixed array, or `None` when `vertices`
 /// is null or `count` lies outside `3..=SPHERA_MAX_POLYGON_VERTICES`.
 ///
