@@ -282,6 +282,15 @@ static float ltc_measure(const SpheraLtcPolygon *p) {
   return x;
 }
 
+/* The fixed-size solid angle samplers take exactly 3 or 4 vertices: other counts prepare
+ * from null vertices, which must fail and write the empty value. */
+static bool triangle_prepare(SpheraSolidAngleTriangle *out, const SpheraVec3 *v, uint32_t count) {
+  return sphera_solid_angle_triangle_prepare(out, count == 3 ? v : NULL);
+}
+static bool quad_prepare(SpheraSolidAngleQuad *out, const SpheraVec3 *v, uint32_t count) {
+  return sphera_solid_angle_quad_prepare(out, count == 4 ? v : NULL);
+}
+
 static void check_polygon(const Polygon *p, uint32_t count, int full) {
   int invalid = !(count >= 3 && count <= SPHERA_MAX_POLYGON_VERTICES) ||
                 !polygon_is_finite(p, count);
@@ -322,6 +331,37 @@ static void check_polygon(const Polygon *p, uint32_t count, int full) {
       if (!ok) EXPECT(!inverted);
       EXPECT(!sphera_solid_angle_polygon_invert(&value, s.dir, NULL, &v1));
       EXPECT(!sphera_solid_angle_polygon_invert(NULL, s.dir, &v0, &v1));
+    }
+  }
+  CHECK_FAMILY(SpheraSolidAngleTriangle, triangle_prepare, sphera_solid_angle_triangle_sample,
+               sphera_solid_angle_triangle_pdf, sphera_solid_angle_triangle_solid_angle);
+  CHECK_FAMILY(SpheraSolidAngleQuad, quad_prepare, sphera_solid_angle_quad_sample,
+               sphera_solid_angle_quad_pdf, sphera_solid_angle_quad_solid_angle);
+  /* Their inverses: the polygon's, bit for bit (where the sizes prepare). */
+  {
+    SpheraSolidAnglePolygon polygon;
+    SpheraSolidAngleTriangle triangle;
+    SpheraSolidAngleQuad quad;
+    int ok = sphera_solid_angle_polygon_prepare(&polygon, p->v, count), k;
+    int ok3 = triangle_prepare(&triangle, p->v, count), ok4 = quad_prepare(&quad, p->v, count);
+    EXPECT(ok3 == (ok && count == 3) && ok4 == (ok && count == 4));
+    for (k = 0; k < pair_count(0); k++) {
+      float u0, u1, v0 = NAN, v1 = NAN, w0 = NAN, w1 = NAN, x0 = NAN, x1 = NAN;
+      int inverted, inverted3, inverted4;
+      SpheraSample s;
+      pair(k, 0, &u0, &u1);
+      s = sphera_solid_angle_polygon_sample(&polygon, u0, u1);
+      inverted = sphera_solid_angle_polygon_invert(&polygon, s.dir, &v0, &v1);
+      inverted3 = sphera_solid_angle_triangle_invert(&triangle, s.dir, &w0, &w1);
+      inverted4 = sphera_solid_angle_quad_invert(&quad, s.dir, &x0, &x1);
+      calls += 3;
+      EXPECT(isfinite(w0) && isfinite(w1) && isfinite(x0) && isfinite(x1));
+      if (ok3) EXPECT(inverted3 == inverted && w0 == v0 && w1 == v1);
+      if (ok4) EXPECT(inverted4 == inverted && x0 == v0 && x1 == v1);
+      if (!ok3) EXPECT(!inverted3 && w0 == 0.0f && w1 == 0.0f);
+      if (!ok4) EXPECT(!inverted4 && x0 == 0.0f && x1 == 0.0f);
+      EXPECT(!sphera_solid_angle_triangle_invert(NULL, s.dir, &w0, &w1));
+      EXPECT(!sphera_solid_angle_quad_invert(&quad, s.dir, &x0, NULL));
     }
   }
   CHECK_FAMILY(SpheraTurkPolygon, sphera_turk_polygon_prepare, sphera_turk_polygon_sample,

@@ -106,11 +106,23 @@ typedef struct SpheraVec3 {
   float z; /* Coordinate along the normal. */
 } SpheraVec3;
 
-/* A convex polygon prepared for solid angle sampling: everything Algorithm 5 computes once per
- * polygon. */
+/* A convex polygon of 3 to SPHERA_MAX_POLYGON_VERTICES vertices prepared for solid angle
+ * sampling (Peters 2021, supplement C, Algorithm 5). */
 typedef struct SpheraSolidAnglePolygon {
   uint32_t opaque[121]; /* 484 bytes, private: see the preamble */
 } SpheraSolidAnglePolygon;
+
+/* A convex quad prepared for solid angle sampling: SpheraSolidAnglePolygon in the storage of 4
+ * vertices. */
+typedef struct SpheraSolidAngleQuad {
+  uint32_t opaque[57]; /* 228 bytes, private: see the preamble */
+} SpheraSolidAngleQuad;
+
+/* A triangle prepared for solid angle sampling: SpheraSolidAnglePolygon in the storage of 3
+ * vertices. */
+typedef struct SpheraSolidAngleTriangle {
+  uint32_t opaque[41]; /* 164 bytes, private: see the preamble */
+} SpheraSolidAngleTriangle;
 
 /* A sampled direction and its density per steradian, as the C ABI returns it.
  * `pdf == 0` means that no sample could be drawn; `dir` is then still finite (it is
@@ -382,12 +394,12 @@ uint32_t sphera_polygon_clip(struct SpheraVec3 *vertices, uint32_t count);
  * sample only the part above the horizon.
  * Returns `false` also when the polygon subtends no solid angle, in particular when its vertices
  * lie exactly in a plane through the shading point (decided exactly, at any tilt). */
-bool sphera_solid_angle_polygon_prepare(struct SpheraSolidAnglePolygon *out,
+bool sphera_solid_angle_polygon_prepare(SpheraSolidAnglePolygon *out,
                                         const struct SpheraVec3 *vertices, uint32_t count);
 
 /* Draws a direction uniformly distributed in the solid angle of `polygon` from the random
  * numbers `u0`, `u1` in [0, 1). The pdf of the sample is 1 / solid angle per steradian. */
-struct SpheraSample sphera_solid_angle_polygon_sample(const struct SpheraSolidAnglePolygon *polygon,
+struct SpheraSample sphera_solid_angle_polygon_sample(const SpheraSolidAnglePolygon *polygon,
                                                       float u0, float u1);
 
 /* The density per steradian with which `sphera_solid_angle_polygon_sample` produces the
@@ -396,18 +408,77 @@ struct SpheraSample sphera_solid_angle_polygon_sample(const struct SpheraSolidAn
  * smaller of 16 ulps, 1.9e-6 rad, and 2e-5 of the polygon's width, solid angle over perimeter),
  * 0 outside it. Every sample's pdf is this function's value at its direction, bit for bit.
  * Returns 0 also for a zero or non-finite `dir`. */
-float sphera_solid_angle_polygon_pdf(const struct SpheraSolidAnglePolygon *polygon,
-                                     struct SpheraVec3 dir);
+float sphera_solid_angle_polygon_pdf(const SpheraSolidAnglePolygon *polygon, struct SpheraVec3 dir);
 
 /* The solid angle (in steradians) that the polygon subtends. */
-float sphera_solid_angle_polygon_solid_angle(const struct SpheraSolidAnglePolygon *polygon);
+float sphera_solid_angle_polygon_solid_angle(const SpheraSolidAnglePolygon *polygon);
 
 /* Inverts `sphera_solid_angle_polygon_sample`: finds the random numbers `*u0`, `*u1` in [0, 1]
  * for which the sampler produces the unit direction `dir`.
  * Returns `false` when `polygon`, `u0` or `u1` is null, when the polygon is empty, or when `dir`
  * does not point into the polygon; `*u0` and `*u1` are then set to 0 where they are non-null. */
-bool sphera_solid_angle_polygon_invert(const struct SpheraSolidAnglePolygon *polygon,
+bool sphera_solid_angle_polygon_invert(const SpheraSolidAnglePolygon *polygon,
                                        struct SpheraVec3 dir, float *u0, float *u1);
+
+/* Prepares the solid angle sampler (Peters 2021) for the triangle `vertices[0..3]` (not
+ * normalised, either winding): `sphera_solid_angle_polygon_prepare` with `count = 3`, the same
+ * samples and densities bit for bit, in a struct sized for 3 vertices.
+ * `vertices` points to 3 vertices. Returns `false` for a null `out` or `vertices`, a non-finite
+ * coordinate, and when the triangle subtends no solid angle (in particular when its vertices lie
+ * exactly in a plane through the shading point). */
+bool sphera_solid_angle_triangle_prepare(SpheraSolidAngleTriangle *out,
+                                         const struct SpheraVec3 *vertices);
+
+/* Draws a direction uniformly distributed in the solid angle of `triangle` from the random
+ * numbers `u0`, `u1` in [0, 1), as `sphera_solid_angle_polygon_sample`. The pdf of the sample is
+ * 1 / solid angle per steradian. */
+struct SpheraSample sphera_solid_angle_triangle_sample(const SpheraSolidAngleTriangle *triangle,
+                                                       float u0, float u1);
+
+/* The density per steradian with which `sphera_solid_angle_triangle_sample` produces the
+ * direction `dir` (need not be normalised), as `sphera_solid_angle_polygon_pdf`: 1 / solid angle
+ * inside (up to the same slack), 0 outside and for a zero or non-finite `dir`. Every sample's
+ * pdf is this function's value at its direction, bit for bit. */
+float sphera_solid_angle_triangle_pdf(const SpheraSolidAngleTriangle *triangle,
+                                      struct SpheraVec3 dir);
+
+/* The solid angle (in steradians) that the triangle subtends. */
+float sphera_solid_angle_triangle_solid_angle(const SpheraSolidAngleTriangle *triangle);
+
+/* Inverts `sphera_solid_angle_triangle_sample`, as `sphera_solid_angle_polygon_invert`: the
+ * random numbers `*u0`, `*u1` in [0, 1] for which the sampler produces `dir`; `false` (and 0
+ * written where non-null) for a null pointer, an empty triangle, or a `dir` outside it. */
+bool sphera_solid_angle_triangle_invert(const SpheraSolidAngleTriangle *triangle,
+                                        struct SpheraVec3 dir, float *u0, float *u1);
+
+/* Prepares the solid angle sampler (Peters 2021) for the convex quad `vertices[0..4]` (not
+ * normalised, either winding): `sphera_solid_angle_polygon_prepare` with `count = 4`, the same
+ * samples and densities bit for bit, in a struct sized for 4 vertices.
+ * `vertices` points to 4 vertices. Returns `false` for a null `out` or `vertices`, a non-finite
+ * coordinate, and when the quad subtends no solid angle (in particular when its vertices lie
+ * exactly in a plane through the shading point). */
+bool sphera_solid_angle_quad_prepare(SpheraSolidAngleQuad *out, const struct SpheraVec3 *vertices);
+
+/* Draws a direction uniformly distributed in the solid angle of `quad` from the random numbers
+ * `u0`, `u1` in [0, 1), as `sphera_solid_angle_polygon_sample`. The pdf of the sample is 1 /
+ * solid angle per steradian. */
+struct SpheraSample sphera_solid_angle_quad_sample(const SpheraSolidAngleQuad *quad, float u0,
+                                                   float u1);
+
+/* The density per steradian with which `sphera_solid_angle_quad_sample` produces the direction
+ * `dir` (need not be normalised), as `sphera_solid_angle_polygon_pdf`: 1 / solid angle inside
+ * (up to the same slack), 0 outside and for a zero or non-finite `dir`. Every sample's pdf is
+ * this function's value at its direction, bit for bit. */
+float sphera_solid_angle_quad_pdf(const SpheraSolidAngleQuad *quad, struct SpheraVec3 dir);
+
+/* The solid angle (in steradians) that the quad subtends. */
+float sphera_solid_angle_quad_solid_angle(const SpheraSolidAngleQuad *quad);
+
+/* Inverts `sphera_solid_angle_quad_sample`, as `sphera_solid_angle_polygon_invert`: the random
+ * numbers `*u0`, `*u1` in [0, 1] for which the sampler produces `dir`; `false` (and 0 written
+ * where non-null) for a null pointer, an empty quad, or a `dir` outside it. */
+bool sphera_solid_angle_quad_invert(const SpheraSolidAngleQuad *quad, struct SpheraVec3 dir,
+                                    float *u0, float *u1);
 
 /* Prepares Turk's baseline for the convex polygon `vertices[0..count]`: points uniformly
  * distributed over the polygon's area, with the density converted to solid angle.

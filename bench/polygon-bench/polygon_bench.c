@@ -116,7 +116,7 @@ typedef struct {
 
 /* Per technique: the prepare + 1 sample loop, the preparation of a pool into an array,
  * and the per-sample loop over that array. */
-#define DEFINE_TECHNIQUE(ID, TYPE, PREPARE, SAMPLE, VERTS, STRADDLING_TOO)                   \
+#define DEFINE_TECHNIQUE(ID, TYPE, PREPARE, SAMPLE, VERTS, STRADDLING_TOO, VERTICES)         \
   NOINLINE static void loop_prepare_##ID(const Pool *pool, long calls, Tally *tally) {      \
     TYPE prepared;                                                                          \
     double sum = 0.0;                                                                       \
@@ -153,25 +153,33 @@ typedef struct {
     tally->valid += valid;                                                                  \
   }
 
-/* id, prepared type, prepare, sample, vertex argument, runs on straddling pools */
+/* The fixed-size solid angle samplers take no count. */
+#define TRIANGLE_PREPARE(out, vertices, n) sphera_solid_angle_triangle_prepare(out, vertices)
+#define QUAD_PREPARE(out, vertices, n) sphera_solid_angle_quad_prepare(out, vertices)
+
+/* id, prepared type, prepare, sample, vertex argument, runs on straddling pools, runs only on
+ * pools of this many vertices (0: every pool) */
 #define TECHNIQUES(X)                                                                                          \
-  X(c_turk, struct TurkC, turk_prepare, turk_sample, C_VERTS, 1)                                               \
-  X(turk, SpheraTurkPolygon, sphera_turk_polygon_prepare, sphera_turk_polygon_sample, LIB_VERTS, 0)            \
+  X(c_turk, struct TurkC, turk_prepare, turk_sample, C_VERTS, 1, 0)                                            \
+  X(turk, SpheraTurkPolygon, sphera_turk_polygon_prepare, sphera_turk_polygon_sample, LIB_VERTS, 0, 0)         \
   X(solid_angle, SpheraSolidAnglePolygon, sphera_solid_angle_polygon_prepare,                                  \
-    sphera_solid_angle_polygon_sample, LIB_VERTS, 0)                                                           \
+    sphera_solid_angle_polygon_sample, LIB_VERTS, 0, 0)                                                        \
+  X(solid_angle_triangle, SpheraSolidAngleTriangle, TRIANGLE_PREPARE, sphera_solid_angle_triangle_sample,      \
+    LIB_VERTS, 0, 3)                                                                                           \
+  X(solid_angle_quad, SpheraSolidAngleQuad, QUAD_PREPARE, sphera_solid_angle_quad_sample, LIB_VERTS, 0, 4)     \
   X(clipped_solid_angle, SpheraClippedSolidAnglePolygon, sphera_clipped_solid_angle_polygon_prepare,           \
-    sphera_clipped_solid_angle_polygon_sample, LIB_VERTS, 1)                                                   \
-  X(projected, SpheraProjectedPolygon, sphera_projected_polygon_prepare,                             \
-    sphera_projected_polygon_sample, LIB_VERTS, 1)                                                             \
-  X(projected_fast, SpheraProjectedPolygon, sphera_projected_polygon_prepare_fast,                   \
-    sphera_projected_polygon_sample_fast, LIB_VERTS, 1)                                                        \
-  X(arvo, SpheraArvoPolygon, sphera_arvo_polygon_prepare, sphera_arvo_polygon_sample, LIB_VERTS, 0)            \
+    sphera_clipped_solid_angle_polygon_sample, LIB_VERTS, 1, 0)                                                \
+  X(projected, SpheraProjectedPolygon, sphera_projected_polygon_prepare,                                       \
+    sphera_projected_polygon_sample, LIB_VERTS, 1, 0)                                                          \
+  X(projected_fast, SpheraProjectedPolygon, sphera_projected_polygon_prepare_fast,                             \
+    sphera_projected_polygon_sample_fast, LIB_VERTS, 1, 0)                                                     \
+  X(arvo, SpheraArvoPolygon, sphera_arvo_polygon_prepare, sphera_arvo_polygon_sample, LIB_VERTS, 0, 0)         \
   X(hart_bilinear, SpheraHartBilinearPolygon, sphera_hart_bilinear_polygon_prepare,                            \
-    sphera_hart_bilinear_polygon_sample, LIB_VERTS, 0)                                                         \
+    sphera_hart_bilinear_polygon_sample, LIB_VERTS, 0, 0)                                                      \
   X(hart_biquadratic, SpheraHartBiquadraticPolygon, sphera_hart_biquadratic_polygon_prepare,                   \
-    sphera_hart_biquadratic_polygon_sample, LIB_VERTS, 0)                                                      \
+    sphera_hart_biquadratic_polygon_sample, LIB_VERTS, 0, 0)                                                   \
   X(arvo_projected, SpheraArvoProjectedPolygon, sphera_arvo_projected_polygon_prepare,                         \
-    sphera_arvo_projected_polygon_sample, LIB_VERTS, 1)
+    sphera_arvo_projected_polygon_sample, LIB_VERTS, 1, 0)
 
 TECHNIQUES(DEFINE_TECHNIQUE)
 
@@ -180,13 +188,14 @@ typedef struct {
   const char *type;
   size_t size;
   int straddling_too;
+  int vertices; /* 0: every pool */
   void (*loop_prepare)(const Pool *, long, Tally *);
   void (*prepare_all)(const Pool *, void *);
   void (*loop_sample)(const void *, long, Tally *);
 } Technique;
 
-#define TECHNIQUE_ENTRY(ID, TYPE, PREPARE, SAMPLE, VERTS, STRADDLING_TOO) \
-  {#ID, #TYPE, sizeof(TYPE), STRADDLING_TOO, loop_prepare_##ID, prepare_all_##ID, loop_sample_##ID},
+#define TECHNIQUE_ENTRY(ID, TYPE, PREPARE, SAMPLE, VERTS, STRADDLING_TOO, VERTICES) \
+  {#ID, #TYPE, sizeof(TYPE), STRADDLING_TOO, VERTICES, loop_prepare_##ID, prepare_all_##ID, loop_sample_##ID},
 
 static const Technique TECHNIQUE_LIST[] = {TECHNIQUES(TECHNIQUE_ENTRY)};
 enum { TECHNIQUE_COUNT = sizeof(TECHNIQUE_LIST) / sizeof(TECHNIQUE_LIST[0]) };
@@ -349,7 +358,8 @@ int main(int argc, char **argv) {
       pools_run++;
       if (check_c_turk(pool)) failures++;
       for (t = 0; t < TECHNIQUE_COUNT; t++) {
-        runs[t] = selected(only, TECHNIQUE_LIST[t].id) && (pool->kind != STRADDLING || TECHNIQUE_LIST[t].straddling_too);
+        runs[t] = selected(only, TECHNIQUE_LIST[t].id) && (pool->kind != STRADDLING || TECHNIQUE_LIST[t].straddling_too) &&
+                  (TECHNIQUE_LIST[t].vertices == 0 || TECHNIQUE_LIST[t].vertices == pool->n);
         best_prepare[t] = best_sample[t] = 1e300;
         prepare_tally[t].sum = sample_tally[t].sum = 0.0;
         prepare_tally[t].valid = sample_tally[t].valid = 0;

@@ -41,6 +41,10 @@ mod polygon;
 
 mod solid_angle_polygon;
 
+mod solid_angle_triangle;
+
+mod solid_angle_quad;
+
 mod turk_polygon;
 
 mod arvo_polygon;
@@ -108,6 +112,8 @@ pub use polygon_light::*;
 pub use projected_polygon::*;
 pub use sg::*;
 pub use solid_angle_polygon::*;
+pub use solid_angle_quad::*;
+pub use solid_angle_triangle::*;
 pub use sphere_light::*;
 pub use sptd::*;
 pub use turk_polygon::*;

@@ -5,7 +5,7 @@ use super::types::{
     CommonAndRareSamples, SpheraSample, SpheraVec3, sample_common_or_rare, with_ref,
 };
 use crate::Sample;
-use crate::polygon::SolidAnglePolygon;
+use crate::polygon::{SolidAngleFan, SolidAnglePolygon};
 
 /// Prepares the solid angle sampler (Peters 2021) for the convex polygon
 /// `vertices[0..count]` (not normalised). The polygon need not be clipped; clip it first
@@ -95,6 +95,22 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_invert(
     u0: *mut f32,
     u1: *mut f32,
 ) -> bool {
+    // SAFETY: forwarded from the caller.
+    unsafe { invert(polygon, dir, u0, u1) }
+}
+
+/// The shared body of the `invert` entry points of the three sizes.
+///
+/// # Safety
+///
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
+#[inline(always)]
+pub(super) unsafe fn invert<const N: usize, const T: usize>(
+    polygon: *const SolidAngleFan<N, T>,
+    dir: SpheraVec3,
+    u0: *mut f32,
+    u1: *mut f32,
+) -> bool {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
     let inverted = match unsafe { polygon.as_ref() } {
         Some(polygon) if !u0.is_null() && !u1.is_null() => polygon.invert(dir.into()),
@@ -112,14 +128,14 @@ pub unsafe extern "C" fn sphera_solid_angle_polygon_invert(
     inverted.is_some()
 }
 
-impl CommonAndRareSamples for SolidAnglePolygon {
+impl<const N: usize, const T: usize> CommonAndRareSamples for SolidAngleFan<N, T> {
     #[inline(always)]
     fn sample_common(&self, u: [f32; 2]) -> Option<Sample> {
-        SolidAnglePolygon::sample_common(self, u)
+        SolidAngleFan::sample_common(self, u)
     }
 
     #[inline(always)]
     fn sample_rare(&self, u: [f32; 2]) -> Sample {
-        SolidAnglePolygon::sample_rare(self, u)
+        SolidAngleFan::sample_rare(self, u)
     }
 }

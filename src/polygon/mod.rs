@@ -7,7 +7,7 @@
 //!
 //! [`MAX_POLYGON_VERTICES`]: crate::MAX_POLYGON_VERTICES
 
-use crate::{MAX_POLYGON_VERTICES, Vec3};
+use crate::Vec3;
 
 pub mod baselines;
 pub mod clip;
@@ -29,7 +29,7 @@ pub use clip::clip_to_upper_hemisphere;
 pub use clipped_solid_angle::ClippedSolidAnglePolygon;
 pub use ltc::LtcPolygon;
 pub use projected::ProjectedPolygon;
-pub use solid_angle::SolidAnglePolygon;
+pub use solid_angle::{SolidAngleFan, SolidAnglePolygon, SolidAngleQuad, SolidAngleTriangle};
 
 /// The end of every in-place `prepare`: keeps the value that preparation completed, or
 /// writes `empty` over what a failed preparation left half-written. Returns `prepared`.
@@ -127,8 +127,8 @@ const SHORT_EDGE_REACH_PER_LENGTH: f32 = 5e-5;
 /// edge (neighbours nearly
 /// antiparallel, the sharp end of a sliver, and every edge of a polygon so small that
 /// the fixed reach would be a large part of it, keep their planes).
-pub(crate) fn ignore_short_edges_in_containment(
-    normals: &mut [Vec3; MAX_POLYGON_VERTICES],
+pub(crate) fn ignore_short_edges_in_containment<const N: usize>(
+    normals: &mut [Vec3; N],
     positions: &[Vec3],
     count: usize,
 ) {

@@ -34,36 +34,44 @@ use glam::{BVec4A, Vec3A, Vec4};
 /// The most fan triangles a polygon has.
 pub(crate) const MAX_TRIANGLES: usize = MAX_POLYGON_VERTICES - 2;
 
-/// A convex polygon prepared for solid angle sampling: everything Algorithm 5 computes
-/// once per polygon.
+/// A convex polygon of 3 to `N` vertices prepared for solid angle sampling: everything
+/// Algorithm 5 computes once per polygon, for its `T = N - 2` fan triangles.
+///
+/// One algorithm in three sizes (issue 15, 3): [`SolidAnglePolygon`] (up to
+/// [`MAX_POLYGON_VERTICES`], 484 bytes), [`SolidAngleQuad`] (triangles and quads, 228
+/// bytes) and [`SolidAngleTriangle`] (triangles, 164 bytes). A scene of triangle or quad
+/// lights does not pay for the storage of eight vertices: the unused slots that
+/// preparation writes, the edges that `pdf` tests and the fan triangles that sampling
+/// looks through. The three give the same samples and densities, bit for bit, for the
+/// polygons they all accept (tested).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SolidAnglePolygon {
+pub struct SolidAngleFan<const N: usize, const T: usize> {
     /// Unit directions towards the vertices. `vertices[0]` is the fan apex, which
     /// Algorithm 5 calls `v1`; fan triangle `k` is `(vertices[k + 1], apex,
     /// vertices[k + 2])`, Algorithm 5's `(v0, v1, v2)`.
-    pub(crate) vertices: [Vec3; MAX_POLYGON_VERTICES],
+    pub(crate) vertices: [Vec3; N],
     /// Edge plane normals `± p_i × p_(i+1)` (not normalised), oriented so that directions
     /// inside the polygon have non-negative dot products with all of them.
-    edge_normals: [Vec3; MAX_POLYGON_VERTICES],
+    edge_normals: [Vec3; N],
     /// For the narrowest polygons (`checks_samples == 2`), the rounding errors of `edge_normals`: the
     /// exact plane of edge `i` is `edge_normals[i] + edge_residuals[i]` to about ε², so
     /// that the inside test carries no rotation of ε per edge (which moved the boundary
     /// of polygons of 1e-9 sr by a few percent of an ulp, systematically: `∫ pdf dω`
     /// was 1.00043 at 8e-10 sr). Zero otherwise.
-    edge_residuals: [Vec3; MAX_POLYGON_VERTICES],
+    edge_residuals: [Vec3; N],
     /// `G0 = |det(v0, v1, v2)|` per fan triangle.
-    pub(crate) g0: [f32; MAX_TRIANGLES],
+    pub(crate) g0: [f32; T],
     /// `G1 + G2 = 1 + v0·v1 + v0·v2 + v1·v2` per fan triangle (see [`denominator`]).
-    pub(crate) g1_plus_g2: [f32; MAX_TRIANGLES],
+    pub(crate) g1_plus_g2: [f32; T],
     /// `G2 = 1 + v0·v1 = |v0 + v1|² / 2` per fan triangle.
-    g2: [f32; MAX_TRIANGLES],
+    g2: [f32; T],
     /// `v0 + v2` per fan triangle, accurate even when `v0 ≈ -v2`.
-    outer_sum: [Vec3; MAX_TRIANGLES],
+    outer_sum: [Vec3; T],
     /// Solid angle of the fan triangles before triangle `k`; `+∞` from the first triangle
     /// that cannot be selected on, which
     /// [`select_piece`](crate::sample::select_piece) then skips.
-    pub(crate) start: [f32; MAX_TRIANGLES],
+    pub(crate) start: [f32; T],
     /// Total solid angle Ω in steradians (0 when empty).
     pub(crate) solid_angle: f32,
     /// `1 / Ω` (0 when empty).
@@ -86,6 +94,25 @@ pub struct SolidAnglePolygon {
     /// otherwise.
     checks_samples: u32,
 }
+
+/// A convex polygon of 3 to [`MAX_POLYGON_VERTICES`] vertices prepared for solid angle
+/// sampling (Peters 2021, supplement C, Algorithm 5).
+pub type SolidAnglePolygon = SolidAngleFan<MAX_POLYGON_VERTICES, MAX_TRIANGLES>;
+
+/// A triangle or a quad prepared for solid angle sampling: [`SolidAnglePolygon`] in the
+/// storage of four vertices.
+pub type SolidAngleQuad = SolidAngleFan<4, 2>;
+
+/// A triangle prepared for solid angle sampling: [`SolidAnglePolygon`] in the storage of
+/// three vertices.
+pub type SolidAngleTriangle = SolidAngleFan<3, 1>;
+
+// The sizes that the documentation states.
+const _: () = {
+    assert!(core::mem::size_of::<SolidAnglePolygon>() == 484);
+    assert!(core::mem::size_of::<SolidAngleQuad>() == 228);
+    assert!(core::mem::size_of::<SolidAngleTriangle>() == 164);
+};
 
 /// How far outside an edge (radians, approximately) `pdf` still finds a direction inside,
 /// at the most: 16 ulps of a unit vector, above the rounding of a sampled direction on an
@@ -125,7 +152,7 @@ pub const CAREFUL_PAIR_SUMS: u32 = 1;
 /// cbindgen:ignore
 pub const CAREFUL_SHORT_EDGES: u32 = 2;
 
-impl Default for SolidAnglePolygon {
+impl<const N: usize, const T: usize> Default for SolidAngleFan<N, T> {
     fn default() -> Self {
         Self::EMPTY
     }
@@ -310,10 +337,10 @@ impl VertexLanes {
     /// relative precision) through the reflection.
     #[inline(always)]
     fn reflect_edges(&mut self, reflection: &Householder, count: usize) {
-        let [x0, y0, z0] = [0, 1, 2].map(|c| Vec4::splat(self.position[c][0]));
-        let [hx, hy, hz] = reflection.h.to_array().map(Vec4::splat);
+        let [x0, y0, z0] = splat3(self.position(0));
+        let [hx, hy, hz] = splat3(reflection.h);
         for first in lane_starts(count + 1) {
-            let [x, y, z] = [0, 1, 2].map(|c| load4(&self.position[c], first));
+            let [x, y, z] = load4x3(&self.position, first);
             let (ex, ey, ez) = (x - x0, y - y0, z - z0);
             let twice_projection = Vec4::splat(2.0) * ((hx * ex + hy * ey) + hz * ez);
             store4(ey - hy * twice_projection, &mut self.reflected[0], first);
@@ -325,6 +352,24 @@ impl VertexLanes {
             );
         }
     }
+}
+
+/// The lanes of slots `first..first + 4` of the three coordinates (written out, not by
+/// `array::map`, which the compiler left out of line in the generic preparation: 64
+/// instructions per prepared triangle).
+#[inline(always)]
+fn load4x3(coordinates: &[[f32; SLOTS]; 3], first: usize) -> [Vec4; 3] {
+    [
+        load4(&coordinates[0], first),
+        load4(&coordinates[1], first),
+        load4(&coordinates[2], first),
+    ]
+}
+
+/// The three coordinates of `v`, each in all four lanes.
+#[inline(always)]
+fn splat3(v: Vec3) -> [Vec4; 3] {
+    [Vec4::splat(v.x), Vec4::splat(v.y), Vec4::splat(v.z)]
 }
 
 /// van Oosterom and Strackee's terms of the fan triangles, four triangles at a time,
@@ -347,9 +392,9 @@ struct FanLanes {
 impl FanLanes {
     /// The four fan triangles from triangle `first` on (of `triangles`).
     #[inline(always)]
-    fn compute(
+    fn compute<const N: usize, const T: usize>(
         &mut self,
-        polygon: &mut SolidAnglePolygon,
+        polygon: &mut SolidAngleFan<N, T>,
         lanes: &VertexLanes,
         reflection: &Householder,
         apex: Vec3,
@@ -357,7 +402,8 @@ impl FanLanes {
         triangles: usize,
     ) {
         let (b, c) = (first + 1, first + 2);
-        let [rb, rc] = [b, c].map(|i| [0, 1].map(|r| load4(&lanes.reflected[r], i)));
+        let [rb, rc] =
+            [b, c].map(|i| [load4(&lanes.reflected[0], i), load4(&lanes.reflected[1], i)]);
         // G0 = det(v0, v1, v2) = det(p_b, p_a, p_c) / (|p_a| |p_b| |p_c|).
         let triangle = Vec4::new(0.0, 1.0, 2.0, 3.0) + Vec4::splat(first as f32);
         let needed = triangle.cmplt(Vec4::splat(triangles as f32));
@@ -370,9 +416,9 @@ impl FanLanes {
         self.maybe_flat |= lane_bits(det.abs().cmple(noise), first, triangles);
         let signed_g0 = det / (load4(&lanes.length, b) * load4(&lanes.length, c));
         store4(signed_g0, &mut self.signed_g0, first);
-        let [bx, by, bz] = [0, 1, 2].map(|c| load4(&lanes.unit[c], b));
-        let [cx, cy, cz] = [0, 1, 2].map(|k| load4(&lanes.unit[k], c));
-        let [ax, ay, az] = apex.to_array().map(Vec4::splat);
+        let [bx, by, bz] = load4x3(&lanes.unit, b);
+        let [cx, cy, cz] = load4x3(&lanes.unit, c);
+        let [ax, ay, az] = splat3(apex);
         let (s01x, s01y, s01z) = (bx + ax, by + ay, bz + az);
         let (s02x, s02y, s02z) = (bx + cx, by + cy, bz + cz);
         let (s12x, s12y, s12z) = (ax + cx, ay + cy, az + cz);
@@ -397,7 +443,7 @@ impl FanLanes {
         store_triangle_lanes(g1_plus_g2, &mut polygon.g1_plus_g2, first);
         store_triangle_lanes(half * l01, &mut polygon.g2, first);
         let (s02x, s02y, s02z) = (s02x.to_array(), s02y.to_array(), s02z.to_array());
-        for j in 0..LANES.min(MAX_TRIANGLES - first) {
+        for j in 0..LANES.min(T - first) {
             polygon.outer_sum[first + j] = Vec3::new(s02x[j], s02y[j], s02z[j]);
         }
     }
@@ -407,11 +453,11 @@ impl FanLanes {
 /// of the prepared polygon (`first` is a constant where this is inlined, so the test
 /// is made at compile time).
 #[inline(always)]
-fn store_triangle_lanes(lanes: Vec4, values: &mut [f32; MAX_TRIANGLES], first: usize) {
-    if first + LANES <= MAX_TRIANGLES {
+fn store_triangle_lanes<const T: usize>(lanes: Vec4, values: &mut [f32; T], first: usize) {
+    if first + LANES <= T {
         store4(lanes, values, first);
     } else {
-        let end = MAX_TRIANGLES - first;
+        let end = T - first;
         values[first..].copy_from_slice(&lanes.to_array()[..end]);
     }
 }
@@ -439,14 +485,14 @@ impl EdgeLanes {
     /// polygon get zero vectors from the repeated first vertex), and the flags of the
     /// lengths of those that exist.
     #[inline(always)]
-    fn compute(
+    fn compute<const N: usize>(
         &self,
         lanes: &VertexLanes,
         first: usize,
-        normals: &mut [Vec3; MAX_POLYGON_VERTICES],
+        normals: &mut [Vec3; N],
     ) -> u32 {
-        let [px, py, pz] = [0, 1, 2].map(|c| load4(&lanes.position[c], first));
-        let [qx, qy, qz] = [0, 1, 2].map(|c| load4(&lanes.position[c], first + 1));
+        let [px, py, pz] = load4x3(&lanes.position, first);
+        let [qx, qy, qz] = load4x3(&lanes.position, first + 1);
         // p_i × p_(i+1) = p_i × (p_(i+1) - p_i): the edge vector is exact up to one
         // rounding and nearly orthogonal to p_i, so no cancellation occurs (the
         // components in the order of `Vec3::cross`).
@@ -484,25 +530,29 @@ impl EdgeLanes {
             (ny * orientation).to_array(),
             (nz * orientation).to_array(),
         );
-        for j in 0..LANES {
+        // All four lanes where they fit (`N` and `first` are constants here).
+        for j in 0..if first + LANES <= N { LANES } else { N - first } {
             normals[first + j] = Vec3::new(nx[j], ny[j], nz[j]);
         }
         flags
     }
 }
 
-impl SolidAnglePolygon {
+impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
+    /// `3 <= N <= MAX_POLYGON_VERTICES` and `T = N - 2` (a compile-time error otherwise).
+    const VALID_SIZE: () = assert!(3 <= N && N <= MAX_POLYGON_VERTICES && T + 2 == N);
+
     /// The state of a polygon that could not be prepared: samples have `pdf == 0`,
     /// `pdf()` is 0 and the solid angle is 0.
     pub const EMPTY: Self = Self {
-        vertices: [Vec3::Z; MAX_POLYGON_VERTICES],
-        edge_normals: [Vec3::ZERO; MAX_POLYGON_VERTICES],
-        edge_residuals: [Vec3::ZERO; MAX_POLYGON_VERTICES],
-        g0: [0.0; MAX_TRIANGLES],
-        g1_plus_g2: [0.0; MAX_TRIANGLES],
-        g2: [0.0; MAX_TRIANGLES],
-        outer_sum: [Vec3::ZERO; MAX_TRIANGLES],
-        start: [0.0; MAX_TRIANGLES],
+        vertices: [Vec3::Z; N],
+        edge_normals: [Vec3::ZERO; N],
+        edge_residuals: [Vec3::ZERO; N],
+        g0: [0.0; T],
+        g1_plus_g2: [0.0; T],
+        g2: [0.0; T],
+        outer_sum: [Vec3::ZERO; T],
+        start: [0.0; T],
         solid_angle: 0.0,
         density: 0.0,
         orientation: 1.0,
@@ -523,7 +573,7 @@ impl SolidAnglePolygon {
     /// [`prepare`](Self::prepare) does the same in place, without the copies of the
     /// prepared value that returning it costs.
     #[must_use]
-    pub fn new(vertices: &[Vec3]) -> Option<SolidAnglePolygon> {
+    pub fn new(vertices: &[Vec3]) -> Option<Self> {
         let mut polygon = Self::EMPTY;
         polygon.prepare(vertices).then_some(polygon)
     }
@@ -540,11 +590,13 @@ impl SolidAnglePolygon {
         // and heptagons slower (1689 -> 1726, 2121 -> 2212), so they share one body, kept
         // out of line (inlined beside the small copies it grew to 1903 and 2382; apart,
         // 1667 and 2036).
+        // The sizes' parameters, checked where a size is first used.
+        let () = Self::VALID_SIZE;
         let count = vertices.len();
         let prepared = match count {
             3 => self.prepare_or_fail(vertices, 3),
-            4 => self.prepare_or_fail(vertices, 4),
-            5..=MAX_POLYGON_VERTICES => self.prepare_five_to_eight(vertices),
+            4 if N >= 4 => self.prepare_or_fail(vertices, 4),
+            5..=MAX_POLYGON_VERTICES if count <= N => self.prepare_five_to_eight(vertices),
             _ => false,
         };
         super::keep_or_empty(self, prepared, Self::EMPTY)
@@ -555,13 +607,22 @@ impl SolidAnglePolygon {
     /// compiler inlines it).
     #[inline(never)]
     fn prepare_five_to_eight(&mut self, vertices: &[Vec3]) -> bool {
-        self.prepare_or_fail(vertices, vertices.len())
+        let count = vertices.len();
+        if !(5..=N).contains(&count) {
+            return false;
+        }
+        self.prepare_or_fail(vertices, count)
     }
 
     /// The body of [`prepare`](Self::prepare) for `count == vertices.len()` (3 to 8); on
     /// `false`, `self` holds partial values.
     #[inline(always)]
     fn prepare_or_fail(&mut self, vertices: &[Vec3], count: usize) -> bool {
+        // The range of `count` where the compiler sees it (the callers test it too): the
+        // indices below `count` then need no bounds checks.
+        if !(3..=N).contains(&count) {
+            return false;
+        }
         let vertices = &vertices[..count];
         let Some(factor) = rescale_factor(vertices) else {
             return false;
@@ -590,8 +651,13 @@ impl SolidAnglePolygon {
         }
         // The rare triangles that the lanes flagged, in the scalar careful forms.
         let mut careful_paths = 0;
-        let flagged = fan.maybe_flat | fan.wide_pairs;
-        for k in (0..triangles).filter(|&k| flagged & (1 << k) != 0) {
+        // One pass per set bit (the lanes' flags have no bits past `triangles`): the
+        // common polygon, with no flag, skips the loop at once.
+        let mut flagged = fan.maybe_flat | fan.wide_pairs;
+        while flagged != 0 {
+            let k = flagged.trailing_zeros() as usize;
+            // Clears the lowest set bit.
+            flagged &= flagged - 1;
             let (b, c) = (k + 1, k + 2);
             // A triangle exactly in a plane through the shading point has G0 = 0, which
             // the reflection's rounding would turn into noise (and a polygon in such a
@@ -698,7 +764,7 @@ impl SolidAnglePolygon {
         self.checks_samples = narrow as u32 + narrowest as u32;
         // The narrowest polygons: the edge planes to about ε² (see `edge_residuals`), in
         // place of the rounded ones; the others keep zero residuals.
-        self.edge_residuals = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+        self.edge_residuals = [Vec3::ZERO; N];
         if narrowest {
             for i in 0..count {
                 let (normal, residual) = crate::math::cross_with_residual(
@@ -731,10 +797,10 @@ impl SolidAnglePolygon {
         self.careful_paths = careful_paths;
         // The unused slots as in the empty value: no stale or NaN word is left in a
         // prepared value (the adversarial C test fills it with NaN first).
-        for i in count..MAX_POLYGON_VERTICES {
+        for i in count..N {
             self.vertices[i] = Vec3::Z;
         }
-        for k in triangles..MAX_TRIANGLES {
+        for k in triangles..T {
             self.g0[k] = 0.0;
             self.g1_plus_g2[k] = 0.0;
             self.g2[k] = 0.0;
@@ -792,7 +858,7 @@ impl SolidAnglePolygon {
     /// even the centroid is rejected.
     #[cold]
     fn pulled_inside(&self, dir: Vec3) -> Sample {
-        let count = super::stored_count(self.vertex_count, MAX_POLYGON_VERTICES);
+        let count = super::stored_count(self.vertex_count, N);
         let mut sum = Vec3::ZERO;
         for v in &self.vertices[..count] {
             sum += *v;
@@ -962,12 +1028,12 @@ impl SolidAnglePolygon {
         let valid = self.vertex_count > 0 && dir.is_finite() && dir.length_squared() > 0.0;
         let mut inside = true;
         if self.checks_samples >= 2 {
-            for i in 0..MAX_POLYGON_VERTICES {
+            for i in 0..N {
                 // Unused slots hold zero normals, whose dot product 0 passes.
                 inside &= self.edge_side(i, dir) >= 0.0;
             }
         } else {
-            for i in 0..MAX_POLYGON_VERTICES {
+            for i in 0..N {
                 inside &= self.edge_normals[i].dot(dir) >= 0.0;
             }
         }
@@ -981,7 +1047,7 @@ impl SolidAnglePolygon {
     /// with the perimeter `P` from the chords of the unit vertex directions.
     #[cold]
     fn contains_with_slack(&self, dir: Vec3) -> bool {
-        let count = super::stored_count(self.vertex_count, MAX_POLYGON_VERTICES);
+        let count = super::stored_count(self.vertex_count, N);
         let mut perimeter = 0.0f32;
         for i in 0..count {
             let next = if i + 1 == count { 0 } else { i + 1 };
@@ -999,7 +1065,7 @@ impl SolidAnglePolygon {
     pub fn contains_within(&self, dir: Vec3, tolerance: f32) -> bool {
         let length = dir.length();
         let mut inside = self.vertex_count > 0 && dir.is_finite() && length > 0.0;
-        for i in 0..MAX_POLYGON_VERTICES {
+        for i in 0..N {
             // Unused slots hold zero normals, whose dot product 0 passes.
             let n = self.edge_normals[i];
             inside &= self.edge_side(i, dir) >= -tolerance * n.length() * length;
@@ -1073,8 +1139,8 @@ impl SolidAnglePolygon {
         }
         let w = crate::math::normalize_scaled(dir);
         let apex = self.vertices[0];
-        let count = super::stored_count(self.vertex_count, MAX_POLYGON_VERTICES);
-        let selectable = super::stored_count(self.selectable_triangles, MAX_TRIANGLES);
+        let count = super::stored_count(self.vertex_count, N);
+        let selectable = super::stored_count(self.selectable_triangles, T);
         // Diagonal j runs from the apex to vertex j; w is on the inner side of diagonal
         // k + 1 and the outer side of diagonal k + 2 when it lies in fan triangle k.
         let orientation = self.orientation;

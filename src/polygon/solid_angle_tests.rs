@@ -19,8 +19,18 @@ fn assert_uniform_in_solid_angle(
     seed: u64,
     what: &str,
 ) -> SamplerReport {
+    assert_uniform_in_solid_angle_of::<8, 6>(vertices, samples, seed, what)
+}
+
+/// [`assert_uniform_in_solid_angle`] with the sampler of a given size.
+fn assert_uniform_in_solid_angle_of<const N: usize, const T: usize>(
+    vertices: &[Vec3],
+    samples: u64,
+    seed: u64,
+    what: &str,
+) -> SamplerReport {
     let polygon =
-        SolidAnglePolygon::new(vertices).unwrap_or_else(|| panic!("{what}: prepare failed"));
+        SolidAngleFan::<N, T>::new(vertices).unwrap_or_else(|| panic!("{what}: prepare failed"));
     let reference = reference_solid_angle(vertices);
     let relative = (polygon.solid_angle() as f64 - reference).abs() / reference;
     assert!(
@@ -868,4 +878,156 @@ fn sample_common_takes_ordinary_draws_and_leaves_the_rare_ones() {
     }
     std::println!("huge pentagon: {common} common, {rare} rare");
     assert!(common > 0 && rare > 0, "{common} common, {rare} rare");
+}
+
+/// The triangle and quad sizes (issue 15, 3): the chi-square test of each against the
+/// cells' exact f64 solid angles, on triangles and quads in both windings.
+#[test]
+fn the_triangle_and_quad_sizes_sample_uniformly_in_solid_angle() {
+    let mut rng = Rng::new(300);
+    for trial in 0..3 {
+        let triangle = random_polygon_above(&mut rng, 3, 0.3, 1.0);
+        let quad = random_polygon_above(&mut rng, 4, 0.3, 1.0);
+        for (v, what) in [
+            (triangle.clone(), "triangle"),
+            (reversed(&triangle), "reversed"),
+        ] {
+            assert_uniform_in_solid_angle_of::<3, 1>(&v, 300_000, 60 + trial, what);
+            assert_uniform_in_solid_angle_of::<4, 2>(&v, 300_000, 70 + trial, what);
+        }
+        for (v, what) in [(quad.clone(), "quad"), (reversed(&quad), "reversed quad")] {
+            assert_uniform_in_solid_angle_of::<4, 2>(&v, 300_000, 80 + trial, what);
+        }
+    }
+}
+
+/// Everything the three sizes compute for the same triangle or quad is the same, bit for
+/// bit: the solid angle, every sample, `pdf` (inside, outside, on the boundary's slack)
+/// and the inverse, over ordinary polygons and the hard cases (1e-10 sr, vertices 1e5
+/// away, near hemispheres just above the shading point, the shading point 1e-6 off the
+/// plane, duplicate vertices, both windings), and the failures are the same failures.
+#[test]
+fn the_three_sizes_give_the_same_bits() {
+    let mut rng = Rng::new(301);
+    let mut polygons: Vec<Vec<Vec3>> = Vec::new();
+    for n in [3, 4] {
+        for _ in 0..200 {
+            polygons.push(random_polygon_above(&mut rng, n, 0.01, 2.0));
+        }
+        for scale in [1e-5f32, 1e-3, 1e5] {
+            let center = rng.unit_vector_f32() * (0.5 + rng.uniform_f32());
+            let normal = center + rng.unit_vector_f32() * 0.5;
+            polygons.push(ellipse_polygon(
+                &mut rng,
+                n,
+                center * scale.max(1.0),
+                normal,
+                scale.min(1.0) * 0.3,
+                0.7,
+            ));
+        }
+        for height in [1e-6f32, 1e-3, 0.0, -1e-6] {
+            polygons.push(ellipse_polygon(
+                &mut rng,
+                n,
+                Vec3::new(0.1, 0.0, height),
+                Vec3::Z,
+                50.0,
+                0.8,
+            ));
+        }
+    }
+    polygons.push(vec![
+        Vec3::new(-1.0, -1.0, 1.0),
+        Vec3::new(1.0, -1.0, 1.0),
+        Vec3::new(1.0, -1.0, 1.0),
+        Vec3::new(-1.0, 1.0, 1.0),
+    ]);
+    polygons.push(vec![
+        Vec3::new(0.0, 0.0, 1.0),
+        Vec3::new(f32::NAN, 0.0, 1.0),
+        Vec3::new(0.0, 1.0, 1.0),
+    ]);
+    let reversed_ones: Vec<Vec<Vec3>> = polygons.iter().map(|v| reversed(v)).collect();
+    polygons.extend(reversed_ones);
+    let mut compared = [0usize; 2];
+    for v in &polygons {
+        let big = SolidAnglePolygon::new(v);
+        let quad = SolidAngleQuad::new(v);
+        let triangle = SolidAngleTriangle::new(v);
+        assert_eq!(big.is_some(), quad.is_some(), "{v:?}");
+        if v.len() == 3 {
+            assert_eq!(big.is_some(), triangle.is_some(), "{v:?}");
+        } else {
+            assert!(
+                triangle.is_none(),
+                "a triangle's storage took {} vertices",
+                v.len()
+            );
+        }
+        let Some(big) = big else {
+            continue;
+        };
+        compared[v.len() - 3] += 1;
+        let quad = quad.unwrap();
+        let same = |a: Sample, b: Sample, what: &str| {
+            assert_eq!(
+                (a.dir.to_array().map(f32::to_bits), a.pdf.to_bits()),
+                (b.dir.to_array().map(f32::to_bits), b.pdf.to_bits()),
+                "{what}: {a:?} vs {b:?} for {v:?}"
+            );
+        };
+        assert_eq!(big.solid_angle().to_bits(), quad.solid_angle().to_bits());
+        assert_eq!(big.careful_paths(), quad.careful_paths());
+        for k in 0..64 {
+            let u = if k < 4 {
+                [
+                    [0.0, 0.0],
+                    [ONE_MINUS_ULP, ONE_MINUS_ULP],
+                    [0.5, 1.0],
+                    [f32::NAN, -1.0],
+                ][k]
+            } else {
+                [rng.uniform_f32(), rng.uniform_f32()]
+            };
+            let s = big.sample(u);
+            same(s, quad.sample(u), "quad sample");
+            // Directions inside, at the sample, and nearby (some outside).
+            let nearby = (s.dir + rng.unit_vector_f32() * 1e-3).normalize();
+            for dir in [s.dir, nearby, rng.unit_vector_f32()] {
+                assert_eq!(
+                    big.pdf(dir).to_bits(),
+                    quad.pdf(dir).to_bits(),
+                    "pdf {dir:?}"
+                );
+                assert_eq!(big.invert(dir), quad.invert(dir), "invert {dir:?}");
+            }
+            if let Some(triangle) = &triangle {
+                same(s, triangle.sample(u), "triangle sample");
+                for dir in [s.dir, nearby] {
+                    assert_eq!(big.pdf(dir).to_bits(), triangle.pdf(dir).to_bits());
+                    assert_eq!(big.invert(dir), triangle.invert(dir));
+                }
+            }
+        }
+    }
+    // Most of the polygons above prepare (a few lie in the shading point's plane).
+    assert!(compared[0] > 200 && compared[1] > 200, "{compared:?}");
+}
+
+/// A size takes no more vertices than it stores, and writes its empty value then.
+#[test]
+fn the_triangle_and_quad_sizes_reject_more_vertices_than_they_store() {
+    let mut rng = Rng::new(302);
+    for n in [4, 5, 8] {
+        let v = random_polygon_above(&mut rng, n, 0.3, 1.0);
+        let mut triangle = SolidAngleTriangle::new(&v[..3]).unwrap();
+        assert!(!triangle.prepare(&v));
+        assert_eq!(triangle, SolidAngleTriangle::EMPTY);
+        if n > 4 {
+            let mut quad = SolidAngleQuad::new(&v[..4]).unwrap();
+            assert!(!quad.prepare(&v));
+            assert_eq!(quad, SolidAngleQuad::EMPTY);
+        }
+    }
 }

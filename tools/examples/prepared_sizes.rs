@@ -12,7 +12,10 @@ use sphera::ffi::*;
 use sphera::polygon::baselines::{
     ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, TurkPolygon,
 };
-use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon};
+use sphera::polygon::{
+    ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon, SolidAngleQuad,
+    SolidAngleTriangle,
+};
 
 /// Bytes of `T` that `prepare` writes for these vertices (see the module docs).
 fn bytes_written<T>(
@@ -59,12 +62,17 @@ fn polygon(count: usize, offset: f32) -> Vec<SpheraVec3> {
 fn main() {
     type Prepare<T> = unsafe extern "C" fn(*mut T, *const SpheraVec3, u32) -> bool;
     fn row<T>(name: &str, prepare: Prepare<T>) {
+        row_of_counts(name, prepare, 8);
+    }
+    /// A row for a struct that stores at most `most` vertices ("—" for larger polygons).
+    fn row_of_counts<T>(name: &str, prepare: Prepare<T>, most: usize) {
         let mut cells = vec![];
         for (count, offset) in [(3, 0.0), (4, 0.0), (6, 0.0), (7, 0.0), (6, 1.5)] {
-            cells.push(format!(
-                "{:>5}",
-                bytes_written(prepare, &polygon(count, offset))
-            ));
+            cells.push(if count <= most {
+                format!("{:>5}", bytes_written(prepare, &polygon(count, offset)))
+            } else {
+                format!("{:>5}", "—")
+            });
         }
         println!(
             "| {name:<30} | {:>5} | {} |",
@@ -80,6 +88,31 @@ fn main() {
         "SpheraSolidAnglePolygon",
         sphera_solid_angle_polygon_prepare,
     );
+    // The fixed sizes take no count: their own vertex count only.
+    unsafe extern "C" fn triangle(
+        out: *mut SolidAngleTriangle,
+        vertices: *const SpheraVec3,
+        count: u32,
+    ) -> bool {
+        assert_eq!(count, 3);
+        // SAFETY: forwarded from the caller.
+        unsafe { sphera_solid_angle_triangle_prepare(out, vertices) }
+    }
+    unsafe extern "C" fn quad(
+        out: *mut SolidAngleQuad,
+        vertices: *const SpheraVec3,
+        count: u32,
+    ) -> bool {
+        // A triangle as a quad with its last vertex repeated.
+        let v: Vec<SpheraVec3> = (0..4)
+            // SAFETY: `count` readable vertices (3 or 4).
+            .map(|k| unsafe { *vertices.add(k.min(count as usize - 1)) })
+            .collect();
+        // SAFETY: four readable vertices.
+        unsafe { sphera_solid_angle_quad_prepare(out, v.as_ptr()) }
+    }
+    row_of_counts::<SolidAngleTriangle>("SpheraSolidAngleTriangle", triangle, 3);
+    row_of_counts::<SolidAngleQuad>("SpheraSolidAngleQuad", quad, 4);
     row::<TurkPolygon>("SpheraTurkPolygon", sphera_turk_polygon_prepare);
     row::<ArvoPolygon>("SpheraArvoPolygon", sphera_arvo_polygon_prepare);
     row::<ClippedSolidAnglePolygon>(

@@ -10,10 +10,11 @@ use std::sync::OnceLock;
 use sphera_tools::repository_root;
 
 /// The C test programs; `every_c_test_file_has_a_test` keeps this list complete.
-const C_TESTS: [&str; 18] = [
+const C_TESTS: [&str; 19] = [
     "test_polygon_clip",
     "test_projected_polygon",
     "test_solid_angle_polygon",
+    "test_solid_angle_sizes",
     "test_baselines",
     "test_frame",
     "test_warps",
@@ -182,6 +183,11 @@ fn test_polygon_clip() {
 #[test]
 fn test_solid_angle_polygon() {
     run_c_test("test_solid_angle_polygon");
+}
+
+#[test]
+fn test_solid_angle_sizes() {
+    run_c_test("test_solid_angle_sizes");
 }
 
 #[test]
@@ -535,7 +541,10 @@ fn struct_layouts_match_rust() {
         ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
     };
     use sphera::polygon::light::{LightSample, Material, PolygonLight};
-    use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon};
+    use sphera::polygon::{
+        ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon, SolidAngleQuad,
+        SolidAngleTriangle,
+    };
     use sphera::sg::{Asg, Sg};
     use sphera::sphere::{
         Cap, CapUnion, GgxPivot, SolidAngleSphere, SphereLightSampler, SphereLightShading,
@@ -563,6 +572,19 @@ fn struct_layouts_match_rust() {
         (
             "alignof(SpheraSolidAnglePolygon)",
             align_of::<SolidAnglePolygon>(),
+        ),
+        ("sizeof(SpheraSolidAngleQuad)", size_of::<SolidAngleQuad>()),
+        (
+            "alignof(SpheraSolidAngleQuad)",
+            align_of::<SolidAngleQuad>(),
+        ),
+        (
+            "sizeof(SpheraSolidAngleTriangle)",
+            size_of::<SolidAngleTriangle>(),
+        ),
+        (
+            "alignof(SpheraSolidAngleTriangle)",
+            align_of::<SolidAngleTriangle>(),
         ),
         ("sizeof(SpheraTurkPolygon)", size_of::<TurkPolygon>()),
         ("alignof(SpheraTurkPolygon)", align_of::<TurkPolygon>()),
@@ -700,6 +722,8 @@ fn struct_layouts_match_rust() {
         "SpheraSample",
         "SpheraFrame",
         "SpheraSolidAnglePolygon",
+        "SpheraSolidAngleQuad",
+        "SpheraSolidAngleTriangle",
         "SpheraTurkPolygon",
         "SpheraArvoPolygon",
         "SpheraHartBilinearPolygon",

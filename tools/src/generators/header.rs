@@ -41,6 +41,10 @@ struct Opaque {
     name: &'static str,
     size: usize,
     align: usize,
+    /// The doc comment of a type that cbindgen does not define, which the header then
+    /// defines here: the three sizes of the solid angle sampler are aliases of one
+    /// const-generic struct (`SolidAngleFan<N, T>`), which cbindgen leaves undefined.
+    defined_here: Option<&'static str>,
 }
 
 fn opaque<T>(name: &'static str) -> Opaque {
@@ -48,6 +52,15 @@ fn opaque<T>(name: &'static str) -> Opaque {
         name,
         size: std::mem::size_of::<T>(),
         align: std::mem::align_of::<T>(),
+        defined_here: None,
+    }
+}
+
+/// [`opaque`] for a type that the header defines itself, with its doc comment.
+fn opaque_defined_here<T>(name: &'static str, doc: &'static str) -> Opaque {
+    Opaque {
+        defined_here: Some(doc),
+        ..opaque::<T>(name)
     }
 }
 
@@ -66,14 +79,26 @@ fn opaque_types() -> Vec<Opaque> {
     };
     use sphera::polygon::light::PolygonLight;
     use sphera::polygon::{
-        ClippedSolidAnglePolygon, LtcPolygon, ProjectedPolygon, SolidAnglePolygon,
+        ClippedSolidAnglePolygon, LtcPolygon, ProjectedPolygon, SolidAnglePolygon, SolidAngleQuad,
+        SolidAngleTriangle,
     };
     use sphera::sphere::CapUnion;
     use sphera::sphere::light::{SphereLightSampler, SphereLightShading};
     use sphera::sphere::solid_angle_sphere::SolidAngleSphere;
     use sphera::sphere::sptd::SptdInCap;
     vec![
-        opaque::<SolidAnglePolygon>("SpheraSolidAnglePolygon"),
+        opaque_defined_here::<SolidAnglePolygon>(
+            "SpheraSolidAnglePolygon",
+            "A convex polygon of 3 to SPHERA_MAX_POLYGON_VERTICES vertices prepared for solid angle sampling (Peters 2021, supplement C, Algorithm 5).",
+        ),
+        opaque_defined_here::<SolidAngleQuad>(
+            "SpheraSolidAngleQuad",
+            "A convex quad prepared for solid angle sampling: SpheraSolidAnglePolygon in the storage of 4 vertices.",
+        ),
+        opaque_defined_here::<SolidAngleTriangle>(
+            "SpheraSolidAngleTriangle",
+            "A triangle prepared for solid angle sampling: SpheraSolidAnglePolygon in the storage of 3 vertices.",
+        ),
         opaque::<TurkPolygon>("SpheraTurkPolygon"),
         opaque::<ArvoPolygon>("SpheraArvoPolygon"),
         opaque::<HartBilinearPolygon>("SpheraHartBilinearPolygon"),
@@ -157,10 +182,37 @@ fn for_c_users(header: &str) -> String {
         }
         out.extend(lines[i..=end].iter().map(|l| l.to_string()));
         i = end + 1;
+        // The types that cbindgen leaves undefined, after the first definition (of
+        // `SpheraVec3`, which nothing precedes): they hold only `uint32_t`s.
+        if lines[end] == "} SpheraVec3;" {
+            for o in opaque.iter().filter(|o| o.defined_here.is_some()) {
+                assert!(
+                    !header.contains(&format!("typedef struct {} {{", o.name)),
+                    "{} is defined twice",
+                    o.name
+                );
+                out.push(String::new());
+                out.push("/**".to_string());
+                out.push(format!(" * {}", o.defined_here.unwrap_or_default()));
+                out.push(" */".to_string());
+                out.push(format!("typedef struct {} {{", o.name));
+                out.push(format!(
+                    "  uint32_t opaque[{}]; /* {} bytes, private: see the preamble */",
+                    o.size / 4,
+                    o.size
+                ));
+                out.push(format!("}} {};", o.name));
+            }
+        }
     }
     for o in &opaque {
         assert!(
-            header.contains(&format!("typedef struct {} {{", o.name)),
+            o.align == 4 && o.size % 4 == 0,
+            "{}: opaque storage needs 4-byte words and alignment",
+            o.name
+        );
+        assert!(
+            out.contains(&format!("typedef struct {} {{", o.name)),
             "{} is not in the generated header",
             o.name
         );

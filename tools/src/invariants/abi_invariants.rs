@@ -41,7 +41,10 @@ use sphera::polygon::baselines::{
     ArvoPolygon, ArvoProjectedPolygon, HartBilinearPolygon, HartBiquadraticPolygon, TurkPolygon,
 };
 use sphera::polygon::light::{LightSample, Material, PolygonLight};
-use sphera::polygon::{ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon};
+use sphera::polygon::{
+    ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon, SolidAngleQuad,
+    SolidAngleTriangle,
+};
 use sphera::sphere::{Cap, CapUnion as SpheraCapUnion};
 
 /// Floats that break numerical code: NaN, infinities, signed zeros, denormals, the
@@ -727,6 +730,54 @@ pub fn polygon_entry_points(data: &[u8]) {
             sphera_solid_angle_polygon_sample,
             sphera_solid_angle_polygon_pdf,
             Some(sphera_solid_angle_polygon_solid_angle),
+        )
+    });
+    // The fixed sizes, for the polygons of their vertex count (others prepare from null
+    // vertices: `false` and the empty value).
+    unsafe extern "C" fn triangle_prepare(
+        out: *mut SolidAngleTriangle,
+        vertices: *const SpheraVec3,
+        count: u32,
+    ) -> bool {
+        let vertices = if count == 3 {
+            vertices
+        } else {
+            std::ptr::null()
+        };
+        // SAFETY: forwarded from the caller.
+        unsafe { sphera_solid_angle_triangle_prepare(out, vertices) }
+    }
+    unsafe extern "C" fn quad_prepare(
+        out: *mut SolidAngleQuad,
+        vertices: *const SpheraVec3,
+        count: u32,
+    ) -> bool {
+        let vertices = if count == 4 {
+            vertices
+        } else {
+            std::ptr::null()
+        };
+        // SAFETY: forwarded from the caller.
+        unsafe { sphera_solid_angle_quad_prepare(out, vertices) }
+    }
+    check!(&Family {
+        tolerance: 0.0,
+        ..Family::<SolidAngleTriangle>::new(
+            "solid_angle_triangle",
+            triangle_prepare,
+            sphera_solid_angle_triangle_sample,
+            sphera_solid_angle_triangle_pdf,
+            Some(sphera_solid_angle_triangle_solid_angle),
+        )
+    });
+    check!(&Family {
+        tolerance: 0.0,
+        ..Family::<SolidAngleQuad>::new(
+            "solid_angle_quad",
+            quad_prepare,
+            sphera_solid_angle_quad_sample,
+            sphera_solid_angle_quad_pdf,
+            Some(sphera_solid_angle_quad_solid_angle),
         )
     });
     // The inverse of solid angle sampling.
