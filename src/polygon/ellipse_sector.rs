@@ -14,7 +14,8 @@
 use super::ellipse::{
     Vec2, add2, det2, dot2, is_degenerate, rotate, scale2, solve_homogeneous_quadratic,
 };
-use crate::math::{atan_fast_nonneg, atan2_upper_half_plane, copy_sign};
+use crate::math::{atan_fast_nonneg, atan_fast_nonneg4, atan2_upper_half_plane, copy_sign};
+use glam::Vec4;
 
 /// A sector between two ellipses, prepared for sampling.
 #[repr(C)]
@@ -111,6 +112,21 @@ fn atan2_positive(y: f32, x: f32, precision: AreaPrecision) -> f32 {
             angle.max(0.0)
         }
     }
+}
+
+/// [`atan2_positive`] with [`AreaPrecision::Fast`] of four lanes, each rounded as the
+/// scalar form (both branches computed and one selected; NaN lanes give 0 as there,
+/// since `maxps` returns its second operand for a NaN first one, as `f32::max` does).
+#[inline(always)]
+pub(crate) fn atan2_positive_fast4(y: Vec4, x: Vec4) -> Vec4 {
+    let ahead = x.cmpgt(Vec4::ZERO);
+    let angle = atan_fast_nonneg4(Vec4::select(ahead, y / x, -x / y));
+    let angle = Vec4::select(
+        ahead,
+        angle,
+        Vec4::splat(core::f32::consts::FRAC_PI_2) + angle,
+    );
+    angle.max(Vec4::ZERO)
 }
 
 /// The largest `|u_o - σ u_i|² / min(|u_i|², |u_o|²)` for which two ellipses count as
