@@ -185,6 +185,36 @@ impl EllipseSector {
         touching_ends: 0,
     };
 
+    /// [`EMPTY`](Self::EMPTY) with its words of value 1 taken from `one`: given 1.0 that
+    /// the compiler cannot see as a constant (`core::hint::black_box(1.0)`, once per
+    /// preparation), the value is stored from registers (zeros and `one`, about a dozen
+    /// stores), where a copy of the constant `EMPTY` is a call of `memcpy` per sector.
+    /// The test `empty_from_one_is_empty` checks the words.
+    #[inline(always)]
+    pub(crate) fn empty_from(one: f32) -> Self {
+        Self {
+            inner_root_det: one,
+            outer_root_det: one,
+            coincidence_sign: one,
+            cosine: one,
+            quarters: [[0.0; 2]; 5],
+            outer_quarter_dots: [0.0; 5],
+            det: 0.0,
+            inverse_basis: 0.0,
+            inner: [0.0; 2],
+            outer: [0.0; 2],
+            root_det_difference: 0.0,
+            inverse_root_det_difference: 0.0,
+            quarter_det: 0.0,
+            inner_quarter_dots: [0.0; 5],
+            inner_radius: [0.0; 5],
+            outer_radius: [0.0; 5],
+            area_form: DIFFERENCE_FORM,
+            extra_iterations: 0,
+            touching_ends: 0,
+        }
+    }
+
     /// The sector's clockwise boundary (unit direction).
     #[inline(always)]
     pub(crate) fn s0(&self) -> Vec2 {
@@ -944,6 +974,17 @@ impl Coordinates {
 mod tests {
     use super::*;
     use crate::testing::Rng;
+
+    /// `empty_from(1.0)` is `EMPTY` word for word (also through `black_box`).
+    #[test]
+    fn empty_from_one_is_empty() {
+        for one in [1.0, core::hint::black_box(1.0)] {
+            assert_eq!(
+                crate::testing::words(&EllipseSector::empty_from(one)),
+                crate::testing::words(&EllipseSector::EMPTY)
+            );
+        }
+    }
 
     /// Issue 16 (7): a zero or non-finite direction at the end of the decentral iteration
     /// gives no point, where it used to give the zenith (pdf `1/Φ`), which lies outside

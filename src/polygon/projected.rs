@@ -182,6 +182,9 @@ fn sector_determinants(
     dets
 }
 
+/// Lanes of the vertices: one per vertex, read four at a time from slot 0 and slot 1.
+const VERTEX_SLOTS: usize = 2 * LANES + 1;
+
 /// The central case of Algorithm 4 for an unclipped polygon whose edges are all outer and
 /// none degenerate (`n_z > 0` for every edge plane `n = p_j × p_j+1`, so no vertex lies
 /// on the z axis): the common case, four edges and sectors at a time straight from the
@@ -197,8 +200,7 @@ fn sector_determinants(
 #[inline(always)]
 fn central_unclipped_sectors(
     polygon: &mut ProjectedPolygon,
-    current: &[[f32; 2 * LANES]; 3],
-    others: &[[f32; 2 * LANES]; 3],
+    vertex: &[[f32; VERTEX_SLOTS]; 3],
     normals: &[[f32; 2 * LANES]; 3],
     count: usize,
     precision: AreaPrecision,
@@ -209,8 +211,8 @@ fn central_unclipped_sectors(
     let limit = Vec4::splat(super::ellipse::ELLIPSE_LIMIT);
     for first in lane_starts(count) {
         let load = |values: &[f32; 2 * LANES]| load4(values, first);
-        let [ax, ay, az] = current.each_ref().map(load);
-        let [bx, by, bz] = others.each_ref().map(load);
+        let [ax, ay, az] = vertex.each_ref().map(|c| load4(c, first));
+        let [bx, by, bz] = vertex.each_ref().map(|c| load4(c, first + 1));
         let [nx, ny, nz] = normals.each_ref().map(load);
         // `ellipse_from_normal` for n_z > 0: u_x = |n_x| / n_z (an outer ellipse, sign bit
         // clear), u_y = n_y / n_z with the sign of n_x multiplied in (copying a sign to 1
@@ -434,7 +436,8 @@ impl ProjectedPolygon {
         // A polygon wholly above the horizon (the common case) is its own clipped polygon
         // (clipping would return it unchanged) and its edges are their own planes.
         let was_clipped = !positions[..count].iter().all(|v| v.z > 0.0);
-        let mut planes = [[Vec3::ZERO; 2]; MAX_POLYGON_VERTICES];
+        // (None where not clipped: not even zeros are written.)
+        let mut planes = None;
         let mut count = count;
         if was_clipped {
             let input = positions;
@@ -444,7 +447,10 @@ impl ProjectedPolygon {
             }
             // The plane of each clipped edge from the input edge it lies on (exact), not
             // from the rounded horizon points.
-            planes = clipped_edge_planes(&input[..vertices.len()], &positions[..count]);
+            planes = Some(clipped_edge_planes(
+                &input[..vertices.len()],
+                &positions[..count],
+            ));
         }
         // Orientation: the sign of Σ det(p0, pk, pk+1) = p0 · Σ (pk - p0) × (pk+1 - p0),
         // positive when the polygon winds counter-clockwise around the zenith seen from
@@ -461,9 +467,9 @@ impl ProjectedPolygon {
         if orientation < 0.0 {
             positions[..count].reverse();
         }
-        if was_clipped && orientation < 0.0 {
+        if let (Some(planes), true) = (planes.as_mut(), orientation < 0.0) {
             // Edge k now runs backwards along the edge that was m - 2 - k.
-            let forward = planes;
+            let forward = *planes;
             for (k, plane) in planes[..count].iter_mut().enumerate() {
                 let [a, b] = forward[(2 * count - 2 - k) % count];
                 *plane = [b, a];
@@ -486,23 +492,18 @@ impl ProjectedPolygon {
         // `p.cross(first).length_squared() / (p.length_squared() * first2)`; lanes past
         // the polygon hold the first vertex again (sin² 0), and a NaN (a vertex whose
         // squared length underflows) counts as 0, as `f32::max` leaves it out.
-        // The vertices as lanes: `current` holds vertex j in slot j (0 past the polygon),
-        // `others` vertex j + 1 (the first again from the last vertex on). The edge
-        // planes of an unclipped polygon take both below.
-        let mut current = [[0.0f32; 2 * LANES]; 3];
-        let mut others = [[0.0f32; 2 * LANES]; 3];
-        for slot in 0..2 * LANES {
-            // `& 7` only shows the compiler the index in bounds (it is below 8 already).
-            let following = positions[(if slot + 1 < count { slot + 1 } else { 0 }) & 7];
-            [others[0][slot], others[1][slot], others[2][slot]] = following.to_array();
-            // Slots past the polygon hold what `positions` holds there: the lanes that
-            // read them are never stored.
-            [current[0][slot], current[1][slot], current[2][slot]] = positions[slot].to_array();
+        // The vertices as lanes: slot j holds vertex j, and the slots from `count` on the
+        // first vertex again, so that the lanes from slot 1 hold each edge's other end
+        // (the edge planes of an unclipped polygon take both below) and, past the
+        // polygon, the first vertex (sin² 0 here).
+        let mut vertex = first.to_array().map(|c| [c; VERTEX_SLOTS]);
+        for (slot, p) in positions[..count].iter().enumerate().skip(1) {
+            [vertex[0][slot], vertex[1][slot], vertex[2][slot]] = p.to_array();
         }
         let [fx, fy, fz] = first.to_array().map(Vec4::splat);
         let mut largest = Vec4::ZERO;
         for start in lane_starts(count - 1) {
-            let [x, y, z] = others.each_ref().map(|c| load4(c, start));
+            let [x, y, z] = vertex.each_ref().map(|c| load4(c, start + 1));
             let (cx, cy, cz) = (y * fz - fy * z, z * fx - fz * x, x * fy - fx * y);
             let sin2 = ((cx * cx + cy * cy) + cz * cz) / (((x * x + y * y) + z * z) * first2);
             let ahead = ((x * fx + y * fy) + z * fz).cmpgt(Vec4::ZERO);
@@ -531,8 +532,11 @@ impl ProjectedPolygon {
         let finish = |polygon: &mut Self, sectors: usize, outer_sum: f32, maybe_short: bool| {
             // The unused slots too (no stale or NaN word is left in a prepared value, which
             // the adversarial C test checks by filling the struct with NaN first).
+            // `EllipseSector::EMPTY` from registers (see `empty_from`): copied from the
+            // constant, each slot was a call of `memcpy`.
+            let one = core::hint::black_box(1.0f32);
             for j in sectors..MAX_POLYGON_VERTICES {
-                polygon.pieces.sectors_mut()[j] = EllipseSector::EMPTY;
+                polygon.pieces.sectors_mut()[j] = EllipseSector::empty_from(one);
                 polygon.sector_area[j] = 0.0;
             }
             let mut total = 0.0f32;
@@ -545,7 +549,9 @@ impl ProjectedPolygon {
             }
             pad_unselectable(&mut polygon.sector_start, polygon.selectable_sectors);
             let density = 1.0 / total;
-            if !(total > 0.0) || !total.is_finite() || !density.is_finite() {
+            // Positive and finite, as plain comparisons (`is_finite` compiled to a
+            // classification of the bits here).
+            if !(total > 0.0 && total < f32::INFINITY && density < f32::INFINITY) {
                 return false;
             }
             // Slivers seen nearly edge-on: the inner and outer ellipses almost coincide and Φ
@@ -578,26 +584,30 @@ impl ProjectedPolygon {
         // `cross_precise` (each component's two products split error-free: without
         // hardware FMA the bulk of this preparation's arithmetic). A clipped edge takes
         // the plane of the input edge it lies on (`planes`).
-        let mut clipped_ends = [[[0.0f32; 2 * LANES]; 3]; 2];
-        let ends = if was_clipped {
+        // Each end's lanes and the slot of edge 0's end in them.
+        let clipped_ends;
+        let ends = if let Some(planes) = &planes {
+            let mut lanes = [[[0.0f32; VERTEX_SLOTS]; 3]; 2];
             #[allow(clippy::needless_range_loop)] // j indexes the innermost arrays
             for j in 0..count {
                 for (end, p) in planes[j].into_iter().enumerate() {
                     for (c, value) in p.to_array().into_iter().enumerate() {
-                        clipped_ends[end][c][j] = value;
+                        lanes[end][c][j] = value;
                     }
                 }
             }
-            [&clipped_ends[0], &clipped_ends[1]]
+            clipped_ends = lanes;
+            [(&clipped_ends[0], 0), (&clipped_ends[1], 0)]
         } else {
-            [&current, &others]
+            [(&vertex, 0), (&vertex, 1)]
         };
         let mut normals = [[0.0f32; 2 * LANES]; 3];
         // Bit j: n_z > 0 for edge j.
         let mut outer_edges = 0u32;
         for first in lane_starts(count) {
-            let load = |values: &[f32; 2 * LANES]| load4(values, first);
-            let n = cross_precise4(ends[0].each_ref().map(load), ends[1].each_ref().map(load));
+            let [a, b] =
+                ends.map(|(lanes, offset)| lanes.each_ref().map(|c| load4(c, first + offset)));
+            let n = cross_precise4(a, b);
             for (c, lanes) in n.iter().enumerate() {
                 store4(*lanes, &mut normals[c], first);
             }
@@ -610,7 +620,7 @@ impl ProjectedPolygon {
         if allow_fast && !was_clipped && outer_edges {
             *took_fast = true;
             let maybe_short =
-                central_unclipped_sectors(polygon, &current, &others, &normals, count, precision);
+                central_unclipped_sectors(polygon, &vertex, &normals, count, precision);
             return finish(polygon, count, 0.0, maybe_short);
         }
         polygon.edge_normals = [Vec3::ZERO; MAX_POLYGON_VERTICES];
@@ -618,12 +628,9 @@ impl ProjectedPolygon {
         let mut direction = [[0.0f32; 2]; MAX_POLYGON_VERTICES];
         let mut xy_length = [0.0f32; MAX_POLYGON_VERTICES];
         let mut maybe_short = false;
-        let edge_ends = |j: usize| {
-            if was_clipped {
-                planes[j]
-            } else {
-                [positions[j], positions[next(j)]]
-            }
+        let edge_ends = |j: usize| match &planes {
+            Some(planes) => planes[j],
+            None => [positions[j], positions[next(j)]],
         };
         for j in 0..count {
             let [pa, pb] = edge_ends(j);
