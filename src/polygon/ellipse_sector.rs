@@ -562,7 +562,9 @@ impl EllipseSector {
     }
 
     /// The whole sector's area (between the ellipses, or inside the outer one in the
-    /// central case).
+    /// central case). Inlined into preparation, where `central` and `precision` are
+    /// constants and the direction `s1` has the coordinates (0, 1).
+    #[inline(always)]
     pub(crate) fn area(&self, central: bool, precision: AreaPrecision) -> f32 {
         let dot = dot2(self.s0(), self.s1());
         if central {
