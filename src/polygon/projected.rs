@@ -703,7 +703,8 @@ impl ProjectedPolygon {
             // equal; then the one with the degenerate ellipse comes first (rule 3).
             let mut order = [0u8, 1, 2, 3, 4, 5, 6, 7];
             let xy = |k: u8| {
-                let p = positions[k as usize];
+                // `& 7` only shows the compiler the index in bounds (entries are below 8).
+                let p = positions[(k & 7) as usize];
                 [p.x, p.y]
             };
             let degenerate = |k: u8| is_degenerate(edge[vertex_edge[k as usize]]);
