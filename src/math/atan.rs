@@ -83,17 +83,38 @@ pub fn atan_unit_estrin(t: f32) -> f32 {
 /// Range reduction `atan(x) = π/2 - atan(1/x)` for `x > 1`, then an odd minimax-style
 /// polynomial in `t = min(x, 1/x)` on `[0, 1]`.
 #[inline(always)]
-#[allow(clippy::excessive_precision)] // the coefficients as fitted
 pub fn atan_fast_nonneg(x: f32) -> f32 {
     let invert = x > 1.0;
     let t = if invert { 1.0 / x } else { x };
     let t2 = t * t;
-    // Coefficients of an odd polynomial fitted to atan on [0, 1] (Abramowitz and Stegun
-    // 4.4.49 style, degree 9).
-    let p = t
-        * (0.999_866_0
-            + t2 * (-0.330_299_5 + t2 * (0.180_141_0 + t2 * (-0.085_133_0 + t2 * 0.020_835_1))));
+    let c = &ATAN_FAST;
+    let p = t * (c[0] + t2 * (c[1] + t2 * (c[2] + t2 * (c[3] + t2 * c[4]))));
     if invert { FRAC_PI_2 - p } else { p }
+}
+
+/// Coefficients of an odd polynomial fitted to atan on [0, 1] (Abramowitz and Stegun
+/// 4.4.49 style, degree 9), for [`atan_fast_nonneg`] and [`atan_fast_nonneg4`].
+#[allow(clippy::excessive_precision)] // the coefficients as fitted
+const ATAN_FAST: [f32; 5] = [
+    0.999_866_0,
+    -0.330_299_5,
+    0.180_141_0,
+    -0.085_133_0,
+    0.020_835_1,
+];
+
+/// [`atan_fast_nonneg`] of four lanes, each rounded as the scalar form (the same
+/// operations in the same order; both branches computed and one selected).
+#[inline(always)]
+#[must_use]
+pub(crate) fn atan_fast_nonneg4(x: glam::Vec4) -> glam::Vec4 {
+    use glam::Vec4;
+    let invert = x.cmpgt(Vec4::ONE);
+    let t = Vec4::select(invert, Vec4::ONE / x, x);
+    let t2 = t * t;
+    let c = ATAN_FAST.map(Vec4::splat);
+    let p = t * (c[0] + t2 * (c[1] + t2 * (c[2] + t2 * (c[3] + t2 * c[4]))));
+    Vec4::select(invert, Vec4::splat(FRAC_PI_2) - p, p)
 }
 
 #[cfg(test)]

@@ -140,8 +140,12 @@ pub fn difference_of_products_unless_cancelling4(
 pub fn atan2_upper_half_plane4(y: Vec4, x: Vec4, lanes: usize) -> Vec4 {
     let (y, x) = (y.to_array(), x.to_array());
     let mut angles = [0.0f32; LANES];
-    for (lane, angle) in angles.iter_mut().enumerate().take(lanes) {
-        *angle = super::atan2_upper_half_plane(y[lane], x[lane]);
+    // A loop of fixed length with a test per lane, which the compiler unrolls (a loop
+    // to `lanes` kept its counter and bounds checks).
+    for lane in 0..LANES {
+        if lane < lanes {
+            angles[lane] = super::atan2_upper_half_plane(y[lane], x[lane]);
+        }
     }
     Vec4::from_array(angles)
 }

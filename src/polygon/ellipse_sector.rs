@@ -14,7 +14,8 @@
 use super::ellipse::{
     Vec2, add2, det2, dot2, is_degenerate, rotate, scale2, solve_homogeneous_quadratic,
 };
-use crate::math::{atan_fast_nonneg, atan2_upper_half_plane, copy_sign};
+use crate::math::{atan_fast_nonneg, atan_fast_nonneg4, atan2_upper_half_plane, copy_sign};
+use glam::Vec4;
 
 /// A sector between two ellipses, prepared for sampling.
 #[repr(C)]
@@ -113,6 +114,21 @@ fn atan2_positive(y: f32, x: f32, precision: AreaPrecision) -> f32 {
     }
 }
 
+/// [`atan2_positive`] with [`AreaPrecision::Fast`] of four lanes, each rounded as the
+/// scalar form (both branches computed and one selected; NaN lanes give 0 as there,
+/// since `maxps` returns its second operand for a NaN first one, as `f32::max` does).
+#[inline(always)]
+pub(crate) fn atan2_positive_fast4(y: Vec4, x: Vec4) -> Vec4 {
+    let ahead = x.cmpgt(Vec4::ZERO);
+    let angle = atan_fast_nonneg4(Vec4::select(ahead, y / x, -x / y));
+    let angle = Vec4::select(
+        ahead,
+        angle,
+        Vec4::splat(core::f32::consts::FRAC_PI_2) + angle,
+    );
+    angle.max(Vec4::ZERO)
+}
+
 /// The largest `|u_o - σ u_i|² / min(|u_i|², |u_o|²)` for which two ellipses count as
 /// nearly coincident and their area difference takes the difference form of
 /// [`EllipseSector::area_between`] also when `|u| > 1`.
@@ -168,6 +184,36 @@ impl EllipseSector {
         extra_iterations: 0,
         touching_ends: 0,
     };
+
+    /// [`EMPTY`](Self::EMPTY) with its words of value 1 taken from `one`: given 1.0 that
+    /// the compiler cannot see as a constant (`core::hint::black_box(1.0)`, once per
+    /// preparation), the value is stored from registers (zeros and `one`, about a dozen
+    /// stores), where a copy of the constant `EMPTY` is a call of `memcpy` per sector.
+    /// The test `empty_from_one_is_empty` checks the words.
+    #[inline(always)]
+    pub(crate) fn empty_from(one: f32) -> Self {
+        Self {
+            inner_root_det: one,
+            outer_root_det: one,
+            coincidence_sign: one,
+            cosine: one,
+            quarters: [[0.0; 2]; 5],
+            outer_quarter_dots: [0.0; 5],
+            det: 0.0,
+            inverse_basis: 0.0,
+            inner: [0.0; 2],
+            outer: [0.0; 2],
+            root_det_difference: 0.0,
+            inverse_root_det_difference: 0.0,
+            quarter_det: 0.0,
+            inner_quarter_dots: [0.0; 5],
+            inner_radius: [0.0; 5],
+            outer_radius: [0.0; 5],
+            area_form: DIFFERENCE_FORM,
+            extra_iterations: 0,
+            touching_ends: 0,
+        }
+    }
 
     /// The sector's clockwise boundary (unit direction).
     #[inline(always)]
@@ -516,7 +562,9 @@ impl EllipseSector {
     }
 
     /// The whole sector's area (between the ellipses, or inside the outer one in the
-    /// central case).
+    /// central case). Inlined into preparation, where `central` and `precision` are
+    /// constants and the direction `s1` has the coordinates (0, 1).
+    #[inline(always)]
     pub(crate) fn area(&self, central: bool, precision: AreaPrecision) -> f32 {
         let dot = dot2(self.s0(), self.s1());
         if central {
@@ -928,6 +976,17 @@ impl Coordinates {
 mod tests {
     use super::*;
     use crate::testing::Rng;
+
+    /// `empty_from(1.0)` is `EMPTY` word for word (also through `black_box`).
+    #[test]
+    fn empty_from_one_is_empty() {
+        for one in [1.0, core::hint::black_box(1.0)] {
+            assert_eq!(
+                crate::testing::words(&EllipseSector::empty_from(one)),
+                crate::testing::words(&EllipseSector::EMPTY)
+            );
+        }
+    }
 
     /// Issue 16 (7): a zero or non-finite direction at the end of the decentral iteration
     /// gives no point, where it used to give the zenith (pdf `1/Φ`), which lies outside

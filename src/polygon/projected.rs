@@ -26,7 +26,7 @@ use super::clip::{clip_to_upper_hemisphere, clipped_edge_planes};
 use super::ellipse::{
     DEGENERATE, dot2, ellipse_area, ellipse_from_normal, is_degenerate, is_inner, unit_direction,
 };
-use super::ellipse_sector::{AreaPrecision, EllipseSector};
+use super::ellipse_sector::{AreaPrecision, EllipseSector, atan2_positive_fast4};
 use super::rescale;
 use super::small_projected::{SLIVER_EXTENT2, SMALL_EXTENT, SmallPolygonCosineSampler};
 use super::sorting_networks::sort_bitonic;
@@ -182,6 +182,127 @@ fn sector_determinants(
     dets
 }
 
+/// Lanes of the vertices: one per vertex, read four at a time from slot 0 and slot 1.
+const VERTEX_SLOTS: usize = 2 * LANES + 1;
+
+/// The central case of Algorithm 4 for an unclipped polygon whose edges are all outer and
+/// none degenerate (`n_z > 0` for every edge plane `n = p_j × p_j+1`, so no vertex lies
+/// on the z axis): the common case, four edges and sectors at a time straight from the
+/// vertex lanes, bit for bit as the general path computes them one by one
+/// (`ellipse_from_normal`, `unit_direction`, `sector_determinants`, the `edge_dot` of an
+/// edge's own vertices and the sector constants). The test
+/// `central_fast_path_matches_the_general_path` pins which polygons come here and
+/// compares the prepared values bit for bit.
+///
+/// Writes the edge normals, the sectors `0..count` and their areas and marks the polygon
+/// central; returns whether an edge may be short (the first test of
+/// `ignore_short_edges_in_containment`).
+#[inline(always)]
+fn central_unclipped_sectors(
+    polygon: &mut ProjectedPolygon,
+    vertex: &[[f32; VERTEX_SLOTS]; 3],
+    normals: &[[f32; 2 * LANES]; 3],
+    count: usize,
+    precision: AreaPrecision,
+) -> bool {
+    polygon.central = 1;
+    polygon.edge_normals = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+    let mut maybe_short = false;
+    let limit = Vec4::splat(super::ellipse::ELLIPSE_LIMIT);
+    for first in lane_starts(count) {
+        let load = |values: &[f32; 2 * LANES]| load4(values, first);
+        let [ax, ay, az] = vertex.each_ref().map(|c| load4(c, first));
+        let [bx, by, bz] = vertex.each_ref().map(|c| load4(c, first + 1));
+        let [nx, ny, nz] = normals.each_ref().map(load);
+        // `ellipse_from_normal` for n_z > 0: u_x = |n_x| / n_z (an outer ellipse, sign bit
+        // clear), u_y = n_y / n_z with the sign of n_x multiplied in (copying a sign to 1
+        // and multiplying by it flips only the sign bit), both clamped to ELLIPSE_LIMIT.
+        let inverse = Vec4::ONE / nz;
+        let ux = (nx.abs() * inverse).min(limit);
+        let uy = ny * Vec4::ONE.copysign(nx) * inverse;
+        let uy = uy.abs().min(limit).copysign(uy);
+        // `unit_direction` of both vertices: n_z > 0 leaves neither on the z axis.
+        let direction = |x: Vec4, y: Vec4| {
+            let largest = x.abs().max(y.abs());
+            let (x, y) = (x / largest, y / largest);
+            let inverse_length = Vec4::ONE / crate::math::sqrt4(x * x + y * y);
+            (x * inverse_length, y * inverse_length)
+        };
+        let (s0x, s0y) = direction(ax, ay);
+        let (s1x, s1y) = direction(bx, by);
+        let (la, lb) = (s0x * ax + s0y * ay, s1x * bx + s1y * by);
+        // `sector_determinants`: det(p_a,xy, p_b,xy) is n_z (the same Kahan difference of
+        // products), over the product of the lengths.
+        let det = nz / (la * lb);
+        let det = Vec4::select(det.is_finite_mask(), det, Vec4::ZERO);
+        // `edge_dot` at the edge's own vertices, where the triple product is 0:
+        // t = σ (0 - n_z p_z) / (n_z |p_xy|), 0 where not finite.
+        let sigma = Vec4::ONE.copysign(nx);
+        let edge_dot = |z: Vec4, length: Vec4| {
+            let t = sigma * (Vec4::ZERO - nz * z) / (nz * length);
+            Vec4::select(t.is_finite_mask(), t, Vec4::ZERO)
+        };
+        let (t0, t1) = (edge_dot(az, la), edge_dot(bz, lb));
+        // The first test of `ignore_short_edges_in_containment`, as `length_squared`.
+        let length2 = |x: Vec4, y: Vec4, z: Vec4| (x * x + y * y) + z * z;
+        let short = !(length2(nx, ny, nz)).cmpgt(
+            Vec4::splat(super::SHORT_EDGE_SINE * super::SHORT_EDGE_SINE)
+                * (length2(ax, ay, az) * length2(bx, by, bz)),
+        );
+        let lanes = (count - first).min(LANES);
+        maybe_short |= short.bitmask() & ((1u32 << lanes) - 1) != 0;
+        // The sector constants, as in the general central path.
+        let root_det = crate::math::sqrt4(Vec4::ONE + (ux * ux + uy * uy));
+        let cosine = s0x * s1x + s0y * s1y;
+        let inverse_basis = Vec4::ONE / difference_of_products4(s0x, s1y, s0y, s1x);
+        let inverse_basis = Vec4::select(inverse_basis.is_finite_mask(), inverse_basis, Vec4::ZERO);
+        let x = (cosine + t0 * t1) / root_det;
+        let y = det.max(Vec4::ZERO);
+        let angle = match precision {
+            AreaPrecision::Exact => crate::math::atan2_upper_half_plane4(y, x, count - first),
+            AreaPrecision::Fast => atan2_positive_fast4(y, x),
+        };
+        let area = (angle * (Vec4::splat(0.5) / root_det)).max(Vec4::ZERO);
+        let [
+            nx,
+            ny,
+            nz,
+            s0x,
+            s0y,
+            s1x,
+            s1y,
+            det,
+            ux,
+            uy,
+            t0,
+            t1,
+            root_det,
+            cosine,
+        ] = [
+            nx, ny, nz, s0x, s0y, s1x, s1y, det, ux, uy, t0, t1, root_det, cosine,
+        ]
+        .map(|v| v.to_array());
+        let [inverse_basis, area] = [inverse_basis, area].map(|v| v.to_array());
+        for lane in 0..lanes {
+            let j = first + lane;
+            polygon.edge_normals[j] = Vec3::new(nx[lane], ny[lane], nz[lane]);
+            // Built in place: building it on the stack and copying it whole after
+            // using it stalls store-to-load forwarding.
+            polygon.pieces.sectors_mut()[j] = EllipseSector::new_central(
+                [[s0x[lane], s0y[lane]], [s1x[lane], s1y[lane]]],
+                det[lane],
+                [ux[lane], uy[lane]],
+                [t0[lane], t1[lane]],
+                root_det[lane],
+                cosine[lane],
+                inverse_basis[lane],
+            );
+            polygon.sector_area[j] = area[lane];
+        }
+    }
+    maybe_short
+}
+
 impl ProjectedPolygon {
     /// The state of a polygon that could not be prepared: samples have `pdf == 0`, and the
     /// pdf of every direction is 0.
@@ -272,18 +393,35 @@ impl ProjectedPolygon {
         precision: AreaPrecision,
         allow_small: bool,
     ) -> bool {
-        let prepared = self.prepare_or_fail(vertices, precision, allow_small);
+        let prepared = self.prepare_or_fail(vertices, precision, allow_small, true, &mut false);
         super::keep_or_empty(self, prepared, Self::EMPTY)
     }
 
+    /// [`prepare_with`](Self::prepare_with) with the central fast path allowed or not,
+    /// for the test that compares the two paths; returns whether the fast path ran.
+    #[cfg(test)]
+    pub(crate) fn prepare_choosing_path(
+        &mut self,
+        vertices: &[Vec3],
+        precision: AreaPrecision,
+        allow_fast: bool,
+    ) -> (bool, bool) {
+        let mut took_fast = false;
+        let prepared = self.prepare_or_fail(vertices, precision, true, allow_fast, &mut took_fast);
+        (super::keep_or_empty(self, prepared, Self::EMPTY), took_fast)
+    }
+
     /// The body of [`prepare_with`](Self::prepare_with); on `false`, `self` holds partial
-    /// values.
+    /// values. `allow_fast` permits the central fast path (`central_unclipped_sectors`),
+    /// and `took_fast` tells whether it ran (both for the test that compares the paths).
     #[inline(always)]
     fn prepare_or_fail(
         &mut self,
         vertices: &[Vec3],
         precision: AreaPrecision,
         allow_small: bool,
+        allow_fast: bool,
+        took_fast: &mut bool,
     ) -> bool {
         let count = vertices.len();
         if !(3..=MAX_POLYGON_VERTICES).contains(&count) {
@@ -295,19 +433,24 @@ impl ProjectedPolygon {
         {
             return false;
         }
-        let input = positions;
-        let input_count = count;
-        let count = clip_to_upper_hemisphere(&mut positions, count);
-        if count < 3 {
-            return false;
-        }
-        // The plane of each clipped edge from the input edge it lies on (exact), not from
-        // the rounded horizon points; a polygon that clipping left alone (the common
-        // case) skips this, and its edges are their own planes.
-        let was_clipped = count != input_count || input[..input_count].iter().any(|v| v.z <= 0.0);
-        let mut planes = [[Vec3::ZERO; 2]; MAX_POLYGON_VERTICES];
+        // A polygon wholly above the horizon (the common case) is its own clipped polygon
+        // (clipping would return it unchanged) and its edges are their own planes.
+        let was_clipped = !positions[..count].iter().all(|v| v.z > 0.0);
+        // (None where not clipped: not even zeros are written.)
+        let mut planes = None;
+        let mut count = count;
         if was_clipped {
-            planes = clipped_edge_planes(&input[..input_count], &positions[..count]);
+            let input = positions;
+            count = clip_to_upper_hemisphere(&mut positions, count);
+            if count < 3 {
+                return false;
+            }
+            // The plane of each clipped edge from the input edge it lies on (exact), not
+            // from the rounded horizon points.
+            planes = Some(clipped_edge_planes(
+                &input[..vertices.len()],
+                &positions[..count],
+            ));
         }
         // Orientation: the sign of Σ det(p0, pk, pk+1) = p0 · Σ (pk - p0) × (pk+1 - p0),
         // positive when the polygon winds counter-clockwise around the zenith seen from
@@ -324,9 +467,9 @@ impl ProjectedPolygon {
         if orientation < 0.0 {
             positions[..count].reverse();
         }
-        if was_clipped && orientation < 0.0 {
+        if let (Some(planes), true) = (planes.as_mut(), orientation < 0.0) {
             // Edge k now runs backwards along the edge that was m - 2 - k.
-            let forward = planes;
+            let forward = *planes;
             for (k, plane) in planes[..count].iter_mut().enumerate() {
                 let [a, b] = forward[(2 * count - 2 - k) % count];
                 *plane = [b, a];
@@ -349,16 +492,18 @@ impl ProjectedPolygon {
         // `p.cross(first).length_squared() / (p.length_squared() * first2)`; lanes past
         // the polygon hold the first vertex again (sin² 0), and a NaN (a vertex whose
         // squared length underflows) counts as 0, as `f32::max` leaves it out.
-        let mut others = [[0.0f32; 2 * LANES]; 3];
-        for (c, column) in others.iter_mut().enumerate() {
-            for (slot, value) in column.iter_mut().enumerate() {
-                *value = positions[if slot + 1 < count { slot + 1 } else { 0 }][c];
-            }
+        // The vertices as lanes: slot j holds vertex j, and the slots from `count` on the
+        // first vertex again, so that the lanes from slot 1 hold each edge's other end
+        // (the edge planes of an unclipped polygon take both below) and, past the
+        // polygon, the first vertex (sin² 0 here).
+        let mut vertex = first.to_array().map(|c| [c; VERTEX_SLOTS]);
+        for (slot, p) in positions[..count].iter().enumerate().skip(1) {
+            [vertex[0][slot], vertex[1][slot], vertex[2][slot]] = p.to_array();
         }
         let [fx, fy, fz] = first.to_array().map(Vec4::splat);
         let mut largest = Vec4::ZERO;
         for start in lane_starts(count - 1) {
-            let [x, y, z] = others.each_ref().map(|c| load4(c, start));
+            let [x, y, z] = vertex.each_ref().map(|c| load4(c, start + 1));
             let (cx, cy, cz) = (y * fz - fy * z, z * fx - fz * x, x * fy - fx * y);
             let sin2 = ((cx * cx + cy * cy) + cz * cz) / (((x * x + y * y) + z * z) * first2);
             let ahead = ((x * fx + y * fy) + z * fz).cmpgt(Vec4::ZERO);
@@ -383,6 +528,51 @@ impl ProjectedPolygon {
             polygon.small_tolerance = polygon.small().tolerance(SMALL_ROUNDING);
             true
         };
+        // The end of both paths: the unused slots, the sectors' starts, Φ and the checks.
+        let finish = |polygon: &mut Self, sectors: usize, outer_sum: f32, maybe_short: bool| {
+            // The unused slots too (no stale or NaN word is left in a prepared value, which
+            // the adversarial C test checks by filling the struct with NaN first).
+            // `EllipseSector::EMPTY` from registers (see `empty_from`): copied from the
+            // constant, each slot was a call of `memcpy`.
+            let one = core::hint::black_box(1.0f32);
+            for j in sectors..MAX_POLYGON_VERTICES {
+                polygon.pieces.sectors_mut()[j] = EllipseSector::empty_from(one);
+                polygon.sector_area[j] = 0.0;
+            }
+            let mut total = 0.0f32;
+            for j in 0..sectors {
+                polygon.sector_start[j] = total;
+                if polygon.sector_area[j] > 0.0 {
+                    polygon.selectable_sectors = j as u32 + 1;
+                }
+                total += polygon.sector_area[j];
+            }
+            pad_unselectable(&mut polygon.sector_start, polygon.selectable_sectors);
+            let density = 1.0 / total;
+            // Positive and finite, as plain comparisons (`is_finite` compiled to a
+            // classification of the bits here).
+            if !(total > 0.0 && total < f32::INFINITY && density < f32::INFINITY) {
+                return false;
+            }
+            // Slivers seen nearly edge-on: the inner and outer ellipses almost coincide and Φ
+            // is a small difference of large areas, with a relative error of about
+            // 3e-7 × outer_sum / Φ. The small-polygon sampler deviates from the cosine by
+            // 0.2 extent² (and is exact for its own pdf); switch when that is smaller, as long
+            // as it stays within the 1e-4 that the pdf contract allows.
+            if allow_small && 3e-7 * outer_sum > 0.2 * extent2 * total && extent2 < SLIVER_EXTENT2 {
+                return switch_to_small(polygon);
+            }
+            polygon.projected_solid_angle = total;
+            polygon.density = density;
+            if maybe_short {
+                super::ignore_short_edges_in_containment(
+                    &mut polygon.edge_normals,
+                    &positions,
+                    count,
+                );
+            }
+            true
+        };
         if allow_small && extent2 < SMALL_EXTENT * SMALL_EXTENT {
             // As from the empty value: `contains` of the small case passes every edge.
             polygon.edge_normals = [Vec3::ZERO; MAX_POLYGON_VERTICES];
@@ -390,38 +580,58 @@ impl ProjectedPolygon {
         }
         // Algorithm 1 per edge; edge j runs from vertex j to vertex j + 1.
         let next = |j: usize| if j + 1 == count { 0 } else { j + 1 };
+        // The edge planes n = p_a × p_b, four edges at a time, bit for bit as
+        // `cross_precise` (each component's two products split error-free: without
+        // hardware FMA the bulk of this preparation's arithmetic). A clipped edge takes
+        // the plane of the input edge it lies on (`planes`).
+        // Each end's lanes and the slot of edge 0's end in them.
+        let clipped_ends;
+        let ends = if let Some(planes) = &planes {
+            let mut lanes = [[[0.0f32; VERTEX_SLOTS]; 3]; 2];
+            #[allow(clippy::needless_range_loop)] // j indexes the innermost arrays
+            for j in 0..count {
+                for (end, p) in planes[j].into_iter().enumerate() {
+                    for (c, value) in p.to_array().into_iter().enumerate() {
+                        lanes[end][c][j] = value;
+                    }
+                }
+            }
+            clipped_ends = lanes;
+            [(&clipped_ends[0], 0), (&clipped_ends[1], 0)]
+        } else {
+            [(&vertex, 0), (&vertex, 1)]
+        };
+        let mut normals = [[0.0f32; 2 * LANES]; 3];
+        // Bit j: n_z > 0 for edge j.
+        let mut outer_edges = 0u32;
+        for first in lane_starts(count) {
+            let [a, b] =
+                ends.map(|(lanes, offset)| lanes.each_ref().map(|c| load4(c, first + offset)));
+            let n = cross_precise4(a, b);
+            for (c, lanes) in n.iter().enumerate() {
+                store4(*lanes, &mut normals[c], first);
+            }
+            outer_edges |= n[2].cmpgt(Vec4::ZERO).bitmask() << first;
+        }
+        let all_edges = (1u32 << count) - 1;
+        let outer_edges = outer_edges & all_edges == all_edges;
+        // The common case: the zenith inside, nothing clipped, every edge outer and none
+        // degenerate (n_z > 0 for every edge, so no vertex lies on the z axis).
+        if allow_fast && !was_clipped && outer_edges {
+            *took_fast = true;
+            let maybe_short =
+                central_unclipped_sectors(polygon, &vertex, &normals, count, precision);
+            return finish(polygon, count, 0.0, maybe_short);
+        }
         polygon.edge_normals = [Vec3::ZERO; MAX_POLYGON_VERTICES];
         let mut edge = [DEGENERATE; MAX_POLYGON_VERTICES];
         let mut direction = [[0.0f32; 2]; MAX_POLYGON_VERTICES];
         let mut xy_length = [0.0f32; MAX_POLYGON_VERTICES];
         let mut maybe_short = false;
-        let edge_ends = |j: usize| {
-            if was_clipped {
-                planes[j]
-            } else {
-                [positions[j], positions[next(j)]]
-            }
+        let edge_ends = |j: usize| match &planes {
+            Some(planes) => planes[j],
+            None => [positions[j], positions[next(j)]],
         };
-        // The edge planes n = p_a × p_b, four edges at a time, bit for bit as
-        // `cross_precise` (each component's two products split error-free: without
-        // hardware FMA the bulk of this preparation's arithmetic).
-        let mut ends = [[[0.0f32; 2 * LANES]; 3]; 2];
-        #[allow(clippy::needless_range_loop)] // j indexes the innermost arrays
-        for j in 0..count {
-            for (end, p) in edge_ends(j).into_iter().enumerate() {
-                for (c, value) in p.to_array().into_iter().enumerate() {
-                    ends[end][c][j] = value;
-                }
-            }
-        }
-        let mut normals = [[0.0f32; 2 * LANES]; 3];
-        for first in lane_starts(count) {
-            let load = |values: &[f32; 2 * LANES]| load4(values, first);
-            let n = cross_precise4(ends[0].each_ref().map(load), ends[1].each_ref().map(load));
-            for (c, lanes) in n.iter().enumerate() {
-                store4(*lanes, &mut normals[c], first);
-            }
-        }
         for j in 0..count {
             let [pa, pb] = edge_ends(j);
             let normal = Vec3::new(normals[0][j], normals[1][j], normals[2][j]);
@@ -493,7 +703,8 @@ impl ProjectedPolygon {
             // equal; then the one with the degenerate ellipse comes first (rule 3).
             let mut order = [0u8, 1, 2, 3, 4, 5, 6, 7];
             let xy = |k: u8| {
-                let p = positions[k as usize];
+                // `& 7` only shows the compiler the index in bounds (entries are below 8).
+                let p = positions[(k & 7) as usize];
                 [p.x, p.y]
             };
             let degenerate = |k: u8| is_degenerate(edge[vertex_edge[k as usize]]);
@@ -646,39 +857,7 @@ impl ProjectedPolygon {
                 };
             }
         }
-        // The unused slots too (no stale or NaN word is left in a prepared value, which
-        // the adversarial C test checks by filling the struct with NaN first).
-        for j in sectors..MAX_POLYGON_VERTICES {
-            polygon.pieces.sectors_mut()[j] = EllipseSector::EMPTY;
-            polygon.sector_area[j] = 0.0;
-        }
-        let mut total = 0.0f32;
-        for j in 0..sectors {
-            polygon.sector_start[j] = total;
-            if polygon.sector_area[j] > 0.0 {
-                polygon.selectable_sectors = j as u32 + 1;
-            }
-            total += polygon.sector_area[j];
-        }
-        pad_unselectable(&mut polygon.sector_start, polygon.selectable_sectors);
-        let density = 1.0 / total;
-        if !(total > 0.0) || !total.is_finite() || !density.is_finite() {
-            return false;
-        }
-        // Slivers seen nearly edge-on: the inner and outer ellipses almost coincide and Φ
-        // is a small difference of large areas, with a relative error of about
-        // 3e-7 × outer_sum / Φ. The small-polygon sampler deviates from the cosine by
-        // 0.2 extent² (and is exact for its own pdf); switch when that is smaller, as long
-        // as it stays within the 1e-4 that the pdf contract allows.
-        if allow_small && 3e-7 * outer_sum > 0.2 * extent2 * total && extent2 < SLIVER_EXTENT2 {
-            return switch_to_small(polygon);
-        }
-        polygon.projected_solid_angle = total;
-        polygon.density = density;
-        if maybe_short {
-            super::ignore_short_edges_in_containment(&mut polygon.edge_normals, &positions, count);
-        }
-        true
+        finish(polygon, sectors, outer_sum, maybe_short)
     }
 
     /// Whether preparation handed the polygon to the small-polygon sampler (warped solid

@@ -1277,3 +1277,127 @@ fn azimuths_next_to_a_vertex_on_the_horizon_match_an_f64_inversion() {
     }
     assert!(worst > 0.0);
 }
+
+/// The central fast path (`central_unclipped_sectors`): which polygons take it, and that
+/// it prepares every polygon bit for bit as the general path does (both precisions, NaN
+/// filled targets), over central, decentral, clipped, tiny, zenith-vertex, zenith-edge,
+/// nearly-in-plane and random (mostly non-convex) input of many scales.
+#[test]
+fn central_fast_path_matches_the_general_path() {
+    let compare = |v: &[Vec3]| -> Option<bool> {
+        let mut took = None;
+        for precision in [AreaPrecision::Exact, AreaPrecision::Fast] {
+            let mut fast = nan_filled(ProjectedPolygon::EMPTY);
+            let mut general = nan_filled(ProjectedPolygon::EMPTY);
+            let (fast_ok, took_fast) = fast.prepare_choosing_path(v, precision, true);
+            let (general_ok, took_general) = general.prepare_choosing_path(v, precision, false);
+            assert!(!took_general);
+            assert_eq!(fast_ok, general_ok, "{v:?}");
+            assert_eq!(words(&fast), words(&general), "{v:?}");
+            assert!(took.is_none_or(|t| t == took_fast));
+            took = Some(took_fast);
+        }
+        took
+    };
+    let hexagon: Vec<Vec3> = (0..6)
+        .map(|k| {
+            let a = k as f32 * core::f32::consts::TAU / 6.0;
+            Vec3::new(a.cos(), a.sin(), 1.0)
+        })
+        .collect();
+    // Takes the fast path: central, unclipped, every edge outer, in either winding.
+    assert_eq!(compare(&hexagon), Some(true));
+    assert_eq!(compare(&reversed(&hexagon)), Some(true));
+    // Also 1e-6 above the shading point's plane (every ellipse next to the unit circle).
+    let nearly_in_plane: Vec<Vec3> = hexagon.iter().map(|&p| Vec3::new(p.x, p.y, 1e-6)).collect();
+    assert_eq!(compare(&nearly_in_plane), Some(true));
+    // Does not: an edge through the zenith (degenerate ellipse), a vertex at the zenith,
+    // a central polygon crossing the horizon (clipped), one touching it (a vertex at
+    // z = 0 counts as clipped), a decentral polygon and a tiny one (the small-polygon
+    // sampler).
+    let edge_through_zenith = [
+        Vec3::new(-0.5, 0.0, 1.0),
+        Vec3::new(0.5, 0.0, 1.0),
+        Vec3::new(0.6, 0.8, 1.0),
+        Vec3::new(-0.4, 0.7, 1.0),
+    ];
+    let zenith_vertex = [
+        Vec3::new(0.0, 0.0, 1.0),
+        Vec3::new(0.7, 0.1, 1.0),
+        Vec3::new(0.6, 0.7, 1.0),
+        Vec3::new(-0.1, 0.8, 1.0),
+    ];
+    // In the plane z = 0.5 + y, around (0, 0, 0.5): central, one vertex at z = -0.5.
+    let crossing: Vec<Vec3> = hexagon
+        .iter()
+        .map(|&p| Vec3::new(p.x, p.y, 0.5 + p.y))
+        .collect();
+    let touching = [
+        Vec3::new(1.0, -1.0, 0.0),
+        Vec3::new(1.0, 1.0, 1.0),
+        Vec3::new(-1.0, 1.0, 1.0),
+        Vec3::new(-1.0, -1.0, 1.0),
+    ];
+    let decentral = [
+        Vec3::new(0.2, 0.0, 1.0),
+        Vec3::new(0.8, 0.0, 1.0),
+        Vec3::new(0.9, 0.5, 1.0),
+        Vec3::new(0.3, 0.6, 1.0),
+    ];
+    let tiny: Vec<Vec3> = hexagon
+        .iter()
+        .map(|&p| Vec3::new(p.x * 1e-6, p.y * 1e-6, 1.0))
+        .collect();
+    for (what, v) in [
+        ("edge through the zenith", &edge_through_zenith[..]),
+        ("vertex at the zenith", &zenith_vertex[..]),
+        ("crossing the horizon", &crossing[..]),
+        ("touching the horizon", &touching[..]),
+        ("decentral", &decentral[..]),
+        ("tiny", &tiny[..]),
+    ] {
+        for v in [v.to_vec(), reversed(v)] {
+            assert_eq!(compare(&v), Some(false), "{what}");
+        }
+    }
+    // Random polygons: both paths, and the fast one taken often.
+    let mut rng = Rng::new(31);
+    let mut fast = 0;
+    for trial in 0..40_000 {
+        let n = 3 + rng.below(6) as usize;
+        let v = match trial % 4 {
+            // Central and near-central convex polygons of many sizes and tilts.
+            0 | 1 => {
+                let radius = rng.log_uniform(-4.0, 1.0) as f32;
+                let mut offset = || radius * (0.4 * rng.uniform_f32() - 0.2);
+                let (x, y) = (offset(), offset());
+                let center = Vec3::new(x, y, radius * rng.log_uniform(-2.0, 2.0) as f32);
+                let mut tilt = || 0.6 * rng.uniform_f32() - 0.3;
+                let normal = Vec3::new(tilt(), tilt(), 1.0);
+                let aspect = 0.05 + 0.95 * rng.uniform_f32();
+                let v = ellipse_polygon(&mut rng, n, center, normal, radius, aspect);
+                if trial % 8 == 1 { reversed(&v) } else { v }
+            }
+            2 => {
+                let radius = rng.log_uniform(-3.0, 0.5) as f32;
+                random_polygon(&mut rng, n, radius)
+            }
+            _ => {
+                // Random (mostly non-convex) vertices over many scales, some snapped to
+                // great circles through the zenith, the horizon or the zenith itself.
+                let scale = rng.log_uniform(-20.0, 20.0) as f32;
+                let mut v: Vec<Vec3> = (0..n).map(|_| rng.unit_vector_f32() * scale).collect();
+                match trial % 5 {
+                    0 => v[1] = Vec3::new(v[0].x * 2.0, v[0].y * 2.0, v[1].z),
+                    1 => v[0].z = 0.0,
+                    2 => v[0] = Vec3::new(0.0, 0.0, scale),
+                    3 => v[1] = v[0] + Vec3::splat(scale * 1e-7),
+                    _ => {}
+                }
+                v
+            }
+        };
+        fast += (compare(&v) == Some(true)) as u32;
+    }
+    assert!(fast > 8_000, "{fast}");
+}
