@@ -65,13 +65,6 @@ pub struct CapIntersection {
     reserved: [f32; 3],
 }
 
-/// `1 − cos x` of an angle, accurate for small ones: `2 sin²(x/2)`.
-#[inline(always)]
-fn one_minus_cos_of(x: f32) -> f32 {
-    let s = libm::sinf(0.5 * x);
-    2.0 * s * s
-}
-
 impl CapIntersection {
     /// The empty intersection: no samples, pdf 0.
     ///
@@ -127,28 +120,46 @@ impl CapIntersection {
         let e2 = axis.cross(e1);
         // Along the great circle from a towards b, the points at angle θ from a lie in
         // B for |θ − d| ≤ θ_B (d ≤ π, so also θ ≥ d − θ_B and θ ≤ d + θ_B): the radial
-        // range that meets B, and its middle as an inner point.
-        let (theta_a, theta_b, d) = (
-            angle_of(radial.one_minus_cos),
-            angle_of(other.one_minus_cos),
-            angle_of(t_d),
-        );
-        let low = (d - theta_b).max(0.0);
-        let high = (d + theta_b).min(theta_a).max(low);
-        let s_low = one_minus_cos_of(low).min(radial.one_minus_cos);
-        // Past π the circle at θ wraps: every θ up to θ_A can meet B then.
-        let s_high = if d + theta_b >= PI {
-            radial.one_minus_cos
+        // range that meets B is `s ∈ [1 − cos max(0, d − θ_B), 1 − cos min(d + θ_B, θ_A)]`
+        // (`1 − cos` increases on `[0, π]`), all of `[0, t_A]` past `d + θ_B ≥ π`, where
+        // the circle at θ wraps. Without the angles (three `asin` and two `sin` fewer):
+        // `1 − cos x = 2 sin²(x/2)`, and the half-angles' sines and cosines are
+        // `sin(x/2) = √(t/2)`, `cos(x/2) = √(h/2)` (`h = 1 + cos x`; for the axes
+        // `h_d = |a + b|²/2`, exact where `t_d` is near 2), so that
+        // `sin((d ∓ θ_B)/2) = sin(d/2) cos(θ_B/2) ∓ cos(d/2) sin(θ_B/2)` (whose sign is
+        // that of `d ∓ θ_B`, the half-angles lying in `[0, π/2]`) and `d + θ_B ≥ π` exactly
+        // when `cos((d + θ_B)/2) = cos(d/2) cos(θ_B/2) − sin(d/2) sin(θ_B/2) ≤ 0`. Near
+        // `d = θ_B` the difference of products has an absolute error of a few 1e-8, as
+        // `d − θ_B` of the rounded angles had; the bound is only the Newton iteration's
+        // bracket and start, the CDF is the lens formula's either way.
+        let h_d = (0.5 * (other.axis + axis).length_squared()).min(2.0);
+        let half = |t: f32| libm::sqrtf(0.5 * t);
+        let (sin_half_d, cos_half_d) = (half(t_d), half(h_d));
+        let (sin_half_b, cos_half_b) = (half(other.one_minus_cos), half(other.one_plus_cos));
+        let t_a = radial.one_minus_cos;
+        let below = sin_half_d * cos_half_b - cos_half_d * sin_half_b;
+        let s_low = if below > 0.0 {
+            (2.0 * below * below).min(t_a)
         } else {
-            one_minus_cos_of(high).min(radial.one_minus_cos)
+            0.0
+        };
+        let above = sin_half_d * cos_half_b + cos_half_d * sin_half_b;
+        let s_high = if cos_half_d * cos_half_b - sin_half_d * sin_half_b <= 0.0 {
+            t_a
+        } else {
+            (2.0 * above * above).min(t_a)
         };
         let lens_partner = if other.one_minus_cos <= 1.0 {
-            [other.one_minus_cos, theta_b, t_d, d]
+            [
+                other.one_minus_cos,
+                angle_of(other.one_minus_cos),
+                t_d,
+                angle_of(t_d),
+            ]
         } else {
-            // The complement: axis `−b`, `1 − cos = h_B`; `1 − a·(−b) = |a + b|²/2`.
-            let t_c = (0.5 * (other.axis + axis).length_squared()).min(2.0);
+            // The complement: axis `−b`, `1 − cos = h_B`; `1 − a·(−b) = |a + b|²/2 = h_d`.
             let h = other.one_plus_cos;
-            [h, angle_of(h), t_c, angle_of(t_c)]
+            [h, angle_of(h), h_d, angle_of(h_d)]
         };
         *self = CapIntersection {
             radial,
