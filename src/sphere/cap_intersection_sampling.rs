@@ -27,7 +27,7 @@ use super::cap_intersection::{angle_of, cap_intersection_solid_angle, lens_and_h
 use crate::Sample;
 use crate::math::orthonormal_basis;
 use crate::sample::{INWARD_PULLS, clamp_inverted, clamp_random};
-use core::f32::consts::PI;
+use core::f32::consts::{PI, TAU};
 use glam::Vec3;
 
 /// The most steps of the radial inversion. Newton's method converges quadratically from
@@ -58,11 +58,15 @@ pub struct CapIntersection {
     /// The range of `s` that meets `B`: `[s_low, s_high]` within `[0, t_A]`.
     s_low: f32,
     s_high: f32,
+    /// `s_nested`: up to it `cap(a, s)` lies inside `B` (surely: with a margin for the
+    /// rounding), so that the radial CDF is `Ω(cap(a, s)) = 2πs` and is inverted in
+    /// closed form ([`invert_radial`](Self::invert_radial)); 0 when `a` is not inside `B`.
+    nested: f32,
     /// Unused: keeps the size of the C ABI's opaque `SpheraSphereLightSampler`, which
     /// holds this struct (the inner point towards which a sample that rounding put just
-    /// outside is pulled was stored here; it is computed where that rare case happens,
-    /// `inner_point`). Written as zeros.
-    reserved: [f32; 3],
+    /// outside is pulled was stored here with `nested`; it is computed where that rare
+    /// case happens, `inner_point`). Written as zeros.
+    reserved: [f32; 2],
 }
 
 impl CapIntersection {
@@ -79,7 +83,8 @@ impl CapIntersection {
         lens_partner: [0.0; 4],
         s_low: 0.0,
         s_high: 0.0,
-        reserved: [0.0; 3],
+        nested: 0.0,
+        reserved: [0.0; 2],
     };
 
     /// Prepares uniform sampling of `a ∩ b` (both sanitized here). `None` when the
@@ -149,6 +154,16 @@ impl CapIntersection {
         } else {
             (2.0 * above * above).min(t_a)
         };
+        // `cap(a, s)` lies inside B while θ + d ≤ θ_B: up to `1 − cos(θ_B − d)` =
+        // `2 sin²((θ_B − d)/2)`, the half sine being `−below`. Its rounding (the half
+        // sines' and cosines' of a few ulps, and the products') is below 4e-7: taken 4e-6
+        // short of it, the lens formula surely says "inside" up to `s_nested`.
+        let inside = -below - 4e-6;
+        let nested = if inside > 0.0 {
+            (2.0 * inside * inside).min(t_a)
+        } else {
+            0.0
+        };
         let lens_partner = if other.one_minus_cos <= 1.0 {
             [
                 other.one_minus_cos,
@@ -171,7 +186,8 @@ impl CapIntersection {
             lens_partner,
             s_low,
             s_high: s_high.max(s_low),
-            reserved: [0.0; 3],
+            nested,
+            reserved: [0.0; 2],
         };
         true
     }
@@ -298,6 +314,15 @@ impl CapIntersection {
     /// took (for the tests).
     #[inline(always)]
     fn invert_radial_counting(&self, target: f32) -> (f32, u32) {
+        // Where `cap(a, s)` lies inside B, `F(s) = Ω(cap(a, s)) = 2πs` (the lens formula's
+        // value there, bit for bit, on its fast path): `s = target / 2π` without an
+        // evaluation. For a sphere light across the horizon this is the part of its
+        // pivoted image well inside the pivoted upper hemisphere's (issue 18: 52% of the
+        // SPTD sampler's clipped samples as the light bench draws them,
+        // `the_nested_part_inverts_in_closed_form`).
+        if target <= TAU * self.nested {
+            return ((target / TAU).max(self.s_low).min(self.s_high), 0);
+        }
         let (mut low, mut high) = (self.s_low, self.s_high);
         let span = (high - low).max(0.0);
         // A start in proportion to the target (exact for coaxial caps, where F is

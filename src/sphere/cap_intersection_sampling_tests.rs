@@ -509,3 +509,112 @@ fn the_radial_range_matches_f64() {
         "{worst_abs:e} {worst_rel:e}"
     );
 }
+
+/// The closed-form part of the radial inversion: up to `s_nested`, `cap(a, s)` lies inside
+/// `B` and `F(s) = 2πs`. Over sphere lights across the horizon as the light bench draws
+/// them (distance log-uniform in [1, 4], `sin²θ` in [0.06, 0.44], centres uniform over the
+/// upper hemisphere, views with `cos θo` in [0.1, 1] and roughness in [0.1, 0.9], the
+/// fitted GGX pivot), pivoted as the SPTD sampler pivots them, and random pairs:
+/// `s_nested` is below the f64 bound `1 − cos(θ_B − d)` (never claims a lens), its half
+/// sine `√(s/2)` at most 4.5e-6 below the bound's (the margin of 4e-6 and the rounding);
+/// the f32 CDF there is `2πs` bit for bit, and the closed form's `s` has a residual
+/// `|F(s) − target|` below 1e-6 of `Ω`. Measured: 52% of the bench's clipped draws take
+/// the closed form.
+#[test]
+fn the_nested_part_inverts_in_closed_form() {
+    let mut rng = Rng::new(1918);
+    let mut cases = Vec::new();
+    let horizon = cap(Vec3::Z, 1.0);
+    while cases.len() < 3000 {
+        let distance = rng.log_uniform(0.0, 4f64.log10()) as f32;
+        let sin2 = 0.06 + 0.38 * rng.uniform_f32();
+        let center = loop {
+            let v = rng.unit_vector_f32();
+            if v.z >= 0.0 {
+                break v;
+            }
+        };
+        let light = Cap::from_sphere(center * distance, distance * sin2.sqrt());
+        if light.axis.z * light.axis.z >= light.sin2 {
+            continue; // above the horizon: not clipped
+        }
+        let cos_o = 0.1 + 0.9 * rng.uniform_f32();
+        let phi = core::f32::consts::TAU * rng.uniform_f32();
+        let sin_o = (1.0 - cos_o * cos_o).sqrt();
+        let wo = Vec3::new(sin_o * phi.cos(), sin_o * phi.sin(), cos_o);
+        let roughness = 0.1 + 0.8 * rng.uniform_f32();
+        let pivot = crate::sphere::GgxPivot::from_view(wo, roughness)
+            .unwrap()
+            .pivot;
+        let (image, _) = crate::sphere::pivot::pivot_cap_fast(&light, pivot);
+        let (clip, _) = crate::sphere::pivot::pivot_cap_fast(&horizon, pivot);
+        cases.push((image, clip));
+    }
+    let bench_cases = cases.len();
+    for _ in 0..3000 {
+        cases.push((
+            cap(rng.unit_vector_f32(), 2.0 * rng.uniform_f32()),
+            cap(rng.unit_vector_f32(), 2.0 * rng.uniform_f32()),
+        ));
+    }
+    let (mut closed, mut draws, mut worst_gap) = (0u32, 0u32, 0.0f64);
+    for (index, (a, b)) in cases.into_iter().enumerate() {
+        let Some(lens) = CapIntersection::new(&a, &b) else {
+            continue;
+        };
+        let angle = |t: f64| 2.0 * (t / 2.0).max(0.0).min(1.0).sqrt().asin();
+        let t_a = lens.radial.one_minus_cos as f64;
+        // Angles past π/2 from the complement's side (`1 + cos`), where `asin` of
+        // `√(t/2)` near 1 would lose them.
+        let angle_of_sides = |t: f64, h: f64| {
+            if t <= 1.0 {
+                angle(t)
+            } else {
+                core::f64::consts::PI - angle(h)
+            }
+        };
+        let (a64, b64) = (d3(lens.radial.axis), d3(lens.other.axis));
+        let (diff, sum) = (sub(b64, a64), add(b64, a64));
+        let theta_b = angle_of_sides(
+            lens.other.one_minus_cos as f64,
+            lens.other.one_plus_cos as f64,
+        );
+        let d = angle_of_sides(0.5 * dot(diff, diff), 0.5 * dot(sum, sum));
+        let bound = if theta_b > d {
+            (2.0 * (0.5 * (theta_b - d)).sin().powi(2)).min(t_a)
+        } else {
+            0.0
+        };
+        let nested = lens.nested as f64;
+        assert!(nested <= bound, "{a:?} {b:?}: {nested:e} > {bound:e}");
+        // The gap in the half sine `sin((θ_B − d)/2) = √(s/2)`: the margin of 4e-6
+        // and the rounding.
+        worst_gap = worst_gap.max((0.5 * bound).sqrt() - (0.5 * nested).sqrt());
+        for i in 0..=16 {
+            let s = lens.nested * i as f32 / 16.0;
+            if s > 0.0 && s <= 1.0 && s < lens.other.one_minus_cos {
+                assert_eq!(lens.cumulative(s), TAU * s, "{a:?} {b:?} at {s:e}");
+            }
+        }
+        for i in 0..100 {
+            let u0 = (i as f32 + 0.5) / 100.0;
+            let target = u0 * lens.solid_angle;
+            let (s, evaluations) = lens.invert_radial_counting(target);
+            if index < bench_cases {
+                draws += 1;
+                closed += (evaluations == 0) as u32;
+            }
+            if evaluations == 0 {
+                let residual = (lens.cumulative(s) - target).abs() as f64 / lens.solid_angle as f64;
+                assert!(residual <= 1e-6, "{a:?} {b:?} u0 {u0}: {residual:e}");
+            }
+        }
+    }
+    let fraction = closed as f64 / draws as f64;
+    std::println!(
+        "closed-form inversions: {fraction:.3} of the bench's clipped draws; \
+         half sine of s_nested at most {worst_gap:e} below the f64 bound's"
+    );
+    assert!(worst_gap <= 4.5e-6, "{worst_gap:e}");
+    assert!((0.3..=0.6).contains(&fraction), "{fraction}");
+}
