@@ -323,11 +323,15 @@ impl CapIntersection {
         if target <= TAU * self.nested {
             return ((target / TAU).max(self.s_low).min(self.s_high), 0);
         }
-        let (mut low, mut high) = (self.s_low, self.s_high);
+        // Beyond `s_nested` (where `F = 2π s_nested`, below the target) F rises to `Ω` at
+        // `s_high`: the bracket starts there, and the start is the chord's point, in
+        // proportion to the rest of the target (exact for coaxial caps, where F is linear
+        // in s). Without a nested part, the chord over `[s_low, s_high]`.
+        let nested_area = TAU * self.nested;
+        let (mut low, mut high) = (self.s_low.max(self.nested), self.s_high);
         let span = (high - low).max(0.0);
-        // A start in proportion to the target (exact for coaxial caps, where F is
-        // linear in s).
-        let mut s = low + span * (target / self.solid_angle).max(0.0).min(1.0);
+        let fraction = (target - nested_area) / (self.solid_angle - nested_area);
+        let mut s = low + span * fraction.max(0.0).min(1.0);
         // The last Newton step's length, for the error estimate below (0 at the start
         // and after a bisection, which say nothing of the convergence: no estimate).
         let mut previous_newton_step = 0.0f32;
