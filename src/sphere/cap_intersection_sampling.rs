@@ -27,7 +27,7 @@ use super::cap_intersection::{angle_of, cap_intersection_solid_angle, lens_and_h
 use crate::Sample;
 use crate::math::orthonormal_basis;
 use crate::sample::{INWARD_PULLS, clamp_inverted, clamp_random};
-use core::f32::consts::PI;
+use core::f32::consts::{PI, TAU};
 use glam::Vec3;
 
 /// The most steps of the radial inversion. Newton's method converges quadratically from
@@ -58,16 +58,15 @@ pub struct CapIntersection {
     /// The range of `s` that meets `B`: `[s_low, s_high]` within `[0, t_A]`.
     s_low: f32,
     s_high: f32,
-    /// A direction inside both caps (on the arc from `a` towards `b`), towards which a
-    /// sample that rounding put just outside is pulled.
-    inner: Vec3,
-}
-
-/// `1 − cos x` of an angle, accurate for small ones: `2 sin²(x/2)`.
-#[inline(always)]
-fn one_minus_cos_of(x: f32) -> f32 {
-    let s = libm::sinf(0.5 * x);
-    2.0 * s * s
+    /// `s_nested`: up to it `cap(a, s)` lies inside `B` (surely: with a margin for the
+    /// rounding), so that the radial CDF is `Ω(cap(a, s)) = 2πs` and is inverted in
+    /// closed form ([`invert_radial`](Self::invert_radial)); 0 when `a` is not inside `B`.
+    nested: f32,
+    /// Unused: keeps the size of the C ABI's opaque `SpheraSphereLightSampler`, which
+    /// holds this struct (the inner point towards which a sample that rounding put just
+    /// outside is pulled was stored here with `nested`; it is computed where that rare
+    /// case happens, `inner_point`). Written as zeros.
+    reserved: [f32; 2],
 }
 
 impl CapIntersection {
@@ -84,7 +83,8 @@ impl CapIntersection {
         lens_partner: [0.0; 4],
         s_low: 0.0,
         s_high: 0.0,
-        inner: Vec3::Z,
+        nested: 0.0,
+        reserved: [0.0; 2],
     };
 
     /// Prepares uniform sampling of `a ∩ b` (both sanitized here). `None` when the
@@ -125,41 +125,57 @@ impl CapIntersection {
         let e2 = axis.cross(e1);
         // Along the great circle from a towards b, the points at angle θ from a lie in
         // B for |θ − d| ≤ θ_B (d ≤ π, so also θ ≥ d − θ_B and θ ≤ d + θ_B): the radial
-        // range that meets B, and its middle as an inner point.
-        let (theta_a, theta_b, d) = (
-            angle_of(radial.one_minus_cos),
-            angle_of(other.one_minus_cos),
-            angle_of(t_d),
-        );
-        let low = (d - theta_b).max(0.0);
-        let high = (d + theta_b).min(theta_a).max(low);
-        let s_low = one_minus_cos_of(low).min(radial.one_minus_cos);
-        // Past π the circle at θ wraps: every θ up to θ_A can meet B then.
-        let s_high = if d + theta_b >= PI {
-            radial.one_minus_cos
+        // range that meets B is `s ∈ [1 − cos max(0, d − θ_B), 1 − cos min(d + θ_B, θ_A)]`
+        // (`1 − cos` increases on `[0, π]`), all of `[0, t_A]` past `d + θ_B ≥ π`, where
+        // the circle at θ wraps. Without the angles (three `asin` and two `sin` fewer):
+        // `1 − cos x = 2 sin²(x/2)`, and the half-angles' sines and cosines are
+        // `sin(x/2) = √(t/2)`, `cos(x/2) = √(h/2)` (`h = 1 + cos x`; for the axes
+        // `h_d = |a + b|²/2`, exact where `t_d` is near 2), so that
+        // `sin((d ∓ θ_B)/2) = sin(d/2) cos(θ_B/2) ∓ cos(d/2) sin(θ_B/2)` (whose sign is
+        // that of `d ∓ θ_B`, the half-angles lying in `[0, π/2]`) and `d + θ_B ≥ π` exactly
+        // when `cos((d + θ_B)/2) = cos(d/2) cos(θ_B/2) − sin(d/2) sin(θ_B/2) ≤ 0`. Near
+        // `d = θ_B` the difference of products has an absolute error of a few 1e-8, as
+        // `d − θ_B` of the rounded angles had; the bound is only the Newton iteration's
+        // bracket and start, the CDF is the lens formula's either way.
+        let h_d = (0.5 * (other.axis + axis).length_squared()).min(2.0);
+        let half = |t: f32| libm::sqrtf(0.5 * t);
+        let (sin_half_d, cos_half_d) = (half(t_d), half(h_d));
+        let (sin_half_b, cos_half_b) = (half(other.one_minus_cos), half(other.one_plus_cos));
+        let t_a = radial.one_minus_cos;
+        let below = sin_half_d * cos_half_b - cos_half_d * sin_half_b;
+        let s_low = if below > 0.0 {
+            (2.0 * below * below).min(t_a)
         } else {
-            one_minus_cos_of(high).min(radial.one_minus_cos)
+            0.0
+        };
+        let above = sin_half_d * cos_half_b + cos_half_d * sin_half_b;
+        let s_high = if cos_half_d * cos_half_b - sin_half_d * sin_half_b <= 0.0 {
+            t_a
+        } else {
+            (2.0 * above * above).min(t_a)
+        };
+        // `cap(a, s)` lies inside B while θ + d ≤ θ_B: up to `1 − cos(θ_B − d)` =
+        // `2 sin²((θ_B − d)/2)`, the half sine being `−below`. Its rounding (the half
+        // sines' and cosines' of a few ulps, and the products') is below 4e-7: taken 4e-6
+        // short of it, the lens formula surely says "inside" up to `s_nested`.
+        let inside = -below - 4e-6;
+        let nested = if inside > 0.0 {
+            (2.0 * inside * inside).min(t_a)
+        } else {
+            0.0
         };
         let lens_partner = if other.one_minus_cos <= 1.0 {
-            [other.one_minus_cos, theta_b, t_d, d]
+            [
+                other.one_minus_cos,
+                angle_of(other.one_minus_cos),
+                t_d,
+                angle_of(t_d),
+            ]
         } else {
-            // The complement: axis `−b`, `1 − cos = h_B`; `1 − a·(−b) = |a + b|²/2`.
-            let t_c = (0.5 * (other.axis + axis).length_squared()).min(2.0);
+            // The complement: axis `−b`, `1 − cos = h_B`; `1 − a·(−b) = |a + b|²/2 = h_d`.
             let h = other.one_plus_cos;
-            [h, angle_of(h), t_c, angle_of(t_c)]
+            [h, angle_of(h), h_d, angle_of(h_d)]
         };
-        let middle = 0.5 * (low + high);
-        // `middle` lies in `[0, θ_A] ⊂ [0, π]`.
-        let (sin_m, cos_m) = crate::math::sin_cos_0_to_pi(middle);
-        let mut inner = (axis * cos_m + e1 * sin_m).normalize_or(axis);
-        if !(radial.contains(inner) && other.contains(inner)) {
-            // (A ring around a hole, where the arc's middle may lie in the hole.)
-            inner = if other.contains(axis) {
-                axis
-            } else {
-                other.axis
-            };
-        }
         *self = CapIntersection {
             radial,
             other,
@@ -170,9 +186,40 @@ impl CapIntersection {
             lens_partner,
             s_low,
             s_high: s_high.max(s_low),
-            inner,
+            nested,
+            reserved: [0.0; 2],
         };
         true
+    }
+
+    /// A direction inside both caps (on the arc from `a` towards `b`, at the middle of
+    /// the radial range that meets `B`), towards which a sample that rounding put just
+    /// outside is pulled. Only that rare case needs it: computed there, not prepared
+    /// (a sine and cosine, a normalisation and two containment tests per preparation).
+    #[cold]
+    #[inline(never)]
+    fn inner_point(&self) -> Vec3 {
+        let (radial, other) = (&self.radial, &self.other);
+        let axis = radial.axis;
+        let (theta_a, theta_b, d) = (
+            angle_of(radial.one_minus_cos),
+            angle_of(other.one_minus_cos),
+            angle_of(self.t_d),
+        );
+        let low = (d - theta_b).max(0.0);
+        let high = (d + theta_b).min(theta_a).max(low);
+        let middle = 0.5 * (low + high);
+        // `middle` lies in `[0, θ_A] ⊂ [0, π]`.
+        let (sin_m, cos_m) = crate::math::sin_cos_0_to_pi(middle);
+        let inner = (axis * cos_m + self.e1 * sin_m).normalize_or(axis);
+        if radial.contains(inner) && other.contains(inner) {
+            inner
+        } else if other.contains(axis) {
+            // (A ring around a hole, where the arc's middle may lie in the hole.)
+            axis
+        } else {
+            other.axis
+        }
     }
 
     /// `Ω(cap(a, s) ∩ B)`, the unnormalised radial CDF.
@@ -186,7 +233,9 @@ impl CapIntersection {
     /// Newton step one `asin` (of `s`) in place of three, and no cap is built (whose
     /// axis normalisation cost a division, a square root and a division). The values are
     /// the general call's up to the last bits of `t_d` (the general call's cap
-    /// normalises the unit axis once more).
+    /// normalises the unit axis once more). (Deciding the case from `s` without its angle,
+    /// by two square roots as in `at_most_hemispheres`, cost 30 instructions more per
+    /// sample of the SPTD sphere light sampler than the `asin` it saves, measured.)
     #[inline]
     fn cumulative(&self, s: f32) -> f32 {
         self.cumulative_and_slope(s)[0]
@@ -265,11 +314,24 @@ impl CapIntersection {
     /// took (for the tests).
     #[inline(always)]
     fn invert_radial_counting(&self, target: f32) -> (f32, u32) {
-        let (mut low, mut high) = (self.s_low, self.s_high);
+        // Where `cap(a, s)` lies inside B, `F(s) = Ω(cap(a, s)) = 2πs` (the lens formula's
+        // value there, bit for bit, on its fast path): `s = target / 2π` without an
+        // evaluation. For a sphere light across the horizon this is the part of its
+        // pivoted image well inside the pivoted upper hemisphere's (issue 18: 52% of the
+        // SPTD sampler's clipped samples as the light bench draws them,
+        // `the_nested_part_inverts_in_closed_form`).
+        if target <= TAU * self.nested {
+            return ((target / TAU).max(self.s_low).min(self.s_high), 0);
+        }
+        // Beyond `s_nested` (where `F = 2π s_nested`, below the target) F rises to `Ω` at
+        // `s_high`: the bracket starts there, and the start is the chord's point, in
+        // proportion to the rest of the target (exact for coaxial caps, where F is linear
+        // in s). Without a nested part, the chord over `[s_low, s_high]`.
+        let nested_area = TAU * self.nested;
+        let (mut low, mut high) = (self.s_low.max(self.nested), self.s_high);
         let span = (high - low).max(0.0);
-        // A start in proportion to the target (exact for coaxial caps, where F is
-        // linear in s).
-        let mut s = low + span * (target / self.solid_angle).max(0.0).min(1.0);
+        let fraction = (target - nested_area) / (self.solid_angle - nested_area);
+        let mut s = low + span * fraction.max(0.0).min(1.0);
         // The last Newton step's length, for the error estimate below (0 at the start
         // and after a bisection, which say nothing of the convergence: no estimate).
         let mut previous_newton_step = 0.0f32;
@@ -333,9 +395,10 @@ impl CapIntersection {
         }
         // Rounding put a sample from the boundary just outside, where `pdf` is 0:
         // pulled towards the inner point until inside (`INWARD_PULLS`).
+        let inner = self.inner_point();
         INWARD_PULLS
             .iter()
-            .map(|&pull| (dir * (1.0 - pull) + self.inner * pull).normalize_or(self.inner))
+            .map(|&pull| (dir * (1.0 - pull) + inner * pull).normalize_or(inner))
             .find(|&pulled| self.contains(pulled))
             .map_or(Sample::NONE, |dir| Sample { dir, pdf })
     }
