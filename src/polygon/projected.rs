@@ -182,6 +182,46 @@ fn sector_determinants(
     dets
 }
 
+/// The outer ellipse's area over a decentral sector, as the extra-iteration and sliver
+/// tests define it: Equation (1) of Peters 2021 (supplement A.7),
+/// `atan2(det, (s0 · s1 + t0 t1) / k) · (0.5 / k)` with `k = √|C| = sqrt(1 + |u|²)`.
+/// Computed only where [`outer_area_bound`] does not settle a test.
+#[inline(never)]
+fn exact_outer_area(sector: &EllipseSector) -> f32 {
+    ellipse_area(
+        sector.outer,
+        sector.det,
+        dot2(sector.s0(), sector.s1()),
+        sector.outer_dots()[0],
+        sector.outer_dots()[1],
+    )
+}
+
+/// The sum of [`exact_outer_area`] over the sectors in order (out of line, as it runs
+/// only where [`outer_area_bound`] leaves the sliver test open).
+#[inline(never)]
+fn exact_outer_sum(sectors: &[EllipseSector]) -> f32 {
+    let mut sum = 0.0f32;
+    for sector in sectors {
+        sum += exact_outer_area(sector);
+    }
+    sum
+}
+
+/// An upper bound on [`exact_outer_area`] without its arc tangent: `1.6 / k`. The angle
+/// there is `atan2_upper_half_plane`, at most `fl(π/2 + fl(π/2)) = fl(π)` (`atanf` never
+/// exceeds `fl(π/2)`, NaN gives 0), and `fl(π) · fl(0.5 / k) < 1.6 / k` with room for
+/// the roundings, so the rounded product is at most `fl(1.6 / k)` (rounding is
+/// monotone). A degenerate ellipse (`k = ∞`) gives 0, its area. The outer area of a
+/// sector is rarely within a factor 200 of the area between the ellipses, and Φ rarely
+/// below 3e-7 of the outer areas' sum over the sliver's extent², so the comparisons of
+/// the decentral preparation against this bound settle almost every test without the
+/// five or so `atanf` of the exact areas.
+#[inline(always)]
+fn outer_area_bound(sector: &EllipseSector) -> f32 {
+    1.6 / sector.outer_root_det
+}
+
 /// Lanes of the vertices: one per vertex, read four at a time from slot 0 and slot 1.
 const VERTEX_SLOTS: usize = 2 * LANES + 1;
 
@@ -559,8 +599,20 @@ impl ProjectedPolygon {
             // 3e-7 × outer_sum / Φ. The small-polygon sampler deviates from the cosine by
             // 0.2 extent² (and is exact for its own pdf); switch when that is smaller, as long
             // as it stays within the 1e-4 that the pdf contract allows.
-            if allow_small && 3e-7 * outer_sum > 0.2 * extent2 * total && extent2 < SLIVER_EXTENT2 {
-                return switch_to_small(polygon);
+            // `outer_sum` is an upper bound on that sum (the sum of `outer_area_bound`;
+            // rounding is monotone, so sums in the same order keep the order of their
+            // terms): the exact sum is formed only where the bound does not settle
+            // the test (NaN included). 0 (the central case, or only degenerate outer
+            // ellipses, whose areas are 0) never passes it.
+            if allow_small
+                && outer_sum != 0.0
+                && !(3e-7 * outer_sum <= 0.2 * extent2 * total)
+                && extent2 < SLIVER_EXTENT2
+            {
+                let exact_sum = exact_outer_sum(&polygon.sectors()[..sectors]);
+                if 3e-7 * exact_sum > 0.2 * extent2 * total {
+                    return switch_to_small(polygon);
+                }
             }
             polygon.projected_solid_angle = total;
             polygon.density = density;
@@ -695,7 +747,9 @@ impl ProjectedPolygon {
         let sectors;
         // Σ of the outer sector areas: Φ is their difference with the inner ones, and
         // their ratio is the factor by which rounding errors are amplified.
-        let mut outer_sum = 0.0f32;
+        // (Its upper bound from `outer_area_bound`, summed in the same order: 0 in the
+        // central case, where the sliver test does not apply.)
+        let mut outer_sum_bound = 0.0f32;
         if let Some(first_inner) = first_inner {
             // Decentral case: sort the vertices by azimuth. Vertex a comes before b when
             // det(p_a,xy, p_b,xy) > 0, computed from the clipped positions (not the rounded
@@ -744,14 +798,12 @@ impl ProjectedPolygon {
                     [edge_dot(outer, a), edge_dot(outer, b)],
                 );
                 let sector = &mut polygon.pieces.sectors_mut()[j];
-                let outer_area = ellipse_area(
-                    sector.outer,
-                    sector.det,
-                    dot2(sector.s0(), sector.s1()),
-                    sector.outer_dots()[0],
-                    sector.outer_dots()[1],
-                );
-                outer_sum += outer_area;
+                // An upper bound on the outer ellipse's area instead of the area itself
+                // (see `outer_area_bound`): it decides the extra iteration here and the
+                // sliver test in `finish` but where the exact area could reach their
+                // thresholds.
+                let outer_bound = outer_area_bound(sector);
+                outer_sum_bound += outer_bound;
                 let area = sector.area(false, precision).max(0.0);
                 // Also where the ellipses touch or nearly touch at an end of the sector (a
                 // vertex on or just above the horizon at the polygon's azimuthal end, issue
@@ -766,7 +818,10 @@ impl ProjectedPolygon {
                 let touching = all_empty_before && sector.end_shape(false) < 1.0;
                 all_empty_before &= sector.det == 0.0;
                 sector.touching_ends = touching as u32;
-                sector.extra_iterations = (outer_area > 200.0 * area || touching) as u32;
+                let limit = 200.0 * area;
+                // (A NaN bound, which no finite ellipse gives, falls back too.)
+                let ill_conditioned = !(outer_bound < limit) && exact_outer_area(sector) > limit;
+                sector.extra_iterations = (ill_conditioned || touching) as u32;
                 polygon.sector_area[j] = area;
             }
             if let Some(last) = (0..sectors)
@@ -857,7 +912,7 @@ impl ProjectedPolygon {
                 };
             }
         }
-        finish(polygon, sectors, outer_sum, maybe_short)
+        finish(polygon, sectors, outer_sum_bound, maybe_short)
     }
 
     /// Whether preparation handed the polygon to the small-polygon sampler (warped solid

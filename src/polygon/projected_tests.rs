@@ -1401,3 +1401,86 @@ fn central_fast_path_matches_the_general_path() {
     }
     assert!(fast > 8_000, "{fast}");
 }
+
+/// The decentral preparation decides the extra iteration of an ill-conditioned sector
+/// and the sliver test from `outer_area_bound` (no arc tangent) and the exact outer area
+/// only where the bound does not settle them. Over random decentral polygons (both
+/// windings, clipped ones, edges through the zenith, vertices on the horizon, many
+/// scales): every sector's exact outer area is at most its bound, their sums in order
+/// keep that order, the prepared `extra_iterations` is what the exact area gives, and
+/// the bound settles the test for many sectors of positive area.
+#[test]
+fn outer_area_bounds_decide_as_the_exact_areas() {
+    let mut rng = Rng::new(47);
+    let (mut decentral, mut sectors, mut settled) = (0, 0, 0);
+    for trial in 0..40_000 {
+        let n = 3 + rng.below(6) as usize;
+        let mut v = match trial % 3 {
+            0 => {
+                let radius = rng.log_uniform(-3.0, 0.5) as f32;
+                random_polygon(&mut rng, n, radius)
+            }
+            1 => {
+                // Off the zenith, tilted, some crossing or touching the horizon.
+                let radius = rng.log_uniform(-2.0, 0.5) as f32;
+                let angle = rng.uniform_f32() * core::f32::consts::TAU;
+                let distance = radius * (1.2 + 4.0 * rng.uniform_f32());
+                let center = Vec3::new(
+                    distance * angle.cos(),
+                    distance * angle.sin(),
+                    radius * (rng.log_uniform(-2.0, 1.0) as f32 - 0.3),
+                );
+                let normal = rng.unit_vector_f32();
+                let aspect = 0.05 + 0.95 * rng.uniform_f32();
+                ellipse_polygon(&mut rng, n, center, normal, radius, aspect)
+            }
+            _ => {
+                let scale = rng.log_uniform(-20.0, 20.0) as f32;
+                (0..n).map(|_| rng.unit_vector_f32() * scale).collect()
+            }
+        };
+        match trial % 7 {
+            // An edge on a great circle through the zenith, a vertex on the horizon.
+            0 => v[1] = Vec3::new(v[0].x * 2.0, v[0].y * 2.0, v[0].z * 2.0),
+            1 => v[0].z = 0.0,
+            _ => {}
+        }
+        if trial % 2 == 1 {
+            v = reversed(&v);
+        }
+        for precision in [AreaPrecision::Exact, AreaPrecision::Fast] {
+            let mut p = ProjectedPolygon::EMPTY;
+            let (ok, _) = p.prepare_choosing_path(&v, precision, true);
+            if !ok || p.central != 0 || p.uses_small_polygon_sampler() {
+                continue;
+            }
+            decentral += 1;
+            // All eight slots: the unused ones (u = 0, area 0) pass every check too.
+            let (mut exact_sum, mut bound_sum) = (0.0f32, 0.0f32);
+            for (j, sector) in p.sectors().iter().enumerate() {
+                let (exact, bound) = (exact_outer_area(sector), outer_area_bound(sector));
+                assert!(exact <= bound || exact.is_nan(), "{v:?}: {exact} > {bound}");
+                exact_sum += exact;
+                bound_sum += bound;
+                assert!(!(exact_sum > bound_sum), "{v:?}");
+                let limit = 200.0 * p.sector_area[j];
+                let expected = exact > limit || sector.touching_ends != 0;
+                assert_eq!(sector.extra_iterations, expected as u32, "{v:?} sector {j}");
+                if p.sector_area[j] > 0.0 {
+                    sectors += 1;
+                    settled += (bound < limit) as u32;
+                }
+            }
+        }
+    }
+    eprintln!(
+        "{decentral} decentral polygons, {settled} of {sectors} sectors settled by the bound"
+    );
+    assert!(decentral > 20_000, "{decentral}");
+    // 35 % here, where many polygons are small or thin (sectors far below the outer
+    // ellipse's area); the bench's decentral hexagons settle every sector.
+    assert!(
+        settled as f64 > 0.25 * sectors as f64,
+        "{settled} of {sectors}"
+    );
+}
