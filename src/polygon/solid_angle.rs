@@ -857,37 +857,34 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         }
         // Algorithm 5: A = 2 atan2(G0, G2 + G1), with G0 >= 0, four triangles at a time
         // (bit for bit as `triangle_solid_angle` computes it again when sampling).
-        // Bits of the triangles with G0 = 0 and of those with a positive solid angle.
-        let (mut flat, mut positive) = (0u32, 0u32);
-        let mut angles = [0.0f32; 2 * LANES];
-        // One triangle at a time: the arc tangents are scalar calls anyway, and the
-        // lanes' round trip (scalar results stored, loaded back as lanes, stored again)
-        // stalled on store-to-load forwarding.
+        // One loop over the triangles (one triangle at a time: the arc tangents are scalar
+        // calls anyway, and the lanes' round trip, scalar results stored, loaded back as
+        // lanes and stored again, stalled on store-to-load forwarding): the solid angles,
+        // the running sums and the tests on them.
+        // Whether every determinant is zero (below).
+        let mut edge_on = true;
+        // Fan triangles up to the last one with a positive solid angle are selectable.
+        let mut selectable = 0usize;
+        let mut signed_sum = 0.0f32;
+        let mut total = 0.0f32;
         #[allow(clippy::needless_range_loop)] // k indexes the fan's and the polygon's arrays
         for k in 0..triangles {
             let g0 = fan.signed_g0[k].abs();
             self.g0[k] = g0;
             let angle = 2.0 * atan2_upper_half_plane(g0, self.g1_plus_g2[k]);
-            angles[k] = angle;
-            flat |= u32::from(g0 == 0.0) << k;
-            positive |= u32::from(angle > 0.0) << k;
-        }
-        // All determinants zero (below).
-        let edge_on = flat == (1u32 << triangles) - 1;
-        // Fan triangles up to the last one with a positive solid angle are selectable.
-        self.selectable_triangles = u32::BITS - positive.leading_zeros();
-        let mut signed_sum = 0.0f32;
-        let mut total = 0.0f32;
-        #[allow(clippy::needless_range_loop)] // k indexes the fan's and the polygon's arrays
-        for k in 0..triangles {
+            edge_on &= g0 == 0.0;
+            if angle > 0.0 {
+                selectable = k + 1;
+            }
             signed_sum += fan.signed_g0[k];
-            // `+∞` past the selectable triangles, which `select_piece` then skips.
-            self.start[k] = if (k as u32) < self.selectable_triangles {
-                total
-            } else {
-                f32::INFINITY
-            };
-            total += angles[k];
+            self.start[k] = total;
+            total += angle;
+        }
+        self.selectable_triangles = selectable as u32;
+        // `+∞` past the selectable triangles, which `select_piece` then skips (rare: the
+        // last triangles have zero solid angle).
+        for start in &mut self.start[selectable..triangles] {
+            *start = f32::INFINITY;
         }
         let density = 1.0 / total;
         // All determinants zero: the shading point lies in the polygon's plane. If it
