@@ -266,7 +266,146 @@ struct VertexLanes {
     extent: [f32; SLOTS],
 }
 
+/// One group of four slots of [`VertexLanes`], in registers.
+#[derive(Clone, Copy)]
+struct SlotGroup {
+    position: [Vec4; 3],
+    length_squared: Vec4,
+    length: Vec4,
+    unit: [Vec4; 3],
+    reflected: [Vec4; 2],
+    extent: Vec4,
+}
+
+impl SlotGroup {
+    /// The group of slots that no lane of the polygon reads (only lanes that the masks
+    /// leave out do): all 0.
+    const ZERO: SlotGroup = SlotGroup {
+        position: [Vec4::ZERO; 3],
+        length_squared: Vec4::ZERO,
+        length: Vec4::ZERO,
+        unit: [Vec4::ZERO; 3],
+        reflected: [Vec4::ZERO; 2],
+        extent: Vec4::ZERO,
+    };
+
+    /// Positions (the input times the power of two `factor` of [`rescale`]), lengths and
+    /// unit directions of slots `first..first + 4` (slots from `count` on read vertex 0
+    /// again); the reflected edges are left 0 (see [`reflect`](Self::reflect)). The
+    /// second value is `false` when one has length 0 (a vertex at the shading point, or
+    /// one whose squared length underflows).
+    #[inline(always)]
+    fn vertices(vertices: &[Vec3], factor: Vec4, count: usize, first: usize) -> (SlotGroup, bool) {
+        let vertex = |j: usize| {
+            let slot = first + j;
+            vertices[if slot < count { slot } else { 0 }]
+        };
+        let [a, b, c, d] = [vertex(0), vertex(1), vertex(2), vertex(3)];
+        let x = Vec4::new(a.x, b.x, c.x, d.x) * factor;
+        let y = Vec4::new(a.y, b.y, c.y, d.y) * factor;
+        let z = Vec4::new(a.z, b.z, c.z, d.z) * factor;
+        let length_squared = (x * x + y * y) + z * z;
+        let length = crate::math::sqrt4(length_squared);
+        let nonzero = length.cmpgt(Vec4::ZERO).all();
+        let group = SlotGroup {
+            position: [x, y, z],
+            length_squared,
+            length,
+            unit: [x / length, y / length, z / length],
+            reflected: [Vec4::ZERO; 2],
+            extent: Vec4::ZERO,
+        };
+        (group, nonzero)
+    }
+
+    /// `reflected` and `extent`: the edge vectors `p_i - p_0` (exact differences of the
+    /// inputs up to one rounding each, so that tiny and distant polygons keep their
+    /// relative precision) through the reflection, for the apex at `origin`.
+    #[inline(always)]
+    fn reflect(&mut self, reflection: &Householder, origin: [Vec4; 3]) {
+        let [x0, y0, z0] = origin;
+        let [hx, hy, hz] = splat3(reflection.h);
+        let [x, y, z] = self.position;
+        let (ex, ey, ez) = (x - x0, y - y0, z - z0);
+        let twice_projection = Vec4::splat(2.0) * ((hx * ex + hy * ey) + hz * ez);
+        self.reflected = [ey - hy * twice_projection, ez - hz * twice_projection];
+        self.extent = ex.abs().max(ey.abs().max(ez.abs()));
+    }
+}
+
+/// The slots of three groups, in order.
+#[inline(always)]
+fn join(groups: [Vec4; 3]) -> [f32; SLOTS] {
+    // Every slot is written (the compiler drops the zeros).
+    let mut slots = [0.0; SLOTS];
+    store4(groups[0], &mut slots, 0);
+    store4(groups[1], &mut slots, LANES);
+    store4(groups[2], &mut slots, 2 * LANES);
+    slots
+}
+
 impl VertexLanes {
+    /// The working set of the polygon, built in registers four slots at a time and
+    /// stored once (no zeroing of the whole set first, which cost a `memset` of 576
+    /// bytes): the groups of slots `0..=count` (the last closes the polygon) from the
+    /// input, the group above 0 (only lanes that the masks leave out read it), with the
+    /// apex's reflection; `None` when a vertex has length 0.
+    #[inline(always)]
+    fn new(vertices: &[Vec3], factor: f32, count: usize) -> Option<(VertexLanes, Householder)> {
+        let factor = Vec4::splat(factor);
+        // Slots `0..=count` need the groups up to slot `count`: `count >= 3`, so group 1
+        // is needed from `count = 4` on and group 2 for `count = 8`.
+        let (mut g0, ok0) = SlotGroup::vertices(vertices, factor, count, 0);
+        let (mut g1, ok1) = if count >= LANES {
+            SlotGroup::vertices(vertices, factor, count, LANES)
+        } else {
+            (SlotGroup::ZERO, true)
+        };
+        let (mut g2, ok2) = if count >= 2 * LANES {
+            SlotGroup::vertices(vertices, factor, count, 2 * LANES)
+        } else {
+            (SlotGroup::ZERO, true)
+        };
+        if !(ok0 && ok1 && ok2) {
+            return None;
+        }
+        let apex = Vec3::new(g0.unit[0].x, g0.unit[1].x, g0.unit[2].x);
+        let reflection = Householder::new(apex);
+        let origin = splat3(Vec3::new(
+            g0.position[0].x,
+            g0.position[1].x,
+            g0.position[2].x,
+        ));
+        g0.reflect(&reflection, origin);
+        if count >= LANES {
+            g1.reflect(&reflection, origin);
+        }
+        if count >= 2 * LANES {
+            g2.reflect(&reflection, origin);
+        }
+        // Written out, not by `array::map` (which the generic body may leave out of line).
+        let lanes = VertexLanes {
+            position: [
+                join([g0.position[0], g1.position[0], g2.position[0]]),
+                join([g0.position[1], g1.position[1], g2.position[1]]),
+                join([g0.position[2], g1.position[2], g2.position[2]]),
+            ],
+            length_squared: join([g0.length_squared, g1.length_squared, g2.length_squared]),
+            length: join([g0.length, g1.length, g2.length]),
+            unit: [
+                join([g0.unit[0], g1.unit[0], g2.unit[0]]),
+                join([g0.unit[1], g1.unit[1], g2.unit[1]]),
+                join([g0.unit[2], g1.unit[2], g2.unit[2]]),
+            ],
+            reflected: [
+                join([g0.reflected[0], g1.reflected[0], g2.reflected[0]]),
+                join([g0.reflected[1], g1.reflected[1], g2.reflected[1]]),
+            ],
+            extent: join([g0.extent, g1.extent, g2.extent]),
+        };
+        Some((lanes, reflection))
+    }
+
     /// Every slot 0; only lanes that the masks leave out read a slot that `fill` and
     /// `reflect_edges` do not write.
     const ZERO: VertexLanes = VertexLanes {
@@ -316,22 +455,6 @@ impl VertexLanes {
         nonzero
     }
 
-    /// The (rescaled) position of vertex `i`; slot `count` is vertex 0 again.
-    #[inline(always)]
-    fn position(&self, i: usize) -> Vec3 {
-        Vec3::new(
-            self.position[0][i],
-            self.position[1][i],
-            self.position[2][i],
-        )
-    }
-
-    /// The unit direction towards vertex `i`.
-    #[inline(always)]
-    fn unit(&self, i: usize) -> Vec3 {
-        Vec3::new(self.unit[0][i], self.unit[1][i], self.unit[2][i])
-    }
-
     /// Fills `reflected` and `extent`: the edge vectors `p_i - p_0` (exact differences of
     /// the inputs up to one rounding each, so that tiny and distant polygons keep their
     /// relative precision) through the reflection.
@@ -351,6 +474,22 @@ impl VertexLanes {
                 first,
             );
         }
+    }
+
+    /// The (rescaled) position of vertex `i`; slot `count` is vertex 0 again.
+    #[inline(always)]
+    fn position(&self, i: usize) -> Vec3 {
+        Vec3::new(
+            self.position[0][i],
+            self.position[1][i],
+            self.position[2][i],
+        )
+    }
+
+    /// The unit direction towards vertex `i`.
+    #[inline(always)]
+    fn unit(&self, i: usize) -> Vec3 {
+        Vec3::new(self.unit[0][i], self.unit[1][i], self.unit[2][i])
     }
 }
 
@@ -633,16 +772,31 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // chi-square test found a sample at u0 = 1 - 5e-7 whose direction rounded 1.5e-8
         // to the outer side of its edge, where `pdf` was 0; and the reciprocal of a length
         // below 2^-128 overflows.
-        let mut lanes = VertexLanes::ZERO;
-        if !lanes.fill(vertices, factor, count) {
-            return false;
-        }
-        for i in 0..count {
-            self.vertices[i] = lanes.unit(i);
-        }
+        // Triangles and quads (`count` a constant there) build the working set by value,
+        // without zeroing it first (callgrind per prepare + 1 sample: triangles 798 ->
+        // 777, quads 1019 -> 998); the shared body of 5 to 8 vertices zeroes it and
+        // fills it in place (built by value there, hexagons took 1532 -> 1554).
+        let (lanes, reflection) = if count <= LANES {
+            let Some((lanes, reflection)) = VertexLanes::new(vertices, factor, count) else {
+                return false;
+            };
+            for i in 0..count {
+                self.vertices[i] = lanes.unit(i);
+            }
+            (lanes, reflection)
+        } else {
+            let mut lanes = VertexLanes::ZERO;
+            if !lanes.fill(vertices, factor, count) {
+                return false;
+            }
+            for i in 0..count {
+                self.vertices[i] = lanes.unit(i);
+            }
+            let reflection = Householder::new(self.vertices[0]);
+            lanes.reflect_edges(&reflection, count);
+            (lanes, reflection)
+        };
         let apex = self.vertices[0];
-        let reflection = Householder::new(apex);
-        lanes.reflect_edges(&reflection, count);
         let triangles = count - 2;
         let mut fan = FanLanes::default();
         fan.compute(self, &lanes, &reflection, apex, 0, triangles);
@@ -703,37 +857,34 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         }
         // Algorithm 5: A = 2 atan2(G0, G2 + G1), with G0 >= 0, four triangles at a time
         // (bit for bit as `triangle_solid_angle` computes it again when sampling).
-        // Bits of the triangles with G0 = 0 and of those with a positive solid angle.
-        let (mut flat, mut positive) = (0u32, 0u32);
-        let mut angles = [0.0f32; 2 * LANES];
-        // One triangle at a time: the arc tangents are scalar calls anyway, and the
-        // lanes' round trip (scalar results stored, loaded back as lanes, stored again)
-        // stalled on store-to-load forwarding.
+        // One loop over the triangles (one triangle at a time: the arc tangents are scalar
+        // calls anyway, and the lanes' round trip, scalar results stored, loaded back as
+        // lanes and stored again, stalled on store-to-load forwarding): the solid angles,
+        // the running sums and the tests on them.
+        // Whether every determinant is zero (below).
+        let mut edge_on = true;
+        // Fan triangles up to the last one with a positive solid angle are selectable.
+        let mut selectable = 0usize;
+        let mut signed_sum = 0.0f32;
+        let mut total = 0.0f32;
         #[allow(clippy::needless_range_loop)] // k indexes the fan's and the polygon's arrays
         for k in 0..triangles {
             let g0 = fan.signed_g0[k].abs();
             self.g0[k] = g0;
             let angle = 2.0 * atan2_upper_half_plane(g0, self.g1_plus_g2[k]);
-            angles[k] = angle;
-            flat |= u32::from(g0 == 0.0) << k;
-            positive |= u32::from(angle > 0.0) << k;
-        }
-        // All determinants zero (below).
-        let edge_on = flat == (1u32 << triangles) - 1;
-        // Fan triangles up to the last one with a positive solid angle are selectable.
-        self.selectable_triangles = u32::BITS - positive.leading_zeros();
-        let mut signed_sum = 0.0f32;
-        let mut total = 0.0f32;
-        #[allow(clippy::needless_range_loop)] // k indexes the fan's and the polygon's arrays
-        for k in 0..triangles {
+            edge_on &= g0 == 0.0;
+            if angle > 0.0 {
+                selectable = k + 1;
+            }
             signed_sum += fan.signed_g0[k];
-            // `+∞` past the selectable triangles, which `select_piece` then skips.
-            self.start[k] = if (k as u32) < self.selectable_triangles {
-                total
-            } else {
-                f32::INFINITY
-            };
-            total += angles[k];
+            self.start[k] = total;
+            total += angle;
+        }
+        self.selectable_triangles = selectable as u32;
+        // `+∞` past the selectable triangles, which `select_piece` then skips (rare: the
+        // last triangles have zero solid angle).
+        for start in &mut self.start[selectable..triangles] {
+            *start = f32::INFINITY;
         }
         let density = 1.0 / total;
         // All determinants zero: the shading point lies in the polygon's plane. If it
