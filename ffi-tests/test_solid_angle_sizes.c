@@ -9,69 +9,43 @@
 static int same_sample(SpheraSample a, SpheraSample b) { return memcmp(&a, &b, sizeof a) == 0; }
 static int same_float(float a, float b) { return memcmp(&a, &b, sizeof a) == 0; }
 
-/* Everything a triangle computes through its own storage equals the polygon sampler's
- * values for the same vertices, bit for bit (and likewise through the quad storage). */
-static void check_triangle(const char *name, const SpheraVec3 v[3]) {
-  SpheraSolidAnglePolygon polygon;
-  SpheraSolidAngleTriangle triangle;
-  float u[U_COUNT];
-  int i, j, prepared = sphera_solid_angle_polygon_prepare(&polygon, v, 3);
-  int different = 0;
-  printf("triangle %s\n", name);
-  fill_u_values(u);
-  CHECK(sphera_solid_angle_triangle_prepare(&triangle, v) == prepared);
-  CHECK(same_float(sphera_solid_angle_triangle_solid_angle(&triangle),
-                   sphera_solid_angle_polygon_solid_angle(&polygon)));
-  for (i = 0; i < U_COUNT; i++) {
-    for (j = 0; j < U_COUNT; j++) {
-      SpheraSample a = sphera_solid_angle_polygon_sample(&polygon, u[i], u[j]);
-      SpheraSample b = sphera_solid_angle_triangle_sample(&triangle, u[i], u[j]);
-      SpheraVec3 outside = vec3(-a.dir.x, -a.dir.y, a.dir.z + 0.5f);
-      float a0 = -1.0f, a1 = -1.0f, b0 = -2.0f, b1 = -2.0f;
-      int ia = sphera_solid_angle_polygon_invert(&polygon, a.dir, &a0, &a1);
-      int ib = sphera_solid_angle_triangle_invert(&triangle, a.dir, &b0, &b1);
-      different += !same_sample(a, b);
-      different += !same_float(sphera_solid_angle_polygon_pdf(&polygon, a.dir),
-                               sphera_solid_angle_triangle_pdf(&triangle, a.dir));
-      different += !same_float(sphera_solid_angle_polygon_pdf(&polygon, outside),
-                               sphera_solid_angle_triangle_pdf(&triangle, outside));
-      different += ia != ib || !same_float(a0, b0) || !same_float(a1, b1);
-    }
+/* Everything a triangle (quad) computes through its own storage equals the polygon
+ * sampler's values for the same vertices, bit for bit. One body for both sizes: SIZE is
+ * `triangle` or `quad`, TYPE its prepared struct, N its vertex count. */
+#define DEFINE_CHECK_SAME_BITS(SIZE, TYPE, N)                                                \
+  static void check_##SIZE(const char *name, const SpheraVec3 v[N]) {                       \
+    SpheraSolidAnglePolygon polygon;                                                         \
+    TYPE sized;                                                                              \
+    float u[U_COUNT];                                                                        \
+    int i, j, prepared = sphera_solid_angle_polygon_prepare(&polygon, v, N);                \
+    int different = 0;                                                                       \
+    printf(#SIZE " %s\n", name);                                                             \
+    fill_u_values(u);                                                                        \
+    CHECK(sphera_solid_angle_##SIZE##_prepare(&sized, v) == prepared);                      \
+    CHECK(same_float(sphera_solid_angle_##SIZE##_solid_angle(&sized),                       \
+                     sphera_solid_angle_polygon_solid_angle(&polygon)));                     \
+    for (i = 0; i < U_COUNT; i++) {                                                          \
+      for (j = 0; j < U_COUNT; j++) {                                                        \
+        SpheraSample a = sphera_solid_angle_polygon_sample(&polygon, u[i], u[j]);           \
+        SpheraSample b = sphera_solid_angle_##SIZE##_sample(&sized, u[i], u[j]);            \
+        SpheraVec3 outside = vec3(-a.dir.x, -a.dir.y, a.dir.z + 0.5f);                      \
+        float a0 = -1.0f, a1 = -1.0f, b0 = -2.0f, b1 = -2.0f;                               \
+        int ia = sphera_solid_angle_polygon_invert(&polygon, a.dir, &a0, &a1);              \
+        int ib = sphera_solid_angle_##SIZE##_invert(&sized, a.dir, &b0, &b1);               \
+        different += !same_sample(a, b);                                                     \
+        different += !same_float(sphera_solid_angle_polygon_pdf(&polygon, a.dir),          \
+                                 sphera_solid_angle_##SIZE##_pdf(&sized, a.dir));           \
+        different += !same_float(sphera_solid_angle_polygon_pdf(&polygon, outside),        \
+                                 sphera_solid_angle_##SIZE##_pdf(&sized, outside));         \
+        different += ia != ib || !same_float(a0, b0) || !same_float(a1, b1);                \
+      }                                                                                      \
+    }                                                                                        \
+    CHECK(different == 0);                                                                   \
+    if (prepared) CHECK(sphera_solid_angle_##SIZE##_solid_angle(&sized) > 0.0f);            \
   }
-  CHECK(different == 0);
-  if (prepared) CHECK(sphera_solid_angle_triangle_solid_angle(&triangle) > 0.0f);
-}
 
-static void check_quad(const char *name, const SpheraVec3 v[4]) {
-  SpheraSolidAnglePolygon polygon;
-  SpheraSolidAngleQuad quad;
-  float u[U_COUNT];
-  int i, j, prepared = sphera_solid_angle_polygon_prepare(&polygon, v, 4);
-  int different = 0;
-  printf("quad %s\n", name);
-  fill_u_values(u);
-  CHECK(sphera_solid_angle_quad_prepare(&quad, v) == prepared);
-  CHECK(same_float(sphera_solid_angle_quad_solid_angle(&quad),
-                   sphera_solid_angle_polygon_solid_angle(&polygon)));
-  for (i = 0; i < U_COUNT; i++) {
-    for (j = 0; j < U_COUNT; j++) {
-      SpheraSample a = sphera_solid_angle_polygon_sample(&polygon, u[i], u[j]);
-      SpheraSample b = sphera_solid_angle_quad_sample(&quad, u[i], u[j]);
-      SpheraVec3 outside = vec3(-a.dir.x, -a.dir.y, a.dir.z + 0.5f);
-      float a0 = -1.0f, a1 = -1.0f, b0 = -2.0f, b1 = -2.0f;
-      int ia = sphera_solid_angle_polygon_invert(&polygon, a.dir, &a0, &a1);
-      int ib = sphera_solid_angle_quad_invert(&quad, a.dir, &b0, &b1);
-      different += !same_sample(a, b);
-      different += !same_float(sphera_solid_angle_polygon_pdf(&polygon, a.dir),
-                               sphera_solid_angle_quad_pdf(&quad, a.dir));
-      different += !same_float(sphera_solid_angle_polygon_pdf(&polygon, outside),
-                               sphera_solid_angle_quad_pdf(&quad, outside));
-      different += ia != ib || !same_float(a0, b0) || !same_float(a1, b1);
-    }
-  }
-  CHECK(different == 0);
-  if (prepared) CHECK(sphera_solid_angle_quad_solid_angle(&quad) > 0.0f);
-}
+DEFINE_CHECK_SAME_BITS(triangle, SpheraSolidAngleTriangle, 3)
+DEFINE_CHECK_SAME_BITS(quad, SpheraSolidAngleQuad, 4)
 
 /* The empty value: no sample, pdf 0, solid angle 0, no inverse. */
 static void check_triangle_is_empty(const SpheraSolidAngleTriangle *t, const char *what) {

@@ -432,25 +432,14 @@ impl VertexLanes {
         // stalls on the failed store-to-load forwarding. The slots above stay 0 and only
         // lanes that the masks leave out read them.
         for first in lane_starts(count + 1) {
-            let vertex = |j: usize| {
-                let slot = first + j;
-                vertices[if slot < count { slot } else { 0 }]
-            };
-            let [a, b, c, d] = [vertex(0), vertex(1), vertex(2), vertex(3)];
-            let x = Vec4::new(a.x, b.x, c.x, d.x) * factor;
-            let y = Vec4::new(a.y, b.y, c.y, d.y) * factor;
-            let z = Vec4::new(a.z, b.z, c.z, d.z) * factor;
-            store4(x, &mut lanes.position[0], first);
-            store4(y, &mut lanes.position[1], first);
-            store4(z, &mut lanes.position[2], first);
-            let length_squared = (x * x + y * y) + z * z;
-            let length = crate::math::sqrt4(length_squared);
-            nonzero &= length.cmpgt(Vec4::ZERO).all();
-            store4(length_squared, &mut lanes.length_squared, first);
-            store4(length, &mut lanes.length, first);
-            store4(x / length, &mut lanes.unit[0], first);
-            store4(y / length, &mut lanes.unit[1], first);
-            store4(z / length, &mut lanes.unit[2], first);
+            let (group, ok) = SlotGroup::vertices(vertices, factor, count, first);
+            nonzero &= ok;
+            for c in 0..3 {
+                store4(group.position[c], &mut lanes.position[c], first);
+                store4(group.unit[c], &mut lanes.unit[c], first);
+            }
+            store4(group.length_squared, &mut lanes.length_squared, first);
+            store4(group.length, &mut lanes.length, first);
         }
         nonzero
     }
@@ -460,19 +449,16 @@ impl VertexLanes {
     /// relative precision) through the reflection.
     #[inline(always)]
     fn reflect_edges(&mut self, reflection: &Householder, count: usize) {
-        let [x0, y0, z0] = splat3(self.position(0));
-        let [hx, hy, hz] = splat3(reflection.h);
+        let origin = splat3(self.position(0));
         for first in lane_starts(count + 1) {
-            let [x, y, z] = load4x3(&self.position, first);
-            let (ex, ey, ez) = (x - x0, y - y0, z - z0);
-            let twice_projection = Vec4::splat(2.0) * ((hx * ex + hy * ey) + hz * ez);
-            store4(ey - hy * twice_projection, &mut self.reflected[0], first);
-            store4(ez - hz * twice_projection, &mut self.reflected[1], first);
-            store4(
-                ex.abs().max(ey.abs().max(ez.abs())),
-                &mut self.extent,
-                first,
-            );
+            let mut group = SlotGroup {
+                position: load4x3(&self.position, first),
+                ..SlotGroup::ZERO
+            };
+            group.reflect(reflection, origin);
+            store4(group.reflected[0], &mut self.reflected[0], first);
+            store4(group.reflected[1], &mut self.reflected[1], first);
+            store4(group.extent, &mut self.extent, first);
         }
     }
 
