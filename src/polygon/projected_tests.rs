@@ -621,17 +621,7 @@ fn random_and_degenerate_input_never_gives_nan_or_panics() {
     let mut prepared = 0;
     for trial in 0..20_000 {
         let n = 3 + rng.below(6) as usize;
-        // Random (mostly non-convex) vertices over many scales, some snapped to
-        // great circles through the zenith, the horizon or the zenith itself.
-        let scale = rng.log_uniform(-20.0, 20.0) as f32;
-        let mut v: Vec<Vec3> = (0..n).map(|_| rng.unit_vector_f32() * scale).collect();
-        match trial % 5 {
-            0 => v[1] = Vec3::new(v[0].x * 2.0, v[0].y * 2.0, v[1].z),
-            1 => v[0].z = 0.0,
-            2 => v[0] = Vec3::new(0.0, 0.0, scale),
-            3 => v[1] = v[0] + Vec3::splat(scale * 1e-7),
-            _ => {}
-        }
+        let v = awkward_vertices(&mut rng, n, trial);
         for polygon in [
             ProjectedPolygon::new(&v),
             ProjectedPolygon::new_fast_biased(&v),
@@ -1382,20 +1372,7 @@ fn central_fast_path_matches_the_general_path() {
                 let radius = rng.log_uniform(-3.0, 0.5) as f32;
                 random_polygon(&mut rng, n, radius)
             }
-            _ => {
-                // Random (mostly non-convex) vertices over many scales, some snapped to
-                // great circles through the zenith, the horizon or the zenith itself.
-                let scale = rng.log_uniform(-20.0, 20.0) as f32;
-                let mut v: Vec<Vec3> = (0..n).map(|_| rng.unit_vector_f32() * scale).collect();
-                match trial % 5 {
-                    0 => v[1] = Vec3::new(v[0].x * 2.0, v[0].y * 2.0, v[1].z),
-                    1 => v[0].z = 0.0,
-                    2 => v[0] = Vec3::new(0.0, 0.0, scale),
-                    3 => v[1] = v[0] + Vec3::splat(scale * 1e-7),
-                    _ => {}
-                }
-                v
-            }
+            _ => awkward_vertices(&mut rng, n, trial),
         };
         fast += (compare(&v) == Some(true)) as u32;
     }
@@ -1483,4 +1460,19 @@ fn outer_area_bounds_decide_as_the_exact_areas() {
         settled as f64 > 0.25 * sectors as f64,
         "{settled} of {sectors}"
     );
+}
+
+/// Random (mostly non-convex) vertices over many scales, some snapped to great circles
+/// through the zenith, the horizon or the zenith itself (by `trial % 5`).
+fn awkward_vertices(rng: &mut Rng, n: usize, trial: usize) -> Vec<Vec3> {
+    let scale = rng.log_uniform(-20.0, 20.0) as f32;
+    let mut v: Vec<Vec3> = (0..n).map(|_| rng.unit_vector_f32() * scale).collect();
+    match trial % 5 {
+        0 => v[1] = Vec3::new(v[0].x * 2.0, v[0].y * 2.0, v[1].z),
+        1 => v[0].z = 0.0,
+        2 => v[0] = Vec3::new(0.0, 0.0, scale),
+        3 => v[1] = v[0] + Vec3::splat(scale * 1e-7),
+        _ => {}
+    }
+    v
 }
