@@ -96,7 +96,7 @@
 //! grazing; `u` at both ends of `[0, 1)`, outside it and NaN; zero, huge, tiny and
 //! non-finite directions; roughness and `F0` outside their ranges and NaN.
 
-use super::unit;
+use super::{is_unit, unit};
 use crate::math::sin_cos_of_turn;
 use crate::sample::clamp_random;
 use crate::{Sample, Vec3};
@@ -392,8 +392,27 @@ impl GgxBrdf {
     /// `wo`: `G1(ωo) D(h) / (4 ωo,z)` with `h = normalize(ωo + ωi)`. 0 when either
     /// direction lies at or below the horizon, is zero or is not finite. Directions
     /// are normalised first.
+    ///
+    /// The common case, both directions unit ([`is_unit`]) and above the horizon, runs
+    /// inline: [`unit`] returns such a direction unchanged, so this is the
+    /// same value, bit for bit, without the normalisation's branches. Everything else
+    /// (directions to normalise, zero, non-finite, at or below the horizon) goes to
+    /// the out-of-line [`pdf_careful`](Self::pdf_careful).
     #[inline]
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        if is_unit(wo) && is_unit(wi) && wo.z > 0.0 && wi.z > 0.0 {
+            return self.pdf_unit(wo, wi);
+        }
+        Self::pdf_careful(self, wo, wi)
+    }
+
+    /// [`pdf`](Self::pdf) for every input: the directions normalised by [`unit`] first.
+    /// The C calling convention keeps the directions in vector registers (the Rust one
+    /// passes a `Vec3` in integer registers or through memory, which cost the inline
+    /// common path its shuffles and stores).
+    #[inline(never)]
+    #[cold]
+    extern "C" fn pdf_careful(&self, wo: Vec3, wi: Vec3) -> f32 {
         match (unit(wo), unit(wi)) {
             (Some(wo), Some(wi)) if wo.z > 0.0 && wi.z > 0.0 => self.pdf_unit(wo, wi),
             _ => 0.0,

@@ -902,3 +902,45 @@ fn visible_normals_match_the_f64_map() {
     }
     println!("worst {worst:.2e} rad");
 }
+
+/// `pdf` runs unit directions above the horizon inline and everything else through
+/// `pdf_careful`: over random directions (unit, and scaled by factors at and beyond
+/// the unit tolerance, the grazing and the opposite ones among them) both give the
+/// same bits, and the careful path is what normalises (a scaled direction's pdf is
+/// that of its normalised form).
+#[test]
+fn the_pdf_common_path_gives_the_careful_paths_bits() {
+    let mut rng = Rng::new(77);
+    let (mut common, mut careful) = (0, 0);
+    for k in 0..20_000 {
+        let brdf = GgxBrdf::new(rng.range(0.0, 1.0), Vec3::splat(0.04));
+        let mut wo = rng.unit_vector_f32();
+        let mut wi = rng.unit_vector_f32();
+        if k % 7 == 0 {
+            wi = -wo + Vec3::new(0.0, 0.0, 1e-6); // nearly opposite: |wo + wi| tiny
+        }
+        if k % 11 == 0 {
+            wo.z = 1e-7 * wo.z.signum(); // grazing
+        }
+        let scale = [1.0, 1.0 + 4e-7, 1.0 + 2e-6, 0.5, 3.0][k % 5];
+        let (wo, wi) = (wo * scale, wi * [1.0, 1.0 - 3e-7, 1.0][k % 3]);
+        let expected = GgxBrdf::pdf_careful(&brdf, wo, wi);
+        assert_eq!(brdf.pdf(wo, wi).to_bits(), expected.to_bits(), "{wo} {wi}");
+        if is_unit(wo) && is_unit(wi) && wo.z > 0.0 && wi.z > 0.0 {
+            common += 1;
+        } else if wo.z > 0.0 && wi.z > 0.0 {
+            careful += 1;
+        }
+        if k % 5 >= 3 && wo.z > 0.0 && wi.z > 0.0 {
+            // Scaled by 0.5 or 3: the unit path on the raw vectors would be off by
+            // factors, the normalised directions differ from glam's by an ulp or so
+            // (to which a narrow lobe's D is sensitive).
+            let normalised = brdf.pdf(wo.normalize(), wi.normalize());
+            assert!(
+                (expected - normalised).abs() <= 1e-3 * normalised,
+                "{wo} {wi}: {expected} vs {normalised}"
+            );
+        }
+    }
+    assert!(common > 1000 && careful > 2000, "{common} common, {careful} careful");
+}

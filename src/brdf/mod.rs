@@ -28,7 +28,7 @@ pub use ltc::Ltc;
 use crate::Vec3;
 
 /// A direction argument as a unit vector (the shared helper, see [`crate::math::unit`]).
-pub(crate) use crate::math::unit;
+pub(crate) use crate::math::{is_unit, unit};
 
 /// The coordinates of the fitted tables (LTC, pivot) for a view `wo` (local frame, need
 /// not be normalised) and roughness `r = √α`: `(x, y, cos φ, sin φ)` with

@@ -29,7 +29,8 @@ pub(crate) use roots::safeguarded_newton_step;
 pub use sin_cos::sin_cos_0_to_pi;
 pub(crate) use sin_cos::{sin_cos_of_quarter_turns, sin_cos_of_turn};
 pub(crate) use unit::{
-    UNIT_TOLERANCE, is_unit_output, normalize_scaled, unit, unit_if_needed, unit_if_needed_or_none,
+    UNIT_TOLERANCE, is_unit, is_unit_output, normalize_scaled, unit, unit_if_needed,
+    unit_if_needed_or_none,
 };
 
 /// `c[0] + s (c[1] + s (c[2] + …))` by Horner's rule, one multiplication and one

@@ -40,11 +40,17 @@ pub(crate) fn normalize_by_largest(v: Vec3) -> Option<Vec3> {
 /// non-finite `v`.
 #[inline(always)]
 pub(crate) fn unit(v: Vec3) -> Option<Vec3> {
-    if (v.length_squared() - 1.0).abs() <= UNIT_TOLERANCE {
-        // NaN fails the comparison above; an infinity gives |v|² = inf.
+    if is_unit(v) {
         return Some(v);
     }
     normalize_by_largest(v)
+}
+
+/// Whether [`unit`] takes `v` as it is: `| |v|² - 1 | <= UNIT_TOLERANCE`. False for
+/// NaN components (the comparison fails) and infinite ones (`|v|² = inf`).
+#[inline(always)]
+pub(crate) fn is_unit(v: Vec3) -> bool {
+    (v.length_squared() - 1.0).abs() <= UNIT_TOLERANCE
 }
 
 /// The tolerance of [`unit_if_needed`] for a sampler's own output: 2e-6, twice
