@@ -54,6 +54,14 @@ pub fn sqrt4(v: Vec4) -> Vec4 {
     }
 }
 
+/// Each lane as it is where finite, else 0 (the scalar
+/// `if x.is_finite() { x } else { 0.0 }`: `is_finite_mask` is `|x| < ∞`, false for NaN).
+#[inline(always)]
+#[must_use]
+pub fn finite_or_zero4(v: Vec4) -> Vec4 {
+    Vec4::select(v.is_finite_mask(), v, Vec4::ZERO)
+}
+
 /// Veltkamp's split of each lane, as [`products::split`](super::products).
 #[cfg(not(all(target_arch = "x86_64", target_feature = "fma")))]
 #[inline(always)]

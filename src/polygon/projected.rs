@@ -776,9 +776,15 @@ impl ProjectedPolygon {
                 pairs[j] = (order[j] as usize, order[j + 1] as usize);
             }
             let sector_det = sector_determinants(&positions, &xy_length, &pairs[..sectors]);
+            // Per sector: s0, s1, the inner ellipse and its dot products with s0 and s1,
+            // the outer one and its (columns, one lane per sector; lanes past the sectors
+            // stay 0).
+            let mut columns = [[0.0f32; 2 * LANES]; 12];
             let mut inner = first_inner;
             let mut outer = 0usize;
-            let mut all_empty_before = true;
+            // The previous sector's inner and outer ellipse and their dot products with
+            // its s1, this sector's s0: the same `edge_dot` where the ellipse is the same.
+            let mut previous = [(usize::MAX, 0.0f32); 2];
             for j in 0..sectors {
                 let (a, b) = (order[j] as usize, order[j + 1] as usize);
                 let e = vertex_edge[a];
@@ -788,15 +794,71 @@ impl ProjectedPolygon {
                 if j == 0 || !is_inner(edge[e]) {
                     outer = e;
                 }
-                polygon.pieces.sectors_mut()[j] = EllipseSector::new(
-                    direction[a],
-                    direction[b],
-                    sector_det[j],
-                    edge[inner],
-                    [edge_dot(inner, a), edge_dot(inner, b)],
-                    edge[outer],
-                    [edge_dot(outer, a), edge_dot(outer, b)],
-                );
+                let mut dots = [[0.0f32; 2]; 2];
+                for (k, e) in [inner, outer].into_iter().enumerate() {
+                    let at_a = if previous[k].0 == e {
+                        previous[k].1
+                    } else {
+                        edge_dot(e, a)
+                    };
+                    let at_b = edge_dot(e, b);
+                    previous[k] = (e, at_b);
+                    dots[k] = [at_a, at_b];
+                }
+                let [ti, to] = dots;
+                let values = [
+                    direction[a][0],
+                    direction[a][1],
+                    direction[b][0],
+                    direction[b][1],
+                    edge[inner][0],
+                    edge[inner][1],
+                    ti[0],
+                    ti[1],
+                    edge[outer][0],
+                    edge[outer][1],
+                    to[0],
+                    to[1],
+                ];
+                for (column, value) in columns.iter_mut().zip(values) {
+                    column[j] = value;
+                }
+            }
+            let sectors_mut = polygon.pieces.sectors_mut();
+            if allow_fast {
+                // Four sectors at a time, bit for bit as `EllipseSector::new`.
+                for first in lane_starts(sectors) {
+                    let [s0x, s0y, s1x, s1y, uix, uiy, ti0, ti1, uox, uoy, to0, to1] =
+                        columns.each_ref().map(|c| load4(c, first));
+                    let lanes = (sectors - first).min(LANES);
+                    EllipseSector::new4(
+                        [s0x, s0y],
+                        [s1x, s1y],
+                        load4(&sector_det, first),
+                        [uix, uiy],
+                        [ti0, ti1],
+                        [uox, uoy],
+                        [to0, to1],
+                        &mut sectors_mut[first..first + lanes],
+                    );
+                }
+            } else {
+                for (j, sector) in sectors_mut[..sectors].iter_mut().enumerate() {
+                    let column = |c: usize| columns[c][j];
+                    let pair = |c: usize| [column(c), column(c + 1)];
+                    *sector = EllipseSector::new(
+                        pair(0),
+                        pair(2),
+                        sector_det[j],
+                        pair(4),
+                        pair(6),
+                        pair(8),
+                        pair(10),
+                    );
+                }
+            }
+            let mut all_empty_before = true;
+            for j in 0..sectors {
                 let sector = &mut polygon.pieces.sectors_mut()[j];
                 // An upper bound on the outer ellipse's area instead of the area itself
                 // (see `outer_area_bound`): it decides the extra iteration here and the
