@@ -7,7 +7,7 @@
 //! prepared value is the same bit for bit on every target and whether a lane or the
 //! scalar fallback computed it.
 
-use glam::{BVec4A, Vec4};
+use glam::{BVec4A, Mat4, Vec4};
 
 /// The number of lanes: four `f32` in one SSE register.
 pub(crate) const LANES: usize = 4;
@@ -60,6 +60,35 @@ pub fn sqrt4(v: Vec4) -> Vec4 {
 #[must_use]
 pub fn finite_or_zero4(v: Vec4) -> Vec4 {
     Vec4::select(v.is_finite_mask(), v, Vec4::ZERO)
+}
+
+/// Writes four records of `N` words, one per lane: record `lane` gets `words[w][lane]`
+/// as its word `w`. Four words of every record at a time: a 4×4 transpose (glam's
+/// `Mat4::transpose`, shuffles on SSE) turns the four words' lanes into each record's
+/// four consecutive words, stored at once; where `N` is not a multiple of 4 the last
+/// group overlaps the one before (its words written twice, with the same bits). A fixed
+/// count of records, so that the compiler unrolls it all into straight-line code. Moves
+/// bits only (no arithmetic), so every word is stored as computed, NaN payloads included.
+#[inline(always)]
+pub(crate) fn store_records4<const N: usize>(words: &[Vec4; N], records: &mut [[f32; N]; LANES]) {
+    const { assert!(N >= LANES) };
+    for group in 0..N.div_ceil(LANES) {
+        let start = (group * LANES).min(N - LANES);
+        let rows = Mat4::from_cols(
+            words[start],
+            words[start + 1],
+            words[start + 2],
+            words[start + 3],
+        )
+        .transpose();
+        for (record, row) in
+            records
+                .iter_mut()
+                .zip([rows.x_axis, rows.y_axis, rows.z_axis, rows.w_axis])
+        {
+            row.write_to_slice(&mut record[start..start + LANES]);
+        }
+    }
 }
 
 /// Veltkamp's split of each lane, as [`products::split`](super::products).

@@ -16,7 +16,7 @@ use super::ellipse::{
 };
 use crate::math::{
     LANES, atan_fast_nonneg, atan_fast_nonneg4, atan2_upper_half_plane, copy_sign,
-    difference_of_products4, finite_or_zero4, sqrt4,
+    difference_of_products4, finite_or_zero4, sqrt4, store_records4,
 };
 use glam::Vec4;
 
@@ -78,6 +78,33 @@ pub struct EllipseSector {
     /// only samples in such an end quad pay for its shape (issue 17, 2).
     pub(crate) touching_ends: u32,
 }
+
+/// The 4-byte words of an [`EllipseSector`] (`repr(C)` of `f32` and `u32` fields only):
+/// [`EllipseSector::new4`] writes the sectors as records of these words, in the order of
+/// the fields, which the assertions pin.
+const SECTOR_WORDS: usize = 46;
+const _: () = {
+    use core::mem::{offset_of, size_of};
+    assert!(size_of::<EllipseSector>() == 4 * SECTOR_WORDS);
+    assert!(offset_of!(EllipseSector, outer_quarter_dots) == 4 * 10);
+    assert!(offset_of!(EllipseSector, det) == 4 * 15);
+    assert!(offset_of!(EllipseSector, inverse_basis) == 4 * 16);
+    assert!(offset_of!(EllipseSector, inner) == 4 * 17);
+    assert!(offset_of!(EllipseSector, outer) == 4 * 19);
+    assert!(offset_of!(EllipseSector, inner_root_det) == 4 * 21);
+    assert!(offset_of!(EllipseSector, outer_root_det) == 4 * 22);
+    assert!(offset_of!(EllipseSector, root_det_difference) == 4 * 23);
+    assert!(offset_of!(EllipseSector, inverse_root_det_difference) == 4 * 24);
+    assert!(offset_of!(EllipseSector, coincidence_sign) == 4 * 25);
+    assert!(offset_of!(EllipseSector, quarter_det) == 4 * 26);
+    assert!(offset_of!(EllipseSector, inner_quarter_dots) == 4 * 27);
+    assert!(offset_of!(EllipseSector, inner_radius) == 4 * 32);
+    assert!(offset_of!(EllipseSector, outer_radius) == 4 * 37);
+    assert!(offset_of!(EllipseSector, cosine) == 4 * 42);
+    assert!(offset_of!(EllipseSector, area_form) == 4 * 43);
+    assert!(offset_of!(EllipseSector, extra_iterations) == 4 * 44);
+    assert!(offset_of!(EllipseSector, touching_ends) == 4 * 45);
+};
 
 /// Where a direction of the safeguarded iteration lies (see [`EllipseSector::locate`]).
 #[derive(Clone, Copy, PartialEq)]
@@ -403,8 +430,9 @@ impl EllipseSector {
 
     /// [`new`](Self::new) of four sectors at a time (their values as lanes: `s0`, `s1`,
     /// `det`, the inner ellipse and its dot products with `s0` and `s1`, the outer one and
-    /// its), written into `sectors` (one to four; lanes past them are computed and
-    /// dropped). Every lane rounds as `new` computes it one sector at a time, bit for bit:
+    /// its), written into the four `sectors` (all four, so that the stores unroll into
+    /// straight-line code: the caller overwrites the slots of lanes past its sectors).
+    /// Every lane rounds as `new` computes it one sector at a time, bit for bit:
     /// the same operations in the same order (no fused multiply-add, `1 / sqrt` then a
     /// product where `new` scales by the inverse length, a division by the root where it
     /// divides), and `new`'s branches as selects per lane (the bisector of a sector near π,
@@ -420,7 +448,7 @@ impl EllipseSector {
         [ti0, ti1]: [Vec4; 2],
         [uox, uoy]: [Vec4; 2],
         [to0, to1]: [Vec4; 2],
-        sectors: &mut [Self],
+        sectors: &mut [Self; LANES],
     ) {
         // `dot2`: a_x b_x + a_y b_y.
         let dot = |ax: Vec4, ay: Vec4, bx: Vec4, by: Vec4| ax * bx + ay * by;
@@ -472,17 +500,35 @@ impl EllipseSector {
         let quarter_det = difference_of_products4(s0x, b1y, s0y, b1x);
         let cosine = dot(s0x, s0y, s1x, s1y);
         let delta2 = dot(deltax, deltay, deltax, deltay);
-        let [
+        // `area_form` per lane from the one scalar helper (its comparisons and `min` /
+        // `max` as `new` makes them, NaN included), as the bits of a lane.
+        let [cosine_, ti0_, ti1_, to0_, to1_, ui2, uo2, delta2] =
+            [cosine, ti0, ti1, to0, to1, ui2, uo2, delta2].map(|v| v.to_array());
+        let area_forms = Vec4::from_array(core::array::from_fn(|lane| {
+            f32::from_bits(area_form(
+                cosine_[lane],
+                [[ti0_[lane], ti1_[lane]], [to0_[lane], to1_[lane]]],
+                [ui2[lane], uo2[lane]],
+                delta2[lane],
+            ))
+        }));
+        // The sectors' words in memory order (see `SECTOR_WORDS`), one lane per sector.
+        let words: [Vec4; SECTOR_WORDS] = [
             s0x,
             s0y,
-            s1x,
-            s1y,
             b1x,
             b1y,
             b2x,
             b2y,
             b3x,
             b3y,
+            s1x,
+            s1y, // quarters
+            to0,
+            to_1,
+            to_2,
+            to_3,
+            to1, // outer_quarter_dots
             det,
             inverse_basis,
             uix,
@@ -494,83 +540,34 @@ impl EllipseSector {
             root_det_difference,
             inverse_root_det_difference,
             sigma,
-            quarter_det,
+            quarter_det, // det ..= quarter_det
+            ti0,
+            ti_1,
+            ti_2,
+            ti_3,
+            ti1, // inner_quarter_dots
+            radius(ti0),
+            radius(ti_1),
+            radius(ti_2),
+            radius(ti_3),
+            radius(ti1),
+            radius(to0),
+            radius(to_1),
+            radius(to_2),
+            radius(to_3),
+            radius(to1),
             cosine,
-            ui2,
-            uo2,
-            delta2,
-        ] = [
-            s0x,
-            s0y,
-            s1x,
-            s1y,
-            b1x,
-            b1y,
-            b2x,
-            b2y,
-            b3x,
-            b3y,
-            det,
-            inverse_basis,
-            uix,
-            uiy,
-            uox,
-            uoy,
-            ki,
-            ko,
-            root_det_difference,
-            inverse_root_det_difference,
-            sigma,
-            quarter_det,
-            cosine,
-            ui2,
-            uo2,
-            delta2,
-        ]
-        .map(|v| v.to_array());
-        let [inner_dots, outer_dots] = [[ti0, ti_1, ti_2, ti_3, ti1], [to0, to_1, to_2, to_3, to1]]
-            .map(|dots| dots.map(|v| v.to_array()));
-        let [inner_radius, outer_radius] = [inner_dots, outer_dots]
-            .map(|dots| dots.map(|v| radius(Vec4::from_array(v)).to_array()));
-        for (lane, sector) in sectors.iter_mut().enumerate() {
-            let at = |values: &[[f32; LANES]; 5]| values.map(|v| v[lane]);
-            let (inner_quarter_dots, outer_quarter_dots) = (at(&inner_dots), at(&outer_dots));
-            *sector = Self {
-                quarters: [
-                    [s0x[lane], s0y[lane]],
-                    [b1x[lane], b1y[lane]],
-                    [b2x[lane], b2y[lane]],
-                    [b3x[lane], b3y[lane]],
-                    [s1x[lane], s1y[lane]],
-                ],
-                outer_quarter_dots,
-                det: det[lane],
-                inverse_basis: inverse_basis[lane],
-                inner: [uix[lane], uiy[lane]],
-                outer: [uox[lane], uoy[lane]],
-                inner_root_det: ki[lane],
-                outer_root_det: ko[lane],
-                root_det_difference: root_det_difference[lane],
-                inverse_root_det_difference: inverse_root_det_difference[lane],
-                coincidence_sign: sigma[lane],
-                quarter_det: quarter_det[lane],
-                inner_quarter_dots,
-                inner_radius: at(&inner_radius),
-                outer_radius: at(&outer_radius),
-                cosine: cosine[lane],
-                area_form: area_form(
-                    cosine[lane],
-                    [
-                        [inner_quarter_dots[0], inner_quarter_dots[4]],
-                        [outer_quarter_dots[0], outer_quarter_dots[4]],
-                    ],
-                    [ui2[lane], uo2[lane]],
-                    delta2[lane],
-                ),
-                extra_iterations: 0,
-                touching_ends: 0,
-            };
-        }
+            area_forms,
+            Vec4::ZERO,
+            Vec4::ZERO, // .., extra_iterations, touching_ends
+        ];
+        // SAFETY: `EllipseSector` is `repr(C)` of `SECTOR_WORDS` 4-byte `f32` and `u32`
+        // fields (no padding; asserted at `SECTOR_WORDS`), and every bit pattern is a
+        // value of each, so the sectors are `[f32; SECTOR_WORDS]` records (as the
+        // `ProjectedPieces` union relies on).
+        let records =
+            unsafe { &mut *(sectors as *mut [Self; LANES]).cast::<[[f32; SECTOR_WORDS]; LANES]>() };
+        store_records4(&words, records);
     }
 
     /// Where `c` lies against the bracket `[x_lo, x_hi]` of chord parameters, widened by

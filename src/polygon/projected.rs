@@ -826,11 +826,12 @@ impl ProjectedPolygon {
             }
             let sectors_mut = polygon.pieces.sectors_mut();
             if allow_fast {
-                // Four sectors at a time, bit for bit as `EllipseSector::new`.
+                // Four sectors at a time, bit for bit as `EllipseSector::new`. The slots
+                // of lanes past the sectors (at most 7 of 8 slots are sectors) are
+                // written here and then again by `finish`, as empty sectors.
                 for first in lane_starts(sectors) {
                     let [s0x, s0y, s1x, s1y, uix, uiy, ti0, ti1, uox, uoy, to0, to1] =
                         columns.each_ref().map(|c| load4(c, first));
-                    let lanes = (sectors - first).min(LANES);
                     EllipseSector::new4(
                         [s0x, s0y],
                         [s1x, s1y],
@@ -839,7 +840,7 @@ impl ProjectedPolygon {
                         [ti0, ti1],
                         [uox, uoy],
                         [to0, to1],
-                        &mut sectors_mut[first..first + lanes],
+                        (&mut sectors_mut[first..first + LANES]).try_into().unwrap(),
                     );
                 }
             } else {
