@@ -24,7 +24,8 @@
 
 use super::clip::{clip_to_upper_hemisphere, clipped_edge_planes};
 use super::ellipse::{
-    DEGENERATE, dot2, ellipse_area, ellipse_from_normal, is_degenerate, is_inner, unit_direction,
+    DEGENERATE, dot2, ellipse_area, ellipse_from_normal, ellipse_from_normal4, is_degenerate,
+    is_inner, unit_direction, unit_direction4,
 };
 use super::ellipse_sector::{AreaPrecision, EllipseSector, atan2_positive_fast4};
 use super::rescale;
@@ -684,20 +685,54 @@ impl ProjectedPolygon {
             Some(planes) => planes[j],
             None => [positions[j], positions[next(j)]],
         };
-        for j in 0..count {
-            let [pa, pb] = edge_ends(j);
-            let normal = Vec3::new(normals[0][j], normals[1][j], normals[2][j]);
-            let u = ellipse_from_normal(normal);
-            edge[j] = u;
-            polygon.edge_normals[j] = normal;
-            // The first test of `ignore_short_edges_in_containment` on the same values:
-            // the common polygon has no short edge and skips it.
-            maybe_short |= !(normal.length_squared()
-                > super::SHORT_EDGE_SINE
-                    * super::SHORT_EDGE_SINE
-                    * (pa.length_squared() * pb.length_squared()));
-            direction[j] = unit_direction(positions[j]);
-            xy_length[j] = dot2(direction[j], [positions[j].x, positions[j].y]);
+        if allow_fast {
+            // Four edges and vertices at a time, bit for bit as the loop below.
+            // Columns: u_x, u_y, s_x, s_y of the edges' ellipses and the vertices'
+            // directions.
+            let mut columns = [[0.0f32; 2 * LANES]; 4];
+            for first in lane_starts(count) {
+                let [nx, ny, nz] = normals.each_ref().map(|c| load4(c, first));
+                let (ux, uy) = ellipse_from_normal4(nx, ny, nz);
+                let [x, y, _] = vertex.each_ref().map(|c| load4(c, first));
+                let (sx, sy) = unit_direction4(x, y);
+                // `dot2(direction, p_xy)`.
+                store4(sx * x + sy * y, &mut xy_length, first);
+                for (column, lanes) in columns.iter_mut().zip([ux, uy, sx, sy]) {
+                    store4(lanes, column, first);
+                }
+                // The first test of `ignore_short_edges_in_containment`, as below (lanes
+                // past the edges masked: their zero normals would count as short).
+                let [a, b] =
+                    ends.map(|(lanes, offset)| lanes.each_ref().map(|c| load4(c, first + offset)));
+                let length2 = |[x, y, z]: [Vec4; 3]| (x * x + y * y) + z * z;
+                let short = !(length2([nx, ny, nz])).cmpgt(
+                    Vec4::splat(super::SHORT_EDGE_SINE * super::SHORT_EDGE_SINE)
+                        * (length2(a) * length2(b)),
+                );
+                let lanes = (count - first).min(LANES);
+                maybe_short |= short.bitmask() & ((1u32 << lanes) - 1) != 0;
+            }
+            for j in 0..count {
+                polygon.edge_normals[j] = Vec3::new(normals[0][j], normals[1][j], normals[2][j]);
+                edge[j] = [columns[0][j], columns[1][j]];
+                direction[j] = [columns[2][j], columns[3][j]];
+            }
+        } else {
+            for j in 0..count {
+                let [pa, pb] = edge_ends(j);
+                let normal = Vec3::new(normals[0][j], normals[1][j], normals[2][j]);
+                let u = ellipse_from_normal(normal);
+                edge[j] = u;
+                polygon.edge_normals[j] = normal;
+                // The first test of `ignore_short_edges_in_containment` on the same
+                // values: the common polygon has no short edge and skips it.
+                maybe_short |= !(normal.length_squared()
+                    > super::SHORT_EDGE_SINE
+                        * super::SHORT_EDGE_SINE
+                        * (pa.length_squared() * pb.length_squared()));
+                direction[j] = unit_direction(positions[j]);
+                xy_length[j] = dot2(direction[j], [positions[j].x, positions[j].y]);
+            }
         }
         // `u_e · s_c` for the ellipse of edge e and the direction of vertex c, from the
         // positions. With u = σ n_xy / n_z (n = p_a × p_b, σ the sign that marks inner
