@@ -16,7 +16,7 @@ use super::ellipse::{
 };
 use crate::math::{
     LANES, atan_fast_nonneg, atan_fast_nonneg4, atan2_upper_half_plane, copy_sign,
-    difference_of_products4, finite_or_zero4, sqrt4, store_records4,
+    difference_of_products4, finite_or_zero4, max4, min4, sqrt4, store_records4,
 };
 use glam::Vec4;
 
@@ -499,19 +499,22 @@ impl EllipseSector {
         let inverse_root_det_difference = finite_or_zero4(length_difference / (sum * ki * ko));
         let quarter_det = difference_of_products4(s0x, b1y, s0y, b1x);
         let cosine = dot(s0x, s0y, s1x, s1y);
-        let delta2 = dot(deltax, deltay, deltax, deltay);
-        // `area_form` per lane from the one scalar helper (its comparisons and `min` /
-        // `max` as `new` makes them, NaN included), as the bits of a lane.
-        let [cosine_, ti0_, ti1_, to0_, to1_, ui2, uo2, delta2] =
-            [cosine, ti0, ti1, to0, to1, ui2, uo2, delta2].map(|v| v.to_array());
-        let area_forms = Vec4::from_array(core::array::from_fn(|lane| {
-            f32::from_bits(area_form(
-                cosine_[lane],
-                [[ti0_[lane], ti1_[lane]], [to0_[lane], to1_[lane]]],
-                [ui2[lane], uo2[lane]],
-                delta2[lane],
-            ))
-        }));
+        // `area_form` lane by lane, its comparisons as there (`max4` and `min4` are
+        // `f32::max` and `f32::min`, NaN included), as the bits of a lane.
+        let small_dots =
+            |t0: Vec4, t1: Vec4| max4(t0.abs(), t1.abs()).cmple(Vec4::splat(QUADRATURE_MAX_DOT));
+        let quadrature = cosine.cmpge(Vec4::splat(QUADRATURE_MIN_COSINE))
+            & small_dots(ti0, ti1)
+            & small_dots(to0, to1);
+        let coincident =
+            dot(deltax, deltay, deltax, deltay).cmple(Vec4::splat(COINCIDENCE) * min4(uo2, ui2));
+        let difference = (ui2.cmple(Vec4::ONE) & uo2.cmple(Vec4::ONE)) | coincident;
+        let form = |form: u32| Vec4::splat(f32::from_bits(form));
+        let area_forms = Vec4::select(
+            quadrature,
+            form(QUADRATURE_FORM),
+            Vec4::select(difference, form(DIFFERENCE_FORM), form(DIRECT_FORM)),
+        );
         // The sectors' words in memory order (see `SECTOR_WORDS`), one lane per sector.
         let words: [Vec4; SECTOR_WORDS] = [
             s0x,
