@@ -860,11 +860,29 @@ impl ProjectedPolygon {
                 }
             }
             let sectors_mut = polygon.pieces.sectors_mut();
+            // `EllipseSector::new` of sector j, one at a time.
+            let scalar_sector = |sector: &mut EllipseSector, j: usize| {
+                let pair = |c: usize| [columns[c][j], columns[c + 1][j]];
+                *sector = EllipseSector::new(
+                    pair(0),
+                    pair(2),
+                    sector_det[j],
+                    pair(4),
+                    pair(6),
+                    pair(8),
+                    pair(10),
+                );
+            };
             if allow_fast {
                 // Four sectors at a time, bit for bit as `EllipseSector::new`. The slots
                 // of lanes past the sectors (at most 7 of 8 slots are sectors) are
-                // written here and then again by `finish`, as empty sectors.
+                // written here and then again by `finish`, as empty sectors. A last
+                // sector alone (a hexagon's fifth) takes `new`, cheaper than four lanes.
                 for first in lane_starts(sectors) {
+                    if sectors - first == 1 {
+                        scalar_sector(&mut sectors_mut[first], first);
+                        continue;
+                    }
                     let [s0x, s0y, s1x, s1y, uix, uiy, ti0, ti1, uox, uoy, to0, to1] =
                         columns.each_ref().map(|c| load4(c, first));
                     EllipseSector::new4(
@@ -880,17 +898,7 @@ impl ProjectedPolygon {
                 }
             } else {
                 for (j, sector) in sectors_mut[..sectors].iter_mut().enumerate() {
-                    let column = |c: usize| columns[c][j];
-                    let pair = |c: usize| [column(c), column(c + 1)];
-                    *sector = EllipseSector::new(
-                        pair(0),
-                        pair(2),
-                        sector_det[j],
-                        pair(4),
-                        pair(6),
-                        pair(8),
-                        pair(10),
-                    );
+                    scalar_sector(sector, j);
                 }
             }
             let mut all_empty_before = true;

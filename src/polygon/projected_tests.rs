@@ -1478,7 +1478,9 @@ fn awkward_vertices(rng: &mut Rng, n: usize, trial: usize) -> Vec<Vec3> {
 }
 
 /// The decentral sectors built four at a time in lanes (`EllipseSector::new4`, which the
-/// preparation runs) are the scalar `EllipseSector::new`'s word for word, over random
+/// preparation runs, with the edges' ellipses and the vertices' directions from
+/// `ellipse_from_normal4` and `unit_direction4`; a lone last sector takes `new`) are
+/// the scalar path's (`EllipseSector::new` and the scalar edge loop) word for word, over random
 /// decentral polygons (off the zenith and tilted, crossing and touching the horizon,
 /// random and awkward vertices over many scales) in both precisions. No polygon falls
 /// back to the scalar sectors: the lanes select `new`'s rare branches per lane, and the
