@@ -7,7 +7,7 @@
 //! prepared value is the same bit for bit on every target and whether a lane or the
 //! scalar fallback computed it.
 
-use glam::{BVec4A, Vec4};
+use glam::{BVec4A, Mat4, Vec4};
 
 /// The number of lanes: four `f32` in one SSE register.
 pub(crate) const LANES: usize = 4;
@@ -51,6 +51,60 @@ pub fn sqrt4(v: Vec4) -> Vec4 {
             libm::sqrtf(v.z),
             libm::sqrtf(v.w),
         )
+    }
+}
+
+/// Each lane as it is where finite, else 0 (the scalar
+/// `if x.is_finite() { x } else { 0.0 }`: `is_finite_mask` is `|x| < ∞`, false for NaN).
+#[inline(always)]
+#[must_use]
+pub fn finite_or_zero4(v: Vec4) -> Vec4 {
+    Vec4::select(v.is_finite_mask(), v, Vec4::ZERO)
+}
+
+/// `f32::max` lane by lane, a NaN operand ignored as there: `maxps` (glam's `max` on
+/// SSE) gives its second operand where either is NaN, right for a NaN `a` and, with
+/// the select, for a NaN `b` (elsewhere glam's `max` is `f32::max` and the select
+/// changes nothing).
+#[inline(always)]
+#[must_use]
+pub fn max4(a: Vec4, b: Vec4) -> Vec4 {
+    Vec4::select(b.is_nan_mask(), a, a.max(b))
+}
+
+/// `f32::min` lane by lane, a NaN operand ignored as there (see [`max4`]).
+#[inline(always)]
+#[must_use]
+pub fn min4(a: Vec4, b: Vec4) -> Vec4 {
+    Vec4::select(b.is_nan_mask(), a, a.min(b))
+}
+
+/// Writes four records of `N` words, one per lane: record `lane` gets `words[w][lane]`
+/// as its word `w`. Four words of every record at a time: a 4×4 transpose (glam's
+/// `Mat4::transpose`, shuffles on SSE) turns the four words' lanes into each record's
+/// four consecutive words, stored at once; where `N` is not a multiple of 4 the last
+/// group overlaps the one before (its words written twice, with the same bits). A fixed
+/// count of records, so that the compiler unrolls it all into straight-line code. Moves
+/// bits only (no arithmetic), so every word is stored as computed, NaN payloads included.
+#[inline(always)]
+pub(crate) fn store_records4<const N: usize>(words: &[Vec4; N], records: &mut [[f32; N]; LANES]) {
+    const { assert!(N >= LANES) };
+    for group in 0..N.div_ceil(LANES) {
+        let start = (group * LANES).min(N - LANES);
+        let rows = Mat4::from_cols(
+            words[start],
+            words[start + 1],
+            words[start + 2],
+            words[start + 3],
+        )
+        .transpose();
+        for (record, row) in
+            records
+                .iter_mut()
+                .zip([rows.x_axis, rows.y_axis, rows.z_axis, rows.w_axis])
+        {
+            row.write_to_slice(&mut record[start..start + LANES]);
+        }
     }
 }
 
@@ -194,6 +248,14 @@ mod tests {
                 for (component, lanes) in crosses.iter().enumerate() {
                     assert_eq!(lanes[lane].to_bits(), scalar[component].to_bits());
                 }
+            }
+            let nan_in = |v: Vec4| Vec4::select(v.cmpgt(Vec4::splat(1e20)), Vec4::NAN, v);
+            let (x, y) = (nan_in(a), nan_in(b));
+            let (largest, smallest) = (max4(x, y), min4(x, y));
+            for lane in 0..4 {
+                let (x, y) = (x[lane], y[lane]);
+                assert_eq!(largest[lane].to_bits(), x.max(y).to_bits(), "{x} {y}");
+                assert_eq!(smallest[lane].to_bits(), x.min(y).to_bits(), "{x} {y}");
             }
             let v = Vec4::new(draw().abs(), draw().abs(), 0.0, draw().abs());
             let roots = sqrt4(v);

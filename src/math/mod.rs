@@ -18,7 +18,8 @@ pub use bits::{copy_sign, is_sign_negative, sign_mask, with_sign_of_product};
 pub use frame::{Frame, orthonormal_basis};
 pub(crate) use lanes::{
     LANES, atan2_upper_half_plane4, cross_precise4, difference_of_products_unless_cancelling4,
-    difference_of_products4, lane_starts, load4, sqrt4, store4,
+    difference_of_products4, finite_or_zero4, lane_starts, load4, max4, min4, sqrt4,
+    store_records4, store4,
 };
 pub use products::{
     HAS_HARDWARE_FMA, cross_precise, cross_with_residual, determinant_is_exactly_zero,

@@ -21,6 +21,7 @@ use crate::math::is_sign_negative;
 use crate::math::{
     atan2_upper_half_plane, difference_of_products, difference_of_products_unless_cancelling,
 };
+use glam::Vec4;
 
 /// A vector in the plane of the unit disk.
 pub(crate) type Vec2 = [f32; 2];
@@ -71,6 +72,22 @@ pub(crate) fn unit_direction(v: Vec3) -> Vec2 {
     let (x, y) = (v.x / largest, v.y / largest);
     let inverse_length = 1.0 / libm::sqrtf(x * x + y * y);
     [x * inverse_length, y * inverse_length]
+}
+
+/// [`unit_direction`] of four vertices (their x and y as lanes), each lane rounded as
+/// there (the divisions by the largest component, `1 / sqrt` then the products), zero
+/// where the largest component is not positive (the lanes compute 0 / 0 there and
+/// select 0).
+#[inline(always)]
+pub(crate) fn unit_direction4(x: Vec4, y: Vec4) -> (Vec4, Vec4) {
+    let largest = x.abs().max(y.abs());
+    let (x, y) = (x / largest, y / largest);
+    let inverse_length = Vec4::ONE / crate::math::sqrt4(x * x + y * y);
+    let on_axis = !largest.cmpgt(Vec4::ZERO);
+    (
+        Vec4::select(on_axis, Vec4::ZERO, x * inverse_length),
+        Vec4::select(on_axis, Vec4::ZERO, y * inverse_length),
+    )
 }
 
 /// Whether the ellipse is an inner one: the sign bit of `u_x`, so `-0` is inner and `+0`
@@ -127,6 +144,26 @@ pub(crate) fn ellipse_from_normal(n: Vec3) -> Vec2 {
     // keeps the sign bit of `x` by working on the magnitude and copying the sign back.
     let clamp = |c: f32| crate::math::copy_sign(c.abs().min(ELLIPSE_LIMIT), c);
     [clamp(x), clamp(y)]
+}
+
+/// [`ellipse_from_normal`] of four normals (their components as lanes), each lane the
+/// same bits: `1 / n_z`, `|n_x|` times it, `n_y` with the sign of `n_x` multiplied in
+/// (multiplying by `±1` flips the sign bit only, as `with_sign_of_product`; `n` is
+/// finite), both magnitudes clamped to [`ELLIPSE_LIMIT`] (`minps` gives its second
+/// operand, the limit, for a NaN magnitude, as `f32::min` does) with their sign copied
+/// back, and [`DEGENERATE`] where `n_z = ±0`.
+#[inline(always)]
+pub(crate) fn ellipse_from_normal4(nx: Vec4, ny: Vec4, nz: Vec4) -> (Vec4, Vec4) {
+    let inverse = Vec4::ONE / nz;
+    let x = nx.abs() * inverse;
+    let y = ny * Vec4::ONE.copysign(nx) * inverse;
+    let limit = Vec4::splat(ELLIPSE_LIMIT);
+    let clamp = |c: Vec4| c.abs().min(limit).copysign(c);
+    let degenerate = nz.cmpeq(Vec4::ZERO);
+    (
+        Vec4::select(degenerate, Vec4::splat(DEGENERATE[0]), clamp(x)),
+        Vec4::select(degenerate, Vec4::splat(DEGENERATE[1]), clamp(y)),
+    )
 }
 
 /// Algorithm 2 (`solve_homogeneous_quadratic`, Blinn 2006): a non-zero `w` with

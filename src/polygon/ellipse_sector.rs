@@ -14,7 +14,10 @@
 use super::ellipse::{
     Vec2, add2, det2, dot2, is_degenerate, rotate, scale2, solve_homogeneous_quadratic,
 };
-use crate::math::{atan_fast_nonneg, atan_fast_nonneg4, atan2_upper_half_plane, copy_sign};
+use crate::math::{
+    LANES, atan_fast_nonneg, atan_fast_nonneg4, atan2_upper_half_plane, copy_sign,
+    difference_of_products4, finite_or_zero4, max4, min4, sqrt4, store_records4,
+};
 use glam::Vec4;
 
 /// A sector between two ellipses, prepared for sampling.
@@ -75,6 +78,33 @@ pub struct EllipseSector {
     /// only samples in such an end quad pay for its shape (issue 17, 2).
     pub(crate) touching_ends: u32,
 }
+
+/// The 4-byte words of an [`EllipseSector`] (`repr(C)` of `f32` and `u32` fields only):
+/// [`EllipseSector::new4`] writes the sectors as records of these words, in the order of
+/// the fields, which the assertions pin.
+const SECTOR_WORDS: usize = 46;
+const _: () = {
+    use core::mem::{offset_of, size_of};
+    assert!(size_of::<EllipseSector>() == 4 * SECTOR_WORDS);
+    assert!(offset_of!(EllipseSector, outer_quarter_dots) == 4 * 10);
+    assert!(offset_of!(EllipseSector, det) == 4 * 15);
+    assert!(offset_of!(EllipseSector, inverse_basis) == 4 * 16);
+    assert!(offset_of!(EllipseSector, inner) == 4 * 17);
+    assert!(offset_of!(EllipseSector, outer) == 4 * 19);
+    assert!(offset_of!(EllipseSector, inner_root_det) == 4 * 21);
+    assert!(offset_of!(EllipseSector, outer_root_det) == 4 * 22);
+    assert!(offset_of!(EllipseSector, root_det_difference) == 4 * 23);
+    assert!(offset_of!(EllipseSector, inverse_root_det_difference) == 4 * 24);
+    assert!(offset_of!(EllipseSector, coincidence_sign) == 4 * 25);
+    assert!(offset_of!(EllipseSector, quarter_det) == 4 * 26);
+    assert!(offset_of!(EllipseSector, inner_quarter_dots) == 4 * 27);
+    assert!(offset_of!(EllipseSector, inner_radius) == 4 * 32);
+    assert!(offset_of!(EllipseSector, outer_radius) == 4 * 37);
+    assert!(offset_of!(EllipseSector, cosine) == 4 * 42);
+    assert!(offset_of!(EllipseSector, area_form) == 4 * 43);
+    assert!(offset_of!(EllipseSector, extra_iterations) == 4 * 44);
+    assert!(offset_of!(EllipseSector, touching_ends) == 4 * 45);
+};
 
 /// Where a direction of the safeguarded iteration lies (see [`EllipseSector::locate`]).
 #[derive(Clone, Copy, PartialEq)]
@@ -160,6 +190,31 @@ const GAUSS_LEGENDRE_4_WEIGHTS: [f32; 4] = [0.173_927_42, 0.326_072_58, 0.326_07
 #[inline(always)]
 fn ellipse_radius(length2: f32, t: f32) -> f32 {
     1.0 / libm::sqrtf(length2 + t * t)
+}
+
+/// [`EllipseSector::area_form`] of a sector with `s0 · s1 = cosine`, the dot products
+/// `u · s0`, `u · s1` of its inner and outer ellipse, `|u_i|²`, `|u_o|²` and
+/// `|u_o - σ u_i|² = delta2`: the quadrature form for a narrow sector where both ellipses
+/// pass close to the unit circle at both ends, the difference form for ellipses close to
+/// the unit circle or nearly coincident, the direct form elsewhere.
+#[inline(always)]
+fn area_form(
+    cosine: f32,
+    [inner_dots, outer_dots]: [[f32; 2]; 2],
+    [ui2, uo2]: [f32; 2],
+    delta2: f32,
+) -> u32 {
+    let coincident = delta2 <= COINCIDENCE * uo2.min(ui2);
+    if cosine >= QUADRATURE_MIN_COSINE
+        && inner_dots[0].abs().max(inner_dots[1].abs()) <= QUADRATURE_MAX_DOT
+        && outer_dots[0].abs().max(outer_dots[1].abs()) <= QUADRATURE_MAX_DOT
+    {
+        QUADRATURE_FORM
+    } else if (ui2 <= 1.0 && uo2 <= 1.0) || coincident {
+        DIFFERENCE_FORM
+    } else {
+        DIRECT_FORM
+    }
 }
 
 impl EllipseSector {
@@ -345,7 +400,6 @@ impl EllipseSector {
             delta,
             [outer[0] + sigma * inner[0], outer[1] + sigma * inner[1]],
         ));
-        let coincident = dot2(delta, delta) <= COINCIDENCE * uo2.min(ui2);
         Self {
             det,
             inverse_basis,
@@ -363,19 +417,160 @@ impl EllipseSector {
             inner_radius: radii(inner_quarter_dots),
             outer_radius: radii(outer_quarter_dots),
             cosine: dot2(s0, s1),
-            area_form: if dot2(s0, s1) >= QUADRATURE_MIN_COSINE
-                && inner_dots[0].abs().max(inner_dots[1].abs()) <= QUADRATURE_MAX_DOT
-                && outer_dots[0].abs().max(outer_dots[1].abs()) <= QUADRATURE_MAX_DOT
-            {
-                QUADRATURE_FORM
-            } else if (ui2 <= 1.0 && uo2 <= 1.0) || coincident {
-                DIFFERENCE_FORM
-            } else {
-                DIRECT_FORM
-            },
+            area_form: area_form(
+                dot2(s0, s1),
+                [inner_dots, outer_dots],
+                [ui2, uo2],
+                dot2(delta, delta),
+            ),
             extra_iterations: 0,
             touching_ends: 0,
         }
+    }
+
+    /// [`new`](Self::new) of four sectors at a time (their values as lanes: `s0`, `s1`,
+    /// `det`, the inner ellipse and its dot products with `s0` and `s1`, the outer one and
+    /// its), written into the four `sectors` (all four, so that the stores unroll into
+    /// straight-line code: the caller overwrites the slots of lanes past its sectors).
+    /// Every lane rounds as `new` computes it one sector at a time, bit for bit:
+    /// the same operations in the same order (no fused multiply-add, `1 / sqrt` then a
+    /// product where `new` scales by the inverse length, a division by the root where it
+    /// divides), and `new`'s branches as selects per lane (the bisector of a sector near π,
+    /// the zero direction of a non-finite unit vector, the zeros of non-finite constants).
+    /// The test `decentral_lanes_match_the_scalar_sectors` compares the two word for word.
+    #[allow(clippy::too_many_arguments)] // the sector's inputs, each named as in `new`
+    #[inline(always)]
+    pub(crate) fn new4(
+        [s0x, s0y]: [Vec4; 2],
+        [s1x, s1y]: [Vec4; 2],
+        det: Vec4,
+        [uix, uiy]: [Vec4; 2],
+        [ti0, ti1]: [Vec4; 2],
+        [uox, uoy]: [Vec4; 2],
+        [to0, to1]: [Vec4; 2],
+        sectors: &mut [Self; LANES],
+    ) {
+        // `dot2`: a_x b_x + a_y b_y.
+        let dot = |ax: Vec4, ay: Vec4, bx: Vec4, by: Vec4| ax * bx + ay * by;
+        let (ui2, uo2) = (dot(uix, uiy, uix, uiy), dot(uox, uoy, uox, uoy));
+        // `unit`: scaled by 1 / sqrt(|v|²), zero unless both components are finite.
+        let unit = |x: Vec4, y: Vec4| {
+            let inverse = Vec4::ONE / sqrt4(x * x + y * y);
+            let (x, y) = (x * inverse, y * inverse);
+            let finite = x.is_finite_mask() & y.is_finite_mask();
+            (
+                Vec4::select(finite, x, Vec4::ZERO),
+                Vec4::select(finite, y, Vec4::ZERO),
+            )
+        };
+        // b2 ∝ s0 + s1, or R (s0 - s1) = (-(s0_y - s1_y), s0_x - s1_x) near π (the
+        // negation flips the sign bit only, in the lanes as in `rotate`).
+        let (sumx, sumy) = (s0x + s1x, s0y + s1y);
+        let near_pi = dot(sumx, sumy, sumx, sumy).cmplt(Vec4::ONE);
+        let (b2x, b2y) = unit(
+            Vec4::select(near_pi, -(s0y - s1y), sumx),
+            Vec4::select(near_pi, s0x - s1x, sumy),
+        );
+        let (b1x, b1y) = unit(s0x + b2x, s0y + b2y);
+        let (b3x, b3y) = unit(b2x + s1x, b2y + s1y);
+        let inverse_basis =
+            finite_or_zero4(Vec4::ONE / difference_of_products4(s0x, s1y, s0y, s1x));
+        // u · b_j = α (u · s0) + β (u · s1), with α and β of b_j once for both ellipses
+        // (`new` computes the same products twice).
+        let quarter_dots = |bx: Vec4, by: Vec4| {
+            let alpha = (bx * s1y - by * s1x) * inverse_basis;
+            let beta = (s0x * by - s0y * bx) * inverse_basis;
+            let dots = |t0: Vec4, t1: Vec4| finite_or_zero4(alpha * t0 + beta * t1);
+            (dots(ti0, ti1), dots(to0, to1))
+        };
+        let (ti_1, to_1) = quarter_dots(b1x, b1y);
+        let (ti_2, to_2) = quarter_dots(b2x, b2y);
+        let (ti_3, to_3) = quarter_dots(b3x, b3y);
+        // `ellipse_radius(1, t)`: 1 / sqrt(1 + t²).
+        let radius = |t: Vec4| Vec4::ONE / sqrt4(Vec4::ONE + t * t);
+        let (ki, ko) = (sqrt4(Vec4::ONE + ui2), sqrt4(Vec4::ONE + uo2));
+        // σ: 1 with the sign bit of u_i · u_o (`copysign` moves the bit, as `copy_sign`).
+        let sigma = Vec4::ONE.copysign(dot(uix, uiy, uox, uoy));
+        let (deltax, deltay) = (uox - sigma * uix, uoy - sigma * uiy);
+        let length_difference =
+            finite_or_zero4(-dot(deltax, deltay, uox + sigma * uix, uoy + sigma * uiy));
+        let sum = ki + ko;
+        let root_det_difference = finite_or_zero4(-length_difference / sum);
+        let inverse_root_det_difference = finite_or_zero4(length_difference / (sum * ki * ko));
+        let quarter_det = difference_of_products4(s0x, b1y, s0y, b1x);
+        let cosine = dot(s0x, s0y, s1x, s1y);
+        // `area_form` lane by lane, its comparisons as there (`max4` and `min4` are
+        // `f32::max` and `f32::min`, NaN included), as the bits of a lane.
+        let small_dots =
+            |t0: Vec4, t1: Vec4| max4(t0.abs(), t1.abs()).cmple(Vec4::splat(QUADRATURE_MAX_DOT));
+        let quadrature = cosine.cmpge(Vec4::splat(QUADRATURE_MIN_COSINE))
+            & small_dots(ti0, ti1)
+            & small_dots(to0, to1);
+        let coincident =
+            dot(deltax, deltay, deltax, deltay).cmple(Vec4::splat(COINCIDENCE) * min4(uo2, ui2));
+        let difference = (ui2.cmple(Vec4::ONE) & uo2.cmple(Vec4::ONE)) | coincident;
+        let form = |form: u32| Vec4::splat(f32::from_bits(form));
+        let area_forms = Vec4::select(
+            quadrature,
+            form(QUADRATURE_FORM),
+            Vec4::select(difference, form(DIFFERENCE_FORM), form(DIRECT_FORM)),
+        );
+        // The sectors' words in memory order (see `SECTOR_WORDS`), one lane per sector.
+        let words: [Vec4; SECTOR_WORDS] = [
+            s0x,
+            s0y,
+            b1x,
+            b1y,
+            b2x,
+            b2y,
+            b3x,
+            b3y,
+            s1x,
+            s1y, // quarters
+            to0,
+            to_1,
+            to_2,
+            to_3,
+            to1, // outer_quarter_dots
+            det,
+            inverse_basis,
+            uix,
+            uiy,
+            uox,
+            uoy,
+            ki,
+            ko,
+            root_det_difference,
+            inverse_root_det_difference,
+            sigma,
+            quarter_det, // det ..= quarter_det
+            ti0,
+            ti_1,
+            ti_2,
+            ti_3,
+            ti1, // inner_quarter_dots
+            radius(ti0),
+            radius(ti_1),
+            radius(ti_2),
+            radius(ti_3),
+            radius(ti1),
+            radius(to0),
+            radius(to_1),
+            radius(to_2),
+            radius(to_3),
+            radius(to1),
+            cosine,
+            area_forms,
+            Vec4::ZERO,
+            Vec4::ZERO, // .., extra_iterations, touching_ends
+        ];
+        // SAFETY: `EllipseSector` is `repr(C)` of `SECTOR_WORDS` 4-byte `f32` and `u32`
+        // fields (no padding; asserted at `SECTOR_WORDS`), and every bit pattern is a
+        // value of each, so the sectors are `[f32; SECTOR_WORDS]` records (as the
+        // `ProjectedPieces` union relies on).
+        let records =
+            unsafe { &mut *(sectors as *mut [Self; LANES]).cast::<[[f32; SECTOR_WORDS]; LANES]>() };
+        store_records4(&words, records);
     }
 
     /// Where `c` lies against the bracket `[x_lo, x_hi]` of chord parameters, widened by

@@ -24,7 +24,8 @@
 
 use super::clip::{clip_to_upper_hemisphere, clipped_edge_planes};
 use super::ellipse::{
-    DEGENERATE, dot2, ellipse_area, ellipse_from_normal, is_degenerate, is_inner, unit_direction,
+    DEGENERATE, dot2, ellipse_area, ellipse_from_normal, ellipse_from_normal4, is_degenerate,
+    is_inner, unit_direction, unit_direction4,
 };
 use super::ellipse_sector::{AreaPrecision, EllipseSector, atan2_positive_fast4};
 use super::rescale;
@@ -684,20 +685,54 @@ impl ProjectedPolygon {
             Some(planes) => planes[j],
             None => [positions[j], positions[next(j)]],
         };
-        for j in 0..count {
-            let [pa, pb] = edge_ends(j);
-            let normal = Vec3::new(normals[0][j], normals[1][j], normals[2][j]);
-            let u = ellipse_from_normal(normal);
-            edge[j] = u;
-            polygon.edge_normals[j] = normal;
-            // The first test of `ignore_short_edges_in_containment` on the same values:
-            // the common polygon has no short edge and skips it.
-            maybe_short |= !(normal.length_squared()
-                > super::SHORT_EDGE_SINE
-                    * super::SHORT_EDGE_SINE
-                    * (pa.length_squared() * pb.length_squared()));
-            direction[j] = unit_direction(positions[j]);
-            xy_length[j] = dot2(direction[j], [positions[j].x, positions[j].y]);
+        if allow_fast {
+            // Four edges and vertices at a time, bit for bit as the loop below.
+            // Columns: u_x, u_y, s_x, s_y of the edges' ellipses and the vertices'
+            // directions.
+            let mut columns = [[0.0f32; 2 * LANES]; 4];
+            for first in lane_starts(count) {
+                let [nx, ny, nz] = normals.each_ref().map(|c| load4(c, first));
+                let (ux, uy) = ellipse_from_normal4(nx, ny, nz);
+                let [x, y, _] = vertex.each_ref().map(|c| load4(c, first));
+                let (sx, sy) = unit_direction4(x, y);
+                // `dot2(direction, p_xy)`.
+                store4(sx * x + sy * y, &mut xy_length, first);
+                for (column, lanes) in columns.iter_mut().zip([ux, uy, sx, sy]) {
+                    store4(lanes, column, first);
+                }
+                // The first test of `ignore_short_edges_in_containment`, as below (lanes
+                // past the edges masked: their zero normals would count as short).
+                let [a, b] =
+                    ends.map(|(lanes, offset)| lanes.each_ref().map(|c| load4(c, first + offset)));
+                let length2 = |[x, y, z]: [Vec4; 3]| (x * x + y * y) + z * z;
+                let short = !(length2([nx, ny, nz])).cmpgt(
+                    Vec4::splat(super::SHORT_EDGE_SINE * super::SHORT_EDGE_SINE)
+                        * (length2(a) * length2(b)),
+                );
+                let lanes = (count - first).min(LANES);
+                maybe_short |= short.bitmask() & ((1u32 << lanes) - 1) != 0;
+            }
+            for j in 0..count {
+                polygon.edge_normals[j] = Vec3::new(normals[0][j], normals[1][j], normals[2][j]);
+                edge[j] = [columns[0][j], columns[1][j]];
+                direction[j] = [columns[2][j], columns[3][j]];
+            }
+        } else {
+            for j in 0..count {
+                let [pa, pb] = edge_ends(j);
+                let normal = Vec3::new(normals[0][j], normals[1][j], normals[2][j]);
+                let u = ellipse_from_normal(normal);
+                edge[j] = u;
+                polygon.edge_normals[j] = normal;
+                // The first test of `ignore_short_edges_in_containment` on the same
+                // values: the common polygon has no short edge and skips it.
+                maybe_short |= !(normal.length_squared()
+                    > super::SHORT_EDGE_SINE
+                        * super::SHORT_EDGE_SINE
+                        * (pa.length_squared() * pb.length_squared()));
+                direction[j] = unit_direction(positions[j]);
+                xy_length[j] = dot2(direction[j], [positions[j].x, positions[j].y]);
+            }
         }
         // `u_e · s_c` for the ellipse of edge e and the direction of vertex c, from the
         // positions. With u = σ n_xy / n_z (n = p_a × p_b, σ the sign that marks inner
@@ -776,9 +811,15 @@ impl ProjectedPolygon {
                 pairs[j] = (order[j] as usize, order[j + 1] as usize);
             }
             let sector_det = sector_determinants(&positions, &xy_length, &pairs[..sectors]);
+            // Per sector: s0, s1, the inner ellipse and its dot products with s0 and s1,
+            // the outer one and its (columns, one lane per sector; lanes past the sectors
+            // stay 0).
+            let mut columns = [[0.0f32; 2 * LANES]; 12];
             let mut inner = first_inner;
             let mut outer = 0usize;
-            let mut all_empty_before = true;
+            // The previous sector's inner and outer ellipse and their dot products with
+            // its s1, this sector's s0: the same `edge_dot` where the ellipse is the same.
+            let mut previous = [(usize::MAX, 0.0f32); 2];
             for j in 0..sectors {
                 let (a, b) = (order[j] as usize, order[j + 1] as usize);
                 let e = vertex_edge[a];
@@ -788,15 +829,80 @@ impl ProjectedPolygon {
                 if j == 0 || !is_inner(edge[e]) {
                     outer = e;
                 }
-                polygon.pieces.sectors_mut()[j] = EllipseSector::new(
-                    direction[a],
-                    direction[b],
+                let mut dots = [[0.0f32; 2]; 2];
+                for (k, e) in [inner, outer].into_iter().enumerate() {
+                    let at_a = if previous[k].0 == e {
+                        previous[k].1
+                    } else {
+                        edge_dot(e, a)
+                    };
+                    let at_b = edge_dot(e, b);
+                    previous[k] = (e, at_b);
+                    dots[k] = [at_a, at_b];
+                }
+                let [ti, to] = dots;
+                let values = [
+                    direction[a][0],
+                    direction[a][1],
+                    direction[b][0],
+                    direction[b][1],
+                    edge[inner][0],
+                    edge[inner][1],
+                    ti[0],
+                    ti[1],
+                    edge[outer][0],
+                    edge[outer][1],
+                    to[0],
+                    to[1],
+                ];
+                for (column, value) in columns.iter_mut().zip(values) {
+                    column[j] = value;
+                }
+            }
+            let sectors_mut = polygon.pieces.sectors_mut();
+            // `EllipseSector::new` of sector j, one at a time.
+            let scalar_sector = |sector: &mut EllipseSector, j: usize| {
+                let pair = |c: usize| [columns[c][j], columns[c + 1][j]];
+                *sector = EllipseSector::new(
+                    pair(0),
+                    pair(2),
                     sector_det[j],
-                    edge[inner],
-                    [edge_dot(inner, a), edge_dot(inner, b)],
-                    edge[outer],
-                    [edge_dot(outer, a), edge_dot(outer, b)],
+                    pair(4),
+                    pair(6),
+                    pair(8),
+                    pair(10),
                 );
+            };
+            if allow_fast {
+                // Four sectors at a time, bit for bit as `EllipseSector::new`. The slots
+                // of lanes past the sectors (at most 7 of 8 slots are sectors) are
+                // written here and then again by `finish`, as empty sectors. A last
+                // sector alone (a hexagon's fifth) takes `new`, cheaper than four lanes.
+                for first in lane_starts(sectors) {
+                    if sectors - first == 1 {
+                        scalar_sector(&mut sectors_mut[first], first);
+                        continue;
+                    }
+                    let [s0x, s0y, s1x, s1y, uix, uiy, ti0, ti1, uox, uoy, to0, to1] =
+                        columns.each_ref().map(|c| load4(c, first));
+                    EllipseSector::new4(
+                        [s0x, s0y],
+                        [s1x, s1y],
+                        load4(&sector_det, first),
+                        [uix, uiy],
+                        [ti0, ti1],
+                        [uox, uoy],
+                        [to0, to1],
+                        (&mut sectors_mut[first..first + LANES]).try_into().unwrap(),
+                    );
+                }
+            } else {
+                for (j, sector) in sectors_mut[..sectors].iter_mut().enumerate() {
+                    scalar_sector(sector, j);
+                }
+            }
+            let mut all_empty_before = true;
+            for j in 0..sectors {
                 let sector = &mut polygon.pieces.sectors_mut()[j];
                 // An upper bound on the outer ellipse's area instead of the area itself
                 // (see `outer_area_bound`): it decides the extra iteration here and the

@@ -1476,3 +1476,97 @@ fn awkward_vertices(rng: &mut Rng, n: usize, trial: usize) -> Vec<Vec3> {
     }
     v
 }
+
+/// The decentral sectors built four at a time in lanes (`EllipseSector::new4`, which the
+/// preparation runs, with the edges' ellipses and the vertices' directions from
+/// `ellipse_from_normal4` and `unit_direction4`; a lone last sector takes `new`) are
+/// the scalar path's (`EllipseSector::new` and the scalar edge loop) word for word, over random
+/// decentral polygons (off the zenith and tilted, crossing and touching the horizon,
+/// random and awkward vertices over many scales) in both precisions. No polygon falls
+/// back to the scalar sectors: the lanes select `new`'s rare branches per lane, and the
+/// test checks that its polygons reach each of them (a sector near π, whose bisector is
+/// `R (s0 - s1)`; a zero direction of a vertex on the z axis; a zero inverse basis; a
+/// degenerate ellipse) and every area form.
+#[test]
+fn decentral_lanes_match_the_scalar_sectors() {
+    // Decentral polygons, sectors near π, zero directions, zero inverse bases,
+    // degenerate ellipses, and sectors of each area form.
+    let mut counts = [0u32; 8];
+    let mut compare = |v: &[Vec3]| {
+        for precision in [AreaPrecision::Exact, AreaPrecision::Fast] {
+            let mut lanes = nan_filled(ProjectedPolygon::EMPTY);
+            let mut scalar = nan_filled(ProjectedPolygon::EMPTY);
+            let (lanes_ok, _) = lanes.prepare_choosing_path(v, precision, true);
+            let (scalar_ok, _) = scalar.prepare_choosing_path(v, precision, false);
+            assert_eq!(lanes_ok, scalar_ok, "{v:?}");
+            assert_eq!(words(&lanes), words(&scalar), "{v:?}");
+            if !lanes_ok || lanes.central != 0 || lanes.uses_small_polygon_sampler() {
+                continue;
+            }
+            counts[0] += 1;
+            // The sectors in use (the unused slots have u_i = u_o = 0).
+            for sector in lanes.sectors() {
+                if sector.inner == [0.0; 2] && sector.outer == [0.0; 2] {
+                    continue;
+                }
+                let (s0, s1) = (sector.s0(), sector.s1());
+                let sum = [s0[0] + s1[0], s0[1] + s1[1]];
+                let unit = |s: [f32; 2]| dot2(s, s) > 0.5;
+                counts[1] += (unit(s0) && unit(s1) && dot2(sum, sum) < 1.0) as u32;
+                counts[2] += (!unit(s0) || !unit(s1)) as u32;
+                counts[3] += (sector.inverse_basis == 0.0) as u32;
+                counts[4] += (is_degenerate(sector.inner) || is_degenerate(sector.outer)) as u32;
+                counts[5 + sector.area_form as usize] += 1;
+            }
+        }
+    };
+    // A sector of nearly π (a thin polygon passing beside the zenith), a vertex on the z
+    // axis (the regression of `a_vertex_on_the_z_axis_gives_no_nan_in_the_sectors`).
+    let beside_the_zenith = [
+        Vec3::new(1.0, 0.001, 1.0),
+        Vec3::new(1.0, 0.1, 1.0),
+        Vec3::new(-1.0, 0.1, 1.0),
+        Vec3::new(-1.0, 0.001, 1.0),
+    ];
+    let on_the_z_axis = [
+        Vec3::new(1e30, 1e30, 1e30),
+        Vec3::new(-3.4375, 0.3125, 1e30),
+        Vec3::new(-2.0, f32::MAX, 0.0),
+    ];
+    for v in [&beside_the_zenith[..], &on_the_z_axis[..]] {
+        compare(v);
+        compare(&reversed(v));
+    }
+    let mut rng = Rng::new(53);
+    for trial in 0..30_000 {
+        let n = 3 + rng.below(6) as usize;
+        let mut v = match trial % 3 {
+            0 => {
+                // Off the zenith, tilted, some crossing or touching the horizon.
+                let radius = rng.log_uniform(-2.0, 0.5) as f32;
+                let angle = rng.uniform_f32() * core::f32::consts::TAU;
+                let distance = radius * (1.05 + 4.0 * rng.uniform_f32());
+                let center = Vec3::new(
+                    distance * angle.cos(),
+                    distance * angle.sin(),
+                    radius * (rng.log_uniform(-2.0, 1.0) as f32 - 0.3),
+                );
+                let normal = rng.unit_vector_f32();
+                let aspect = 0.05 + 0.95 * rng.uniform_f32();
+                ellipse_polygon(&mut rng, n, center, normal, radius, aspect)
+            }
+            1 => {
+                let radius = rng.log_uniform(-3.0, 0.5) as f32;
+                random_polygon(&mut rng, n, radius)
+            }
+            _ => awkward_vertices(&mut rng, n, trial),
+        };
+        if trial % 2 == 1 {
+            v = reversed(&v);
+        }
+        compare(&v);
+    }
+    eprintln!("{counts:?}");
+    assert!(counts[0] > 20_000, "{counts:?}");
+    assert!(counts.iter().all(|&c| c > 0), "{counts:?}");
+}
