@@ -1397,20 +1397,7 @@ fn outer_area_bounds_decide_as_the_exact_areas() {
                 let radius = rng.log_uniform(-3.0, 0.5) as f32;
                 random_polygon(&mut rng, n, radius)
             }
-            1 => {
-                // Off the zenith, tilted, some crossing or touching the horizon.
-                let radius = rng.log_uniform(-2.0, 0.5) as f32;
-                let angle = rng.uniform_f32() * core::f32::consts::TAU;
-                let distance = radius * (1.2 + 4.0 * rng.uniform_f32());
-                let center = Vec3::new(
-                    distance * angle.cos(),
-                    distance * angle.sin(),
-                    radius * (rng.log_uniform(-2.0, 1.0) as f32 - 0.3),
-                );
-                let normal = rng.unit_vector_f32();
-                let aspect = 0.05 + 0.95 * rng.uniform_f32();
-                ellipse_polygon(&mut rng, n, center, normal, radius, aspect)
-            }
+            1 => off_zenith_polygon(&mut rng, n, 1.2),
             _ => {
                 let scale = rng.log_uniform(-20.0, 20.0) as f32;
                 (0..n).map(|_| rng.unit_vector_f32() * scale).collect()
@@ -1460,6 +1447,23 @@ fn outer_area_bounds_decide_as_the_exact_areas() {
         settled as f64 > 0.25 * sectors as f64,
         "{settled} of {sectors}"
     );
+}
+
+/// A random convex polygon off the zenith, tilted, some crossing or touching the
+/// horizon: `n` vertices on an ellipse of radius 1e-2 to 10^0.5 (log-uniform), its center at
+/// `nearest` to `nearest + 4` radii from the z axis.
+fn off_zenith_polygon(rng: &mut Rng, n: usize, nearest: f32) -> Vec<Vec3> {
+    let radius = rng.log_uniform(-2.0, 0.5) as f32;
+    let angle = rng.uniform_f32() * core::f32::consts::TAU;
+    let distance = radius * (nearest + 4.0 * rng.uniform_f32());
+    let center = Vec3::new(
+        distance * angle.cos(),
+        distance * angle.sin(),
+        radius * (rng.log_uniform(-2.0, 1.0) as f32 - 0.3),
+    );
+    let normal = rng.unit_vector_f32();
+    let aspect = 0.05 + 0.95 * rng.uniform_f32();
+    ellipse_polygon(rng, n, center, normal, radius, aspect)
 }
 
 /// Random (mostly non-convex) vertices over many scales, some snapped to great circles
@@ -1541,20 +1545,7 @@ fn decentral_lanes_match_the_scalar_sectors() {
     for trial in 0..30_000 {
         let n = 3 + rng.below(6) as usize;
         let mut v = match trial % 3 {
-            0 => {
-                // Off the zenith, tilted, some crossing or touching the horizon.
-                let radius = rng.log_uniform(-2.0, 0.5) as f32;
-                let angle = rng.uniform_f32() * core::f32::consts::TAU;
-                let distance = radius * (1.05 + 4.0 * rng.uniform_f32());
-                let center = Vec3::new(
-                    distance * angle.cos(),
-                    distance * angle.sin(),
-                    radius * (rng.log_uniform(-2.0, 1.0) as f32 - 0.3),
-                );
-                let normal = rng.unit_vector_f32();
-                let aspect = 0.05 + 0.95 * rng.uniform_f32();
-                ellipse_polygon(&mut rng, n, center, normal, radius, aspect)
-            }
+            0 => off_zenith_polygon(&mut rng, n, 1.05),
             1 => {
                 let radius = rng.log_uniform(-3.0, 0.5) as f32;
                 random_polygon(&mut rng, n, radius)
