@@ -942,5 +942,8 @@ fn the_pdf_common_path_gives_the_careful_paths_bits() {
             );
         }
     }
-    assert!(common > 1000 && careful > 2000, "{common} common, {careful} careful");
+    assert!(
+        common > 1000 && careful > 2000,
+        "{common} common, {careful} careful"
+    );
 }

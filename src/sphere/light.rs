@@ -38,7 +38,7 @@
 use super::cap::Cap;
 use super::cap_intersection::cap_intersection_solid_angle;
 use super::cap_intersection_sampling::CapIntersection;
-use super::pivot::{pivot_cap, pivot_cap_fast, pivot_jacobian, pivot_transform};
+use super::pivot::{jacobian_of_unit, pivot_cap, pivot_cap_fast, transform};
 use super::shading_fast::pivoted_intersection_fast;
 use super::sptd::{Sptd, SptdInCap};
 use crate::Sample;
@@ -206,7 +206,8 @@ pub struct SphereLightSampler {
     clipped_region: CapIntersection,
     /// For a cap that crosses the horizon: the light's cap `C`.
     light: Cap,
-    /// For a cap that crosses the horizon and the SPTD: the pivot (zero otherwise).
+    /// For a cap that crosses the horizon and the SPTD: the pivot, made valid
+    /// (`valid_pivot`, as `pivot_transform` and `pivot_jacobian` make it; zero otherwise).
     pivot: Vec3,
     /// 1 when the SPTD is used, 0 for uniform sampling (any other value, from a
     /// corrupted struct, counts as 1). A `u32`, not a `bool`: a `bool` left three
@@ -332,7 +333,13 @@ impl SphereLightSampler {
         }
         self.sptd = SptdInCap::EMPTY;
         self.light = *cap;
-        self.pivot = if uses_sptd { pivot } else { Vec3::ZERO };
+        // Made valid once here rather than per sample (the same bits: the transformation
+        // and the Jacobian made the same pivot valid at every call).
+        self.pivot = if uses_sptd {
+            super::pivot::valid_pivot(pivot)
+        } else {
+            Vec3::ZERO
+        };
         self.uses_sptd = uses_sptd as u32;
         self.clipped = 1;
         true
@@ -342,6 +349,19 @@ impl SphereLightSampler {
     /// `1/Ω(C ∩ H)`) in `C ∩ H`, 0 elsewhere.
     #[inline]
     fn clipped_pdf(&self, dir: Vec3) -> f32 {
+        // `unit` leaves the sampler's own (unit) directions unchanged, bit for bit, and
+        // changes neither the sign of `z` nor the containment test (which normalises
+        // `dir` the same way).
+        match crate::math::unit(dir) {
+            Some(dir) => self.clipped_pdf_of_unit(dir),
+            None => 0.0,
+        }
+    }
+
+    /// [`clipped_pdf`](Self::clipped_pdf) of a unit `dir`, with the pivot made valid in
+    /// `prepare` (it was made valid at every call).
+    #[inline(always)]
+    fn clipped_pdf_of_unit(&self, dir: Vec3) -> f32 {
         if !(self.light.contains(dir) && dir.z >= 0.0) {
             return 0.0;
         }
@@ -349,8 +369,10 @@ impl SphereLightSampler {
         if !(area > 0.0) {
             return 0.0;
         }
+        // A struct corrupted through C may hold any pivot: the Jacobian is then finite,
+        // infinite or NaN, and the last two give 0 below.
         let jacobian = if self.uses_sptd() {
-            pivot_jacobian(dir, self.pivot)
+            jacobian_of_unit(dir, self.pivot)
         } else {
             1.0
         };
@@ -370,11 +392,16 @@ impl SphereLightSampler {
             if s.pdf == 0.0 {
                 return Sample::NONE;
             }
+            // `s.dir` is unit (normalised by the sampler) and the pivot valid (prepared):
+            // `transform` is `pivot_transform` without their checks, and its result is
+            // unit again.
             let dir = if self.uses_sptd() {
-                pivot_transform(s.dir, self.pivot)
+                transform(s.dir, self.pivot)
             } else {
                 s.dir
             };
+            // (`clipped_pdf`, which `pdf` calls: the same bits by construction, also for a
+            // struct corrupted through C whose sample is not unit.)
             return Sample::new_or_none(dir, self.clipped_pdf(dir));
         }
         if self.uses_sptd() {
