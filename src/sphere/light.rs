@@ -52,6 +52,17 @@ use glam::Vec3;
 /// uniformly instead of by the SPTD (Section 6.1: "smaller than 10⁻³").
 pub const MIN_PIVOTED_SOLID_ANGLE: f32 = 1e-3;
 
+/// The upper hemisphere's cap `H`, as `Cap::from_axis_one_minus_cos(Vec3::Z, 1.0)` builds
+/// it (`light_tests::the_upper_hemisphere_constant_is_the_built_cap`), as a constant: the
+/// clipped sampler's `pivot_cap_fast(H, r_p)` is then folded for its axis `z` and its
+/// `cos θ = 0` (the same bits).
+const UPPER_HEMISPHERE: Cap = Cap {
+    axis: Vec3::Z,
+    one_minus_cos: 1.0,
+    one_plus_cos: 1.0,
+    sin2: 1.0,
+};
+
 /// The uniform SPTD fitted to GGX `f cos θ` at one view and roughness.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -302,11 +313,16 @@ impl SphereLightSampler {
         if !above {
             return self.prepare_clipped_to_the_horizon(&cap, pivot);
         }
-        let uses_sptd = self.sptd.prepare(&Sptd::uniform(pivot), &cap)
+        // (`cap` is sanitized: not again.)
+        let uses_sptd = self.sptd.prepare_sanitized(&Sptd::uniform(pivot), &cap)
             && self.sptd.image.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE;
         // The pivot at the origin gives J = 1: the uniform distribution in the cap,
         // sampled directly below.
-        if !uses_sptd && !self.sptd.prepare(&Sptd::uniform(Vec3::ZERO), &cap) {
+        if !uses_sptd
+            && !self
+                .sptd
+                .prepare_sanitized(&Sptd::uniform(Vec3::ZERO), &cap)
+        {
             return false;
         }
         self.clipped_region = CapIntersection::EMPTY;
@@ -320,15 +336,17 @@ impl SphereLightSampler {
     /// The sampler of a cap that crosses the horizon: the SPTD over `C ∩ H` through the
     /// images' intersection, or uniform in `C ∩ H` where that image is below 1e-3 sr.
     fn prepare_clipped_to_the_horizon(&mut self, cap: &Cap, pivot: Vec3) -> bool {
-        let horizon = Cap::from_axis_one_minus_cos(Vec3::Z, 1.0);
+        let horizon = UPPER_HEMISPHERE;
         let valid_pivot = pivot.is_finite() && pivot.length_squared() < 1.0;
         let uses_sptd = valid_pivot
-            && self.clipped_region.prepare(
+            // The images are valid caps as `pivot_cap_fast` builds them (tested by
+            // `the_sampler_s_pivoted_images_are_valid_caps`): not sanitized again.
+            && self.clipped_region.prepare_sanitized(
                 &pivot_cap_fast(cap, pivot).0,
                 &pivot_cap_fast(&horizon, pivot).0,
             )
             && self.clipped_region.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE;
-        if !uses_sptd && !self.clipped_region.prepare(cap, &horizon) {
+        if !uses_sptd && !self.clipped_region.prepare_sanitized(cap, &horizon) {
             return false;
         }
         self.sptd = SptdInCap::EMPTY;

@@ -645,7 +645,25 @@ impl SptdInCap {
     /// returns `false`.
     #[inline(always)]
     fn prepare_unchecked(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
-        let cap = cap.sanitized();
+        self.prepare_sanitized_unchecked(sptd, &cap.sanitized())
+    }
+
+    /// [`SptdInCap::prepare`] of a cap that is valid already (`cap.sanitized()` returns it
+    /// as it is: every constructor's cap), without sanitizing it again: the same bits,
+    /// for a caller that sanitized it (the sphere light sampler).
+    pub(crate) fn prepare_sanitized(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
+        let prepared = self.prepare_sanitized_unchecked(sptd, cap);
+        if !prepared {
+            *self = SptdInCap::EMPTY;
+        }
+        prepared
+    }
+
+    /// The body of [`SptdInCap::prepare_sanitized`], which leaves `self` partly written
+    /// when it returns `false`.
+    #[inline(always)]
+    fn prepare_sanitized_unchecked(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
+        let cap = *cap;
         let image = pivot_cap_fast(&cap, sptd.pivot).0;
         let integral = sptd.base_integral_over_cap(&image).max(0.0).min(1.0);
         if !(integral > 0.0) || !(1.0 / integral).is_finite() {
