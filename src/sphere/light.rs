@@ -275,7 +275,7 @@ impl SphereLightSampler {
         let cap = Cap::from_sphere(center, radius);
         let prepared = cap.one_minus_cos > 0.0
             && GgxPivot::from_view(wo, roughness)
-                .is_some_and(|fit| self.prepare_unchecked(&cap, fit.pivot));
+                .is_some_and(|fit| self.prepare_sanitized(&cap, fit.pivot));
         if !prepared {
             *self = Self::EMPTY;
         }
@@ -302,7 +302,16 @@ impl SphereLightSampler {
     /// The body of [`SphereLightSampler::prepare_with_pivot`], which leaves `self` partly
     /// written when it returns `false`.
     fn prepare_unchecked(&mut self, cap: &Cap, pivot: Vec3) -> bool {
-        let cap = cap.sanitized();
+        self.prepare_sanitized(&cap.sanitized(), pivot)
+    }
+
+    /// [`prepare_unchecked`](Self::prepare_unchecked) of a cap that `sanitized` returns as
+    /// it is: the caps of spheres (`Cap::from_sphere`; tested by
+    /// `cap_tests::sanitized_keeps_valid_caps_and_is_idempotent`), which `prepare` does not
+    /// sanitize again (the same bits).
+    #[inline(always)]
+    fn prepare_sanitized(&mut self, cap: &Cap, pivot: Vec3) -> bool {
+        let cap = *cap;
         if !(cap.one_minus_cos > 0.0) {
             return false;
         }
