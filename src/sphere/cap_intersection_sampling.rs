@@ -309,6 +309,10 @@ impl CapIntersection {
     #[inline]
     #[must_use]
     pub fn contains(&self, dir: Vec3) -> bool {
+        // One length test for both caps where `dir` is unit (the samples), else each cap's.
+        if crate::math::is_unit(dir) {
+            return self.radial.contains_unit(dir) && self.other.contains_unit(dir);
+        }
         self.radial.contains(dir) && self.other.contains(dir)
     }
 

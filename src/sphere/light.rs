@@ -389,7 +389,7 @@ impl SphereLightSampler {
     /// `prepare` (it was made valid at every call).
     #[inline(always)]
     fn clipped_pdf_of_unit(&self, dir: Vec3) -> f32 {
-        if !(self.light.contains(dir) && dir.z >= 0.0) {
+        if !(self.light.contains_unit(dir) && dir.z >= 0.0) {
             return 0.0;
         }
         let area = self.clipped_region.solid_angle();
