@@ -70,8 +70,14 @@ pub(crate) fn table_bilinear<const K: usize>(
     y: f32,
 ) -> [f32; K] {
     let last = size - 1;
-    // `as usize` truncates towards zero and maps NaN to 0; the inputs are in [0, last].
-    let (i0, j0) = ((x as usize).min(last - 1), (y as usize).min(last - 1));
+    // `as u32` truncates towards zero and maps NaN and negative numbers to 0, as
+    // `as usize` does, with x86's one signed conversion and a clamp where `as usize`
+    // needed a second conversion for the upper half of its range; the inputs are in
+    // [0, last].
+    let (i0, j0) = (
+        (x as u32 as usize).min(last - 1),
+        (y as u32 as usize).min(last - 1),
+    );
     let (fx, fy) = (x - i0 as f32, y - j0 as f32);
     let at = |i: usize, j: usize| &table[i * size + j];
     let (e00, e01, e10, e11) = (

@@ -417,6 +417,20 @@ impl Cap {
         let Some(unit) = crate::math::unit(dir) else {
             return false;
         };
+        self.contains_unit(unit)
+    }
+
+    /// [`Cap::contains`] of a direction that `math::unit` returns as it is (`is_unit`):
+    /// the same answer without the length test, for a caller that made it (several caps
+    /// tested with one direction).
+    #[inline]
+    pub(crate) fn contains_unit(&self, unit: Vec3) -> bool {
+        if !(self.one_minus_cos > 0.0) {
+            return false;
+        }
+        if self.one_minus_cos >= 2.0 {
+            return unit.is_finite() && unit != Vec3::ZERO;
+        }
         if self.one_minus_cos > 1.0 {
             // Wider than a hemisphere: the boundary is near the antipode, where
             // `|ω − a|²/2` is close to 2 and has lost the absolute precision that the

@@ -99,7 +99,15 @@ impl CapIntersection {
     /// [`CapIntersection::new`] written in place into `self` (no copy of the prepared
     /// value); `false` and [`CapIntersection::EMPTY`] written where `new` gives `None`.
     pub fn prepare(&mut self, a: &Cap, b: &Cap) -> bool {
-        let (a, b) = (a.sanitized(), b.sanitized());
+        self.prepare_sanitized(&a.sanitized(), &b.sanitized())
+    }
+
+    /// [`CapIntersection::prepare`] of caps that are valid already (`sanitized` returns
+    /// them as they are: every constructor's cap and every pivoted image), without
+    /// sanitizing them again: the same bits, for the sphere light sampler, whose caps are
+    /// images from `pivot_cap_fast`.
+    pub(crate) fn prepare_sanitized(&mut self, a: &Cap, b: &Cap) -> bool {
+        let (a, b) = (*a, *b);
         let (radial, other) = if a.one_minus_cos <= b.one_minus_cos {
             (a, b)
         } else {
@@ -301,6 +309,10 @@ impl CapIntersection {
     #[inline]
     #[must_use]
     pub fn contains(&self, dir: Vec3) -> bool {
+        // One length test for both caps where `dir` is unit (the samples), else each cap's.
+        if crate::math::is_unit(dir) {
+            return self.radial.contains_unit(dir) && self.other.contains_unit(dir);
+        }
         self.radial.contains(dir) && self.other.contains(dir)
     }
 

@@ -528,3 +528,52 @@ fn samples_of_unit_axes_are_unit_without_the_newton_step() {
         "{worst_hand:e}"
     );
 }
+
+/// `contains_unit` (the containment test without the length test, for a direction that
+/// `math::unit` takes as it is) agrees with `contains` for unit directions and for the
+/// normalised ones of any length, in caps of every size (empty, tiny, wide, whole), as
+/// does the two-cap test that uses it for unit directions (`CapIntersection::contains`).
+#[test]
+fn contains_unit_agrees_with_contains() {
+    let mut rng = Rng::new(1808);
+    let (mut inside, mut unit_directions) = (0, 0);
+    for i in 0..50_000 {
+        let t = match i % 5 {
+            0 => 0.0,
+            1 => rng.log_uniform(-8.0, 0.0) as f32,
+            2 => 2.0 * rng.uniform_f32(),
+            3 => 2.0 - rng.log_uniform(-7.0, -1.0) as f32,
+            _ => 2.0,
+        };
+        let cap = Cap::from_axis_one_minus_cos(rng.unit_vector_f32(), t);
+        let other = Cap::from_axis_one_minus_cos(rng.unit_vector_f32(), 2.0 * rng.uniform_f32());
+        // Near the axis (inside or just outside small caps) or anywhere.
+        let dir = if i % 2 == 0 {
+            (cap.axis + rng.unit_vector_f32() * (2.0 * t.max(1e-6)).sqrt()).normalize()
+        } else {
+            rng.unit_vector_f32()
+        };
+        let scaled = dir * rng.log_uniform(-20.0, 20.0) as f32;
+        for v in [dir, scaled] {
+            let Some(u) = crate::math::unit(v) else {
+                continue;
+            };
+            assert_eq!(cap.contains(v), cap.contains_unit(u), "{cap:?} {v:?}");
+            inside += cap.contains(v) as u32;
+            if crate::math::is_unit(v) {
+                unit_directions += 1;
+            }
+            if let Some(both) = crate::sphere::CapIntersection::new(&cap, &other) {
+                assert_eq!(
+                    both.contains(v),
+                    both.radial.contains(v) && both.other.contains(v),
+                    "{cap:?} {other:?} {v:?}"
+                );
+            }
+        }
+    }
+    assert!(
+        inside > 10_000 && unit_directions > 40_000,
+        "{inside} {unit_directions}"
+    );
+}

@@ -38,7 +38,7 @@
 use super::cap::Cap;
 use super::cap_intersection::cap_intersection_solid_angle;
 use super::cap_intersection_sampling::CapIntersection;
-use super::pivot::{pivot_cap, pivot_cap_fast, pivot_jacobian, pivot_transform};
+use super::pivot::{jacobian_of_unit, pivot_cap, pivot_cap_fast, transform};
 use super::shading_fast::pivoted_intersection_fast;
 use super::sptd::{Sptd, SptdInCap};
 use crate::Sample;
@@ -51,6 +51,17 @@ use glam::Vec3;
 /// The solid angle of `g(C)` below which [`SphereLightSampler`] samples the cap
 /// uniformly instead of by the SPTD (Section 6.1: "smaller than 10⁻³").
 pub const MIN_PIVOTED_SOLID_ANGLE: f32 = 1e-3;
+
+/// The upper hemisphere's cap `H`, as `Cap::from_axis_one_minus_cos(Vec3::Z, 1.0)` builds
+/// it (`light_tests::the_upper_hemisphere_constant_is_the_built_cap`), as a constant: the
+/// clipped sampler's `pivot_cap_fast(H, r_p)` is then folded for its axis `z` and its
+/// `cos θ = 0` (the same bits).
+const UPPER_HEMISPHERE: Cap = Cap {
+    axis: Vec3::Z,
+    one_minus_cos: 1.0,
+    one_plus_cos: 1.0,
+    sin2: 1.0,
+};
 
 /// The uniform SPTD fitted to GGX `f cos θ` at one view and roughness.
 #[repr(C)]
@@ -206,7 +217,8 @@ pub struct SphereLightSampler {
     clipped_region: CapIntersection,
     /// For a cap that crosses the horizon: the light's cap `C`.
     light: Cap,
-    /// For a cap that crosses the horizon and the SPTD: the pivot (zero otherwise).
+    /// For a cap that crosses the horizon and the SPTD: the pivot, made valid
+    /// (`valid_pivot`, as `pivot_transform` and `pivot_jacobian` make it; zero otherwise).
     pivot: Vec3,
     /// 1 when the SPTD is used, 0 for uniform sampling (any other value, from a
     /// corrupted struct, counts as 1). A `u32`, not a `bool`: a `bool` left three
@@ -263,7 +275,7 @@ impl SphereLightSampler {
         let cap = Cap::from_sphere(center, radius);
         let prepared = cap.one_minus_cos > 0.0
             && GgxPivot::from_view(wo, roughness)
-                .is_some_and(|fit| self.prepare_unchecked(&cap, fit.pivot));
+                .is_some_and(|fit| self.prepare_sanitized(&cap, fit.pivot));
         if !prepared {
             *self = Self::EMPTY;
         }
@@ -290,7 +302,16 @@ impl SphereLightSampler {
     /// The body of [`SphereLightSampler::prepare_with_pivot`], which leaves `self` partly
     /// written when it returns `false`.
     fn prepare_unchecked(&mut self, cap: &Cap, pivot: Vec3) -> bool {
-        let cap = cap.sanitized();
+        self.prepare_sanitized(&cap.sanitized(), pivot)
+    }
+
+    /// [`prepare_unchecked`](Self::prepare_unchecked) of a cap that `sanitized` returns as
+    /// it is: the caps of spheres (`Cap::from_sphere`; tested by
+    /// `cap_tests::sanitized_keeps_valid_caps_and_is_idempotent`), which `prepare` does not
+    /// sanitize again (the same bits).
+    #[inline(always)]
+    fn prepare_sanitized(&mut self, cap: &Cap, pivot: Vec3) -> bool {
+        let cap = *cap;
         if !(cap.one_minus_cos > 0.0) {
             return false;
         }
@@ -301,11 +322,16 @@ impl SphereLightSampler {
         if !above {
             return self.prepare_clipped_to_the_horizon(&cap, pivot);
         }
-        let uses_sptd = self.sptd.prepare(&Sptd::uniform(pivot), &cap)
+        // (`cap` is sanitized: not again.)
+        let uses_sptd = self.sptd.prepare_sanitized(&Sptd::uniform(pivot), &cap)
             && self.sptd.image.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE;
         // The pivot at the origin gives J = 1: the uniform distribution in the cap,
         // sampled directly below.
-        if !uses_sptd && !self.sptd.prepare(&Sptd::uniform(Vec3::ZERO), &cap) {
+        if !uses_sptd
+            && !self
+                .sptd
+                .prepare_sanitized(&Sptd::uniform(Vec3::ZERO), &cap)
+        {
             return false;
         }
         self.clipped_region = CapIntersection::EMPTY;
@@ -319,20 +345,28 @@ impl SphereLightSampler {
     /// The sampler of a cap that crosses the horizon: the SPTD over `C ∩ H` through the
     /// images' intersection, or uniform in `C ∩ H` where that image is below 1e-3 sr.
     fn prepare_clipped_to_the_horizon(&mut self, cap: &Cap, pivot: Vec3) -> bool {
-        let horizon = Cap::from_axis_one_minus_cos(Vec3::Z, 1.0);
+        let horizon = UPPER_HEMISPHERE;
         let valid_pivot = pivot.is_finite() && pivot.length_squared() < 1.0;
         let uses_sptd = valid_pivot
-            && self.clipped_region.prepare(
+            // The images are valid caps as `pivot_cap_fast` builds them (tested by
+            // `the_sampler_s_pivoted_images_are_valid_caps`): not sanitized again.
+            && self.clipped_region.prepare_sanitized(
                 &pivot_cap_fast(cap, pivot).0,
                 &pivot_cap_fast(&horizon, pivot).0,
             )
             && self.clipped_region.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE;
-        if !uses_sptd && !self.clipped_region.prepare(cap, &horizon) {
+        if !uses_sptd && !self.clipped_region.prepare_sanitized(cap, &horizon) {
             return false;
         }
         self.sptd = SptdInCap::EMPTY;
         self.light = *cap;
-        self.pivot = if uses_sptd { pivot } else { Vec3::ZERO };
+        // Made valid once here rather than per sample (the same bits: the transformation
+        // and the Jacobian made the same pivot valid at every call).
+        self.pivot = if uses_sptd {
+            super::pivot::valid_pivot(pivot)
+        } else {
+            Vec3::ZERO
+        };
         self.uses_sptd = uses_sptd as u32;
         self.clipped = 1;
         true
@@ -342,15 +376,30 @@ impl SphereLightSampler {
     /// `1/Ω(C ∩ H)`) in `C ∩ H`, 0 elsewhere.
     #[inline]
     fn clipped_pdf(&self, dir: Vec3) -> f32 {
-        if !(self.light.contains(dir) && dir.z >= 0.0) {
+        // `unit` leaves the sampler's own (unit) directions unchanged, bit for bit, and
+        // changes neither the sign of `z` nor the containment test (which normalises
+        // `dir` the same way).
+        match crate::math::unit(dir) {
+            Some(dir) => self.clipped_pdf_of_unit(dir),
+            None => 0.0,
+        }
+    }
+
+    /// [`clipped_pdf`](Self::clipped_pdf) of a unit `dir`, with the pivot made valid in
+    /// `prepare` (it was made valid at every call).
+    #[inline(always)]
+    fn clipped_pdf_of_unit(&self, dir: Vec3) -> f32 {
+        if !(self.light.contains_unit(dir) && dir.z >= 0.0) {
             return 0.0;
         }
         let area = self.clipped_region.solid_angle();
         if !(area > 0.0) {
             return 0.0;
         }
+        // A struct corrupted through C may hold any pivot: the Jacobian is then finite,
+        // infinite or NaN, and the last two give 0 below.
         let jacobian = if self.uses_sptd() {
-            pivot_jacobian(dir, self.pivot)
+            jacobian_of_unit(dir, self.pivot)
         } else {
             1.0
         };
@@ -370,11 +419,16 @@ impl SphereLightSampler {
             if s.pdf == 0.0 {
                 return Sample::NONE;
             }
+            // `s.dir` is unit (normalised by the sampler) and the pivot valid (prepared):
+            // `transform` is `pivot_transform` without their checks, and its result is
+            // unit again.
             let dir = if self.uses_sptd() {
-                pivot_transform(s.dir, self.pivot)
+                transform(s.dir, self.pivot)
             } else {
                 s.dir
             };
+            // (`clipped_pdf`, which `pdf` calls: the same bits by construction, also for a
+            // struct corrupted through C whose sample is not unit.)
             return Sample::new_or_none(dir, self.clipped_pdf(dir));
         }
         if self.uses_sptd() {

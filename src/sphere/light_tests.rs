@@ -632,3 +632,83 @@ fn prepares_in_place_write_every_word() {
         "{above} {clipped} {failed}"
     );
 }
+
+/// The clipped sampler's constant `H` is the cap that `Cap::from_axis_one_minus_cos`
+/// builds for the upper hemisphere, bit for bit, and valid as it stands (`sanitized`
+/// returns it unchanged), so that its image is the one the built cap had.
+#[test]
+fn the_upper_hemisphere_constant_is_the_built_cap() {
+    let built = Cap::from_axis_one_minus_cos(Vec3::Z, 1.0);
+    let constant = super::UPPER_HEMISPHERE;
+    let bits = |c: &Cap| {
+        (
+            c.axis.to_array().map(f32::to_bits),
+            c.one_minus_cos.to_bits(),
+            c.one_plus_cos.to_bits(),
+            c.sin2.to_bits(),
+        )
+    };
+    assert_eq!(bits(&constant), bits(&built));
+    assert_eq!(bits(&constant.sanitized()), bits(&constant));
+}
+
+/// The sampler prepares the SPTD and the clipped region from caps it does not sanitize
+/// again (`SptdInCap::prepare_sanitized`, `CapIntersection::prepare_sanitized`): the
+/// light's sanitized cap, the constant `H` and the images of both by `pivot_cap_fast`.
+/// Those images are valid caps as they stand (`sanitized` returns them bit for bit), so
+/// the preparations are those of `prepare`, which sanitizes: over sphere lights as the
+/// light bench draws them (above and across the horizon) with the fitted pivots, and
+/// random caps of every size with random pivots up to the table's largest.
+#[test]
+fn the_sampler_s_pivoted_images_are_valid_caps() {
+    let mut rng = Rng::new(1807);
+    let horizon = super::UPPER_HEMISPHERE;
+    let (mut images, mut clipped) = (0, 0);
+    for i in 0..20_000 {
+        let (light, pivot) = if i % 2 == 0 {
+            let distance = rng.log_uniform(0.0, 4f64.log10()) as f32;
+            let sin2 = 0.06 + 0.38 * rng.uniform_f32();
+            let center = rng.unit_vector_f32();
+            let center = Vec3::new(center.x, center.y, center.z.abs());
+            let cos_o = 0.1 + 0.9 * rng.uniform_f32();
+            let phi = core::f32::consts::TAU * rng.uniform_f32();
+            let sin_o = (1.0 - cos_o * cos_o).sqrt();
+            let wo = Vec3::new(sin_o * phi.cos(), sin_o * phi.sin(), cos_o);
+            let roughness = 0.1 + 0.8 * rng.uniform_f32();
+            (
+                Cap::from_sphere(center * distance, distance * sin2.sqrt()),
+                GgxPivot::from_view(wo, roughness).unwrap().pivot,
+            )
+        } else {
+            (
+                Cap::from_axis_one_minus_cos(rng.unit_vector_f32(), 2.0 * rng.uniform_f32()),
+                rng.unit_vector_f32() * (0.99997 * rng.uniform_f32()),
+            )
+        };
+        let light = light.sanitized();
+        for cap in [light, horizon] {
+            let (image, _) = pivot_cap_fast(&cap, pivot);
+            images += 1;
+            assert_eq!(image.sanitized(), image, "{cap:?} {pivot:?}");
+            assert_eq!(
+                image.sanitized().axis.to_array().map(f32::to_bits),
+                image.axis.to_array().map(f32::to_bits)
+            );
+        }
+        let (a, b) = (
+            pivot_cap_fast(&light, pivot).0,
+            pivot_cap_fast(&horizon, pivot).0,
+        );
+        let mut direct = CapIntersection::EMPTY;
+        let prepared = direct.prepare_sanitized(&a, &b);
+        assert_eq!(CapIntersection::new(&a, &b), prepared.then_some(direct));
+        clipped += prepared as u32;
+        let mut sptd = SptdInCap::EMPTY;
+        let prepared = sptd.prepare_sanitized(&Sptd::uniform(pivot), &light);
+        assert_eq!(
+            SptdInCap::new(&Sptd::uniform(pivot), &light),
+            prepared.then_some(sptd)
+        );
+    }
+    assert!(images == 40_000 && clipped > 5_000, "{images} {clipped}");
+}

@@ -109,7 +109,14 @@ pub fn pivot_jacobian(dir: Vec3, pivot: Vec3) -> f32 {
     let Some(dir) = crate::math::unit(dir) else {
         return 0.0;
     };
-    let pivot = valid_pivot(pivot);
+    jacobian_of_unit(dir, valid_pivot(pivot))
+}
+
+/// [`pivot_jacobian`] of a unit `dir` and a valid pivot, without their checks: for a
+/// caller that holds both (the clipped sphere light sampler, whose samples are unit and
+/// whose prepared pivot is valid): the same bits.
+#[inline(always)]
+pub(crate) fn jacobian_of_unit(dir: Vec3, pivot: Vec3) -> f32 {
     let ratio = (1.0 - pivot.length_squared()) / (dir - pivot).length_squared();
     ratio * ratio
 }

@@ -53,7 +53,7 @@
 //! with the axis on it, tiny ones, wider than a hemisphere with or without a hole),
 //! the whole sphere, the empty cap, caps that coincide or are complementary.
 
-use super::cap::Cap;
+use super::cap::{Cap, sample_uniform_in_frame};
 use super::cap_intersection::cap_intersection_solid_angle;
 use super::cap_intersection_sampling::MAX_ITERATIONS;
 use super::pivot::{pivot_cap, pivot_cap_fast, transform, valid_pivot};
@@ -554,10 +554,14 @@ pub struct SptdInCap {
     /// `∫_C D = ∫_{g(C)} D_std`.
     pub integral: f32,
     /// For the clamped-cosine base: `(x, y, z)` = the projected ellipse's center offset
-    /// `cos θ sin β`, its semi-axes `sin θ cos β` (along `e1`) and `sin θ`.
+    /// `cos θ sin β`, its semi-axes `sin θ cos β` (along `e1`) and `sin θ`. For the
+    /// uniform base: the bitangent of the image's frame (see `e1`).
     ellipse: Vec3,
-    /// Unit tangent of the base axis pointing to the image cap's axis (any unit
-    /// tangent when the two axes coincide to rounding: the ellipse is then a circle).
+    /// For the clamped-cosine base: unit tangent of the base axis pointing to the image
+    /// cap's axis (any unit tangent when the two axes coincide to rounding: the ellipse is
+    /// then a circle). For the uniform base: the tangent of the image's frame
+    /// `orthonormal_basis(image.axis)`, with `ellipse` its bitangent, prepared once for
+    /// the image's uniform samples (`Cap::sample_uniform` built it per sample).
     e1: Vec3,
     /// For the clamped-cosine base: 1 when `g(C)` does not lie in the hemisphere of `a`
     /// and is sampled over the projection of `g(C) ∩ H_a` (see [`SptdInCap::new`]),
@@ -645,7 +649,25 @@ impl SptdInCap {
     /// returns `false`.
     #[inline(always)]
     fn prepare_unchecked(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
-        let cap = cap.sanitized();
+        self.prepare_sanitized_unchecked(sptd, &cap.sanitized())
+    }
+
+    /// [`SptdInCap::prepare`] of a cap that is valid already (`cap.sanitized()` returns it
+    /// as it is: every constructor's cap), without sanitizing it again: the same bits,
+    /// for a caller that sanitized it (the sphere light sampler).
+    pub(crate) fn prepare_sanitized(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
+        let prepared = self.prepare_sanitized_unchecked(sptd, cap);
+        if !prepared {
+            *self = SptdInCap::EMPTY;
+        }
+        prepared
+    }
+
+    /// The body of [`SptdInCap::prepare_sanitized`], which leaves `self` partly written
+    /// when it returns `false`.
+    #[inline(always)]
+    fn prepare_sanitized_unchecked(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
+        let cap = *cap;
         let image = pivot_cap_fast(&cap, sptd.pivot).0;
         let integral = sptd.base_integral_over_cap(&image).max(0.0).min(1.0);
         if !(integral > 0.0) || !(1.0 / integral).is_finite() {
@@ -663,6 +685,9 @@ impl SptdInCap {
             tip_depth: 0.0,
         };
         let prepared = self;
+        if sptd.base == SptdBase::Uniform {
+            (prepared.e1, prepared.ellipse) = orthonormal_basis(image.axis);
+        }
         if sptd.base == SptdBase::ClampedCosine {
             let a = sptd.cosine_axis;
             let cos_beta = image.axis.dot(a);
@@ -898,7 +923,16 @@ impl SptdInCap {
     pub fn sample(&self, u: [f32; 2]) -> Sample {
         let base = match self.sptd.base {
             SptdBase::Uniform => {
-                let s = self.image.sample_uniform(u);
+                // `Cap::sample_uniform` of the image with its frame prepared (the same
+                // bits: `orthonormal_basis(image.axis)`, see `e1`).
+                let image = &self.image;
+                let pdf = image.uniform_pdf();
+                if pdf == 0.0 {
+                    return Sample::NONE;
+                }
+                let frame = [image.axis.into(), self.e1.into(), self.ellipse.into()];
+                let s =
+                    sample_uniform_in_frame(frame, image.one_minus_cos, image.one_plus_cos, pdf, u);
                 if s.pdf == 0.0 {
                     return Sample::NONE;
                 }
