@@ -304,9 +304,9 @@ pub(crate) fn pivot_cap_fast(cap: &Cap, pivot: Vec3) -> (Cap, PivotPath) {
 /// `ωᵢ = (cos θ, ∓ sin θ)` and of its center `(1, 0)`, and `sin²ψ'` of the image: with
 /// `eᵢ = ωᵢ − p` and `k = 1 − |r_p|²`, `g(ω) = p − k e / |e|²`, unit in exact arithmetic
 /// and not renormalised (the callers' side tests allow for the rounding), and
-/// `sin ψ' = k sin θ / (|e₁||e₂|)` squared (see [`pivot_cap_fast`]). Shared by
-/// [`pivot_cap_fast`] and the real-time shading's one-pass image
-/// (`shading_fast::pivoted_intersection_fast`).
+/// `sin ψ' = k sin θ / (|e₁||e₂|)` squared (see [`pivot_cap_fast`]). (The real-time
+/// shading's one-pass image, `shading_fast::pivoted_intersection_fast`, has its own
+/// closed form without the points.)
 #[inline(always)]
 pub(crate) fn images_in_plane(cap: &Cap, p: Vec2, rho2: f32) -> ([Vec2; 3], f32) {
     let sin = libm::sqrtf(cap.sin2.max(0.0).min(1.0));
