@@ -73,14 +73,19 @@ pub(crate) fn pivoted_intersection_fast(light: &Cap, pivot: &Vec3, clip: &Cap) -
     // that path measures the lens with `libm`'s arc tangents, which matters where a
     // nearly whole image leaves a sliver of the clip (`Ω₂ − inner` cancels; the test
     // `occlusion_of_a_light_whose_image_is_nearly_the_whole_sphere` aims the light at the
-    // pivot). Off the critical path.
-    if !(pivot.cross(axis).length_squared() > 1e-12) {
+    // pivot). Tested as `|r_p⊥|² = |r_p|² − (a·r_p)² > 4e-6 |r_p|²` (the pivot more than
+    // 2e-3 rad off the line), which needs only `a·r_p`: on the line `(a·r_p)² = |r_p|²|a|²`,
+    // and `|a|²` is 1 to `UNIT_TOLERANCE = 1e-6` (a valid cap), the three roundings a few
+    // 1e-7 of `|r_p|²`, so the difference is below `2e-6 |r_p|²` there. A pivot at the
+    // origin fails too (`0 > 0`). The careful path is exact there, and the cone of pivots
+    // that it adds is a few 1e-6 of the directions.
+    let along = pivot.dot(axis);
+    if !(rho2 - along * along > 4e-6 * rho2) {
         return None;
     }
     // `k = 1 − |r_p|²` (exact for `|r_p|² ≥ 1/2`, Sterbenz), `δ = a·r_p − cos θ` (exact
     // subtraction where it cancels, Sterbenz), the image's plane `n·y = c'`.
     let k = 1.0 - rho2;
-    let along = pivot.dot(axis);
     let delta = along - light.cos();
     let normal = pivot * (2.0 * delta) + axis * k;
     let offset = delta * (1.0 + rho2) + k * along;
@@ -102,15 +107,19 @@ pub(crate) fn pivoted_intersection_fast(light: &Cap, pivot: &Vec3, clip: &Cap) -
     // Its axis `∓n/|n|`: `−n/|n|` (the image) for `c' < 0`, `+n/|n|` (the complement of
     // the image) otherwise.
     let inverse_n = reciprocal * sum;
-    let axis1 = normal * if wide1 { inverse_n } else { -inverse_n };
-    // The clip up to a hemisphere: itself or its complement.
+    // The clip up to a hemisphere: itself or its complement `(−axis, h₂)`.
     let wide2 = t2 > 1.0;
-    let (axis2, s2) = if wide2 {
-        (-clip.axis, h2)
+    let s2 = if wide2 { h2 } else { t2 };
+    // `t_d = |A₁ − A₂|²/2` with `A₂ = ±clip.axis`: `|A₁ − A₂| = |±A₁ − clip.axis|` (a
+    // negation is exact, so the same bits), i.e. the clip's own axis against `n/|n|` times
+    // the product of the two signs: `+` exactly when one of the caps is complemented. One
+    // scalar select instead of two vector ones.
+    let scale = if wide1 != wide2 {
+        inverse_n
     } else {
-        (clip.axis, t2)
+        -inverse_n
     };
-    let td = one_minus_dot(axis1, axis2);
+    let td = one_minus_dot(normal * scale, clip.axis);
     let inner = at_most_hemispheres_fast(side, s2, td)?;
     let (t1, h1) = if wide1 {
         (2.0 - side, side)

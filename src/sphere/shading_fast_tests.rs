@@ -127,6 +127,22 @@ fn fast_intersection_paths() {
             "{bad}"
         );
     }
+    // The pivot-on-the-axis-line test: 1e-3 rad off the line careful, 5e-3 rad off fast
+    // (the bound is `|r_p⊥|² > 4e-6 |r_p|²`, 2e-3 rad), and there as the careful path.
+    let perpendicular = axis.cross(Vec3::X).normalize();
+    for (angle, fast) in [(1e-3f32, false), (5e-3, true)] {
+        let off = (axis * angle.cos() + perpendicular * angle.sin()) * 0.5;
+        let value = pivoted_intersection_fast(&light, &off, &clip);
+        assert_eq!(value.is_some(), fast, "{angle}");
+        if let Some(value) = value {
+            let expected = careful(&light, off, &clip);
+            let image = pivot_cap_fast(&light, off).0.solid_angle();
+            assert!(
+                (value - expected).abs() <= 1e-5 * image,
+                "{value} {expected}"
+            );
+        }
+    }
     // The closed form needs no well-conditioned image points: a 1e-12 sr light (whose
     // image's side is below the rounding of the image points, where `pivot_cap_fast`
     // goes careful, and 9% off) and an image at a hemisphere (the upper hemisphere under
