@@ -38,7 +38,7 @@
 use super::cap::Cap;
 use super::cap_intersection::cap_intersection_solid_angle;
 use super::cap_intersection_sampling::CapIntersection;
-use super::pivot::{jacobian_of_unit, pivot_cap, pivot_cap_fast, transform};
+use super::pivot::{jacobian_of_unit, pivot_cap, pivot_cap_fast, pivot_cap_fast_by_ref, transform};
 use super::shading_fast::pivoted_intersection_fast;
 use super::sptd::{Sptd, SptdInCap};
 use crate::Sample;
@@ -148,7 +148,7 @@ impl SphereLightShading {
     /// [`SphereLightShading::eval`]).
     #[inline(always)]
     pub fn eval_occluded(&self, light: &Cap, visibility: &Cap) -> Vec3 {
-        let (visible, _) = pivot_cap_fast(&visibility.sanitized(), self.fit.pivot);
+        let (visible, _) = pivot_cap_fast_by_ref(&visibility.sanitized(), &self.fit.pivot);
         let area = pivoted_intersection(&light.sanitized(), &self.fit.pivot, &visible);
         self.specular_albedo * (area * (0.25 / PI))
     }

@@ -253,18 +253,28 @@ const FAST_MAX_SIN2: f32 = 1.0 - 1.0 / 256.0;
 /// path's arc lengths are better conditioned). Everything else takes [`pivot_cap`].
 #[inline(always)]
 pub(crate) fn pivot_cap_fast(cap: &Cap, pivot: Vec3) -> (Cap, PivotPath) {
+    pivot_cap_fast_by_ref(cap, &pivot)
+}
+
+/// [`pivot_cap_fast`] with the pivot by reference, and its careful path out of line: the
+/// occluded shading's bent cone (`SphereLightShading::eval_occluded`) passed the prepared
+/// pivot by value, which the compiler copied to the stack as 8 + 4 bytes for the careful
+/// call and read back as 4 + 8 on the fast path (a load across two stores, which the store
+/// buffer cannot forward; see `pivoted_intersection` in `light.rs`).
+#[inline(always)]
+pub(crate) fn pivot_cap_fast_by_ref(cap: &Cap, pivot: &Vec3) -> (Cap, PivotPath) {
     // Empty caps and whole spheres (stored by their hole) go the careful way.
     if !(cap.one_minus_cos > 0.0) || !(cap.one_plus_cos > 0.0) {
-        return (pivot_cap(cap, pivot), PivotPath::Careful);
+        return pivot_cap_careful(cap, pivot);
     }
-    let p3 = valid_pivot(pivot);
+    let p3 = valid_pivot(*pivot);
     let along = p3.dot(cap.axis);
     let perpendicular = p3 - cap.axis * along;
     let across2 = perpendicular.length_squared();
     // The pivot (nearly) on the axis line: the plane is not defined by it (the rounding
     // of `perpendicular`, about 6e-8, would tilt the tangent out of the tangent plane).
     if !(across2 > 1e-12) {
-        return (pivot_cap(cap, pivot), PivotPath::Careful);
+        return pivot_cap_careful(cap, pivot);
     }
     let across = libm::sqrtf(across2);
     let tangent = perpendicular * (1.0 / across);
@@ -276,7 +286,7 @@ pub(crate) fn pivot_cap_fast(cap: &Cap, pivot: Vec3) -> (Cap, PivotPath) {
     let margin = 4e-6 * (a.length() + b.length()) + 1e-12;
     let mid = g1 + g2;
     if !(sin2 <= FAST_MAX_SIN2) || !(q.abs() > margin) {
-        return (pivot_cap(cap, pivot), PivotPath::Careful);
+        return pivot_cap_careful(cap, pivot);
     }
     // |cos ψ'| ≥ 1/16 here, so |g(ω₁) + g(ω₂)| = 2|cos ψ'| ≥ 1/8 up to rounding: the
     // normalisation is safe (in 3D: the tangent is orthogonal to the axis only to
@@ -306,14 +316,21 @@ pub(crate) fn pivot_cap_fast(cap: &Cap, pivot: Vec3) -> (Cap, PivotPath) {
     (image, PivotPath::Fast)
 }
 
+/// The careful path of [`pivot_cap_fast_by_ref`] (out of line: it is rare).
+#[cold]
+#[inline(never)]
+fn pivot_cap_careful(cap: &Cap, pivot: &Vec3) -> (Cap, PivotPath) {
+    (pivot_cap(cap, *pivot), PivotPath::Careful)
+}
+
 /// In the plane of a cap's axis (x) and the pivot `p` (y ≥ 0; `rho2 = |r_p|²`), the
 /// images under `g` (Eq. 2, as in `transform_2d`) of the cap's boundary points
 /// `ωᵢ = (cos θ, ∓ sin θ)` and of its center `(1, 0)`, and `sin²ψ'` of the image: with
 /// `eᵢ = ωᵢ − p` and `k = 1 − |r_p|²`, `g(ω) = p − k e / |e|²`, unit in exact arithmetic
 /// and not renormalised (the callers' side tests allow for the rounding), and
-/// `sin ψ' = k sin θ / (|e₁||e₂|)` squared (see [`pivot_cap_fast`]). Shared by
-/// [`pivot_cap_fast`] and the real-time shading's one-pass image
-/// (`shading_fast::pivoted_intersection_fast`).
+/// `sin ψ' = k sin θ / (|e₁||e₂|)` squared (see [`pivot_cap_fast`]). (The real-time
+/// shading's one-pass image, `shading_fast::pivoted_intersection_fast`, has its own
+/// closed form without the points.)
 #[inline(always)]
 pub(crate) fn images_in_plane(cap: &Cap, p: Vec2, rho2: f32) -> ([Vec2; 3], f32) {
     let sin = libm::sqrtf(cap.sin2.max(0.0).min(1.0));
