@@ -715,8 +715,10 @@ impl EllipseSector {
     /// [`REFINEMENT_ITERATIONS`](super::projected::REFINEMENT_ITERATIONS)). A quad is
     /// chosen by `fraction`, and the direction `w` where the area between the quad's two
     /// edges (lines `r_l · q = D_l`) reaches the wanted share is the root of the
-    /// homogeneous quadratic `wᵀ Q w = 0`, which Algorithm 2 picks correctly
-    /// (Proposition 3, whose proof needs quads of at most 90°). Then `iterations` steps of the iteration of supplement
+    /// homogeneous quadratic `wᵀ Q w = 0` (Proposition 3), here written in the quad's own
+    /// basis `w = μ s_k + ν s_h`, where the root inside the quad is the one with
+    /// `μ, ν >= 0` and follows without the cancellation of Algorithm 2's discriminant
+    /// (see the comment at its computation). Then `iterations` steps of the iteration of supplement
     /// A.3 replace the quad's edges by the tangents of the ellipses at the current
     /// direction; the error shrinks cubically (Proposition 6).
     ///
@@ -734,7 +736,6 @@ impl EllipseSector {
         // References, not copies: copying the arrays to the stack and reading them back
         // shifted by one element defeats store-to-load forwarding.
         let (li, lo) = (&self.inner_radius, &self.outer_radius);
-        let (ti, to) = (&self.inner_quarter_dots, &self.outer_quarter_dots);
         // Twice the quad areas over det(b_j, b_j+1), the same for all four quads.
         let quads = [
             lo[0] * lo[1] - li[0] * li[1],
@@ -771,32 +772,42 @@ impl EllipseSector {
         } else {
             measured
         };
-        let quad_area = 0.5 * self.quarter_det * measured;
+        // The quad's area from s_k to w = μ s_k + ν s_h (μ, ν >= 0): the triangle from
+        // the origin to the outer edge, through λ_o,k s_k and λ_o,h s_h, reaches along w to
+        // λ_o,k λ_o,h / (μ λ_o,h + ν λ_o,k), so it has the area
+        // ½ |det(s_k, s_h)| ν λ_o,k² λ_o,h / (μ λ_o,h + ν λ_o,k), and the quad's is that
+        // minus the inner one's. Setting it to `½ |det(s_k, s_h)| m` (m = |measured|, in
+        // the units of `quads`) and dividing by ½ |det| λ_o,h λ_i,h gives, with the ratios
+        // a_l = λ_l,k / λ_l,h, the homogeneous quadratic (the quad's `wᵀ Q w = 0` of
+        // supplement A.4 in the quad's own basis)
+        //
+        // `-m μ² + c1 μν + c2 ν² = 0`, `c1 = (λ_o,k² - λ_i,k²) - m (a_o + a_i)`,
+        // `c2 = a_o a_i (Q - m)`,
+        //
+        // with `Q = λ_o,k λ_o,h - λ_i,k λ_i,h` the quad's measure (`λ_o,k² a_i - λ_i,k² a_o
+        // = a_o a_i Q`). As `0 <= m <= Q`, the product of its roots `ν/μ` is `-m / c2 <= 0`:
+        // exactly one is non-negative, the one inside the quad (the quad's area grows
+        // monotonically from 0 to Q along it). That root is `ν/μ = (-c1 + √Δ) / (2 c2)`
+        // with `Δ = c1² + 4 m c2`, a sum of non-negative terms (no cancellation, unlike
+        // the general discriminant of Algorithm 2), taken in the form without
+        // cancellation: `(μ, ν) = (c1 + √Δ, 2m)` for `c1 >= 0`, `(2 c2, √Δ - c1)`
+        // otherwise; both components are non-negative, so `w` needs no sign. The ratios
+        // keep every coefficient within f32 (`λ >= 2^-41`, so `a_l <= 2^41`), where
+        // products of four `λ` could underflow.
         let (sk, sh) = (self.quarters[k], self.quarters[h]);
-        let (lik, lok, tik, tok) = (li[k], lo[k], ti[k], to[k]);
-        let (lih, loh, ti_h, to_h) = (li[h], lo[h], ti[h], to[h]);
-        // Quad edges: normals r_l = C_l a_l with a_l = λ_l,h s_h + λ_l,k s_k, and offsets
-        // D_l = λ_l,h r_l·s_h = λ_l,h (a_l·s_h + (u_l·a_l)(u_l·s_h)).
-        let (ai, ao) = (
-            add2(scale2(sh, lih), scale2(sk, lik)),
-            add2(scale2(sh, loh), scale2(sk, lok)),
-        );
-        let (uai, uao) = (lih * ti_h + lik * tik, loh * to_h + lok * tok);
-        let ri = add2(ai, scale2(ui, uai));
-        let ro = add2(ao, scale2(uo, uao));
-        let di = lih * (dot2(ai, sh) + uai * ti_h);
-        let d_o = loh * (dot2(ao, sh) + uao * to_h);
-        let a = rotate(sk);
-        let c = add2(scale2(ri, lok * d_o), scale2(ro, -lik * di));
-        let twice = 2.0 * quad_area;
-        let qxx = a[0] * c[0] - twice * ro[0] * ri[0];
-        let qxy_plus_qyx = a[0] * c[1] + a[1] * c[0] - twice * (ro[0] * ri[1] + ro[1] * ri[0]);
-        let qyy = a[1] * c[1] - twice * ro[1] * ri[1];
+        let (lik, lok, lih, loh) = (li[k], lo[k], li[h], lo[h]);
+        let m = measured.abs();
+        let (ratio_o, ratio_i) = (lok / loh, lik / lih);
+        let c1 = (lok * lok - lik * lik) - m * (ratio_o + ratio_i);
+        let c2 = ratio_o * ratio_i * (quads[j] - m).max(0.0);
+        let root = libm::sqrtf(c1 * c1 + 4.0 * m * c2);
+        let (mu, nu) = if c1 >= 0.0 {
+            (c1 + root, 2.0 * m)
+        } else {
+            (2.0 * c2, root - c1)
+        };
+        let w = add2(scale2(sk, mu), scale2(sh, nu));
         let bisector = self.quarters[2];
-        let w = towards(
-            solve_homogeneous_quadratic(qxx, qxy_plus_qyx, qyy),
-            bisector,
-        );
         // Safeguard: every direction evaluated bounds the wanted one by the sign of its
         // residual, which keeps a bracket `[x_lo, x_hi]` of chord parameters
         // `x = β / (α + β)` (where the ray crosses the chord from s0 to s1). A step beyond
