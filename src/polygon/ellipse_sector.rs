@@ -1162,6 +1162,125 @@ mod tests {
         assert!(worst_closed > 0.1, "closed forms: {worst_closed:e}");
     }
 
+    /// The initial guess (`iterations = 0`) of [`EllipseSector::sample_between`], solved in
+    /// the quad's basis `w = μ s_k + ν s_h`, against an independent f64 inversion of the
+    /// same quad: the area between the two straight edges through the quad's corners
+    /// `λ_l,j b_j` (the sector's own f32 radii and directions), from the quad's boundary
+    /// nearest the sector's end, found by bisection on the angle. Within 2e-6 rad plus
+    /// `1e-5 + ε κ` of the quad's angle on random nested sectors (`κ` the cancellation of
+    /// the quad's measure `Q` in f32). The fraction 0 gives `s0` to 2e-7 rad (`m = 0`
+    /// gives `ν = 0` exactly), the fraction 1 `s1` to 1e-5 rad (the rounding of the sum
+    /// of the quads leaves a share of an ulp). The earlier Cartesian quadratic, whose
+    /// discriminant vanishes at `m = 0`, missed the vertices at the sector's ends by 4e-5
+    /// and 1e-4 rad in the determinism table's projected rows at u = 0 and u = 1 - ulp,
+    /// which now return the polygon's vertices.
+    #[test]
+    fn the_quad_guess_solves_the_quads_area_equation() {
+        let mut rng = Rng::new(21);
+        let (mut worst, mut worst_start, mut worst_end, mut tested) = (0.0f64, 0.0f64, 0.0f64, 0);
+        let angle = |v: [f64; 2]| v[1].atan2(v[0]);
+        while tested < 3000 {
+            let polar = |rng: &mut Rng, lo: f64, hi: f64| {
+                let (r, a) = (rng.log_uniform(lo, hi), rng.uniform() * 6.3);
+                [(r * a.cos()) as f32, (r * a.sin()) as f32]
+            };
+            let (ui, uo) = (polar(&mut rng, -1.0, 1.5), polar(&mut rng, -2.0, 0.5));
+            let (from, width) = (rng.uniform() * 6.3, rng.log_uniform(-2.0, 0.45));
+            let Some(sector) = nested_sector(ui, uo, from, width) else {
+                continue;
+            };
+            let f64v = |v: Vec2| [v[0] as f64, v[1] as f64];
+            let (li, lo) = (
+                sector.inner_radius.map(f64::from),
+                sector.outer_radius.map(f64::from),
+            );
+            let quads: Vec<f64> = (0..4)
+                .map(|j| lo[j] * lo[j + 1] - li[j] * li[j + 1])
+                .collect();
+            if quads.iter().any(|&q| !(q > 1e-9)) {
+                continue;
+            }
+            tested += 1;
+            let total_f32 = sector.area(false, AreaPrecision::Exact);
+            // The direction of the guess, as an angle from `from` in (-π, π].
+            let guess = |fraction: f32| {
+                let (p, _) = sector
+                    .sample_between(fraction * total_f32, fraction, 0.5, 0)
+                    .expect("a point");
+                let a = angle(f64v(p)) - from;
+                (a + core::f64::consts::PI).rem_euclid(core::f64::consts::TAU)
+                    - core::f64::consts::PI
+            };
+            worst_start = worst_start.max(guess(0.0).abs());
+            worst_end = worst_end.max((guess(1.0) - width).abs());
+            for i in 1..16 {
+                let fraction = i as f32 / 16.0;
+                // The quad and the share of it, as sample_between selects them.
+                let recomputed = {
+                    let (li, lo) = (&sector.inner_radius, &sector.outer_radius);
+                    [0, 1, 2, 3].map(|j| lo[j] * lo[j + 1] - li[j] * li[j + 1])
+                };
+                let ends = [
+                    recomputed[0],
+                    recomputed[0] + recomputed[1],
+                    recomputed[0] + recomputed[1] + recomputed[2],
+                ];
+                let target = fraction * (ends[2] + recomputed[3]);
+                let j = ends.iter().filter(|&&e| target > e).count();
+                let start = [0.0, ends[0], ends[1], ends[2]][j];
+                let x = ((target - start) as f64).clamp(0.0, quads[j]);
+                let (k, h, m) = if j >= 2 {
+                    (j + 1, j, quads[j] - x)
+                } else {
+                    (j, j + 1, x)
+                };
+                let (bk, bh) = (f64v(sector.quarters[k]), f64v(sector.quarters[h]));
+                // The area of the triangle from the origin along b_k to the edge through
+                // λ_k b_k and λ_h b_h, up to the direction d.
+                let triangle = |lk: f64, lh: f64, d: [f64; 2]| {
+                    let p = [lk * bk[0], lk * bk[1]];
+                    let e = [lh * bh[0] - p[0], lh * bh[1] - p[1]];
+                    let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
+                    let t = cross(p, e) / cross(d, e);
+                    0.5 * cross(p, [t * d[0], t * d[1]]).abs()
+                };
+                let cross_kh = (bk[0] * bh[1] - bk[1] * bh[0]).abs();
+                let wanted = 0.5 * cross_kh * m;
+                let (ak, mut span) = (angle(bk), angle(bh) - angle(bk));
+                span = (span + core::f64::consts::PI).rem_euclid(core::f64::consts::TAU)
+                    - core::f64::consts::PI;
+                let (mut lo_t, mut hi_t) = (0.0f64, 1.0f64);
+                for _ in 0..60 {
+                    let mid = 0.5 * (lo_t + hi_t);
+                    let a = ak + mid * span;
+                    let d = [a.cos(), a.sin()];
+                    let area = triangle(lo[k], lo[h], d) - triangle(li[k], li[h], d);
+                    if area < wanted {
+                        lo_t = mid;
+                    } else {
+                        hi_t = mid;
+                    }
+                }
+                let solution = ak + 0.5 * (lo_t + hi_t) * span - from;
+                let solution = (solution + core::f64::consts::PI)
+                    .rem_euclid(core::f64::consts::TAU)
+                    - core::f64::consts::PI;
+                // Q = λ_o,k λ_o,h - λ_i,k λ_i,h and its share lose `ε` times this to
+                // cancellation in f32 (nearly coincident edges), as before.
+                let cancellation = (lo[k] * lo[h] + li[k] * li[h]) / quads[j];
+                let bound = 2e-6 + span.abs() * (1e-5 + f32::EPSILON as f64 * cancellation);
+                let error = (guess(fraction) - solution).abs() / bound;
+                worst = worst.max(error);
+            }
+        }
+        assert!(
+            worst <= 1.0,
+            "guess against the f64 quad inversion: {worst:e}"
+        );
+        assert!(worst_start <= 2e-7, "s0: {worst_start:e}");
+        assert!(worst_end <= 1e-5, "s1: {worst_end:e}");
+    }
+
     /// The sector inversion in f64, written from the supplement independently of the f32
     /// code above, for [`the_sector_inversion_converges_cubically`].
     mod inversion_f64 {
