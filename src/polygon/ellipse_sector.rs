@@ -910,8 +910,10 @@ impl EllipseSector {
     /// [`REFINEMENT_ITERATIONS`](super::projected::REFINEMENT_ITERATIONS)). A quad is
     /// chosen by `fraction`, and the direction `w` where the area between the quad's two
     /// edges (lines `r_l · q = D_l`) reaches the wanted share is the root of the
-    /// homogeneous quadratic `wᵀ Q w = 0`, which Algorithm 2 picks correctly
-    /// (Proposition 3, whose proof needs quads of at most 90°). Then `iterations` steps of the iteration of supplement
+    /// homogeneous quadratic `wᵀ Q w = 0` (Proposition 3), here written in the quad's own
+    /// basis `w = μ s_k + ν s_h`, where the root inside the quad is the one with
+    /// `μ, ν >= 0` and follows without the cancellation of Algorithm 2's discriminant
+    /// (see the comment at its computation). Then `iterations` steps of the iteration of supplement
     /// A.3 replace the quad's edges by the tangents of the ellipses at the current
     /// direction; the error shrinks cubically (Proposition 6).
     ///
@@ -929,7 +931,6 @@ impl EllipseSector {
         // References, not copies: copying the arrays to the stack and reading them back
         // shifted by one element defeats store-to-load forwarding.
         let (li, lo) = (&self.inner_radius, &self.outer_radius);
-        let (ti, to) = (&self.inner_quarter_dots, &self.outer_quarter_dots);
         // Twice the quad areas over det(b_j, b_j+1), the same for all four quads.
         let quads = [
             lo[0] * lo[1] - li[0] * li[1],
@@ -966,32 +967,42 @@ impl EllipseSector {
         } else {
             measured
         };
-        let quad_area = 0.5 * self.quarter_det * measured;
+        // The quad's area from s_k to w = μ s_k + ν s_h (μ, ν >= 0): the triangle from
+        // the origin to the outer edge, through λ_o,k s_k and λ_o,h s_h, reaches along w to
+        // λ_o,k λ_o,h / (μ λ_o,h + ν λ_o,k), so it has the area
+        // ½ |det(s_k, s_h)| ν λ_o,k² λ_o,h / (μ λ_o,h + ν λ_o,k), and the quad's is that
+        // minus the inner one's. Setting it to `½ |det(s_k, s_h)| m` (m = |measured|, in
+        // the units of `quads`) and dividing by ½ |det| λ_o,h λ_i,h gives, with the ratios
+        // a_l = λ_l,k / λ_l,h, the homogeneous quadratic (the quad's `wᵀ Q w = 0` of
+        // supplement A.4 in the quad's own basis)
+        //
+        // `-m μ² + c1 μν + c2 ν² = 0`, `c1 = (λ_o,k² - λ_i,k²) - m (a_o + a_i)`,
+        // `c2 = a_o a_i (Q - m)`,
+        //
+        // with `Q = λ_o,k λ_o,h - λ_i,k λ_i,h` the quad's measure (`λ_o,k² a_i - λ_i,k² a_o
+        // = a_o a_i Q`). As `0 <= m <= Q`, the product of its roots `ν/μ` is `-m / c2 <= 0`:
+        // exactly one is non-negative, the one inside the quad (the quad's area grows
+        // monotonically from 0 to Q along it). That root is `ν/μ = (-c1 + √Δ) / (2 c2)`
+        // with `Δ = c1² + 4 m c2`, a sum of non-negative terms (no cancellation, unlike
+        // the general discriminant of Algorithm 2), taken in the form without
+        // cancellation: `(μ, ν) = (c1 + √Δ, 2m)` for `c1 >= 0`, `(2 c2, √Δ - c1)`
+        // otherwise; both components are non-negative, so `w` needs no sign. The ratios
+        // keep every coefficient within f32 (`λ >= 2^-41`, so `a_l <= 2^41`), where
+        // products of four `λ` could underflow.
         let (sk, sh) = (self.quarters[k], self.quarters[h]);
-        let (lik, lok, tik, tok) = (li[k], lo[k], ti[k], to[k]);
-        let (lih, loh, ti_h, to_h) = (li[h], lo[h], ti[h], to[h]);
-        // Quad edges: normals r_l = C_l a_l with a_l = λ_l,h s_h + λ_l,k s_k, and offsets
-        // D_l = λ_l,h r_l·s_h = λ_l,h (a_l·s_h + (u_l·a_l)(u_l·s_h)).
-        let (ai, ao) = (
-            add2(scale2(sh, lih), scale2(sk, lik)),
-            add2(scale2(sh, loh), scale2(sk, lok)),
-        );
-        let (uai, uao) = (lih * ti_h + lik * tik, loh * to_h + lok * tok);
-        let ri = add2(ai, scale2(ui, uai));
-        let ro = add2(ao, scale2(uo, uao));
-        let di = lih * (dot2(ai, sh) + uai * ti_h);
-        let d_o = loh * (dot2(ao, sh) + uao * to_h);
-        let a = rotate(sk);
-        let c = add2(scale2(ri, lok * d_o), scale2(ro, -lik * di));
-        let twice = 2.0 * quad_area;
-        let qxx = a[0] * c[0] - twice * ro[0] * ri[0];
-        let qxy_plus_qyx = a[0] * c[1] + a[1] * c[0] - twice * (ro[0] * ri[1] + ro[1] * ri[0]);
-        let qyy = a[1] * c[1] - twice * ro[1] * ri[1];
+        let (lik, lok, lih, loh) = (li[k], lo[k], li[h], lo[h]);
+        let m = measured.abs();
+        let (ratio_o, ratio_i) = (lok / loh, lik / lih);
+        let c1 = (lok * lok - lik * lik) - m * (ratio_o + ratio_i);
+        let c2 = ratio_o * ratio_i * (quads[j] - m).max(0.0);
+        let root = libm::sqrtf(c1 * c1 + 4.0 * m * c2);
+        let (mu, nu) = if c1 >= 0.0 {
+            (c1 + root, 2.0 * m)
+        } else {
+            (2.0 * c2, root - c1)
+        };
+        let w = add2(scale2(sk, mu), scale2(sh, nu));
         let bisector = self.quarters[2];
-        let w = towards(
-            solve_homogeneous_quadratic(qxx, qxy_plus_qyx, qyy),
-            bisector,
-        );
         // Safeguard: every direction evaluated bounds the wanted one by the sign of its
         // residual, which keeps a bracket `[x_lo, x_hi]` of chord parameters
         // `x = β / (α + β)` (where the ray crosses the chord from s0 to s1). A step beyond
@@ -1344,6 +1355,125 @@ mod tests {
         }
         assert!(worst <= 1e-4, "quadrature form: {worst:e}");
         assert!(worst_closed > 0.1, "closed forms: {worst_closed:e}");
+    }
+
+    /// The initial guess (`iterations = 0`) of [`EllipseSector::sample_between`], solved in
+    /// the quad's basis `w = μ s_k + ν s_h`, against an independent f64 inversion of the
+    /// same quad: the area between the two straight edges through the quad's corners
+    /// `λ_l,j b_j` (the sector's own f32 radii and directions), from the quad's boundary
+    /// nearest the sector's end, found by bisection on the angle. Within 2e-6 rad plus
+    /// `1e-5 + ε κ` of the quad's angle on random nested sectors (`κ` the cancellation of
+    /// the quad's measure `Q` in f32). The fraction 0 gives `s0` to 2e-7 rad (`m = 0`
+    /// gives `ν = 0` exactly), the fraction 1 `s1` to 1e-5 rad (the rounding of the sum
+    /// of the quads leaves a share of an ulp). The earlier Cartesian quadratic, whose
+    /// discriminant vanishes at `m = 0`, missed the vertices at the sector's ends by 4e-5
+    /// and 1e-4 rad in the determinism table's projected rows at u = 0 and u = 1 - ulp,
+    /// which now return the polygon's vertices.
+    #[test]
+    fn the_quad_guess_solves_the_quads_area_equation() {
+        let mut rng = Rng::new(21);
+        let (mut worst, mut worst_start, mut worst_end, mut tested) = (0.0f64, 0.0f64, 0.0f64, 0);
+        let angle = |v: [f64; 2]| v[1].atan2(v[0]);
+        while tested < 3000 {
+            let polar = |rng: &mut Rng, lo: f64, hi: f64| {
+                let (r, a) = (rng.log_uniform(lo, hi), rng.uniform() * 6.3);
+                [(r * a.cos()) as f32, (r * a.sin()) as f32]
+            };
+            let (ui, uo) = (polar(&mut rng, -1.0, 1.5), polar(&mut rng, -2.0, 0.5));
+            let (from, width) = (rng.uniform() * 6.3, rng.log_uniform(-2.0, 0.45));
+            let Some(sector) = nested_sector(ui, uo, from, width) else {
+                continue;
+            };
+            let f64v = |v: Vec2| [v[0] as f64, v[1] as f64];
+            let (li, lo) = (
+                sector.inner_radius.map(f64::from),
+                sector.outer_radius.map(f64::from),
+            );
+            let quads: Vec<f64> = (0..4)
+                .map(|j| lo[j] * lo[j + 1] - li[j] * li[j + 1])
+                .collect();
+            if quads.iter().any(|&q| !(q > 1e-9)) {
+                continue;
+            }
+            tested += 1;
+            let total_f32 = sector.area(false, AreaPrecision::Exact);
+            // The direction of the guess, as an angle from `from` in (-π, π].
+            let guess = |fraction: f32| {
+                let (p, _) = sector
+                    .sample_between(fraction * total_f32, fraction, 0.5, 0)
+                    .expect("a point");
+                let a = angle(f64v(p)) - from;
+                (a + core::f64::consts::PI).rem_euclid(core::f64::consts::TAU)
+                    - core::f64::consts::PI
+            };
+            worst_start = worst_start.max(guess(0.0).abs());
+            worst_end = worst_end.max((guess(1.0) - width).abs());
+            for i in 1..16 {
+                let fraction = i as f32 / 16.0;
+                // The quad and the share of it, as sample_between selects them.
+                let recomputed = {
+                    let (li, lo) = (&sector.inner_radius, &sector.outer_radius);
+                    [0, 1, 2, 3].map(|j| lo[j] * lo[j + 1] - li[j] * li[j + 1])
+                };
+                let ends = [
+                    recomputed[0],
+                    recomputed[0] + recomputed[1],
+                    recomputed[0] + recomputed[1] + recomputed[2],
+                ];
+                let target = fraction * (ends[2] + recomputed[3]);
+                let j = ends.iter().filter(|&&e| target > e).count();
+                let start = [0.0, ends[0], ends[1], ends[2]][j];
+                let x = ((target - start) as f64).clamp(0.0, quads[j]);
+                let (k, h, m) = if j >= 2 {
+                    (j + 1, j, quads[j] - x)
+                } else {
+                    (j, j + 1, x)
+                };
+                let (bk, bh) = (f64v(sector.quarters[k]), f64v(sector.quarters[h]));
+                // The area of the triangle from the origin along b_k to the edge through
+                // λ_k b_k and λ_h b_h, up to the direction d.
+                let triangle = |lk: f64, lh: f64, d: [f64; 2]| {
+                    let p = [lk * bk[0], lk * bk[1]];
+                    let e = [lh * bh[0] - p[0], lh * bh[1] - p[1]];
+                    let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
+                    let t = cross(p, e) / cross(d, e);
+                    0.5 * cross(p, [t * d[0], t * d[1]]).abs()
+                };
+                let cross_kh = (bk[0] * bh[1] - bk[1] * bh[0]).abs();
+                let wanted = 0.5 * cross_kh * m;
+                let (ak, mut span) = (angle(bk), angle(bh) - angle(bk));
+                span = (span + core::f64::consts::PI).rem_euclid(core::f64::consts::TAU)
+                    - core::f64::consts::PI;
+                let (mut lo_t, mut hi_t) = (0.0f64, 1.0f64);
+                for _ in 0..60 {
+                    let mid = 0.5 * (lo_t + hi_t);
+                    let a = ak + mid * span;
+                    let d = [a.cos(), a.sin()];
+                    let area = triangle(lo[k], lo[h], d) - triangle(li[k], li[h], d);
+                    if area < wanted {
+                        lo_t = mid;
+                    } else {
+                        hi_t = mid;
+                    }
+                }
+                let solution = ak + 0.5 * (lo_t + hi_t) * span - from;
+                let solution = (solution + core::f64::consts::PI)
+                    .rem_euclid(core::f64::consts::TAU)
+                    - core::f64::consts::PI;
+                // Q = λ_o,k λ_o,h - λ_i,k λ_i,h and its share lose `ε` times this to
+                // cancellation in f32 (nearly coincident edges), as before.
+                let cancellation = (lo[k] * lo[h] + li[k] * li[h]) / quads[j];
+                let bound = 2e-6 + span.abs() * (1e-5 + f32::EPSILON as f64 * cancellation);
+                let error = (guess(fraction) - solution).abs() / bound;
+                worst = worst.max(error);
+            }
+        }
+        assert!(
+            worst <= 1.0,
+            "guess against the f64 quad inversion: {worst:e}"
+        );
+        assert!(worst_start <= 2e-7, "s0: {worst_start:e}");
+        assert!(worst_end <= 1e-5, "s1: {worst_end:e}");
     }
 
     /// The sector inversion in f64, written from the supplement independently of the f32
