@@ -1021,6 +1021,21 @@ impl ProjectedPolygon {
         finish(polygon, sectors, outer_sum_bound, maybe_short)
     }
 
+    /// Whether [`prepare`](Self::prepare) of `vertices` succeeds through the central fast
+    /// path (`central_unclipped_sectors`: the zenith inside, nothing clipped, every edge
+    /// outer and none degenerate), for the report's share of polygons per path. Prepares
+    /// a scratch value; `#[inline]` keeps it out of the static library.
+    #[doc(hidden)]
+    #[inline]
+    #[must_use]
+    pub fn takes_central_fast_path(vertices: &[Vec3]) -> bool {
+        let mut scratch = Self::EMPTY;
+        let mut took_fast = false;
+        let prepared =
+            scratch.prepare_or_fail(vertices, AreaPrecision::Exact, true, true, &mut took_fast);
+        prepared && took_fast
+    }
+
     /// Whether preparation handed the polygon to the small-polygon sampler (warped solid
     /// angle sampling, for polygons below [`SMALL_EXTENT`] across and for slivers whose
     /// sector areas cancel) instead of the sectors of Algorithm 4.

@@ -1287,6 +1287,13 @@ fn central_fast_path_matches_the_general_path() {
             assert!(took.is_none_or(|t| t == took_fast));
             took = Some(took_fast);
         }
+        // The report's share of polygons per path reads this predicate.
+        let took_fast = took.unwrap_or(false);
+        assert_eq!(
+            ProjectedPolygon::takes_central_fast_path(v),
+            took_fast && ProjectedPolygon::new(v).is_some(),
+            "{v:?}"
+        );
         took
     };
     let hexagon: Vec<Vec3> = (0..6)

@@ -684,10 +684,12 @@ fn projected_accuracy_table() {
     ];
     println!("## Accuracy per decade of solid angle: projected and solid angle sampling\n");
     println!(
-        "Per row {DECADE_POLYGONS} random polygons (3 to 7 vertices, random aspect and orientation; a third around the zenith, a third anywhere above the horizon, a third near the horizon, crossing it from 1e-3 sr up), classified by the f64 solid angle of their part above the horizon; {DECADE_SAMPLES} samples each. Error: relative error of Φ (projected, of the part above the horizon) or Ω (solid angle, whole polygon) against f64 (Lambert's formula, van Oosterom–Strackee), median and max. Outside: the f64 ray of the f32 direction misses the polygon (or, for projected, lies below the horizon); worst outside: the largest sine of the angle by which such a ray misses (for comparison, an f32 direction is rounded by about 6e-8). Non-finite: non-finite direction or pdf, or pdf ≤ 0 above the horizon. Small-polygon path: the share of polygons that projected preparation hands to the small-polygon sampler (`uses_small_polygon_sampler()`).\n"
+        "Per row {DECADE_POLYGONS} random polygons (3 to 7 vertices, random aspect and orientation; a third around the zenith, a third anywhere above the horizon, a third near the horizon, crossing it from 1e-3 sr up), classified by the f64 solid angle of their part above the horizon; {DECADE_SAMPLES} samples each. Error: relative error of Φ (projected, of the part above the horizon) or Ω (solid angle, whole polygon) against f64 (Lambert's formula, van Oosterom–Strackee), median and max. Outside: the f64 ray of the f32 direction misses the polygon (or, for projected, lies below the horizon); worst outside: the largest sine of the angle by which such a ray misses (for comparison, an f32 direction is rounded by about 6e-8). Non-finite: non-finite direction or pdf, or pdf ≤ 0 above the horizon. Small-polygon path: the share of polygons that projected preparation hands to the small-polygon sampler (`uses_small_polygon_sampler()`); central fast path: the share that it prepares through the central fast path (the zenith inside, nothing clipped, every edge outer; `takes_central_fast_path`); the rest take the general path of Algorithm 4.\n"
     );
-    let mut header = String::from("| Ω | central | crossing | projected: small-polygon path ");
-    let mut rule = String::from("|---|---:|---:|---:");
+    let mut header = String::from(
+        "| Ω | central | crossing | projected: small-polygon path | projected: central fast path ",
+    );
+    let mut rule = String::from("|---|---:|---:|---:|---:");
     for (name, _) in &techniques {
         header +=
             &format!("| {name}: median err | max err | outside | worst outside | non-finite ");
@@ -719,8 +721,13 @@ fn projected_accuracy_table() {
                 ProjectedPolygon::new(&c.vertices).is_some_and(|p| p.uses_small_polygon_sampler())
             })
             .count();
-        let small = format!("{:.1}%", 100.0 * small as f64 / cases.len().max(1) as f64);
-        let mut row = format!("| {label} | {central} | {crossing} | {small} ");
+        let central_fast = cases
+            .iter()
+            .filter(|c| ProjectedPolygon::takes_central_fast_path(&c.vertices))
+            .count();
+        let share = |n: usize| format!("{:.1}%", 100.0 * n as f64 / cases.len().max(1) as f64);
+        let (small, central_fast) = (share(small), share(central_fast));
+        let mut row = format!("| {label} | {central} | {crossing} | {small} | {central_fast} ");
         for (_, accuracy) in &techniques {
             match accuracy(&cases, &mut rng) {
                 Some(mut a) => {
