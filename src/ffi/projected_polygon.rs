@@ -6,7 +6,9 @@
 //! convex, in either winding, 3 to `SPHERA_MAX_POLYGON_VERTICES` of them. The part
 //! below the horizon is clipped away internally.
 use super::polygon::prepare;
-use super::types::{SpheraSample, SpheraVec3, with_ref};
+use super::types::{
+    CommonAndRareSamples, SpheraSample, SpheraVec3, sample_common_or_rare, with_ref,
+};
 use crate::Sample;
 use crate::polygon::ProjectedPolygon;
 
@@ -63,11 +65,7 @@ pub unsafe extern "C" fn sphera_projected_polygon_sample(
     u1: f32,
 ) -> SpheraSample {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    unsafe {
-        with_ref(polygon, Sample::NONE.into(), |polygon| {
-            polygon.sample([u0, u1]).into()
-        })
-    }
+    unsafe { sample_common_or_rare(polygon, u0, u1) }
 }
 
 /// The biased variant of `sphera_projected_polygon_sample`: no refinement iterations
@@ -124,4 +122,16 @@ pub unsafe extern "C" fn sphera_projected_polygon_projected_solid_angle(
 ) -> f32 {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
     unsafe { with_ref(polygon, 0.0, |polygon| polygon.projected_solid_angle()) }
+}
+
+impl CommonAndRareSamples for ProjectedPolygon {
+    #[inline(always)]
+    fn sample_common(&self, u: [f32; 2]) -> Option<Sample> {
+        ProjectedPolygon::sample_common(self, u)
+    }
+
+    #[inline(always)]
+    fn sample_rare(&self, u: [f32; 2]) -> Sample {
+        ProjectedPolygon::sample_rare(self, u)
+    }
 }
