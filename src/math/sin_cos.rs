@@ -37,19 +37,18 @@ const THREE_PI_4: f32 = 3.0 * FRAC_PI_4;
 /// values included (`sin x = x` below 2^-12, `cos x` near π/2 is `-sin(x - π/2)`).
 #[inline(always)]
 pub fn sin_cos_0_to_pi(x: f32) -> (f32, f32) {
+    // `x` in [0, π/4) (NaN fails both comparisons), which the clamp leaves as it is:
+    // tested before the clamp, so that the common case's chain of dependent operations
+    // starts at `x` itself, not after a `max` and a `min` (issue 15: a fan triangle's
+    // sample and a central projected sample wait for this value). `-0.0` passes, as it
+    // passes the clamp unchanged, and takes the same shortcut.
+    if (0.0..FRAC_PI_4).contains(&x) {
+        return sin_cos_below_quarter_pi(x);
+    }
     let x = x.clamp(0.0, PI);
     if x < FRAC_PI_4 {
-        // `r = x` and `r_lo = 0`, for which the general form below adds `r_lo w = +0`
-        // and subtracts `r_lo r = +0`, which change no bits: the same values without
-        // those operations and without the selections between the reductions (a fan
-        // triangle's sample, whose half angles mostly lie here: 213 -> 199 instructions,
-        // callgrind). The tests below compare the bits with the general form.
-        let s = x * x;
-        let half = 0.5 * s;
-        let w = 1.0 - half;
-        let sin_r = x + (x * s) * horner(s, &SIN_QUARTER);
-        let cos_r = w + (((1.0 - w) - half) + (s * s) * horner(s, &COS_QUARTER));
-        return (sin_r, cos_r);
+        // Only 0, from a negative `x`.
+        return sin_cos_below_quarter_pi(x);
     }
     let high = x > THREE_PI_4;
     // The reduced angle r + r_lo: `a` is exact (Sterbenz), `r` the rounded sum with the
@@ -81,6 +80,21 @@ pub fn sin_cos_0_to_pi(x: f32) -> (f32, f32) {
     } else {
         (cos_r, -sin_r)
     }
+}
+
+/// [`sin_cos_0_to_pi`] for `x` in `[0, π/4)`: `r = x` and `r_lo = 0`, for which the
+/// general form adds `r_lo w = +0` and subtracts `r_lo r = +0`, which change no bits: the
+/// same values without those operations and without the selections between the
+/// reductions (a fan triangle's sample, whose half angles mostly lie here: 213 -> 199
+/// instructions, callgrind). The tests below compare the bits with the general form.
+#[inline(always)]
+fn sin_cos_below_quarter_pi(x: f32) -> (f32, f32) {
+    let s = x * x;
+    let half = 0.5 * s;
+    let w = 1.0 - half;
+    let sin_r = x + (x * s) * horner(s, &SIN_QUARTER);
+    let cos_r = w + (((1.0 - w) - half) + (s * s) * horner(s, &COS_QUARTER));
+    (sin_r, cos_r)
 }
 
 /// The Taylor coefficient `(−1)^(k/2) (π/2)^k / k!` of `sin(π r/2)` (odd `k`) or
@@ -337,12 +351,57 @@ mod tests {
         assert_shortcut_matches_general_form(1);
     }
 
+    /// The range test before the clamp (issue 15) gives the bits of the clamp followed by
+    /// the shortcut below π/4 or the general form: at both ends of the shortcut's range,
+    /// on either side of them, for `-0.0`, negative, huge and non-finite angles, and
+    /// over `[0, π]` in steps of 1e-4.
+    #[test]
+    fn shortcut_before_the_clamp_keeps_the_bits() {
+        let reference = |x: f32| {
+            let x = x.clamp(0.0, PI);
+            if x < FRAC_PI_4 {
+                sin_cos_below_quarter_pi_in_general_form(x)
+            } else {
+                sin_cos_0_to_pi(x)
+            }
+        };
+        let below = f32::from_bits(FRAC_PI_4.to_bits() - 1);
+        let mut angles = vec![
+            0.0,
+            -0.0,
+            f32::from_bits(1),
+            -f32::from_bits(1),
+            -1.0,
+            below,
+            FRAC_PI_4,
+            f32::from_bits(FRAC_PI_4.to_bits() + 1),
+            PI,
+            4.0,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+        ];
+        angles.extend((0..=31416).map(|i| i as f32 * 1e-4));
+        for x in angles {
+            let (s, c) = sin_cos_0_to_pi(x);
+            let (s0, c0) = reference(x);
+            assert_eq!(
+                (s.to_bits(), c.to_bits()),
+                (s0.to_bits(), c0.to_bits()),
+                "{x:e}"
+            );
+        }
+        let (s, c) = sin_cos_0_to_pi(f32::NAN);
+        assert!(s.is_nan() && c.is_nan());
+    }
+
     #[test]
     fn sin_cos_edges() {
         assert_eq!(HALF_PI_LO, -4.371139e-8);
         assert_eq!(PI_LO, 2.0 * HALF_PI_LO);
         assert_eq!(sin_cos_0_to_pi(0.0), (0.0, 1.0));
         assert_eq!(sin_cos_0_to_pi(-1.0), (0.0, 1.0));
+        assert_eq!(sin_cos_0_to_pi(f32::NEG_INFINITY), (0.0, 1.0));
+        assert_eq!(sin_cos_0_to_pi(-1e-45), (0.0, 1.0));
         assert_eq!(sin_cos_0_to_pi(1e-30), (1e-30, 1.0));
         assert_eq!(sin_cos_0_to_pi(4.0), sin_cos_0_to_pi(PI));
         assert_eq!(sin_cos_0_to_pi(PI), (PI_LO, -1.0));

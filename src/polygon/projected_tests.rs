@@ -1568,3 +1568,85 @@ fn decentral_lanes_match_the_scalar_sectors() {
     assert!(counts[0] > 20_000, "{counts:?}");
     assert!(counts.iter().all(|&c| c > 0), "{counts:?}");
 }
+
+/// The C entry point's split (issue 15): `sample_common` gives `sample`'s sample bit for
+/// bit wherever it gives one; it takes every draw with `u` in `[0, 1)²` of ordinary
+/// central polygons (random ones of 3 to 8 vertices around the zenith, and `u` at the
+/// edges of `[0, 1)`), and leaves to the rare path `u` outside `[0, 1)²` (NaN and -0
+/// included), decentral and straddling polygons, the small-polygon sampler, the empty
+/// value and the renormalised directions of a sector of nearly π.
+#[test]
+fn sample_common_takes_central_draws_and_leaves_the_rest() {
+    let mut rng = Rng::new(15);
+    let edges = [
+        0.0,
+        1e-30,
+        0.5,
+        crate::sample::ONE_MINUS_ULP,
+        1.0,
+        -1.0,
+        -0.0,
+        f32::NAN,
+    ];
+    let (mut central, mut other) = (0, 0);
+    for n in 3..=MAX_POLYGON_VERTICES {
+        for i in 0..40 {
+            // Half around the zenith (central), half anywhere (mostly decentral).
+            let v = if i % 2 == 0 {
+                let normal = rng.unit_vector_f32();
+                let normal = Vec3::new(normal.x, normal.y, normal.z.abs() + 0.5);
+                let center = Vec3::new(0.0, 0.0, 2.0);
+                ellipse_polygon(&mut rng, n, center, normal, 1.5, 1.0)
+            } else {
+                random_polygon(&mut rng, n, 0.8)
+            };
+            let Some(p) = ProjectedPolygon::new(&v) else {
+                continue;
+            };
+            let common_case = p.central != 0 && !p.uses_small_polygon_sampler();
+            if common_case {
+                central += 1;
+            } else {
+                other += 1;
+            }
+            for _ in 0..50 {
+                let u = [rng.uniform_f32(), rng.uniform_f32()];
+                let expected = common_case.then(|| p.sample(u));
+                assert_eq!(p.sample_common(u), expected, "{v:?} {u:?}");
+            }
+            for u0 in edges {
+                for u1 in edges {
+                    let inside = [u0, u1].iter().all(|u| (0.0..1.0).contains(u))
+                        && u0.is_sign_positive()
+                        && u1.is_sign_positive();
+                    let expected = (common_case && inside).then(|| p.sample([u0, u1]));
+                    assert_eq!(p.sample_common([u0, u1]), expected, "{u0} {u1}");
+                }
+            }
+        }
+    }
+    std::println!("{central} central polygons, {other} others");
+    assert!(
+        central >= 80 && other >= 100,
+        "{central} central, {other} others"
+    );
+    assert_eq!(ProjectedPolygon::EMPTY.sample_common([0.5, 0.5]), None);
+    let square = |half: f32| {
+        [
+            Vec3::new(-half, -half, 1.0),
+            Vec3::new(half, -half, 1.0),
+            Vec3::new(half, half, 1.0),
+            Vec3::new(-half, half, 1.0),
+        ]
+    };
+    // A tiny square around the zenith is central but takes the small-polygon sampler.
+    let tiny = ProjectedPolygon::new(&square(1e-5)).expect("valid polygon");
+    assert!(tiny.uses_small_polygon_sampler());
+    assert_eq!(tiny.sample_common([0.5, 0.5]), None);
+    let ordinary = ProjectedPolygon::new(&square(0.5)).expect("valid polygon");
+    assert!(ordinary.central != 0 && !ordinary.uses_small_polygon_sampler());
+    assert_eq!(
+        ordinary.sample_common([0.5, 0.5]),
+        Some(ordinary.sample([0.5, 0.5]))
+    );
+}
