@@ -58,6 +58,7 @@
 use super::cap::Cap;
 use crate::math::atan2_upper_half_plane;
 use core::f32::consts::{FRAC_PI_2, PI};
+use glam::Vec4;
 
 /// The half-angle `θ = 2 asin(√(t/2))` of `t = 1 − cos θ`.
 #[inline(always)]
@@ -308,9 +309,9 @@ pub(crate) fn at_most_hemispheres_fast(t1: f32, t2: f32, td: f32) -> Option<f32>
     let n2 = t2 + td - t1 - t2 * td;
     let y2 = y2.max(0.0);
     let y = libm::sqrtf(y2);
-    let phi1 = atan2_upper_half_plane_fast(y, y2, n1);
-    let phi2 = atan2_upper_half_plane_fast(y, y2, n2);
-    let excess = 2.0 * atan2_upper_half_plane_fast(y, y2, 4.0 - td - t1 - t2);
+    // The three arc tangents in one packed evaluation (the fourth lane is idle).
+    let angles = atan2_upper_half_plane_fast4(y, y2, Vec4::new(n1, n2, 4.0 - td - t1 - t2, 1.0));
+    let (phi1, phi2, excess) = (angles.x, angles.y, 2.0 * angles.z);
     let area = 2.0 * (phi1 * t1 + phi2 * t2 - excess);
     Some(area.max(0.0).min(2.0 * PI * t1.min(t2)))
 }
@@ -322,6 +323,10 @@ pub(crate) fn at_most_hemispheres_fast(t1: f32, t2: f32, td: f32) -> Option<f32>
 /// the square root `y` (the case is decided by `y² > x²`): two roundings instead of one,
 /// so about one ulp more than the ratio of [`atan2_upper_half_plane`]. Clamped to `[0, 1]`
 /// (where `x²` underflows the case can be wrong) and 0 for `y = x = 0` and NaN.
+///
+/// The scalar form, the reference of [`atan2_upper_half_plane_fast4`] (which the shading
+/// uses) in the tests.
+#[cfg(test)]
 #[inline(always)]
 fn atan2_upper_half_plane_fast(y: f32, y2: f32, x: f32) -> f32 {
     let ax = x.abs();
@@ -333,6 +338,31 @@ fn atan2_upper_half_plane_fast(y: f32, y2: f32, x: f32) -> f32 {
     let angle = if steep { FRAC_PI_2 - angle } else { angle };
     let angle = if x < 0.0 { PI - angle } else { angle };
     angle.max(0.0)
+}
+
+/// [`atan2_upper_half_plane_fast`] of `(y, xᵢ)` in each lane of `x` (one `y = √y2 ≥ 0`
+/// for all): the lens's three arc tangents at once. The same operations per lane, with two
+/// changes that keep the bits: one division per lane, of the operands that the scalar
+/// form's select would pick after dividing both ways (`|x|/y²` where steep, else `1/|x|`),
+/// and the clamps as compare-and-select: `max(0)` of the ratio as `r > 0 ? r : 0` (NaN,
+/// from `0 · ∞` at `y = x = 0`, becomes 0), `min(1)` as `r < 1 ? r : 1`. The scalar form's
+/// final `max(0)` is then a no-op (the ratio is in `[0, 1]`, so the arc tangent is at
+/// least 0, `π/2 −` it at least `π/4`) and is left out. The one difference: a ratio of
+/// `−0` (only from `y = −0`, which `√` of a clamped `Y²` does not give) comes out `+0`.
+/// Tested lane for lane against the scalar form, bit for bit
+/// (`the_packed_atan2_gives_the_scalar_bits`).
+#[inline(always)]
+fn atan2_upper_half_plane_fast4(y: f32, y2: f32, x: Vec4) -> Vec4 {
+    let ax = x.abs();
+    let y2 = Vec4::splat(y2);
+    let steep = y2.cmpgt(x * x);
+    let scale = Vec4::select(steep, ax, Vec4::ONE) / Vec4::select(steep, y2, ax);
+    let ratio = Vec4::splat(y) * scale;
+    let ratio = Vec4::select(ratio.cmpgt(Vec4::ZERO), ratio, Vec4::ZERO);
+    let ratio = Vec4::select(ratio.cmplt(Vec4::ONE), ratio, Vec4::ONE);
+    let angle = crate::math::atan_unit_estrin4(ratio);
+    let angle = Vec4::select(steep, Vec4::splat(FRAC_PI_2) - angle, angle);
+    Vec4::select(x.cmplt(Vec4::ZERO), Vec4::splat(PI) - angle, angle)
 }
 
 /// The Oat–Sander approximation of [`cap_intersection_solid_angle`] (Eq. 37–38):
