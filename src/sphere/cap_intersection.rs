@@ -69,7 +69,20 @@ pub(crate) fn angle_of(t: f32) -> f32 {
 /// `1 − a·b` of two unit axes, as `|a − b|²/2`, in `[0, 2]`.
 #[inline(always)]
 pub(crate) fn one_minus_dot(a: crate::Vec3, b: crate::Vec3) -> f32 {
-    (0.5 * (a - b).length_squared()).min(2.0)
+    // `x.min(2.0)` as a compare and select: the same value for every `x` (NaN gives 2,
+    // as `f32::min` does, and 2 has no signed twin), one `minss` instead of `f32::min`'s
+    // NaN handling.
+    let x = 0.5 * (a - b).length_squared();
+    if x < 2.0 { x } else { 2.0 }
+}
+
+/// `a.min(b)` as a compare and select, for operands that are not NaN and not both zero:
+/// then the same bits as `f32::min` (which otherwise costs a NaN test and a blend on
+/// x86), since the smaller of two distinct ordered values, or either of two equal
+/// nonzero ones, is one value.
+#[inline(always)]
+pub(crate) fn min_ordered(a: f32, b: f32) -> f32 {
+    if a < b { a } else { b }
 }
 
 /// The exact solid angle of `a ∩ b` (see the module documentation). The caps must be
@@ -278,7 +291,8 @@ fn lens_area(t1: f32, t2: f32, td: f32, n1: f32, y2: f32) -> [f32; 2] {
 /// few 1e-7), so its error is below `ε_X = 1e-6` times their magnitudes' sum; the case is
 /// taken only when `(|X| ± ε_X)²` is on the same side of `4u²v²` with a relative margin of
 /// `1e-5` (the rounding of the squares is a few 1e-7). The lens's `Y²` is the Gram form or
-/// the spherical Heron form as in [`at_most_hemispheres`].
+/// the spherical Heron form as in [`at_most_hemispheres`]. (The shading's `t₁` can also be
+/// 0, where its `sin²θ` underflows; `t₂ > 0`, so [`min_ordered`] is `f32::min` here.)
 #[inline(always)]
 pub(crate) fn at_most_hemispheres_fast(t1: f32, t2: f32, td: f32) -> Option<f32> {
     let (h1, h2) = (2.0 - t1, 2.0 - t2);
@@ -293,7 +307,11 @@ pub(crate) fn at_most_hemispheres_fast(t1: f32, t2: f32, td: f32) -> Option<f32>
     let near = near.max(0.0);
     if near * near > four_uv2 * (1.0 + 1e-5) {
         // Disjoint (X > 0) or nested (X < 0).
-        return Some(if x > 0.0 { 0.0 } else { 2.0 * PI * t1.min(t2) });
+        return Some(if x > 0.0 {
+            0.0
+        } else {
+            2.0 * PI * min_ordered(t1, t2)
+        });
     }
     if !(far * far <= four_uv2 * (1.0 - 1e-5)) {
         return None;
@@ -313,7 +331,7 @@ pub(crate) fn at_most_hemispheres_fast(t1: f32, t2: f32, td: f32) -> Option<f32>
     let angles = atan2_upper_half_plane_fast4(y, y2, Vec4::new(n1, n2, 4.0 - td - t1 - t2, 1.0));
     let (phi1, phi2, excess) = (angles.x, angles.y, 2.0 * angles.z);
     let area = 2.0 * (phi1 * t1 + phi2 * t2 - excess);
-    Some(area.max(0.0).min(2.0 * PI * t1.min(t2)))
+    Some(area.max(0.0).min(2.0 * PI * min_ordered(t1, t2)))
 }
 
 /// [`atan2_upper_half_plane`] of `(y, x)` with `y = √y2 ≥ 0` by
