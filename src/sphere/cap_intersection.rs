@@ -56,7 +56,7 @@
 //! smooth, cheap estimate is enough.
 
 use super::cap::Cap;
-use crate::math::atan2_upper_half_plane;
+use crate::math::{atan2_upper_half_plane, sqrt4};
 use core::f32::consts::{FRAC_PI_2, PI};
 use glam::Vec4;
 
@@ -181,9 +181,29 @@ fn heron_y2([t1, t2, td]: [f32; 3], [u, v, w]: [f32; 3]) -> f32 {
     // products of such terms: its rounding is a few ulps of 1 where a difference of
     // angles (of order 1, rounded by `asin`) had the same, with no `asin` or `sin`.
     let (h1, h2) = (2.0 - t1, 2.0 - t2);
-    let (sin_d, cos_d) = (0.5 * w, libm::sqrtf((1.0 - 0.5 * td).max(0.0)));
-    let (sin_sum, sin_diff) = (0.5 * (u + v), 0.5 * (v - u));
+    let cos_d = libm::sqrtf((1.0 - 0.5 * td).max(0.0));
     let (p, q) = (libm::sqrtf(h1 * h2), libm::sqrtf(t1 * t2));
+    heron_y2_from_roots([u, v, w], [cos_d, p, q])
+}
+
+/// [`heron_y2`] from `t₁, t₂, t_d` and the squares `u², v², w²` of
+/// [`at_most_hemispheres_fast`], its six square roots as two packed ones (`sqrt4`: one
+/// `sqrtps` each on x86-64, where six `sqrtss` queued on the one square-root unit;
+/// correctly rounded either way, so the same bits as [`heron_y2`]).
+#[inline(always)]
+fn heron_y2_fast([t1, t2, td]: [f32; 3], [uu, vv, ww]: [f32; 3]) -> f32 {
+    let (h1, h2) = (2.0 - t1, 2.0 - t2);
+    let [u, v, w, cos_d] = sqrt4(Vec4::new(uu, vv, ww, (1.0 - 0.5 * td).max(0.0))).to_array();
+    let [p, q, _, _] = sqrt4(Vec4::new(h1 * h2, t1 * t2, 0.0, 0.0)).to_array();
+    heron_y2_from_roots([u, v, w], [cos_d, p, q])
+}
+
+/// The spherical Heron form of [`heron_y2`] from the roots `u, v, w` and `cos(d/2) =
+/// √(1 − t_d/2)`, `p = √(h₁h₂)`, `q = √(t₁t₂)`.
+#[inline(always)]
+fn heron_y2_from_roots([u, v, w]: [f32; 3], [cos_d, p, q]: [f32; 3]) -> f32 {
+    let sin_d = 0.5 * w;
+    let (sin_sum, sin_diff) = (0.5 * (u + v), 0.5 * (v - u));
     let (cos_sum, cos_diff) = (0.5 * (p - q), 0.5 * (p + q));
     let sin_s = sin_sum * cos_d + cos_sum * sin_d;
     let f1 = sin_d * cos_diff + cos_d * sin_diff;
@@ -321,8 +341,7 @@ pub(crate) fn at_most_hemispheres_fast(t1: f32, t2: f32, td: f32) -> Option<f32>
     let y2 = if plain >= 0.5 * gram {
         plain
     } else {
-        let (u, v, w) = (libm::sqrtf(uu), libm::sqrtf(vv), libm::sqrtf(ww));
-        heron_y2([t1, t2, td], [u, v, w])
+        heron_y2_fast([t1, t2, td], [uu, vv, ww])
     };
     let n2 = t2 + td - t1 - t2 * td;
     let y2 = y2.max(0.0);
