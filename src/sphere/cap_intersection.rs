@@ -193,7 +193,8 @@ fn heron_y2([t1, t2, td]: [f32; 3], [u, v, w]: [f32; 3]) -> f32 {
 #[inline(always)]
 fn heron_y2_fast([t1, t2, td]: [f32; 3], [uu, vv, ww]: [f32; 3]) -> f32 {
     let (h1, h2) = (2.0 - t1, 2.0 - t2);
-    let [u, v, w, cos_d] = sqrt4(Vec4::new(uu, vv, ww, (1.0 - 0.5 * td).max(0.0))).to_array();
+    // `1 − t_d/2 ≥ 0` without `heron_y2`'s clamp: the shading's `t_d` is in `[0, 2]`.
+    let [u, v, w, cos_d] = sqrt4(Vec4::new(uu, vv, ww, 1.0 - 0.5 * td)).to_array();
     let [p, q, _, _] = sqrt4(Vec4::new(h1 * h2, t1 * t2, 0.0, 0.0)).to_array();
     heron_y2_from_roots([u, v, w], [cos_d, p, q])
 }
@@ -283,6 +284,20 @@ fn lens_gram(t1: f32, t2: f32, td: f32) -> (f32, f32, f32) {
     (gram, gram - n1 * n1, n1)
 }
 
+/// [`lens_gram`] without its clamps of `sin²θ₁ = t₁(2 − t₁)` and `sin²d = t_d(2 − t_d)` at
+/// 0, for [`at_most_hemispheres_fast`], whose `t₁ ∈ [0, 1]` and `t_d ∈ [0, 2]` (not NaN)
+/// make both products at least 0 already: the same values (up to the sign of a zero
+/// product, which does not reach the area), without the NaN tests of `f32::max` (five
+/// instructions).
+#[inline(always)]
+fn lens_gram_fast(t1: f32, t2: f32, td: f32) -> (f32, f32, f32) {
+    let sin2_1 = t1 * (2.0 - t1);
+    let sin2_d = td * (2.0 - td);
+    let n1 = t1 + td - t2 - t1 * td;
+    let gram = sin2_1 * sin2_d;
+    (gram, gram - n1 * n1, n1)
+}
+
 /// The lens area `2φ₁ t₁ + 2φ₂ t₂ − 2E` (module documentation) from `N₁` and `Y²`, and
 /// `φ₁`.
 #[inline(always)]
@@ -337,7 +352,7 @@ pub(crate) fn at_most_hemispheres_fast(t1: f32, t2: f32, td: f32) -> Option<f32>
         return None;
     }
     // Surely the lens.
-    let (gram, plain, n1) = lens_gram(t1, t2, td);
+    let (gram, plain, n1) = lens_gram_fast(t1, t2, td);
     let y2 = if plain >= 0.5 * gram {
         plain
     } else {
