@@ -13,7 +13,9 @@ mod sin_cos;
 mod unit;
 
 pub(crate) use atan::atan_fast_nonneg4;
-pub use atan::{atan_fast_nonneg, atan_unit, atan_unit_estrin, atan2_upper_half_plane};
+pub use atan::{
+    atan_fast_nonneg, atan_unit, atan_unit_estrin, atan_unit_estrin4, atan2_upper_half_plane,
+};
 pub use bits::{copy_sign, is_sign_negative, sign_mask, with_sign_of_product};
 pub use frame::{Frame, orthonormal_basis};
 pub(crate) use lanes::{

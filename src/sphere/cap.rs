@@ -285,7 +285,7 @@ impl Cap {
     /// Whether the cap is in the form that `Cap::with_sides` writes (with any axis of
     /// unit length to `UNIT_TOLERANCE`): then [`Cap::sanitized`] has nothing to do.
     #[inline(always)]
-    fn is_valid(&self) -> bool {
+    pub(crate) fn is_valid(&self) -> bool {
         let (t, h) = (self.one_minus_cos, self.one_plus_cos);
         // NaN fails every comparison; `2 − t` and `2 − h` are exact (Sterbenz).
         let sides = if t <= 1.0 {

@@ -56,8 +56,9 @@
 //! smooth, cheap estimate is enough.
 
 use super::cap::Cap;
-use crate::math::atan2_upper_half_plane;
+use crate::math::{atan2_upper_half_plane, sqrt4};
 use core::f32::consts::{FRAC_PI_2, PI};
+use glam::Vec4;
 
 /// The half-angle `θ = 2 asin(√(t/2))` of `t = 1 − cos θ`.
 #[inline(always)]
@@ -68,7 +69,20 @@ pub(crate) fn angle_of(t: f32) -> f32 {
 /// `1 − a·b` of two unit axes, as `|a − b|²/2`, in `[0, 2]`.
 #[inline(always)]
 pub(crate) fn one_minus_dot(a: crate::Vec3, b: crate::Vec3) -> f32 {
-    (0.5 * (a - b).length_squared()).min(2.0)
+    // `x.min(2.0)` as a compare and select: the same value for every `x` (NaN gives 2,
+    // as `f32::min` does, and 2 has no signed twin), one `minss` instead of `f32::min`'s
+    // NaN handling.
+    let x = 0.5 * (a - b).length_squared();
+    if x < 2.0 { x } else { 2.0 }
+}
+
+/// `a.min(b)` as a compare and select, for operands that are not NaN and not both zero:
+/// then the same bits as `f32::min` (which otherwise costs a NaN test and a blend on
+/// x86), since the smaller of two distinct ordered values, or either of two equal
+/// nonzero ones, is one value.
+#[inline(always)]
+pub(crate) fn min_ordered(a: f32, b: f32) -> f32 {
+    if a < b { a } else { b }
 }
 
 /// The exact solid angle of `a ∩ b` (see the module documentation). The caps must be
@@ -167,9 +181,30 @@ fn heron_y2([t1, t2, td]: [f32; 3], [u, v, w]: [f32; 3]) -> f32 {
     // products of such terms: its rounding is a few ulps of 1 where a difference of
     // angles (of order 1, rounded by `asin`) had the same, with no `asin` or `sin`.
     let (h1, h2) = (2.0 - t1, 2.0 - t2);
-    let (sin_d, cos_d) = (0.5 * w, libm::sqrtf((1.0 - 0.5 * td).max(0.0)));
-    let (sin_sum, sin_diff) = (0.5 * (u + v), 0.5 * (v - u));
+    let cos_d = libm::sqrtf((1.0 - 0.5 * td).max(0.0));
     let (p, q) = (libm::sqrtf(h1 * h2), libm::sqrtf(t1 * t2));
+    heron_y2_from_roots([u, v, w], [cos_d, p, q])
+}
+
+/// [`heron_y2`] from `t₁, t₂, t_d` and the squares `u², v², w²` of
+/// [`at_most_hemispheres_fast`], its six square roots as two packed ones (`sqrt4`: one
+/// `sqrtps` each on x86-64, where six `sqrtss` queued on the one square-root unit;
+/// correctly rounded either way, so the same bits as [`heron_y2`]).
+#[inline(always)]
+fn heron_y2_fast([t1, t2, td]: [f32; 3], [uu, vv, ww]: [f32; 3]) -> f32 {
+    let (h1, h2) = (2.0 - t1, 2.0 - t2);
+    // `1 − t_d/2 ≥ 0` without `heron_y2`'s clamp: the shading's `t_d` is in `[0, 2]`.
+    let [u, v, w, cos_d] = sqrt4(Vec4::new(uu, vv, ww, 1.0 - 0.5 * td)).to_array();
+    let [p, q, _, _] = sqrt4(Vec4::new(h1 * h2, t1 * t2, 0.0, 0.0)).to_array();
+    heron_y2_from_roots([u, v, w], [cos_d, p, q])
+}
+
+/// The spherical Heron form of [`heron_y2`] from the roots `u, v, w` and `cos(d/2) =
+/// √(1 − t_d/2)`, `p = √(h₁h₂)`, `q = √(t₁t₂)`.
+#[inline(always)]
+fn heron_y2_from_roots([u, v, w]: [f32; 3], [cos_d, p, q]: [f32; 3]) -> f32 {
+    let sin_d = 0.5 * w;
+    let (sin_sum, sin_diff) = (0.5 * (u + v), 0.5 * (v - u));
     let (cos_sum, cos_diff) = (0.5 * (p - q), 0.5 * (p + q));
     let sin_s = sin_sum * cos_d + cos_sum * sin_d;
     let f1 = sin_d * cos_diff + cos_d * sin_diff;
@@ -249,6 +284,20 @@ fn lens_gram(t1: f32, t2: f32, td: f32) -> (f32, f32, f32) {
     (gram, gram - n1 * n1, n1)
 }
 
+/// [`lens_gram`] without its clamps of `sin²θ₁ = t₁(2 − t₁)` and `sin²d = t_d(2 − t_d)` at
+/// 0, for [`at_most_hemispheres_fast`], whose `t₁ ∈ [0, 1]` and `t_d ∈ [0, 2]` (not NaN)
+/// make both products at least 0 already: the same values (up to the sign of a zero
+/// product, which does not reach the area), without the NaN tests of `f32::max` (five
+/// instructions).
+#[inline(always)]
+fn lens_gram_fast(t1: f32, t2: f32, td: f32) -> (f32, f32, f32) {
+    let sin2_1 = t1 * (2.0 - t1);
+    let sin2_d = td * (2.0 - td);
+    let n1 = t1 + td - t2 - t1 * td;
+    let gram = sin2_1 * sin2_d;
+    (gram, gram - n1 * n1, n1)
+}
+
 /// The lens area `2φ₁ t₁ + 2φ₂ t₂ − 2E` (module documentation) from `N₁` and `Y²`, and
 /// `φ₁`.
 #[inline(always)]
@@ -277,7 +326,8 @@ fn lens_area(t1: f32, t2: f32, td: f32, n1: f32, y2: f32) -> [f32; 2] {
 /// few 1e-7), so its error is below `ε_X = 1e-6` times their magnitudes' sum; the case is
 /// taken only when `(|X| ± ε_X)²` is on the same side of `4u²v²` with a relative margin of
 /// `1e-5` (the rounding of the squares is a few 1e-7). The lens's `Y²` is the Gram form or
-/// the spherical Heron form as in [`at_most_hemispheres`].
+/// the spherical Heron form as in [`at_most_hemispheres`]. (The shading's `t₁` can also be
+/// 0, where its `sin²θ` underflows; `t₂ > 0`, so [`min_ordered`] is `f32::min` here.)
 #[inline(always)]
 pub(crate) fn at_most_hemispheres_fast(t1: f32, t2: f32, td: f32) -> Option<f32> {
     let (h1, h2) = (2.0 - t1, 2.0 - t2);
@@ -292,27 +342,30 @@ pub(crate) fn at_most_hemispheres_fast(t1: f32, t2: f32, td: f32) -> Option<f32>
     let near = near.max(0.0);
     if near * near > four_uv2 * (1.0 + 1e-5) {
         // Disjoint (X > 0) or nested (X < 0).
-        return Some(if x > 0.0 { 0.0 } else { 2.0 * PI * t1.min(t2) });
+        return Some(if x > 0.0 {
+            0.0
+        } else {
+            2.0 * PI * min_ordered(t1, t2)
+        });
     }
     if !(far * far <= four_uv2 * (1.0 - 1e-5)) {
         return None;
     }
     // Surely the lens.
-    let (gram, plain, n1) = lens_gram(t1, t2, td);
+    let (gram, plain, n1) = lens_gram_fast(t1, t2, td);
     let y2 = if plain >= 0.5 * gram {
         plain
     } else {
-        let (u, v, w) = (libm::sqrtf(uu), libm::sqrtf(vv), libm::sqrtf(ww));
-        heron_y2([t1, t2, td], [u, v, w])
+        heron_y2_fast([t1, t2, td], [uu, vv, ww])
     };
     let n2 = t2 + td - t1 - t2 * td;
     let y2 = y2.max(0.0);
     let y = libm::sqrtf(y2);
-    let phi1 = atan2_upper_half_plane_fast(y, y2, n1);
-    let phi2 = atan2_upper_half_plane_fast(y, y2, n2);
-    let excess = 2.0 * atan2_upper_half_plane_fast(y, y2, 4.0 - td - t1 - t2);
+    // The three arc tangents in one packed evaluation (the fourth lane is idle).
+    let angles = atan2_upper_half_plane_fast4(y, y2, Vec4::new(n1, n2, 4.0 - td - t1 - t2, 1.0));
+    let (phi1, phi2, excess) = (angles.x, angles.y, 2.0 * angles.z);
     let area = 2.0 * (phi1 * t1 + phi2 * t2 - excess);
-    Some(area.max(0.0).min(2.0 * PI * t1.min(t2)))
+    Some(area.max(0.0).min(2.0 * PI * min_ordered(t1, t2)))
 }
 
 /// [`atan2_upper_half_plane`] of `(y, x)` with `y = √y2 ≥ 0` by
@@ -322,6 +375,10 @@ pub(crate) fn at_most_hemispheres_fast(t1: f32, t2: f32, td: f32) -> Option<f32>
 /// the square root `y` (the case is decided by `y² > x²`): two roundings instead of one,
 /// so about one ulp more than the ratio of [`atan2_upper_half_plane`]. Clamped to `[0, 1]`
 /// (where `x²` underflows the case can be wrong) and 0 for `y = x = 0` and NaN.
+///
+/// The scalar form, the reference of [`atan2_upper_half_plane_fast4`] (which the shading
+/// uses) in the tests.
+#[cfg(test)]
 #[inline(always)]
 fn atan2_upper_half_plane_fast(y: f32, y2: f32, x: f32) -> f32 {
     let ax = x.abs();
@@ -333,6 +390,31 @@ fn atan2_upper_half_plane_fast(y: f32, y2: f32, x: f32) -> f32 {
     let angle = if steep { FRAC_PI_2 - angle } else { angle };
     let angle = if x < 0.0 { PI - angle } else { angle };
     angle.max(0.0)
+}
+
+/// [`atan2_upper_half_plane_fast`] of `(y, xᵢ)` in each lane of `x` (one `y = √y2 ≥ 0`
+/// for all): the lens's three arc tangents at once. The same operations per lane, with two
+/// changes that keep the bits: one division per lane, of the operands that the scalar
+/// form's select would pick after dividing both ways (`|x|/y²` where steep, else `1/|x|`),
+/// and the clamps as compare-and-select: `max(0)` of the ratio as `r > 0 ? r : 0` (NaN,
+/// from `0 · ∞` at `y = x = 0`, becomes 0), `min(1)` as `r < 1 ? r : 1`. The scalar form's
+/// final `max(0)` is then a no-op (the ratio is in `[0, 1]`, so the arc tangent is at
+/// least 0, `π/2 −` it at least `π/4`) and is left out. The one difference: a ratio of
+/// `−0` (only from `y = −0`, which `√` of a clamped `Y²` does not give) comes out `+0`.
+/// Tested lane for lane against the scalar form, bit for bit
+/// (`the_packed_atan2_gives_the_scalar_bits`).
+#[inline(always)]
+fn atan2_upper_half_plane_fast4(y: f32, y2: f32, x: Vec4) -> Vec4 {
+    let ax = x.abs();
+    let y2 = Vec4::splat(y2);
+    let steep = y2.cmpgt(x * x);
+    let scale = Vec4::select(steep, ax, Vec4::ONE) / Vec4::select(steep, y2, ax);
+    let ratio = Vec4::splat(y) * scale;
+    let ratio = Vec4::select(ratio.cmpgt(Vec4::ZERO), ratio, Vec4::ZERO);
+    let ratio = Vec4::select(ratio.cmplt(Vec4::ONE), ratio, Vec4::ONE);
+    let angle = crate::math::atan_unit_estrin4(ratio);
+    let angle = Vec4::select(steep, Vec4::splat(FRAC_PI_2) - angle, angle);
+    Vec4::select(x.cmplt(Vec4::ZERO), Vec4::splat(PI) - angle, angle)
 }
 
 /// The Oat–Sander approximation of [`cap_intersection_solid_angle`] (Eq. 37–38):

@@ -407,3 +407,85 @@ fn the_fast_upper_half_plane_atan2_matches_f64() {
     assert_eq!(atan2_upper_half_plane_fast(2.0, 4.0, 0.0), FRAC_PI_2);
     assert_eq!(atan2_upper_half_plane_fast(0.0, 0.0, -2.0), PI);
 }
+
+/// The shading's packed arc tangents (`atan2_upper_half_plane_fast4`, one division per
+/// lane and compare-and-select clamps) against the scalar `atan2_upper_half_plane_fast`,
+/// lane for lane and bit for bit: random `Y² ≥ 0` and `x` of both signs over many decades
+/// (the lens's `N₁`, `N₂` and `4 − t_d − t₁ − t₂`), and the edges `Y² = 0`, `x = ±0`,
+/// subnormals, infinities and a NaN `x` (all 0 or the scalar's value).
+#[test]
+fn the_packed_atan2_gives_the_scalar_bits() {
+    let mut rng = Rng::new(1804);
+    let edges = [
+        0.0f32,
+        -0.0,
+        f32::from_bits(1),
+        f32::MIN_POSITIVE,
+        1e-20,
+        1.0,
+        4.0,
+        1e20,
+        f32::INFINITY,
+    ];
+    let check = |y2: f32, xs: [f32; 4]| {
+        let y = libm::sqrtf(y2);
+        let packed = atan2_upper_half_plane_fast4(y, y2, Vec4::from_array(xs));
+        for (lane, x) in xs.into_iter().enumerate() {
+            let scalar = atan2_upper_half_plane_fast(y, y2, x);
+            assert_eq!(
+                packed[lane].to_bits(),
+                scalar.to_bits(),
+                "y2 {y2:e} x {x:e}: {} vs {scalar}",
+                packed[lane]
+            );
+        }
+    };
+    for _ in 0..400_000 {
+        let y2 = rng.log_uniform(-12.0, 1.0) as f32;
+        let mut xs = [0.0f32; 4];
+        for x in &mut xs {
+            let magnitude = rng.log_uniform(-12.0, 1.0) as f32;
+            *x = if rng.uniform() < 0.5 {
+                -magnitude
+            } else {
+                magnitude
+            };
+        }
+        check(y2, xs);
+        // Nearly equal `Y` and `|x|`: the steep test's boundary.
+        let x = libm::sqrtf(y2) * (1.0 + (rng.uniform() as f32 - 0.5) * 1e-6);
+        check(y2, [x, -x, x.next_up(), x.next_down()]);
+    }
+    for y2 in edges {
+        for x in edges {
+            check(y2, [x, -x, f32::NAN, 0.5 * x]);
+        }
+    }
+}
+
+/// The shading's Heron form with its six square roots packed (`heron_y2_fast`) against
+/// the careful `heron_y2`, bit for bit, over random caps up to hemispheres (1e-7 to 1,
+/// and 0) at random axis angles, in and out of the lens case (the clamps see negative
+/// factors too).
+#[test]
+fn the_packed_heron_form_gives_the_scalar_bits() {
+    let mut rng = Rng::new(1806);
+    for i in 0..400_000 {
+        let mut t = || {
+            if i % 97 == 0 {
+                0.0
+            } else {
+                rng.log_uniform(-7.0, 0.0) as f32
+            }
+        };
+        let (t1, t2) = (t(), t());
+        let td = (2.0 * rng.uniform()) as f32;
+        let (uu, vv, ww) = (t1 * (2.0 - t2), t2 * (2.0 - t1), 2.0 * td);
+        let roots = [libm::sqrtf(uu), libm::sqrtf(vv), libm::sqrtf(ww)];
+        assert_eq!(
+            heron_y2_fast([t1, t2, td], [uu, vv, ww]).to_bits(),
+            heron_y2([t1, t2, td], roots).to_bits(),
+            "{t1} {t2} {td}"
+        );
+    }
+}

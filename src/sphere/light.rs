@@ -138,7 +138,11 @@ impl SphereLightShading {
     pub fn eval(&self, light: &Cap) -> Vec3 {
         // The image and its intersection in one pass where well conditioned, the image
         // as a cap and the exact two-cap solid angle elsewhere (issue 18, 1).
-        let area = pivoted_intersection(&light.sanitized(), &self.fit.pivot, &self.horizon_image);
+        let area = if light.is_valid() {
+            pivoted_intersection(light, &self.fit.pivot, &self.horizon_image)
+        } else {
+            pivoted_intersection_of_invalid(light, &self.fit.pivot, &self.horizon_image)
+        };
         self.specular_albedo * (area * (0.25 / PI))
     }
 
@@ -149,7 +153,11 @@ impl SphereLightShading {
     #[inline(always)]
     pub fn eval_occluded(&self, light: &Cap, visibility: &Cap) -> Vec3 {
         let (visible, _) = pivot_cap_fast_by_ref(&visibility.sanitized(), &self.fit.pivot);
-        let area = pivoted_intersection(&light.sanitized(), &self.fit.pivot, &visible);
+        let area = if light.is_valid() {
+            pivoted_intersection(light, &self.fit.pivot, &visible)
+        } else {
+            pivoted_intersection_of_invalid(light, &self.fit.pivot, &visible)
+        };
         self.specular_albedo * (area * (0.25 / PI))
     }
 
@@ -190,6 +198,17 @@ fn pivoted_intersection(light: &Cap, pivot: &Vec3, clip: &Cap) -> f32 {
         Some(area) => area,
         None => pivoted_intersection_careful(light, pivot, clip),
     }
+}
+
+/// [`pivoted_intersection`] of a light cap that is not valid as it is (built by hand), made
+/// valid first: out of line and cold, so that the common path reads a valid light where
+/// it is (`light.sanitized()` in line returned a copy, which the compiler stored to the
+/// stack and loaded back: six instructions a light). `Cap::sanitized` returns a valid cap
+/// unchanged, so both paths give what `pivoted_intersection(&light.sanitized(), ..)` gave.
+#[inline(never)]
+#[cold]
+fn pivoted_intersection_of_invalid(light: &Cap, pivot: &Vec3, clip: &Cap) -> f32 {
+    pivoted_intersection(&light.sanitized(), pivot, clip)
 }
 
 /// The careful path of [`pivoted_intersection`] (out of line: it is rare).

@@ -712,3 +712,72 @@ fn the_sampler_s_pivoted_images_are_valid_caps() {
     }
     assert!(images == 40_000 && clipped > 5_000, "{images} {clipped}");
 }
+
+/// `eval` and `eval_occluded` read a valid light where it is and send a light that is not
+/// valid as it stands to the cold path, which sanitizes it first: pinned here which caps
+/// take which path (every constructor's cap is valid; a hand-made cap with a scaled axis,
+/// a stale `one_plus_cos` or `sin2`, a side out of range or a NaN is not), and that both
+/// give `eval(&light.sanitized())` bit for bit, over random views, roughnesses and lights.
+#[test]
+fn shading_of_a_hand_made_light_is_that_of_its_sanitized_cap() {
+    let mut rng = Rng::new(1805);
+    let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+    let bent = Cap::from_axis_one_minus_cos(Vec3::new(0.3, -0.2, 0.9), 0.6);
+    for _ in 0..2_000 {
+        let wo = Vec3::new(
+            rng.uniform_f32() - 0.5,
+            rng.uniform_f32() - 0.5,
+            0.05 + rng.uniform_f32(),
+        );
+        let shading = SphereLightShading::new(wo, rng.uniform_f32(), Vec3::splat(0.04)).unwrap();
+        let direction = Vec3::new(
+            rng.uniform_f32() - 0.5,
+            rng.uniform_f32() - 0.5,
+            rng.uniform_f32() - 0.3,
+        );
+        let distance = 1.0 + 4.0 * rng.uniform_f32();
+        let light = Cap::from_sphere(direction * distance, rng.uniform_f32() * distance);
+        assert!(light.is_valid(), "{light:?}");
+        let hand_made = [
+            Cap {
+                axis: light.axis * 2.0,
+                ..light
+            },
+            Cap {
+                one_plus_cos: light.one_plus_cos * 0.5,
+                ..light
+            },
+            Cap {
+                sin2: light.sin2 * 0.5 + 0.1,
+                ..light
+            },
+            Cap {
+                one_minus_cos: 2.5,
+                ..light
+            },
+            Cap {
+                one_minus_cos: f32::NAN,
+                ..light
+            },
+            Cap {
+                axis: Vec3::new(f32::NAN, 0.0, 1.0),
+                ..light
+            },
+        ];
+        for cap in core::iter::once(light).chain(hand_made) {
+            let clean = cap.sanitized();
+            assert_eq!(cap.is_valid(), cap == light, "{cap:?}");
+            assert_eq!(
+                bits(shading.eval(&cap)),
+                bits(shading.eval(&clean)),
+                "{cap:?}"
+            );
+            assert_eq!(
+                bits(shading.eval_occluded(&cap, &bent)),
+                bits(shading.eval_occluded(&clean, &bent)),
+                "{cap:?}"
+            );
+            assert!(shading.eval(&cap).is_finite());
+        }
+    }
+}

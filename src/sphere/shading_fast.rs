@@ -40,7 +40,7 @@
 //! below), `|n| < 1/16`, and the two caps' case too close to a boundary.
 
 use super::cap::Cap;
-use super::cap_intersection::{at_most_hemispheres_fast, one_minus_dot};
+use super::cap_intersection::{at_most_hemispheres_fast, min_ordered, one_minus_dot};
 use core::f32::consts::PI;
 use glam::Vec3;
 
@@ -102,7 +102,9 @@ pub(crate) fn pivoted_intersection_fast(light: &Cap, pivot: &Vec3, clip: &Cap) -
     let reciprocal = 1.0 / (n * sum);
     // The image reduced to at most a hemisphere (module documentation): `1 − |cos ψ'|`
     // with `|n|² − c'² = k² sin²θ`; `≤ 1` in exact arithmetic.
-    let side = ((k * k) * light.sin2 * reciprocal).min(1.0);
+    // (`min(1)` as a compare and select: the same value for every input, NaN included.)
+    let side = (k * k) * light.sin2 * reciprocal;
+    let side = if side < 1.0 { side } else { 1.0 };
     let wide1 = offset >= 0.0;
     // Its axis `∓n/|n|`: `−n/|n|` (the image) for `c' < 0`, `+n/|n|` (the complement of
     // the image) otherwise.
@@ -134,7 +136,8 @@ pub(crate) fn pivoted_intersection_fast(light: &Cap, pivot: &Vec3, clip: &Cap) -
         (true, true) => 4.0 * PI - omega(h1) - omega(h2) + inner,
     };
     let low = (omega(t1) + omega(t2) - 4.0 * PI).max(0.0);
-    Some(result.max(low).min(omega(t1).min(omega(t2))))
+    // `ω(t₂) > 0` and `ω(t₁) ≥ 0` are not NaN: `min_ordered` is `f32::min` here.
+    Some(result.max(low).min(min_ordered(omega(t1), omega(t2))))
 }
 
 #[cfg(test)]
