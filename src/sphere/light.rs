@@ -273,9 +273,11 @@ impl SphereLightSampler {
     /// gives `None`.
     pub fn prepare(&mut self, center: Vec3, radius: f32, wo: Vec3, roughness: f32) -> bool {
         let cap = Cap::from_sphere(center, radius);
+        // The fitted pivot is valid as it stands (`fitted_pivots_are_valid_as_they_stand`):
+        // not made valid again.
         let prepared = cap.one_minus_cos > 0.0
             && GgxPivot::from_view(wo, roughness)
-                .is_some_and(|fit| self.prepare_sanitized(&cap, fit.pivot));
+                .is_some_and(|fit| self.prepare_sanitized::<true>(&cap, fit.pivot));
         if !prepared {
             *self = Self::EMPTY;
         }
@@ -302,15 +304,17 @@ impl SphereLightSampler {
     /// The body of [`SphereLightSampler::prepare_with_pivot`], which leaves `self` partly
     /// written when it returns `false`.
     fn prepare_unchecked(&mut self, cap: &Cap, pivot: Vec3) -> bool {
-        self.prepare_sanitized(&cap.sanitized(), pivot)
+        self.prepare_sanitized::<false>(&cap.sanitized(), pivot)
     }
 
     /// [`prepare_unchecked`](Self::prepare_unchecked) of a cap that `sanitized` returns as
     /// it is: the caps of spheres (`Cap::from_sphere`; tested by
     /// `cap_tests::sanitized_keeps_valid_caps_and_is_idempotent`), which `prepare` does not
-    /// sanitize again (the same bits).
+    /// sanitize again (the same bits). `VALID_PIVOT`: the pivot is valid as it stands
+    /// (`valid_pivot` returns it bit for bit: `prepare`'s fitted pivots), so that it is
+    /// not made valid again (a length, a square root and six finiteness tests).
     #[inline(always)]
-    fn prepare_sanitized(&mut self, cap: &Cap, pivot: Vec3) -> bool {
+    fn prepare_sanitized<const VALID_PIVOT: bool>(&mut self, cap: &Cap, pivot: Vec3) -> bool {
         let cap = *cap;
         if !(cap.one_minus_cos > 0.0) {
             return false;
@@ -320,17 +324,22 @@ impl SphereLightSampler {
         let above =
             cap.one_minus_cos <= 1.0 && cap.axis.z >= 0.0 && cap.axis.z * cap.axis.z >= cap.sin2;
         if !above {
-            return self.prepare_clipped_to_the_horizon(&cap, pivot);
+            return self.prepare_clipped_to_the_horizon::<VALID_PIVOT>(&cap, pivot);
         }
+        let sptd = if VALID_PIVOT {
+            Sptd::uniform_of_valid(pivot)
+        } else {
+            Sptd::uniform(pivot)
+        };
         // (`cap` is sanitized: not again.)
-        let uses_sptd = self.sptd.prepare_sanitized(&Sptd::uniform(pivot), &cap)
+        let uses_sptd = self.sptd.prepare_sanitized(&sptd, &cap)
             && self.sptd.image.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE;
         // The pivot at the origin gives J = 1: the uniform distribution in the cap,
         // sampled directly below.
         if !uses_sptd
             && !self
                 .sptd
-                .prepare_sanitized(&Sptd::uniform(Vec3::ZERO), &cap)
+                .prepare_sanitized(&Sptd::uniform_of_valid(Vec3::ZERO), &cap)
         {
             return false;
         }
@@ -344,9 +353,14 @@ impl SphereLightSampler {
 
     /// The sampler of a cap that crosses the horizon: the SPTD over `C ∩ H` through the
     /// images' intersection, or uniform in `C ∩ H` where that image is below 1e-3 sr.
-    fn prepare_clipped_to_the_horizon(&mut self, cap: &Cap, pivot: Vec3) -> bool {
+    fn prepare_clipped_to_the_horizon<const VALID_PIVOT: bool>(
+        &mut self,
+        cap: &Cap,
+        pivot: Vec3,
+    ) -> bool {
         let horizon = UPPER_HEMISPHERE;
-        let valid_pivot = pivot.is_finite() && pivot.length_squared() < 1.0;
+        // (A valid pivot is finite and shorter than 1.)
+        let valid_pivot = VALID_PIVOT || (pivot.is_finite() && pivot.length_squared() < 1.0);
         let uses_sptd = valid_pivot
             // The images are valid caps as `pivot_cap_fast` builds them (tested by
             // `the_sampler_s_pivoted_images_are_valid_caps`): not sanitized again.
@@ -362,7 +376,9 @@ impl SphereLightSampler {
         self.light = *cap;
         // Made valid once here rather than per sample (the same bits: the transformation
         // and the Jacobian made the same pivot valid at every call).
-        self.pivot = if uses_sptd {
+        self.pivot = if uses_sptd && VALID_PIVOT {
+            pivot
+        } else if uses_sptd {
             super::pivot::valid_pivot(pivot)
         } else {
             Vec3::ZERO

@@ -137,6 +137,19 @@ impl Sptd {
         }
     }
 
+    /// [`Sptd::uniform`] of a pivot that is valid already (`valid_pivot` returns it as
+    /// it is: the fitted GGX pivots of `GgxPivot::from_view`,
+    /// `light_tests::fitted_pivots_are_valid_as_they_stand`): the same value without
+    /// making it valid again.
+    #[inline(always)]
+    pub(crate) fn uniform_of_valid(pivot: Vec3) -> Sptd {
+        Sptd {
+            pivot,
+            cosine_axis: Vec3::Z,
+            base: SptdBase::Uniform,
+        }
+    }
+
     /// The SPTD of the clamped-cosine base about `axis` (normalised here; a zero or
     /// non-finite axis becomes `z`) with pivot `pivot`.
     pub fn clamped_cosine(pivot: Vec3, axis: Vec3) -> Sptd {
