@@ -314,6 +314,13 @@ impl CapIntersection {
     #[inline]
     #[must_use]
     pub fn contains(&self, dir: Vec3) -> bool {
+        self.contains_inlined(dir)
+    }
+
+    /// [`contains`](Self::contains), always inlined (the per-sample test of
+    /// [`sample_uniform`](Self::sample_uniform)).
+    #[inline(always)]
+    fn contains_inlined(&self, dir: Vec3) -> bool {
         // One length test for both caps where `dir` is unit (the samples), else each cap's.
         if crate::math::is_unit(dir) {
             return self.radial.contains_unit(dir) && self.other.contains_unit(dir);
@@ -433,7 +440,7 @@ impl CapIntersection {
         };
         let psi = (2.0 * clamp_random(u[1]) - 1.0) * phi;
         let dir = self.direction(s, psi);
-        if self.contains(dir) {
+        if self.contains_inlined(dir) {
             return Sample { dir, pdf };
         }
         // Rounding put a sample from the boundary just outside, where `pdf` is 0:

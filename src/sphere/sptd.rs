@@ -965,7 +965,7 @@ impl SptdInCap {
         let dir = transform(base, self.sptd.pivot);
         // A sample that rounding moved out of C (by ulps, at the boundary) is dropped, so
         // that `pdf` of every sample equals its density.
-        if !self.cap.contains(dir) {
+        if !self.cap.contains_inlined(dir) {
             return Sample::NONE;
         }
         // The density from `dir` alone, exactly as `pdf` computes it (the cosine base
