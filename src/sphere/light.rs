@@ -38,7 +38,10 @@
 use super::cap::Cap;
 use super::cap_intersection::cap_intersection_solid_angle;
 use super::cap_intersection_sampling::CapIntersection;
-use super::pivot::{jacobian_of_unit, pivot_cap, pivot_cap_fast, pivot_cap_fast_by_ref, transform};
+use super::pivot::{
+    jacobian_of_unit, pivot_cap, pivot_cap_fast, pivot_cap_fast_by_ref, pivot_cap_fast_of_valid,
+    transform,
+};
 use super::shading_fast::pivoted_intersection_fast;
 use super::sptd::{Sptd, SptdInCap};
 use crate::Sample;
@@ -332,8 +335,12 @@ impl SphereLightSampler {
             Sptd::uniform(pivot)
         };
         // (`cap` is sanitized: not again.)
-        let uses_sptd = self.sptd.prepare_sanitized(&sptd, &cap)
-            && self.sptd.image.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE;
+        let prepared = if VALID_PIVOT {
+            self.sptd.prepare_sanitized_of_valid(&sptd, &cap)
+        } else {
+            self.sptd.prepare_sanitized(&sptd, &cap)
+        };
+        let uses_sptd = prepared && self.sptd.image.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE;
         // The pivot at the origin gives J = 1: the uniform distribution in the cap,
         // sampled directly below.
         if !uses_sptd
@@ -361,12 +368,20 @@ impl SphereLightSampler {
         let horizon = UPPER_HEMISPHERE;
         // (A valid pivot is finite and shorter than 1.)
         let valid_pivot = VALID_PIVOT || (pivot.is_finite() && pivot.length_squared() < 1.0);
+        // (Not made valid again by the image where it is valid as it stands.)
+        let pivoted = |c: &Cap| {
+            if VALID_PIVOT {
+                pivot_cap_fast_of_valid(c, pivot)
+            } else {
+                pivot_cap_fast(c, pivot)
+            }
+        };
         let uses_sptd = valid_pivot
             // The images are valid caps as `pivot_cap_fast` builds them (tested by
             // `the_sampler_s_pivoted_images_are_valid_caps`): not sanitized again.
             && self.clipped_region.prepare_sanitized(
-                &pivot_cap_fast(cap, pivot).0,
-                &pivot_cap_fast(&horizon, pivot).0,
+                &pivoted(cap).0,
+                &pivoted(&horizon).0,
             )
             && self.clipped_region.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE;
         if !uses_sptd && !self.clipped_region.prepare_sanitized(cap, &horizon) {

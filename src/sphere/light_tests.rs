@@ -752,10 +752,33 @@ fn fitted_pivots_are_valid_as_they_stand() {
         }
     }
     let mut rng = Rng::new(2218);
+    // `prepare` (the fitted pivot taken as valid: `prepare_sanitized::<true>`,
+    // `pivot_cap_fast_of_valid`) against `prepare_with_pivot` (made valid), bit for bit,
+    // over sphere lights as the light bench draws them (above and across the horizon).
+    let (mut compared, mut clipped) = (0, 0);
     for _ in 0..20_000 {
         let v = rng.unit_vector_f32();
         let wo = Vec3::new(v.x, v.y, v.z.abs()) * (0.5 + 4.0 * rng.uniform_f32());
-        checked += check(wo, rng.uniform_f32()) as u32;
+        let roughness = rng.uniform_f32();
+        checked += check(wo, roughness) as u32;
+        let distance = rng.log_uniform(0.0, 4f64.log10()) as f32;
+        let sin2 = 0.06 + 0.38 * rng.uniform_f32();
+        let c = rng.unit_vector_f32();
+        let center = Vec3::new(c.x, c.y, c.z.abs()) * distance;
+        let radius = distance * sin2.sqrt();
+        let (Some(fit), Some(fast)) = (
+            GgxPivot::from_view(wo, roughness),
+            SphereLightSampler::new(center, radius, wo, roughness),
+        ) else {
+            continue;
+        };
+        let careful =
+            SphereLightSampler::with_pivot(&Cap::from_sphere(center, radius), fit.pivot).unwrap();
+        assert_eq!(format!("{fast:?}"), format!("{careful:?}"));
+        assert_eq!(fast, careful);
+        compared += 1;
+        clipped += fast.is_clipped() as u32;
     }
     assert!(checked > 120_000, "{checked}");
+    assert!(compared > 15_000 && clipped > 3_000, "{compared} {clipped}");
 }
