@@ -79,7 +79,10 @@ pub struct GgxPivot {
 impl GgxPivot {
     /// The fit for the view `wo` (local frame, need not be normalised) and roughness
     /// `r = √α` (clamped to `[0, 1]`, NaN as 0). `None` when `wo` is not finite, zero,
-    /// or at or below the horizon.
+    /// or at or below the horizon. Always inlined: out of line, the sampler's `prepare`
+    /// received the fit through memory (an `Option` of four floats), 45 instructions more
+    /// per preparation (callgrind, light bench `sptd`).
+    #[inline(always)]
     pub fn from_view(wo: Vec3, roughness: f32) -> Option<GgxPivot> {
         let (x, y, cos_phi, sin_phi) = table_coordinates(wo, roughness)?;
         let [norm, elevation, albedo] = table_bilinear(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y);
@@ -273,7 +276,9 @@ impl SphereLightSampler {
 
     /// [`SphereLightSampler::new`] written in place into `self` (no copy of the
     /// prepared value); `false` and [`SphereLightSampler::EMPTY`] written where `new`
-    /// gives `None`.
+    /// gives `None`. Always inlined (into the C entry point; 7 instructions per
+    /// preparation, measured).
+    #[inline(always)]
     pub fn prepare(&mut self, center: Vec3, radius: f32, wo: Vec3, roughness: f32) -> bool {
         let cap = Cap::from_sphere(center, radius);
         // The fitted pivot is valid as it stands (`fitted_pivots_are_valid_as_they_stand`):
@@ -360,6 +365,8 @@ impl SphereLightSampler {
 
     /// The sampler of a cap that crosses the horizon: the SPTD over `C ∩ H` through the
     /// images' intersection, or uniform in `C ∩ H` where that image is below 1e-3 sr.
+    /// Always inlined (5 instructions per preparation, measured).
+    #[inline(always)]
     fn prepare_clipped_to_the_horizon<const VALID_PIVOT: bool>(
         &mut self,
         cap: &Cap,
@@ -446,7 +453,7 @@ impl SphereLightSampler {
     #[inline]
     pub fn sample(&self, u: [f32; 2]) -> Sample {
         if self.is_clipped() {
-            let s = self.clipped_region.sample_uniform(u);
+            let s = self.clipped_region.sample_uniform_inlined(u);
             if s.pdf == 0.0 {
                 return Sample::NONE;
             }

@@ -702,7 +702,12 @@ impl SptdInCap {
         } else {
             pivot_cap_fast(&cap, sptd.pivot).0
         };
-        let integral = sptd.base_integral_over_cap(&image).max(0.0).min(1.0);
+        // (The uniform base's integral inline: the call was out of line.)
+        let integral = match sptd.base {
+            SptdBase::Uniform => image.solid_angle() * INV_4PI,
+            SptdBase::ClampedCosine => sptd.base_integral_over_cap(&image),
+        };
+        let integral = integral.max(0.0).min(1.0);
         if !(integral > 0.0) || !(1.0 / integral).is_finite() {
             return false;
         }
