@@ -781,3 +781,73 @@ fn shading_of_a_hand_made_light_is_that_of_its_sanitized_cap() {
         }
     }
 }
+
+/// `prepare` does not make the fitted pivot valid again (`prepare_sanitized::<true>`,
+/// `Sptd::uniform_of_valid`): `valid_pivot` returns every pivot of
+/// `GgxPivot::from_view` as it is. The table's norms are at most `1 − 3.3e-5`, and the
+/// pivot's length is the interpolated norm (a convex combination of entries) times a
+/// unit vector's rounding, far below `valid_pivot`'s clamp at `1 − 2⁻²⁰`; checked bit
+/// for bit over views from normal incidence to `cos θo = 1e-4`, every azimuth octant and
+/// roughness 0 to 1 (and NaN), and random views.
+#[test]
+fn fitted_pivots_are_valid_as_they_stand() {
+    let largest = PIVOT_TABLE.iter().map(|e| e[0]).fold(0.0f32, f32::max);
+    assert!(largest <= 1.0 - 1e-5, "{largest}");
+    let bits = |p: Vec3| p.to_array().map(f32::to_bits);
+    let check = |wo: Vec3, roughness: f32| {
+        let Some(fit) = GgxPivot::from_view(wo, roughness) else {
+            return false;
+        };
+        let again = crate::sphere::pivot::valid_pivot(fit.pivot);
+        assert_eq!(bits(again), bits(fit.pivot), "{wo:?} {roughness}");
+        assert_eq!(
+            bits(Sptd::uniform_of_valid(fit.pivot).pivot),
+            bits(Sptd::uniform(fit.pivot).pivot)
+        );
+        assert!(fit.pivot.length() < 1.0 - 1e-5);
+        true
+    };
+    let mut checked = 0;
+    for i in 0..=200 {
+        let cos_o = if i == 0 { 1e-4 } else { i as f32 / 200.0 };
+        let sin_o = (1.0 - cos_o * cos_o).max(0.0).sqrt();
+        for k in 0..8 {
+            let phi = core::f32::consts::TAU * k as f32 / 8.0 + 0.1;
+            let wo = Vec3::new(sin_o * phi.cos(), sin_o * phi.sin(), cos_o);
+            for j in 0..=64 {
+                checked += check(wo, j as f32 / 64.0) as u32;
+            }
+            checked += check(wo, f32::NAN) as u32;
+        }
+    }
+    let mut rng = Rng::new(2218);
+    // `prepare` (the fitted pivot taken as valid: `prepare_sanitized::<true>`,
+    // `pivot_cap_fast_of_valid`) against `prepare_with_pivot` (made valid), bit for bit,
+    // over sphere lights as the light bench draws them (above and across the horizon).
+    let (mut compared, mut clipped) = (0, 0);
+    for _ in 0..20_000 {
+        let v = rng.unit_vector_f32();
+        let wo = Vec3::new(v.x, v.y, v.z.abs()) * (0.5 + 4.0 * rng.uniform_f32());
+        let roughness = rng.uniform_f32();
+        checked += check(wo, roughness) as u32;
+        let distance = rng.log_uniform(0.0, 4f64.log10()) as f32;
+        let sin2 = 0.06 + 0.38 * rng.uniform_f32();
+        let c = rng.unit_vector_f32();
+        let center = Vec3::new(c.x, c.y, c.z.abs()) * distance;
+        let radius = distance * sin2.sqrt();
+        let (Some(fit), Some(fast)) = (
+            GgxPivot::from_view(wo, roughness),
+            SphereLightSampler::new(center, radius, wo, roughness),
+        ) else {
+            continue;
+        };
+        let careful =
+            SphereLightSampler::with_pivot(&Cap::from_sphere(center, radius), fit.pivot).unwrap();
+        assert_eq!(format!("{fast:?}"), format!("{careful:?}"));
+        assert_eq!(fast, careful);
+        compared += 1;
+        clipped += fast.is_clipped() as u32;
+    }
+    assert!(checked > 120_000, "{checked}");
+    assert!(compared > 15_000 && clipped > 3_000, "{compared} {clipped}");
+}

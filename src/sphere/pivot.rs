@@ -263,11 +263,28 @@ pub(crate) fn pivot_cap_fast(cap: &Cap, pivot: Vec3) -> (Cap, PivotPath) {
 /// buffer cannot forward; see `pivoted_intersection` in `light.rs`).
 #[inline(always)]
 pub(crate) fn pivot_cap_fast_by_ref(cap: &Cap, pivot: &Vec3) -> (Cap, PivotPath) {
+    pivot_cap_fast_with::<false>(cap, pivot)
+}
+
+/// [`pivot_cap_fast`] of a pivot that is valid as it stands (`valid_pivot` returns it bit
+/// for bit: the sphere light sampler's fitted pivots,
+/// `light_tests::fitted_pivots_are_valid_as_they_stand`): the same value without making
+/// it valid again (a length, its square root on the way to the image, and six finiteness
+/// tests).
+#[inline(always)]
+pub(crate) fn pivot_cap_fast_of_valid(cap: &Cap, pivot: Vec3) -> (Cap, PivotPath) {
+    pivot_cap_fast_with::<true>(cap, &pivot)
+}
+
+/// The body of [`pivot_cap_fast_by_ref`] (`VALID = false`) and
+/// [`pivot_cap_fast_of_valid`] (`VALID = true`: `pivot` is valid).
+#[inline(always)]
+fn pivot_cap_fast_with<const VALID: bool>(cap: &Cap, pivot: &Vec3) -> (Cap, PivotPath) {
     // Empty caps and whole spheres (stored by their hole) go the careful way.
     if !(cap.one_minus_cos > 0.0) || !(cap.one_plus_cos > 0.0) {
         return pivot_cap_careful(cap, pivot);
     }
-    let p3 = valid_pivot(*pivot);
+    let p3 = if VALID { *pivot } else { valid_pivot(*pivot) };
     let along = p3.dot(cap.axis);
     let perpendicular = p3 - cap.axis * along;
     let across2 = perpendicular.length_squared();

@@ -56,7 +56,7 @@
 use super::cap::{Cap, sample_uniform_in_frame};
 use super::cap_intersection::cap_intersection_solid_angle;
 use super::cap_intersection_sampling::MAX_ITERATIONS;
-use super::pivot::{pivot_cap, pivot_cap_fast, transform, valid_pivot};
+use super::pivot::{pivot_cap, pivot_cap_fast, pivot_cap_fast_of_valid, transform, valid_pivot};
 use crate::Sample;
 use crate::math::orthonormal_basis;
 use crate::sample::{ONE_MINUS_ULP, clamp_inverted, clamp_random};
@@ -132,6 +132,19 @@ impl Sptd {
     pub fn uniform(pivot: Vec3) -> Sptd {
         Sptd {
             pivot: valid_pivot(pivot),
+            cosine_axis: Vec3::Z,
+            base: SptdBase::Uniform,
+        }
+    }
+
+    /// [`Sptd::uniform`] of a pivot that is valid already (`valid_pivot` returns it as
+    /// it is: the fitted GGX pivots of `GgxPivot::from_view`,
+    /// `light_tests::fitted_pivots_are_valid_as_they_stand`): the same value without
+    /// making it valid again.
+    #[inline(always)]
+    pub(crate) fn uniform_of_valid(pivot: Vec3) -> Sptd {
+        Sptd {
+            pivot,
             cosine_axis: Vec3::Z,
             base: SptdBase::Uniform,
         }
@@ -649,14 +662,30 @@ impl SptdInCap {
     /// returns `false`.
     #[inline(always)]
     fn prepare_unchecked(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
-        self.prepare_sanitized_unchecked(sptd, &cap.sanitized())
+        self.prepare_sanitized_unchecked::<false>(sptd, &cap.sanitized())
     }
 
     /// [`SptdInCap::prepare`] of a cap that is valid already (`cap.sanitized()` returns it
     /// as it is: every constructor's cap), without sanitizing it again: the same bits,
     /// for a caller that sanitized it (the sphere light sampler).
     pub(crate) fn prepare_sanitized(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
-        let prepared = self.prepare_sanitized_unchecked(sptd, cap);
+        self.prepare_sanitized_with::<false>(sptd, cap)
+    }
+
+    /// [`SptdInCap::prepare_sanitized`] of an SPTD whose pivot is valid as it stands
+    /// (`valid_pivot` returns it bit for bit: the sphere light sampler's fitted pivots,
+    /// `light_tests::fitted_pivots_are_valid_as_they_stand`), which the image then does
+    /// not make valid again (`pivot_cap_fast_of_valid`): the same bits.
+    #[inline(always)]
+    pub(crate) fn prepare_sanitized_of_valid(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
+        self.prepare_sanitized_with::<true>(sptd, cap)
+    }
+
+    /// The body of [`SptdInCap::prepare_sanitized`] (`VALID = false`) and
+    /// [`SptdInCap::prepare_sanitized_of_valid`] (`VALID = true`).
+    #[inline(always)]
+    fn prepare_sanitized_with<const VALID: bool>(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
+        let prepared = self.prepare_sanitized_unchecked::<VALID>(sptd, cap);
         if !prepared {
             *self = SptdInCap::EMPTY;
         }
@@ -666,10 +695,19 @@ impl SptdInCap {
     /// The body of [`SptdInCap::prepare_sanitized`], which leaves `self` partly written
     /// when it returns `false`.
     #[inline(always)]
-    fn prepare_sanitized_unchecked(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
+    fn prepare_sanitized_unchecked<const VALID: bool>(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
         let cap = *cap;
-        let image = pivot_cap_fast(&cap, sptd.pivot).0;
-        let integral = sptd.base_integral_over_cap(&image).max(0.0).min(1.0);
+        let image = if VALID {
+            pivot_cap_fast_of_valid(&cap, sptd.pivot).0
+        } else {
+            pivot_cap_fast(&cap, sptd.pivot).0
+        };
+        // (The uniform base's integral inline: the call was out of line.)
+        let integral = match sptd.base {
+            SptdBase::Uniform => image.solid_angle() * INV_4PI,
+            SptdBase::ClampedCosine => sptd.base_integral_over_cap(&image),
+        };
+        let integral = integral.max(0.0).min(1.0);
         if !(integral > 0.0) || !(1.0 / integral).is_finite() {
             return false;
         }
@@ -952,7 +990,7 @@ impl SptdInCap {
         let dir = transform(base, self.sptd.pivot);
         // A sample that rounding moved out of C (by ulps, at the boundary) is dropped, so
         // that `pdf` of every sample equals its density.
-        if !self.cap.contains(dir) {
+        if !self.cap.contains_inlined(dir) {
             return Sample::NONE;
         }
         // The density from `dir` alone, exactly as `pdf` computes it (the cosine base
