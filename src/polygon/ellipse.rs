@@ -18,9 +18,7 @@
 
 use crate::Vec3;
 use crate::math::is_sign_negative;
-use crate::math::{
-    atan2_upper_half_plane, difference_of_products, difference_of_products_unless_cancelling,
-};
+use crate::math::{atan2_upper_half_plane, difference_of_products};
 use glam::Vec4;
 
 /// A vector in the plane of the unit disk.
@@ -172,8 +170,15 @@ pub(crate) fn ellipse_from_normal4(nx: Vec4, ny: Vec4, nz: Vec4) -> (Vec4, Vec4)
 /// `(|b| + √Δ, -Q_xx)` for `b >= 0` and `(Q_yy, |b| + √Δ)` otherwise. Both forms avoid
 /// cancellation, and as a point of the projective line the result depends continuously
 /// on `Q` (supplement A.3, Lemma 1), which is what selects the right root.
+///
+/// The sampler's iteration solves the same quadratic in the basis `(w, R w)` of the
+/// current direction (`EllipseSector::tangent_step`), where the root continuous with `w`
+/// needs no case distinction; this form is its reference in the tests
+/// (`the_tangent_step_is_algorithm_2`).
+#[cfg(test)]
 #[inline(always)]
 pub(crate) fn solve_homogeneous_quadratic(xx: f32, xy_plus_yx: f32, yy: f32) -> Vec2 {
+    use crate::math::difference_of_products_unless_cancelling;
     let b = 0.5 * xy_plus_yx;
     // The plain difference where the products cannot cancel (`xx yy <= 0`, relative
     // error at most ε; the usual case for the iteration of supplement A.3 in about half

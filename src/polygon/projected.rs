@@ -1112,6 +1112,9 @@ impl ProjectedPolygon {
     /// `extra_iterations` is set.
     #[inline(always)]
     fn sample_impl(&self, u: [f32; 2], iterations: u32, extra_iterations: bool) -> Sample {
+        // The biased variant (a constant there) and `sample_with_iterations(u, 0)`: the
+        // initial guess is the sample, evaluated directly (see `sample_between`).
+        let guess_only = !extra_iterations && iterations == 0;
         if self.selectable_sectors == 0 {
             return Sample::NONE;
         }
@@ -1167,7 +1170,7 @@ impl ProjectedPolygon {
             } else {
                 0
             };
-            sector.sample_between(local, fraction, u1, iterations)
+            sector.sample_between(local, fraction, u1, iterations, guess_only)
         };
         let Some((point, z2)) = point_and_z2 else {
             return Sample::NONE;
