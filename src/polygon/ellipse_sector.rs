@@ -328,6 +328,13 @@ impl EllipseSector {
     /// The sector from `s0` to `s1` (unit vectors) with accurate `det = det(s0, s1)`
     /// between the ellipses `inner` and `outer` with their accurate dot products with
     /// `s0` and `s1`.
+    //
+    // Always inline: its one caller in the library (the decentral preparation) writes
+    // the result into the prepared polygon, in place only when inlined; left to LLVM,
+    // an unrelated change elsewhere once made it an out-of-line call whose result was
+    // built on the stack and copied with `memcpy` (+68 instructions per decentral
+    // hexagon prepare, callgrind).
+    #[inline(always)]
     pub(crate) fn new(
         s0: Vec2,
         s1: Vec2,
