@@ -62,33 +62,6 @@ pub unsafe extern "C" fn sphera_projected_polygon_sample(
     u0: f32,
     u1: f32,
 ) -> SpheraSample {
-    // The central draw inline, everything else (decentral sectors, the small-polygon
-    // sampler, rare inputs, a null pointer) by one call (issue 15). Not through
-    // `sample_common_or_rare`: its rare path, a generic function around
-    // `ProjectedPolygon::sample`, compiled the decentral draw to 894 instructions
-    // (callgrind, decentral hexagons) where this function with the entry point's old body
-    // gives 837 (823 before the split).
-    // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    if let Some(sample) = unsafe { polygon.as_ref() }.and_then(|p| p.sample_common([u0, u1])) {
-        return sample.into();
-    }
-    // SAFETY: forwarded from the caller.
-    unsafe { projected_sample_rare(polygon, u0, u1) }
-}
-
-/// The rare path of `sphera_projected_polygon_sample`: the entry point's body before the
-/// split, out of line with the entry point's signature (so that the arguments and the
-/// result stay in their registers).
-///
-/// # Safety
-///
-/// As `sphera_projected_polygon_sample`.
-#[inline(never)]
-unsafe extern "C" fn projected_sample_rare(
-    polygon: *const ProjectedPolygon,
-    u0: f32,
-    u1: f32,
-) -> SpheraSample {
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
     unsafe {
         with_ref(polygon, Sample::NONE.into(), |polygon| {

@@ -1640,6 +1640,15 @@ mod tests {
         /// picks: with `b = (T_xy + T_yx) / 2` and `Δ = b² - T_xx T_yy`,
         /// `(|b| + √Δ, -T_xx)` if `b >= 0`, else `(T_yy, |b| + √Δ)`.
         pub fn cubic_step(ui: V, uo: V, s0: V, target: f64, phi: f64) -> f64 {
+            let [txx, b, tyy] = step_quadratic(ui, uo, s0, target, phi);
+            let root = b.abs() + (b * b - txx * tyy).max(0.0).sqrt();
+            let x = if b >= 0.0 { [root, -txx] } else { [tyy, root] };
+            angle_near(x, phi)
+        }
+
+        /// `[T_xx, (T_xy + T_yx) / 2, T_yy]` of [`cubic_step`]'s `T` at the direction at
+        /// angle `phi`.
+        fn step_quadratic(ui: V, uo: V, s0: V, target: f64, phi: f64) -> [f64; 3] {
             let w = direction(phi);
             let residual = target - area(ui, uo, s0, w);
             let (ci, co) = (apply(ui, w), apply(uo, w));
@@ -1650,9 +1659,7 @@ mod tests {
             let b =
                 0.5 * (rw[0] * d[1] + rw[1] * d[0]) - residual * (ci[0] * co[1] + ci[1] * co[0]);
             let tyy = rw[1] * d[1] - 2.0 * residual * ci[1] * co[1];
-            let root = b.abs() + (b * b - txx * tyy).max(0.0).sqrt();
-            let x = if b >= 0.0 { [root, -txx] } else { [tyy, root] };
-            angle_near(x, phi)
+            [txx, b, tyy]
         }
 
         /// `b² - T_xx T_yy` of [`cubic_step`]'s `T` (in `T`'s own sign convention, which
@@ -1660,15 +1667,7 @@ mod tests {
         /// negative the two tangent lines enclose less than `A_δ` in every direction (the
         /// step passes their intersection) and the quadratic has no real root.
         pub fn step_discriminant(ui: V, uo: V, s0: V, target: f64, phi: f64) -> f64 {
-            let w = direction(phi);
-            let residual = target - area(ui, uo, s0, w);
-            let (ci, co) = (apply(ui, w), apply(uo, w));
-            let rw = [-w[1], w[0]];
-            let d = [ci[0] - co[0], ci[1] - co[1]];
-            let txx = rw[0] * d[0] - 2.0 * residual * ci[0] * co[0];
-            let b =
-                0.5 * (rw[0] * d[1] + rw[1] * d[0]) - residual * (ci[0] * co[1] + ci[1] * co[0]);
-            let tyy = rw[1] * d[1] - 2.0 * residual * ci[1] * co[1];
+            let [txx, b, tyy] = step_quadratic(ui, uo, s0, target, phi);
             b * b - txx * tyy
         }
 

@@ -1060,38 +1060,6 @@ impl ProjectedPolygon {
         self.sample_impl(u, REFINEMENT_ITERATIONS, true)
     }
 
-    /// The sample of the common case, `None` for the rare one (then
-    /// [`sample`](Self::sample) gives it): the central case of a polygon that the sectors
-    /// sample (not the small-polygon sampler), `u` in `[0, 1)²` (which `sample` leaves
-    /// as it is), and a direction within 2e-6 of unit length squared with a positive pdf
-    /// (which `sample` returns unchanged). Equal to `sample` bit for bit where it gives a
-    /// sample: the same operations in the same order, without the branches of the other
-    /// cases, so that the C entry point is a short function that keeps its values in
-    /// registers and reaches the rest (decentral sectors, the small-polygon sampler, the
-    /// renormalisation) by one call on that path only (issue 15: the whole of `sample`
-    /// inlined into the entry point ran the central draw at 231 instructions, now 202).
-    #[inline(always)]
-    pub(crate) fn sample_common(&self, u: [f32; 2]) -> Option<Sample> {
-        // `u` in [0, 1)², where `clamp_random` changes nothing: as unsigned integers, the
-        // bits of the floats in [0, 1) are those below the bits of 1.0 (`0x3F80_0000`);
-        // 1 and above, NaN (above +∞) and negative values (the sign bit) are not.
-        let outside = u[0].to_bits().max(u[1].to_bits()) >= 0x3F80_0000;
-        // The decentral case first: it leaves after one test.
-        if self.central == 0 || self.is_small != 0 || self.selectable_sectors == 0 || outside {
-            return None;
-        }
-        // As in `sample_impl`.
-        let target = u[0] * self.projected_solid_angle;
-        let k = select_piece(&self.sector_start, target);
-        let local = (target - self.sector_start[k])
-            .max(0.0)
-            .min(self.sector_area[k]);
-        let (point, z2) = self.sectors()[k].sample_central(local, u[1]);
-        let dir = Vec3::new(point[0], point[1], libm::sqrtf(z2.max(0.0)));
-        let pdf = dir.z * self.density;
-        (crate::math::is_unit_output(dir) && pdf > 0.0).then_some(Sample { dir, pdf })
-    }
-
     /// The biased variant: no refinement iterations in the decentral case, so the azimuth
     /// is the initial guess of Proposition 3 (its error is in the report). **Biased**: the
     /// returned pdf is that of the exact distribution, `ω_z / Φ`, which differs from the
