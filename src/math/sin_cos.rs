@@ -323,18 +323,22 @@ mod tests {
         (sin_r, cos_r)
     }
 
+    /// `sin_cos_0_to_pi(x)` has the bits of `expected`.
+    fn assert_same_bits(x: f32, (s0, c0): (f32, f32)) {
+        let (s, c) = sin_cos_0_to_pi(x);
+        assert_eq!(
+            (s.to_bits(), c.to_bits()),
+            (s0.to_bits(), c0.to_bits()),
+            "{x:e}"
+        );
+    }
+
     /// Every `stride`-th `f32` of `[0, π/4)`: the shortcut gives the general form's bits.
     fn assert_shortcut_matches_general_form(stride: u32) {
         let last = FRAC_PI_4.to_bits() - 1;
         sweep(0, last, stride, |first, last, step| {
             for x in points(first, last, step) {
-                let (s, c) = sin_cos_0_to_pi(x);
-                let (s0, c0) = sin_cos_below_quarter_pi_in_general_form(x);
-                assert_eq!(
-                    (s.to_bits(), c.to_bits()),
-                    (s0.to_bits(), c0.to_bits()),
-                    "{x:e}"
-                );
+                assert_same_bits(x, sin_cos_below_quarter_pi_in_general_form(x));
             }
         });
     }
@@ -382,13 +386,7 @@ mod tests {
         ];
         angles.extend((0..=31416).map(|i| i as f32 * 1e-4));
         for x in angles {
-            let (s, c) = sin_cos_0_to_pi(x);
-            let (s0, c0) = reference(x);
-            assert_eq!(
-                (s.to_bits(), c.to_bits()),
-                (s0.to_bits(), c0.to_bits()),
-                "{x:e}"
-            );
+            assert_same_bits(x, reference(x));
         }
         let (s, c) = sin_cos_0_to_pi(f32::NAN);
         assert!(s.is_nan() && c.is_nan());
