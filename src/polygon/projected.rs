@@ -226,6 +226,74 @@ fn outer_area_bound(sector: &EllipseSector) -> f32 {
 /// Lanes of the vertices: one per vertex, read four at a time from slot 0 and slot 1.
 const VERTEX_SLOTS: usize = 2 * LANES + 1;
 
+/// `sort_bitonic` with the decentral preparation's careful comparator, out of line: it
+/// runs only where [`sort_by_certain_azimuths`] cannot decide (and in the careful path).
+#[inline(never)]
+fn sort_carefully(
+    order: &mut [u8; MAX_POLYGON_VERTICES],
+    count: usize,
+    less: impl Fn(&u8, &u8) -> bool,
+) {
+    sort_bitonic(order, count, less);
+}
+
+/// The azimuth order of the decentral case with a cheap comparator, where it gives the
+/// same answers as the careful one (issue 15: the careful comparator, a branchy
+/// determinant with a tie rule, was most of the sort's 460 instructions per hexagon).
+///
+/// The comparator of the decentral preparation is `less(a, b)`: the sign of
+/// `difference_of_products_sign(a_x, b_y, a_y, b_x)` = det(p_a,xy, p_b,xy), with ties
+/// broken by the degenerate ellipses. Where the plain difference `fl(fl(a_x b_y) -
+/// fl(a_y b_x))` passes that function's test (its sign is certain), the function returns
+/// it, and it is not 0 (the test asks for at least 2⁻¹⁰⁰), so there is no tie and
+/// `less(a, b)` is `plain > 0`. This comparator computes only that plain difference and
+/// its test, without branches, and records whether any comparison failed the test. When
+/// none did, every comparison of the network (the same code, `sort_bitonic`) had the
+/// careful comparator's answer, so it made the same swaps and the order is the same, bit
+/// for bit, whether or not the sequence is bitonic. Otherwise (a pair nearly collinear
+/// with the zenith, a vertex on the z axis) this returns `false`, and the caller sorts
+/// the identity again with the careful comparator.
+///
+/// The test `certain_azimuth_order_matches_the_network` pins which polygons come here
+/// and compares the orders.
+/// Out of line: in a function this small the network and the comparator are inlined
+/// (inside the preparation they were calls, one per comparison).
+#[inline(never)]
+fn sort_by_certain_azimuths(
+    order: &mut [u8; MAX_POLYGON_VERTICES],
+    vertex: &[[f32; VERTEX_SLOTS]; 3],
+    count: usize,
+) -> bool {
+    let uncertain = core::cell::Cell::new(false);
+    let [xs, ys, _] = vertex;
+    #[inline(always)]
+    fn less(
+        xs: &[f32; VERTEX_SLOTS],
+        ys: &[f32; VERTEX_SLOTS],
+        uncertain: &mut bool,
+        a: u8,
+        b: u8,
+    ) -> bool {
+        // `& 7` only shows the compiler the index in bounds (entries are below 8).
+        let (a, b) = (usize::from(a & 7), usize::from(b & 7));
+        // `difference_of_products_sign(a_x, b_y, a_y, b_x)`'s plain branch and its test
+        // (`&`, not `&&`: no branch).
+        let (p1, p2) = (xs[a] * ys[b], ys[a] * xs[b]);
+        let plain = p1 - p2;
+        let sure = (plain.abs() > f32::EPSILON * (p1.abs() + p2.abs()))
+            & (plain.abs() >= crate::math::MIN_PLAIN_DIFFERENCE);
+        *uncertain |= !sure;
+        plain > 0.0
+    }
+    sort_bitonic(order, count, |a: &u8, b: &u8| {
+        let mut flag = uncertain.get();
+        let less = less(xs, ys, &mut flag, *a, *b);
+        uncertain.set(flag);
+        less
+    });
+    !uncertain.get()
+}
+
 /// The central case of Algorithm 4 for an unclipped polygon whose edges are all outer and
 /// none degenerate (`n_z > 0` for every edge plane `n = p_j × p_j+1`, so no vertex lies
 /// on the z axis): the common case, four edges and sectors at a time straight from the
@@ -804,7 +872,10 @@ impl ProjectedPolygon {
                 let d = crate::math::difference_of_products_sign(ax, by, ay, bx);
                 d > 0.0 || (d == 0.0 && degenerate(*a) && !degenerate(*b))
             };
-            sort_bitonic(&mut order, count, less);
+            if !(allow_fast && sort_by_certain_azimuths(&mut order, &vertex, count)) {
+                order = [0, 1, 2, 3, 4, 5, 6, 7];
+                sort_carefully(&mut order, count, less);
+            }
             sectors = count - 1;
             let mut pairs = [(0usize, 0usize); MAX_POLYGON_VERTICES];
             for j in 0..sectors {

@@ -1568,3 +1568,92 @@ fn decentral_lanes_match_the_scalar_sectors() {
     assert!(counts[0] > 20_000, "{counts:?}");
     assert!(counts.iter().all(|&c| c > 0), "{counts:?}");
 }
+
+/// The decentral preparation's azimuth order through the cheap comparator
+/// (`sort_by_certain_azimuths`) is the network's order with the careful comparator
+/// (`difference_of_products_sign` and the tie rule of the degenerate ellipses), entry
+/// for entry, wherever the cheap one answers; and it declines exactly where some pair is
+/// not certain: a vertex on the z axis, two vertices at the same azimuth (or opposite
+/// ones), nearly collinear pairs. Every tie flag of the careful comparator is tried
+/// (random ones), as the cheap path claims that no comparison it makes is a tie.
+/// `decentral_lanes_match_the_scalar_sectors` compares the prepared values of the two
+/// paths word for word.
+#[test]
+fn certain_azimuth_order_matches_the_network() {
+    let mut rng = Rng::new(71);
+    // Slots as the preparation fills them: vertex j in slot j, the first vertex after.
+    let lanes = |v: &[Vec3]| {
+        let mut vertex = v[0].to_array().map(|c| [c; VERTEX_SLOTS]);
+        for (slot, p) in v.iter().enumerate() {
+            [vertex[0][slot], vertex[1][slot], vertex[2][slot]] = p.to_array();
+        }
+        vertex
+    };
+    let careful = |v: &[Vec3], degenerate: u8| {
+        let mut order = [0u8, 1, 2, 3, 4, 5, 6, 7];
+        let deg = |k: u8| degenerate >> k & 1 != 0;
+        sort_bitonic(&mut order, v.len(), |a: &u8, b: &u8| {
+            let (pa, pb) = (v[*a as usize], v[*b as usize]);
+            let d = crate::math::difference_of_products_sign(pa.x, pb.y, pa.y, pb.x);
+            d > 0.0 || (d == 0.0 && deg(*a) && !deg(*b))
+        });
+        order
+    };
+    // Returns whether the cheap path answered.
+    let check = |v: &[Vec3], rng: &mut Rng| -> bool {
+        let mut order = [0u8, 1, 2, 3, 4, 5, 6, 7];
+        let certain = sort_by_certain_azimuths(&mut order, &lanes(v), v.len());
+        if certain {
+            for _ in 0..4 {
+                let degenerate = rng.below(256) as u8;
+                assert_eq!(order, careful(v, degenerate), "{v:?}, ties {degenerate:#b}");
+            }
+        }
+        certain
+    };
+    let (mut taken, mut declined) = (0u32, 0u32);
+    for trial in 0..40_000 {
+        let n = 3 + rng.below(6) as usize;
+        let v = match trial % 3 {
+            0 => off_zenith_polygon(&mut rng, n, 1.05),
+            1 => {
+                let radius = rng.log_uniform(-3.0, 0.5) as f32;
+                random_polygon(&mut rng, n, radius)
+            }
+            _ => awkward_vertices(&mut rng, n, trial),
+        };
+        for v in [v.clone(), reversed(&v)] {
+            if check(&v, &mut rng) {
+                taken += 1;
+            } else {
+                declined += 1;
+            }
+        }
+    }
+    // Both paths are exercised (the awkward vertices decline often).
+    assert!(taken > 40_000 && declined > 1_000, "{taken} {declined}");
+    // Pinned: an ordinary decentral hexagon is certain. A vertex on the z axis (every
+    // vertex takes part in a comparison) is not, and neither are triangles (whose
+    // network compares every pair) with two vertices at the same azimuth, at opposite
+    // ones (an edge through the zenith) or an ulp from the same.
+    let hexagon: Vec<Vec3> = (0..6)
+        .map(|k| {
+            let a = 0.3 + k as f32 * core::f32::consts::TAU / 6.0;
+            Vec3::new(2.0 + 0.5 * a.cos(), 0.5 * a.sin(), 1.0)
+        })
+        .collect();
+    assert!(check(&hexagon, &mut rng));
+    assert!(check(&reversed(&hexagon), &mut rng));
+    let mut on_axis = hexagon.clone();
+    on_axis[2] = Vec3::new(0.0, 0.0, 1.0);
+    let triangle = |b: Vec3| [Vec3::new(1.0, 0.25, 1.0), b, Vec3::new(0.5, 1.0, 1.0)];
+    let same_azimuth = triangle(Vec3::new(2.0, 0.5, 1.0));
+    let nearly_the_same = triangle(Vec3::new(1.5, f32::from_bits(0.375f32.to_bits() + 1), 1.0));
+    let opposite = triangle(Vec3::new(-1.0, -0.25, 1.0));
+    for v in [&on_axis[..], &same_azimuth, &nearly_the_same, &opposite] {
+        assert!(!check(v, &mut rng), "{v:?}");
+    }
+    // The tie is real: the careful network orders the two vertices at the same azimuth
+    // by their flags, which the cheap path never claims to know.
+    assert_ne!(careful(&same_azimuth, 0b01), careful(&same_azimuth, 0b10));
+}
