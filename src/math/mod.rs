@@ -23,7 +23,7 @@ pub(crate) use lanes::{
     difference_of_products4, finite_or_zero4, lane_starts, load4, max4, min4, sqrt4,
     store_records4, store4,
 };
-pub(crate) use products::MIN_PLAIN_DIFFERENCE;
+pub(crate) use products::plain_difference_is_certain;
 pub use products::{
     HAS_HARDWARE_FMA, cross_precise, cross_with_residual, determinant_is_exactly_zero,
     difference_of_products, difference_of_products_sign, difference_of_products_unless_cancelling,

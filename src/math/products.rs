@@ -129,11 +129,21 @@ pub fn difference_of_products_unless_cancelling(a: f32, b: f32, c: f32, d: f32) 
 pub fn difference_of_products_sign(a: f32, b: f32, c: f32, d: f32) -> f32 {
     let (p1, p2) = (a * b, c * d);
     let plain = p1 - p2;
-    if plain.abs() > f32::EPSILON * (p1.abs() + p2.abs()) && plain.abs() >= MIN_PLAIN_DIFFERENCE {
+    if plain_difference_is_certain(p1, p2, plain) {
         plain
     } else {
         difference_of_products(a, b, c, d)
     }
+}
+
+/// Whether the plain difference `plain = fl(p1 - p2)` of the rounded products `p1`, `p2`
+/// has the exact sign of the unrounded difference (the test of
+/// [`difference_of_products_sign`]): `|plain|` exceeds the products' rounding bound
+/// `ε (|p1| + |p2|)` and is at least 2⁻¹⁰⁰ (no underflow). Never true for `plain == 0`.
+/// `&`, not `&&`: no branch, for callers that evaluate it in sorting networks.
+#[inline(always)]
+pub(crate) fn plain_difference_is_certain(p1: f32, p2: f32, plain: f32) -> bool {
+    (plain.abs() > f32::EPSILON * (p1.abs() + p2.abs())) & (plain.abs() >= MIN_PLAIN_DIFFERENCE)
 }
 
 /// 2⁻¹⁰⁰: below it [`difference_of_products_unless_cancelling`] takes the careful form.

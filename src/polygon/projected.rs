@@ -256,6 +256,7 @@ fn sort_carefully(
 ///
 /// The test `certain_azimuth_order_matches_the_network` pins which polygons come here
 /// and compares the orders.
+///
 /// Out of line: in a function this small the network and the comparator are inlined
 /// (inside the preparation they were calls, one per comparison).
 #[inline(never)]
@@ -276,13 +277,10 @@ fn sort_by_certain_azimuths(
     ) -> bool {
         // `& 7` only shows the compiler the index in bounds (entries are below 8).
         let (a, b) = (usize::from(a & 7), usize::from(b & 7));
-        // `difference_of_products_sign(a_x, b_y, a_y, b_x)`'s plain branch and its test
-        // (`&`, not `&&`: no branch).
+        // `difference_of_products_sign(a_x, b_y, a_y, b_x)`'s plain branch and its test.
         let (p1, p2) = (xs[a] * ys[b], ys[a] * xs[b]);
         let plain = p1 - p2;
-        let sure = (plain.abs() > f32::EPSILON * (p1.abs() + p2.abs()))
-            & (plain.abs() >= crate::math::MIN_PLAIN_DIFFERENCE);
-        *uncertain |= !sure;
+        *uncertain |= !crate::math::plain_difference_is_certain(p1, p2, plain);
         plain > 0.0
     }
     sort_bitonic(order, count, |a: &u8, b: &u8| {
