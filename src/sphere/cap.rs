@@ -62,6 +62,20 @@ pub struct Cap {
     pub sin2: f32,
 }
 
+/// The unit axis of [`Cap::outside_sphere`]: `c` divided by its largest component, then
+/// by its length. In `Vec3A`, whose four lanes are computed as they stand: built from
+/// three scalars, the prepared sphere's first 16-byte group (axis and `1 − cos θ`) was
+/// vectorised as `(c, t) / (m, m, m, 1)`, which made the axis's chain (a division, a
+/// square root, a division, then the frame's division) wait for `t`'s (a division, a
+/// square root and a division): the two chains in series instead of side by side. The
+/// same operations lane for lane, so the same bits.
+#[inline(always)]
+fn outside_sphere_axis(c: Vec3) -> Vec3A {
+    let c = Vec3A::from(c);
+    let scaled = c / c.abs().max_element();
+    scaled * (1.0 / libm::sqrtf(scaled.length_squared()))
+}
+
 /// `2^k` for `k` in `[−126, 127]`.
 #[inline(always)]
 fn power_of_two(k: i32) -> f32 {
@@ -209,10 +223,7 @@ impl Cap {
             // (see `Cap::sanitized`; `c / d` failed a test of the pivot). Written out
             // without `normalize_by_largest`'s checks, which `c` passes (finite, and its
             // largest component at least `d / √3 > r / √3 > 0`): the same bits.
-            axis: {
-                let scaled = c / c.abs().max_element();
-                scaled * (1.0 / libm::sqrtf(scaled.length_squared()))
-            },
+            axis: outside_sphere_axis(c).into(),
             one_minus_cos: t,
             one_plus_cos: h,
             sin2: (t * h).max(0.0).min(1.0),
