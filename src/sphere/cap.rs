@@ -62,6 +62,20 @@ pub struct Cap {
     pub sin2: f32,
 }
 
+/// The unit axis of [`Cap::outside_sphere`]: `c` divided by its largest component, then
+/// by its length. In `Vec3A`, whose four lanes are computed as they stand: built from
+/// three scalars, the prepared sphere's first 16-byte group (axis and `1 − cos θ`) was
+/// vectorised as `(c, t) / (m, m, m, 1)`, which made the axis's chain (a division, a
+/// square root, a division, then the frame's division) wait for `t`'s (a division, a
+/// square root and a division): the two chains in series instead of side by side. The
+/// same operations lane for lane, so the same bits.
+#[inline(always)]
+fn outside_sphere_axis(c: Vec3) -> Vec3A {
+    let c = Vec3A::from(c);
+    let scaled = c / c.abs().max_element();
+    scaled * (1.0 / libm::sqrtf(scaled.length_squared()))
+}
+
 /// `2^k` for `k` in `[−126, 127]`.
 #[inline(always)]
 fn power_of_two(k: i32) -> f32 {
@@ -74,26 +88,44 @@ const SPHERE_RANGE_MIN: f32 = 1.0 / (1u32 << 29) as f32;
 /// The largest, `2²⁹`.
 const SPHERE_RANGE_MAX: f32 = (1u32 << 29) as f32;
 
-/// `d = |center|` when the sphere is seen from outside (`d > r`) and the radius and
-/// `d` lie in `[2⁻²⁹, 2²⁹]` (NaN and infinities fail the comparisons). There, every
-/// square and product of [`Cap::outside_sphere`] is a normal finite number (`r²`,
-/// `|c|² ∈ [2⁻⁵⁸, 2⁵⁸]`, `sin²θ = r²/|c|² ≥ 2⁻¹¹⁶`, `d (d + q) ≤ 2⁵⁹`), `1 − cos θ ≥ 2⁻¹¹⁷`
-/// and `1/Ω ≤ 2¹¹⁵` are normal and finite, and so the power-of-two rescaling of
-/// [`Cap::from_sphere_careful`] changes no bit: rounding commutes with it in the
-/// normal range, and a square below `2⁻¹²⁶` is absorbed by a sum of at least `2⁻⁵⁸`
-/// either way (a center component below `2⁻¹²⁶` of the largest may round differently
-/// when rescaled; this path keeps it exact).
+/// Whether the radius and `d = |center|` lie in `[2⁻²⁹, 2²⁹]` (NaN and infinities fail
+/// the comparisons). There, every square and product of [`Cap::outside_sphere`] is a
+/// normal finite number (`r²`, `|c|² ∈ [2⁻⁵⁸, 2⁵⁸]`, `sin²θ = r²/|c|² ≥ 2⁻¹¹⁶`,
+/// `d (d + q) ≤ 2⁵⁹`), `1 − cos θ ≥ 2⁻¹¹⁷` and `1/Ω ≤ 2¹¹⁵` are normal and finite, and so
+/// the power-of-two rescaling of [`Cap::from_sphere_careful`] changes no bit: rounding
+/// commutes with it in the normal range, and a square below `2⁻¹²⁶` is absorbed by a sum
+/// of at least `2⁻⁵⁸` either way (a center component below `2⁻¹²⁶` of the largest may
+/// round differently when rescaled; this path keeps it exact).
 #[inline(always)]
-pub(crate) fn sphere_distance_in_range(center: Vec3, radius: f32) -> Option<f32> {
+fn sphere_in_range(center: Vec3, radius: f32) -> bool {
     let d2 = center.length_squared();
-    let in_range = (SPHERE_RANGE_MIN..=SPHERE_RANGE_MAX).contains(&radius)
-        && (SPHERE_RANGE_MIN * SPHERE_RANGE_MIN..=SPHERE_RANGE_MAX * SPHERE_RANGE_MAX)
-            .contains(&d2);
-    if !in_range {
+    (SPHERE_RANGE_MIN..=SPHERE_RANGE_MAX).contains(&radius)
+        && (SPHERE_RANGE_MIN * SPHERE_RANGE_MIN..=SPHERE_RANGE_MAX * SPHERE_RANGE_MAX).contains(&d2)
+}
+
+/// `d = |center|` when the sphere is seen from outside (`d > r`) and in range
+/// ([`sphere_in_range`]): exactly the spheres whose cap [`sphere_cap_in_range`] gives
+/// (`the_spheres_that_skip_the_rescaling`), written out for the tests.
+#[cfg(test)]
+pub(crate) fn sphere_distance_in_range(center: Vec3, radius: f32) -> Option<f32> {
+    if !sphere_in_range(center, radius) {
         return None;
     }
-    let d = libm::sqrtf(d2);
+    let d = libm::sqrtf(center.length_squared());
     if d > radius { Some(d) } else { None }
+}
+
+/// The cap of a sphere seen from outside and in range ([`sphere_in_range`]), the fast
+/// path of [`Cap::from_sphere`] and of the prepared sphere light; `None` for the rest
+/// (bad input, the shading point inside or on the sphere, huge or tiny coordinates),
+/// which the careful path takes. Bit for bit [`Cap::from_sphere_careful`] where it gives
+/// a cap (`the_fast_sphere_cap_is_the_careful_one_bit_for_bit`).
+#[inline(always)]
+pub(crate) fn sphere_cap_in_range(center: Vec3, radius: f32) -> Option<Cap> {
+    if !sphere_in_range(center, radius) {
+        return None;
+    }
+    Cap::outside_sphere(center, radius)
 }
 
 /// A power of two `s` such that `m s` lies in `[1, 2)` for a normal finite positive
@@ -137,15 +169,23 @@ impl Cap {
     pub fn from_sphere(center: Vec3, radius: f32) -> Cap {
         // Ordinary spheres take the formula as they come; the rest (bad input, the
         // shading point inside, huge or tiny coordinates) the careful path.
-        match sphere_distance_in_range(center, radius) {
-            Some(d) => Cap::outside_sphere(center, radius, d),
-            None => Cap::from_sphere_careful(center, radius),
+        match sphere_cap_in_range(center, radius) {
+            Some(cap) => cap,
+            None => Cap::from_sphere_careful_of(center.x, center.y, center.z, radius),
         }
+    }
+
+    /// [`Cap::from_sphere_careful`] of the center's coordinates: the fast paths' call,
+    /// whose four floats travel in registers (a `Vec3` argument went through the stack,
+    /// stored before the fast path's first test).
+    #[inline(never)]
+    pub(crate) fn from_sphere_careful_of(x: f32, y: f32, z: f32, radius: f32) -> Cap {
+        Cap::from_sphere_careful(Vec3::new(x, y, z), radius)
     }
 
     /// [`Cap::from_sphere`] of any input: checked, and rescaled by a power of two
     /// before squaring.
-    #[inline(never)]
+    #[inline(always)]
     pub(crate) fn from_sphere_careful(center: Vec3, radius: f32) -> Cap {
         // `x − x` is 0 for a finite `x` and NaN for an infinite or NaN one: one test of
         // the four numbers (in place of a classification of each).
@@ -163,25 +203,26 @@ impl Cap {
         let (s1, s2) = rescaling(m);
         let c = center * s1 * s2;
         let r = radius * s1 * s2;
-        let d = c.length();
-        if !(d > r) {
-            let axis = if d > 0.0 {
-                crate::math::normalize_scaled(c)
-            } else {
-                Vec3::Z
-            };
-            return Cap {
-                axis,
-                ..Cap::WHOLE_SPHERE
-            };
+        if let Some(cap) = Cap::outside_sphere(c, r) {
+            return cap;
         }
-        Cap::outside_sphere(c, r, d)
+        // `d ≤ r`: the shading point is inside or on the sphere.
+        let axis = if c.length() > 0.0 {
+            crate::math::normalize_scaled(c)
+        } else {
+            Vec3::Z
+        };
+        Cap {
+            axis,
+            ..Cap::WHOLE_SPHERE
+        }
     }
 
-    /// The cap of a sphere seen from outside (`d = |c| > r > 0`), with `r²`, `|c|²` and
-    /// the products below normal and finite.
+    /// The cap of a sphere of radius `r > 0` centered at `c`, with `r²`, `|c|²` and the
+    /// products below normal and finite; `None` when it is not seen from outside
+    /// (`d = |c| ≤ r`).
     #[inline(always)]
-    pub(crate) fn outside_sphere(c: Vec3, r: f32, d: f32) -> Cap {
+    pub(crate) fn outside_sphere(c: Vec3, r: f32) -> Option<Cap> {
         // `1 − cos θ = sin²θ / (1 + cos θ)`: exact to a few ulps for tiny caps (no
         // subtraction), and `1 + cos θ` has no cancellation (the cap is at most a
         // hemisphere). `cos θ` from `sin²θ = r²/d²` where `cos²θ >= 1/4`; for wider caps
@@ -190,33 +231,38 @@ impl Cap {
         // tests): at most 4.1 and 9.8 units of 2⁻²⁴ relative. The cap is written in the
         // form that `Cap::sanitized` keeps unchanged (`1 + cos θ = 2 − t`,
         // `sin²θ = t (2 − t)`).
-        let sin2 = r * r / c.length_squared();
+        let d2 = c.length_squared();
+        let sin2 = r * r / d2;
         let t = if sin2 <= 0.75 {
             // sin²θ = r²/d² and `cos θ = √(1 − sin²θ)`, which has no cancellation to
             // speak of where `cos²θ >= 1/4`: one square root and two divisions on the
             // way from `|c|²` (none of them on `d`), where the form below has two
-            // square roots in a row.
+            // square roots in a row. Here the sphere is seen from outside without `d`:
+            // the rounded `r²/d²` is at most 0.75, so `d² ≥ 0.75⁻¹ r² (1 − 2⁻²²) > 1.3 r²`
+            // and `d = √(d²)` rounds above `r` (the test `d > r` below, and its square
+            // root, are needed only for wider caps).
             sin2 / (1.0 + libm::sqrtf(1.0 - sin2))
         } else {
+            let d = libm::sqrtf(d2);
+            if !(d > r) {
+                return None;
+            }
             let q = libm::sqrtf((d - r) * (d + r));
             r * r / (d * (d + q))
         }
         .min(1.0);
         let h = 2.0 - t;
-        Cap {
+        Some(Cap {
             // Normalised as `Cap::sanitized` normalises an invalid axis (by the largest
             // component first): unit to a few ulps, which the pivot transformation needs
             // (see `Cap::sanitized`; `c / d` failed a test of the pivot). Written out
             // without `normalize_by_largest`'s checks, which `c` passes (finite, and its
             // largest component at least `d / √3 > r / √3 > 0`): the same bits.
-            axis: {
-                let scaled = c / c.abs().max_element();
-                scaled * (1.0 / libm::sqrtf(scaled.length_squared()))
-            },
+            axis: outside_sphere_axis(c).into(),
             one_minus_cos: t,
             one_plus_cos: h,
             sin2: (t * h).max(0.0).min(1.0),
-        }
+        })
     }
 
     /// The cap around `axis` (normalised here) with `cos θ = cos` (clamped to

@@ -56,7 +56,7 @@
 //! smooth, cheap estimate is enough.
 
 use super::cap::Cap;
-use crate::math::{atan2_upper_half_plane, sqrt4};
+use crate::math::{atan2_upper_half_plane4, sqrt4};
 use core::f32::consts::{FRAC_PI_2, PI};
 use glam::Vec4;
 
@@ -304,10 +304,17 @@ fn lens_gram_fast(t1: f32, t2: f32, td: f32) -> (f32, f32, f32) {
 fn lens_area(t1: f32, t2: f32, td: f32, n1: f32, y2: f32) -> [f32; 2] {
     let n2 = t2 + td - t1 - t2 * td;
     let y = libm::sqrtf(y2.max(0.0));
-    // `Y >= 0`: one `atan` of a ratio per angle, without `atan2f`'s quadrant logic.
-    let phi1 = atan2_upper_half_plane(y, n1);
-    let phi2 = atan2_upper_half_plane(y, n2);
-    let excess = 2.0 * atan2_upper_half_plane(y, 4.0 - td - t1 - t2);
+    // `Y >= 0`: one `atan` of a ratio per angle, without `atan2f`'s quadrant logic. The
+    // three (two azimuths and the excess) are independent: gathered in one call of
+    // `atan2_upper_half_plane4`, whose lanes give `atan2_upper_half_plane`'s bits (its
+    // test), so that a packed evaluation there serves the two-cap solid angle and each
+    // evaluation of the radial CDF of a cap intersection at once (the fourth lane idle).
+    let angles = atan2_upper_half_plane4(
+        Vec4::splat(y),
+        Vec4::new(n1, n2, 4.0 - td - t1 - t2, 0.0),
+        3,
+    );
+    let (phi1, phi2, excess) = (angles.x, angles.y, 2.0 * angles.z);
     let area = 2.0 * (phi1 * t1 + phi2 * t2 - excess);
     [area.max(0.0).min(2.0 * PI * t1.min(t2)), phi1]
 }
@@ -368,12 +375,12 @@ pub(crate) fn at_most_hemispheres_fast(t1: f32, t2: f32, td: f32) -> Option<f32>
     Some(area.max(0.0).min(2.0 * PI * min_ordered(t1, t2)))
 }
 
-/// [`atan2_upper_half_plane`] of `(y, x)` with `y = √y2 ≥ 0` by
-/// [`atan_unit_estrin`](crate::math::atan_unit_estrin): `atan` of
+/// [`atan2_upper_half_plane`](crate::math::atan2_upper_half_plane) of `(y, x)` with
+/// `y = √y2 ≥ 0` by [`atan_unit_estrin`](crate::math::atan_unit_estrin): `atan` of
 /// `min(y, |x|) / max(y, |x|)`, then `π/2 −` it where `y > |x|` and `π −` it where
 /// `x < 0`. The ratio is `y` times `1/|x|` or `|x|/y²`, whose division does not wait for
 /// the square root `y` (the case is decided by `y² > x²`): two roundings instead of one,
-/// so about one ulp more than the ratio of [`atan2_upper_half_plane`]. Clamped to `[0, 1]`
+/// so about one ulp more than the ratio of `atan2_upper_half_plane`. Clamped to `[0, 1]`
 /// (where `x²` underflows the case can be wrong) and 0 for `y = x = 0` and NaN.
 ///
 /// The scalar form, the reference of [`atan2_upper_half_plane_fast4`] (which the shading

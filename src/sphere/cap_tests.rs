@@ -417,6 +417,38 @@ fn the_spheres_that_skip_the_rescaling() {
     ] {
         assert!(!fast(c, r), "{c} {r}");
     }
+    // The fast path decides "seen from outside" without `d` where `sin²θ ≤ 0.75` (see
+    // `Cap::outside_sphere`): it takes exactly these spheres, also at `d` within ulps of
+    // `r` and around `sin²θ = 0.75`.
+    let mut rng = Rng::new(61);
+    let mut near_rim = 0;
+    for i in 0..200_000 {
+        let dir = rng.unit_vector_f32();
+        let radius = rng.log_uniform(-8.0, 8.0) as f32;
+        let ratio = match i % 3 {
+            // d/r within ±1e-6 of 1: either side of the surface.
+            0 => 1.0 + (rng.uniform() as f32 - 0.5) * 2e-6,
+            // sin²θ near 0.75: d/r near 2/√3.
+            1 => 1.154_700_5 * (1.0 + (rng.uniform() as f32 - 0.5) * 1e-6),
+            _ => rng.log_uniform(-1.0, 3.0) as f32,
+        };
+        let center = dir * (radius * ratio);
+        let fast_cap = super::sphere_cap_in_range(center, radius);
+        assert_eq!(
+            fast_cap.is_some(),
+            fast(center, radius),
+            "{center} {radius}"
+        );
+        if let Some(cap) = fast_cap {
+            assert_eq!(
+                cap,
+                Cap::from_sphere_careful(center, radius),
+                "{center} {radius}"
+            );
+            near_rim += (i % 3 == 0) as u32;
+        }
+    }
+    assert!(near_rim > 10_000, "{near_rim}");
 }
 
 /// Where `Cap::from_sphere` skips the rescaling, it gives the careful path's cap bit

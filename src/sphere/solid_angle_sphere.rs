@@ -13,7 +13,7 @@
 //! the rim test with its inward pull keeps `pdf(sample.dir) == sample.pdf`.
 
 use super::Cap;
-use super::cap::{sample_uniform_in_frame, sphere_distance_in_range};
+use super::cap::{sample_uniform_in_frame, sphere_cap_in_range};
 use crate::Sample;
 use crate::math::orthonormal_basis;
 use glam::{Vec3, Vec3A, Vec4};
@@ -62,25 +62,25 @@ impl SolidAngleSphere {
     /// finite and positive.
     #[inline]
     pub fn prepare(&mut self, center: Vec3, radius: f32) -> bool {
-        match sphere_distance_in_range(center, radius) {
-            Some(d) => {
+        match sphere_cap_in_range(center, radius) {
+            Some(cap) => {
                 // An ordinary sphere seen from outside: `1/Ω` is normal and finite
-                // there (`sphere_distance_in_range`), so no check; the cap stays in
+                // there (`sphere_cap_in_range`), so no check; the cap stays in
                 // registers on its way to the three stores.
-                let cap = Cap::outside_sphere(center, radius, d);
                 self.write(cap, cap.one_minus_cos_pdf());
                 true
             }
-            None => self.prepare_careful(center, radius),
+            None => self.prepare_careful(center.x, center.y, center.z, radius),
         }
     }
 
     /// [`prepare`](Self::prepare) of any input, out of line: the cap of
     /// [`Cap::from_sphere_careful`] (a valid cap, the form `Cap::sanitized` keeps: no
-    /// check).
+    /// check). The center by its coordinates, which travel in registers (a `Vec3`
+    /// argument was stored to the stack before the fast path's first test).
     #[inline(never)]
-    fn prepare_careful(&mut self, center: Vec3, radius: f32) -> bool {
-        self.prepare_valid_cap(Cap::from_sphere_careful(center, radius))
+    fn prepare_careful(&mut self, x: f32, y: f32, z: f32, radius: f32) -> bool {
+        self.prepare_valid_cap(Cap::from_sphere_careful(Vec3::new(x, y, z), radius))
     }
 
     /// Prepares uniform sampling of any cap, in place (made valid first as
