@@ -21,7 +21,6 @@
 //! a shading point in the polygon's plane, vertices 1e5 away, `u = 0` and `u = 1 - ulp`,
 //! both windings, duplicate vertices (as clipping can produce), 3 to 8 vertices.
 
-use super::rescale_factor;
 use crate::Sample;
 use crate::math::{
     LANES, atan2_upper_half_plane, determinant_is_exactly_zero,
@@ -266,6 +265,57 @@ struct VertexLanes {
     extent: [f32; SLOTS],
 }
 
+/// The input positions of slots `first..first + 4` as x, y and z lanes; slots from
+/// `count` on read vertex 0 again.
+#[inline(always)]
+fn gather(vertices: &[Vec3], count: usize, first: usize) -> [Vec4; 3] {
+    let vertex = |j: usize| {
+        let slot = first + j;
+        vertices[if slot < count { slot } else { 0 }]
+    };
+    let [a, b, c, d] = [vertex(0), vertex(1), vertex(2), vertex(3)];
+    [
+        Vec4::new(a.x, b.x, c.x, d.x),
+        Vec4::new(a.y, b.y, c.y, d.y),
+        Vec4::new(a.z, b.z, c.z, d.z),
+    ]
+}
+
+/// The input lanes of [`gather`] for the groups of slots `0..=count` (the last closes
+/// the polygon; groups 1 and 2 are zero where not needed, and nothing reads them then),
+/// and [`rescale_factor`](super::rescale_factor) of the polygon computed from them
+/// (`None` for a non-finite coordinate or all coordinates zero): the same factor bit
+/// for bit, in lanes (the repeated vertex 0 changes no maximum).
+#[inline(always)]
+fn gather_and_rescale(vertices: &[Vec3], count: usize) -> ([[Vec4; 3]; 3], Option<f32>) {
+    // Slots `0..=count` need the groups up to slot `count`: `count >= 3`, so group 1 is
+    // needed from `count = 4` on and group 2 for `count = 8`.
+    let zero = [Vec4::ZERO; 3];
+    let raw0 = gather(vertices, count, 0);
+    let raw1 = if count >= LANES {
+        gather(vertices, count, LANES)
+    } else {
+        zero
+    };
+    let raw2 = if count >= 2 * LANES {
+        gather(vertices, count, 2 * LANES)
+    } else {
+        zero
+    };
+    // Over the groups that hold vertices (the zero groups would change nothing).
+    let (mut largest, mut finite) = super::largest_magnitude4(raw0);
+    if count >= LANES {
+        let (m1, f1) = super::largest_magnitude4(raw1);
+        (largest, finite) = (largest.max(m1), finite & f1);
+    }
+    if count >= 2 * LANES {
+        let (m2, f2) = super::largest_magnitude4(raw2);
+        (largest, finite) = (largest.max(m2), finite & f2);
+    }
+    let factor = super::rescale_factor_of_lanes(largest, finite);
+    ([raw0, raw1, raw2], factor)
+}
+
 /// One group of four slots of [`VertexLanes`], in registers.
 #[derive(Clone, Copy)]
 struct SlotGroup {
@@ -289,21 +339,15 @@ impl SlotGroup {
         extent: Vec4::ZERO,
     };
 
-    /// Positions (the input times the power of two `factor` of [`rescale`]), lengths and
-    /// unit directions of slots `first..first + 4` (slots from `count` on read vertex 0
-    /// again); the reflected edges are left 0 (see [`reflect`](Self::reflect)). The
-    /// second value is `false` when one has length 0 (a vertex at the shading point, or
-    /// one whose squared length underflows).
+    /// Positions (the input `raw`, the x, y and z lanes of [`gather`], times the power of
+    /// two `factor` of [`rescale`]), lengths and unit directions of four slots; the
+    /// reflected edges are left 0 (see [`reflect`](Self::reflect)). The second value is
+    /// `false` when one has length 0 (a vertex at the shading point, or one whose squared
+    /// length underflows).
     #[inline(always)]
-    fn vertices(vertices: &[Vec3], factor: Vec4, count: usize, first: usize) -> (SlotGroup, bool) {
-        let vertex = |j: usize| {
-            let slot = first + j;
-            vertices[if slot < count { slot } else { 0 }]
-        };
-        let [a, b, c, d] = [vertex(0), vertex(1), vertex(2), vertex(3)];
-        let x = Vec4::new(a.x, b.x, c.x, d.x) * factor;
-        let y = Vec4::new(a.y, b.y, c.y, d.y) * factor;
-        let z = Vec4::new(a.z, b.z, c.z, d.z) * factor;
+    fn vertices(raw: [Vec4; 3], factor: Vec4) -> (SlotGroup, bool) {
+        let [x, y, z] = raw;
+        let (x, y, z) = (x * factor, y * factor, z * factor);
         let length_squared = (x * x + y * y) + z * z;
         let length = crate::math::sqrt4(length_squared);
         let nonzero = length.cmpgt(Vec4::ZERO).all();
@@ -351,18 +395,18 @@ impl VertexLanes {
     /// input, the group above 0 (only lanes that the masks leave out read it), with the
     /// apex's reflection; `None` when a vertex has length 0.
     #[inline(always)]
-    fn new(vertices: &[Vec3], factor: f32, count: usize) -> Option<(VertexLanes, Householder)> {
+    fn new(raw: [[Vec4; 3]; 3], factor: f32, count: usize) -> Option<(VertexLanes, Householder)> {
         let factor = Vec4::splat(factor);
         // Slots `0..=count` need the groups up to slot `count`: `count >= 3`, so group 1
         // is needed from `count = 4` on and group 2 for `count = 8`.
-        let (mut g0, ok0) = SlotGroup::vertices(vertices, factor, count, 0);
+        let (mut g0, ok0) = SlotGroup::vertices(raw[0], factor);
         let (mut g1, ok1) = if count >= LANES {
-            SlotGroup::vertices(vertices, factor, count, LANES)
+            SlotGroup::vertices(raw[1], factor)
         } else {
             (SlotGroup::ZERO, true)
         };
         let (mut g2, ok2) = if count >= 2 * LANES {
-            SlotGroup::vertices(vertices, factor, count, 2 * LANES)
+            SlotGroup::vertices(raw[2], factor)
         } else {
             (SlotGroup::ZERO, true)
         };
@@ -422,17 +466,17 @@ impl VertexLanes {
     /// when one has length 0 (a vertex at the shading point, or one whose squared length
     /// underflows).
     #[inline(always)]
-    fn fill(&mut self, vertices: &[Vec3], factor: f32, count: usize) -> bool {
+    fn fill(&mut self, raw: [[Vec4; 3]; 3], factor: f32, count: usize) -> bool {
         let lanes = self;
         let factor = Vec4::splat(factor);
         let mut nonzero = true;
         // The lanes of slots `0..=count` (the last closes the polygon), built in
-        // registers from the input (slots from `count` on read vertex 0 again) and stored
-        // whole: storing the slots one by one and loading them back four at a time
-        // stalls on the failed store-to-load forwarding. The slots above stay 0 and only
-        // lanes that the masks leave out read them.
+        // registers from the input lanes of `gather` and stored whole: storing the slots
+        // one by one and loading them back four at a time stalls on the failed
+        // store-to-load forwarding. The slots above stay 0 and only lanes that the masks
+        // leave out read them.
         for first in lane_starts(count + 1) {
-            let (group, ok) = SlotGroup::vertices(vertices, factor, count, first);
+            let (group, ok) = SlotGroup::vertices(raw[first / LANES], factor);
             nonzero &= ok;
             for c in 0..3 {
                 store4(group.position[c], &mut lanes.position[c], first);
@@ -749,7 +793,9 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
             return false;
         }
         let vertices = &vertices[..count];
-        let Some(factor) = rescale_factor(vertices) else {
+        // The input in lanes, and the power of two that rescales it (as `rescale`).
+        let (raw, factor) = gather_and_rescale(vertices, count);
+        let Some(factor) = factor else {
             return false;
         };
         // The per-vertex work four vertices at a time (see `VertexLanes`), rounded as the
@@ -763,7 +809,7 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // 777, quads 1019 -> 998); the shared body of 5 to 8 vertices zeroes it and
         // fills it in place (built by value there, hexagons took 1532 -> 1554).
         let (lanes, reflection) = if count <= LANES {
-            let Some((lanes, reflection)) = VertexLanes::new(vertices, factor, count) else {
+            let Some((lanes, reflection)) = VertexLanes::new(raw, factor, count) else {
                 return false;
             };
             for i in 0..count {
@@ -772,7 +818,7 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
             (lanes, reflection)
         } else {
             let mut lanes = VertexLanes::ZERO;
-            if !lanes.fill(vertices, factor, count) {
+            if !lanes.fill(raw, factor, count) {
                 return false;
             }
             for i in 0..count {
@@ -876,7 +922,11 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // All determinants zero: the shading point lies in the polygon's plane. If it
         // also lies inside the polygon, van Oosterom and Strackee's formula gives 2π
         // (atan2(0, negative)) for a polygon that is seen edge-on: reject it.
-        if edge_on || !(total > 0.0) || !density.is_finite() || !total.is_finite() {
+        // (`total` positive and finite, and `density` finite: for a positive `total`,
+        // `density` is positive and not NaN, so comparisons with ∞ are the whole test;
+        // `is_finite` compiled to a classification of the bits, 20 instructions.)
+        let accepted = total > 0.0 && total < f32::INFINITY && density < f32::INFINITY;
+        if edge_on || !accepted {
             return false;
         }
         // det(p_b, p_a, p_c) = -det(p_a, p_b, p_c): a positive sum means the polygon
