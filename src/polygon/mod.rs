@@ -8,6 +8,7 @@
 //! [`MAX_POLYGON_VERTICES`]: crate::MAX_POLYGON_VERTICES
 
 use crate::Vec3;
+use glam::{BVec4A, Vec4};
 
 pub mod baselines;
 pub mod clip;
@@ -205,11 +206,132 @@ pub(crate) fn rescale_factor(vertices: &[Vec3]) -> Option<f32> {
             largest_bits = largest_bits.max(c.to_bits() & 0x7fff_ffff);
         }
     }
-    if largest_bits == 0 || largest_bits >= 0x7f80_0000 {
+    if largest_bits >= 0x7f80_0000 {
+        return None;
+    }
+    factor_for_largest_bits(largest_bits)
+}
+
+/// [`rescale_factor`] from the largest magnitude's bits (finite, sign bit clear): `None`
+/// when it is 0 (all coordinates zero), else the power of two of the bit trick described
+/// at [`rescale`].
+#[inline(always)]
+fn factor_for_largest_bits(largest_bits: u32) -> Option<f32> {
+    if largest_bits == 0 {
         return None;
     }
     let biased_exponent = largest_bits >> 23;
     Some(f32::from_bits(
         254u32.saturating_sub(biased_exponent).max(1) << 23,
     ))
+}
+
+/// The coordinates' largest magnitude lane by lane, and the lanes whose coordinates are
+/// all finite: the lane form of [`rescale_factor`]'s pass over the coordinates, for
+/// vertices already gathered into x, y and z lanes (the preparations that work in lanes
+/// load them so anyway: the scalar pass cost about 90 instructions per hexagon, 18
+/// dependent integer maxima).
+///
+/// The maximum of floats is the maximum of their magnitudes' bit patterns (the order of
+/// [`rescale_factor`]'s bit trick) for every value but NaN, and the lanes with a NaN or
+/// an infinity are rejected by the finiteness mask (`|c| < ∞` is false for both), so
+/// whatever the maximum makes of a NaN is never used.
+#[inline(always)]
+pub(crate) fn largest_magnitude4(coordinates: [Vec4; 3]) -> (Vec4, BVec4A) {
+    let [x, y, z] = coordinates;
+    let (x, y, z) = (x.abs(), y.abs(), z.abs());
+    let infinity = Vec4::splat(f32::INFINITY);
+    let finite = x.cmplt(infinity) & y.cmplt(infinity) & z.cmplt(infinity);
+    (x.max(y).max(z), finite)
+}
+
+/// [`rescale_factor`] from [`largest_magnitude4`]'s lanes (combined over the groups of
+/// vertices by `max` and `&`): the same factor, bit for bit, and `None` in the same
+/// cases (tested: `lanes_rescale_as_the_scalar_pass`).
+#[inline(always)]
+pub(crate) fn rescale_factor_of_lanes(largest: Vec4, finite: BVec4A) -> Option<f32> {
+    if !finite.all() {
+        return None;
+    }
+    factor_for_largest_bits(largest.max_element().to_bits())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing::Rng;
+
+    /// The lane form of the rescale factor (`largest_magnitude4` over groups of four
+    /// vertices, then `rescale_factor_of_lanes`) gives the scalar pass's factor bit for
+    /// bit, and `None` in the same cases: coordinates from subnormal to near `f32::MAX`,
+    /// zeros of both signs, all-zero polygons, infinities and NaNs of either sign, 3 to
+    /// 8 vertices with the groups' unused slots filled as the preparations fill them
+    /// (vertex 0 again).
+    #[test]
+    fn lanes_rescale_as_the_scalar_pass() {
+        let mut rng = Rng::new(35);
+        let special = [
+            0.0,
+            -0.0,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            -f32::NAN,
+            f32::MIN_POSITIVE,
+            1e-45,
+            -1e-45,
+            f32::MAX,
+            -f32::MAX,
+        ];
+        let (mut nones, mut subnormal_largest) = (0, 0);
+        for case in 0..200_000 {
+            let count = 3 + (case % 6);
+            // One polygon in 20 of subnormal (and tiny normal) coordinates only.
+            let top = if rng.below(20) == 0 { -37.5 } else { 38.5 };
+            let coordinate = |rng: &mut Rng| match rng.below(12) {
+                0 => special[rng.below(special.len() as u64) as usize],
+                1 => 0.0,
+                _ => rng.signed_log_uniform(-45.0, top) as f32,
+            };
+            let all_zero = rng.below(50) == 0;
+            let vertices: Vec<Vec3> = (0..count)
+                .map(|_| {
+                    if all_zero {
+                        Vec3::ZERO
+                    } else {
+                        Vec3::new(
+                            coordinate(&mut rng),
+                            coordinate(&mut rng),
+                            coordinate(&mut rng),
+                        )
+                    }
+                })
+                .collect();
+            let scalar = rescale_factor(&vertices);
+            let (mut largest, mut finite) = (Vec4::ZERO, BVec4A::splat(true));
+            for first in (0..count).step_by(4) {
+                let vertex = |j: usize| vertices[if first + j < count { first + j } else { 0 }];
+                let lane =
+                    |c: usize| Vec4::new(vertex(0)[c], vertex(1)[c], vertex(2)[c], vertex(3)[c]);
+                let (m, f) = largest_magnitude4([lane(0), lane(1), lane(2)]);
+                if first == 0 {
+                    (largest, finite) = (m, f);
+                } else {
+                    (largest, finite) = (largest.max(m), finite & f);
+                }
+            }
+            let lanes = rescale_factor_of_lanes(largest, finite);
+            assert_eq!(
+                scalar.map(f32::to_bits),
+                lanes.map(f32::to_bits),
+                "{vertices:?}"
+            );
+            nones += scalar.is_none() as u32;
+            subnormal_largest +=
+                (scalar.is_some() && largest.max_element() < f32::MIN_POSITIVE) as u32;
+        }
+        // Both outcomes and the subnormal case were exercised.
+        assert!(nones > 10_000 && nones < 190_000, "{nones}");
+        assert!(subnormal_largest > 0);
+    }
 }

@@ -21,11 +21,10 @@
 //! a shading point in the polygon's plane, vertices 1e5 away, `u = 0` and `u = 1 - ulp`,
 //! both windings, duplicate vertices (as clipping can produce), 3 to 8 vertices.
 
-use super::rescale_factor;
 use crate::Sample;
 use crate::math::{
     LANES, atan2_upper_half_plane, determinant_is_exactly_zero,
-    difference_of_products_unless_cancelling, dot_precise, lane_starts, load4, store4,
+    difference_of_products_unless_cancelling, dot_precise, store4,
 };
 use crate::sample::{clamp_inverted, clamp_random, select_piece};
 use crate::{MAX_POLYGON_VERTICES, Vec3};
@@ -228,9 +227,9 @@ fn denominator(v0: Vec3, v1: Vec3, v2: Vec3, sums: [Vec3; 3], length_squares: [f
     }
 }
 
-/// Slots of the structure-of-arrays working set: up to 8 vertices, the copy of the first
-/// that closes the polygon, and what the last lanes of the fan read (up to slot
-/// `LANES + 2 + 3 = 9`), in whole lanes.
+/// Slots of the structure-of-arrays working set (`VertexGroups`, `VertexLanes`): up to 8
+/// vertices, the copy of the first that closes the polygon, and what the last lanes of
+/// the fan read (up to slot `LANES + 2 + 3 = 9`), in whole lanes.
 const SLOTS: usize = 3 * LANES;
 
 /// Bits `first..first + 4` of a lane mask, for the lanes below `end`: lane `j` stands
@@ -245,28 +244,76 @@ fn lane_bits(mask: BVec4A, first: usize, end: usize) -> u32 {
     (mask.bitmask() & in_range) << first
 }
 
-/// A polygon's per-vertex values in structure-of-arrays form: slot `i` holds vertex `i`,
-/// and every slot from `count` on holds vertex 0 again, so that slot `count` closes the
-/// polygon for the edges, and lanes past the polygon compute, from a valid vertex,
-/// finite values that the masks then leave out. Each value is rounded as the scalar form
-/// named beside it rounds it.
+/// The positions and lengths of [`VertexGroups`] in memory, slot by slot, for the
+/// careful paths, which index slots at run time: slot `i` holds vertex `i`, and slot
+/// `count` vertex 0 again.
 struct VertexLanes {
     /// The rescaled positions `p_i`.
     position: [[f32; SLOTS]; 3],
-    /// `|p_i|²`, as `Vec3::length_squared`.
-    length_squared: [f32; SLOTS],
     /// `|p_i|`.
     length: [f32; SLOTS],
-    /// `p_i / |p_i|`, correctly rounded per component (divided, not multiplied by a
-    /// reciprocal).
-    unit: [[f32; SLOTS]; 3],
-    /// The y and z components of `H (p_i - p_0)`, as `Householder::reflect_yz`.
-    reflected: [[f32; SLOTS]; 2],
-    /// `|p_i - p_0|∞`, the scale of the fan determinants' rounding noise.
-    extent: [f32; SLOTS],
 }
 
-/// One group of four slots of [`VertexLanes`], in registers.
+/// The input positions of slots `first..first + 4` as x, y and z lanes; slots from
+/// `count` on read vertex 0 again.
+#[inline(always)]
+fn gather(vertices: &[Vec3], count: usize, first: usize) -> [Vec4; 3] {
+    let vertex = |j: usize| {
+        let slot = first + j;
+        vertices[if slot < count { slot } else { 0 }]
+    };
+    let [a, b, c, d] = [vertex(0), vertex(1), vertex(2), vertex(3)];
+    [
+        Vec4::new(a.x, b.x, c.x, d.x),
+        Vec4::new(a.y, b.y, c.y, d.y),
+        Vec4::new(a.z, b.z, c.z, d.z),
+    ]
+}
+
+/// The input lanes of [`gather`] for the groups of slots `0..=count` (the last closes
+/// the polygon; groups 1 and 2 are zero where not needed, and nothing reads them then),
+/// and [`rescale_factor`](super::rescale_factor) of the polygon computed from them
+/// (`None` for a non-finite coordinate or all coordinates zero): the same factor bit
+/// for bit, in lanes (the repeated vertex 0 changes no maximum).
+#[inline(always)]
+fn gather_and_rescale(vertices: &[Vec3], count: usize) -> ([[Vec4; 3]; 3], Option<f32>) {
+    // Slots `0..=count` need the groups up to slot `count`: `count >= 3`, so group 1 is
+    // needed from `count = 4` on and group 2 for `count = 8`.
+    let zero = [Vec4::ZERO; 3];
+    let raw0 = gather(vertices, count, 0);
+    let raw1 = if count >= LANES {
+        gather(vertices, count, LANES)
+    } else {
+        zero
+    };
+    let raw2 = if count >= 2 * LANES {
+        gather(vertices, count, 2 * LANES)
+    } else {
+        zero
+    };
+    // Over the groups that hold vertices (the zero groups would change nothing).
+    let (mut largest, mut finite) = super::largest_magnitude4(raw0);
+    if count >= LANES {
+        let (m1, f1) = super::largest_magnitude4(raw1);
+        (largest, finite) = (largest.max(m1), finite & f1);
+    }
+    if count >= 2 * LANES {
+        let (m2, f2) = super::largest_magnitude4(raw2);
+        (largest, finite) = (largest.max(m2), finite & f2);
+    }
+    let factor = super::rescale_factor_of_lanes(largest, finite);
+    ([raw0, raw1, raw2], factor)
+}
+
+/// One group of four slots of a polygon's per-vertex values ([`VertexGroups`]), in
+/// registers: slot `i` holds vertex `i`, and every slot from `count` on holds vertex 0
+/// again, so that slot `count` closes the polygon for the edges, and lanes past the
+/// polygon compute, from a valid vertex, finite values that the masks then leave out.
+/// Each value is rounded as the scalar form named beside it rounds it: `length_squared`
+/// as `Vec3::length_squared`, `unit` divided by the length (correctly rounded per
+/// component, not multiplied by a reciprocal), `reflected` as `Householder::reflect_yz`
+/// of `p_i - p_0`, and `extent` is `|p_i - p_0|∞`, the scale of the fan determinants'
+/// rounding noise.
 #[derive(Clone, Copy)]
 struct SlotGroup {
     position: [Vec4; 3],
@@ -289,21 +336,15 @@ impl SlotGroup {
         extent: Vec4::ZERO,
     };
 
-    /// Positions (the input times the power of two `factor` of [`rescale`]), lengths and
-    /// unit directions of slots `first..first + 4` (slots from `count` on read vertex 0
-    /// again); the reflected edges are left 0 (see [`reflect`](Self::reflect)). The
-    /// second value is `false` when one has length 0 (a vertex at the shading point, or
-    /// one whose squared length underflows).
+    /// Positions (the input `raw`, the x, y and z lanes of [`gather`], times the power of
+    /// two `factor` of [`rescale`]), lengths and unit directions of four slots; the
+    /// reflected edges are left 0 (see [`reflect`](Self::reflect)). The second value is
+    /// `false` when one has length 0 (a vertex at the shading point, or one whose squared
+    /// length underflows).
     #[inline(always)]
-    fn vertices(vertices: &[Vec3], factor: Vec4, count: usize, first: usize) -> (SlotGroup, bool) {
-        let vertex = |j: usize| {
-            let slot = first + j;
-            vertices[if slot < count { slot } else { 0 }]
-        };
-        let [a, b, c, d] = [vertex(0), vertex(1), vertex(2), vertex(3)];
-        let x = Vec4::new(a.x, b.x, c.x, d.x) * factor;
-        let y = Vec4::new(a.y, b.y, c.y, d.y) * factor;
-        let z = Vec4::new(a.z, b.z, c.z, d.z) * factor;
+    fn vertices(raw: [Vec4; 3], factor: Vec4) -> (SlotGroup, bool) {
+        let [x, y, z] = raw;
+        let (x, y, z) = (x * factor, y * factor, z * factor);
         let length_squared = (x * x + y * y) + z * z;
         let length = crate::math::sqrt4(length_squared);
         let nonzero = length.cmpgt(Vec4::ZERO).all();
@@ -344,25 +385,38 @@ fn join(groups: [Vec4; 3]) -> [f32; SLOTS] {
     slots
 }
 
-impl VertexLanes {
-    /// The working set of the polygon, built in registers four slots at a time and
-    /// stored once (no zeroing of the whole set first, which cost a `memset` of 576
-    /// bytes): the groups of slots `0..=count` (the last closes the polygon) from the
-    /// input, the group above 0 (only lanes that the masks leave out read it), with the
-    /// apex's reflection; `None` when a vertex has length 0.
+/// The working set of the polygon in registers (or in the compiler's aligned spill
+/// slots), four slots at a time: slot `i` in lane `i % 4` of group `i / 4`. The fan and
+/// the edges read slots shifted by one and two (vertices `k + 1`, `k + 2`), which
+/// [`slots`](Self::slots) takes from two neighbouring groups by shuffles: the working set
+/// in memory, stored as whole groups and loaded back at those shifts, had every shifted
+/// load span two stores, which store-to-load forwarding cannot serve (the load waits
+/// until the stores reach the cache), and cost the stores of all 36 lanes (576 bytes).
+/// The rare careful paths, which index slots at run time, take the memory form
+/// [`VertexLanes`] built on the spot ([`lanes`](Self::lanes)).
+#[derive(Clone, Copy)]
+struct VertexGroups {
+    groups: [SlotGroup; 3],
+}
+
+impl VertexGroups {
+    /// The working set of the polygon: the groups of slots `0..=count` (the last closes
+    /// the polygon) from the input lanes of [`gather`], the groups above 0 (only lanes
+    /// that the masks leave out read them), with the apex's reflection; `None` when a
+    /// vertex has length 0.
     #[inline(always)]
-    fn new(vertices: &[Vec3], factor: f32, count: usize) -> Option<(VertexLanes, Householder)> {
+    fn new(raw: [[Vec4; 3]; 3], factor: f32, count: usize) -> Option<(VertexGroups, Householder)> {
         let factor = Vec4::splat(factor);
         // Slots `0..=count` need the groups up to slot `count`: `count >= 3`, so group 1
         // is needed from `count = 4` on and group 2 for `count = 8`.
-        let (mut g0, ok0) = SlotGroup::vertices(vertices, factor, count, 0);
+        let (mut g0, ok0) = SlotGroup::vertices(raw[0], factor);
         let (mut g1, ok1) = if count >= LANES {
-            SlotGroup::vertices(vertices, factor, count, LANES)
+            SlotGroup::vertices(raw[1], factor)
         } else {
             (SlotGroup::ZERO, true)
         };
         let (mut g2, ok2) = if count >= 2 * LANES {
-            SlotGroup::vertices(vertices, factor, count, 2 * LANES)
+            SlotGroup::vertices(raw[2], factor)
         } else {
             (SlotGroup::ZERO, true)
         };
@@ -383,84 +437,96 @@ impl VertexLanes {
         if count >= 2 * LANES {
             g2.reflect(&reflection, origin);
         }
+        Some((
+            VertexGroups {
+                groups: [g0, g1, g2],
+            },
+            reflection,
+        ))
+    }
+
+    /// The unit direction towards the apex, vertex 0.
+    #[inline(always)]
+    fn apex(&self) -> Vec3 {
+        let [x, y, z] = self.groups[0].unit;
+        Vec3::new(x.x, y.x, z.x)
+    }
+
+    /// The lanes of slots `start..start + 4` of the value that `field` picks from a
+    /// group (`start` is a constant where this is inlined: the group and the shuffle are
+    /// chosen at compile time).
+    #[inline(always)]
+    fn slots(&self, field: impl Fn(&SlotGroup) -> Vec4, start: usize) -> Vec4 {
+        let group = start / LANES;
+        let low = field(&self.groups[group]);
+        if start % LANES == 0 {
+            return low;
+        }
+        let high = if group + 1 < self.groups.len() {
+            field(&self.groups[group + 1])
+        } else {
+            Vec4::ZERO
+        };
+        // Lanes `start % 4..4` of the lower group, then the first lanes of the next.
+        match start % LANES {
+            1 => Vec4::new(low.y, low.z, low.w, high.x),
+            2 => Vec4::new(low.z, low.w, high.x, high.y),
+            _ => Vec4::new(low.w, high.x, high.y, high.z),
+        }
+    }
+
+    /// [`slots`](Self::slots) of the three coordinates of a vector value.
+    #[inline(always)]
+    fn slots3(&self, field: impl Fn(&SlotGroup) -> [Vec4; 3], start: usize) -> [Vec4; 3] {
+        [
+            self.slots(|g| field(g)[0], start),
+            self.slots(|g| field(g)[1], start),
+            self.slots(|g| field(g)[2], start),
+        ]
+    }
+
+    /// Writes the unit directions of slots `0..count` into `vertices` (and those of the
+    /// following slots of the same groups where `vertices` has room: the caller
+    /// overwrites slots from `count` on).
+    #[inline(always)]
+    fn write_units<const N: usize>(&self, vertices: &mut [Vec3; N], count: usize) {
+        for (g, group) in self.groups.iter().enumerate() {
+            let first = g * LANES;
+            // (`first` and `N` are constants here: the tests fold.)
+            if first >= N || first >= count {
+                break;
+            }
+            let [x, y, z] = group.unit;
+            let (x, y, z) = (x.to_array(), y.to_array(), z.to_array());
+            for j in 0..LANES.min(N - first) {
+                vertices[first + j] = Vec3::new(x[j], y[j], z[j]);
+            }
+        }
+    }
+
+    /// The working set in memory, for the careful paths that index it at run time
+    /// (inline: a call with a pointer to the groups kept them in memory on every path).
+    #[inline(always)]
+    fn lanes(&self) -> VertexLanes {
+        let [g0, g1, g2] = &self.groups;
         // Written out, not by `array::map` (which the generic body may leave out of line).
-        let lanes = VertexLanes {
+        VertexLanes {
             position: [
                 join([g0.position[0], g1.position[0], g2.position[0]]),
                 join([g0.position[1], g1.position[1], g2.position[1]]),
                 join([g0.position[2], g1.position[2], g2.position[2]]),
             ],
-            length_squared: join([g0.length_squared, g1.length_squared, g2.length_squared]),
             length: join([g0.length, g1.length, g2.length]),
-            unit: [
-                join([g0.unit[0], g1.unit[0], g2.unit[0]]),
-                join([g0.unit[1], g1.unit[1], g2.unit[1]]),
-                join([g0.unit[2], g1.unit[2], g2.unit[2]]),
-            ],
-            reflected: [
-                join([g0.reflected[0], g1.reflected[0], g2.reflected[0]]),
-                join([g0.reflected[1], g1.reflected[1], g2.reflected[1]]),
-            ],
-            extent: join([g0.extent, g1.extent, g2.extent]),
-        };
-        Some((lanes, reflection))
+        }
     }
+}
 
-    /// Every slot 0; only lanes that the masks leave out read a slot that `fill` and
-    /// `reflect_edges` do not write.
+impl VertexLanes {
+    /// Every slot 0 (the value of the fast path, which does not read it).
     const ZERO: VertexLanes = VertexLanes {
         position: [[0.0; SLOTS]; 3],
-        length_squared: [0.0; SLOTS],
         length: [0.0; SLOTS],
-        unit: [[0.0; SLOTS]; 3],
-        reflected: [[0.0; SLOTS]; 2],
-        extent: [0.0; SLOTS],
     };
-
-    /// Positions (the input times the power of two `factor` of [`rescale`]), lengths and
-    /// unit directions of the vertices, in place (no copy of the working set); `false`
-    /// when one has length 0 (a vertex at the shading point, or one whose squared length
-    /// underflows).
-    #[inline(always)]
-    fn fill(&mut self, vertices: &[Vec3], factor: f32, count: usize) -> bool {
-        let lanes = self;
-        let factor = Vec4::splat(factor);
-        let mut nonzero = true;
-        // The lanes of slots `0..=count` (the last closes the polygon), built in
-        // registers from the input (slots from `count` on read vertex 0 again) and stored
-        // whole: storing the slots one by one and loading them back four at a time
-        // stalls on the failed store-to-load forwarding. The slots above stay 0 and only
-        // lanes that the masks leave out read them.
-        for first in lane_starts(count + 1) {
-            let (group, ok) = SlotGroup::vertices(vertices, factor, count, first);
-            nonzero &= ok;
-            for c in 0..3 {
-                store4(group.position[c], &mut lanes.position[c], first);
-                store4(group.unit[c], &mut lanes.unit[c], first);
-            }
-            store4(group.length_squared, &mut lanes.length_squared, first);
-            store4(group.length, &mut lanes.length, first);
-        }
-        nonzero
-    }
-
-    /// Fills `reflected` and `extent`: the edge vectors `p_i - p_0` (exact differences of
-    /// the inputs up to one rounding each, so that tiny and distant polygons keep their
-    /// relative precision) through the reflection.
-    #[inline(always)]
-    fn reflect_edges(&mut self, reflection: &Householder, count: usize) {
-        let origin = splat3(self.position(0));
-        for first in lane_starts(count + 1) {
-            let mut group = SlotGroup {
-                position: load4x3(&self.position, first),
-                ..SlotGroup::ZERO
-            };
-            group.reflect(reflection, origin);
-            store4(group.reflected[0], &mut self.reflected[0], first);
-            store4(group.reflected[1], &mut self.reflected[1], first);
-            store4(group.extent, &mut self.extent, first);
-        }
-    }
 
     /// The (rescaled) position of vertex `i`; slot `count` is vertex 0 again.
     #[inline(always)]
@@ -471,24 +537,6 @@ impl VertexLanes {
             self.position[2][i],
         )
     }
-
-    /// The unit direction towards vertex `i`.
-    #[inline(always)]
-    fn unit(&self, i: usize) -> Vec3 {
-        Vec3::new(self.unit[0][i], self.unit[1][i], self.unit[2][i])
-    }
-}
-
-/// The lanes of slots `first..first + 4` of the three coordinates (written out, not by
-/// `array::map`, which the compiler left out of line in the generic preparation: 64
-/// instructions per prepared triangle).
-#[inline(always)]
-fn load4x3(coordinates: &[[f32; SLOTS]; 3], first: usize) -> [Vec4; 3] {
-    [
-        load4(&coordinates[0], first),
-        load4(&coordinates[1], first),
-        load4(&coordinates[2], first),
-    ]
 }
 
 /// The three coordinates of `v`, each in all four lanes.
@@ -520,15 +568,21 @@ impl FanLanes {
     fn compute<const N: usize, const T: usize>(
         &mut self,
         polygon: &mut SolidAngleFan<N, T>,
-        lanes: &VertexLanes,
+        lanes: &VertexGroups,
         reflection: &Householder,
         apex: Vec3,
         first: usize,
         triangles: usize,
     ) {
         let (b, c) = (first + 1, first + 2);
-        let [rb, rc] =
-            [b, c].map(|i| [load4(&lanes.reflected[0], i), load4(&lanes.reflected[1], i)]);
+        let rb = [
+            lanes.slots(|g| g.reflected[0], b),
+            lanes.slots(|g| g.reflected[1], b),
+        ];
+        let rc = [
+            lanes.slots(|g| g.reflected[0], c),
+            lanes.slots(|g| g.reflected[1], c),
+        ];
         // G0 = det(v0, v1, v2) = det(p_b, p_a, p_c) / (|p_a| |p_b| |p_c|).
         let triangle = Vec4::new(0.0, 1.0, 2.0, 3.0) + Vec4::splat(first as f32);
         let needed = triangle.cmplt(Vec4::splat(triangles as f32));
@@ -536,13 +590,13 @@ impl FanLanes {
             rb[0], rc[1], rb[1], rc[0], needed,
         ) * Vec4::splat(reflection.sigma);
         let noise = Vec4::splat(super::FAN_DETERMINANT_NOISE)
-            * load4(&lanes.extent, b)
-            * load4(&lanes.extent, c);
+            * lanes.slots(|g| g.extent, b)
+            * lanes.slots(|g| g.extent, c);
         self.maybe_flat |= lane_bits(det.abs().cmple(noise), first, triangles);
-        let signed_g0 = det / (load4(&lanes.length, b) * load4(&lanes.length, c));
+        let signed_g0 = det / (lanes.slots(|g| g.length, b) * lanes.slots(|g| g.length, c));
         store4(signed_g0, &mut self.signed_g0, first);
-        let [bx, by, bz] = load4x3(&lanes.unit, b);
-        let [cx, cy, cz] = load4x3(&lanes.unit, c);
+        let [bx, by, bz] = lanes.slots3(|g| g.unit, b);
+        let [cx, cy, cz] = lanes.slots3(|g| g.unit, c);
         let [ax, ay, az] = splat3(apex);
         let (s01x, s01y, s01z) = (bx + ax, by + ay, bz + az);
         let (s02x, s02y, s02z) = (bx + cx, by + cy, bz + cz);
@@ -612,12 +666,12 @@ impl EdgeLanes {
     #[inline(always)]
     fn compute<const N: usize>(
         &self,
-        lanes: &VertexLanes,
+        lanes: &VertexGroups,
         first: usize,
         normals: &mut [Vec3; N],
     ) -> u32 {
-        let [px, py, pz] = load4x3(&lanes.position, first);
-        let [qx, qy, qz] = load4x3(&lanes.position, first + 1);
+        let [px, py, pz] = lanes.slots3(|g| g.position, first);
+        let [qx, qy, qz] = lanes.slots3(|g| g.position, first + 1);
         // p_i × p_(i+1) = p_i × (p_(i+1) - p_i): the edge vector is exact up to one
         // rounding and nearly orthogonal to p_i, so no cancellation occurs (the
         // components in the order of `Vec3::cross`).
@@ -627,7 +681,8 @@ impl EdgeLanes {
         let nz = px * dy - dx * py;
         // sin²ℓ = |n|² / (|p_i|² |p_(i+1)|²), kept as products (no division).
         let normal2 = (nx * nx + ny * ny) + nz * nz;
-        let scale2 = load4(&lanes.length_squared, first) * load4(&lanes.length_squared, first + 1);
+        let scale2 =
+            lanes.slots(|g| g.length_squared, first) * lanes.slots(|g| g.length_squared, first + 1);
         // The first test of `ignore_short_edges_in_containment` (sin² of the edge's
         // length against SHORT_EDGE_SINE²), on the same values: the common polygon has
         // no short edge and skips it.
@@ -708,13 +763,15 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
     /// `None`. Every field that sampling, `pdf` and `invert` read is written, whatever
     /// `self` held before, and nothing is copied.
     pub fn prepare(&mut self, vertices: &[Vec3]) -> bool {
-        // Triangles and quads get copies of the body with the count a constant: their
-        // loops unroll and the lanes' masks fold, so that they pay only for their own
-        // vertices (issue 15, 3): 1361 -> 1106 and 1539 -> 1338 instructions per prepare
-        // + 1 sample (callgrind, C benchmark). Copies for 5 to 8 vertices made hexagons
-        // and heptagons slower (1689 -> 1726, 2121 -> 2212), so they share one body, kept
-        // out of line (inlined beside the small copies it grew to 1903 and 2382; apart,
-        // 1667 and 2036).
+        // Every count gets its copy of the body with the count a constant: the loops
+        // unroll and the lanes' masks fold, so that each pays only for its own vertices
+        // (issue 15, 3): 1361 -> 1106 and 1539 -> 1338 instructions per prepare + 1 sample
+        // for triangles and quads (callgrind, C benchmark). Since the working set stays in
+        // registers (`VertexGroups`), the copies pay for 5 to 8 vertices too (one shared
+        // body with a run-time count: hexagons 1504, heptagons 1792; one per count: 1326
+        // and 1622; a body for 5 to 7 and one for 8: 1453 and 1730). Those four copies
+        // are kept out of line (inlined beside the small copies, the shared body grew
+        // from 1667 to 1903 instructions per hexagon).
         // The sizes' parameters, checked where a size is first used.
         let () = Self::VALID_SIZE;
         let count = vertices.len();
@@ -727,16 +784,22 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         super::keep_or_empty(self, prepared, Self::EMPTY)
     }
 
-    /// [`prepare_or_fail`](Self::prepare_or_fail) for 5 to 8 vertices, one body for all
+    /// [`prepare_or_fail`](Self::prepare_or_fail) for 5 to 8 vertices, a copy per count
     /// (kept apart so that the triangles' and quads' copies do not change how the
-    /// compiler inlines it).
+    /// compiler inlines them).
     #[inline(never)]
     fn prepare_five_to_eight(&mut self, vertices: &[Vec3]) -> bool {
         let count = vertices.len();
-        if !(5..=N).contains(&count) {
-            return false;
+        // One copy per count (for `N < 8`, `prepare_or_fail`'s range test folds the
+        // copies above `N` to `false`; guards `if N >= 5` here instead cost the triangle
+        // size 10 instructions per prepare + 1, callgrind).
+        match count {
+            5 => self.prepare_or_fail(vertices, 5),
+            6 => self.prepare_or_fail(vertices, 6),
+            7 => self.prepare_or_fail(vertices, 7),
+            8 => self.prepare_or_fail(vertices, 8),
+            _ => false,
         }
-        self.prepare_or_fail(vertices, count)
     }
 
     /// The body of [`prepare`](Self::prepare) for `count == vertices.len()` (3 to 8); on
@@ -749,52 +812,41 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
             return false;
         }
         let vertices = &vertices[..count];
-        let Some(factor) = rescale_factor(vertices) else {
+        // The input in lanes, and the power of two that rescales it (as `rescale`).
+        let (raw, factor) = gather_and_rescale(vertices, count);
+        let Some(factor) = factor else {
             return false;
         };
-        // The per-vertex work four vertices at a time (see `VertexLanes`), rounded as the
+        // The per-vertex work four vertices at a time (see `VertexGroups`), rounded as the
         // scalar forms round it: divided, not multiplied by a reciprocal, so that unit
         // vectors are correctly rounded (half an ulp). With the reciprocal (one ulp) the
         // chi-square test found a sample at u0 = 1 - 5e-7 whose direction rounded 1.5e-8
         // to the outer side of its edge, where `pdf` was 0; and the reciprocal of a length
         // below 2^-128 overflows.
-        // Triangles and quads (`count` a constant there) build the working set by value,
-        // without zeroing it first (callgrind per prepare + 1 sample: triangles 798 ->
-        // 777, quads 1019 -> 998); the shared body of 5 to 8 vertices zeroes it and
-        // fills it in place (built by value there, hexagons took 1532 -> 1554).
-        let (lanes, reflection) = if count <= LANES {
-            let Some((lanes, reflection)) = VertexLanes::new(vertices, factor, count) else {
-                return false;
-            };
-            for i in 0..count {
-                self.vertices[i] = lanes.unit(i);
-            }
-            (lanes, reflection)
-        } else {
-            let mut lanes = VertexLanes::ZERO;
-            if !lanes.fill(vertices, factor, count) {
-                return false;
-            }
-            for i in 0..count {
-                self.vertices[i] = lanes.unit(i);
-            }
-            let reflection = Householder::new(self.vertices[0]);
-            lanes.reflect_edges(&reflection, count);
-            (lanes, reflection)
+        let Some((groups, reflection)) = VertexGroups::new(raw, factor, count) else {
+            return false;
         };
-        let apex = self.vertices[0];
+        groups.write_units(&mut self.vertices, count);
+        let apex = groups.apex();
         let triangles = count - 2;
         let mut fan = FanLanes::default();
-        fan.compute(self, &lanes, &reflection, apex, 0, triangles);
+        fan.compute(self, &groups, &reflection, apex, 0, triangles);
         if triangles > LANES {
-            fan.compute(self, &lanes, &reflection, apex, LANES, triangles);
+            fan.compute(self, &groups, &reflection, apex, LANES, triangles);
         }
         // The rare triangles that the lanes flagged, in the scalar careful forms.
         let mut careful_paths = 0;
         // One pass per set bit (the lanes' flags have no bits past `triangles`): the
         // common polygon, with no flag, skips the loop at once.
         let mut flagged = fan.maybe_flat | fan.wide_pairs;
+        // The working set in memory, for the run-time indices below (rare).
+        let memory = if flagged != 0 {
+            groups.lanes()
+        } else {
+            VertexLanes::ZERO
+        };
         while flagged != 0 {
+            let lanes = &memory;
             let k = flagged.trailing_zeros() as usize;
             // Clears the lowest set bit.
             flagged &= flagged - 1;
@@ -876,7 +928,11 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // All determinants zero: the shading point lies in the polygon's plane. If it
         // also lies inside the polygon, van Oosterom and Strackee's formula gives 2π
         // (atan2(0, negative)) for a polygon that is seen edge-on: reject it.
-        if edge_on || !(total > 0.0) || !density.is_finite() || !total.is_finite() {
+        // (`total` positive and finite, and `density` finite: for a positive `total`,
+        // `density` is positive and not NaN, so comparisons with ∞ are the whole test;
+        // `is_finite` compiled to a classification of the bits, 20 instructions.)
+        let accepted = total > 0.0 && total < f32::INFINITY && density < f32::INFINITY;
+        if edge_on || !accepted {
             return false;
         }
         // det(p_b, p_a, p_c) = -det(p_a, p_b, p_c): a positive sum means the polygon
@@ -892,9 +948,9 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         };
         // Edge i runs from vertex i to vertex i + 1 (slot `count` holds the first vertex
         // again, so the lanes need no wrap-around).
-        let mut flags = edges.compute(&lanes, 0, &mut self.edge_normals);
+        let mut flags = edges.compute(&groups, 0, &mut self.edge_normals);
         if count > LANES {
-            flags |= edges.compute(&lanes, LANES, &mut self.edge_normals);
+            flags |= edges.compute(&groups, LANES, &mut self.edge_normals);
         }
         let maybe_short = flags & EDGE_MAYBE_SHORT != 0;
         let (narrow, narrowest) = (flags & EDGE_NARROW != 0, flags & EDGE_NARROWEST != 0);
@@ -903,6 +959,7 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // place of the rounded ones; the others keep zero residuals.
         self.edge_residuals = [Vec3::ZERO; N];
         if narrowest {
+            let lanes = groups.lanes();
             for i in 0..count {
                 let (normal, residual) = crate::math::cross_with_residual(
                     lanes.position(i),
@@ -920,6 +977,7 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // neighbour) has a plane of rounding noise, which cut away up to 0.03 rad of the
         // polygon from `contains` (found by fuzzing); it is left out of the test.
         if maybe_short {
+            let lanes = groups.lanes();
             let positions: [Vec3; MAX_POLYGON_VERTICES + 1] =
                 core::array::from_fn(|i| lanes.position(i));
             super::ignore_short_edges_in_containment(&mut self.edge_normals, &positions, count);

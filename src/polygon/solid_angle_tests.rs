@@ -1031,3 +1031,45 @@ fn the_triangle_and_quad_sizes_reject_more_vertices_than_they_store() {
         }
     }
 }
+
+/// `VertexGroups::slots` (the shifted lanes of the fan and the edges, taken from two
+/// groups by shuffles) gives the lanes that the working set in memory holds at every
+/// shift the preparation reads (slots `start..start + 4` for `start` 0 to 8), for 3 to 8
+/// vertices, and the unit directions that `write_units` stores are the positions over
+/// the lengths of the memory form (`VertexLanes`, built from the same groups).
+#[test]
+fn shifted_slots_are_the_working_set_in_memory() {
+    let mut rng = Rng::new(3535);
+    for case in 0..2_000 {
+        let count = 3 + case % 6;
+        let vertices: Vec<Vec3> = (0..count)
+            .map(|_| {
+                Vec3::new(
+                    rng.range(-2.0, 2.0),
+                    rng.range(-2.0, 2.0),
+                    rng.range(0.5, 3.0),
+                )
+            })
+            .collect();
+        let (raw, factor) = gather_and_rescale(&vertices, count);
+        let (groups, _) = VertexGroups::new(raw, factor.unwrap(), count).unwrap();
+        let memory = groups.lanes();
+        for start in 0..=2 * LANES {
+            let lanes = |slots: &[f32; SLOTS]| Vec4::from_slice(&slots[start..start + LANES]);
+            let [x, y, z] = groups.slots3(|g| g.position, start);
+            for (c, lane) in [x, y, z].into_iter().enumerate() {
+                assert_eq!(lane.to_array(), lanes(&memory.position[c]).to_array());
+            }
+            let length = groups.slots(|g| g.length, start);
+            assert_eq!(length.to_array(), lanes(&memory.length).to_array());
+        }
+        // Slot `count` closes the polygon: vertex 0 again.
+        assert_eq!(memory.position(count), memory.position(0));
+        let mut units = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+        groups.write_units(&mut units, count);
+        for (i, unit) in units.iter().enumerate().take(count) {
+            let (p, l) = (memory.position(i), memory.length[i]);
+            assert_eq!(unit.to_array(), [p.x / l, p.y / l, p.z / l], "{i}");
+        }
+    }
+}
