@@ -80,10 +80,13 @@ fn round_trip_tolerance(transformed: &[Vec3], projected_solid_angle: f32) -> f32
     for (u, t) in units.iter_mut().zip(transformed) {
         *u = perimeter_unit(*t);
     }
+    // The edges in order, the closing one last.
     let mut perimeter = 0.0f32;
-    for i in 0..count {
-        let next = if i + 1 == count { 0 } else { i + 1 };
-        perimeter += (units[next] - units[i]).length();
+    for pair in units[..count].windows(2) {
+        perimeter += (pair[1] - pair[0]).length();
+    }
+    if let [first, .., last] = units[..count] {
+        perimeter += (first - last).length();
     }
     let width = projected_solid_angle / perimeter;
     if width.is_finite() {
