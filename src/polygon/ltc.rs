@@ -69,21 +69,47 @@ fn plane_misses_origin(vertices: &[Vec3]) -> bool {
 /// the exact Jacobian of `M`).
 fn round_trip_tolerance(transformed: &[Vec3], projected_solid_angle: f32) -> f32 {
     let count = transformed.len();
-    // Each vertex normalised once (it ends two edges).
+    // Each vertex normalised once (it ends two edges). Where `|t|²` is a normal float
+    // well inside the range (1e-30 to 1e30), the squares neither overflow nor lose
+    // more than 1e-15 of `|t|²` to denormals, so `t / |t|` directly (one square root,
+    // one division) is within a few ulps of the careful form, which first divides by
+    // the largest component (three more divisions); elsewhere the careful form. The
+    // perimeter only sets the slack `τ`, bounded below by `pdf_slack()` in the caller,
+    // and a few ulps of `P'` move `τ` by a few ulps, well inside the 2e-5 budget.
     let mut units = [Vec3::ZERO; MAX_POLYGON_VERTICES];
     for (u, t) in units.iter_mut().zip(transformed) {
-        *u = crate::math::normalize_scaled(*t);
+        *u = perimeter_unit(*t);
     }
+    // The edges in order, the closing one last.
     let mut perimeter = 0.0f32;
-    for i in 0..count {
-        let next = if i + 1 == count { 0 } else { i + 1 };
-        perimeter += (units[next] - units[i]).length();
+    for pair in units[..count].windows(2) {
+        perimeter += (pair[1] - pair[0]).length();
+    }
+    if let [first, .., last] = units[..count] {
+        perimeter += (first - last).length();
     }
     let width = projected_solid_angle / perimeter;
     if width.is_finite() {
         ROUND_TRIP_TOLERANCE.min(TOLERANCE_PER_WIDTH * width)
     } else {
         ROUND_TRIP_TOLERANCE
+    }
+}
+
+/// `t / |t|` for the perimeter of [`round_trip_tolerance`] (zero for a zero or
+/// non-finite `t`): directly, by one square root and one division, where `|t|²` lies in
+/// `(1e-30, 1e30)` (then no square overflows and the denormal ones lose at most 1e-15
+/// of `|t|²`, so the result is within a few ulps of the careful one), and by
+/// [`normalize_scaled`](crate::math::normalize_scaled) (a division by the largest
+/// component first) elsewhere. The comparisons fail for NaN, so non-finite `t` takes
+/// the careful path.
+#[inline(always)]
+fn perimeter_unit(t: Vec3) -> Vec3 {
+    let length2 = t.length_squared();
+    if length2 > 1e-30 && length2 < 1e30 {
+        t * (1.0 / libm::sqrtf(length2))
+    } else {
+        crate::math::normalize_scaled(t)
     }
 }
 

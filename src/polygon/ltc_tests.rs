@@ -448,3 +448,59 @@ fn the_pdf_integrates_to_one_and_every_sample_has_its_pdf() {
         );
     }
 }
+
+/// `perimeter_unit`'s direct path (one square root, one division) is taken exactly for
+/// `|t|²` in `(1e-30, 1e30)` and agrees with the careful `normalize_scaled` within 4 ulps
+/// per component there; outside it (and for zero or non-finite `t`) the result is the
+/// careful one, bit for bit.
+#[test]
+fn perimeter_units_agree_with_the_careful_normalisation() {
+    let within_ulps = |a: f32, b: f32| {
+        (a - b).abs() <= 4.0 * f32::EPSILON * a.abs().max(b.abs()).max(f32::MIN_POSITIVE)
+    };
+    let mut rng = 0x1234_5678u32;
+    let mut next = || {
+        rng ^= rng << 13;
+        rng ^= rng >> 17;
+        rng ^= rng << 5;
+        rng as f32 / u32::MAX as f32 * 2.0 - 1.0
+    };
+    let mut direct = 0;
+    for scale in [1e-14f32, 1e-10, 1e-3, 1.0, 7.0, 1e5, 1e14] {
+        for _ in 0..2000 {
+            let t = Vec3::new(next(), next(), next()) * scale;
+            let length2 = t.length_squared();
+            let fast = perimeter_unit(t);
+            let careful = crate::math::normalize_scaled(t);
+            if length2 > 1e-30 && length2 < 1e30 {
+                direct += 1;
+                for k in 0..3 {
+                    assert!(within_ulps(fast[k], careful[k]), "{t}: {fast} vs {careful}");
+                }
+            } else {
+                assert_eq!(fast, careful, "{t}");
+            }
+        }
+    }
+    assert!(
+        direct > 10_000,
+        "the direct path was taken only {direct} times"
+    );
+    // Outside the range, zero and non-finite: the careful path, bit for bit.
+    for t in [
+        Vec3::new(1e-16, -2e-16, 3e-17),
+        Vec3::new(2e15, 1e15, -3e15),
+        Vec3::new(1e-40, 0.0, 0.0),
+        Vec3::new(f32::MAX, 1.0, 0.0),
+        Vec3::ZERO,
+        Vec3::new(f32::NAN, 1.0, 0.0),
+        Vec3::new(f32::INFINITY, 1.0, 0.0),
+    ] {
+        let (fast, careful) = (perimeter_unit(t), crate::math::normalize_scaled(t));
+        assert_eq!(
+            fast.to_array().map(f32::to_bits),
+            careful.to_array().map(f32::to_bits),
+            "{t}"
+        );
+    }
+}
