@@ -31,8 +31,11 @@ pub fn atan2_upper_half_plane(y: f32, x: f32) -> f32 {
     } else {
         FRAC_PI_2 + libm::atanf(-x / y)
     };
-    // 0/0 and NaN inputs give NaN; `max` maps it to 0 (IEEE maxNum returns the number).
-    angle.max(0.0)
+    // 0/0 and NaN inputs give NaN, mapped to 0, as are -0 (from `y = -0`) and negative
+    // angles (from a negative `y`). An explicit comparison rather than `angle.max(0.0)`,
+    // whose result for `-0` IEEE maxNum leaves open (x86-64 compiled that `max` into
+    // this very comparison, `maxss`; the lanes of `atan2_upper_half_plane4` use it too).
+    if angle > 0.0 { angle } else { 0.0 }
 }
 
 /// `atan(t)` for `t` in `[0, 1]`: `t + t³ P(t²)` with the degree-8 polynomial `P`

@@ -186,22 +186,25 @@ pub fn difference_of_products_unless_cancelling4(
 }
 
 /// [`atan2_upper_half_plane`](super::atan2_upper_half_plane) of the first `lanes` lanes
-/// (the others 0): the scalar form lane by lane (`libm::atanf` stays scalar: see there
-/// why), so that every lane is the same bits as the scalar call, and lanes past a
-/// polygon's triangles or sectors cost nothing.
+/// (the others 0), every lane the same bits as the scalar call (tested), without a
+/// branch: the scalar form's choice between `atan(y/x)` and `π/2 + atan(-x/y)` becomes
+/// a choice of numerator and denominator (one division for four lanes) and of the
+/// offset, and `libm::atanf` is [`atanf4`](super::atanf4), its bits in four lanes.
 #[inline(always)]
 #[must_use]
 pub fn atan2_upper_half_plane4(y: Vec4, x: Vec4, lanes: usize) -> Vec4 {
-    let (y, x) = (y.to_array(), x.to_array());
-    let mut angles = [0.0f32; LANES];
-    // A loop of fixed length with a test per lane, which the compiler unrolls (a loop
-    // to `lanes` kept its counter and bounds checks).
-    for lane in 0..LANES {
-        if lane < lanes {
-            angles[lane] = super::atan2_upper_half_plane(y[lane], x[lane]);
-        }
-    }
-    Vec4::from_array(angles)
+    // `x > 0`, false for a NaN `x`, which takes the second form as in the scalar.
+    let right = x.cmpgt(Vec4::ZERO);
+    let ratio = Vec4::select(right, y, -x) / Vec4::select(right, x, y);
+    // The offset 0 or π/2 added in every lane: `0 + a` is `a` but for `a = -0`, where it
+    // is +0, which the clamp below turns into +0 in either case.
+    let offset = Vec4::select(right, Vec4::ZERO, Vec4::splat(core::f32::consts::FRAC_PI_2));
+    let angle = offset + super::atanf4(ratio);
+    // The scalar's clamp `if angle > 0 { angle } else { 0 }` (NaN and ±0 give +0), and 0
+    // in the lanes at or past `lanes` (their index compared as an `f32`: exact, at most
+    // 4 — larger counts only mean "all").
+    let used = Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(Vec4::splat(lanes.min(LANES) as f32));
+    Vec4::select(angle.cmpgt(Vec4::ZERO) & used, angle, Vec4::ZERO)
 }
 
 #[cfg(test)]
@@ -286,5 +289,81 @@ mod tests {
         }
         // The careful form ran in some lanes (the test covers both).
         assert!(careful_lanes > 1000, "{careful_lanes}");
+    }
+
+    /// `atan2_upper_half_plane4` against the scalar form lane by lane, bit for bit: every
+    /// pair of special values (signed zeros, whose `-0` angles the clamp makes +0, the
+    /// smallest subnormal, ±1, ratios at fdlibm's thresholds, huge values, infinities,
+    /// NaN, negative `y` outside the contract), every lane position and lane count
+    /// (0 to 5: more than four means all), and random pairs of all magnitudes and of
+    /// random bit patterns.
+    #[test]
+    fn atan2_upper_half_plane4_is_the_scalar_form() {
+        use crate::math::atan2_upper_half_plane;
+        let check = |y: Vec4, x: Vec4, lanes: usize| {
+            let angles = atan2_upper_half_plane4(y, x, lanes);
+            for lane in 0..LANES {
+                let scalar = if lane < lanes {
+                    atan2_upper_half_plane(y[lane], x[lane])
+                } else {
+                    0.0
+                };
+                assert_eq!(
+                    angles[lane].to_bits(),
+                    scalar.to_bits(),
+                    "lane {lane} of {lanes}: y {:e} ({:#x}), x {:e} ({:#x})",
+                    y[lane],
+                    y[lane].to_bits(),
+                    x[lane],
+                    x[lane].to_bits()
+                );
+            }
+        };
+        let special = [
+            0.0f32,
+            -0.0,
+            f32::from_bits(1),
+            -f32::from_bits(1),
+            f32::MIN_POSITIVE,
+            1.0,
+            -1.0,
+            0.4375,
+            -0.6875,
+            1.1875,
+            2.4375,
+            -2.4375,
+            3e-39,
+            1e30,
+            -1e30,
+            f32::MAX,
+            -f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ];
+        for (i, &y) in special.iter().enumerate() {
+            for (j, &x) in special.iter().enumerate() {
+                let (y2, x2) = (special[(i + j) % special.len()], special[(3 * j + 1) % 20]);
+                for lanes in 0..=5 {
+                    check(Vec4::new(y, y2, x, y), Vec4::new(x, x2, y, -x), lanes);
+                    check(Vec4::new(y2, y, y, x), Vec4::new(x2, x, -x, y), lanes);
+                }
+            }
+        }
+        let mut rng = Rng::new(15);
+        for _ in 0..200_000 {
+            let mut draw = || rng.signed_log_uniform(-40.0, 40.0) as f32;
+            let y = Vec4::new(draw().abs(), draw().abs(), draw(), draw().abs());
+            let x = Vec4::new(draw(), draw(), draw(), draw());
+            check(y, x, 4);
+            let r = rng.next_u64();
+            let bits = Vec4::new(
+                f32::from_bits(r as u32),
+                f32::from_bits((r >> 32) as u32),
+                f32::from_bits((r >> 16) as u32),
+                f32::from_bits((r >> 8) as u32),
+            );
+            check(bits, glam::Vec4Swizzles::zwxy(bits), 4);
+        }
     }
 }

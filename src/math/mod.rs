@@ -3,6 +3,7 @@
 //! normalisation of direction arguments.
 
 mod atan;
+mod atan_lanes;
 mod bits;
 mod fast_functions_generated;
 mod frame;
@@ -16,6 +17,7 @@ pub(crate) use atan::atan_fast_nonneg4;
 pub use atan::{
     atan_fast_nonneg, atan_unit, atan_unit_estrin, atan_unit_estrin4, atan2_upper_half_plane,
 };
+pub(crate) use atan_lanes::atanf4;
 pub use bits::{copy_sign, is_sign_negative, sign_mask, with_sign_of_product};
 pub use frame::{Frame, orthonormal_basis};
 pub(crate) use lanes::{
