@@ -271,6 +271,14 @@ impl LtcPolygon {
         let Some(dir) = crate::math::unit(dir) else {
             return 0.0;
         };
+        self.pdf_of_unit(dir)
+    }
+
+    /// [`pdf`](Self::pdf) of a direction already passed through
+    /// [`unit`](crate::math::unit) (the rest of its body), for a caller that has that
+    /// direction's `unit` for other uses too (the polygon light's BRDF).
+    #[inline(always)]
+    pub(crate) fn pdf_of_unit(&self, dir: Vec3) -> f32 {
         let w = self.ltc.to_cosine_space(dir);
         let length2 = w.length_squared();
         if !(length2 > 1e-18 && length2 < 1e18) {
