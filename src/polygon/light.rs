@@ -280,10 +280,14 @@ impl PolygonLight {
         let Some(heuristic) = MisHeuristic::from_u32(self.heuristic) else {
             return LightSample::NONE;
         };
-        let sample = match technique {
-            0 => self.diffuse.sample(u),
-            1 => self.specular.sample(u),
-            _ => Sample::NONE,
+        // The LTC's sample comes with its direction's `unit` (from its own `pdf`).
+        let (sample, sample_unit) = match technique {
+            0 => (self.diffuse.sample(u), None),
+            1 => {
+                let (sample, unit) = self.specular.sample_and_unit(u);
+                (sample, Some(unit))
+            }
+            _ => (Sample::NONE, None),
         };
         if !(sample.pdf > 0.0) {
             return LightSample::NONE;
@@ -305,9 +309,10 @@ impl PolygonLight {
         // at `wi`, which the LTC polygon's sample has just evaluated, and which the
         // projected sampler's `pdf` may round to 0 on the polygon's edge): only the
         // other technique's density is evaluated.
-        // `wi` through `unit` once, for the BRDF and the LTC's density, which both
-        // start with it (the same bits as their public forms `eval` and `pdf`).
-        let wi_unit = crate::math::unit(wi);
+        // `wi` through `unit` once (the LTC's sample has done it), for the BRDF and the
+        // LTC's density, which both start with it (the same bits as their public forms
+        // `eval` and `pdf`).
+        let wi_unit = sample_unit.unwrap_or_else(|| crate::math::unit(wi));
         let p = if j == 0 {
             [
                 sample.pdf,
