@@ -358,7 +358,12 @@ impl PolygonLight {
                 }
             }
         }
-        if !out.visible.is_finite() || !out.unoccluded.is_finite() {
+        // The six channels' test in two vector comparisons (`Vec3A`'s `is_finite` is
+        // one mask per vector; the same answer as `Vec3`'s three scalar tests).
+        if !(Vec3A::from(out.visible).is_finite_mask()
+            & Vec3A::from(out.unoccluded).is_finite_mask())
+        .all()
+        {
             out.visible = Vec3::ZERO;
             out.unoccluded = Vec3::ZERO;
         }
