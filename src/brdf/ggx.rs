@@ -288,7 +288,28 @@ impl GgxBrdf {
     /// `(wo, wi)`.
     #[inline]
     pub fn eval(&self, wo: Vec3, wi: Vec3) -> Vec3 {
-        match self.eval_checked(wo, wi) {
+        self.with_fresnel(self.eval_checked(wo, wi))
+    }
+
+    /// [`eval`](Self::eval) for a view `wo` that [`unit`] takes as it is
+    /// ([`is_unit`]`(wo)`) and that lies above the horizon, and an `wi` already passed
+    /// through [`unit`] (`None`: zero or non-finite): the same value bit for bit
+    /// (`eval`'s `unit(wo)` returns `wo` itself, and its `wo.z > 0` holds), without the
+    /// view's normalisation test, for a caller that stores the view normalised once (a
+    /// prepared polygon light) and has the direction's `unit` already.
+    #[inline(always)]
+    pub(crate) fn eval_from_unit_view(&self, wo: Vec3, wi: Option<Vec3>) -> Vec3 {
+        self.with_fresnel(
+            wi.filter(|wi| wi.z > 0.0)
+                .and_then(|wi| self.eval_unit(wo, wi)),
+        )
+    }
+
+    /// Schlick's Fresnel times the BRDF without it, from [`eval_unit`](Self::eval_unit)'s
+    /// `(f, ωo·h)`; 0 for `None`.
+    #[inline(always)]
+    fn with_fresnel(&self, checked: Option<(f32, f32)>) -> Vec3 {
+        match checked {
             Some((f, cos_d)) => {
                 let m = clamp_unit(1.0 - cos_d);
                 let m2 = m * m;

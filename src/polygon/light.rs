@@ -202,7 +202,13 @@ impl PolygonLight {
             return false;
         }
         let wo = crate::math::normalize_scaled(wo);
-        if !(wo.z > 0.0) {
+        // `normalize_scaled` leaves `|wo|²` within about 7 ulps (4e-7) of 1: its
+        // largest component is 1 after the division, `|v|²` in [1, 3] is rounded by
+        // 2 ulps, the square root, the reciprocal and the products by half an ulp each,
+        // and the test's own `|wo|²` by 2 more. So `unit` takes it as it is, which the
+        // BRDF's evaluation in `sample` relies on (`eval_from_unit_view`); checked here
+        // all the same (`prepared_views_are_unit`).
+        if !(wo.z > 0.0 && crate::math::is_unit(wo)) {
             return false;
         }
         let diffuse_albedo = material.diffuse.max(Vec3::ZERO).min(Vec3::ONE);
@@ -274,10 +280,14 @@ impl PolygonLight {
         let Some(heuristic) = MisHeuristic::from_u32(self.heuristic) else {
             return LightSample::NONE;
         };
-        let sample = match technique {
-            0 => self.diffuse.sample(u),
-            1 => self.specular.sample(u),
-            _ => Sample::NONE,
+        // The LTC's sample comes with its direction's `unit` (from its own `pdf`).
+        let (sample, sample_unit) = match technique {
+            0 => (self.diffuse.sample(u), None),
+            1 => {
+                let (sample, unit) = self.specular.sample_and_unit(u);
+                (sample, Some(unit))
+            }
+            _ => (Sample::NONE, None),
         };
         if !(sample.pdf > 0.0) {
             return LightSample::NONE;
@@ -299,13 +309,22 @@ impl PolygonLight {
         // at `wi`, which the LTC polygon's sample has just evaluated, and which the
         // projected sampler's `pdf` may round to 0 on the polygon's edge): only the
         // other technique's density is evaluated.
+        // `wi` through `unit` once (the LTC's sample has done it), for the BRDF and the
+        // LTC's density, which both start with it (the same bits as their public forms
+        // `eval` and `pdf`).
+        let wi_unit = sample_unit.unwrap_or_else(|| crate::math::unit(wi));
         let p = if j == 0 {
-            [sample.pdf, self.specular.pdf(wi)]
+            [
+                sample.pdf,
+                wi_unit.map_or(0.0, |d| self.specular.pdf_of_unit(d)),
+            ]
         } else {
             [self.diffuse.pdf(wi), sample.pdf]
         };
+        // The stored view is unit and above the horizon (`prepare`), which the BRDF's
+        // evaluation then does not test again: `eval(self.wo, wi)` bit for bit.
         let specular = if self.has_specular != 0 {
-            self.brdf.eval(self.wo, wi)
+            self.brdf.eval_from_unit_view(self.wo, wi_unit)
         } else {
             Vec3::ZERO
         };
@@ -339,7 +358,12 @@ impl PolygonLight {
                 }
             }
         }
-        if !out.visible.is_finite() || !out.unoccluded.is_finite() {
+        // The six channels' test in two vector comparisons (`Vec3A`'s `is_finite` is
+        // one mask per vector; the same answer as `Vec3`'s three scalar tests).
+        if !(Vec3A::from(out.visible).is_finite_mask()
+            & Vec3A::from(out.unoccluded).is_finite_mask())
+        .all()
+        {
             out.visible = Vec3::ZERO;
             out.unoccluded = Vec3::ZERO;
         }

@@ -477,3 +477,54 @@ fn a_sample_carries_its_own_techniques_pdf() {
     println!("checked {checked} samples ({on_edge} on the projected polygon's edge)");
     assert!(checked > 10_000, "{checked}");
 }
+
+/// The view stored by `prepare` passes `is_unit`, which `sample`'s BRDF evaluation
+/// (`eval_from_unit_view`, without the view's test) relies on: views of every length
+/// from 1e-38 to 1e38, nearly axis-aligned and generic, are normalised by
+/// `normalize_scaled` to within `UNIT_TOLERANCE` of length 1 (about 7 ulps at the worst
+/// by the error count in `prepare`), and every prepared light's `wo` is such a view and
+/// gives `eval`'s value bit for bit.
+#[test]
+fn prepared_views_are_unit() {
+    let mut rng = Rng::new(4242);
+    let material = Material {
+        diffuse: Vec3::splat(0.5),
+        f0: Vec3::splat(0.04),
+        roughness: 0.3,
+    };
+    let polygon = circle_polygon(5, [0.2, -0.1, 1.0], [0.0, 0.3, -1.0], 0.7, false);
+    let (mut worst, mut checked, mut lights) = (0.0f32, 0, 0);
+    for i in 0..200_000 {
+        let mut v = rng.unit_vector_f32();
+        v.z = v.z.abs();
+        if i % 3 == 0 {
+            // Nearly along an axis: one large component, two tiny ones.
+            v = Vec3::new(v.x * 1e-4, v.y * 1e-4, 1.0);
+        }
+        // 10^-38 to 10^38 (exponents).
+        let v = v * rng.log_uniform(-38.0, 38.0) as f32;
+        let w = crate::math::normalize_scaled(v);
+        if !(w.z > 0.0) {
+            continue;
+        }
+        worst = worst.max((w.length_squared() - 1.0).abs());
+        assert!(crate::math::is_unit(w), "{v} -> {w}");
+        checked += 1;
+        if i % 100 == 0 {
+            lights += 1;
+            let light = PolygonLight::new(&polygon, v, &material, MisHeuristic::Balance, 0.5)
+                .expect("the polygon is above the horizon");
+            assert_eq!(light.wo, w);
+            let dir = Vec3::new(0.1, -0.05, 1.0).normalize();
+            assert_eq!(
+                light
+                    .brdf
+                    .eval_from_unit_view(light.wo, crate::math::unit(dir)),
+                light.brdf.eval(light.wo, dir)
+            );
+        }
+    }
+    println!("largest | |wo|² - 1 |: {worst:e} ({checked} views, {lights} lights)");
+    assert!(checked > 150_000 && lights > 1500, "{checked} {lights}");
+    assert!(worst <= 0.5 * crate::math::UNIT_TOLERANCE, "{worst:e}");
+}

@@ -215,39 +215,94 @@ impl LtcPolygon {
     /// even the inner direction fails (polygons that the round trip cannot resolve) the
     /// sample is dropped (`Sample::NONE`).
     pub fn sample(&self, u: [f32; 2]) -> Sample {
+        self.sample_through_m(
+            u,
+            Sample::NONE,
+            |dir| Sample {
+                dir,
+                // `pdf`'s own body, inlined here: the same operations on the same
+                // direction, so the same bits.
+                pdf: self.pdf_inline(dir),
+            },
+            |sample| sample.pdf > 0.0,
+        )
+    }
+
+    /// [`sample`](Self::sample) (the same bits) and the sample's direction as
+    /// [`unit`](crate::math::unit) gives it, which `pdf` computes on the way (`None`
+    /// only with `Sample::NONE`), for a caller that passes the direction on to functions
+    /// that start with `unit` (the polygon light's BRDF).
+    #[inline(always)]
+    pub(crate) fn sample_and_unit(&self, u: [f32; 2]) -> (Sample, Option<Vec3>) {
+        self.sample_through_m(
+            u,
+            (Sample::NONE, None),
+            |dir| {
+                let unit = crate::math::unit(dir);
+                let pdf = unit.map_or(0.0, |d| self.pdf_of_unit(d));
+                (Sample { dir, pdf }, unit)
+            },
+            |sample| sample.0.pdf > 0.0,
+        )
+    }
+
+    /// The body of [`sample`](Self::sample) for either result: `finish` turns a direction
+    /// (mapped by `M` and normalised) into the result (with its pdf), `accepted` tells
+    /// whether that pdf is positive, `none` is the result without a sample.
+    #[inline(always)]
+    fn sample_through_m<T: Copy>(
+        &self,
+        u: [f32; 2],
+        none: T,
+        finish: impl Fn(Vec3) -> T,
+        accepted: impl Fn(&T) -> bool,
+    ) -> T {
         let s = self.transformed.sample(u);
         if !(s.pdf > 0.0) {
-            return Sample::NONE;
+            return none;
         }
-        let through_m = |w_cosine: Vec3| {
-            let w = self.ltc.from_cosine_space(w_cosine);
-            // `|w|` is finite and positive for a finite unit direction and invertible
-            // `M`, unless `M` is so large that `w` overflows; `pdf` then sees a
-            // non-finite or zero direction and returns 0.
-            let dir = w / w.length();
-            Sample {
-                dir,
-                pdf: self.pdf(dir),
-            }
-        };
-        let sample = through_m(s.dir);
-        if sample.pdf > 0.0 {
+        let sample = finish(self.through_m(s.dir));
+        if accepted(&sample) {
             return sample;
         }
-        // Rare: only samples within the round trip's rounding of the boundary get here,
-        // so the inner direction (the transformed polygon's sample at the middle of the
-        // unit square) is drawn only then.
+        self.pulled_inward(s.dir, none, &finish, &accepted)
+    }
+
+    /// `M ω' / ‖M ω'‖`. `|M ω'|` is finite and positive for a finite unit direction and
+    /// invertible `M`, unless `M` is so large that it overflows; `pdf` then sees a
+    /// non-finite or zero direction and returns 0.
+    #[inline(always)]
+    fn through_m(&self, w_cosine: Vec3) -> Vec3 {
+        let w = self.ltc.from_cosine_space(w_cosine);
+        w / w.length()
+    }
+
+    /// The rare end of [`sample_through_m`](Self::sample_through_m), out of line: the
+    /// transformed polygon's sample `w_cosine` went through `M` to a direction that the
+    /// pdf does not accept, which only samples within the round trip's rounding of the
+    /// boundary do, so the inner direction (the transformed polygon's sample at the
+    /// middle of the unit square) is drawn only here.
+    #[cold]
+    #[inline(never)]
+    fn pulled_inward<T: Copy>(
+        &self,
+        w_cosine: Vec3,
+        none: T,
+        finish: &impl Fn(Vec3) -> T,
+        accepted: &impl Fn(&T) -> bool,
+    ) -> T {
         let inner = self.transformed.sample([0.5, 0.5]);
         if !(inner.pdf > 0.0) {
-            return Sample::NONE;
+            return none;
         }
         crate::sample::INWARD_PULLS
             .iter()
             .map(|&pull| {
-                through_m((s.dir * (1.0 - pull) + inner.dir * pull).normalize_or(inner.dir))
+                let pulled = (w_cosine * (1.0 - pull) + inner.dir * pull).normalize_or(inner.dir);
+                finish(self.through_m(pulled))
             })
-            .find(|pulled| pulled.pdf > 0.0)
-            .unwrap_or(Sample::NONE)
+            .find(|pulled| accepted(pulled))
+            .unwrap_or(none)
     }
 
     /// The density of [`sample`](Self::sample) at `dir`: `D(ω) / ∫_P D` inside the
@@ -259,9 +314,24 @@ impl LtcPolygon {
     /// `∫ pdf dω` stays within 2e-5 of 1 (measured by quadrature in the tests). `dir`
     /// is normalised first; zero or non-finite gives 0.
     pub fn pdf(&self, dir: Vec3) -> f32 {
+        self.pdf_inline(dir)
+    }
+
+    /// The body of [`pdf`](Self::pdf), inlined into [`sample`](Self::sample) (which
+    /// evaluates it at every sample): no call, and the direction stays in registers.
+    #[inline(always)]
+    fn pdf_inline(&self, dir: Vec3) -> f32 {
         let Some(dir) = crate::math::unit(dir) else {
             return 0.0;
         };
+        self.pdf_of_unit(dir)
+    }
+
+    /// [`pdf`](Self::pdf) of a direction already passed through
+    /// [`unit`](crate::math::unit) (the rest of its body), for a caller that has that
+    /// direction's `unit` for other uses too (the polygon light's BRDF).
+    #[inline(always)]
+    pub(crate) fn pdf_of_unit(&self, dir: Vec3) -> f32 {
         let w = self.ltc.to_cosine_space(dir);
         let length2 = w.length_squared();
         if !(length2 > 1e-18 && length2 < 1e18) {

@@ -217,7 +217,7 @@ fn pdf_is_zero_outside_and_for_bad_directions() {
 #[test]
 fn sample_pdf_is_the_pdf_of_the_sampled_direction() {
     let mut rng = Rng::new(31);
-    let (mut drawn, mut dropped) = (0u32, 0u32);
+    let (mut drawn, mut dropped, mut pulled) = (0u32, 0u32, 0u32);
     for trial in 0..3000 {
         let theta = 1.55 * rng.uniform() as f32;
         let wo = Vec3::new(theta.sin(), 0.0, theta.cos());
@@ -236,7 +236,21 @@ fn sample_pdf_is_the_pdf_of_the_sampled_direction() {
             continue;
         };
         for _ in 0..20 {
-            let s = polygon.sample([rng.uniform_f32(), rng.uniform_f32()]);
+            let u = [rng.uniform_f32(), rng.uniform_f32()];
+            let s = polygon.sample(u);
+            // The polygon light's form: the same sample, bit for bit, and its
+            // direction's `unit`, on the common path and on the inward pulls' path
+            // (where the first direction through `M` has pdf 0).
+            let (with_unit, unit) = polygon.sample_and_unit(u);
+            assert_eq!(
+                [with_unit.dir.to_array(), [with_unit.pdf; 3]].map(|a| a.map(f32::to_bits)),
+                [s.dir.to_array(), [s.pdf; 3]].map(|a| a.map(f32::to_bits))
+            );
+            if s.pdf > 0.0 {
+                assert_eq!(unit, crate::math::unit(s.dir));
+                let first = polygon.transformed.sample(u);
+                pulled += (polygon.pdf(polygon.through_m(first.dir)) == 0.0) as u32;
+            }
             drawn += 1;
             if s.pdf == 0.0 {
                 assert_eq!(s, Sample::NONE);
@@ -265,7 +279,9 @@ fn sample_pdf_is_the_pdf_of_the_sampled_direction() {
             );
         }
     }
+    println!("{drawn} drawn, {dropped} dropped, {pulled} pulled inward");
     assert!(drawn > 20_000, "{drawn}");
+    assert!(pulled > 0, "no sample took the inward pulls' path");
     assert!(
         (dropped as f64) < 0.004 * drawn as f64,
         "{dropped} of {drawn} dropped"
