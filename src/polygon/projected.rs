@@ -929,7 +929,9 @@ impl ProjectedPolygon {
                 }
             }
             let sectors_mut = polygon.pieces.sectors_mut();
-            // `EllipseSector::new` of sector j, one at a time.
+            // The sectors' areas, `area(false, precision)` (before `max(0)`).
+            let mut areas = [0.0f32; 2 * LANES];
+            // `EllipseSector::new` of sector j and its area, one at a time.
             let scalar_sector = |sector: &mut EllipseSector, j: usize| {
                 let pair = |c: usize| [columns[c][j], columns[c + 1][j]];
                 *sector = EllipseSector::new(
@@ -941,6 +943,7 @@ impl ProjectedPolygon {
                     pair(8),
                     pair(10),
                 );
+                sector.area(false, precision)
             };
             if allow_fast {
                 // Four sectors at a time, bit for bit as `EllipseSector::new`. The slots
@@ -949,12 +952,12 @@ impl ProjectedPolygon {
                 // sector alone (a hexagon's fifth) takes `new`, cheaper than four lanes.
                 for first in lane_starts(sectors) {
                     if sectors - first == 1 {
-                        scalar_sector(&mut sectors_mut[first], first);
+                        areas[first] = scalar_sector(&mut sectors_mut[first], first);
                         continue;
                     }
                     let [s0x, s0y, s1x, s1y, uix, uiy, ti0, ti1, uox, uoy, to0, to1] =
                         columns.each_ref().map(|c| load4(c, first));
-                    EllipseSector::new4(
+                    let lanes = EllipseSector::new4(
                         [s0x, s0y],
                         [s1x, s1y],
                         load4(&sector_det, first),
@@ -962,15 +965,19 @@ impl ProjectedPolygon {
                         [ti0, ti1],
                         [uox, uoy],
                         [to0, to1],
+                        precision,
+                        (sectors - first).min(LANES),
                         (&mut sectors_mut[first..first + LANES]).try_into().unwrap(),
                     );
+                    areas[first..first + LANES].copy_from_slice(&lanes);
                 }
             } else {
                 for (j, sector) in sectors_mut[..sectors].iter_mut().enumerate() {
-                    scalar_sector(sector, j);
+                    areas[j] = scalar_sector(sector, j);
                 }
             }
             let mut all_empty_before = true;
+            #[allow(clippy::needless_range_loop)] // j indexes the sectors and their areas
             for j in 0..sectors {
                 let sector = &mut polygon.pieces.sectors_mut()[j];
                 // An upper bound on the outer ellipse's area instead of the area itself
@@ -979,7 +986,7 @@ impl ProjectedPolygon {
                 // thresholds.
                 let outer_bound = outer_area_bound(sector);
                 outer_sum_bound += outer_bound;
-                let area = sector.area(false, precision).max(0.0);
+                let area = areas[j].max(0.0);
                 // Also where the ellipses touch or nearly touch at an end of the sector (a
                 // vertex on or just above the horizon at the polygon's azimuthal end, issue
                 // 17, 2): the shape of the region there is modelled in the initial guess,
