@@ -292,6 +292,71 @@ fn sort_by_certain_azimuths(
     !uncertain.get()
 }
 
+/// The decentral preparation's `edge_dot(e, c)` (`u_e · s_c` from the positions) of
+/// every edge at its own two vertices: `[0][e]` at `c = e`, `[1][e]` at `c = e + 1`
+/// (vertex 0 after the last), four edges at a time and bit for bit as `edge_dot`
+/// computes them one by one. For an edge's own vertex the triple product
+/// `det(p_a, p_b, p_c)` vanishes and `edge_dot` takes it as 0, so
+/// `t = σ (0 - n_z p_z) / (n_z |p_xy|)` with `σ` the sign of `n_x`, and 0 where the
+/// ellipse is degenerate, where `|p_xy|` is not positive and where `t` is not finite,
+/// as there. Most of a decentral polygon's dot products are of this kind (each sector
+/// asks for four, and only a vertex of the other chain than the ellipse's, inside its
+/// azimuths, is not one of its own): a table of them leaves `edge_dot` itself the few
+/// others (issue 15: sixteen calls per hexagon, 625 instructions, were the largest part
+/// of the sectors' setup). `decentral_lanes_match_the_scalar_sectors` compares the
+/// prepared values with those of the scalar path, which calls `edge_dot` for all.
+#[inline(always)]
+fn own_edge_dots(
+    vertex: &[[f32; VERTEX_SLOTS]; 3],
+    normals: &[[f32; 2 * LANES]; 3],
+    edge: &[[f32; 2]; MAX_POLYGON_VERTICES],
+    xy_length: &[f32; MAX_POLYGON_VERTICES],
+    count: usize,
+) -> [[f32; 2 * LANES]; 2] {
+    // `|p_xy|` by vertex slot as `vertex` (slot `count` the first vertex again), and the
+    // edges' `u_x` for the test of a degenerate ellipse.
+    let mut xy = [0.0f32; VERTEX_SLOTS];
+    xy[..count].copy_from_slice(&xy_length[..count]);
+    xy[count] = xy_length[0];
+    let ux = edge.map(|u| u[0]);
+    let mut dots = [[0.0f32; 2 * LANES]; 2];
+    for first in lane_starts(count) {
+        let (nx, nz) = (load4(&normals[0], first), load4(&normals[2], first));
+        // σ: 1 with the sign bit of n_x (`copysign` moves the bit, as `copy_sign`).
+        let sigma = Vec4::ONE.copysign(nx);
+        // `is_degenerate`: not |u_x| <= the limit (NaN included).
+        let proper = load4(&ux, first)
+            .abs()
+            .cmple(Vec4::splat(super::ellipse::ELLIPSE_LIMIT));
+        for (end, dots) in dots.iter_mut().enumerate() {
+            let (z, xy) = (load4(&vertex[2], first + end), load4(&xy, first + end));
+            let t = sigma * (Vec4::ZERO - nz * z) / (nz * xy);
+            let keep = proper & xy.cmpgt(Vec4::ZERO) & t.is_finite_mask();
+            store4(Vec4::select(keep, t, Vec4::ZERO), dots, first);
+        }
+    }
+    dots
+}
+
+/// `edge_dot(e, c)` from the table of [`own_edge_dots`] where `c` is one of the edge's
+/// own vertices `e` and `next_e` (`None` elsewhere, or without the table).
+#[inline(always)]
+fn own_edge_dot(
+    own: &Option<[[f32; 2 * LANES]; 2]>,
+    e: usize,
+    next_e: usize,
+    c: usize,
+) -> Option<f32> {
+    let own = own.as_ref()?;
+    if c == e {
+        Some(own[0][e])
+    } else if c == next_e {
+        Some(own[1][e])
+    } else {
+        None
+    }
+}
+
 /// The central case of Algorithm 4 for an unclipped polygon whose edges are all outer and
 /// none degenerate (`n_z > 0` for every edge plane `n = p_j × p_j+1`, so no vertex lies
 /// on the z axis): the common case, four edges and sectors at a time straight from the
@@ -889,6 +954,9 @@ impl ProjectedPolygon {
             // The previous sector's inner and outer ellipse and their dot products with
             // its s1, this sector's s0: the same `edge_dot` where the ellipse is the same.
             let mut previous = [(usize::MAX, 0.0f32); 2];
+            // The table of `edge_dot` at each edge's own vertices (see `own_edge_dots`).
+            let own =
+                allow_fast.then(|| own_edge_dots(&vertex, &normals, &edge, &xy_length, count));
             for j in 0..sectors {
                 let (a, b) = (order[j] as usize, order[j + 1] as usize);
                 let e = vertex_edge[a];
@@ -903,9 +971,9 @@ impl ProjectedPolygon {
                     let at_a = if previous[k].0 == e {
                         previous[k].1
                     } else {
-                        edge_dot(e, a)
+                        own_edge_dot(&own, e, next(e), a).unwrap_or_else(|| edge_dot(e, a))
                     };
-                    let at_b = edge_dot(e, b);
+                    let at_b = own_edge_dot(&own, e, next(e), b).unwrap_or_else(|| edge_dot(e, b));
                     previous[k] = (e, at_b);
                     dots[k] = [at_a, at_b];
                 }

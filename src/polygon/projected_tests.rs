@@ -1500,7 +1500,12 @@ fn awkward_vertices(rng: &mut Rng, n: usize, trial: usize) -> Vec<Vec3> {
 /// degenerate ellipse) and every area form. The sectors' areas are among the words
 /// compared: in lanes they come from `new4` (`areas_between4`, two four-lane arc
 /// tangents per four sectors, and the quadrature form's scalar fallback), which the
-/// first four slots, always lanes, are checked to reach with each area form.
+/// first four slots, always lanes, are checked to reach with each area form. The dot
+/// products `u · s` at a sector's ends come, in the lanes' path, from the table of each
+/// edge at its own vertices (`own_edge_dots`, four edges at a time) wherever the vertex
+/// is one of the edge's, which every decentral polygon here uses (its azimuthal ends lie
+/// on both of their ellipses), and the degenerate ellipses and the vertices on the z axis
+/// (`|p_xy|` 0) counted here take its zeros.
 #[test]
 fn decentral_lanes_match_the_scalar_sectors() {
     // Decentral polygons, sectors near π, zero directions, zero inverse bases,
