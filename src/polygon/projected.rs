@@ -940,15 +940,48 @@ impl ProjectedPolygon {
                 sort_carefully(&mut order, count, less);
             }
             sectors = count - 1;
-            let mut pairs = [(0usize, 0usize); MAX_POLYGON_VERTICES];
-            for j in 0..sectors {
-                pairs[j] = (order[j] as usize, order[j + 1] as usize);
+            // The vertices' x, y, |p_xy| and unit direction in azimuth order (slot j holds
+            // vertex order[j]; zeros past the polygon), so that sector j's ends are slots j
+            // and j + 1 of the same lanes: one copy per vertex where the sectors' pairs
+            // took two.
+            let mut sorted = [[0.0f32; VERTEX_SLOTS]; 5];
+            for (j, &k) in order[..count].iter().enumerate() {
+                // `& 7` only shows the compiler the index in bounds (entries are below 8).
+                let k = (k & 7) as usize;
+                let p = positions[k];
+                let values = [p.x, p.y, xy_length[k], direction[k][0], direction[k][1]];
+                for (column, value) in sorted.iter_mut().zip(values) {
+                    column[j] = value;
+                }
             }
-            let sector_det = sector_determinants(&positions, &xy_length, &pairs[..sectors]);
-            // Per sector: s0, s1, the inner ellipse and its dot products with s0 and s1,
-            // the outer one and its (columns, one lane per sector; lanes past the sectors
-            // stay 0).
-            let mut columns = [[0.0f32; 2 * LANES]; 12];
+            let sector_det = if allow_fast {
+                // `sector_determinants` of the pairs (order[j], order[j + 1]), four at a
+                // time straight from the sorted lanes, bit for bit (the same operations);
+                // lanes past the sectors are not read.
+                let mut dets = [0.0f32; 2 * LANES];
+                let [xs, ys, lengths, _, _] = &sorted;
+                for first in lane_starts(sectors) {
+                    let (xa, ya, la) = (load4(xs, first), load4(ys, first), load4(lengths, first));
+                    let (xb, yb, lb) = (
+                        load4(xs, first + 1),
+                        load4(ys, first + 1),
+                        load4(lengths, first + 1),
+                    );
+                    let det = difference_of_products4(xa, yb, ya, xb) / (la * lb);
+                    store4(crate::math::finite_or_zero4(det), &mut dets, first);
+                }
+                dets
+            } else {
+                let mut pairs = [(0usize, 0usize); MAX_POLYGON_VERTICES];
+                for j in 0..sectors {
+                    pairs[j] = (order[j] as usize, order[j + 1] as usize);
+                }
+                sector_determinants(&positions, &xy_length, &pairs[..sectors])
+            };
+            // Per sector: the inner ellipse and its dot products with s0 and s1, the outer
+            // one and its (columns, one lane per sector; lanes past the sectors stay 0;
+            // s0 and s1 are slots j and j + 1 of the sorted directions).
+            let mut columns = [[0.0f32; 2 * LANES]; 8];
             let mut inner = first_inner;
             let mut outer = 0usize;
             // The previous sector's inner and outer ellipse and their dot products with
@@ -979,10 +1012,6 @@ impl ProjectedPolygon {
                 }
                 let [ti, to] = dots;
                 let values = [
-                    direction[a][0],
-                    direction[a][1],
-                    direction[b][0],
-                    direction[b][1],
                     edge[inner][0],
                     edge[inner][1],
                     ti[0],
@@ -1002,14 +1031,15 @@ impl ProjectedPolygon {
             // `EllipseSector::new` of sector j and its area, one at a time.
             let scalar_sector = |sector: &mut EllipseSector, j: usize| {
                 let pair = |c: usize| [columns[c][j], columns[c + 1][j]];
+                let direction = |slot: usize| [sorted[3][slot], sorted[4][slot]];
                 *sector = EllipseSector::new(
+                    direction(j),
+                    direction(j + 1),
+                    sector_det[j],
                     pair(0),
                     pair(2),
-                    sector_det[j],
                     pair(4),
                     pair(6),
-                    pair(8),
-                    pair(10),
                 );
                 sector.area(false, precision)
             };
@@ -1023,8 +1053,10 @@ impl ProjectedPolygon {
                         areas[first] = scalar_sector(&mut sectors_mut[first], first);
                         continue;
                     }
-                    let [s0x, s0y, s1x, s1y, uix, uiy, ti0, ti1, uox, uoy, to0, to1] =
+                    let [uix, uiy, ti0, ti1, uox, uoy, to0, to1] =
                         columns.each_ref().map(|c| load4(c, first));
+                    let (s0x, s0y) = (load4(&sorted[3], first), load4(&sorted[4], first));
+                    let (s1x, s1y) = (load4(&sorted[3], first + 1), load4(&sorted[4], first + 1));
                     let lanes = EllipseSector::new4(
                         [s0x, s0y],
                         [s1x, s1y],

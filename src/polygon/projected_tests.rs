@@ -1505,7 +1505,9 @@ fn awkward_vertices(rng: &mut Rng, n: usize, trial: usize) -> Vec<Vec3> {
 /// edge at its own vertices (`own_edge_dots`, four edges at a time) wherever the vertex
 /// is one of the edge's, which every decentral polygon here uses (its azimuthal ends lie
 /// on both of their ellipses), and the degenerate ellipses and the vertices on the z axis
-/// (`|p_xy|` 0) counted here take its zeros.
+/// (`|p_xy|` 0) counted here take its zeros. The lanes' path also takes the sectors'
+/// determinants from the vertices copied once into azimuth order (`sorted`), where the
+/// scalar path gathers each sector's pair (`sector_determinants`).
 #[test]
 fn decentral_lanes_match_the_scalar_sectors() {
     // Decentral polygons, sectors near π, zero directions, zero inverse bases,
