@@ -13,10 +13,10 @@
 
 use super::ellipse::{Vec2, add2, det2, dot2, is_degenerate, rotate, scale2};
 use crate::math::{
-    LANES, atan_fast_nonneg, atan_fast_nonneg4, atan2_upper_half_plane, copy_sign,
-    difference_of_products4, finite_or_zero4, max4, min4, sqrt4, store_records4,
+    LANES, atan_fast_nonneg, atan_fast_nonneg4, atan2_upper_half_plane, atan2_upper_half_plane4,
+    copy_sign, difference_of_products4, finite_or_zero4, max4, min4, sqrt4, store_records4,
 };
-use glam::Vec4;
+use glam::{BVec4A, Vec4};
 
 /// A sector between two ellipses, prepared for sampling.
 #[repr(C)]
@@ -155,6 +155,87 @@ pub(crate) fn atan2_positive_fast4(y: Vec4, x: Vec4) -> Vec4 {
         Vec4::splat(core::f32::consts::FRAC_PI_2) + angle,
     );
     angle.max(Vec4::ZERO)
+}
+
+/// [`atan2_positive`] of four lanes, the first `lanes` of them (the others are not
+/// used): [`atan2_upper_half_plane4`] for exact areas (the scalar form lane by lane),
+/// [`atan2_positive_fast4`] for fast ones, each lane the bits of the scalar call.
+#[inline(always)]
+fn atan2_positive4(y: Vec4, x: Vec4, precision: AreaPrecision, lanes: usize) -> Vec4 {
+    match precision {
+        AreaPrecision::Exact => atan2_upper_half_plane4(y, x, lanes),
+        AreaPrecision::Fast => atan2_positive_fast4(y, x),
+    }
+}
+
+/// The values of four decentral sectors (lanes) that their whole areas read, named as
+/// the fields of [`EllipseSector`] (`ti0`, `ti1`: `inner_dots`; `to0`, `to1`:
+/// `outer_dots`; `ki`, `ko`: the root determinants).
+struct SectorLanes {
+    det: Vec4,
+    cosine: Vec4,
+    ti: [Vec4; 2],
+    to: [Vec4; 2],
+    ki: Vec4,
+    ko: Vec4,
+    sigma: Vec4,
+    root_det_difference: Vec4,
+    inverse_root_det_difference: Vec4,
+}
+
+/// [`EllipseSector::area`] of four decentral sectors, each lane rounded as the scalar
+/// form, except lanes of the quadrature form (`direct` false and `quadrature` true, left
+/// to the caller): [`area_between`](EllipseSector::area_between) at `s1`, whose
+/// coordinates `(α, β) = (0, 1)` enter as in [`Coordinates::new`] (the terms with
+/// `α = 0` included, so that signed zeros come out as there), then the direct form
+/// where `direct` (an ellipse degenerate or `area_form` the direct form), else the
+/// difference form. Both forms take two arc tangents, and one of them, `θ_i` at
+/// `(k_i det, x_i)`, is the same in both; the other is `θ_o` at `(k_o det, x_o)` in the
+/// direct form and the angle difference at `(|Im|, Re)` in the difference form. So four
+/// sectors need two four-lane arc tangents, whichever form each lane takes (where the
+/// scalar areas took two scalar ones per sector: issue 15).
+#[inline(always)]
+fn areas_between4(
+    v: &SectorLanes,
+    [outer_proper, inner_proper]: [BVec4A; 2],
+    direct: BVec4A,
+    precision: AreaPrecision,
+    lanes: usize,
+) -> Vec4 {
+    let [ti0, ti1] = v.ti;
+    let [to0, to1] = v.to;
+    let (ki, ko, sigma) = (v.ki, v.ko, v.sigma);
+    // `Coordinates::new(self, 0.0, 1.0)`.
+    let (alpha, beta) = (Vec4::ZERO, Vec4::ONE);
+    let w_det = beta * v.det;
+    let dot = alpha + beta * v.cosine;
+    let ti = alpha * ti0 + beta * ti1;
+    let to = alpha * to0 + beta * to1;
+    let difference = alpha * (to0 - sigma * ti0) + beta * (to1 - sigma * ti1);
+    // `area_between`.
+    let det = max4(w_det, Vec4::ZERO);
+    let d0 = to0 - sigma * ti0;
+    let xi = dot + ti0 * ti;
+    let xo = dot + to0 * to;
+    let products_difference = -sigma * (ti0 * difference + d0 * ti) - d0 * difference;
+    let cross = v.root_det_difference * xi + ki * products_difference;
+    let re = xo * xi + ko * ki * det * det;
+    let im = det * cross;
+    let first = atan2_positive4(
+        Vec4::select(direct, ko * det, im.abs()),
+        Vec4::select(direct, xo, re),
+        precision,
+        lanes,
+    );
+    let theta_i = atan2_positive4(ki * det, xi, precision, lanes);
+    // The direct form: each ellipse's area, 0 for a degenerate one.
+    let direct_area = Vec4::select(outer_proper, first * (Vec4::splat(0.5) / ko), Vec4::ZERO)
+        - Vec4::select(inner_proper, theta_i * (Vec4::splat(0.5) / ki), Vec4::ZERO);
+    // The difference form: `atan2_signed(im, re)` is the angle with the sign bit of `im`
+    // (`copysign` moves the bit, as `copy_sign`).
+    let difference_area =
+        Vec4::splat(0.5) * (first.copysign(im) / ko + theta_i * v.inverse_root_det_difference);
+    Vec4::select(direct, direct_area, difference_area)
 }
 
 /// The largest `|u_o - σ u_i|² / min(|u_i|², |u_o|²)` for which two ellipses count as
@@ -453,8 +534,10 @@ impl EllipseSector {
         [ti0, ti1]: [Vec4; 2],
         [uox, uoy]: [Vec4; 2],
         [to0, to1]: [Vec4; 2],
+        precision: AreaPrecision,
+        lanes: usize,
         sectors: &mut [Self; LANES],
-    ) {
+    ) -> [f32; LANES] {
         // `dot2`: a_x b_x + a_y b_y.
         let dot = |ax: Vec4, ay: Vec4, bx: Vec4, by: Vec4| ax * bx + ay * by;
         let (ui2, uo2) = (dot(uix, uiy, uix, uiy), dot(uox, uoy, uox, uoy));
@@ -576,6 +659,39 @@ impl EllipseSector {
         let records =
             unsafe { &mut *(sectors as *mut [Self; LANES]).cast::<[[f32; SECTOR_WORDS]; LANES]>() };
         store_records4(&words, records);
+        // The areas (`area(false, precision)`) of the first `lanes` sectors.
+        let proper = |ux: Vec4| ux.abs().cmple(Vec4::splat(super::ellipse::ELLIPSE_LIMIT));
+        let (outer_proper, inner_proper) = (proper(uox), proper(uix));
+        let direct = !outer_proper | !inner_proper | !(quadrature | difference);
+        let values = SectorLanes {
+            det,
+            cosine,
+            ti: [ti0, ti1],
+            to: [to0, to1],
+            ki,
+            ko,
+            sigma,
+            root_det_difference,
+            inverse_root_det_difference,
+        };
+        let mut areas = areas_between4(
+            &values,
+            [outer_proper, inner_proper],
+            direct,
+            precision,
+            lanes,
+        )
+        .to_array();
+        // The quadrature form (rare: a narrow sector beside a tangency) one lane at a time.
+        let by_quadrature = (outer_proper & inner_proper & quadrature).bitmask();
+        if by_quadrature != 0 {
+            for (lane, area) in areas.iter_mut().enumerate().take(lanes) {
+                if by_quadrature & (1 << lane) != 0 {
+                    *area = sectors[lane].area(false, precision);
+                }
+            }
+        }
+        areas
     }
 
     /// Where `c` lies against the bracket `[x_lo, x_hi]` of chord parameters, widened by

@@ -292,6 +292,71 @@ fn sort_by_certain_azimuths(
     !uncertain.get()
 }
 
+/// The decentral preparation's `edge_dot(e, c)` (`u_e · s_c` from the positions) of
+/// every edge at its own two vertices: `[0][e]` at `c = e`, `[1][e]` at `c = e + 1`
+/// (vertex 0 after the last), four edges at a time and bit for bit as `edge_dot`
+/// computes them one by one. For an edge's own vertex the triple product
+/// `det(p_a, p_b, p_c)` vanishes and `edge_dot` takes it as 0, so
+/// `t = σ (0 - n_z p_z) / (n_z |p_xy|)` with `σ` the sign of `n_x`, and 0 where the
+/// ellipse is degenerate, where `|p_xy|` is not positive and where `t` is not finite,
+/// as there. Most of a decentral polygon's dot products are of this kind (each sector
+/// asks for four, and only a vertex of the other chain than the ellipse's, inside its
+/// azimuths, is not one of its own): a table of them leaves `edge_dot` itself the few
+/// others (issue 15: sixteen calls per hexagon, 625 instructions, were the largest part
+/// of the sectors' setup). `decentral_lanes_match_the_scalar_sectors` compares the
+/// prepared values with those of the scalar path, which calls `edge_dot` for all.
+#[inline(always)]
+fn own_edge_dots(
+    vertex: &[[f32; VERTEX_SLOTS]; 3],
+    normals: &[[f32; 2 * LANES]; 3],
+    edge: &[[f32; 2]; MAX_POLYGON_VERTICES],
+    xy_length: &[f32; MAX_POLYGON_VERTICES],
+    count: usize,
+) -> [[f32; 2 * LANES]; 2] {
+    // `|p_xy|` by vertex slot as `vertex` (slot `count` the first vertex again), and the
+    // edges' `u_x` for the test of a degenerate ellipse.
+    let mut xy = [0.0f32; VERTEX_SLOTS];
+    xy[..count].copy_from_slice(&xy_length[..count]);
+    xy[count] = xy_length[0];
+    let ux = edge.map(|u| u[0]);
+    let mut dots = [[0.0f32; 2 * LANES]; 2];
+    for first in lane_starts(count) {
+        let (nx, nz) = (load4(&normals[0], first), load4(&normals[2], first));
+        // σ: 1 with the sign bit of n_x (`copysign` moves the bit, as `copy_sign`).
+        let sigma = Vec4::ONE.copysign(nx);
+        // `is_degenerate`: not |u_x| <= the limit (NaN included).
+        let proper = load4(&ux, first)
+            .abs()
+            .cmple(Vec4::splat(super::ellipse::ELLIPSE_LIMIT));
+        for (end, dots) in dots.iter_mut().enumerate() {
+            let (z, xy) = (load4(&vertex[2], first + end), load4(&xy, first + end));
+            let t = sigma * (Vec4::ZERO - nz * z) / (nz * xy);
+            let keep = proper & xy.cmpgt(Vec4::ZERO) & t.is_finite_mask();
+            store4(Vec4::select(keep, t, Vec4::ZERO), dots, first);
+        }
+    }
+    dots
+}
+
+/// `edge_dot(e, c)` from the table of [`own_edge_dots`] where `c` is one of the edge's
+/// own vertices `e` and `next_e` (`None` elsewhere, or without the table).
+#[inline(always)]
+fn own_edge_dot(
+    own: &Option<[[f32; 2 * LANES]; 2]>,
+    e: usize,
+    next_e: usize,
+    c: usize,
+) -> Option<f32> {
+    let own = own.as_ref()?;
+    if c == e {
+        Some(own[0][e])
+    } else if c == next_e {
+        Some(own[1][e])
+    } else {
+        None
+    }
+}
+
 /// The central case of Algorithm 4 for an unclipped polygon whose edges are all outer and
 /// none degenerate (`n_z > 0` for every edge plane `n = p_j × p_j+1`, so no vertex lies
 /// on the z axis): the common case, four edges and sectors at a time straight from the
@@ -875,20 +940,56 @@ impl ProjectedPolygon {
                 sort_carefully(&mut order, count, less);
             }
             sectors = count - 1;
-            let mut pairs = [(0usize, 0usize); MAX_POLYGON_VERTICES];
-            for j in 0..sectors {
-                pairs[j] = (order[j] as usize, order[j + 1] as usize);
+            // The vertices' x, y, |p_xy| and unit direction in azimuth order (slot j holds
+            // vertex order[j]; zeros past the polygon), so that sector j's ends are slots j
+            // and j + 1 of the same lanes: one copy per vertex where the sectors' pairs
+            // took two.
+            let mut sorted = [[0.0f32; VERTEX_SLOTS]; 5];
+            for (j, &k) in order[..count].iter().enumerate() {
+                // `& 7` only shows the compiler the index in bounds (entries are below 8).
+                let k = (k & 7) as usize;
+                let p = positions[k];
+                let values = [p.x, p.y, xy_length[k], direction[k][0], direction[k][1]];
+                for (column, value) in sorted.iter_mut().zip(values) {
+                    column[j] = value;
+                }
             }
-            let sector_det = sector_determinants(&positions, &xy_length, &pairs[..sectors]);
-            // Per sector: s0, s1, the inner ellipse and its dot products with s0 and s1,
-            // the outer one and its (columns, one lane per sector; lanes past the sectors
-            // stay 0).
-            let mut columns = [[0.0f32; 2 * LANES]; 12];
+            let sector_det = if allow_fast {
+                // `sector_determinants` of the pairs (order[j], order[j + 1]), four at a
+                // time straight from the sorted lanes, bit for bit (the same operations);
+                // lanes past the sectors are not read.
+                let mut dets = [0.0f32; 2 * LANES];
+                let [xs, ys, lengths, _, _] = &sorted;
+                for first in lane_starts(sectors) {
+                    let (xa, ya, la) = (load4(xs, first), load4(ys, first), load4(lengths, first));
+                    let (xb, yb, lb) = (
+                        load4(xs, first + 1),
+                        load4(ys, first + 1),
+                        load4(lengths, first + 1),
+                    );
+                    let det = difference_of_products4(xa, yb, ya, xb) / (la * lb);
+                    store4(crate::math::finite_or_zero4(det), &mut dets, first);
+                }
+                dets
+            } else {
+                let mut pairs = [(0usize, 0usize); MAX_POLYGON_VERTICES];
+                for j in 0..sectors {
+                    pairs[j] = (order[j] as usize, order[j + 1] as usize);
+                }
+                sector_determinants(&positions, &xy_length, &pairs[..sectors])
+            };
+            // Per sector: the inner ellipse and its dot products with s0 and s1, the outer
+            // one and its (columns, one lane per sector; lanes past the sectors stay 0;
+            // s0 and s1 are slots j and j + 1 of the sorted directions).
+            let mut columns = [[0.0f32; 2 * LANES]; 8];
             let mut inner = first_inner;
             let mut outer = 0usize;
             // The previous sector's inner and outer ellipse and their dot products with
             // its s1, this sector's s0: the same `edge_dot` where the ellipse is the same.
             let mut previous = [(usize::MAX, 0.0f32); 2];
+            // The table of `edge_dot` at each edge's own vertices (see `own_edge_dots`).
+            let own =
+                allow_fast.then(|| own_edge_dots(&vertex, &normals, &edge, &xy_length, count));
             for j in 0..sectors {
                 let (a, b) = (order[j] as usize, order[j + 1] as usize);
                 let e = vertex_edge[a];
@@ -903,18 +1004,14 @@ impl ProjectedPolygon {
                     let at_a = if previous[k].0 == e {
                         previous[k].1
                     } else {
-                        edge_dot(e, a)
+                        own_edge_dot(&own, e, next(e), a).unwrap_or_else(|| edge_dot(e, a))
                     };
-                    let at_b = edge_dot(e, b);
+                    let at_b = own_edge_dot(&own, e, next(e), b).unwrap_or_else(|| edge_dot(e, b));
                     previous[k] = (e, at_b);
                     dots[k] = [at_a, at_b];
                 }
                 let [ti, to] = dots;
                 let values = [
-                    direction[a][0],
-                    direction[a][1],
-                    direction[b][0],
-                    direction[b][1],
                     edge[inner][0],
                     edge[inner][1],
                     ti[0],
@@ -929,18 +1026,22 @@ impl ProjectedPolygon {
                 }
             }
             let sectors_mut = polygon.pieces.sectors_mut();
-            // `EllipseSector::new` of sector j, one at a time.
+            // The sectors' areas, `area(false, precision)` (before `max(0)`).
+            let mut areas = [0.0f32; 2 * LANES];
+            // `EllipseSector::new` of sector j and its area, one at a time.
             let scalar_sector = |sector: &mut EllipseSector, j: usize| {
                 let pair = |c: usize| [columns[c][j], columns[c + 1][j]];
+                let direction = |slot: usize| [sorted[3][slot], sorted[4][slot]];
                 *sector = EllipseSector::new(
+                    direction(j),
+                    direction(j + 1),
+                    sector_det[j],
                     pair(0),
                     pair(2),
-                    sector_det[j],
                     pair(4),
                     pair(6),
-                    pair(8),
-                    pair(10),
                 );
+                sector.area(false, precision)
             };
             if allow_fast {
                 // Four sectors at a time, bit for bit as `EllipseSector::new`. The slots
@@ -949,12 +1050,14 @@ impl ProjectedPolygon {
                 // sector alone (a hexagon's fifth) takes `new`, cheaper than four lanes.
                 for first in lane_starts(sectors) {
                     if sectors - first == 1 {
-                        scalar_sector(&mut sectors_mut[first], first);
+                        areas[first] = scalar_sector(&mut sectors_mut[first], first);
                         continue;
                     }
-                    let [s0x, s0y, s1x, s1y, uix, uiy, ti0, ti1, uox, uoy, to0, to1] =
+                    let [uix, uiy, ti0, ti1, uox, uoy, to0, to1] =
                         columns.each_ref().map(|c| load4(c, first));
-                    EllipseSector::new4(
+                    let (s0x, s0y) = (load4(&sorted[3], first), load4(&sorted[4], first));
+                    let (s1x, s1y) = (load4(&sorted[3], first + 1), load4(&sorted[4], first + 1));
+                    let lanes = EllipseSector::new4(
                         [s0x, s0y],
                         [s1x, s1y],
                         load4(&sector_det, first),
@@ -962,15 +1065,19 @@ impl ProjectedPolygon {
                         [ti0, ti1],
                         [uox, uoy],
                         [to0, to1],
+                        precision,
+                        (sectors - first).min(LANES),
                         (&mut sectors_mut[first..first + LANES]).try_into().unwrap(),
                     );
+                    areas[first..first + LANES].copy_from_slice(&lanes);
                 }
             } else {
                 for (j, sector) in sectors_mut[..sectors].iter_mut().enumerate() {
-                    scalar_sector(sector, j);
+                    areas[j] = scalar_sector(sector, j);
                 }
             }
             let mut all_empty_before = true;
+            #[allow(clippy::needless_range_loop)] // j indexes the sectors and their areas
             for j in 0..sectors {
                 let sector = &mut polygon.pieces.sectors_mut()[j];
                 // An upper bound on the outer ellipse's area instead of the area itself
@@ -979,7 +1086,7 @@ impl ProjectedPolygon {
                 // thresholds.
                 let outer_bound = outer_area_bound(sector);
                 outer_sum_bound += outer_bound;
-                let area = sector.area(false, precision).max(0.0);
+                let area = areas[j].max(0.0);
                 // Also where the ellipses touch or nearly touch at an end of the sector (a
                 // vertex on or just above the horizon at the polygon's azimuthal end, issue
                 // 17, 2): the shape of the region there is modelled in the initial guess,

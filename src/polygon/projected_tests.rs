@@ -1497,7 +1497,17 @@ fn awkward_vertices(rng: &mut Rng, n: usize, trial: usize) -> Vec<Vec3> {
 /// back to the scalar sectors: the lanes select `new`'s rare branches per lane, and the
 /// test checks that its polygons reach each of them (a sector near π, whose bisector is
 /// `R (s0 - s1)`; a zero direction of a vertex on the z axis; a zero inverse basis; a
-/// degenerate ellipse) and every area form.
+/// degenerate ellipse) and every area form. The sectors' areas are among the words
+/// compared: in lanes they come from `new4` (`areas_between4`, two four-lane arc
+/// tangents per four sectors, and the quadrature form's scalar fallback), which the
+/// first four slots, always lanes, are checked to reach with each area form. The dot
+/// products `u · s` at a sector's ends come, in the lanes' path, from the table of each
+/// edge at its own vertices (`own_edge_dots`, four edges at a time) wherever the vertex
+/// is one of the edge's, which every decentral polygon here uses (its azimuthal ends lie
+/// on both of their ellipses), and the degenerate ellipses and the vertices on the z axis
+/// (`|p_xy|` 0) counted here take its zeros. The lanes' path also takes the sectors'
+/// determinants from the vertices copied once into azimuth order (`sorted`), where the
+/// scalar path gathers each sector's pair (`sector_determinants`).
 #[test]
 fn decentral_lanes_match_the_scalar_sectors() {
     // Decentral polygons, sectors near π, zero directions, zero inverse bases,
@@ -1516,7 +1526,7 @@ fn decentral_lanes_match_the_scalar_sectors() {
             }
             counts[0] += 1;
             // The sectors in use (the unused slots have u_i = u_o = 0).
-            for sector in lanes.sectors() {
+            for (slot, sector) in lanes.sectors().iter().enumerate() {
                 if sector.inner == [0.0; 2] && sector.outer == [0.0; 2] {
                     continue;
                 }
@@ -1527,7 +1537,9 @@ fn decentral_lanes_match_the_scalar_sectors() {
                 counts[2] += (!unit(s0) || !unit(s1)) as u32;
                 counts[3] += (sector.inverse_basis == 0.0) as u32;
                 counts[4] += (is_degenerate(sector.inner) || is_degenerate(sector.outer)) as u32;
-                counts[5 + sector.area_form as usize] += 1;
+                // Area forms of the first four slots, always lanes (so the areas in
+                // lanes meet each form, the quadrature form's scalar fallback included).
+                counts[5 + sector.area_form as usize] += (slot < 4) as u32;
             }
         }
     };
