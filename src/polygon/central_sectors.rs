@@ -78,8 +78,10 @@ impl CentralSectors {
     #[inline(always)]
     pub(crate) fn store(&mut self, first: usize, count: usize, lanes: &CentralLanes) {
         // Lane i is kept where first + i < count: compares the lane indices with
-        // count - first (both small integers, exact in f32).
-        let keep = Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(Vec4::splat((count - first) as f32));
+        // count - first (both small integers, exact in f32; converted through `i32`, one
+        // signed conversion, where a `usize` takes a branch for the sign bit).
+        let remaining = (count - first) as i32 as f32;
+        let keep = Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(Vec4::splat(remaining));
         let put = |row: &mut Row, v: Vec4| store4(Vec4::select(keep, v, Vec4::ZERO), row, first);
         let [s0x, s0y] = lanes.s0;
         let [ux, uy] = lanes.outer;
