@@ -906,6 +906,11 @@ impl EllipseSector {
     /// `((1 - ξ1)|w|² + (u·w)²) / wᵀCw` without the cancellation of `1 - |p|²` near the
     /// rim of the disk (the horizon). Here `u · w = cos · √|C| t0 + sin · det(s0, u)` (as
     /// `u · R u = 0`), from the accurate `t0 = u · s0`.
+    ///
+    /// The projected sampler samples central sectors from their rows
+    /// (`CentralSectors::sample`, the same arithmetic with the sector's constants
+    /// precomputed); this form is the reference its test compares with.
+    #[cfg(test)]
     #[inline(always)]
     pub(crate) fn sample_central(&self, area: f32, xi1: f32) -> (Vec2, f32) {
         let (u, s0, t0) = (self.outer, self.s0(), self.outer_dots()[0]);

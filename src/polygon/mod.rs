@@ -11,6 +11,7 @@ use crate::Vec3;
 use glam::{BVec4A, Vec4};
 
 pub mod baselines;
+mod central_sectors;
 pub mod clip;
 mod ellipse;
 mod ellipse_sector;

@@ -22,6 +22,7 @@
 //! polygons touching and crossing the horizon, tiny and near-hemisphere polygons,
 //! `ξ0` at 0, 1e-5, 1 - 1e-5 and 1 - ulp.
 
+use super::central_sectors::{CENTRAL_WORDS, CentralLanes, CentralSectors};
 use super::clip::{clip_to_upper_hemisphere, clipped_edge_planes};
 use super::ellipse::{
     DEGENERATE, dot2, ellipse_area, ellipse_from_normal, ellipse_from_normal4, is_degenerate,
@@ -98,12 +99,35 @@ pub struct ProjectedPolygon {
 /// did not write (possible only for a caller's corrupted struct) gives wrong numbers,
 /// never undefined behaviour. Preparation writes every byte of the union (the small case
 /// writes the empty sectors first), so no stale word is left in it.
+///
+/// The central case has a third view, [`CentralPieces`]: its sectors as rows of lanes
+/// and zeros for the rest of the storage.
 #[repr(C)]
 #[derive(Clone, Copy)]
 pub union ProjectedPieces {
     sectors: [EllipseSector; MAX_POLYGON_VERTICES],
     small: SmallPolygonCosineSampler,
+    central: CentralPieces,
 }
+
+/// The words of the sectors' view after the central sectors' rows.
+const CENTRAL_REST: usize =
+    core::mem::size_of::<[EllipseSector; MAX_POLYGON_VERTICES]>() / 4 - CENTRAL_WORDS;
+
+/// The central case's view of the storage: the sectors' rows, then words that the
+/// central preparation writes as 0 (so that the whole storage is written, as in the other
+/// cases). Exactly as large as the sectors' view (asserted below).
+#[repr(C)]
+#[derive(Clone, Copy)]
+struct CentralPieces {
+    sectors: CentralSectors,
+    rest: [u32; CENTRAL_REST],
+}
+
+const _: () = assert!(
+    core::mem::size_of::<CentralPieces>()
+        == core::mem::size_of::<[EllipseSector; MAX_POLYGON_VERTICES]>()
+);
 
 // The sectors are the larger view, so that writing them writes the whole storage.
 const _: () = assert!(
@@ -124,6 +148,18 @@ impl ProjectedPieces {
     fn sectors_mut(&mut self) -> &mut [EllipseSector; MAX_POLYGON_VERTICES] {
         // SAFETY: every bit pattern is a valid value of this view (see above).
         unsafe { &mut self.sectors }
+    }
+}
+
+impl ProjectedPieces {
+    /// The central view's rows, for preparation to write; the rest of the storage is
+    /// written as 0 first.
+    #[inline(always)]
+    fn central_mut(&mut self) -> &mut CentralSectors {
+        // SAFETY: every bit pattern is a valid value of this view (plain f32/u32 words).
+        let central = unsafe { &mut self.central };
+        central.rest = [0; CENTRAL_REST];
+        &mut central.sectors
     }
 }
 
@@ -379,6 +415,7 @@ fn central_unclipped_sectors(
 ) -> bool {
     polygon.central = 1;
     polygon.edge_normals = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+    let central = polygon.pieces.central_mut();
     let mut maybe_short = false;
     let limit = Vec4::splat(super::ellipse::ELLIPSE_LIMIT);
     for first in lane_starts(count) {
@@ -435,42 +472,28 @@ fn central_unclipped_sectors(
             AreaPrecision::Fast => atan2_positive_fast4(y, x),
         };
         let area = (angle * (Vec4::splat(0.5) / root_det)).max(Vec4::ZERO);
-        let [
-            nx,
-            ny,
-            nz,
-            s0x,
-            s0y,
-            s1x,
-            s1y,
-            det,
-            ux,
-            uy,
-            t0,
-            t1,
-            root_det,
-            cosine,
-        ] = [
-            nx, ny, nz, s0x, s0y, s1x, s1y, det, ux, uy, t0, t1, root_det, cosine,
-        ]
-        .map(|v| v.to_array());
-        let [inverse_basis, area] = [inverse_basis, area].map(|v| v.to_array());
+        central.store(
+            first,
+            count,
+            &CentralLanes {
+                s0: [s0x, s0y],
+                s1: [s1x, s1y],
+                det,
+                outer: [ux, uy],
+                outer_dots: [t0, t1],
+                root_det,
+                cosine,
+                inverse_basis,
+            },
+        );
+        store4(area, &mut polygon.sector_area, first);
+        let [nx, ny, nz] = [nx, ny, nz].map(|v| v.to_array());
         for lane in 0..lanes {
-            let j = first + lane;
-            polygon.edge_normals[j] = Vec3::new(nx[lane], ny[lane], nz[lane]);
-            // Built in place: building it on the stack and copying it whole after
-            // using it stalls store-to-load forwarding.
-            polygon.pieces.sectors_mut()[j] = EllipseSector::new_central(
-                [[s0x[lane], s0y[lane]], [s1x[lane], s1y[lane]]],
-                det[lane],
-                [ux[lane], uy[lane]],
-                [t0[lane], t1[lane]],
-                root_det[lane],
-                cosine[lane],
-                inverse_basis[lane],
-            );
-            polygon.sector_area[j] = area[lane];
+            polygon.edge_normals[first + lane] = Vec3::new(nx[lane], ny[lane], nz[lane]);
         }
+    }
+    if count <= LANES {
+        central.store_zeros(LANES);
     }
     maybe_short
 }
@@ -497,6 +520,24 @@ impl ProjectedPolygon {
         // SAFETY: every bit pattern of the storage is a valid value of this view (see
         // `ProjectedPieces`).
         unsafe { &self.pieces.sectors }
+    }
+
+    /// The central case's sectors (meaningful only when `central` is 1 and `is_small` 0).
+    #[inline(always)]
+    pub(crate) fn central_sectors(&self) -> &CentralSectors {
+        // SAFETY: as in `sectors`.
+        unsafe { &self.pieces.central.sectors }
+    }
+
+    /// Sector `j` (below 8) as an [`EllipseSector`], from either case's storage (not
+    /// meaningful for a polygon that uses the small-polygon sampler): the central case
+    /// rebuilds it from its rows.
+    pub(crate) fn sector(&self, j: usize) -> EllipseSector {
+        if self.central != 0 {
+            self.central_sectors().sector(j)
+        } else {
+            self.sectors()[j]
+        }
     }
 
     /// The small-polygon sampler (meaningful only when `is_small` is 1).
@@ -705,10 +746,13 @@ impl ProjectedPolygon {
             // The unused slots too (no stale or NaN word is left in a prepared value, which
             // the adversarial C test checks by filling the struct with NaN first).
             // `EllipseSector::EMPTY` from registers (see `empty_from`): copied from the
-            // constant, each slot was a call of `memcpy`.
+            // constant, each slot was a call of `memcpy`. (The central sectors' rows have
+            // their unused slots written already, as 0.)
             let one = core::hint::black_box(1.0f32);
             for j in sectors..MAX_POLYGON_VERTICES {
-                polygon.pieces.sectors_mut()[j] = EllipseSector::empty_from(one);
+                if polygon.central == 0 {
+                    polygon.pieces.sectors_mut()[j] = EllipseSector::empty_from(one);
+                }
                 polygon.sector_area[j] = 0.0;
             }
             let mut total = 0.0f32;
@@ -1149,7 +1193,8 @@ impl ProjectedPolygon {
                     column[j] = value;
                 }
             }
-            let mut sector_values = [[0.0f32; 2 * LANES]; 4];
+            let mut area = [0.0f32; 2 * LANES];
+            let central = polygon.pieces.central_mut();
             for first in lane_starts(count) {
                 let [s0x, s0y, s1x, s1y, ux, uy, t0, t1, det] =
                     columns.each_ref().map(|c| load4(c, first));
@@ -1158,37 +1203,38 @@ impl ProjectedPolygon {
                 let inverse = Vec4::ONE / difference_of_products4(s0x, s1y, s0y, s1x);
                 let inverse = Vec4::select(inverse.is_finite_mask(), inverse, Vec4::ZERO);
                 let x = (cosine + t0 * t1) / root_det;
-                let area =
+                let lanes_area =
                     crate::math::atan2_upper_half_plane4(det.max(Vec4::ZERO), x, count - first)
                         * (Vec4::splat(0.5) / root_det);
                 // `is_degenerate`: not |u_x| <= the limit (NaN included).
                 let proper = ux.abs().cmple(Vec4::splat(super::ellipse::ELLIPSE_LIMIT));
-                let area = Vec4::select(proper, area, Vec4::ZERO).max(Vec4::ZERO);
-                for (values, lanes) in sector_values
-                    .iter_mut()
-                    .zip([root_det, cosine, inverse, area])
-                {
-                    store4(lanes, values, first);
-                }
-            }
-            let [root_det, cosine, inverse_basis, area] = sector_values;
-            #[allow(clippy::needless_range_loop)] // j indexes several arrays and vertices
-            for j in 0..count {
-                let (a, b) = (j, next(j));
-                // Built in place: building it on the stack and copying it whole after
-                // using it stalls store-to-load forwarding.
-                polygon.pieces.sectors_mut()[j] = EllipseSector::new_central(
-                    [direction[a], direction[b]],
-                    sector_det[j],
-                    edge[j],
-                    [columns[6][j], columns[7][j]],
-                    root_det[j],
-                    cosine[j],
-                    inverse_basis[j],
+                let lanes_area = Vec4::select(proper, lanes_area, Vec4::ZERO).max(Vec4::ZERO);
+                store4(lanes_area, &mut area, first);
+                central.store(
+                    first,
+                    count,
+                    &CentralLanes {
+                        s0: [s0x, s0y],
+                        s1: [s1x, s1y],
+                        det,
+                        outer: [ux, uy],
+                        outer_dots: [t0, t1],
+                        root_det,
+                        cosine,
+                        inverse_basis: inverse,
+                    },
                 );
+            }
+            if count <= LANES {
+                central.store_zeros(LANES);
+            }
+            #[allow(clippy::needless_range_loop)] // j indexes two arrays and the sectors
+            for j in 0..count {
                 polygon.sector_area[j] = match precision {
                     AreaPrecision::Exact => area[j],
-                    AreaPrecision::Fast => polygon.pieces.sectors_mut()[j]
+                    AreaPrecision::Fast => polygon
+                        .central_sectors()
+                        .sector(j)
                         .area(true, precision)
                         .max(0.0),
                 };
@@ -1299,10 +1345,10 @@ impl ProjectedPolygon {
         let k = select_piece(&self.sector_start, target);
         let sector_area = self.sector_area[k];
         let local = (target - self.sector_start[k]).max(0.0).min(sector_area);
-        let sector = &self.sectors()[k];
         let point_and_z2 = if self.central != 0 {
-            Some(sector.sample_central(local, u1))
+            Some(self.central_sectors().sample(k, local, u1))
         } else {
+            let sector = &self.sectors()[k];
             let fraction = local / sector_area;
             // Both counts clamped: `extra_iterations` is a 0/1 flag, and a corrupted
             // prepared value (or a huge argument) must not loop without bound (issue 16,

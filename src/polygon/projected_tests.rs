@@ -690,7 +690,7 @@ fn a_sector_of_nearly_pi_has_finite_quarter_directions() {
     .into_iter()
     .flatten()
     {
-        for sector in polygon.sectors() {
+        for sector in (0..MAX_POLYGON_VERTICES).map(|j| polygon.sector(j)) {
             for b in sector.quarters {
                 assert!(b[0].is_finite() && b[1].is_finite(), "{sector:?}");
             }
@@ -728,9 +728,10 @@ fn a_vertex_on_the_z_axis_gives_no_nan_in_the_sectors() {
     .into_iter()
     .flatten()
     {
-        for sector in polygon.sectors() {
+        for sector in (0..MAX_POLYGON_VERTICES).map(|j| polygon.sector(j)) {
             assert!(!sector.det.is_nan(), "{sector:?}");
         }
+        assert!(words(&polygon).iter().all(|&w| !f32::from_bits(w).is_nan()));
         for u in [[0.0, 0.0], [0.3, 0.7], [0.999, 0.5]] {
             let s = polygon.sample(u);
             assert!(s.dir.is_finite() && s.pdf.is_finite(), "{s:?}");
@@ -1384,6 +1385,130 @@ fn central_fast_path_matches_the_general_path() {
         fast += (compare(&v) == Some(true)) as u32;
     }
     assert!(fast > 8_000, "{fast}");
+}
+
+/// The central case's rows (`CentralSectors`, written by both central paths): over
+/// central polygons (fast and general path, both windings, clipped ones, an edge through
+/// the zenith, a vertex at the zenith, random and awkward ones), from a NaN-filled value,
+/// no word of the prepared value is NaN, the slots past the sectors are 0 in every row
+/// (the rows' words after `count`), and `CentralSectors::sample` of every selectable
+/// sector equals `EllipseSector::sample_central` of the sector that the rows rebuild
+/// (the arithmetic before the rows), bit for bit, at areas 0, inside and at the whole
+/// sector's area and at several `ξ1` (0, 1 - ulp included).
+#[test]
+fn central_rows_sample_as_the_sectors() {
+    let check = |v: &[Vec3]| -> bool {
+        let mut central = false;
+        for precision in [AreaPrecision::Exact, AreaPrecision::Fast] {
+            for allow_fast in [true, false] {
+                let mut p = nan_filled(ProjectedPolygon::EMPTY);
+                let (ok, _) = p.prepare_choosing_path(v, precision, allow_fast);
+                assert!(
+                    words(&p).iter().all(|&w| !f32::from_bits(w).is_nan()),
+                    "{v:?}: {p:?}"
+                );
+                if !ok || p.central == 0 || p.uses_small_polygon_sampler() {
+                    continue;
+                }
+                central = true;
+                let rows = p.central_sectors();
+                // Every row is 8 words; the slots past the sectors are 0 (checked where
+                // nothing is clipped: one sector per vertex).
+                let unclipped = v.iter().all(|p| p.z > 0.0);
+                for (i, &w) in words(rows).iter().enumerate() {
+                    if unclipped && i % MAX_POLYGON_VERTICES >= v.len() {
+                        assert_eq!(w, 0, "{v:?}: word {i}");
+                    }
+                }
+                for j in 0..p.selectable_sectors as usize {
+                    let sector = rows.sector(j);
+                    let whole = p.sector_area[j];
+                    for area in [0.0, 0.25 * whole, 0.5 * whole, 0.9 * whole, whole] {
+                        for xi1 in [0.0, 1e-6, 0.3, 0.77, 1.0 - f32::EPSILON / 2.0] {
+                            let (a, b) =
+                                (rows.sample(j, area, xi1), sector.sample_central(area, xi1));
+                            assert_eq!(
+                                (a.0.map(f32::to_bits), a.1.to_bits()),
+                                (b.0.map(f32::to_bits), b.1.to_bits()),
+                                "{v:?}: sector {j}, area {area}, xi1 {xi1}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        central
+    };
+    let hexagon: Vec<Vec3> = (0..6)
+        .map(|k| {
+            let a = k as f32 * core::f32::consts::TAU / 6.0;
+            Vec3::new(a.cos(), a.sin(), 1.0)
+        })
+        .collect();
+    let crossing: Vec<Vec3> = hexagon
+        .iter()
+        .map(|&p| Vec3::new(p.x, p.y, 0.5 + p.y))
+        .collect();
+    let edge_through_zenith = [
+        Vec3::new(-0.5, 0.0, 1.0),
+        Vec3::new(0.5, 0.0, 1.0),
+        Vec3::new(0.6, 0.8, 1.0),
+        Vec3::new(-0.4, 0.7, 1.0),
+    ];
+    let edge_through_zenith_central = [
+        Vec3::new(-0.5, 0.0, 1.0),
+        Vec3::new(0.5, 0.0, 1.0),
+        Vec3::new(0.6, 0.8, 1.0),
+        Vec3::new(0.0, -0.7, 1.0),
+    ];
+    let zenith_vertex = [
+        Vec3::new(0.0, 0.0, 1.0),
+        Vec3::new(0.7, 0.1, 1.0),
+        Vec3::new(0.6, 0.7, 1.0),
+        Vec3::new(-0.1, 0.8, 1.0),
+    ];
+    let triangle = [
+        Vec3::new(1.0, 0.0, 1.0),
+        Vec3::new(-0.5, 0.8, 1.0),
+        Vec3::new(-0.5, -0.8, 1.0),
+    ];
+    for v in [
+        &hexagon[..],
+        &crossing[..],
+        &edge_through_zenith[..],
+        &edge_through_zenith_central[..],
+        &zenith_vertex[..],
+        &triangle[..],
+    ] {
+        check(v);
+        check(&reversed(v));
+    }
+    assert!(check(&hexagon) && check(&crossing) && check(&triangle));
+    let mut rng = Rng::new(59);
+    let mut central = 0;
+    for trial in 0..20_000 {
+        let n = 3 + rng.below(6) as usize;
+        let v = match trial % 4 {
+            0 | 1 => {
+                let radius = rng.log_uniform(-4.0, 1.0) as f32;
+                let mut offset = || radius * (0.4 * rng.uniform_f32() - 0.2);
+                let (x, y) = (offset(), offset());
+                let center = Vec3::new(x, y, radius * rng.log_uniform(-2.0, 2.0) as f32);
+                let mut tilt = || 0.6 * rng.uniform_f32() - 0.3;
+                let normal = Vec3::new(tilt(), tilt(), 1.0);
+                let aspect = 0.05 + 0.95 * rng.uniform_f32();
+                let v = ellipse_polygon(&mut rng, n, center, normal, radius, aspect);
+                if trial % 8 == 1 { reversed(&v) } else { v }
+            }
+            2 => {
+                let radius = rng.log_uniform(-3.0, 0.5) as f32;
+                random_polygon(&mut rng, n, radius)
+            }
+            _ => awkward_vertices(&mut rng, n, trial),
+        };
+        central += check(&v) as u32;
+    }
+    assert!(central > 5_000, "{central}");
 }
 
 /// The decentral preparation decides the extra iteration of an ill-conditioned sector

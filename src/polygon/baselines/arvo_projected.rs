@@ -64,10 +64,8 @@ impl ArvoProjectedPolygon {
         }
         let selectable = self.sectors.selectable_sectors as usize;
         for j in 0..MAX_POLYGON_VERTICES {
-            let (s0, s1) = (
-                self.sectors.sectors()[j].s0(),
-                self.sectors.sectors()[j].s1(),
-            );
+            let sector = self.sectors.sector(j);
+            let (s0, s1) = (sector.s0(), sector.s1());
             // Unused slots 0, as in the empty value.
             self.sector_angle[j] = if j < selectable {
                 crate::math::atan2_upper_half_plane(det2(s0, s1).max(0.0), dot2(s0, s1))
@@ -99,7 +97,7 @@ impl ArvoProjectedPolygon {
         // negative (issue 16, 6); `min` and `max` return a number.
         let local = (target - sectors.sector_start[k]).max(0.0).min(area);
         let central = sectors.central != 0;
-        let sector = &sectors.sectors()[k];
+        let sector = &sectors.sector(k);
         let s0 = sector.s0();
         let h = self.sector_angle[k];
         let direction = |phi: f32| {

@@ -1,0 +1,199 @@
+//! The sectors of the central case of Algorithm 4 (Peters 2021, supplement A.7) as rows
+//! of lanes (structure of arrays): one row per quantity, one slot per sector (issue 15).
+//!
+//! A central sector needs a handful of the 46 words of an
+//! [`EllipseSector`](super::ellipse_sector::EllipseSector); written as such records from
+//! four sectors' lanes, each sector was a transposition and a record of mostly constant
+//! words (about 35 instructions per sector). Here preparation writes each quantity of
+//! four sectors with one 16-byte store, and the per-sample constants that do not depend
+//! on the sample (`C s0` and `det(s0, u)`) are computed once per sector instead of once
+//! per sample, bit for bit as the sample computed them.
+
+use super::ellipse::{add2, dot2, scale2};
+use super::ellipse_sector::EllipseSector;
+use crate::MAX_POLYGON_VERTICES;
+use crate::math::{LANES, difference_of_products4, store4};
+use glam::Vec4;
+
+type Vec2 = [f32; 2];
+
+/// One quantity of each sector (slots past the sectors 0).
+type Row = [f32; MAX_POLYGON_VERTICES];
+
+/// The central sectors: sector `j` reaches from the origin along `s0` to `s1` out to the
+/// outer ellipse `u` (the ellipse of its edge). The first rows are what
+/// [`sample`](Self::sample) reads, the others what the sector's `EllipseSector` held
+/// (for [`sector`](Self::sector), which the baseline of Arvo and the tests read).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct CentralSectors {
+    /// `s0`, the clockwise boundary (unit direction): x and y rows.
+    s0: [Row; 2],
+    /// `R C s0 = R (s0 + (u · s0) u)` for `C = I + u uᵀ` (the ellipse's matrix; `R` the
+    /// rotation by +90°): the direction at the right angle to `s0` in the circle's
+    /// coordinates, mapped back (see [`EllipseSector::sample_central`]). 0 where not
+    /// finite (a degenerate ellipse, whose sector has zero area and is never sampled).
+    rotated: [Row; 2],
+    /// `k = √|C| = √(1 + |u|²)`.
+    root_det: Row,
+    /// `t0 = u · s0`, from the vertex positions.
+    t0: Row,
+    /// `det(s0, u)` (Kahan's difference of products, as `det2`); 0 where not finite.
+    det_s0_u: Row,
+    /// `s1`, the counter-clockwise boundary: x and y rows.
+    s1: [Row; 2],
+    /// `det(s0, s1)` from the vertex positions.
+    det: Row,
+    /// The outer ellipse `u`: x and y rows.
+    outer: [Row; 2],
+    /// `t1 = u · s1`, from the vertex positions.
+    t1: Row,
+    /// `s0 · s1`.
+    cosine: Row,
+    /// `1 / det(s0, s1)` of the rounded `s0`, `s1` (0 where not finite).
+    inverse_basis: Row,
+}
+
+/// The 4-byte words of [`CentralSectors`] (15 rows of 8 slots).
+pub(crate) const CENTRAL_WORDS: usize = 15 * MAX_POLYGON_VERTICES;
+const _: () = assert!(core::mem::size_of::<CentralSectors>() == 4 * CENTRAL_WORDS);
+
+/// Four sectors' values as lanes, as the two central paths of the preparation compute
+/// them (the arguments of [`EllipseSector::new_central`], lane by lane).
+pub(crate) struct CentralLanes {
+    pub(crate) s0: [Vec4; 2],
+    pub(crate) s1: [Vec4; 2],
+    pub(crate) det: Vec4,
+    pub(crate) outer: [Vec4; 2],
+    pub(crate) outer_dots: [Vec4; 2],
+    pub(crate) root_det: Vec4,
+    pub(crate) cosine: Vec4,
+    pub(crate) inverse_basis: Vec4,
+}
+
+impl CentralSectors {
+    /// Writes the sectors `first..first + 4` from their lanes; lanes from `count` on
+    /// (past the polygon, whose values the caller may have computed from padding) are
+    /// written as 0.
+    #[inline(always)]
+    pub(crate) fn store(&mut self, first: usize, count: usize, lanes: &CentralLanes) {
+        // Lane i is kept where first + i < count: compares the lane indices with
+        // count - first (both small integers, exact in f32; converted through `i32`, one
+        // signed conversion, where a `usize` takes a branch for the sign bit).
+        let remaining = (count - first) as i32 as f32;
+        let keep = Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(Vec4::splat(remaining));
+        let put = |row: &mut Row, v: Vec4| store4(Vec4::select(keep, v, Vec4::ZERO), row, first);
+        let [s0x, s0y] = lanes.s0;
+        let [ux, uy] = lanes.outer;
+        let [t0, t1] = lanes.outer_dots;
+        // `rotate(add2(s0, scale2(u, t0)))` lane by lane: R (x, y) = (-y, x), the
+        // negation exact.
+        let (cx, cy) = (s0x + ux * t0, s0y + uy * t0);
+        let finite = |v: Vec4| Vec4::select(v.is_finite_mask(), v, Vec4::ZERO);
+        put(&mut self.rotated[0], finite(-cy));
+        put(&mut self.rotated[1], finite(cx));
+        // `det2(s0, u)`: `difference_of_products4` is `difference_of_products` lane by
+        // lane.
+        put(
+            &mut self.det_s0_u,
+            finite(difference_of_products4(s0x, uy, s0y, ux)),
+        );
+        put(&mut self.s0[0], s0x);
+        put(&mut self.s0[1], s0y);
+        put(&mut self.root_det, lanes.root_det);
+        put(&mut self.t0, t0);
+        put(&mut self.s1[0], lanes.s1[0]);
+        put(&mut self.s1[1], lanes.s1[1]);
+        put(&mut self.det, lanes.det);
+        put(&mut self.outer[0], ux);
+        put(&mut self.outer[1], uy);
+        put(&mut self.t1, t1);
+        put(&mut self.cosine, lanes.cosine);
+        put(&mut self.inverse_basis, lanes.inverse_basis);
+    }
+
+    /// Writes the sectors `first..first + 4` as 0 (slots past the polygon).
+    #[inline(always)]
+    pub(crate) fn store_zeros(&mut self, first: usize) {
+        let rows: [&mut Row; 15] = {
+            let Self {
+                s0: [a, b],
+                rotated: [c, d],
+                root_det,
+                t0,
+                det_s0_u,
+                s1: [e, f],
+                det,
+                outer: [g, h],
+                t1,
+                cosine,
+                inverse_basis,
+            } = self;
+            [
+                a,
+                b,
+                c,
+                d,
+                root_det,
+                t0,
+                det_s0_u,
+                e,
+                f,
+                det,
+                g,
+                h,
+                t1,
+                cosine,
+                inverse_basis,
+            ]
+        };
+        for row in rows {
+            store4(Vec4::ZERO, row, first);
+        }
+    }
+
+    /// Sector `j` as the [`EllipseSector::new_central`] that preparation built before
+    /// these rows (bit for bit: the same values), for the readers of a sector's other
+    /// fields.
+    pub(crate) fn sector(&self, j: usize) -> EllipseSector {
+        let pair = |row: &[Row; 2]| [row[0][j], row[1][j]];
+        EllipseSector::new_central(
+            [pair(&self.s0), pair(&self.s1)],
+            self.det[j],
+            pair(&self.outer),
+            [self.t0[j], self.t1[j]],
+            self.root_det[j],
+            self.cosine[j],
+            self.inverse_basis[j],
+        )
+    }
+
+    /// [`EllipseSector::sample_central`] of sector `j` (bit for bit), from the rows: a
+    /// point uniformly distributed in the sector's part of the outer ellipse, at area
+    /// `area` from `s0` counter-clockwise and relative radius² `xi1`, and `ω_z²`.
+    ///
+    /// As there (supplement A.7): `w = cos(2kA) k s0 + sin(2kA) R C s0` and
+    /// `u · w = cos · k t0 + sin · det(s0, u)`, with `R C s0` and `det(s0, u)` read from
+    /// the rows instead of computed here (one difference of products, with its
+    /// error-free products, and four operations fewer per sample).
+    #[inline(always)]
+    pub(crate) fn sample(&self, j: usize, area: f32, xi1: f32) -> (Vec2, f32) {
+        // `& 7` only shows the compiler the slot in bounds (sector indices are below 8).
+        let j = j & (MAX_POLYGON_VERTICES - 1);
+        let s0 = [self.s0[0][j], self.s0[1][j]];
+        let rotated = [self.rotated[0][j], self.rotated[1][j]];
+        let (k, t0) = (self.root_det[j], self.t0[j]);
+        let (sin, cos) = crate::math::sin_cos_0_to_pi(2.0 * k * area);
+        let w = add2(scale2(s0, cos * k), scale2(rotated, sin));
+        let uw = cos * k * t0 + sin * self.det_s0_u[j];
+        let length2 = dot2(w, w);
+        let norm = (length2 + uw * uw).max(f32::MIN_POSITIVE);
+        let z2 = ((1.0 - xi1) * length2 + uw * uw) / norm;
+        (scale2(w, libm::sqrtf(xi1 / norm)), z2)
+    }
+}
+
+// `MAX_POLYGON_VERTICES` is a power of two (the mask in `sample`) and a multiple of the
+// lanes (`store` writes whole groups).
+const _: () = assert!(MAX_POLYGON_VERTICES.is_power_of_two());
+const _: () = assert!(MAX_POLYGON_VERTICES % LANES == 0);
