@@ -13,6 +13,7 @@ use glam::{BVec4A, Vec4};
 pub mod baselines;
 mod central_sectors;
 pub mod clip;
+mod edge_normal_rows;
 mod ellipse;
 mod ellipse_sector;
 #[rustfmt::skip]

@@ -24,6 +24,7 @@
 
 use super::central_sectors::{CENTRAL_WORDS, CentralLanes, CentralSectors};
 use super::clip::{clip_to_upper_hemisphere, clipped_edge_planes};
+use super::edge_normal_rows::EdgeNormalRows;
 use super::ellipse::{
     DEGENERATE, dot2, ellipse_area, ellipse_from_normal, ellipse_from_normal4, is_degenerate,
     is_inner, unit_direction, unit_direction4,
@@ -75,7 +76,7 @@ pub struct ProjectedPolygon {
     pub(crate) sector_start: [f32; MAX_POLYGON_VERTICES],
     /// Inward edge plane normals of the clipped polygon, for the inside test of
     /// [`pdf`](Self::pdf) (zero in unused slots).
-    edge_normals: [Vec3; MAX_POLYGON_VERTICES],
+    edge_normals: EdgeNormalRows,
     /// Total projected solid angle `Φ = ∫ cos θ dω` (0 when empty).
     pub(crate) projected_solid_angle: f32,
     /// `1 / Φ` (0 when empty).
@@ -414,7 +415,7 @@ fn central_unclipped_sectors(
     precision: AreaPrecision,
 ) -> bool {
     polygon.central = 1;
-    polygon.edge_normals = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+    polygon.edge_normals = EdgeNormalRows::ZERO;
     let central = polygon.pieces.central_mut();
     let mut maybe_short = false;
     let limit = Vec4::splat(super::ellipse::ELLIPSE_LIMIT);
@@ -489,7 +490,9 @@ fn central_unclipped_sectors(
         store4(area, &mut polygon.sector_area, first);
         let [nx, ny, nz] = [nx, ny, nz].map(|v| v.to_array());
         for lane in 0..lanes {
-            polygon.edge_normals[first + lane] = Vec3::new(nx[lane], ny[lane], nz[lane]);
+            polygon
+                .edge_normals
+                .set(first + lane, Vec3::new(nx[lane], ny[lane], nz[lane]));
         }
     }
     if count <= LANES {
@@ -505,7 +508,7 @@ impl ProjectedPolygon {
         pieces: ProjectedPieces::EMPTY,
         sector_area: [0.0; MAX_POLYGON_VERTICES],
         sector_start: [0.0; MAX_POLYGON_VERTICES],
-        edge_normals: [Vec3::ZERO; MAX_POLYGON_VERTICES],
+        edge_normals: EdgeNormalRows::ZERO,
         projected_solid_angle: 0.0,
         density: 0.0,
         selectable_sectors: 0,
@@ -793,17 +796,15 @@ impl ProjectedPolygon {
             polygon.projected_solid_angle = total;
             polygon.density = density;
             if maybe_short {
-                super::ignore_short_edges_in_containment(
-                    &mut polygon.edge_normals,
-                    &positions,
-                    count,
-                );
+                let mut normals = polygon.edge_normals.vectors();
+                super::ignore_short_edges_in_containment(&mut normals, &positions, count);
+                polygon.edge_normals.set_all(&normals);
             }
             true
         };
         if allow_small && extent2 < SMALL_EXTENT * SMALL_EXTENT {
             // As from the empty value: `contains` of the small case passes every edge.
-            polygon.edge_normals = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+            polygon.edge_normals = EdgeNormalRows::ZERO;
             return switch_to_small(polygon);
         }
         // Algorithm 1 per edge; edge j runs from vertex j to vertex j + 1.
@@ -851,7 +852,7 @@ impl ProjectedPolygon {
                 central_unclipped_sectors(polygon, &vertex, &normals, count, precision);
             return finish(polygon, count, 0.0, maybe_short);
         }
-        polygon.edge_normals = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+        polygon.edge_normals = EdgeNormalRows::ZERO;
         let mut edge = [DEGENERATE; MAX_POLYGON_VERTICES];
         let mut direction = [[0.0f32; 2]; MAX_POLYGON_VERTICES];
         let mut xy_length = [0.0f32; MAX_POLYGON_VERTICES];
@@ -888,7 +889,9 @@ impl ProjectedPolygon {
                 maybe_short |= short.bitmask() & ((1u32 << lanes) - 1) != 0;
             }
             for j in 0..count {
-                polygon.edge_normals[j] = Vec3::new(normals[0][j], normals[1][j], normals[2][j]);
+                polygon
+                    .edge_normals
+                    .set(j, Vec3::new(normals[0][j], normals[1][j], normals[2][j]));
                 edge[j] = [columns[0][j], columns[1][j]];
                 direction[j] = [columns[2][j], columns[3][j]];
             }
@@ -898,7 +901,7 @@ impl ProjectedPolygon {
                 let normal = Vec3::new(normals[0][j], normals[1][j], normals[2][j]);
                 let u = ellipse_from_normal(normal);
                 edge[j] = u;
-                polygon.edge_normals[j] = normal;
+                polygon.edge_normals.set(j, normal);
                 // The first test of `ignore_short_edges_in_containment` on the same
                 // values: the common polygon has no short edge and skips it.
                 maybe_short |= !(normal.length_squared()
@@ -922,7 +925,7 @@ impl ProjectedPolygon {
                 return 0.0;
             }
             let (a, b) = (e, next(e));
-            let n = polygon.edge_normals[e];
+            let n = polygon.edge_normals.get(e);
             let p = positions[c];
             let triple = if c == a || c == b {
                 0.0
@@ -1415,11 +1418,8 @@ impl ProjectedPolygon {
         // Fast accept: a direction on the inner side of every edge's plane (every
         // sample but those within rounding of the boundary) is inside for any slack,
         // without the lengths of the slack's test (nine square roots).
-        let mut strictly = true;
-        for n in &self.edge_normals {
-            // Unused slots hold zero normals, whose dot product 0 passes.
-            strictly &= n.dot(dir) >= 0.0;
-        }
+        // Unused slots hold zero normals, whose dot product 0 passes.
+        let strictly = self.edge_normals.all_on_inner_side(dir);
         if strictly || !inside {
             return inside && strictly;
         }
@@ -1432,12 +1432,7 @@ impl ProjectedPolygon {
     #[inline(never)]
     #[cold]
     fn contains_within_slack(&self, dir: Vec3, tolerance: f32) -> bool {
-        let length = dir.length();
-        let mut inside = true;
-        for n in &self.edge_normals {
-            inside &= n.dot(dir) >= -tolerance * n.length() * length;
-        }
-        inside
+        self.edge_normals.all_within(dir, tolerance, dir.length())
     }
 
     /// The slack of [`pdf`](Self::pdf) in radians: how far outside the polygon a
@@ -1491,12 +1486,11 @@ impl ProjectedPolygon {
         if self.is_small != 0 {
             return dir.z > 0.0 && self.small().contains_within(dir, 0.0);
         }
-        let mut inside = self.selectable_sectors > 0 && dir.z > 0.0 && dir.is_finite();
-        for n in &self.edge_normals {
-            // Unused slots hold zero normals, whose dot product 0 passes.
-            inside &= n.dot(dir) >= 0.0;
-        }
-        inside
+        // Unused slots hold zero normals, whose dot product 0 passes.
+        self.selectable_sectors > 0
+            && dir.z > 0.0
+            && dir.is_finite()
+            && self.edge_normals.all_on_inner_side(dir)
     }
 }
 

@@ -510,6 +510,7 @@ fn extreme_random_numbers_give_valid_samples() {
                     let inside_or_on_edge = polygon.contains(d)
                         || polygon
                             .edge_normals
+                            .vectors()
                             .iter()
                             .all(|n| n.dot(d) >= -1e-5 * n.length());
                     assert!(inside_or_on_edge, "{a} {b}: {d:?}");
