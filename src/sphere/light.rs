@@ -43,7 +43,7 @@ use super::pivot::{
     transform,
 };
 use super::shading_fast::pivoted_intersection_fast;
-use super::sptd::{Sptd, SptdInCap};
+use super::sptd::{Sptd, SptdBase, SptdInCap};
 use crate::Sample;
 use crate::brdf::Ltc;
 use crate::brdf::pivot_table::{PIVOT_TABLE, PIVOT_TABLE_SIZE};
@@ -489,7 +489,13 @@ impl SphereLightSampler {
             return Sample::new_or_none(dir, self.clipped_pdf(dir));
         }
         if self.uses_sptd() {
-            self.sptd.sample(u)
+            // The sampler's SPTD is always uniform (`prepare_sanitized`); a struct corrupted
+            // through C may say otherwise, and takes `sample` then.
+            if self.sptd.sptd.base == SptdBase::Uniform {
+                self.sptd.sample_uniform_base(u)
+            } else {
+                self.sptd.sample(u)
+            }
         } else {
             let s = self.sptd.cap.sample_uniform(u);
             Sample::new_or_none(s.dir, self.sptd.cap.pdf(s.dir))
