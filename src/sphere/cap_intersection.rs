@@ -133,73 +133,98 @@ fn at_most_hemispheres(a1: crate::Vec3, t1: f32, a2: crate::Vec3, t2: f32) -> f3
         return 0.0;
     }
     let td = one_minus_dot(a1, a2);
-    // The disjoint and nested cases without the angles (issue 18, 1: the three `asin`
-    // were most of the cost when a light's image lies inside or outside the other cap).
-    // With `sin(θ/2) = √(t/2)`, `cos(θ/2) = √(h/2)`, `h = 2 − t` (exact for `t ≤ 1`):
-    // `2 sin((θ₁ ± θ₂)/2) = √(t₁h₂) ± √(t₂h₁)` and `2 sin(d/2) = √(2t_d)`. Half of each
-    // angle is in `[0, π/2]`, where `sin` increases, so `d ≥ θ₁ + θ₂` (Eq. 35's first
-    // case) ⇔ `√(2t_d) ≥ √(t₁h₂) + √(t₂h₁)` and `d ≤ |θ₁ − θ₂|` ⇔
-    // `√(2t_d) ≤ |√(t₁h₂) − √(t₂h₁)|`. Decided here only with a margin of 1e-5 of
-    // `√(t₁h₂) + √(t₂h₁)` (then the angles differ by more than 1e-5 (θ₁ + θ₂)/2 against
-    // a rounding of a few 1e-7 of them): the cases below then decide the same way and the
-    // result is the same bits; nearer the boundary the angles decide, as before.
-    let (u, v, w) = (
-        libm::sqrtf(t1 * (2.0 - t2)),
-        libm::sqrtf(t2 * (2.0 - t1)),
-        libm::sqrtf(2.0 * td),
-    );
+    // (Inlined: the half arc `φ₁` beside the area is left out by the compiler.)
+    lens_and_half_arc_of_sides(t1, t2, td, libm::sqrtf(2.0 * td), || {
+        libm::sqrtf((1.0 - 0.5 * td).max(0.0))
+    })[0]
+}
+
+/// The intersection of two caps with `tᵢ ∈ (0, 1]` from their sides `t₁, t₂` and the
+/// axes' `t_d`, and the half-width `φ₁` in azimuth of the first cap's circle inside the
+/// second, as [`lens_and_half_arc`] gives them, without the angles `θᵢ = angle_of(tᵢ)`,
+/// `d = angle_of(t_d)` except near the cases' boundaries (three `asin`): `w = √(2t_d)` and
+/// `cos(d/2) = √(1 − t_d/2)` (needed only by the spherical Heron form, hence a closure)
+/// are the caller's, so that the radial inversion of a cap intersection, which evaluates
+/// this for many `t₁` against one cap, computes them once (issue 18: an `asin` of `t₁`
+/// per Newton step, and the two `sin` of the Heron form, fewer).
+///
+/// The same bits as `lens_and_half_arc([t₁, θ₁], [t₂, θ₂], [t_d, d])` except where the
+/// Gram form of `Y²` cancels: there the spherical Heron form from the half-angles' sines
+/// and cosines (`heron_y2_from_roots`) in place of [`lens_and_half_arc`]'s sines of half-angle
+/// sums (tested against an `f64` reference: `the_sides_form_of_the_lens_is_as_accurate`).
+/// The nested case's `φ₁` (π for the first cap inside the second, 0 for the second inside
+/// the first): `θ₁ ≤ θ₂` there exactly when `t₁ ≤ t₂` (`1 − cos` increases on `[0, π]`;
+/// nested with the margin below, the sides differ by far more than their rounding).
+#[inline(always)]
+pub(crate) fn lens_and_half_arc_of_sides(
+    t1: f32,
+    t2: f32,
+    td: f32,
+    w: f32,
+    cos_half_d: impl FnOnce() -> f32,
+) -> [f32; 2] {
+    // (The Heron form's `p = √(h₁h₂)`, `q = √(t₁t₂)` packed with `u`, `v` in one `sqrt4`:
+    // 4 instructions more per evaluation of the SPTD sphere light sampler's radial CDF,
+    // measured, for roots that the Gram form does not need.)
+    let (h1, h2) = (2.0 - t1, 2.0 - t2);
+    let (u, v) = (libm::sqrtf(t1 * h2), libm::sqrtf(t2 * h1));
     let margin = 1e-5 * (u + v);
     if w >= u + v + margin {
-        return 0.0;
+        return [0.0, 0.0];
     }
     if w <= (u - v).abs() - margin {
-        return 2.0 * PI * t1.min(t2);
+        return [2.0 * PI * t1.min(t2), if t1 <= t2 { PI } else { 0.0 }];
     }
     if w >= (u - v).abs() + margin && w <= u + v - margin {
         // Surely the lens: the angles are needed only by the spherical Heron form of
         // `Y²` (see below), which the well-conditioned Gram form rarely leaves to.
         let (gram, plain, n1) = lens_gram(t1, t2, td);
         if plain >= 0.5 * gram {
-            return lens_area(t1, t2, td, n1, plain)[0];
+            return lens_area(t1, t2, td, n1, plain);
         }
-        return lens_area(t1, t2, td, n1, heron_y2([t1, t2, td], [u, v, w]))[0];
+        let (p, q) = (libm::sqrtf(h1 * h2), libm::sqrtf(t1 * t2));
+        let y2 = heron_y2_from_roots([u, v, w], [cos_half_d(), p, q]);
+        return lens_area(t1, t2, td, n1, y2);
     }
     let (theta1, theta2, d) = (angle_of(t1), angle_of(t2), angle_of(td));
-    at_most_hemispheres_with_angles([t1, theta1], [t2, theta2], [td, d])
+    lens_and_half_arc([t1, theta1], [t2, theta2], [td, d])
 }
 
-/// `Y²` of the lens by the spherical Heron form (see [`at_most_hemispheres`]), from
-/// `u = √(t₁h₂)`, `v = √(t₂h₁)`, `w = √(2t_d)`.
-#[inline(always)]
+// The spherical Heron form of `Y²` (see [`at_most_hemispheres`]) from the half-angles'
+// sines and cosines instead of the angles: with `A = θ₁/2`, `B = θ₂/2`, `D = d/2` and
+// `s = A + B + D`, `Y² = 4 sin s sin(s − θ₁) sin(s − θ₂) sin(s − d)` where
+// `s − θ₁ = D + (B − A)`, `s − θ₂ = D − (B − A)`, `s − d = (A + B) − D`, and
+// `2 sin(A ± B) = √(t₁h₂) ± √(t₂h₁)` (`u ± v`), `2 cos(A ± B) = √(h₁h₂) ∓ √(t₁t₂)`,
+// `sin D = √(t_d/2)`, `cos D = √(1 − t_d/2)`. Each factor is a sum of two products of
+// such terms: its rounding is a few ulps of 1 where a difference of angles (of order 1,
+// rounded by `asin`) had the same, with no `asin` or `sin`
+// (`lens_and_half_arc_of_sides`, `heron_y2_fast`, `heron_y2_from_roots`).
+
+/// The spherical Heron form of `Y²` from `t₁, t₂, t_d` and `u = √(t₁h₂)`, `v = √(t₂h₁)`,
+/// `w = √(2t_d)`, its other roots one by one: the scalar reference of [`heron_y2_fast`]
+/// in the tests (`lens_and_half_arc_of_sides` computes the same roots the same way).
+#[cfg(test)]
 fn heron_y2([t1, t2, td]: [f32; 3], [u, v, w]: [f32; 3]) -> f32 {
-    // The spherical Heron form of `Y²` (below) from the half-angles' sines and
-    // cosines instead of the angles: with `A = θ₁/2`, `B = θ₂/2`, `D = d/2` and
-    // `s = A + B + D`, `Y² = 4 sin s sin(s − θ₁) sin(s − θ₂) sin(s − d)` where
-    // `s − θ₁ = D + (B − A)`, `s − θ₂ = D − (B − A)`, `s − d = (A + B) − D`, and
-    // `2 sin(A ± B) = √(t₁h₂) ± √(t₂h₁)` (`u ± v`), `2 cos(A ± B) = √(h₁h₂) ∓ √(t₁t₂)`,
-    // `sin D = √(t_d/2)`, `cos D = √(1 − t_d/2)`. Each factor is a sum of two
-    // products of such terms: its rounding is a few ulps of 1 where a difference of
-    // angles (of order 1, rounded by `asin`) had the same, with no `asin` or `sin`.
     let (h1, h2) = (2.0 - t1, 2.0 - t2);
     let cos_d = libm::sqrtf((1.0 - 0.5 * td).max(0.0));
     let (p, q) = (libm::sqrtf(h1 * h2), libm::sqrtf(t1 * t2));
     heron_y2_from_roots([u, v, w], [cos_d, p, q])
 }
 
-/// [`heron_y2`] from `t₁, t₂, t_d` and the squares `u², v², w²` of
+/// The spherical Heron form of `Y²` from `t₁, t₂, t_d` and the squares `u², v², w²` of
 /// [`at_most_hemispheres_fast`], its six square roots as two packed ones (`sqrt4`: one
 /// `sqrtps` each on x86-64, where six `sqrtss` queued on the one square-root unit;
-/// correctly rounded either way, so the same bits as [`heron_y2`]).
+/// correctly rounded either way, so the same bits as six `sqrtf`).
 #[inline(always)]
 fn heron_y2_fast([t1, t2, td]: [f32; 3], [uu, vv, ww]: [f32; 3]) -> f32 {
     let (h1, h2) = (2.0 - t1, 2.0 - t2);
-    // `1 − t_d/2 ≥ 0` without `heron_y2`'s clamp: the shading's `t_d` is in `[0, 2]`.
+    // `1 − t_d/2 ≥ 0` without the clamp of `at_most_hemispheres`: the shading's `t_d` is in `[0, 2]`.
     let [u, v, w, cos_d] = sqrt4(Vec4::new(uu, vv, ww, 1.0 - 0.5 * td)).to_array();
     let [p, q, _, _] = sqrt4(Vec4::new(h1 * h2, t1 * t2, 0.0, 0.0)).to_array();
     heron_y2_from_roots([u, v, w], [cos_d, p, q])
 }
 
-/// The spherical Heron form of [`heron_y2`] from the roots `u, v, w` and `cos(d/2) =
+/// The spherical Heron form of `Y²` (see above) from the roots `u, v, w` and `cos(d/2) =
 /// √(1 − t_d/2)`, `p = √(h₁h₂)`, `q = √(t₁t₂)`.
 #[inline(always)]
 fn heron_y2_from_roots([u, v, w]: [f32; 3], [cos_d, p, q]: [f32; 3]) -> f32 {
@@ -217,6 +242,7 @@ fn heron_y2_from_roots([u, v, w]: [f32; 3], [cos_d, p, q]: [f32; 3]) -> f32 {
 /// `d = angle_of(t_d)` given (`tᵢ ∈ (0, 1]`): the uniform sampler of an intersection
 /// evaluates it for many `t₁` against one cap, whose `θ₂`, `t_d` and `d` it computes
 /// once ([`CapIntersection`](super::CapIntersection)'s radial inversion).
+#[cfg(test)]
 #[inline(always)]
 pub(crate) fn at_most_hemispheres_with_angles(
     first: [f32; 2],

@@ -43,7 +43,7 @@ use super::pivot::{
     transform,
 };
 use super::shading_fast::pivoted_intersection_fast;
-use super::sptd::{Sptd, SptdInCap};
+use super::sptd::{Sptd, SptdBase, SptdInCap};
 use crate::Sample;
 use crate::brdf::Ltc;
 use crate::brdf::pivot_table::{PIVOT_TABLE, PIVOT_TABLE_SIZE};
@@ -402,13 +402,21 @@ impl SphereLightSampler {
                 pivot_cap_fast(c, pivot)
             }
         };
+        // The image of the upper hemisphere in closed form (`pivot_upper_hemisphere`: one
+        // square root and a division for `pivot_cap_fast`'s six of each, and more
+        // accurate), of the pivot made valid (as `pivot_cap_fast` makes it).
+        let horizon_image = || {
+            super::pivot::pivot_upper_hemisphere(if VALID_PIVOT {
+                pivot
+            } else {
+                super::pivot::valid_pivot(pivot)
+            })
+        };
         let uses_sptd = valid_pivot
-            // The images are valid caps as `pivot_cap_fast` builds them (tested by
-            // `the_sampler_s_pivoted_images_are_valid_caps`): not sanitized again.
-            && self.clipped_region.prepare_sanitized(
-                &pivoted(cap).0,
-                &pivoted(&horizon).0,
-            )
+            // The images are valid caps as `pivot_cap_fast` and `pivot_upper_hemisphere`
+            // build them (tested by `the_sampler_s_pivoted_images_are_valid_caps` and
+            // `the_upper_hemisphere_s_image_in_closed_form`): not sanitized again.
+            && self.clipped_region.prepare_sanitized(&pivoted(cap).0, &horizon_image())
             && self.clipped_region.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE;
         if !uses_sptd && !self.clipped_region.prepare_sanitized(cap, &horizon) {
             return false;
@@ -489,7 +497,13 @@ impl SphereLightSampler {
             return Sample::new_or_none(dir, self.clipped_pdf(dir));
         }
         if self.uses_sptd() {
-            self.sptd.sample(u)
+            // The sampler's SPTD is always uniform (`prepare_sanitized`); a struct corrupted
+            // through C may say otherwise, and takes `sample` then.
+            if self.sptd.sptd.base == SptdBase::Uniform {
+                self.sptd.sample_uniform_base(u)
+            } else {
+                self.sptd.sample(u)
+            }
         } else {
             let s = self.sptd.cap.sample_uniform(u);
             Sample::new_or_none(s.dir, self.sptd.cap.pdf(s.dir))

@@ -851,3 +851,50 @@ fn fitted_pivots_are_valid_as_they_stand() {
     assert!(checked > 120_000, "{checked}");
     assert!(compared > 15_000 && clipped > 3_000, "{compared} {clipped}");
 }
+
+/// The sampler's direct uniform-base path (`SptdInCap::sample_uniform_base`, taken for
+/// lights above the horizon that use the SPTD) gives `SptdInCap::sample`'s bits (its
+/// dispatch on the base), for random lights, views and roughnesses and random and extreme
+/// `u`; lights across the horizon and the uniform fallback do not take it.
+#[test]
+fn the_direct_uniform_path_gives_the_sptd_sample_s_bits() {
+    let mut rng = Rng::new(1807);
+    let (mut direct, mut other) = (0u32, 0u32);
+    let extremes = [0.0, 0.5, 1.0 - f32::EPSILON / 2.0];
+    for _ in 0..2000 {
+        let distance = 10f32.powf(2.0 * rng.uniform_f32());
+        let center = rng.unit_vector_f32() * distance;
+        let radius = distance * 10f32.powf(-2.0 * rng.uniform_f32()) * 0.99;
+        let theta = 1.5 * rng.uniform_f32();
+        let wo = Vec3::new(theta.sin(), 0.0, theta.cos());
+        let Some(sampler) = SphereLightSampler::new(center, radius, wo, rng.uniform_f32()) else {
+            continue;
+        };
+        if sampler.is_clipped() || !sampler.uses_sptd() {
+            other += 1;
+            continue;
+        }
+        assert_eq!(sampler.sptd.sptd.base, SptdBase::Uniform);
+        direct += 1;
+        let mut us: std::vec::Vec<[f32; 2]> = (0..50)
+            .map(|_| [rng.uniform_f32(), rng.uniform_f32()])
+            .collect();
+        for a in extremes {
+            for b in extremes {
+                us.push([a, b]);
+            }
+        }
+        for u in us {
+            let (got, expected) = (sampler.sample(u), sampler.sptd.sample(u));
+            assert_eq!(
+                (got.dir.to_array().map(f32::to_bits), got.pdf.to_bits()),
+                (
+                    expected.dir.to_array().map(f32::to_bits),
+                    expected.pdf.to_bits()
+                ),
+                "{center:?} {radius} {wo:?} {u:?}"
+            );
+        }
+    }
+    assert!(direct > 300 && other > 300, "{direct} {other}");
+}

@@ -333,6 +333,55 @@ fn pivot_cap_fast_with<const VALID: bool>(cap: &Cap, pivot: &Vec3) -> (Cap, Pivo
     (image, PivotPath::Fast)
 }
 
+/// The image `g(H)` of the upper hemisphere `H = {ω : ω_z ≥ 0}` under a valid pivot `p`,
+/// in closed form (the sphere light sampler's clipped preparation, issue 18: one square
+/// root and a division where [`pivot_cap_fast`] of `H` took six of each).
+///
+/// `g` is the inversion `x ↦ p − k (x − p)/|x − p|²` (`k = 1 − |p|²`, Eq. 2 in the form of
+/// [`transform`]), an involution, restricted to the unit sphere. A point `x'` of the sphere
+/// is `g(x)` with `x − p = −k (x' − p)/|x' − p|²`, so for a plane `n·x = c`
+///
+/// `n·x − c = −[(c − n·p) |x' − p|² + k n·(x' − p)] / |x' − p|²`,
+///
+/// and with `|x' − p|² = 1 − 2 p·x' + |p|²` on the sphere the bracket is `m·x' − e` with
+/// `m = k n − 2 (c − n·p) p`, `e = k n·p − (c − n·p)(1 + |p|²)`. For `H` (`n = z`,
+/// `c = 0`): `m = k z + 2 p_z p`, `e = p_z (k + 1 + |p|²) = 2 p_z`. So `x ∈ H` exactly when
+/// `m·x' ≤ e`: `g(H)` is the cap of axis `−m/|m|` with `cos ψ' = −2 p_z/|m|` (for `p = 0`
+/// the antipodal map's lower hemisphere). Its smaller side `1 − |cos ψ'|` has no
+/// cancellation: `|m|² = k² + 4 p_z² (k + |p|²) = k² + 4 p_z²`, so
+/// `1 − 2|p_z|/|m| = (|m|² − 4 p_z²)/(|m| (|m| + 2|p_z|)) = k² / (|m| (|m| + 2|p_z|))`; it
+/// is the hole `1 + cos ψ'` for `p_z ≥ 0` (the image contains `g(z)` near `−z`), else
+/// `1 − cos ψ'`, and the other side is `2 −` it, as [`pivot_cap_fast`] stores them.
+/// Tested against `f64` images of the boundary (`the_upper_hemisphere_s_image_in_closed_form`).
+#[inline(always)]
+pub(crate) fn pivot_upper_hemisphere(pivot: Vec3) -> Cap {
+    let rho2 = pivot.length_squared();
+    let k = 1.0 - rho2;
+    let m = Vec3::new(0.0, 0.0, k) + pivot * (2.0 * pivot.z);
+    let length = m.length();
+    let abs_z = pivot.z.abs();
+    // (`|m| ≥ k > 0` for a valid pivot; `min` keeps a cap, and the axis unit, if not.)
+    let side = ((k * k) / (length * (length + 2.0 * abs_z))).min(1.0);
+    let other = 2.0 - side;
+    let sin2 = (side * other).max(0.0).min(1.0);
+    let axis = m * (-1.0 / length);
+    if pivot.z >= 0.0 {
+        Cap {
+            axis,
+            one_minus_cos: other,
+            one_plus_cos: side,
+            sin2,
+        }
+    } else {
+        Cap {
+            axis,
+            one_minus_cos: side,
+            one_plus_cos: other,
+            sin2,
+        }
+    }
+}
+
 /// The careful path of [`pivot_cap_fast_by_ref`] (out of line: it is rare).
 #[cold]
 #[inline(never)]

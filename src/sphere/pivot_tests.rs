@@ -390,3 +390,77 @@ fn fast_pivot_cap_paths() {
     let (image, _) = pivot_cap_fast(&edge, boundary * 0.999);
     assert!(image.solid_angle().is_finite());
 }
+
+/// `pivot_upper_hemisphere` (the closed form of `g(H)`) against the `f64` image of the
+/// hemisphere's boundary (`pivot_cap_f64`, Eq. 6–7) and against `pivot_cap_fast` of `H`
+/// (which the sphere light sampler took before), over pivots up to `|r_p| = 1 − 1e-5`
+/// in every direction: the same side (wider than a hemisphere or not, where the `f64`
+/// image decides it clearly), the stored side to `4 ε (1 + ρ)/(1 − ρ)` relative (the
+/// rounding of `1 − |r_p|²`, squared) and the axis to 1e-6 rad times that magnification,
+/// and worst errors within a tenth of `pivot_cap_fast`'s (whose careful path takes the
+/// images near a hemisphere).
+#[test]
+fn the_upper_hemisphere_s_image_in_closed_form() {
+    let mut rng = Rng::new(1808);
+    let horizon = Cap::from_axis_one_minus_cos(Vec3::Z, 1.0);
+    let (mut worst_side, mut worst_side_fast) = (0.0f64, 0.0f64);
+    let (mut worst_axis, mut worst_axis_fast) = (0.0f64, 0.0f64);
+    let mut worst_scaled = 0.0f64;
+    for i in 0..100_000 {
+        let rho = if i % 2 == 0 {
+            0.999 * rng.uniform()
+        } else {
+            1.0 - rng.log_uniform(-5.0, -1.0)
+        };
+        let p = rng.unit_vector_f32() * rho as f32;
+        let p = valid_pivot(p);
+        if (p.x * p.x + p.y * p.y) < 1e-12 {
+            continue;
+        }
+        let image = pivot_upper_hemisphere(p);
+        let (fast, _) = pivot_cap_fast(&horizon, p);
+        let (axis64, side64, wider) = pivot_cap_f64(&horizon, p);
+        // 1 − cos ψ' of the f64 image.
+        let omc64 = if wider { 2.0 - side64 } else { side64 };
+        let magnification = {
+            let r = p.length() as f64;
+            (1.0 + r) / (1.0 - r)
+        };
+        let error = |c: &Cap| {
+            let side = if omc64 > 1.0 {
+                (c.one_plus_cos as f64 - (2.0 - omc64)).abs() / (2.0 - omc64)
+            } else {
+                (c.one_minus_cos as f64 - omc64).abs() / omc64
+            };
+            let axis = one_minus_dot_f64(d3(c.axis), axis64)
+                .mul_add(2.0, 0.0)
+                .sqrt();
+            (side, axis / magnification)
+        };
+        if (omc64 - 1.0).abs() > 1e-4 {
+            assert_eq!(image.one_minus_cos > 1.0, omc64 > 1.0, "{p:?}: {image:?}");
+        }
+        let ((side, axis), (side_fast, axis_fast)) = (error(&image), error(&fast));
+        // The side's error is that of `k = 1 − |r_p|²` (an ulp of 1 over `k`), squared.
+        let bound = 4.0 * f32::EPSILON as f64 * magnification;
+        assert!(
+            side <= bound && axis < 1e-6,
+            "{p:?}: {image:?} {side} {axis}"
+        );
+        worst_scaled = worst_scaled.max(side / magnification);
+        assert!(
+            (image.axis.length_squared() - 1.0).abs() < 1e-6,
+            "{p:?}: {image:?}"
+        );
+        assert_eq!(image.sanitized(), image, "{p:?}");
+        worst_side = worst_side.max(side);
+        worst_side_fast = worst_side_fast.max(side_fast);
+        worst_axis = worst_axis.max(axis);
+        worst_axis_fast = worst_axis_fast.max(axis_fast);
+    }
+    println!(
+        "closed form: side {worst_side:.2e} ({worst_scaled:.2e} of the magnification), axis \
+         {worst_axis:.2e} (pivot_cap_fast: side {worst_side_fast:.2e}, axis {worst_axis_fast:.2e})"
+    );
+    assert!(worst_side <= 1.1 * worst_side_fast && worst_axis <= 1.1 * worst_axis_fast);
+}

@@ -960,22 +960,7 @@ impl SptdInCap {
     /// Draws a direction inside `C` with density [`SptdInCap::pdf`].
     pub fn sample(&self, u: [f32; 2]) -> Sample {
         let base = match self.sptd.base {
-            SptdBase::Uniform => {
-                // `Cap::sample_uniform` of the image with its frame prepared (the same
-                // bits: `orthonormal_basis(image.axis)`, see `e1`).
-                let image = &self.image;
-                let pdf = image.uniform_pdf();
-                if pdf == 0.0 {
-                    return Sample::NONE;
-                }
-                let frame = [image.axis.into(), self.e1.into(), self.ellipse.into()];
-                let s =
-                    sample_uniform_in_frame(frame, image.one_minus_cos, image.one_plus_cos, pdf, u);
-                if s.pdf == 0.0 {
-                    return Sample::NONE;
-                }
-                s.dir
-            }
+            SptdBase::Uniform => return self.sample_uniform_base(u),
             SptdBase::ClampedCosine if self.clipped != 0 => self.sample_clipped(u),
             SptdBase::ClampedCosine => {
                 let a = self.sptd.cosine_axis;
@@ -995,11 +980,41 @@ impl SptdInCap {
         }
         // The density from `dir` alone, exactly as `pdf` computes it (the cosine base
         // re-derives the preimage), so that `pdf(sample.dir) == sample.pdf` bit for bit.
-        let base = match self.sptd.base {
-            SptdBase::Uniform => base,
-            SptdBase::ClampedCosine => transform(dir, self.sptd.pivot),
-        };
-        let pdf = self.density_of(dir, base);
+        let pdf = self.density_of(dir, transform(dir, self.sptd.pivot));
+        if pdf > 0.0 && pdf.is_finite() {
+            Sample { dir, pdf }
+        } else {
+            Sample::NONE
+        }
+    }
+
+    /// [`SptdInCap::sample`] of the uniform base (`sptd.base` must be
+    /// [`SptdBase::Uniform`]), always inlined: the body of `sample`'s uniform case, which
+    /// the sphere light sampler calls directly for a cap above the horizon (without
+    /// `sample`'s call, its dispatch on the base and the clamped cosine's code around it:
+    /// the same bits).
+    #[inline(always)]
+    pub(crate) fn sample_uniform_base(&self, u: [f32; 2]) -> Sample {
+        // `Cap::sample_uniform` of the image with its frame prepared (the same bits:
+        // `orthonormal_basis(image.axis)`, see `e1`).
+        let image = &self.image;
+        let pdf = image.uniform_pdf();
+        if pdf == 0.0 {
+            return Sample::NONE;
+        }
+        let frame = [image.axis.into(), self.e1.into(), self.ellipse.into()];
+        let s = sample_uniform_in_frame(frame, image.one_minus_cos, image.one_plus_cos, pdf, u);
+        if s.pdf == 0.0 {
+            return Sample::NONE;
+        }
+        let base = s.dir;
+        let dir = transform(base, self.sptd.pivot);
+        // As in `sample`: a sample that rounding moved out of C is dropped.
+        if !self.cap.contains_inlined(dir) {
+            return Sample::NONE;
+        }
+        // `density_of` of the uniform base: `J(ω) / Ω(g(C))` (the numerator 1).
+        let pdf = jacobian(dir, self.sptd.pivot) / image.solid_angle();
         if pdf > 0.0 && pdf.is_finite() {
             Sample { dir, pdf }
         } else {
