@@ -1364,25 +1364,7 @@ fn central_fast_path_matches_the_general_path() {
     let mut fast = 0;
     for trial in 0..40_000 {
         let n = 3 + rng.below(6) as usize;
-        let v = match trial % 4 {
-            // Central and near-central convex polygons of many sizes and tilts.
-            0 | 1 => {
-                let radius = rng.log_uniform(-4.0, 1.0) as f32;
-                let mut offset = || radius * (0.4 * rng.uniform_f32() - 0.2);
-                let (x, y) = (offset(), offset());
-                let center = Vec3::new(x, y, radius * rng.log_uniform(-2.0, 2.0) as f32);
-                let mut tilt = || 0.6 * rng.uniform_f32() - 0.3;
-                let normal = Vec3::new(tilt(), tilt(), 1.0);
-                let aspect = 0.05 + 0.95 * rng.uniform_f32();
-                let v = ellipse_polygon(&mut rng, n, center, normal, radius, aspect);
-                if trial % 8 == 1 { reversed(&v) } else { v }
-            }
-            2 => {
-                let radius = rng.log_uniform(-3.0, 0.5) as f32;
-                random_polygon(&mut rng, n, radius)
-            }
-            _ => awkward_vertices(&mut rng, n, trial),
-        };
+        let v = central_or_awkward_polygon(&mut rng, n, trial);
         fast += (compare(&v) == Some(true)) as u32;
     }
     assert!(fast > 8_000, "{fast}");
@@ -1489,24 +1471,7 @@ fn central_rows_sample_as_the_sectors() {
     let mut central = 0;
     for trial in 0..20_000 {
         let n = 3 + rng.below(6) as usize;
-        let v = match trial % 4 {
-            0 | 1 => {
-                let radius = rng.log_uniform(-4.0, 1.0) as f32;
-                let mut offset = || radius * (0.4 * rng.uniform_f32() - 0.2);
-                let (x, y) = (offset(), offset());
-                let center = Vec3::new(x, y, radius * rng.log_uniform(-2.0, 2.0) as f32);
-                let mut tilt = || 0.6 * rng.uniform_f32() - 0.3;
-                let normal = Vec3::new(tilt(), tilt(), 1.0);
-                let aspect = 0.05 + 0.95 * rng.uniform_f32();
-                let v = ellipse_polygon(&mut rng, n, center, normal, radius, aspect);
-                if trial % 8 == 1 { reversed(&v) } else { v }
-            }
-            2 => {
-                let radius = rng.log_uniform(-3.0, 0.5) as f32;
-                random_polygon(&mut rng, n, radius)
-            }
-            _ => awkward_vertices(&mut rng, n, trial),
-        };
+        let v = central_or_awkward_polygon(&mut rng, n, trial);
         central += check(&v) as u32;
     }
     assert!(central > 5_000, "{central}");
@@ -1597,6 +1562,29 @@ fn off_zenith_polygon(rng: &mut Rng, n: usize, nearest: f32) -> Vec<Vec3> {
     let normal = rng.unit_vector_f32();
     let aspect = 0.05 + 0.95 * rng.uniform_f32();
     ellipse_polygon(rng, n, center, normal, radius, aspect)
+}
+
+/// By `trial % 4`: central and near-central convex polygons of many sizes and tilts (two
+/// in four, one of those wound clockwise), a random polygon, or awkward vertices.
+fn central_or_awkward_polygon(rng: &mut Rng, n: usize, trial: usize) -> Vec<Vec3> {
+    match trial % 4 {
+        0 | 1 => {
+            let radius = rng.log_uniform(-4.0, 1.0) as f32;
+            let mut offset = || radius * (0.4 * rng.uniform_f32() - 0.2);
+            let (x, y) = (offset(), offset());
+            let center = Vec3::new(x, y, radius * rng.log_uniform(-2.0, 2.0) as f32);
+            let mut tilt = || 0.6 * rng.uniform_f32() - 0.3;
+            let normal = Vec3::new(tilt(), tilt(), 1.0);
+            let aspect = 0.05 + 0.95 * rng.uniform_f32();
+            let v = ellipse_polygon(rng, n, center, normal, radius, aspect);
+            if trial % 8 == 1 { reversed(&v) } else { v }
+        }
+        2 => {
+            let radius = rng.log_uniform(-3.0, 0.5) as f32;
+            random_polygon(rng, n, radius)
+        }
+        _ => awkward_vertices(rng, n, trial),
+    }
 }
 
 /// Random (mostly non-convex) vertices over many scales, some snapped to great circles
