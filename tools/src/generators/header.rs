@@ -119,8 +119,11 @@ fn opaque_types() -> Vec<Opaque> {
 }
 
 /// Types that only opaque values contain: their definitions leave the header.
-const INTERNAL_TYPES: [&str; 4] = [
+const INTERNAL_TYPES: [&str; 7] = [
     "SpheraEllipseSector",
+    "SpheraCentralSectors",
+    "SpheraCentralPieces",
+    "SpheraEdgeNormalRows",
     "SpheraSmallPolygonCosineSampler",
     "SpheraProjectedPieces",
     "SpheraCapIntersection",
