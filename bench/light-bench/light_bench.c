@@ -15,7 +15,15 @@
  *             C baselines are Heitz 2018's visible-normal sampling of GGX with its pdf,
  *             and cosine-weighted hemisphere sampling (the floor);
  *   polygons: quads above the horizon (half with the zenith inside), each with a view
- *             and a roughness; the baseline is sphera's projected solid angle sampler.
+ *             and a roughness; the baseline is sphera's projected solid angle sampler;
+ *   vsgls:    one lobe of a VSGL (Tokuyoshi 2016) each: emission axis facing the shading
+ *             point within 60°, sharpness log-uniform in [1, 100], amplitude 1/A(λ), its
+ *             mean at a distance log-uniform in [1, 4] in the upper hemisphere, its
+ *             positional standard deviation 0.05–0.5 times that distance; a view and a
+ *             roughness; the normal is z. The C baselines are the paper's shading of one
+ *             lobe written in linear space (Eq. 6–7, the constant-cosine diffuse term,
+ *             the ASG specular term) and von Mises–Fisher sampling as Jakob 2012 writes
+ *             it.
  *
  * Timing: thread CPU time, best of R repetitions of N calls, the techniques interleaved
  * within each repetition. Every pdf and dir.x goes into a checksum printed at the end.
@@ -27,7 +35,8 @@
  *
  * --quick is 1 repetition of 2000 calls (it checks that everything runs; no timing is
  * asserted). --only runs only the named techniques (a ratio column needs the row's
- * baseline among them); --pool only the pool with that id (spheres, brdf, polygons).
+ * baseline among them); --pool only the pool with that id (spheres, brdf, polygons,
+ * vsgls).
  * Both serve profiling, e.g. under callgrind with --toggle-collect=loop_prepare_cap. */
 #define _POSIX_C_SOURCE 199309L
 
@@ -37,7 +46,7 @@ enum { MAX_V = SPHERA_MAX_POLYGON_VERTICES, QUAD = 4 };
 
 static const float PI_F = 3.14159265358979323846f;
 
-enum Family { SPHERES, BRDF, POLYGONS };
+enum Family { SPHERES, BRDF, POLYGONS, VSGLS, FAMILY_COUNT };
 
 /* One input: what every family reads (each pool fills what its family needs). */
 typedef struct {
@@ -48,6 +57,11 @@ typedef struct {
   float dir[3]; /* unit direction above the horizon, for the pdf rows */
   int n;
   float v[QUAD][3]; /* polygon vertices */
+  /* a VSGL lobe (vsgls): `center` is its positional mean */
+  float lobe_axis[3]; /* unit emission axis ξ_v */
+  float sharpness;    /* λ_v */
+  float amplitude;    /* c_v */
+  float variance;     /* positional variance σ_v² = E‖y − μ‖² */
 } Input;
 
 typedef struct {
@@ -208,6 +222,134 @@ NOINLINE static SpheraSample cosine_sample(float u0, float u1) {
   return s;
 }
 
+/* One lobe of a VSGL at a shading point, as Tokuyoshi 2016 writes it (Sec. 4, Eq. 6–7),
+ * in linear space and without checks: the incoming radiance is the product of the
+ * emission lobe G(ω, −ξ_v, λ_v) and the spatial lobe G(ω, μ/|μ|, |μ|²/s²), s² = σ_v²/2
+ * (the library's convention, docs/sg-and-vsgl.md), amplitude c_v/(2πs²):
+ *   λ_in = |λ_s μ/|μ| − λ_v ξ_v|,  ξ_in = (λ_s μ/|μ| − λ_v ξ_v)/λ_in,
+ *   c_in = c_v/(2πs²) e^{λ_in − λ_v − λ_s};
+ * diffuse shading with the cosine at the lobe's axis, (c_in/π) A(λ_in) max(ξ_in·n, 0)
+ * with A(λ) = 2π/λ (1 − e^{−2λ}) (albedo 1); specular shading C(ξ_in) ∫ G_in Ĝ dω with
+ * the ASG fit of GGX (z the view's reflection, η_x = λ_h/8, η_y = λ_h/(8 cos²θo),
+ * λ_h = 2/α²), the ASG–SG convolution of Sec. 4.2 (ν = λ_in/2), and
+ * C = F G2/(4π α² cos θo): Schlick's Fresnel (F0 = 0.04) at the half vector and the
+ * height-correlated Smith G2. Returns the diffuse term as pdf and the specular as dir.x. */
+struct VsglC {
+  float axis[3], sharpness, amplitude;
+  float mean[3], variance;
+  float n[3], wo[3], roughness;
+};
+
+static void vsgl_c_prepare(struct VsglC *out, const Input *in) {
+  memcpy(out->axis, in->lobe_axis, sizeof out->axis);
+  out->sharpness = in->sharpness;
+  out->amplitude = in->amplitude;
+  memcpy(out->mean, in->center, sizeof out->mean);
+  out->variance = in->variance;
+  out->n[0] = 0.0f;
+  out->n[1] = 0.0f;
+  out->n[2] = 1.0f;
+  memcpy(out->wo, in->wo, sizeof out->wo);
+  out->roughness = in->roughness;
+}
+
+static float dot3(const float *a, const float *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+/* GGX's Smith Λ at cos θ = c. */
+static float ggx_lambda(float alpha, float c) {
+  float c2 = c * c;
+  return 0.5f * (sqrtf(1.0f + alpha * alpha * (1.0f - c2) / c2) - 1.0f);
+}
+
+NOINLINE static SpheraSample vsgl_c_shade(const struct VsglC *g, float u0, float u1) {
+  SpheraSample s;
+  const float *n = g->n, *wo = g->wo;
+  float s2 = 0.5f * g->variance, d2 = dot3(g->mean, g->mean), inv_d = 1.0f / sqrtf(d2);
+  float ls = d2 / s2, lv = g->sharpness, v[3], lin, xi[3], cin, diffuse, specular = 0.0f;
+  float alpha = g->roughness * g->roughness, co = dot3(wo, n), ci;
+  int k;
+  (void)u0;
+  (void)u1;
+  for (k = 0; k < 3; k++) v[k] = ls * inv_d * g->mean[k] - lv * g->axis[k];
+  lin = sqrtf(dot3(v, v));
+  for (k = 0; k < 3; k++) xi[k] = v[k] / lin;
+  cin = g->amplitude / (2.0f * PI_F * s2) * expf(lin - lv - ls);
+  ci = dot3(xi, n);
+  diffuse = cin * (2.0f / lin) * (1.0f - expf(-2.0f * lin)) * at_least(ci, 0.0f);
+  if (co > 0.0f && ci > 0.0f) {
+    float h[3], z[3], x[3], y[3], inv, m, m2, f, g2, c, lh, cos_o, ex, ey, nu, px, py, pz;
+    for (k = 0; k < 3; k++) h[k] = wo[k] + xi[k];
+    inv = 1.0f / sqrtf(dot3(h, h));
+    m = 1.0f - dot3(wo, h) * inv;
+    m2 = m * m;
+    f = 0.04f + 0.96f * (m2 * m2 * m);
+    g2 = 1.0f / (1.0f + ggx_lambda(alpha, co) + ggx_lambda(alpha, ci));
+    c = f * g2 / (4.0f * PI_F * alpha * alpha * co);
+    /* the ASG: z = 2(wo·n)n − wo, y ∝ n × z, x = y × z */
+    for (k = 0; k < 3; k++) z[k] = 2.0f * co * n[k] - wo[k];
+    y[0] = n[1] * z[2] - n[2] * z[1];
+    y[1] = n[2] * z[0] - n[0] * z[2];
+    y[2] = n[0] * z[1] - n[1] * z[0];
+    inv = dot3(y, y);
+    if (inv > 0.0f) {
+      inv = 1.0f / sqrtf(inv);
+      for (k = 0; k < 3; k++) y[k] *= inv;
+      x[0] = y[1] * z[2] - y[2] * z[1];
+      x[1] = y[2] * z[0] - y[0] * z[2];
+      x[2] = y[0] * z[1] - y[1] * z[0];
+    } else {
+      x[0] = 1.0f, x[1] = 0.0f, x[2] = 0.0f;
+      y[0] = 0.0f, y[1] = 1.0f, y[2] = 0.0f;
+    }
+    lh = 2.0f / (alpha * alpha);
+    cos_o = at_least(co, 1e-4f);
+    nu = 0.5f * lin;
+    ex = lh / 8.0f + nu;
+    ey = lh / (8.0f * cos_o * cos_o) + nu;
+    px = dot3(xi, x);
+    py = dot3(xi, y);
+    pz = dot3(xi, z);
+    /* 1/√((η_x + ν)(η_y + ν)) capped at 1, as the library caps the ASG's integral */
+    if (pz > 0.0f)
+      specular = c * cin * PI_F * pz / (ex * ey > 1.0f ? sqrtf(ex * ey) : 1.0f) *
+                 expf(-(lh / 8.0f) * (nu / ex) * px * px - (lh / (8.0f * cos_o * cos_o)) * (nu / ey) * py * py);
+  }
+  s.pdf = diffuse;
+  s.dir.x = specular;
+  s.dir.y = 0.0f;
+  s.dir.z = 0.0f;
+  return s;
+}
+
+/* von Mises–Fisher sampling as Jakob 2012 ("Numerically stable sampling of the von
+ * Mises Fisher distribution on S² (and other tricks)") writes it: cos θ = 1 + ln(u +
+ * (1 − u) e^{−2κ})/κ (u at least 1e-6, as Mitsuba does, so that the logarithm stays
+ * finite where e^{−2κ} underflows), φ = 2π u1, the frame of the axis as in cone sampling,
+ * pdf = κ e^{κ(cos θ − 1)} / (2π (1 − e^{−2κ})). No prepare: the lobe goes by value, as
+ * into sphera_vmf_sample. */
+struct VmfC {
+  float axis[3], kappa;
+};
+static void vmf_c_prepare(struct VmfC *out, const Input *in) {
+  memcpy(out->axis, in->lobe_axis, sizeof out->axis);
+  out->kappa = in->sharpness;
+}
+
+NOINLINE static SpheraSample vmf_c_sample(const struct VmfC *g, float u0, float u1) {
+  SpheraSample s;
+  const float k = g->kappa, *a = g->axis;
+  float u = u0 > 1e-6f ? u0 : 1e-6f;
+  float cos_t = 1.0f + logf(u + (1.0f - u) * expf(-2.0f * k)) / k;
+  float sin_t = sqrtf(at_least(1.0f - cos_t * cos_t, 0.0f)), phi = 2.0f * PI_F * u1;
+  float p = sin_t * cosf(phi), q = sin_t * sinf(phi);
+  float sign = copysignf(1.0f, a[2]), b = -1.0f / (sign + a[2]), c = a[0] * a[1] * b;
+  s.dir.x = p * (1.0f + sign * a[0] * a[0] * b) + q * c + cos_t * a[0];
+  s.dir.y = p * (sign * c) + q * (sign + a[1] * a[1] * b) + cos_t * a[1];
+  s.dir.z = p * (-sign * a[0]) + q * (-a[1]) + cos_t * a[2];
+  s.pdf = k * expf(k * (cos_t - 1.0f)) / (2.0f * PI_F * (1.0f - expf(-2.0f * k)));
+  return s;
+}
+
 /* ---- the techniques: prepared types, prepare and sample ---------------------------- */
 
 static SpheraVec3 vec3(const float *v) {
@@ -357,6 +499,48 @@ static SpheraSample polygon_light_sample(const SpheraPolygonLight *light, float 
 #define LIGHT_OPTIMAL_PREPARE(out, in) polygon_light_prepare(out, in, SPHERA_MIS_OPTIMAL)
 #define LIGHT_SAMPLE(p, u0, u1) polygon_light_sample(p, u0, u1)
 
+/* vsgls */
+
+#define C_VSGL_PREPARE(out, in) vsgl_c_prepare(out, in)
+#define C_VSGL_SAMPLE(p, u0, u1) vsgl_c_shade(p, u0, u1)
+
+/* The tracer's shading of one VSGL lobe (bench/src/indirect.c): the incoming radiance
+ * SG, constant-cosine diffuse shading and ASG specular shading of one channel. */
+struct VsglLobe {
+  SpheraSg lobe;
+  SpheraVec3 mean;
+  float variance;
+  SpheraVec3 wo;
+  float roughness;
+};
+static void vsgl_lobe_prepare(struct VsglLobe *out, const Input *in) {
+  out->lobe.axis = vec3(in->lobe_axis);
+  out->lobe.sharpness = in->sharpness;
+  out->lobe.log_amplitude = logf(in->amplitude);
+  out->mean = vec3(in->center);
+  out->variance = in->variance;
+  out->wo = vec3(in->wo);
+  out->roughness = in->roughness;
+}
+static SpheraSample vsgl_lobe_shade(const struct VsglLobe *g) {
+  static const SpheraVec3 normal = {0.0f, 0.0f, 1.0f};
+  SpheraSample s;
+  SpheraSg incoming = sphera_sg_incoming_radiance(g->lobe, g->mean, g->variance);
+  s.pdf = sphera_sg_diffuse_shading_constant_cosine(incoming, normal, 1.0f, 1.0f);
+  s.dir.x = sphera_sg_specular_shading(incoming, normal, g->wo, g->roughness, 0.04f, 1.0f);
+  s.dir.y = 0.0f;
+  s.dir.z = 0.0f;
+  return s;
+}
+#define VSGL_SHADE_PREPARE(out, in) vsgl_lobe_prepare(out, in)
+#define VSGL_SHADE_SAMPLE(p, u0, u1) ((void)(u0), (void)(u1), vsgl_lobe_shade(p))
+
+#define C_VMF_PREPARE(out, in) vmf_c_prepare(out, in)
+#define C_VMF_SAMPLE(p, u0, u1) vmf_c_sample(p, u0, u1)
+
+#define VMF_PREPARE(out, in) ((out)->axis = vec3((in)->lobe_axis), (out)->sharpness = (in)->sharpness, (out)->log_amplitude = 0.0f)
+#define VMF_SAMPLE(p, u0, u1) sphera_vmf_sample(*(p), u0, u1)
+
 /* ---- the loops ------------------------------------------------------------------- */
 
 typedef struct {
@@ -422,7 +606,11 @@ typedef struct {
   X(light_balance, POLYGONS, projected, SpheraPolygonLight, LIGHT_BALANCE_PREPARE, LIGHT_SAMPLE)      \
   X(light_weighted_balance, POLYGONS, projected, SpheraPolygonLight, LIGHT_WEIGHTED_PREPARE, LIGHT_SAMPLE) \
   X(light_clamped_optimal, POLYGONS, projected, SpheraPolygonLight, LIGHT_CLAMPED_PREPARE, LIGHT_SAMPLE)   \
-  X(light_optimal, POLYGONS, projected, SpheraPolygonLight, LIGHT_OPTIMAL_PREPARE, LIGHT_SAMPLE)
+  X(light_optimal, POLYGONS, projected, SpheraPolygonLight, LIGHT_OPTIMAL_PREPARE, LIGHT_SAMPLE)             \
+  X(c_vsgl, VSGLS, c_vsgl, struct VsglC, C_VSGL_PREPARE, C_VSGL_SAMPLE)                                 \
+  X(vsgl_shade, VSGLS, c_vsgl, struct VsglLobe, VSGL_SHADE_PREPARE, VSGL_SHADE_SAMPLE)                  \
+  X(c_vmf, VSGLS, c_vmf, struct VmfC, C_VMF_PREPARE, C_VMF_SAMPLE)                                      \
+  X(vmf, VSGLS, c_vmf, SpheraSg, VMF_PREPARE, VMF_SAMPLE)
 
 TECHNIQUES(DEFINE_TECHNIQUE)
 
@@ -509,11 +697,13 @@ static void generate_quad(uint64_t *rng, int central, Input *out) {
 static void make_pool(Pool *pool, enum Family family) {
   uint64_t rng = 0x11647000ull + (uint64_t)family;
   int i;
-  static const char *IDS[3] = {"spheres", "brdf", "polygons"};
-  static const char *TITLES[3] = {
+  static const char *IDS[FAMILY_COUNT] = {"spheres", "brdf", "polygons", "vsgls"};
+  static const char *TITLES[FAMILY_COUNT] = {
       "spheres (distance log-uniform in [1, 4], sin²θmax in [0.06, 0.44], upper hemisphere)",
       "brdf (cos θo in [0.1, 1], roughness in [0.1, 0.9])",
-      "polygons (quads above the horizon, half central; roughness in [0.1, 0.9])"};
+      "polygons (quads above the horizon, half central; roughness in [0.1, 0.9])",
+      "vsgls (one lobe each: λ_v log-uniform in [1, 100], mean at a distance log-uniform in [1, 4], σ_v / distance in "
+      "[0.05, 0.5]; roughness in [0.1, 0.9])"};
   pool->id = IDS[family];
   pool->title = TITLES[family];
   pool->family = family;
@@ -529,6 +719,17 @@ static void make_pool(Pool *pool, enum Family family) {
     store(in->dir, direction(&rng, 0.02, 1.0));
     in->n = 0;
     if (family == POLYGONS) generate_quad(&rng, i & 1, in);
+    if (family == VSGLS) {
+      /* the emission axis within 60° of the direction from the mean to the shading point */
+      D3 toward = scale(normalize(d3(in->center[0], in->center[1], in->center[2])), -1.0), t1 = orthogonal(toward);
+      D3 t2 = cross(toward, t1);
+      double z = uniform_in(&rng, 0.5, 1.0), r = sqrt(1.0 - z * z), a = uniform_in(&rng, 0.0, 2.0 * PI);
+      double l = exp(uniform_in(&rng, 0.0, log(100.0))), spread = uniform_in(&rng, 0.05, 0.5) * distance;
+      store(in->lobe_axis, add(scale(toward, z), add(scale(t1, r * cos(a)), scale(t2, r * sin(a)))));
+      in->sharpness = (float)l;
+      in->amplitude = (float)(l / (2.0 * PI * (1.0 - exp(-2.0 * l)))); /* 1 / A(λ) */
+      in->variance = (float)(spread * spread);
+    }
   }
 }
 
@@ -671,6 +872,69 @@ static int check_c_cosine(void) {
   return bad;
 }
 
+/* VSGL shading: the C terms agree with the library's (sphera_sg_incoming_radiance,
+ * sphera_sg_diffuse_shading_constant_cosine, sphera_sg_specular_shading) to 1e-3
+ * relative, or 1e-30 absolute for values the library gives as (almost) 0; and most
+ * lobes give positive diffuse and specular terms (the pool is not degenerate). */
+static int check_c_vsgl(const Pool *pool) {
+  int i, bad = 0, diffuse_positive = 0, specular_positive = 0;
+  for (i = 0; i < POOL_SIZE; i++) {
+    struct VsglC c;
+    struct VsglLobe lib;
+    SpheraSample a, b;
+    vsgl_c_prepare(&c, &pool->inputs[i]);
+    vsgl_lobe_prepare(&lib, &pool->inputs[i]);
+    a = vsgl_c_shade(&c, 0.0f, 0.0f);
+    b = vsgl_lobe_shade(&lib);
+    if (!(fabsf(a.pdf - b.pdf) <= 1e-3f * b.pdf + 1e-30f) || !(fabsf(a.dir.x - b.dir.x) <= 1e-3f * b.dir.x + 1e-30f)) {
+      if (bad < 4)
+        fprintf(stderr, "vsgl %d: C diffuse %.9g specular %.9g, library %.9g %.9g\n", i, a.pdf, a.dir.x, b.pdf, b.dir.x);
+      bad++;
+    }
+    diffuse_positive += b.pdf > 0.0f;
+    specular_positive += b.dir.x > 0.0f;
+  }
+  if (bad) fprintf(stderr, "FAILED: VSGL shading: %d lobes where the C terms differ from the library's\n", bad);
+  if (diffuse_positive < POOL_SIZE / 2 || specular_positive < POOL_SIZE / 4) {
+    fprintf(stderr, "FAILED: VSGL shading: only %d diffuse and %d specular terms positive\n", diffuse_positive,
+            specular_positive);
+    bad++;
+  }
+  return bad;
+}
+
+/* vMF sampling: every sample a unit vector whose pdf agrees with sphera_vmf_pdf (1e-3,
+ * or 1e-30 absolute far in the tail); and for the first 16 lobes, over all 4096
+ * (u0, u1), the mean of cos θ is coth κ − 1/κ (variance at most 1/κ²... bounded by 1). */
+static int check_c_vmf(const Pool *pool) {
+  int i, j, bad = 0;
+  for (i = 0; i < POOL_SIZE; i++) {
+    struct VmfC g;
+    SpheraSg sg;
+    SpheraSample s;
+    float expected;
+    vmf_c_prepare(&g, &pool->inputs[i]);
+    VMF_PREPARE(&sg, &pool->inputs[i]);
+    s = vmf_c_sample(&g, g_u[i][0], g_u[i][1]);
+    expected = sphera_vmf_pdf(sg, s.dir);
+    if (!unit(s.dir) || !(fabsf(s.pdf - expected) <= 1e-3f * expected + 1e-30f)) bad++;
+  }
+  if (bad) fprintf(stderr, "FAILED: vMF sampling: %d lobes with a wrong pdf or direction\n", bad);
+  for (i = 0; i < 16; i++) {
+    struct VmfC g;
+    double sum = 0.0, k;
+    vmf_c_prepare(&g, &pool->inputs[i]);
+    k = g.kappa;
+    for (j = 0; j < U_COUNT; j++) {
+      SpheraSample s = vmf_c_sample(&g, g_u[j][0], g_u[j][1]);
+      sum += s.dir.x * g.axis[0] + s.dir.y * g.axis[1] + s.dir.z * g.axis[2];
+    }
+    /* E[cos θ] = coth κ − 1/κ; the standard deviation of cos θ is at most 1/κ (and 1). */
+    if (!mean_ok("vMF sampling, cos θ", sum, U_COUNT, 1.0 / tanh(k) - 1.0 / k, fmin(1.0, 1.0 / k))) bad++;
+  }
+  return bad;
+}
+
 /* ---- main ----------------------------------------------------------------------- */
 
 static int technique_index(const char *id) {
@@ -713,7 +977,7 @@ int main(int argc, char **argv) {
     if (!arrays[t]) return 2;
   }
 
-  for (f = 0; f < 3; f++) {
+  for (f = 0; f < FAMILY_COUNT; f++) {
     double best_prepare[TECHNIQUE_COUNT], best_sample[TECHNIQUE_COUNT];
     Tally prepare_tally[TECHNIQUE_COUNT], sample_tally[TECHNIQUE_COUNT];
     int runs[TECHNIQUE_COUNT];
@@ -723,6 +987,7 @@ int main(int argc, char **argv) {
     pools_run++;
     if (f == SPHERES) failures += check_c_cone(pool) != 0;
     if (f == BRDF) failures += (check_c_vndf(pool) != 0) + (check_c_cosine() != 0);
+    if (f == VSGLS) failures += (check_c_vsgl(pool) != 0) + (check_c_vmf(pool) != 0);
     for (t = 0; t < TECHNIQUE_COUNT; t++) {
       runs[t] = TECHNIQUE_LIST[t].family == pool->family && selected(only, TECHNIQUE_LIST[t].id);
       best_prepare[t] = best_sample[t] = 1e300;

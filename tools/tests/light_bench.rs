@@ -1,17 +1,17 @@
-//! The C benchmark of the sphere-light, BRDF and LTC polygon-light techniques
+//! The C benchmark of the sphere-light, BRDF, LTC polygon-light and VSGL techniques
 //! (`bench/light-bench`) in its quick form, default build only: it builds, runs and
 //! exits 0, and prints a table row for every technique of every pool, each with valid
 //! samples. The benchmark itself exits 1 when a technique yields no valid sample, or
 //! when one of its C baselines (cone sampling, GGX visible-normal sampling,
-//! cosine-weighted sampling) fails its checks against the library's pdfs and sample
-//! means; no timing is asserted.
+//! cosine-weighted sampling, VSGL shading, vMF sampling) fails its checks against the
+//! library's pdfs, shading values and sample means; no timing is asserted.
 
 mod common;
 
 use common::pool_rows;
 
 /// The pools (by the first word of their title) and their techniques.
-const POOLS: [(&str, &[&str]); 3] = [
+const POOLS: [(&str, &[&str]); 4] = [
     (
         "spheres",
         &[
@@ -46,6 +46,7 @@ const POOLS: [(&str, &[&str]); 3] = [
             "light_optimal",
         ],
     ),
+    ("vsgls", &["c_vsgl", "vsgl_shade", "c_vmf", "vmf"]),
 ];
 
 #[test]
