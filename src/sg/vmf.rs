@@ -50,19 +50,25 @@ pub fn vmf_sample(sg: &Sg, u: [f32; 2]) -> Sample {
     };
     let l = clamp_sharpness(sg.sharpness);
     let (u0, u1) = (clamp_random(u[0]), clamp_random(u[1]));
-    let t = if l > 1e-20 {
-        -libm::log1pf(u0 * libm::expm1f(-2.0 * l)) / l
+    // `e^{−2λ} − 1`, computed once for the inverse CDF and the density's normaliser
+    // `A(λ)/(2π) = −expm1(−2λ)/λ` (`one_minus_exp_over`, whose operations these are, so
+    // the pdf keeps its bits: `samples_follow_the_vmf_chi_square` asserts it equal to
+    // `vmf_pdf` of the sample).
+    let (t, normaliser) = if l > 1e-20 {
+        let e = libm::expm1f(-2.0 * l);
+        (-libm::log1pf(u0 * e) / l, -e / l)
     } else {
-        2.0 * u0
+        (2.0 * u0, 2.0)
     };
     let t = t.max(0.0).min(2.0);
     let sin_theta = libm::sqrtf((t * (2.0 - t)).max(0.0));
     let (sin_phi, cos_phi) = crate::math::sin_cos_of_turn(u1);
     let (tangent, bitangent) = orthonormal_basis(axis);
     let dir = axis * (1.0 - t) + (tangent * cos_phi + bitangent * sin_phi) * sin_theta;
+    let t_dir = 0.5 * (dir - axis).length_squared();
     Sample {
         dir,
-        pdf: vmf_pdf_unit(axis, l, dir),
+        pdf: libm::expf(-l * t_dir) / (TAU * normaliser),
     }
 }
 
