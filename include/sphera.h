@@ -882,7 +882,10 @@ float sphera_cap_solid_angle(struct SpheraCap cap);
 bool sphera_cap_contains(struct SpheraCap cap, struct SpheraVec3 dir);
 
 /* Draws a direction uniformly in solid angle inside the cap (`u0`, `u1` in [0, 1), clamped). pdf
- * 0 (and `dir = (0, 0, 1)`) for an empty cap. */
+ * 0 (and `dir = (0, 0, 1)`) for an empty cap. Every call checks the cap and builds its frame and
+ * `1 / Ω` (two divisions): for several samples of one cap, or for a sphere light at the cost of
+ * a cone sampler, prepare a `SpheraSolidAngleSphere` once (`sphera_solid_angle_sphere_prepare`,
+ * `_prepare_cap`), whose samples are these bit for bit. */
 struct SpheraSample sphera_cap_sample_uniform(struct SpheraCap cap, float u0, float u1);
 
 /* The density of `sphera_cap_sample_uniform`: `1 / Ω` inside the cap, 0 outside. */

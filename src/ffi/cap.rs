@@ -43,7 +43,11 @@ pub extern "C" fn sphera_cap_contains(cap: Cap, dir: SpheraVec3) -> bool {
 }
 
 /// Draws a direction uniformly in solid angle inside the cap (`u0`, `u1` in [0, 1),
-/// clamped). pdf 0 (and `dir = (0, 0, 1)`) for an empty cap.
+/// clamped). pdf 0 (and `dir = (0, 0, 1)`) for an empty cap. Every call checks the cap
+/// and builds its frame and `1 / Ω` (two divisions): for several samples of one cap, or
+/// for a sphere light at the cost of a cone sampler, prepare a `SpheraSolidAngleSphere`
+/// once (`sphera_solid_angle_sphere_prepare`, `_prepare_cap`), whose samples are these
+/// bit for bit.
 #[unsafe(no_mangle)]
 pub extern "C" fn sphera_cap_sample_uniform(cap: Cap, u0: f32, u1: f32) -> SpheraSample {
     cap.sanitized().sample_uniform([u0, u1]).into()
