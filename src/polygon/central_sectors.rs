@@ -9,11 +9,11 @@
 //! on the sample (`C s0` and `det(s0, u)`) are computed once per sector instead of once
 //! per sample, bit for bit as the sample computed them.
 
-use super::ellipse::{add2, dot2, scale2};
+use super::ellipse::{add2, det2, dot2, scale2};
 use super::ellipse_sector::EllipseSector;
 use crate::MAX_POLYGON_VERTICES;
 use crate::math::{LANES, difference_of_products4, store4};
-use glam::Vec4;
+use glam::{BVec4A, Vec4};
 
 type Vec2 = [f32; 2];
 
@@ -48,14 +48,14 @@ pub(crate) struct CentralSectors {
     outer: [Row; 2],
     /// `t1 = u · s1`, from the vertex positions.
     t1: Row,
-    /// `s0 · s1`.
-    cosine: Row,
-    /// `1 / det(s0, s1)` of the rounded `s0`, `s1` (0 where not finite).
-    inverse_basis: Row,
+    // `s0 · s1` and `1 / det(s0, s1)`, which the sector's `EllipseSector` also holds,
+    // are not rows: [`sector`](Self::sector) computes them from the rows `s0` and `s1`
+    // (the sampler never reads them; as rows they cost the preparation a difference of
+    // products with its error-free products and a division per four sectors, issue 15).
 }
 
-/// The 4-byte words of [`CentralSectors`] (15 rows of 8 slots).
-pub(crate) const CENTRAL_WORDS: usize = 15 * MAX_POLYGON_VERTICES;
+/// The 4-byte words of [`CentralSectors`] (13 rows of 8 slots).
+pub(crate) const CENTRAL_WORDS: usize = 13 * MAX_POLYGON_VERTICES;
 const _: () = assert!(core::mem::size_of::<CentralSectors>() == 4 * CENTRAL_WORDS);
 
 /// Four sectors' values as lanes, as the two central paths of the preparation compute
@@ -67,21 +67,26 @@ pub(crate) struct CentralLanes {
     pub(crate) outer: [Vec4; 2],
     pub(crate) outer_dots: [Vec4; 2],
     pub(crate) root_det: Vec4,
-    pub(crate) cosine: Vec4,
-    pub(crate) inverse_basis: Vec4,
+}
+
+/// The lanes of the four slots from `first` that hold one of `count` sectors (all four
+/// where `count - first >= 4`).
+#[inline(always)]
+pub(crate) fn lanes_kept(first: usize, count: usize) -> BVec4A {
+    // Compares the lane indices with count - first (both small integers, exact in f32;
+    // converted through `i32`, one signed conversion, where a `usize` takes a branch for
+    // the sign bit).
+    let remaining = (count - first) as i32 as f32;
+    Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(Vec4::splat(remaining))
 }
 
 impl CentralSectors {
-    /// Writes the sectors `first..first + 4` from their lanes; lanes from `count` on
+    /// Writes the sectors `first..first + 4` from their lanes; lanes not in `keep`
     /// (past the polygon, whose values the caller may have computed from padding) are
-    /// written as 0.
+    /// written as 0. A caller that passes a constant all-true `keep` for a group of four
+    /// sectors has the masks folded away.
     #[inline(always)]
-    pub(crate) fn store(&mut self, first: usize, count: usize, lanes: &CentralLanes) {
-        // Lane i is kept where first + i < count: compares the lane indices with
-        // count - first (both small integers, exact in f32; converted through `i32`, one
-        // signed conversion, where a `usize` takes a branch for the sign bit).
-        let remaining = (count - first) as i32 as f32;
-        let keep = Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(Vec4::splat(remaining));
+    pub(crate) fn store(&mut self, first: usize, keep: BVec4A, lanes: &CentralLanes) {
         let put = |row: &mut Row, v: Vec4| store4(Vec4::select(keep, v, Vec4::ZERO), row, first);
         let [s0x, s0y] = lanes.s0;
         let [ux, uy] = lanes.outer;
@@ -108,14 +113,12 @@ impl CentralSectors {
         put(&mut self.outer[0], ux);
         put(&mut self.outer[1], uy);
         put(&mut self.t1, t1);
-        put(&mut self.cosine, lanes.cosine);
-        put(&mut self.inverse_basis, lanes.inverse_basis);
     }
 
     /// Writes the sectors `first..first + 4` as 0 (slots past the polygon).
     #[inline(always)]
     pub(crate) fn store_zeros(&mut self, first: usize) {
-        let rows: [&mut Row; 15] = {
+        let rows: [&mut Row; 13] = {
             let Self {
                 s0: [a, b],
                 rotated: [c, d],
@@ -126,26 +129,8 @@ impl CentralSectors {
                 det,
                 outer: [g, h],
                 t1,
-                cosine,
-                inverse_basis,
             } = self;
-            [
-                a,
-                b,
-                c,
-                d,
-                root_det,
-                t0,
-                det_s0_u,
-                e,
-                f,
-                det,
-                g,
-                h,
-                t1,
-                cosine,
-                inverse_basis,
-            ]
+            [a, b, c, d, root_det, t0, det_s0_u, e, f, det, g, h, t1]
         };
         for row in rows {
             store4(Vec4::ZERO, row, first);
@@ -157,14 +142,26 @@ impl CentralSectors {
     /// fields.
     pub(crate) fn sector(&self, j: usize) -> EllipseSector {
         let pair = |row: &[Row; 2]| [row[0][j], row[1][j]];
+        let (s0, s1) = (pair(&self.s0), pair(&self.s1));
+        // `s0 · s1` and `1 / det(s0, s1)` (0 where not finite) of the rounded `s0` and
+        // `s1`, as the preparations computed them lane by lane before (`dot2` and
+        // `det2` round as the lanes' `s0x s1x + s0y s1y` and `difference_of_products4`
+        // do). A slot past the sectors (s0 = s1 = 0) gives 0 and 1 / 0 = ∞, so 0: the
+        // zeros that those slots' rows held.
+        let inverse_basis = 1.0 / det2(s0, s1);
+        let inverse_basis = if inverse_basis.is_finite() {
+            inverse_basis
+        } else {
+            0.0
+        };
         EllipseSector::new_central(
-            [pair(&self.s0), pair(&self.s1)],
+            [s0, s1],
             self.det[j],
             pair(&self.outer),
             [self.t0[j], self.t1[j]],
             self.root_det[j],
-            self.cosine[j],
-            self.inverse_basis[j],
+            dot2(s0, s1),
+            inverse_basis,
         )
     }
 
