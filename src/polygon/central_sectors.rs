@@ -140,6 +140,10 @@ impl CentralSectors {
     /// Sector `j` as the [`EllipseSector::new_central`] that preparation built before
     /// these rows (bit for bit: the same values), for the readers of a sector's other
     /// fields.
+    ///
+    /// Inlined, so that a reader of a few fields (the baseline of Arvo) computes only
+    /// those (`1 / det(s0, s1)` is not a row).
+    #[inline(always)]
     pub(crate) fn sector(&self, j: usize) -> EllipseSector {
         let pair = |row: &[Row; 2]| [row[0][j], row[1][j]];
         let (s0, s1) = (pair(&self.s0), pair(&self.s1));
@@ -194,3 +198,101 @@ impl CentralSectors {
 // lanes (`store` writes whole groups).
 const _: () = assert!(MAX_POLYGON_VERTICES.is_power_of_two());
 const _: () = assert!(MAX_POLYGON_VERTICES % LANES == 0);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::{lane_starts, load4};
+    use crate::testing::Rng;
+
+    /// `sector` computes `s0 · s1` and `1 / det(s0, s1)` (0 where not finite) from the
+    /// rows `s0` and `s1`, scalar, where they were rows that the preparations computed
+    /// four at a time (`s0x s1x + s0y s1y` and `1 / difference_of_products4`): the same
+    /// bits, over random unit directions of all angles, equal and opposite pairs (det 0
+    /// or rounding to 0), nearly opposite ones (det near the underflow), tiny and huge
+    /// components, and the slots past the sectors (zero rows, whose sector has 0 and 0).
+    #[test]
+    fn sector_constants_match_the_lanes() {
+        let mut rng = Rng::new(37);
+        let (mut zero_inverse, mut finite_inverse) = (0, 0);
+        for trial in 0..20_000 {
+            let count = 3 + trial % 6;
+            let mut s = [[[0.0f32; MAX_POLYGON_VERTICES]; 2]; 2];
+            #[allow(clippy::needless_range_loop)] // j indexes the innermost arrays
+            for j in 0..count {
+                let angle = (rng.uniform() * core::f64::consts::TAU) as f32;
+                let s0 = [angle.cos(), angle.sin()];
+                let s1 = match trial % 5 {
+                    0 => s0,
+                    1 => [-s0[0], -s0[1]],
+                    2 => [-s0[0], -s0[1] + f32::EPSILON * s0[0].signum()],
+                    3 => {
+                        let scale = rng.signed_log_uniform(-30.0, 30.0) as f32;
+                        [s0[1] * scale, -s0[0]]
+                    }
+                    _ => {
+                        let other = (rng.uniform() * core::f64::consts::TAU) as f32;
+                        [other.cos(), other.sin()]
+                    }
+                };
+                for c in 0..2 {
+                    s[0][c][j] = s0[c];
+                    s[1][c][j] = s1[c];
+                }
+            }
+            let mut rows = CentralSectors {
+                s0: [[f32::NAN; MAX_POLYGON_VERTICES]; 2],
+                rotated: [[f32::NAN; MAX_POLYGON_VERTICES]; 2],
+                root_det: [f32::NAN; MAX_POLYGON_VERTICES],
+                t0: [f32::NAN; MAX_POLYGON_VERTICES],
+                det_s0_u: [f32::NAN; MAX_POLYGON_VERTICES],
+                s1: [[f32::NAN; MAX_POLYGON_VERTICES]; 2],
+                det: [f32::NAN; MAX_POLYGON_VERTICES],
+                outer: [[f32::NAN; MAX_POLYGON_VERTICES]; 2],
+                t1: [f32::NAN; MAX_POLYGON_VERTICES],
+            };
+            let mut cosine = [0.0f32; MAX_POLYGON_VERTICES];
+            let mut inverse = [0.0f32; MAX_POLYGON_VERTICES];
+            for first in lane_starts(MAX_POLYGON_VERTICES) {
+                let [[s0x, s0y], [s1x, s1y]] = s.map(|d| d.map(|row| load4(&row, first)));
+                let lanes = CentralLanes {
+                    s0: [s0x, s0y],
+                    s1: [s1x, s1y],
+                    det: Vec4::ONE,
+                    outer: [Vec4::ONE; 2],
+                    outer_dots: [Vec4::ONE; 2],
+                    root_det: Vec4::ONE,
+                };
+                rows.store(first, lanes_kept(first, count), &lanes);
+                // The lanes' forms that the preparations stored before.
+                store4(s0x * s1x + s0y * s1y, &mut cosine, first);
+                let lanes_inverse = Vec4::ONE / difference_of_products4(s0x, s1y, s0y, s1x);
+                let lanes_inverse =
+                    Vec4::select(lanes_inverse.is_finite_mask(), lanes_inverse, Vec4::ZERO);
+                store4(lanes_inverse, &mut inverse, first);
+            }
+            for j in 0..MAX_POLYGON_VERTICES {
+                let sector = rows.sector(j);
+                let (expected_cosine, expected_inverse) = if j < count {
+                    (cosine[j], inverse[j])
+                } else {
+                    (0.0, 0.0)
+                };
+                assert_eq!(
+                    (sector.cosine.to_bits(), sector.inverse_basis.to_bits()),
+                    (expected_cosine.to_bits(), expected_inverse.to_bits()),
+                    "trial {trial}, sector {j}: {s:?}"
+                );
+                if j < count {
+                    zero_inverse += (expected_inverse == 0.0) as u32;
+                    finite_inverse += (expected_inverse != 0.0) as u32;
+                }
+            }
+        }
+        // Both outcomes of the finiteness test are exercised.
+        assert!(
+            zero_inverse > 10_000 && finite_inverse > 10_000,
+            "{zero_inverse} {finite_inverse}"
+        );
+    }
+}

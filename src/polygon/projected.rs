@@ -576,6 +576,7 @@ impl ProjectedPolygon {
     /// Sector `j` (below 8) as an [`EllipseSector`], from either case's storage (not
     /// meaningful for a polygon that uses the small-polygon sampler): the central case
     /// rebuilds it from its rows.
+    #[inline(always)]
     pub(crate) fn sector(&self, j: usize) -> EllipseSector {
         if self.central != 0 {
             self.central_sectors().sector(j)
