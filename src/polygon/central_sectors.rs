@@ -9,11 +9,11 @@
 //! on the sample (`C s0` and `det(s0, u)`) are computed once per sector instead of once
 //! per sample, bit for bit as the sample computed them.
 
-use super::ellipse::{add2, dot2, scale2};
+use super::ellipse::{add2, det2, dot2, scale2};
 use super::ellipse_sector::EllipseSector;
 use crate::MAX_POLYGON_VERTICES;
 use crate::math::{LANES, difference_of_products4, store4};
-use glam::Vec4;
+use glam::{BVec4A, Vec4};
 
 type Vec2 = [f32; 2];
 
@@ -48,14 +48,14 @@ pub(crate) struct CentralSectors {
     outer: [Row; 2],
     /// `t1 = u · s1`, from the vertex positions.
     t1: Row,
-    /// `s0 · s1`.
-    cosine: Row,
-    /// `1 / det(s0, s1)` of the rounded `s0`, `s1` (0 where not finite).
-    inverse_basis: Row,
+    // `s0 · s1` and `1 / det(s0, s1)`, which the sector's `EllipseSector` also holds,
+    // are not rows: [`sector`](Self::sector) computes them from the rows `s0` and `s1`
+    // (the sampler never reads them; as rows they cost the preparation a difference of
+    // products with its error-free products and a division per four sectors, issue 15).
 }
 
-/// The 4-byte words of [`CentralSectors`] (15 rows of 8 slots).
-pub(crate) const CENTRAL_WORDS: usize = 15 * MAX_POLYGON_VERTICES;
+/// The 4-byte words of [`CentralSectors`] (13 rows of 8 slots).
+pub(crate) const CENTRAL_WORDS: usize = 13 * MAX_POLYGON_VERTICES;
 const _: () = assert!(core::mem::size_of::<CentralSectors>() == 4 * CENTRAL_WORDS);
 
 /// Four sectors' values as lanes, as the two central paths of the preparation compute
@@ -67,21 +67,26 @@ pub(crate) struct CentralLanes {
     pub(crate) outer: [Vec4; 2],
     pub(crate) outer_dots: [Vec4; 2],
     pub(crate) root_det: Vec4,
-    pub(crate) cosine: Vec4,
-    pub(crate) inverse_basis: Vec4,
+}
+
+/// The lanes of the four slots from `first` that hold one of `count` sectors (all four
+/// where `count - first >= 4`).
+#[inline(always)]
+pub(crate) fn lanes_kept(first: usize, count: usize) -> BVec4A {
+    // Compares the lane indices with count - first (both small integers, exact in f32;
+    // converted through `i32`, one signed conversion, where a `usize` takes a branch for
+    // the sign bit).
+    let remaining = (count - first) as i32 as f32;
+    Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(Vec4::splat(remaining))
 }
 
 impl CentralSectors {
-    /// Writes the sectors `first..first + 4` from their lanes; lanes from `count` on
+    /// Writes the sectors `first..first + 4` from their lanes; lanes not in `keep`
     /// (past the polygon, whose values the caller may have computed from padding) are
-    /// written as 0.
+    /// written as 0. A caller that passes a constant all-true `keep` for a group of four
+    /// sectors has the masks folded away.
     #[inline(always)]
-    pub(crate) fn store(&mut self, first: usize, count: usize, lanes: &CentralLanes) {
-        // Lane i is kept where first + i < count: compares the lane indices with
-        // count - first (both small integers, exact in f32; converted through `i32`, one
-        // signed conversion, where a `usize` takes a branch for the sign bit).
-        let remaining = (count - first) as i32 as f32;
-        let keep = Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(Vec4::splat(remaining));
+    pub(crate) fn store(&mut self, first: usize, keep: BVec4A, lanes: &CentralLanes) {
         let put = |row: &mut Row, v: Vec4| store4(Vec4::select(keep, v, Vec4::ZERO), row, first);
         let [s0x, s0y] = lanes.s0;
         let [ux, uy] = lanes.outer;
@@ -108,14 +113,12 @@ impl CentralSectors {
         put(&mut self.outer[0], ux);
         put(&mut self.outer[1], uy);
         put(&mut self.t1, t1);
-        put(&mut self.cosine, lanes.cosine);
-        put(&mut self.inverse_basis, lanes.inverse_basis);
     }
 
     /// Writes the sectors `first..first + 4` as 0 (slots past the polygon).
     #[inline(always)]
     pub(crate) fn store_zeros(&mut self, first: usize) {
-        let rows: [&mut Row; 15] = {
+        let rows: [&mut Row; 13] = {
             let Self {
                 s0: [a, b],
                 rotated: [c, d],
@@ -126,26 +129,8 @@ impl CentralSectors {
                 det,
                 outer: [g, h],
                 t1,
-                cosine,
-                inverse_basis,
             } = self;
-            [
-                a,
-                b,
-                c,
-                d,
-                root_det,
-                t0,
-                det_s0_u,
-                e,
-                f,
-                det,
-                g,
-                h,
-                t1,
-                cosine,
-                inverse_basis,
-            ]
+            [a, b, c, d, root_det, t0, det_s0_u, e, f, det, g, h, t1]
         };
         for row in rows {
             store4(Vec4::ZERO, row, first);
@@ -155,16 +140,32 @@ impl CentralSectors {
     /// Sector `j` as the [`EllipseSector::new_central`] that preparation built before
     /// these rows (bit for bit: the same values), for the readers of a sector's other
     /// fields.
+    ///
+    /// Inlined, so that a reader of a few fields (the baseline of Arvo) computes only
+    /// those (`1 / det(s0, s1)` is not a row).
+    #[inline(always)]
     pub(crate) fn sector(&self, j: usize) -> EllipseSector {
         let pair = |row: &[Row; 2]| [row[0][j], row[1][j]];
+        let (s0, s1) = (pair(&self.s0), pair(&self.s1));
+        // `s0 · s1` and `1 / det(s0, s1)` (0 where not finite) of the rounded `s0` and
+        // `s1`, as the preparations computed them lane by lane before (`dot2` and
+        // `det2` round as the lanes' `s0x s1x + s0y s1y` and `difference_of_products4`
+        // do). A slot past the sectors (s0 = s1 = 0) gives 0 and 1 / 0 = ∞, so 0: the
+        // zeros that those slots' rows held.
+        let inverse_basis = 1.0 / det2(s0, s1);
+        let inverse_basis = if inverse_basis.is_finite() {
+            inverse_basis
+        } else {
+            0.0
+        };
         EllipseSector::new_central(
-            [pair(&self.s0), pair(&self.s1)],
+            [s0, s1],
             self.det[j],
             pair(&self.outer),
             [self.t0[j], self.t1[j]],
             self.root_det[j],
-            self.cosine[j],
-            self.inverse_basis[j],
+            dot2(s0, s1),
+            inverse_basis,
         )
     }
 
@@ -197,3 +198,101 @@ impl CentralSectors {
 // lanes (`store` writes whole groups).
 const _: () = assert!(MAX_POLYGON_VERTICES.is_power_of_two());
 const _: () = assert!(MAX_POLYGON_VERTICES % LANES == 0);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::{lane_starts, load4};
+    use crate::testing::Rng;
+
+    /// `sector` computes `s0 · s1` and `1 / det(s0, s1)` (0 where not finite) from the
+    /// rows `s0` and `s1`, scalar, where they were rows that the preparations computed
+    /// four at a time (`s0x s1x + s0y s1y` and `1 / difference_of_products4`): the same
+    /// bits, over random unit directions of all angles, equal and opposite pairs (det 0
+    /// or rounding to 0), nearly opposite ones (det near the underflow), tiny and huge
+    /// components, and the slots past the sectors (zero rows, whose sector has 0 and 0).
+    #[test]
+    fn sector_constants_match_the_lanes() {
+        let mut rng = Rng::new(37);
+        let (mut zero_inverse, mut finite_inverse) = (0, 0);
+        for trial in 0..20_000 {
+            let count = 3 + trial % 6;
+            let mut s = [[[0.0f32; MAX_POLYGON_VERTICES]; 2]; 2];
+            #[allow(clippy::needless_range_loop)] // j indexes the innermost arrays
+            for j in 0..count {
+                let angle = (rng.uniform() * core::f64::consts::TAU) as f32;
+                let s0 = [angle.cos(), angle.sin()];
+                let s1 = match trial % 5 {
+                    0 => s0,
+                    1 => [-s0[0], -s0[1]],
+                    2 => [-s0[0], -s0[1] + f32::EPSILON * s0[0].signum()],
+                    3 => {
+                        let scale = rng.signed_log_uniform(-30.0, 30.0) as f32;
+                        [s0[1] * scale, -s0[0]]
+                    }
+                    _ => {
+                        let other = (rng.uniform() * core::f64::consts::TAU) as f32;
+                        [other.cos(), other.sin()]
+                    }
+                };
+                for c in 0..2 {
+                    s[0][c][j] = s0[c];
+                    s[1][c][j] = s1[c];
+                }
+            }
+            let mut rows = CentralSectors {
+                s0: [[f32::NAN; MAX_POLYGON_VERTICES]; 2],
+                rotated: [[f32::NAN; MAX_POLYGON_VERTICES]; 2],
+                root_det: [f32::NAN; MAX_POLYGON_VERTICES],
+                t0: [f32::NAN; MAX_POLYGON_VERTICES],
+                det_s0_u: [f32::NAN; MAX_POLYGON_VERTICES],
+                s1: [[f32::NAN; MAX_POLYGON_VERTICES]; 2],
+                det: [f32::NAN; MAX_POLYGON_VERTICES],
+                outer: [[f32::NAN; MAX_POLYGON_VERTICES]; 2],
+                t1: [f32::NAN; MAX_POLYGON_VERTICES],
+            };
+            let mut cosine = [0.0f32; MAX_POLYGON_VERTICES];
+            let mut inverse = [0.0f32; MAX_POLYGON_VERTICES];
+            for first in lane_starts(MAX_POLYGON_VERTICES) {
+                let [[s0x, s0y], [s1x, s1y]] = s.map(|d| d.map(|row| load4(&row, first)));
+                let lanes = CentralLanes {
+                    s0: [s0x, s0y],
+                    s1: [s1x, s1y],
+                    det: Vec4::ONE,
+                    outer: [Vec4::ONE; 2],
+                    outer_dots: [Vec4::ONE; 2],
+                    root_det: Vec4::ONE,
+                };
+                rows.store(first, lanes_kept(first, count), &lanes);
+                // The lanes' forms that the preparations stored before.
+                store4(s0x * s1x + s0y * s1y, &mut cosine, first);
+                let lanes_inverse = Vec4::ONE / difference_of_products4(s0x, s1y, s0y, s1x);
+                let lanes_inverse =
+                    Vec4::select(lanes_inverse.is_finite_mask(), lanes_inverse, Vec4::ZERO);
+                store4(lanes_inverse, &mut inverse, first);
+            }
+            for j in 0..MAX_POLYGON_VERTICES {
+                let sector = rows.sector(j);
+                let (expected_cosine, expected_inverse) = if j < count {
+                    (cosine[j], inverse[j])
+                } else {
+                    (0.0, 0.0)
+                };
+                assert_eq!(
+                    (sector.cosine.to_bits(), sector.inverse_basis.to_bits()),
+                    (expected_cosine.to_bits(), expected_inverse.to_bits()),
+                    "trial {trial}, sector {j}: {s:?}"
+                );
+                if j < count {
+                    zero_inverse += (expected_inverse == 0.0) as u32;
+                    finite_inverse += (expected_inverse != 0.0) as u32;
+                }
+            }
+        }
+        // Both outcomes of the finiteness test are exercised.
+        assert!(
+            zero_inverse > 10_000 && finite_inverse > 10_000,
+            "{zero_inverse} {finite_inverse}"
+        );
+    }
+}

@@ -9,7 +9,7 @@
 //! `Vec3::length`, with the same correctly rounded `f32` operations, so every lane has
 //! the bits of the scalar form.
 
-use crate::math::{LANES, load4, sqrt4};
+use crate::math::{LANES, load4, sqrt4, store4};
 use crate::{MAX_POLYGON_VERTICES, Vec3};
 use glam::{BVec4A, Vec4};
 
@@ -40,6 +40,19 @@ impl EdgeNormalRows {
         self.x[j] = n.x;
         self.y[j] = n.y;
         self.z[j] = n.z;
+    }
+
+    /// Sets the normals `first..first + 4` from their coordinates' lanes, each lane not
+    /// in `keep` as 0 (a slot past the polygon, as in [`ZERO`](Self::ZERO)): one
+    /// 16-byte store per row where `set` of each normal gathered single words.
+    #[inline(always)]
+    pub(crate) fn store4(&mut self, first: usize, [x, y, z]: [Vec4; 3], keep: BVec4A) {
+        let put = |row: &mut [f32; MAX_POLYGON_VERTICES], v: Vec4| {
+            store4(Vec4::select(keep, v, Vec4::ZERO), row, first);
+        };
+        put(&mut self.x, x);
+        put(&mut self.y, y);
+        put(&mut self.z, z);
     }
 
     /// Normal `j`.

@@ -22,7 +22,7 @@
 //! polygons touching and crossing the horizon, tiny and near-hemisphere polygons,
 //! `ξ0` at 0, 1e-5, 1 - 1e-5 and 1 - ulp.
 
-use super::central_sectors::{CENTRAL_WORDS, CentralLanes, CentralSectors};
+use super::central_sectors::{CENTRAL_WORDS, CentralLanes, CentralSectors, lanes_kept};
 use super::clip::{clip_to_upper_hemisphere, clipped_edge_planes};
 use super::edge_normal_rows::EdgeNormalRows;
 use super::ellipse::{
@@ -415,15 +415,40 @@ fn central_unclipped_sectors(
     precision: AreaPrecision,
 ) -> bool {
     polygon.central = 1;
-    polygon.edge_normals = EdgeNormalRows::ZERO;
     let central = polygon.pieces.central_mut();
     let mut maybe_short = false;
     let limit = Vec4::splat(super::ellipse::ELLIPSE_LIMIT);
-    for first in lane_starts(count) {
-        let load = |values: &[f32; 2 * LANES]| load4(values, first);
-        let [ax, ay, az] = vertex.each_ref().map(|c| load4(c, first));
-        let [bx, by, bz] = vertex.each_ref().map(|c| load4(c, first + 1));
-        let [nx, ny, nz] = normals.each_ref().map(load);
+    // Per vertex, four at a time: `unit_direction` (n_z > 0 leaves no vertex on the z
+    // axis), `|p_xy|` as `dot2(s, p_xy)` and `|p|²` as `length_squared`. Vertex j is
+    // the s0 of sector j and the s1 of sector j - 1: computed once per vertex (the
+    // same operations on the same coordinates, so the same bits in either role) where
+    // each sector computed both of its ends (issue 15: two divisions, a square root and
+    // a division per four vertices fewer).
+    let groups = count.div_ceil(LANES);
+    let mut per_vertex = [[Vec4::ZERO; 4]; 2];
+    for (g, lanes) in per_vertex.iter_mut().enumerate().take(groups) {
+        let [x, y, z] = vertex.each_ref().map(|c| load4(c, g * LANES));
+        let largest = x.abs().max(y.abs());
+        let (sx, sy) = (x / largest, y / largest);
+        let inverse_length = Vec4::ONE / crate::math::sqrt4(sx * sx + sy * sy);
+        let (sx, sy) = (sx * inverse_length, sy * inverse_length);
+        *lanes = [sx, sy, sx * x + sy * y, (x * x + y * y) + z * z];
+    }
+    for (g, this) in per_vertex.iter().enumerate().take(groups) {
+        let first = g * LANES;
+        // The other end of each sector, vertex j + 1: this group's lanes moved down by
+        // one, and into the last lane the first lane of the next group or, after the
+        // last group, of the first (vertex 0, which follows the polygon's last vertex;
+        // the padding slots from `count` on hold vertex 0 too, so every lane of sector
+        // j < count gets vertex j + 1 or 0, as the vertex lanes from slot first + 1).
+        let following = &per_vertex[if g + 1 < groups { g + 1 } else { 0 }];
+        let [s1x, s1y, lb, b2] = core::array::from_fn(|i| {
+            let (v, w) = (this[i], following[i]);
+            Vec4::new(v.y, v.z, v.w, w.x)
+        });
+        let [s0x, s0y, la, a2] = *this;
+        let (az, bz) = (load4(&vertex[2], first), load4(&vertex[2], first + 1));
+        let [nx, ny, nz] = normals.each_ref().map(|c| load4(c, first));
         // `ellipse_from_normal` for n_z > 0: u_x = |n_x| / n_z (an outer ellipse, sign bit
         // clear), u_y = n_y / n_z with the sign of n_x multiplied in (copying a sign to 1
         // and multiplying by it flips only the sign bit), both clamped to ELLIPSE_LIMIT.
@@ -431,16 +456,6 @@ fn central_unclipped_sectors(
         let ux = (nx.abs() * inverse).min(limit);
         let uy = ny * Vec4::ONE.copysign(nx) * inverse;
         let uy = uy.abs().min(limit).copysign(uy);
-        // `unit_direction` of both vertices: n_z > 0 leaves neither on the z axis.
-        let direction = |x: Vec4, y: Vec4| {
-            let largest = x.abs().max(y.abs());
-            let (x, y) = (x / largest, y / largest);
-            let inverse_length = Vec4::ONE / crate::math::sqrt4(x * x + y * y);
-            (x * inverse_length, y * inverse_length)
-        };
-        let (s0x, s0y) = direction(ax, ay);
-        let (s1x, s1y) = direction(bx, by);
-        let (la, lb) = (s0x * ax + s0y * ay, s1x * bx + s1y * by);
         // `sector_determinants`: det(p_a,xy, p_b,xy) is n_z (the same Kahan difference of
         // products), over the product of the lengths.
         let det = nz / (la * lb);
@@ -454,18 +469,13 @@ fn central_unclipped_sectors(
         };
         let (t0, t1) = (edge_dot(az, la), edge_dot(bz, lb));
         // The first test of `ignore_short_edges_in_containment`, as `length_squared`.
-        let length2 = |x: Vec4, y: Vec4, z: Vec4| (x * x + y * y) + z * z;
-        let short = !(length2(nx, ny, nz)).cmpgt(
-            Vec4::splat(super::SHORT_EDGE_SINE * super::SHORT_EDGE_SINE)
-                * (length2(ax, ay, az) * length2(bx, by, bz)),
-        );
+        let short = !((nx * nx + ny * ny) + nz * nz)
+            .cmpgt(Vec4::splat(super::SHORT_EDGE_SINE * super::SHORT_EDGE_SINE) * (a2 * b2));
         let lanes = (count - first).min(LANES);
         maybe_short |= short.bitmask() & ((1u32 << lanes) - 1) != 0;
         // The sector constants, as in the general central path.
         let root_det = crate::math::sqrt4(Vec4::ONE + (ux * ux + uy * uy));
         let cosine = s0x * s1x + s0y * s1y;
-        let inverse_basis = Vec4::ONE / difference_of_products4(s0x, s1y, s0y, s1x);
-        let inverse_basis = Vec4::select(inverse_basis.is_finite_mask(), inverse_basis, Vec4::ZERO);
         let x = (cosine + t0 * t1) / root_det;
         let y = det.max(Vec4::ZERO);
         let angle = match precision {
@@ -473,30 +483,61 @@ fn central_unclipped_sectors(
             AreaPrecision::Fast => atan2_positive_fast4(y, x),
         };
         let area = (angle * (Vec4::splat(0.5) / root_det)).max(Vec4::ZERO);
-        central.store(
-            first,
-            count,
-            &CentralLanes {
-                s0: [s0x, s0y],
-                s1: [s1x, s1y],
-                det,
-                outer: [ux, uy],
-                outer_dots: [t0, t1],
-                root_det,
-                cosine,
-                inverse_basis,
-            },
-        );
-        store4(area, &mut polygon.sector_area, first);
-        let [nx, ny, nz] = [nx, ny, nz].map(|v| v.to_array());
-        for lane in 0..lanes {
-            polygon
-                .edge_normals
-                .set(first + lane, Vec3::new(nx[lane], ny[lane], nz[lane]));
+        let sectors = CentralLanes {
+            s0: [s0x, s0y],
+            s1: [s1x, s1y],
+            det,
+            outer: [ux, uy],
+            outer_dots: [t0, t1],
+            root_det,
+        };
+        // The rows, the edge normals (slots past the polygon 0, as in
+        // `EdgeNormalRows::ZERO`) and the areas of this group. A group of four sectors
+        // stores its lanes without masks (a constant mask, folded away: thirteen fewer
+        // operations); the last group of a polygon whose count is not a multiple of four
+        // masks the lanes past it (`finish` writes the areas past the polygon as 0).
+        #[inline(always)]
+        fn store_group(
+            central: &mut CentralSectors,
+            edge_normals: &mut EdgeNormalRows,
+            first: usize,
+            keep: glam::BVec4A,
+            sectors: &CentralLanes,
+            normal: [Vec4; 3],
+        ) {
+            central.store(first, keep, sectors);
+            edge_normals.store4(first, normal, keep);
         }
+        let normal = [nx, ny, nz];
+        if lanes == LANES {
+            let keep = glam::BVec4A::splat(true);
+            store_group(
+                central,
+                &mut polygon.edge_normals,
+                first,
+                keep,
+                &sectors,
+                normal,
+            );
+        } else {
+            let keep = lanes_kept(first, count);
+            store_group(
+                central,
+                &mut polygon.edge_normals,
+                first,
+                keep,
+                &sectors,
+                normal,
+            );
+        }
+        store4(area, &mut polygon.sector_area, first);
     }
     if count <= LANES {
         central.store_zeros(LANES);
+        let zero = [Vec4::ZERO; 3];
+        polygon
+            .edge_normals
+            .store4(LANES, zero, glam::BVec4A::splat(true));
     }
     maybe_short
 }
@@ -535,6 +576,7 @@ impl ProjectedPolygon {
     /// Sector `j` (below 8) as an [`EllipseSector`], from either case's storage (not
     /// meaningful for a polygon that uses the small-polygon sampler): the central case
     /// rebuilds it from its rows.
+    #[inline(always)]
     pub(crate) fn sector(&self, j: usize) -> EllipseSector {
         if self.central != 0 {
             self.central_sectors().sector(j)
@@ -1203,8 +1245,6 @@ impl ProjectedPolygon {
                     columns.each_ref().map(|c| load4(c, first));
                 let root_det = crate::math::sqrt4(Vec4::ONE + (ux * ux + uy * uy));
                 let cosine = s0x * s1x + s0y * s1y;
-                let inverse = Vec4::ONE / difference_of_products4(s0x, s1y, s0y, s1x);
-                let inverse = Vec4::select(inverse.is_finite_mask(), inverse, Vec4::ZERO);
                 let x = (cosine + t0 * t1) / root_det;
                 let lanes_area =
                     crate::math::atan2_upper_half_plane4(det.max(Vec4::ZERO), x, count - first)
@@ -1215,7 +1255,7 @@ impl ProjectedPolygon {
                 store4(lanes_area, &mut area, first);
                 central.store(
                     first,
-                    count,
+                    lanes_kept(first, count),
                     &CentralLanes {
                         s0: [s0x, s0y],
                         s1: [s1x, s1y],
@@ -1223,8 +1263,6 @@ impl ProjectedPolygon {
                         outer: [ux, uy],
                         outer_dots: [t0, t1],
                         root_det,
-                        cosine,
-                        inverse_basis: inverse,
                     },
                 );
             }
