@@ -672,3 +672,103 @@ fn the_whole_circle_half_arc_is_acos_of_minus_one() {
         WHOLE_CIRCLE_HALF_ARC.to_bits()
     );
 }
+
+/// Sphere lights across the horizon as the light bench draws them (distance log-uniform
+/// in [1, 4], `sin²θ` in [0.06, 0.44], centres over the upper hemisphere, views with
+/// `cos θo` in [0.1, 1], roughness in [0.1, 0.9], the fitted GGX pivot), pivoted as the
+/// SPTD sphere light sampler pivots them: `(g(C), g(H))`.
+fn bench_like_pivoted_pairs(rng: &mut Rng, count: usize) -> Vec<(Cap, Cap)> {
+    let mut cases = Vec::new();
+    while cases.len() < count {
+        let distance = rng.log_uniform(0.0, 4f64.log10()) as f32;
+        let sin2 = 0.06 + 0.38 * rng.uniform_f32();
+        let center = loop {
+            let v = rng.unit_vector_f32();
+            if v.z >= 0.0 {
+                break v;
+            }
+        };
+        let light = Cap::from_sphere(center * distance, distance * sin2.sqrt());
+        if light.axis.z * light.axis.z >= light.sin2 {
+            continue;
+        }
+        let cos_o = 0.1 + 0.9 * rng.uniform_f32();
+        let phi = core::f32::consts::TAU * rng.uniform_f32();
+        let sin_o = (1.0 - cos_o * cos_o).sqrt();
+        let wo = Vec3::new(sin_o * phi.cos(), sin_o * phi.sin(), cos_o);
+        let roughness = 0.1 + 0.8 * rng.uniform_f32();
+        let pivot = crate::sphere::GgxPivot::from_view(wo, roughness)
+            .unwrap()
+            .pivot;
+        let (image, _) = crate::sphere::pivot::pivot_cap_fast(&light, pivot);
+        cases.push((image, crate::sphere::pivot::pivot_upper_hemisphere(pivot)));
+    }
+    cases
+}
+
+/// The prepared `Ω(A ∩ B)` (`whole_solid_angle`: on its fast path `F(t_A)` from the
+/// prepared lens partner) is `cap_intersection_solid_angle` of the two caps bit for bit,
+/// and the preparation fails exactly where that is not a usable normaliser, for the named
+/// pairs, random pairs of every size (the radial cap up to and past a hemisphere, the other
+/// up to, past and at a hemisphere, equal sides, caps whose hole is 0) and pivoted sphere
+/// lights across the horizon as the light bench draws them; both branches of the fast path
+/// (the other cap at most and wider than a hemisphere) are taken many times, and so is the
+/// general call.
+#[test]
+fn the_prepared_solid_angle_is_the_general_one() {
+    let mut rng = Rng::new(3718);
+    let mut cases: Vec<(Cap, Cap)> = pairs().into_iter().map(|(_, a, b)| (a, b)).collect();
+    cases.extend(bench_like_pivoted_pairs(&mut rng, 5000));
+    for i in 0..40_000 {
+        let side = |rng: &mut Rng| match i % 5 {
+            0 => 2.0 * rng.uniform_f32(),
+            1 => rng.log_uniform(-6.0, 0.3) as f32,
+            2 => 1.0,
+            3 => 2.0,
+            _ => 0.5 + rng.uniform_f32(),
+        };
+        let a = cap(rng.unit_vector_f32(), side(&mut rng));
+        let b = if i % 7 == 0 {
+            Cap {
+                axis: rng.unit_vector_f32(),
+                ..a
+            }
+        } else {
+            cap(rng.unit_vector_f32(), side(&mut rng))
+        };
+        cases.push((a, b));
+    }
+    // [fast, other at most a hemisphere], [fast, wider], [general]
+    let mut paths = [0u32; 3];
+    for (a, b) in cases {
+        let (radial, other) = if a.one_minus_cos <= b.one_minus_cos {
+            (a, b)
+        } else {
+            (b, a)
+        };
+        let general = cap_intersection_solid_angle(&radial, &other);
+        let (t_a, t_b) = (radial.one_minus_cos, other.one_minus_cos);
+        let fast = t_a > 0.0 && t_a <= 1.0 && t_a < t_b && (t_b <= 1.0 || other.one_plus_cos > 0.0);
+        paths[if !fast {
+            2
+        } else if t_b <= 1.0 {
+            0
+        } else {
+            1
+        }] += 1;
+        match CapIntersection::new(&a, &b) {
+            Some(lens) => assert_eq!(
+                lens.solid_angle.to_bits(),
+                general.to_bits(),
+                "{a:?} {b:?}: {} {general}",
+                lens.solid_angle
+            ),
+            None => assert!(
+                !(general > 0.0) || !(1.0 / general).is_finite(),
+                "{a:?} {b:?}: {general}"
+            ),
+        }
+    }
+    std::println!("prepared solid angle paths [fast ≤ hemisphere, fast wider, general]: {paths:?}");
+    assert!(paths.iter().all(|&n| n > 3000), "{paths:?}");
+}
