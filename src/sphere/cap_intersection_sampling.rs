@@ -40,6 +40,13 @@ pub const MAX_ITERATIONS: u32 = 40;
 /// `the_whole_circle_half_arc_is_acos_of_minus_one`).
 const WHOLE_CIRCLE_HALF_ARC: f32 = f32::from_bits(0x4049_0fda);
 
+/// The smallest `f32` whose reciprocal is finite, `2⁻¹²⁸ (1 + 2⁻²¹)` (a denormal): `1/x`
+/// rounds to infinity exactly when `x ≤ 1/(2¹²⁸ − 2¹⁰³)`, the reciprocal of the midpoint
+/// between `f32::MAX` and `2¹²⁸` (a tie there goes to the even `2¹²⁸`, i.e. infinity). So
+/// `Ω ≥ MIN_NORMALISER` is `Ω > 0 && (1/Ω).is_finite()` (`uniform_pdf`'s test) without
+/// the division (`min_normaliser_is_where_the_reciprocal_is_finite`).
+pub(crate) const MIN_NORMALISER: f32 = f32::from_bits(0x0020_0001);
+
 /// Two caps prepared for uniform sampling of their intersection.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -468,6 +475,17 @@ impl CapIntersection {
         if pdf == 0.0 {
             return Sample::NONE;
         }
+        self.sample_direction(u)
+            .map_or(Sample::NONE, |dir| Sample { dir, pdf })
+    }
+
+    /// The direction of [`sample_uniform_inlined`](Self::sample_uniform_inlined) (the same
+    /// bits, `None` where it gives no sample) without its pdf, for a caller that computes
+    /// its own density and tests `Ω > 0` itself (the clipped sphere light sampler, whose
+    /// density is `J(ω)/Ω`: the `1/Ω` here was a division per sample for a zero test
+    /// only; [`MIN_NORMALISER`] is that test without the division).
+    #[inline(always)]
+    pub(crate) fn sample_direction(&self, u: [f32; 2]) -> Option<Vec3> {
         let target = clamp_random(u[0]) * self.solid_angle;
         // In the nested part the whole circle at `s` lies in `B`: `half_arc(s)` clamps its
         // cosine to −1 and returns `acos(−1)`, the constant below, without the square root,
@@ -483,7 +501,7 @@ impl CapIntersection {
         let psi = (2.0 * clamp_random(u[1]) - 1.0) * phi;
         let dir = self.direction(s, psi);
         if self.contains_inlined(dir) {
-            return Sample { dir, pdf };
+            return Some(dir);
         }
         // Rounding put a sample from the boundary just outside, where `pdf` is 0:
         // pulled towards the inner point until inside (`INWARD_PULLS`).
@@ -492,7 +510,6 @@ impl CapIntersection {
             .iter()
             .map(|&pull| (dir * (1.0 - pull) + inner * pull).normalize_or(inner))
             .find(|&pulled| self.contains(pulled))
-            .map_or(Sample::NONE, |dir| Sample { dir, pdf })
     }
 
     /// The density of [`sample_uniform`](Self::sample_uniform): `1 / Ω(A ∩ B)` in both

@@ -772,3 +772,27 @@ fn the_prepared_solid_angle_is_the_general_one() {
     std::println!("prepared solid angle paths [fast ≤ hemisphere, fast wider, general]: {paths:?}");
     assert!(paths.iter().all(|&n| n > 3000), "{paths:?}");
 }
+
+/// `Ω ≥ MIN_NORMALISER` is `Ω > 0 && (1/Ω).is_finite()`: for every `f32` from 0 up to 2⁻¹²⁰
+/// (the threshold among them) and for negative, zero, large, infinite and NaN values.
+#[test]
+fn min_normaliser_is_where_the_reciprocal_is_finite() {
+    let same = |x: f32| (x >= MIN_NORMALISER) == (x > 0.0 && (1.0 / x).is_finite());
+    for bits in 0..=0x0380_0000u32 {
+        let x = f32::from_bits(bits);
+        assert!(same(x) && same(-x), "{bits:#x}");
+    }
+    for x in [
+        1e-30,
+        1.0,
+        4.0 * PI,
+        f32::MAX,
+        f32::INFINITY,
+        f32::NAN,
+        -0.0,
+    ] {
+        assert!(same(x) && same(-x), "{x}");
+    }
+    assert!(!(1.0 / f32::from_bits(0x0020_0000)).is_finite());
+    assert!((1.0 / MIN_NORMALISER).is_finite());
+}

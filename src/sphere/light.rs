@@ -37,7 +37,7 @@
 
 use super::cap::Cap;
 use super::cap_intersection::cap_intersection_solid_angle;
-use super::cap_intersection_sampling::CapIntersection;
+use super::cap_intersection_sampling::{CapIntersection, MIN_NORMALISER};
 use super::pivot::{
     jacobian_of_unit, pivot_cap, pivot_cap_fast, pivot_cap_fast_by_ref, pivot_cap_fast_of_valid,
     transform,
@@ -480,17 +480,23 @@ impl SphereLightSampler {
     #[inline]
     pub fn sample(&self, u: [f32; 2]) -> Sample {
         if self.is_clipped() {
-            let s = self.clipped_region.sample_uniform_inlined(u);
-            if s.pdf == 0.0 {
+            // The region's direction without its uniform pdf `1/Ω` (a division per sample
+            // that only the test for no sample used): `Ω ≥ MIN_NORMALISER` is that test
+            // (`Ω > 0` with `1/Ω` finite) without the division, also for a struct
+            // corrupted through C (`the_clipped_sample_skips_the_uniform_pdf`).
+            if !(self.clipped_region.solid_angle() >= MIN_NORMALISER) {
                 return Sample::NONE;
             }
-            // `s.dir` is unit (normalised by the sampler) and the pivot valid (prepared):
+            let Some(base) = self.clipped_region.sample_direction(u) else {
+                return Sample::NONE;
+            };
+            // `base` is unit (normalised by the sampler) and the pivot valid (prepared):
             // `transform` is `pivot_transform` without their checks, and its result is
             // unit again.
             let dir = if self.uses_sptd() {
-                transform(s.dir, self.pivot)
+                transform(base, self.pivot)
             } else {
-                s.dir
+                base
             };
             // (`clipped_pdf`, which `pdf` calls: the same bits by construction, also for a
             // struct corrupted through C whose sample is not unit.)

@@ -898,3 +898,70 @@ fn the_direct_uniform_path_gives_the_sptd_sample_s_bits() {
     }
     assert!(direct > 300 && other > 300, "{direct} {other}");
 }
+
+/// The clipped sampler takes its region's direction without the region's uniform pdf
+/// (`CapIntersection::sample_direction`): over sphere lights across the horizon as the
+/// light bench draws them (SPTD and uniform fallback) and random and extreme `u`, its
+/// samples are bit for bit the old path's (`sample_uniform` of the region, no sample where
+/// its pdf is 0, else the pivoted direction and `clipped_pdf`); a struct whose region's
+/// `Ω` is denormal (`1/Ω` overflows: only through C) or 0 gives no sample.
+#[test]
+fn the_clipped_sample_skips_the_uniform_pdf() {
+    let mut rng = Rng::new(3719);
+    let old_path = |sampler: &SphereLightSampler, u: [f32; 2]| {
+        let s = sampler.clipped_region.sample_uniform(u);
+        if s.pdf == 0.0 {
+            return Sample::NONE;
+        }
+        let dir = if sampler.uses_sptd() {
+            transform(s.dir, sampler.pivot)
+        } else {
+            s.dir
+        };
+        Sample::new_or_none(dir, sampler.clipped_pdf(dir))
+    };
+    let bits = |s: Sample| (s.dir.to_array().map(f32::to_bits), s.pdf.to_bits());
+    let (mut compared, mut fallbacks) = (0, 0);
+    while compared < 3000 {
+        let v = rng.unit_vector_f32();
+        let wo = Vec3::new(v.x, v.y, v.z.abs().max(0.05));
+        let roughness = rng.uniform_f32();
+        let distance = rng.log_uniform(0.0, 4f64.log10()) as f32;
+        let sin2 = 0.06 + 0.38 * rng.uniform_f32();
+        let c = rng.unit_vector_f32();
+        let center = Vec3::new(c.x, c.y, c.z.abs()) * distance;
+        let Some(mut sampler) =
+            SphereLightSampler::new(center, distance * sin2.sqrt(), wo, roughness)
+        else {
+            continue;
+        };
+        if !sampler.is_clipped() {
+            continue;
+        }
+        compared += 1;
+        fallbacks += !sampler.uses_sptd() as u32;
+        for k in 0..20 {
+            let u = match k {
+                0 => [0.0, 0.0],
+                1 => [crate::sample::ONE_MINUS_ULP, crate::sample::ONE_MINUS_ULP],
+                2 => [0.5, crate::sample::ONE_MINUS_ULP],
+                _ => [rng.uniform_f32(), rng.uniform_f32()],
+            };
+            assert_eq!(
+                bits(sampler.sample(u)),
+                bits(old_path(&sampler, u)),
+                "{u:?}"
+            );
+        }
+        if compared % 100 == 0 {
+            let edge = f32::from_bits(0x0020_0000);
+            for omega in [1e-40, edge, 0.0, -0.0, -1.0, f32::NAN, f32::NEG_INFINITY] {
+                sampler.clipped_region.solid_angle = omega;
+                for u in [[0.3, 0.7], [0.99, 0.01]] {
+                    assert_eq!(sampler.sample(u), Sample::NONE, "{omega:e}");
+                }
+            }
+        }
+    }
+    assert!(fallbacks > 0, "{fallbacks}");
+}
