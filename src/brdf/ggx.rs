@@ -175,7 +175,7 @@ impl GgxBrdf {
     #[inline(always)]
     fn r(&self, w: Vec3) -> f32 {
         let a2 = self.alpha * self.alpha;
-        libm::sqrtf(w.z * w.z + a2 * (w.x * w.x + w.y * w.y))
+        crate::math::sqrtf(w.z * w.z + a2 * (w.x * w.x + w.y * w.y))
     }
 
     /// `D(h)` of a unit `h` with `h.z > 0`.
@@ -214,7 +214,7 @@ impl GgxBrdf {
         let c = cos_theta.min(1.0);
         let a2 = self.alpha * self.alpha;
         let s2 = (1.0 - c) * (1.0 + c);
-        let r = libm::sqrtf(c * c + a2 * s2);
+        let r = crate::math::sqrtf(c * c + a2 * s2);
         let lambda = a2 * s2 / (2.0 * c * (r + c));
         if lambda.is_finite() { lambda } else { f32::MAX }
     }
@@ -255,7 +255,7 @@ impl GgxBrdf {
         let f = d / (2.0 * (wi.z * self.r(wo) + wo.z * self.r(wi)));
         // ωo·h = ωi·h = (1 + ωo·ωi) / |s| = |s| / 2 for unit directions, as
         // |s|² = 2 (1 + ωo·ωi): no normalisation of s, and exactly symmetric.
-        let cos_d = 0.5 * libm::sqrtf(length2);
+        let cos_d = 0.5 * crate::math::sqrtf(length2);
         f.is_finite().then_some((f, cos_d))
     }
 
@@ -346,12 +346,12 @@ impl GgxBrdf {
         //    [α², 1] for a unit `wo` (α >= MIN_ALPHA): plain normalisation neither
         //    underflows nor overflows.
         let stretched = Vec3::new(alpha * wo.x, alpha * wo.y, wo.z);
-        let v = stretched * (1.0 / libm::sqrtf(stretched.length_squared()));
+        let v = stretched * (1.0 / crate::math::sqrtf(stretched.length_squared()));
         // 2. c uniform in the spherical cap {c : c_z >= -v_z}: c_z = 1 - w with
         //    w = u1 (1 + v_z) uniform in [0, 1 + v_z], and sin²θ = (1 - c_z)(1 + c_z)
         //    = w (2 - w) without the cancellation of 1 - c_z² near the pole.
         let w = u1 * (1.0 + v.z);
-        let sin_theta = libm::sqrtf((w * (2.0 - w)).max(0.0));
+        let sin_theta = crate::math::sqrtf((w * (2.0 - w)).max(0.0));
         let (sin_phi, cos_phi) = sin_cos_of_turn(u0);
         // 3. The hemisphere's visible normal v + c (not normalised: step 4 normalises).
         let n = Vec3::new(

@@ -94,7 +94,7 @@ impl Lambert {
     #[inline]
     pub fn sample(&self, u: [f32; 2]) -> Sample {
         let (x, y, r) = concentric_disk(u);
-        let z = libm::sqrtf(((1.0 - r) * (1.0 + r)).max(0.0));
+        let z = crate::math::sqrtf(((1.0 - r) * (1.0 + r)).max(0.0));
         if !(z > 0.0) {
             return Sample::NONE;
         }

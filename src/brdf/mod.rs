@@ -50,8 +50,8 @@ pub(crate) fn table_coordinates(wo: Vec3, roughness: f32) -> Option<(f32, f32, f
     // t = √(1 − cos θ) from 1 − cos θ = sin²θ / (1 + cos θ), which keeps precision near
     // normal incidence.
     let sin2 = (wo.x * wo.x + wo.y * wo.y) / (length * length);
-    let y = libm::sqrtf(sin2 / (1.0 + cos_theta)).min(1.0) * last;
-    let rho = libm::sqrtf(wo.x * wo.x + wo.y * wo.y);
+    let y = crate::math::sqrtf(sin2 / (1.0 + cos_theta)).min(1.0) * last;
+    let rho = crate::math::sqrtf(wo.x * wo.x + wo.y * wo.y);
     let (cos_phi, sin_phi) = if rho > 0.0 {
         (wo.x / rho, wo.y / rho)
     } else {

@@ -46,10 +46,10 @@ pub fn sqrt4(v: Vec4) -> Vec4 {
     #[cfg(not(all(target_arch = "x86_64", target_feature = "sse2")))]
     {
         Vec4::new(
-            libm::sqrtf(v.x),
-            libm::sqrtf(v.y),
-            libm::sqrtf(v.z),
-            libm::sqrtf(v.w),
+            crate::math::sqrtf(v.x),
+            crate::math::sqrtf(v.y),
+            crate::math::sqrtf(v.z),
+            crate::math::sqrtf(v.w),
         )
     }
 }
@@ -263,7 +263,7 @@ mod tests {
             let v = Vec4::new(draw().abs(), draw().abs(), 0.0, draw().abs());
             let roots = sqrt4(v);
             for lane in 0..4 {
-                assert_eq!(roots[lane].to_bits(), libm::sqrtf(v[lane]).to_bits());
+                assert_eq!(roots[lane].to_bits(), crate::math::sqrtf(v[lane]).to_bits());
             }
         }
         for _ in 0..20_000 {

@@ -11,6 +11,7 @@ mod lanes;
 mod products;
 mod roots;
 mod sin_cos;
+mod sqrt;
 mod unit;
 
 pub(crate) use atan::atan_fast_nonneg4;
@@ -34,6 +35,7 @@ pub use products::{
 pub(crate) use roots::safeguarded_newton_step;
 pub use sin_cos::sin_cos_0_to_pi;
 pub(crate) use sin_cos::{sin_cos_of_quarter_turns, sin_cos_of_turn};
+pub use sqrt::sqrtf;
 pub(crate) use unit::{
     UNIT_TOLERANCE, is_unit, is_unit_output, normalize_scaled, unit, unit_if_needed,
     unit_if_needed_or_none,

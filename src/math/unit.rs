@@ -32,7 +32,7 @@ pub(crate) fn normalize_by_largest(v: Vec3) -> Option<Vec3> {
         return None;
     }
     let scaled = v / largest;
-    Some(scaled * (1.0 / libm::sqrtf(scaled.length_squared())))
+    Some(scaled * (1.0 / crate::math::sqrtf(scaled.length_squared())))
 }
 
 /// A direction argument as a unit vector: `v` itself when `|v|²` lies within

@@ -190,7 +190,7 @@ impl CentralSectors {
         let length2 = dot2(w, w);
         let norm = (length2 + uw * uw).max(f32::MIN_POSITIVE);
         let z2 = ((1.0 - xi1) * length2 + uw * uw) / norm;
-        (scale2(w, libm::sqrtf(xi1 / norm)), z2)
+        (scale2(w, crate::math::sqrtf(xi1 / norm)), z2)
     }
 }
 

@@ -68,7 +68,7 @@ pub(crate) fn unit_direction(v: Vec3) -> Vec2 {
         return [0.0, 0.0];
     }
     let (x, y) = (v.x / largest, v.y / largest);
-    let inverse_length = 1.0 / libm::sqrtf(x * x + y * y);
+    let inverse_length = 1.0 / crate::math::sqrtf(x * x + y * y);
     [x * inverse_length, y * inverse_length]
 }
 
@@ -184,7 +184,7 @@ pub(crate) fn solve_homogeneous_quadratic(xx: f32, xy_plus_yx: f32, yy: f32) -> 
     // error at most ε; the usual case for the iteration of supplement A.3 in about half
     // of its steps), the error-free form otherwise.
     let discriminant = difference_of_products_unless_cancelling(b, b, xx, yy).max(0.0);
-    let root = b.abs() + libm::sqrtf(discriminant);
+    let root = b.abs() + crate::math::sqrtf(discriminant);
     if b >= 0.0 { [root, -xx] } else { [yy, root] }
 }
 
@@ -222,7 +222,7 @@ pub(crate) fn ellipse_area(u: Vec2, det: f32, dot: f32, t0: f32, t1: f32) -> f32
     if is_degenerate(u) {
         return 0.0;
     }
-    let root_determinant = libm::sqrtf(1.0 + dot2(u, u));
+    let root_determinant = crate::math::sqrtf(1.0 + dot2(u, u));
     let x = (dot + t0 * t1) / root_determinant;
     atan2_upper_half_plane(det.max(0.0), x) * (0.5 / root_determinant)
 }
@@ -238,7 +238,7 @@ pub(crate) fn ellipse_area_fast(u: Vec2, det: f32, dot: f32, t0: f32, t1: f32) -
         return 0.0;
     }
     use crate::math::atan_fast_nonneg;
-    let root_determinant = libm::sqrtf(1.0 + dot2(u, u));
+    let root_determinant = crate::math::sqrtf(1.0 + dot2(u, u));
     let y = det.max(0.0);
     let x = (dot + t0 * t1) / root_determinant;
     let angle = if x > 0.0 {
@@ -365,7 +365,7 @@ mod tests {
     /// the plain one).
     #[test]
     fn the_discriminant_is_plain_only_where_the_products_cannot_cancel() {
-        let root = |b: f32, discriminant: f32| b.abs() + libm::sqrtf(discriminant.max(0.0));
+        let root = |b: f32, discriminant: f32| b.abs() + crate::math::sqrtf(discriminant.max(0.0));
         let mut rng = Rng::new(15);
         let (mut plain, mut careful) = (0, 0);
         for _ in 0..100_000 {

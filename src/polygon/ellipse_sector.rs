@@ -268,7 +268,7 @@ const GAUSS_LEGENDRE_4_WEIGHTS: [f32; 4] = [0.173_927_42, 0.326_072_58, 0.326_07
 /// `1 / √(|s|² + t²)` with `t = u · s`: the factor `λ` that puts `λ s` on the ellipse.
 #[inline(always)]
 fn ellipse_radius(length2: f32, t: f32) -> f32 {
-    1.0 / libm::sqrtf(length2 + t * t)
+    1.0 / crate::math::sqrtf(length2 + t * t)
 }
 
 /// [`EllipseSector::area_form`] of a sector with `s0 · s1 = cosine`, the dot products
@@ -436,7 +436,7 @@ impl EllipseSector {
         // an LTC's transformation; found by the adversarial C test) stays zero rather
         // than 0 / 0: such a sector has zero area and is never sampled.
         let unit = |v: Vec2| {
-            let scaled = scale2(v, 1.0 / libm::sqrtf(dot2(v, v)));
+            let scaled = scale2(v, 1.0 / crate::math::sqrtf(dot2(v, v)));
             if scaled[0].is_finite() && scaled[1].is_finite() {
                 scaled
             } else {
@@ -475,7 +475,7 @@ impl EllipseSector {
         let (inner_quarter_dots, outer_quarter_dots) =
             (quarter_dots(inner_dots), quarter_dots(outer_dots));
         let radii = |t: [f32; 5]| t.map(|t| ellipse_radius(1.0, t));
-        let (ki, ko) = (libm::sqrtf(1.0 + ui2), libm::sqrtf(1.0 + uo2));
+        let (ki, ko) = (crate::math::sqrtf(1.0 + ui2), crate::math::sqrtf(1.0 + uo2));
         let finite = |x: f32| if x.is_finite() { x } else { 0.0 };
         // |u_i|² - |u_o|² = -(u_o - σ u_i) · (u_o + σ u_i): the first factor is exact up to
         // one rounding per component, so the difference keeps its relative precision when
@@ -856,7 +856,7 @@ impl EllipseSector {
         if !(length2 > 0.0) {
             return 0.0;
         }
-        let scale = 1.0 / libm::sqrtf(length2);
+        let scale = 1.0 / crate::math::sqrtf(length2);
         let (det, dot, ti, to, difference) = (
             w.det.max(0.0) * scale,
             w.dot * scale,
@@ -924,7 +924,7 @@ impl EllipseSector {
         let length2 = dot2(w, w);
         let norm = (length2 + uw * uw).max(f32::MIN_POSITIVE);
         let z2 = ((1.0 - xi1) * length2 + uw * uw) / norm;
-        (scale2(w, libm::sqrtf(xi1 / norm)), z2)
+        (scale2(w, crate::math::sqrtf(xi1 / norm)), z2)
     }
 
     /// The shape of the region between the ellipses next to the end `s1` (or `s0`) of
@@ -1011,7 +1011,7 @@ impl EllipseSector {
         // h(x) = 3c x² + 2(1 - c) x³ - (2 + c) f, from the smaller of the roots of its two
         // terms alone (both above the root, so the steps decrease monotonically to it).
         let rhs = (2.0 + c) * f;
-        let mut x = libm::sqrtf(rhs / (3.0 * c))
+        let mut x = crate::math::sqrtf(rhs / (3.0 * c))
             .min(libm::cbrtf(rhs / (2.0 * (1.0 - c))))
             .min(1.0);
         for _ in 0..3 {
@@ -1121,7 +1121,7 @@ impl EllipseSector {
         let (ratio_o, ratio_i) = (lok / loh, lik / lih);
         let c1 = (lok * lok - lik * lik) - m * (ratio_o + ratio_i);
         let c2 = ratio_o * ratio_i * (quads[j] - m).max(0.0);
-        let root = libm::sqrtf(c1 * c1 + 4.0 * m * c2);
+        let root = crate::math::sqrtf(c1 * c1 + 4.0 * m * c2);
         let (mu, nu) = if c1 >= 0.0 {
             (c1 + root, 2.0 * m)
         } else {
@@ -1254,7 +1254,7 @@ impl EllipseSector {
         let c2 = half * (bi - bo) - residual * (bo * bi);
         let c1 = half * width - residual * (ao * bi + ai * bo);
         let minus_c0 = residual * (ao * ai);
-        let root = libm::sqrtf((c1 * c1 + 4.0 * minus_c0 * c2).max(0.0));
+        let root = crate::math::sqrtf((c1 * c1 + 4.0 * minus_c0 * c2).max(0.0));
         // The root `(-c1 + √Δ) / (2 c2)`, in the form without cancellation.
         let (numerator, denominator) = if c1 >= 0.0 {
             (2.0 * minus_c0, c1 + root)
@@ -1309,7 +1309,7 @@ pub(crate) fn point_between_ellipses(
     let (qi, qo) = (length2 + uiw * uiw, length2 + uow * uow);
     let radius2 = (1.0 - xi1) / qi + xi1 / qo;
     let z2 = (1.0 - xi1) * (uiw * uiw / qi) + xi1 * (uow * uow / qo);
-    let scale = libm::sqrtf(radius2);
+    let scale = crate::math::sqrtf(radius2);
     if scale.is_finite() && z2.is_finite() && length2 > 0.0 {
         Some((scale2(w, scale), z2))
     } else {

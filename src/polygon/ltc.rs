@@ -107,7 +107,7 @@ fn round_trip_tolerance(transformed: &[Vec3], projected_solid_angle: f32) -> f32
 fn perimeter_unit(t: Vec3) -> Vec3 {
     let length2 = t.length_squared();
     if length2 > 1e-30 && length2 < 1e30 {
-        t * (1.0 / libm::sqrtf(length2))
+        t * (1.0 / crate::math::sqrtf(length2))
     } else {
         crate::math::normalize_scaled(t)
     }

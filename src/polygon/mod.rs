@@ -148,8 +148,9 @@ pub(crate) fn ignore_short_edges_in_containment<const N: usize>(
             longest2 = sine2;
         }
     }
-    let reach = SHORT_EDGE_REACH
-        .min(SHORT_EDGE_ROUNDING_REACH + SHORT_EDGE_REACH_PER_LENGTH * libm::sqrtf(longest2));
+    let reach = SHORT_EDGE_REACH.min(
+        SHORT_EDGE_ROUNDING_REACH + SHORT_EDGE_REACH_PER_LENGTH * crate::math::sqrtf(longest2),
+    );
     for j in 0..count {
         let (a, b) = (
             positions[j],

@@ -1406,7 +1406,7 @@ impl ProjectedPolygon {
         let Some((point, z2)) = point_and_z2 else {
             return Sample::NONE;
         };
-        let dir = Vec3::new(point[0], point[1], libm::sqrtf(z2.max(0.0)));
+        let dir = Vec3::new(point[0], point[1], crate::math::sqrtf(z2.max(0.0)));
         // In a sector of nearly π (a large polygon seen nearly edge-on, crossing the
         // horizon), |w|² from the sector's coordinates cancels, and the point and its z
         // disagree: found by fuzzing, |dir| = 1.117. Renormalise such a direction (the

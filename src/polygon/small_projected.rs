@@ -209,7 +209,7 @@ impl SmallPolygonCosineSampler {
         let a = if m0 == m1 {
             xi
         } else {
-            let root = libm::sqrtf((1.0 - xi) * m0 * m0 + xi * m1 * m1);
+            let root = crate::math::sqrtf((1.0 - xi) * m0 * m0 + xi * m1 * m1);
             (xi * (m0 + m1) / (m0 + root)).clamp(0.0, 1.0)
         };
         let zf = (1.0 - a) * zb + a * zc;
@@ -258,7 +258,7 @@ impl SmallPolygonCosineSampler {
             0.0
         };
         let (za, zb, zc) = self.cosines(k);
-        let t = libm::sqrtf(u1);
+        let t = crate::math::sqrtf(u1);
         let cosine = (1.0 - t) * za + t * ((1.0 - a) * zb + a * zc);
         cosine * self.density
     }
@@ -306,11 +306,11 @@ fn invert_cubic_cdf(xi: f32, e: f32, f: f32) -> f32 {
     let d = f - e;
     let total = e * 0.5 + d * (1.0 / 3.0);
     if !(total > 0.0) {
-        return libm::sqrtf(xi);
+        return crate::math::sqrtf(xi);
     }
     let target = xi * total;
     let mut t = if e >= f * 0.25 {
-        libm::sqrtf(xi)
+        crate::math::sqrtf(xi)
     } else {
         libm::cbrtf(xi)
     };

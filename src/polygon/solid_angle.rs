@@ -170,7 +170,7 @@ struct Householder {
 impl Householder {
     fn new(apex: Vec3) -> Householder {
         let sigma = if apex.x > 0.0 { -1.0 } else { 1.0 };
-        let scale = 1.0 / libm::sqrtf(2.0 * (apex.x.abs() + 1.0));
+        let scale = 1.0 / crate::math::sqrtf(2.0 * (apex.x.abs() + 1.0));
         let h = Vec3::new(apex.x - sigma, apex.y, apex.z) * scale;
         Householder { h, sigma }
     }
@@ -1197,7 +1197,7 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         let one_plus_s = b + (1.0 - u1) * a;
         let s = 1.0 - u1 * a;
         let s_new = b - 1.0;
-        let t = libm::sqrtf(u1 * one_plus_s / b.max(f32::MIN_POSITIVE));
+        let t = crate::math::sqrtf(u1 * one_plus_s / b.max(f32::MIN_POSITIVE));
         Vec3::from(v1 * (s - t * s_new) + new_vertex * t)
     }
 

@@ -155,7 +155,7 @@ impl Asg {
     pub fn integral(&self) -> f32 {
         let product = self.eta_x * self.eta_y;
         let factor = if product > 1.0 {
-            1.0 / libm::sqrtf(product)
+            1.0 / crate::math::sqrtf(product)
         } else {
             1.0
         };
@@ -183,7 +183,7 @@ impl Asg {
         }
         let product = ex * ey;
         let factor = if product > 1.0 {
-            1.0 / libm::sqrtf(product)
+            1.0 / crate::math::sqrtf(product)
         } else {
             1.0
         };

@@ -214,7 +214,7 @@ impl Sg {
         let sum = self.axis + other.axis;
         let difference = self.axis - other.axis;
         let lm2 = (l1 - l2) * (l1 - l2) + l1 * l2 * sum.length_squared();
-        let lm = libm::sqrtf(lm2);
+        let lm = crate::math::sqrtf(lm2);
         // λm − λ1 − λ2 ≤ 0 without cancellation; the denominator is 0 only when both
         // sharpnesses are 0.
         let denominator = lm + l1 + l2;

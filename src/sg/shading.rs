@@ -228,7 +228,7 @@ pub fn beckmann_lobe_factor(normal: Vec3, view: Vec3, dir: Vec3, alpha: f32, f0:
 /// `Λ = (e^{−a²}/(a√π) − erfc(a))/2`. 0 along the normal (`a = ∞`), growing without
 /// bound towards the horizon (`a → 0`, where `G2 → 0`).
 pub fn beckmann_lambda(alpha: f32, cos: f32) -> f32 {
-    let sin = libm::sqrtf(((1.0 - cos) * (1.0 + cos)).max(0.0));
+    let sin = crate::math::sqrtf(((1.0 - cos) * (1.0 + cos)).max(0.0));
     let a = cos / (alpha * sin);
     let value =
         0.5 * (libm::expf(-a * a) * (0.5 * core::f32::consts::FRAC_2_SQRT_PI) / a - libm::erfcf(a));

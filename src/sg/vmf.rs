@@ -61,7 +61,7 @@ pub fn vmf_sample(sg: &Sg, u: [f32; 2]) -> Sample {
         (2.0 * u0, 2.0)
     };
     let t = t.max(0.0).min(2.0);
-    let sin_theta = libm::sqrtf((t * (2.0 - t)).max(0.0));
+    let sin_theta = crate::math::sqrtf((t * (2.0 - t)).max(0.0));
     let (sin_phi, cos_phi) = crate::math::sin_cos_of_turn(u1);
     let (tangent, bitangent) = orthonormal_basis(axis);
     let dir = axis * (1.0 - t) + (tangent * cos_phi + bitangent * sin_phi) * sin_theta;

@@ -73,7 +73,7 @@ pub struct Cap {
 fn outside_sphere_axis(c: Vec3) -> Vec3A {
     let c = Vec3A::from(c);
     let scaled = c / c.abs().max_element();
-    scaled * (1.0 / libm::sqrtf(scaled.length_squared()))
+    scaled * (1.0 / crate::math::sqrtf(scaled.length_squared()))
 }
 
 /// `2^k` for `k` in `[−126, 127]`.
@@ -111,7 +111,7 @@ pub(crate) fn sphere_distance_in_range(center: Vec3, radius: f32) -> Option<f32>
     if !sphere_in_range(center, radius) {
         return None;
     }
-    let d = libm::sqrtf(center.length_squared());
+    let d = crate::math::sqrtf(center.length_squared());
     if d > radius { Some(d) } else { None }
 }
 
@@ -241,13 +241,13 @@ impl Cap {
             // the rounded `r²/d²` is at most 0.75, so `d² ≥ 0.75⁻¹ r² (1 − 2⁻²²) > 1.3 r²`
             // and `d = √(d²)` rounds above `r` (the test `d > r` below, and its square
             // root, are needed only for wider caps).
-            sin2 / (1.0 + libm::sqrtf(1.0 - sin2))
+            sin2 / (1.0 + crate::math::sqrtf(1.0 - sin2))
         } else {
-            let d = libm::sqrtf(d2);
+            let d = crate::math::sqrtf(d2);
             if !(d > r) {
                 return None;
             }
-            let q = libm::sqrtf((d - r) * (d + r));
+            let q = crate::math::sqrtf((d - r) * (d + r));
             r * r / (d * (d + q))
         }
         .min(1.0);
@@ -410,7 +410,8 @@ impl Cap {
     /// `π − 2 asin(√(h/2))` for caps wider than a hemisphere.
     #[inline]
     pub fn half_angle(&self) -> f32 {
-        let half_chord = |x: f32| 2.0 * libm::asinf(libm::sqrtf((0.5 * x).max(0.0).min(1.0)));
+        let half_chord =
+            |x: f32| 2.0 * libm::asinf(crate::math::sqrtf((0.5 * x).max(0.0).min(1.0)));
         if self.one_minus_cos <= 1.0 {
             half_chord(self.one_minus_cos)
         } else {
@@ -601,7 +602,7 @@ pub(crate) fn sample_uniform_in_frame(
     } else {
         (2.0 - t, 1.0 - t)
     };
-    let sin = libm::sqrtf((t * one_plus).max(0.0));
+    let sin = crate::math::sqrtf((t * one_plus).max(0.0));
     let (sin_phi, cos_phi) = crate::math::sin_cos_of_turn(clamp_random(u[1]));
     let dir = tangent * (sin * cos_phi) + bitangent * (sin * sin_phi) + axis * cos;
     // `dir` is a unit vector to a few ulps when the axis is (the frame is orthonormal

@@ -63,7 +63,7 @@ use glam::Vec4;
 /// The half-angle `θ = 2 asin(√(t/2))` of `t = 1 − cos θ`.
 #[inline(always)]
 pub(crate) fn angle_of(t: f32) -> f32 {
-    2.0 * libm::asinf(libm::sqrtf((0.5 * t).max(0.0).min(1.0)))
+    2.0 * libm::asinf(crate::math::sqrtf((0.5 * t).max(0.0).min(1.0)))
 }
 
 /// `1 − a·b` of two unit axes, as `|a − b|²/2`, in `[0, 2]`.
@@ -134,8 +134,8 @@ fn at_most_hemispheres(a1: crate::Vec3, t1: f32, a2: crate::Vec3, t2: f32) -> f3
     }
     let td = one_minus_dot(a1, a2);
     // (Inlined: the half arc `φ₁` beside the area is left out by the compiler.)
-    lens_and_half_arc_of_sides(t1, t2, td, libm::sqrtf(2.0 * td), || {
-        libm::sqrtf((1.0 - 0.5 * td).max(0.0))
+    lens_and_half_arc_of_sides(t1, t2, td, crate::math::sqrtf(2.0 * td), || {
+        crate::math::sqrtf((1.0 - 0.5 * td).max(0.0))
     })[0]
 }
 
@@ -167,7 +167,7 @@ pub(crate) fn lens_and_half_arc_of_sides(
     // 4 instructions more per evaluation of the SPTD sphere light sampler's radial CDF,
     // measured, for roots that the Gram form does not need.)
     let (h1, h2) = (2.0 - t1, 2.0 - t2);
-    let (u, v) = (libm::sqrtf(t1 * h2), libm::sqrtf(t2 * h1));
+    let (u, v) = (crate::math::sqrtf(t1 * h2), crate::math::sqrtf(t2 * h1));
     let margin = 1e-5 * (u + v);
     if w >= u + v + margin {
         return [0.0, 0.0];
@@ -182,7 +182,7 @@ pub(crate) fn lens_and_half_arc_of_sides(
         if plain >= 0.5 * gram {
             return lens_area(t1, t2, td, n1, plain);
         }
-        let (p, q) = (libm::sqrtf(h1 * h2), libm::sqrtf(t1 * t2));
+        let (p, q) = (crate::math::sqrtf(h1 * h2), crate::math::sqrtf(t1 * t2));
         let y2 = heron_y2_from_roots([u, v, w], [cos_half_d(), p, q]);
         return lens_area(t1, t2, td, n1, y2);
     }
@@ -206,8 +206,8 @@ pub(crate) fn lens_and_half_arc_of_sides(
 #[cfg(test)]
 fn heron_y2([t1, t2, td]: [f32; 3], [u, v, w]: [f32; 3]) -> f32 {
     let (h1, h2) = (2.0 - t1, 2.0 - t2);
-    let cos_d = libm::sqrtf((1.0 - 0.5 * td).max(0.0));
-    let (p, q) = (libm::sqrtf(h1 * h2), libm::sqrtf(t1 * t2));
+    let cos_d = crate::math::sqrtf((1.0 - 0.5 * td).max(0.0));
+    let (p, q) = (crate::math::sqrtf(h1 * h2), crate::math::sqrtf(t1 * t2));
     heron_y2_from_roots([u, v, w], [cos_d, p, q])
 }
 
@@ -294,7 +294,7 @@ pub(crate) fn lens_and_half_arc(
         } else {
             2.0 * half_sine(theta1 + theta2 + d) * half_sine(theta1 + d - theta2)
         };
-        cancelling * (libm::sqrtf(gram) + n1.abs())
+        cancelling * (crate::math::sqrtf(gram) + n1.abs())
     };
     lens_area(t1, t2, td, n1, y2)
 }
@@ -329,7 +329,7 @@ fn lens_gram_fast(t1: f32, t2: f32, td: f32) -> (f32, f32, f32) {
 #[inline(always)]
 fn lens_area(t1: f32, t2: f32, td: f32, n1: f32, y2: f32) -> [f32; 2] {
     let n2 = t2 + td - t1 - t2 * td;
-    let y = libm::sqrtf(y2.max(0.0));
+    let y = crate::math::sqrtf(y2.max(0.0));
     // `Y >= 0`: one `atan` of a ratio per angle, without `atan2f`'s quadrant logic. The
     // three (two azimuths and the excess) are independent: gathered in one call of
     // `atan2_upper_half_plane4`, whose lanes give `atan2_upper_half_plane`'s bits (its
@@ -393,7 +393,7 @@ pub(crate) fn at_most_hemispheres_fast(t1: f32, t2: f32, td: f32) -> Option<f32>
     };
     let n2 = t2 + td - t1 - t2 * td;
     let y2 = y2.max(0.0);
-    let y = libm::sqrtf(y2);
+    let y = crate::math::sqrtf(y2);
     // The three arc tangents in one packed evaluation (the fourth lane is idle).
     let angles = atan2_upper_half_plane_fast4(y, y2, Vec4::new(n1, n2, 4.0 - td - t1 - t2, 1.0));
     let (phi1, phi2, excess) = (angles.x, angles.y, 2.0 * angles.z);

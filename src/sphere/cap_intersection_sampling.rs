@@ -132,7 +132,7 @@ impl CapIntersection {
         // tangent plane (as in `SptdInCap`, accurate when b is within ulps of a).
         let (t, bt) = orthonormal_basis(axis);
         let (x, y) = (other.axis.dot(t), other.axis.dot(bt));
-        let sin_d = libm::sqrtf(x * x + y * y);
+        let sin_d = crate::math::sqrtf(x * x + y * y);
         let e1 = if sin_d > 1e-18 {
             t * (x / sin_d) + bt * (y / sin_d)
         } else {
@@ -154,7 +154,7 @@ impl CapIntersection {
         // `d − θ_B` of the rounded angles had; the bound is only the Newton iteration's
         // bracket and start, the CDF is the lens formula's either way.
         let h_d = (0.5 * (other.axis + axis).length_squared()).min(2.0);
-        let half = |t: f32| libm::sqrtf(0.5 * t);
+        let half = |t: f32| crate::math::sqrtf(0.5 * t);
         let (sin_half_d, cos_half_d) = (half(t_d), half(h_d));
         let (sin_half_b, cos_half_b) = (half(other.one_minus_cos), half(other.one_plus_cos));
         let t_a = radial.one_minus_cos;
@@ -191,8 +191,8 @@ impl CapIntersection {
         let lens_partner = [
             partner_t,
             partner_t_d,
-            libm::sqrtf(2.0 * partner_t_d),
-            libm::sqrtf((1.0 - 0.5 * partner_t_d).max(0.0)),
+            crate::math::sqrtf(2.0 * partner_t_d),
+            crate::math::sqrtf((1.0 - 0.5 * partner_t_d).max(0.0)),
         ];
         *self = CapIntersection {
             radial,
@@ -326,7 +326,7 @@ impl CapIntersection {
         let t_b = self.other.one_minus_cos;
         let numerator = s + self.t_d - t_b - s * self.t_d;
         let denominator =
-            libm::sqrtf((s * (2.0 - s)).max(0.0) * (self.t_d * (2.0 - self.t_d)).max(0.0));
+            crate::math::sqrtf((s * (2.0 - s)).max(0.0) * (self.t_d * (2.0 - self.t_d)).max(0.0));
         if !(denominator > 0.0) {
             // Coaxial (or the pole of a): the whole circle or none of it.
             return if numerator <= 0.0 { PI } else { 0.0 };
@@ -452,7 +452,7 @@ impl CapIntersection {
     /// The direction at radial coordinate `s` and azimuth `psi` about `a` from `e1`.
     #[inline]
     fn direction(&self, s: f32, psi: f32) -> Vec3 {
-        let sin_theta = libm::sqrtf((s * (2.0 - s)).max(0.0));
+        let sin_theta = crate::math::sqrtf((s * (2.0 - s)).max(0.0));
         // `psi` lies in `[−φ, φ] ⊂ [−π, π]`: the sine is odd, the cosine even.
         let (sin_psi, cos_psi) = crate::math::sin_cos_0_to_pi(psi.abs());
         let sin_psi = sin_psi.copysign(psi);

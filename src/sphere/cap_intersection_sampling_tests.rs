@@ -204,7 +204,7 @@ fn invert_undoes_sample() {
             worst = worst.max((again.dir - s.dir).length());
         }
         // Angular radius of the intersection as the scale.
-        let scale = libm::sqrtf(lens.solid_angle() / PI).min(1.0);
+        let scale = crate::math::sqrtf(lens.solid_angle() / PI).min(1.0);
         assert!(worst <= 2e-4 * scale.max(1e-3) + 1e-6, "{name}: {worst}");
     }
 }

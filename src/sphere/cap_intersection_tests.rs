@@ -392,8 +392,8 @@ fn the_fast_upper_half_plane_atan2_matches_f64() {
         let r = rng.log_uniform(-3.0, 1.0);
         let (y, x) = ((angle.sin().max(0.0) * r) as f32, (angle.cos() * r) as f32);
         let y2 = y * y;
-        let got = atan2_upper_half_plane_fast(libm::sqrtf(y2), y2, x) as f64;
-        let exact = (libm::sqrtf(y2) as f64).atan2(x as f64);
+        let got = atan2_upper_half_plane_fast(crate::math::sqrtf(y2), y2, x) as f64;
+        let exact = (crate::math::sqrtf(y2) as f64).atan2(x as f64);
         let ulps = (got - exact).abs() / (f32::EPSILON as f64 * exact.max(f64::MIN_POSITIVE));
         worst = worst.max(if exact > 0.0 { ulps } else { 0.0 });
         assert!(
@@ -428,7 +428,7 @@ fn the_packed_atan2_gives_the_scalar_bits() {
         f32::INFINITY,
     ];
     let check = |y2: f32, xs: [f32; 4]| {
-        let y = libm::sqrtf(y2);
+        let y = crate::math::sqrtf(y2);
         let packed = atan2_upper_half_plane_fast4(y, y2, Vec4::from_array(xs));
         for (lane, x) in xs.into_iter().enumerate() {
             let scalar = atan2_upper_half_plane_fast(y, y2, x);
@@ -453,7 +453,7 @@ fn the_packed_atan2_gives_the_scalar_bits() {
         }
         check(y2, xs);
         // Nearly equal `Y` and `|x|`: the steep test's boundary.
-        let x = libm::sqrtf(y2) * (1.0 + (rng.uniform() as f32 - 0.5) * 1e-6);
+        let x = crate::math::sqrtf(y2) * (1.0 + (rng.uniform() as f32 - 0.5) * 1e-6);
         check(y2, [x, -x, x.next_up(), x.next_down()]);
     }
     for y2 in edges {
@@ -481,7 +481,11 @@ fn the_packed_heron_form_gives_the_scalar_bits() {
         let (t1, t2) = (t(), t());
         let td = (2.0 * rng.uniform()) as f32;
         let (uu, vv, ww) = (t1 * (2.0 - t2), t2 * (2.0 - t1), 2.0 * td);
-        let roots = [libm::sqrtf(uu), libm::sqrtf(vv), libm::sqrtf(ww)];
+        let roots = [
+            crate::math::sqrtf(uu),
+            crate::math::sqrtf(vv),
+            crate::math::sqrtf(ww),
+        ];
         assert_eq!(
             heron_y2_fast([t1, t2, td], [uu, vv, ww]).to_bits(),
             heron_y2([t1, t2, td], roots).to_bits(),
@@ -538,8 +542,8 @@ fn the_sides_form_of_the_lens_is_as_accurate() {
             continue;
         }
         let angles = lens_and_half_arc([t1, angle_of(t1)], [t2, angle_of(t2)], [td, angle_of(td)]);
-        let sides = lens_and_half_arc_of_sides(t1, t2, td, libm::sqrtf(2.0 * td), || {
-            libm::sqrtf((1.0 - 0.5 * td).max(0.0))
+        let sides = lens_and_half_arc_of_sides(t1, t2, td, crate::math::sqrtf(2.0 * td), || {
+            crate::math::sqrtf((1.0 - 0.5 * td).max(0.0))
         });
         if (sides[0].to_bits(), sides[1].to_bits()) == (angles[0].to_bits(), angles[1].to_bits()) {
             identical += 1;

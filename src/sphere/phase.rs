@@ -89,7 +89,7 @@ pub fn pivot_phase(mu: f32, g: f32) -> f32 {
 pub fn henyey_greenstein(mu: f32, g: f32) -> f32 {
     let g = clamp_g(g);
     let d = denominator(g, mu);
-    INV_4PI * one_minus_g2(g) / (d * libm::sqrtf(d))
+    INV_4PI * one_minus_g2(g) / (d * crate::math::sqrtf(d))
 }
 
 /// The pivot parameter that approximates Henyey–Greenstein with parameter `g`
@@ -130,7 +130,7 @@ pub fn pivot_mean_cosine(g: f32) -> f32 {
 fn uniform_sphere(u0: f32, u1: f32) -> Vec3 {
     let z = 1.0 - 2.0 * u0;
     // sin θ from (1 − z)(1 + z) = 4 u0 (1 − u0), exact near the poles.
-    let r = libm::sqrtf((4.0 * u0 * (1.0 - u0)).max(0.0));
+    let r = crate::math::sqrtf((4.0 * u0 * (1.0 - u0)).max(0.0));
     let phi = 2.0 * PI * u1;
     Vec3::new(r * libm::cosf(phi), r * libm::sinf(phi), z)
 }
@@ -195,7 +195,7 @@ pub fn sample_henyey_greenstein(wo: Vec3, g: f32, u: [f32; 2]) -> Sample {
         let s = one_minus_g2(g) / (1.0 - g + 2.0 * g * xi);
         ((1.0 + g * g - s * s) / (2.0 * g)).max(-1.0).min(1.0)
     };
-    let r = libm::sqrtf(((1.0 - mu) * (1.0 + mu)).max(0.0));
+    let r = crate::math::sqrtf(((1.0 - mu) * (1.0 + mu)).max(0.0));
     let phi = 2.0 * PI * u1;
     let local = Vec3::new(r * libm::cosf(phi), r * libm::sinf(phi), mu);
     Sample {

@@ -166,7 +166,7 @@ pub fn pivot_cap(cap: &Cap, pivot: Vec3) -> Cap {
         orthonormal_basis(cap.axis).0
     };
     let p = Vec2::new(along, across.min(MAX_PIVOT_LENGTH));
-    let sin = libm::sqrtf(cap.sin2.max(0.0).min(1.0));
+    let sin = crate::math::sqrtf(cap.sin2.max(0.0).min(1.0));
     let cos = cap.cos();
     // ω₁ below, ω₂ above the axis: ω₁ → ω_c → ω₂ is counterclockwise.
     let g1 = transform_2d(Vec2::new(cos, -sin), p);
@@ -293,7 +293,7 @@ fn pivot_cap_fast_with<const VALID: bool>(cap: &Cap, pivot: &Vec3) -> (Cap, Pivo
     if !(across2 > 1e-12) {
         return pivot_cap_careful(cap, pivot);
     }
-    let across = libm::sqrtf(across2);
+    let across = crate::math::sqrtf(across2);
     let tangent = perpendicular * (1.0 / across);
     let p = Vec2::new(along, across.min(MAX_PIVOT_LENGTH));
     let ([g1, g2, gc], sin2) = images_in_plane(cap, p, p.length_squared());
@@ -310,7 +310,7 @@ fn pivot_cap_fast_with<const VALID: bool>(cap: &Cap, pivot: &Vec3) -> (Cap, Pivo
     // 6e-8 / |perpendicular|, and `Cap` wants a unit axis to 1e-6).
     let mid_axis = cap.axis * mid.x + tangent * mid.y;
     let mid_axis = mid_axis * (1.0 / mid_axis.length());
-    let abs_cos = libm::sqrtf(1.0 - sin2);
+    let abs_cos = crate::math::sqrtf(1.0 - sin2);
     // 1 ∓ cos ψ' ≤ 1; the other side 2 − it is exact (Sterbenz), and sin²ψ' = t h as
     // `Cap::with_sides` stores it.
     let side = (sin2 / (1.0 + abs_cos)).min(1.0);
@@ -399,7 +399,7 @@ fn pivot_cap_careful(cap: &Cap, pivot: &Vec3) -> (Cap, PivotPath) {
 /// closed form without the points.)
 #[inline(always)]
 pub(crate) fn images_in_plane(cap: &Cap, p: Vec2, rho2: f32) -> ([Vec2; 3], f32) {
-    let sin = libm::sqrtf(cap.sin2.max(0.0).min(1.0));
+    let sin = crate::math::sqrtf(cap.sin2.max(0.0).min(1.0));
     let cos = cap.cos();
     let e1 = Vec2::new(cos, -sin) - p;
     let e2 = Vec2::new(cos, sin) - p;
@@ -409,7 +409,7 @@ pub(crate) fn images_in_plane(cap: &Cap, p: Vec2, rho2: f32) -> ([Vec2; 3], f32)
         e2.length_squared(),
         ec.length_squared(),
     );
-    let rho = libm::sqrtf(rho2);
+    let rho = crate::math::sqrtf(rho2);
     let k = (1.0 - rho) * (1.0 + rho);
     let g = |e: Vec2, l: f32| p - e * (k / l);
     let sin2 = (k * k * cap.sin2) / (l1 * l2);

@@ -95,7 +95,7 @@ pub(crate) fn pivoted_intersection_fast(light: &Cap, pivot: &Vec3, clip: &Cap) -
     if !(n2 >= FAST_MIN_NORMAL2) {
         return None;
     }
-    let n = libm::sqrtf(n2);
+    let n = crate::math::sqrtf(n2);
     // `1/(|n|(|n| + |c'|))` once: the side and, times `|n| + |c'|`, `1/|n|`.
     let abs_offset = offset.abs();
     let sum = n + abs_offset;

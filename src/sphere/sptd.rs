@@ -120,10 +120,10 @@ fn jacobian(dir: Vec3, pivot: Vec3) -> f32 {
 #[inline(always)]
 fn sample_cosine(axis: Vec3, u: [f32; 2]) -> Vec3 {
     let r2 = clamp_random(u[0]);
-    let r = libm::sqrtf(r2);
+    let r = crate::math::sqrtf(r2);
     let (sin_phi, cos_phi) = crate::math::sin_cos_of_turn(clamp_random(u[1]));
     let (t, b) = orthonormal_basis(axis);
-    (t * (r * cos_phi) + b * (r * sin_phi) + axis * libm::sqrtf((1.0 - r2).max(0.0)))
+    (t * (r * cos_phi) + b * (r * sin_phi) + axis * crate::math::sqrtf((1.0 - r2).max(0.0)))
         .normalize_or(axis)
 }
 
@@ -311,7 +311,7 @@ pub fn clamped_cosine_over_cap(cap: &Cap, a: Vec3) -> f32 {
     }
     let cos_beta = cap.axis.dot(a).max(-1.0).min(1.0);
     let cos = cap.cos();
-    let s = libm::sqrtf((cap.sin2 - cos_beta * cos_beta).max(0.0));
+    let s = crate::math::sqrtf((cap.sin2 - cos_beta * cos_beta).max(0.0));
     let phi0 = libm::atan2f(s, cos * cos_beta);
     let psi0 = libm::atan2f(s, cos);
     let e = cap.sin2 * cos_beta * (PI - phi0) - s * cos + psi0;
@@ -328,7 +328,7 @@ pub fn clamped_cosine_over_cap(cap: &Cap, a: Vec3) -> f32 {
 fn segment(w: f32) -> f32 {
     let w = w.max(0.0).min(2.0);
     let small = w.min(2.0 - w);
-    let gamma = 4.0 * libm::atan2f(libm::sqrtf(small), libm::sqrtf(2.0 - small));
+    let gamma = 4.0 * libm::atan2f(crate::math::sqrtf(small), crate::math::sqrtf(2.0 - small));
     let g2 = gamma * gamma;
     let half = if gamma < 1.2 {
         // γ − sin γ = γ³/3! − γ⁵/5! + … in Horner form; the first term left out is
@@ -393,7 +393,7 @@ fn arc_inside(ci: &Cap, t: Vec3, b: Vec3, sin_i: f32, cj: &Cap) -> Option<Arc> {
     let k = crossing_k(ci, cj, t_d);
     let x = sin_i * t.dot(cj.axis);
     let y = sin_i * b.dot(cj.axis);
-    let a = libm::sqrtf(x * x + y * y);
+    let a = crate::math::sqrtf(x * x + y * y);
     if k <= -a {
         return Some(Arc::FULL);
     }
@@ -412,7 +412,7 @@ fn arc_inside(ci: &Cap, t: Vec3, b: Vec3, sin_i: f32, cj: &Cap) -> Option<Arc> {
         (a - k) * (a + k)
     };
     let psi = libm::atan2f(y, x);
-    let half = libm::atan2f(libm::sqrtf(y2.max(0.0)), k);
+    let half = libm::atan2f(crate::math::sqrtf(y2.max(0.0)), k);
     let mut start = psi - half;
     if start < 0.0 {
         start += TAU;
@@ -497,7 +497,7 @@ pub fn clamped_cosine_over_caps(a_cap: &Cap, b_cap: &Cap, a: Vec3) -> f32 {
             continue; // the whole sphere has no boundary
         }
         let (t, b) = orthonormal_basis(ci.axis);
-        let sin_i = libm::sqrtf(ci.sin2.max(0.0));
+        let sin_i = crate::math::sqrtf(ci.sin2.max(0.0));
         let cos_i = ci.cos();
         // The arcs of circle i inside every other cap: at most two after the first
         // intersection of two arcs, and the intersection of two arcs has at most two
@@ -729,7 +729,7 @@ impl SptdInCap {
         if sptd.base == SptdBase::ClampedCosine {
             let a = sptd.cosine_axis;
             let cos_beta = image.axis.dot(a);
-            let sin_theta = libm::sqrtf(image.sin2.max(0.0));
+            let sin_theta = crate::math::sqrtf(image.sin2.max(0.0));
             // The tangential part of the image's axis in a basis (t, b) of the plane ⊥ a:
             // `c − a (c·a)` is rounding noise, not perpendicular to `a`, when `c` is
             // within ~1e-5 rad of `a` (issue 17, 3: normalised into `e1`, it tilted the
@@ -740,7 +740,7 @@ impl SptdInCap {
             // centred within ulps of `a`, so its orientation does not matter.
             let (t, b) = orthonormal_basis(a);
             let (x, y) = (image.axis.dot(t), image.axis.dot(b));
-            let sin_beta = libm::sqrtf(x * x + y * y);
+            let sin_beta = crate::math::sqrtf(x * x + y * y);
             // (Below 1e-18 the squares can be denormal and `sin β` inaccurate.)
             prepared.e1 = if sin_beta > 1e-18 {
                 t * (x / sin_beta) + b * (y / sin_beta)
@@ -843,9 +843,10 @@ impl SptdInCap {
     /// inner)`.
     #[inline]
     fn clipped_strip(&self, h: f32) -> (f32, f32) {
-        let circle = libm::sqrtf((h * (2.0 - h)).max(0.0));
+        let circle = crate::math::sqrtf((h * (2.0 - h)).max(0.0));
         let eta = self.ellipse_depth(h);
-        let ellipse = (self.ellipse.z * libm::sqrtf((eta * (2.0 - eta)).max(0.0))).min(circle);
+        let ellipse =
+            (self.ellipse.z * crate::math::sqrtf((eta * (2.0 - eta)).max(0.0))).min(circle);
         if self.ellipse.y >= 0.0 {
             (
                 0.0,
@@ -919,7 +920,7 @@ impl SptdInCap {
         let v = 2.0 * clamp_random(u[1]) - 1.0;
         let y = libm::copysignf(inner + (outer - inner) * v.abs(), v);
         // `1 − x² − y² = h (2 − h) − y²`: no cancellation of `x² ≈ 1` near the rim.
-        let z = libm::sqrtf((h * (2.0 - h) - y * y).max(0.0));
+        let z = crate::math::sqrtf((h * (2.0 - h) - y * y).max(0.0));
         (self.e1 * (1.0 - h) + e2 * y + a * z).normalize_or(a)
     }
 
@@ -965,11 +966,11 @@ impl SptdInCap {
             SptdBase::ClampedCosine => {
                 let a = self.sptd.cosine_axis;
                 let e2 = a.cross(self.e1);
-                let r = libm::sqrtf(clamp_random(u[0]));
+                let r = crate::math::sqrtf(clamp_random(u[0]));
                 let (sin_phi, cos_phi) = crate::math::sin_cos_of_turn(clamp_random(u[1]));
                 let p = self.e1 * (self.ellipse.x + self.ellipse.y * r * cos_phi)
                     + e2 * (self.ellipse.z * r * sin_phi);
-                (p + a * libm::sqrtf((1.0 - p.length_squared()).max(0.0))).normalize_or(a)
+                (p + a * crate::math::sqrtf((1.0 - p.length_squared()).max(0.0))).normalize_or(a)
             }
         };
         let dir = transform(base, self.sptd.pivot);

@@ -55,7 +55,7 @@ fn acos_clamped(x: f32) -> f32 {
 /// `√max(0, x)`.
 #[inline]
 fn sqrt_clamped(x: f32) -> f32 {
-    libm::sqrtf(x.max(0.0))
+    crate::math::sqrtf(x.max(0.0))
 }
 
 /// What Arvo's algorithm needs of one spherical triangle.

@@ -149,14 +149,14 @@ impl ArvoProjectedPolygon {
         let (point, z2) = if central {
             let q = 1.0 + o * o;
             let z2 = ((1.0 - u1) + o * o) / q;
-            (scale2(e, libm::sqrtf(u1 / q)), z2)
+            (scale2(e, crate::math::sqrtf(u1 / q)), z2)
         } else {
             let Some(point_and_z2) = point_between_ellipses(e, u1, dot2(e, e), i, o) else {
                 return Sample::NONE;
             };
             point_and_z2
         };
-        let dir = Vec3::new(point[0], point[1], libm::sqrtf(z2.max(0.0)));
+        let dir = Vec3::new(point[0], point[1], crate::math::sqrtf(z2.max(0.0)));
         if !dir.is_finite() {
             return Sample::NONE;
         }

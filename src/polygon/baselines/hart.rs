@@ -129,7 +129,7 @@ fn upper_direction(dir: Vec3) -> Option<Vec3> {
 /// when `a = b = 0`.
 #[inline(always)]
 pub(crate) fn sample_linear(xi: f32, a: f32, b: f32) -> f32 {
-    let denominator = a + libm::sqrtf((1.0 - xi) * a * a + xi * b * b);
+    let denominator = a + crate::math::sqrtf((1.0 - xi) * a * a + xi * b * b);
     if denominator > 0.0 {
         (xi * (a + b) / denominator).min(1.0)
     } else {

@@ -89,7 +89,7 @@ impl From<Xyz> for Vec3 {
 fn to_unit(point: Vec3) -> Vec3 {
     let distance_squared = point.length_squared();
     if distance_squared > 1e-30 && distance_squared < 1e30 {
-        point * (1.0 / libm::sqrtf(distance_squared))
+        point * (1.0 / crate::math::sqrtf(distance_squared))
     } else {
         normalize_scaled_cold(point.x, point.y, point.z).into()
     }
@@ -321,7 +321,7 @@ impl TurkPolygon {
         let a = clamp_unit((target - low) / (high - low));
         // Turk's mapping: P = (1 - √a) A + √a (1 - b) B + √a b C.
         let (p0, p1, p2) = (self.vertices[0], self.vertices[i + 1], self.vertices[i + 2]);
-        let s = libm::sqrtf(a);
+        let s = crate::math::sqrtf(a);
         (p0 + s * ((p1 - p0) + u1 * (p2 - p1)), i)
     }
 
@@ -379,7 +379,7 @@ impl TurkPolygon {
         if !(distance_squared > 1e-30 && distance_squared < 1e30) {
             return None;
         }
-        let dir = point * (1.0 / libm::sqrtf(distance_squared));
+        let dir = point * (1.0 / crate::math::sqrtf(distance_squared));
         let pdf = self.density(self.facing_normal.dot(dir));
         is_density(pdf).then_some(Sample { dir, pdf })
     }
@@ -523,7 +523,7 @@ impl TurkPolygon {
         let cosine = if unit {
             self.facing_normal.dot(dir)
         } else {
-            self.facing_normal.dot(scaled) / libm::sqrtf(scaled.length_squared())
+            self.facing_normal.dot(scaled) / crate::math::sqrtf(scaled.length_squared())
         };
         let pdf = self.density(cosine);
         if is_density(pdf) { pdf } else { 0.0 }
