@@ -509,6 +509,8 @@ fn central_unclipped_sectors(
             edge_normals.store4(first, normal, keep);
         }
         let normal = [nx, ny, nz];
+        // The same call in both branches on purpose: in the first, `keep` is a constant
+        // (all true) and the masks fold away, for every group but a partial last one.
         if lanes == LANES {
             let keep = glam::BVec4A::splat(true);
             store_group(

@@ -523,33 +523,7 @@ fn the_radial_range_matches_f64() {
 #[test]
 fn the_nested_part_inverts_in_closed_form() {
     let mut rng = Rng::new(1918);
-    let mut cases = Vec::new();
-    let horizon = cap(Vec3::Z, 1.0);
-    while cases.len() < 3000 {
-        let distance = rng.log_uniform(0.0, 4f64.log10()) as f32;
-        let sin2 = 0.06 + 0.38 * rng.uniform_f32();
-        let center = loop {
-            let v = rng.unit_vector_f32();
-            if v.z >= 0.0 {
-                break v;
-            }
-        };
-        let light = Cap::from_sphere(center * distance, distance * sin2.sqrt());
-        if light.axis.z * light.axis.z >= light.sin2 {
-            continue; // above the horizon: not clipped
-        }
-        let cos_o = 0.1 + 0.9 * rng.uniform_f32();
-        let phi = core::f32::consts::TAU * rng.uniform_f32();
-        let sin_o = (1.0 - cos_o * cos_o).sqrt();
-        let wo = Vec3::new(sin_o * phi.cos(), sin_o * phi.sin(), cos_o);
-        let roughness = 0.1 + 0.8 * rng.uniform_f32();
-        let pivot = crate::sphere::GgxPivot::from_view(wo, roughness)
-            .unwrap()
-            .pivot;
-        let (image, _) = crate::sphere::pivot::pivot_cap_fast(&light, pivot);
-        let (clip, _) = crate::sphere::pivot::pivot_cap_fast(&horizon, pivot);
-        cases.push((image, clip));
-    }
+    let mut cases = bench_like_pivoted_pairs(&mut rng, 3000);
     let bench_cases = cases.len();
     for _ in 0..3000 {
         cases.push((
