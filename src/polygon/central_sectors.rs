@@ -75,8 +75,9 @@ pub(crate) struct CentralLanes {
 pub(crate) fn lanes_kept(first: usize, count: usize) -> BVec4A {
     // Compares the lane indices with count - first (both small integers, exact in f32;
     // converted through `i32`, one signed conversion, where a `usize` takes a branch for
-    // the sign bit).
-    let remaining = (count - first) as i32 as f32;
+    // the sign bit). Saturating: a group past the polygon keeps no lane (and a debug
+    // build does not panic on the subtraction).
+    let remaining = count.saturating_sub(first) as i32 as f32;
     Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(Vec4::splat(remaining))
 }
 
