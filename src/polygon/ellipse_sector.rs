@@ -183,6 +183,43 @@ struct SectorLanes {
     inverse_root_det_difference: Vec4,
 }
 
+/// The terms of the difference form of [`EllipseSector::area_between`], one body for its
+/// scalar form and for [`areas_between4`]'s lanes (the same operations in the same order,
+/// so both give the same bits): from the inner and outer dots at `s0` (`t_i0`, `t_o0`)
+/// and at `w` (`t_i`, `t_o`), `dot = s0 · w`, `d = d_l` at `w`, `det = det(s0, w)`,
+/// `k_i`, `k_o`, `σ` and `k_o − k_i`: `x_i`, `x_o`, and `Re`, `Im` of `z_o z̄_i`.
+struct DifferenceTerms<T> {
+    xi: T,
+    xo: T,
+    re: T,
+    im: T,
+}
+
+impl<T> DifferenceTerms<T>
+where
+    T: Copy + core::ops::Add<Output = T> + core::ops::Sub<Output = T>,
+    T: core::ops::Mul<Output = T> + core::ops::Neg<Output = T>,
+{
+    #[inline(always)]
+    fn new(
+        [ti0, to0]: [T; 2],
+        [ti, to]: [T; 2],
+        [dot, difference, det]: [T; 3],
+        [ki, ko]: [T; 2],
+        sigma: T,
+        root_det_difference: T,
+    ) -> Self {
+        let d0 = to0 - sigma * ti0;
+        let xi = dot + ti0 * ti;
+        let xo = dot + to0 * to;
+        let products_difference = -sigma * (ti0 * difference + d0 * ti) - d0 * difference;
+        let cross = root_det_difference * xi + ki * products_difference;
+        let re = xo * xi + ko * ki * det * det;
+        let im = det * cross;
+        Self { xi, xo, re, im }
+    }
+}
+
 /// [`EllipseSector::area`] of four decentral sectors, each lane rounded as the scalar
 /// form, except lanes of the quadrature form (`direct` false and `quadrature` true, left
 /// to the caller): [`area_between`](EllipseSector::area_between) at `s1`, whose
@@ -214,13 +251,14 @@ fn areas_between4(
     let difference = alpha * (to0 - sigma * ti0) + beta * (to1 - sigma * ti1);
     // `area_between`.
     let det = max4(w_det, Vec4::ZERO);
-    let d0 = to0 - sigma * ti0;
-    let xi = dot + ti0 * ti;
-    let xo = dot + to0 * to;
-    let products_difference = -sigma * (ti0 * difference + d0 * ti) - d0 * difference;
-    let cross = v.root_det_difference * xi + ki * products_difference;
-    let re = xo * xi + ko * ki * det * det;
-    let im = det * cross;
+    let DifferenceTerms { xi, xo, re, im } = DifferenceTerms::new(
+        [ti0, to0],
+        [ti, to],
+        [dot, difference, det],
+        [ki, ko],
+        sigma,
+        v.root_det_difference,
+    );
     let first = atan2_positive4(
         Vec4::select(direct, ko * det, im.abs()),
         Vec4::select(direct, xo, re),
@@ -820,13 +858,14 @@ impl EllipseSector {
         let (ki, ko) = (self.inner_root_det, self.outer_root_det);
         let sigma = self.coincidence_sign;
         let (ti0, to0) = (self.inner_dots()[0], self.outer_dots()[0]);
-        let d0 = to0 - sigma * ti0;
-        let xi = dot + ti0 * ti;
-        let xo = dot + to0 * to;
-        let products_difference = -sigma * (ti0 * difference + d0 * ti) - d0 * difference;
-        let cross = self.root_det_difference * xi + ki * products_difference;
-        let re = xo * xi + ko * ki * det * det;
-        let im = det * cross;
+        let DifferenceTerms { xi, re, im, .. } = DifferenceTerms::new(
+            [ti0, to0],
+            [ti, to],
+            [dot, difference, det],
+            [ki, ko],
+            sigma,
+            self.root_det_difference,
+        );
         let angle_difference = atan2_signed(im, re, precision);
         let theta_i = atan2_positive(ki * det, xi, precision);
         0.5 * (angle_difference / ko + theta_i * self.inverse_root_det_difference)
