@@ -985,6 +985,7 @@ static void sptd_suite(void) {
   EXPECT(is_no_sample(sphera_sptd_in_cap_sample(NULL, 0.5f, 0.5f)));
   EXPECT(!sphera_ggx_pivot_from_view(NULL, directions[1], 0.5f));
   EXPECT(!sphera_sphere_light_shading_prepare(NULL, directions[1], 0.5f, vec3(1, 1, 1)));
+  EXPECT(!sphera_sphere_light_shading_prepare_occluded(NULL, directions[1], 0.5f, vec3(1, 1, 1), hard_caps[7]));
   EXPECT(vec3_equal(sphera_sphere_light_shading_eval(NULL, hard_caps[3]), vec3(0, 0, 0)));
   EXPECT(vec3_equal(sphera_sphere_light_shading_eval_occluded(NULL, hard_caps[3], hard_caps[7]),
                     vec3(0, 0, 0)));
@@ -1093,6 +1094,20 @@ static void sptd_suite(void) {
           EXPECT(finite3(v) && v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f && v.x <= 1.00001f &&
                  v.y <= 1.00001f && v.z <= 1.00001f);
           if (!ok) EXPECT(vec3_equal(v, vec3(0, 0, 0)));
+        }
+      }
+      for (c2 = 0; c2 < hard_cap_count; c2 += 2) {
+        SpheraSphereLightShading occluded;
+        bool ok_occluded;
+        memset(&occluded, 0xff, sizeof occluded);
+        ok_occluded = sphera_sphere_light_shading_prepare_occluded(&occluded, wo, x, f0, hard_caps[c2]);
+        calls++;
+        expect_words_finite(&occluded, sizeof occluded);
+        EXPECT(ok_occluded == ok);
+        for (c = 0; c < hard_cap_count; c++) {
+          SpheraVec3 v = sphera_sphere_light_shading_eval(&occluded, hard_caps[c]);
+          calls++;
+          EXPECT(vec3_equal(v, sphera_sphere_light_shading_eval_occluded(&shading, hard_caps[c], hard_caps[c2])));
         }
       }
 

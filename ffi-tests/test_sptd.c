@@ -190,6 +190,22 @@ static void check_sphere_light(void) {
         1e-6f * value.x);
   CHECK(sphera_sphere_light_shading_eval_occluded_separable(&shading, light, away).x >= 0.0f);
   CHECK(sphera_sphere_light_shading_eval_occluded_separable(&shading, light, away).x <= value.x);
+  /* The bent cone prepared in: _eval gives _eval_occluded with that cone, bit for bit. */
+  {
+    SpheraSphereLightShading occluded;
+    SpheraCap cones[3];
+    int c;
+    cones[0] = horizon;
+    cones[1] = away;
+    cones[2] = sphera_cap_from_axis_cos(vec3(-0.3f, 0.1f, 1.0f), 0.6f);
+    for (c = 0; c < 3; c++) {
+      CHECK(sphera_sphere_light_shading_prepare_occluded(&occluded, wo, 0.3f, vec3(1.0f, 1.0f, 1.0f), cones[c]));
+      CHECK(vec3_equal(sphera_sphere_light_shading_eval(&occluded, light),
+                       sphera_sphere_light_shading_eval_occluded(&shading, light, cones[c])));
+    }
+    CHECK(sphera_sphere_light_shading_eval(&occluded, light).x > 0.0f);
+    CHECK(sphera_sphere_light_shading_eval(&occluded, light).x <= value.x);
+  }
 
   CHECK(sphera_sphere_light_sampler_prepare(&sampler, mirror, 0.5f, wo, 0.3f));
   CHECK(sphera_sphere_light_sampler_uses_sptd(&sampler));
@@ -240,6 +256,7 @@ static void check_bad_input(void) {
   CHECK(sphera_sptd_in_cap_integral(NULL) == 0.0f);
   CHECK(!sphera_ggx_pivot_from_view(NULL, vec3(0, 0, 1), 0.5f));
   CHECK(!sphera_sphere_light_shading_prepare(NULL, vec3(0, 0, 1), 0.5f, vec3(1, 1, 1)));
+  CHECK(!sphera_sphere_light_shading_prepare_occluded(NULL, vec3(0, 0, 1), 0.5f, vec3(1, 1, 1), cap));
   CHECK(vec3_equal(sphera_sphere_light_shading_eval(NULL, cap), vec3(0, 0, 0)));
   CHECK(vec3_equal(sphera_sphere_light_shading_eval_occluded(NULL, cap, cap), vec3(0, 0, 0)));
   CHECK(vec3_equal(sphera_sphere_light_shading_eval_occluded_separable(NULL, cap, cap), vec3(0, 0, 0)));
@@ -255,6 +272,9 @@ static void check_bad_input(void) {
   CHECK(!sphera_sphere_light_sampler_prepare(&sampler, vec3(0, 0, 3), 1.0f, vec3(0, 0, -1), 0.5f));
   CHECK(sphera_sphere_light_sampler_sample(&sampler, 0.5f, 0.5f).pdf == 0.0f);
   CHECK(!sphera_sphere_light_shading_prepare(&shading, vec3(1, 0, 0), 0.5f, vec3(1, 1, 1)));
+  CHECK(vec3_equal(sphera_sphere_light_shading_eval(&shading, cap), vec3(0, 0, 0)));
+  CHECK(sphera_sphere_light_shading_prepare(&shading, vec3(0, 0, 1), 0.5f, vec3(1, 1, 1)));
+  CHECK(!sphera_sphere_light_shading_prepare_occluded(&shading, vec3(1, 0, 0), 0.5f, vec3(1, 1, 1), cap));
   CHECK(vec3_equal(sphera_sphere_light_shading_eval(&shading, cap), vec3(0, 0, 0)));
   CHECK(!sphera_ggx_pivot_from_view(&fit, vec3(0, 0, -1), 0.5f));
   for (i = 0; i < n; i++) {
@@ -283,6 +303,9 @@ static void check_bad_input(void) {
       CHECK(vec3_is_finite(sphera_sphere_light_shading_eval(&shading, garbage)));
       CHECK(vec3_is_finite(sphera_sphere_light_shading_eval_occluded(&shading, cap, garbage)));
       CHECK(vec3_is_finite(sphera_sphere_light_shading_eval_occluded_separable(&shading, garbage, garbage)));
+      sphera_sphere_light_shading_prepare_occluded(&shading, v, bad[k], v, garbage);
+      CHECK(vec3_is_finite(sphera_sphere_light_shading_eval(&shading, garbage)));
+      CHECK(vec3_is_finite(sphera_sphere_light_shading_eval(&shading, cap)));
       sphera_sphere_light_sampler_prepare(&sampler, v, bad[k], v, bad[i]);
       s = sphera_sphere_light_sampler_sample(&sampler, bad[i], bad[k]);
       CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf));

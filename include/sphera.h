@@ -1026,15 +1026,32 @@ bool sphera_ggx_pivot_from_view(struct SpheraGgxPivot *out, struct SpheraVec3 wo
 bool sphera_sphere_light_shading_prepare(struct SpheraSphereLightShading *out, struct SpheraVec3 wo,
                                          float roughness, struct SpheraVec3 f0);
 
+/* `sphera_sphere_light_shading_prepare` with specular occlusion by the bent cone `visibility`
+ * (Eq. 23, BIASED) prepared in: `_eval` of this shading then returns, for every light, what
+ * `_eval_occluded` returns with this bent cone, bit for bit, at the cost of `_eval` (the bent
+ * cone is pivoted once here instead of once per light). A bent cone belongs to a shading point:
+ * prepare once per shading point, then call `_eval` per light. An empty `visibility` (or one
+ * that is not finite) shades every light to zero. Returns `false` (writing a shading that
+ * returns zero) as `_prepare`; does nothing for a null `out`. `_eval_occluded` and
+ * `_eval_occluded_separable` of such a shading take their own bent cone and ignore the prepared
+ * one. */
+bool sphera_sphere_light_shading_prepare_occluded(struct SpheraSphereLightShading *out,
+                                                  struct SpheraVec3 wo, float roughness,
+                                                  struct SpheraVec3 f0,
+                                                  struct SpheraCap visibility);
+
 /* `∫_{C ∩ H} f cos θ dω ≈ albedo_F Ω(g(C) ∩ g(H))/4π` per unit radiance (Eq. 19, BIASED), RGB,
- * for the cap `light` of a sphere light; multiply by its radiance. Zero for a null pointer or an
+ * for the cap `light` of a sphere light; multiply by its radiance (with a shading from
+ * `_prepare_occluded`: `albedo_F Ω(g(C) ∩ g(V))/4π`, Eq. 23). Zero for a null pointer or an
  * empty cap. */
 struct SpheraVec3 sphera_sphere_light_shading_eval(const struct SpheraSphereLightShading *shading,
                                                    struct SpheraCap light);
 
 /* Specular occlusion with a bent cone `visibility` (Eq. 23, BIASED):
  * `albedo_F Ω(g(C) ∩ g(V))/4π`; the bent cone replaces the upper hemisphere (pass the hemisphere
- * `(0, 0, 1)`, `cos θ = 0`, for an unoccluded point). Zero for a null pointer. */
+ * `(0, 0, 1)`, `cos θ = 0`, for an unoccluded point). Zero for a null pointer. It pivots the
+ * bent cone at every call: for a bent cone of the shading point, `_prepare_occluded` once and
+ * `_eval` per light cost less. */
 struct SpheraVec3 sphera_sphere_light_shading_eval_occluded(const struct SpheraSphereLightShading *shading,
                                                             struct SpheraCap light,
                                                             struct SpheraCap visibility);

@@ -416,6 +416,12 @@ static SpheraCap g_bent_cone; /* the bent cone of the occluded shading rows */
 #define RT_SHADE_SAMPLE(p, u0, u1) ((void)(u0), (void)(u1), from_rgb(sphera_sphere_light_shading_eval(&(p)->shading, (p)->light)))
 #define RT_SHADE_BENT_SAMPLE(p, u0, u1) \
   ((void)(u0), (void)(u1), from_rgb(sphera_sphere_light_shading_eval_occluded(&(p)->shading, (p)->light, g_bent_cone)))
+/* The bent cone prepared in (once per shading point), then _eval per light: the same
+ * values as rt_shade_bent, bit for bit. */
+#define RT_SHADE_OCCLUDED_PREPARE(out, in)                                                          \
+  (sphera_sphere_light_shading_prepare_occluded(&(out)->shading, vec3((in)->wo), (in)->roughness,  \
+                                                splat3(0.04f), g_bent_cone),                      \
+   (out)->light = sphera_cap_from_sphere(vec3((in)->center), (in)->radius))
 
 /* brdf */
 
@@ -595,6 +601,7 @@ typedef struct {
   X(sptd, SPHERES, c_cone_vndf, SpheraSphereLightSampler, SPTD_PREPARE, SPTD_SAMPLE)                  \
   X(rt_shade, SPHERES, c_cone, struct Shading, RT_SHADE_PREPARE, RT_SHADE_SAMPLE)                     \
   X(rt_shade_bent, SPHERES, c_cone, struct Shading, RT_SHADE_PREPARE, RT_SHADE_BENT_SAMPLE)           \
+  X(rt_shade_occluded, SPHERES, c_cone, struct Shading, RT_SHADE_OCCLUDED_PREPARE, RT_SHADE_SAMPLE)    \
   X(c_vndf, BRDF, c_vndf, struct VndfC, C_VNDF_PREPARE, C_VNDF_SAMPLE)                                \
   X(ggx, BRDF, c_vndf, struct Ggx, GGX_PREPARE, GGX_SAMPLE)                                           \
   X(c_vndf_pdf, BRDF, c_vndf_pdf, struct VndfPdfC, C_VNDF_PDF_PREPARE, C_VNDF_PDF_SAMPLE)             \

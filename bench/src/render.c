@@ -442,7 +442,8 @@ static bool bent_cone(const Scene *scene, struct RTCIntersectContext *context, c
 /* One light sample of sphere_occlusion or sphere_occlusion_separable (BIASED): the
  * Lambert layer as in sphere_cap (one uniform cap sample and its shadow ray), plus the
  * GGX layer as L * S, where S is the SPTD's specular occlusion of the light's cap by
- * the bent cone `cone` (Eq. 23, sphera_sphere_light_shading_eval_occluded) or its separable
+ * the bent cone `cone` (Eq. 23: sphera_sphere_light_shading_eval of the shading prepared
+ * with it, the value of sphera_sphere_light_shading_eval_occluded) or its separable
  * baseline (Eq. 21-22, sphera_sphere_light_shading_eval_occluded_separable). No shadow ray for
  * the GGX layer: the bent cone stands for the visibility. */
 static float3 sphere_occlusion_estimate(const Scene *scene, struct RTCIntersectContext *context,
@@ -460,9 +461,10 @@ static float3 sphere_occlusion_estimate(const Scene *scene, struct RTCIntersectC
         sum = f3_scale(f3_mul(light->radiance, brdf_diffuse(m)), visible * a.dir.z / a.pdf);
     }
     if (!shading || !cone) return sum;
+    /* `shading` has the bent cone prepared in for the Eq. 23 technique (shade). */
     SpheraVec3 specular = separable
                               ? sphera_sphere_light_shading_eval_occluded_separable(shading, cap, *cone)
-                              : sphera_sphere_light_shading_eval_occluded(shading, cap, *cone);
+                              : sphera_sphere_light_shading_eval(shading, cap);
     return f3_add(sum, f3_mul(light->radiance, to_float3(specular)));
 }
 
@@ -651,8 +653,15 @@ static float3 shade(const Scene *scene, struct RTCIntersectContext *context, con
     /* sphere_occlusion*: the bent cone, once per shading point with a GGX layer */
     SpheraCap cone;
     const SpheraCap *bent = NULL;
-    if (occlusion && sphere_shading && bent_cone(scene, context, hit, rng, &cone))
+    if (occlusion && sphere_shading && bent_cone(scene, context, hit, rng, &cone)) {
         bent = &cone;
+        /* sphere_occlusion: the bent cone prepared into the shading, once per shading
+         * point; _eval per light then gives _eval_occluded with it, bit for bit. */
+        if (technique == TECHNIQUE_SPHERE_OCCLUSION &&
+            !sphera_sphere_light_shading_prepare_occluded(&shading, point.wo, m->roughness,
+                                                          point.material.f0, cone))
+            sphere_shading = NULL;
+    }
     float3 sum = f3(0, 0, 0);
     for (uint32_t l = 0; l < scene->light_count; ++l) {
         const Light *light = &scene->lights[l];

@@ -52,22 +52,55 @@ pub unsafe extern "C" fn sphera_sphere_light_shading_prepare(
         return false;
     }
     let prepared = SphereLightShading::new(wo.into(), roughness, f0.into());
-    let empty = SphereLightShading {
-        fit: GgxPivot {
-            pivot: Vec3::ZERO,
-            albedo: 0.0,
-        },
-        horizon_image: Cap::EMPTY,
-        specular_albedo: Vec3::ZERO,
-    };
     // SAFETY: `out` is non-null and the caller guarantees it is writable.
-    unsafe { out.write(prepared.unwrap_or(empty)) };
+    unsafe { out.write(prepared.unwrap_or(EMPTY_SHADING)) };
+    prepared.is_some()
+}
+
+/// The shading that a failed preparation writes: every light shades to zero.
+const EMPTY_SHADING: SphereLightShading = SphereLightShading {
+    fit: GgxPivot {
+        pivot: Vec3::ZERO,
+        albedo: 0.0,
+    },
+    clip_image: Cap::EMPTY,
+    specular_albedo: Vec3::ZERO,
+};
+
+/// `sphera_sphere_light_shading_prepare` with specular occlusion by the bent cone
+/// `visibility` (Eq. 23, BIASED) prepared in: `_eval` of this shading then returns, for
+/// every light, what `_eval_occluded` returns with this bent cone, bit for bit, at the cost
+/// of `_eval` (the bent cone is pivoted once here instead of once per light). A bent cone
+/// belongs to a shading point: prepare once per shading point, then call `_eval` per
+/// light. An empty `visibility` (or one that is not finite) shades every light to zero.
+/// Returns `false` (writing a shading that returns zero) as `_prepare`; does nothing for
+/// a null `out`. `_eval_occluded` and `_eval_occluded_separable` of such a shading take
+/// their own bent cone and ignore the prepared one.
+///
+/// # Safety
+///
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_sphere_light_shading_prepare_occluded(
+    out: *mut SphereLightShading,
+    wo: SpheraVec3,
+    roughness: f32,
+    f0: SpheraVec3,
+    visibility: Cap,
+) -> bool {
+    if out.is_null() {
+        return false;
+    }
+    let prepared = SphereLightShading::new_occluded(wo.into(), roughness, f0.into(), &visibility);
+    // SAFETY: `out` is non-null and the caller guarantees it is writable.
+    unsafe { out.write(prepared.unwrap_or(EMPTY_SHADING)) };
     prepared.is_some()
 }
 
 /// `∫_{C ∩ H} f cos θ dω ≈ albedo_F Ω(g(C) ∩ g(H))/4π` per unit radiance (Eq. 19,
-/// BIASED), RGB, for the cap `light` of a sphere light; multiply by its radiance. Zero
-/// for a null pointer or an empty cap.
+/// BIASED), RGB, for the cap `light` of a sphere light; multiply by its radiance (with a
+/// shading from `_prepare_occluded`: `albedo_F Ω(g(C) ∩ g(V))/4π`, Eq. 23). Zero for a
+/// null pointer or an empty cap.
 ///
 /// # Safety
 ///
@@ -84,7 +117,8 @@ pub unsafe extern "C" fn sphera_sphere_light_shading_eval(
 /// Specular occlusion with a bent cone `visibility` (Eq. 23, BIASED):
 /// `albedo_F Ω(g(C) ∩ g(V))/4π`; the bent cone replaces the upper hemisphere (pass the
 /// hemisphere `(0, 0, 1)`, `cos θ = 0`, for an unoccluded point). Zero for a null
-/// pointer.
+/// pointer. It pivots the bent cone at every call: for a bent cone of the shading point,
+/// `_prepare_occluded` once and `_eval` per light cost less.
 ///
 /// # Safety
 ///

@@ -111,8 +111,9 @@ impl GgxPivot {
 pub struct SphereLightShading {
     /// The fitted pivot.
     pub fit: GgxPivot,
-    /// The image `g(H)` of the upper hemisphere's cap.
-    pub horizon_image: Cap,
+    /// The image of the cap that clips the light: `g(H)`, the upper hemisphere's
+    /// ([`new`](Self::new)), or `g(V)`, a bent cone's ([`new_occluded`](Self::new_occluded)).
+    pub clip_image: Cap,
     /// The Schlick-weighted albedo per channel.
     pub specular_albedo: Vec3,
 }
@@ -124,30 +125,53 @@ impl SphereLightShading {
     pub fn new(wo: Vec3, roughness: f32, f0: Vec3) -> Option<SphereLightShading> {
         let fit = GgxPivot::from_view(wo, roughness)?;
         let ltc = Ltc::from_ggx(wo, roughness)?;
-        let f0 = if f0.is_finite() {
-            f0.max(Vec3::ZERO).min(Vec3::ONE)
-        } else {
-            Vec3::ZERO
-        };
         Some(SphereLightShading {
             fit,
-            // The same function as `eval_occluded` takes for its bent cone, so that the
-            // bent cone `H` gives `eval` bit for bit.
-            horizon_image: pivot_cap_fast(&Cap::from_axis_one_minus_cos(Vec3::Z, 1.0), fit.pivot).0,
-            specular_albedo: ltc.specular_albedo(f0),
+            clip_image: horizon_image(&fit.pivot),
+            specular_albedo: ltc.specular_albedo(clamped_f0(f0)),
+        })
+    }
+
+    /// [`new`](Self::new) with specular occlusion by the bent cone `visibility` (Eq. 23)
+    /// prepared in: the bent cone's image `g(V)` takes the place of the upper
+    /// hemisphere's, so that [`eval`](Self::eval) of every light gives
+    /// [`eval_occluded`](Self::eval_occluded) with this bent cone, bit for bit, at the
+    /// cost of `eval`. A renderer's bent cone belongs to the shading point, not to a
+    /// light: it is pivoted once here instead of once per light (issue 18, 1). An empty
+    /// `visibility` (after [`Cap::sanitized`]) shades every light to zero. `None` as
+    /// [`new`](Self::new).
+    pub fn new_occluded(
+        wo: Vec3,
+        roughness: f32,
+        f0: Vec3,
+        visibility: &Cap,
+    ) -> Option<SphereLightShading> {
+        let fit = GgxPivot::from_view(wo, roughness)?;
+        let ltc = Ltc::from_ggx(wo, roughness)?;
+        Some(SphereLightShading {
+            fit,
+            clip_image: visible_image(visibility, &fit.pivot),
+            specular_albedo: ltc.specular_albedo(clamped_f0(f0)),
         })
     }
 
     /// `∫_{C ∩ H} f cos θ dω ≈ albedo_F · Ω(g(C) ∩ g(H)) / 4π` per unit radiance
-    /// (Eq. 19), for the cap `C` of a light (sanitized here).
+    /// (Eq. 19), for the cap `C` of a light (sanitized here); for a shading prepared by
+    /// [`new_occluded`](Self::new_occluded), `albedo_F · Ω(g(C) ∩ g(V)) / 4π` (Eq. 23).
     #[inline(always)]
     pub fn eval(&self, light: &Cap) -> Vec3 {
+        self.eval_clipped(light, &self.clip_image)
+    }
+
+    /// `albedo_F · Ω(g(C) ∩ clip) / 4π` for the pivoted clip `g(H)` or `g(V)`.
+    #[inline(always)]
+    fn eval_clipped(&self, light: &Cap, clip: &Cap) -> Vec3 {
         // The image and its intersection in one pass where well conditioned, the image
         // as a cap and the exact two-cap solid angle elsewhere (issue 18, 1).
         let area = if light.is_valid() {
-            pivoted_intersection(light, &self.fit.pivot, &self.horizon_image)
+            pivoted_intersection(light, &self.fit.pivot, clip)
         } else {
-            pivoted_intersection_of_invalid(light, &self.fit.pivot, &self.horizon_image)
+            pivoted_intersection_of_invalid(light, &self.fit.pivot, clip)
         };
         self.specular_albedo * (area * (0.25 / PI))
     }
@@ -156,15 +180,12 @@ impl SphereLightShading {
     /// ≈ albedo_F · Ω(g(C) ∩ g(V)) / 4π`. The bent cone takes the place of the upper
     /// hemisphere (an unoccluded point's bent cone is `H`, and then this equals
     /// [`SphereLightShading::eval`]).
+    ///
+    /// The bent cone is pivoted at every call: where it belongs to the shading point,
+    /// prepare it once with [`new_occluded`](Self::new_occluded) and call `eval`.
     #[inline(always)]
     pub fn eval_occluded(&self, light: &Cap, visibility: &Cap) -> Vec3 {
-        let (visible, _) = pivot_cap_fast_by_ref(&visibility.sanitized(), &self.fit.pivot);
-        let area = if light.is_valid() {
-            pivoted_intersection(light, &self.fit.pivot, &visible)
-        } else {
-            pivoted_intersection_of_invalid(light, &self.fit.pivot, &visible)
-        };
-        self.specular_albedo * (area * (0.25 / PI))
+        self.eval_clipped(light, &visible_image(visibility, &self.fit.pivot))
     }
 
     /// Specular occlusion by the separable approximation that Eq. 23 improves on
@@ -176,10 +197,14 @@ impl SphereLightShading {
     /// the separation. It neglects the correlation of visibility and light: a bent cone
     /// that holds most of the lobe but not the light lets the light through (shadow
     /// leaking, the paper's Fig. 11 d). Equals `shade` for `V = H`.
+    ///
+    /// `g(H)` is computed here (the prepared clip may be a bent cone's image, from
+    /// [`new_occluded`](Self::new_occluded)), bit for bit as [`new`](Self::new) stores it.
     pub fn eval_occluded_separable(&self, light: &Cap, visibility: &Cap) -> Vec3 {
+        let horizon = horizon_image(&self.fit.pivot);
         let visible = pivot_cap(&visibility.sanitized(), self.fit.pivot);
-        let lobe = self.horizon_image.solid_angle();
-        let inside = cap_intersection_solid_angle(&visible, &self.horizon_image);
+        let lobe = horizon.solid_angle();
+        let inside = cap_intersection_solid_angle(&visible, &horizon);
         // `lobe > 0` for every prepared value (the image of H is at least a hemisphere's
         // worth of the pivoted sphere); the test keeps a hand-made one finite.
         let fraction = if lobe > 0.0 {
@@ -187,8 +212,32 @@ impl SphereLightShading {
         } else {
             0.0
         };
-        self.eval(light) * fraction
+        self.eval_clipped(light, &horizon) * fraction
     }
+}
+
+/// `f0` clamped to `[0, 1]` per channel; 0 unless every channel is finite.
+#[inline(always)]
+fn clamped_f0(f0: Vec3) -> Vec3 {
+    if f0.is_finite() {
+        f0.max(Vec3::ZERO).min(Vec3::ONE)
+    } else {
+        Vec3::ZERO
+    }
+}
+
+/// The image `g(H)` of the upper hemisphere's cap by the pivot: the function that
+/// [`visible_image`] applies to a bent cone, so that the bent cone `H` gives
+/// [`SphereLightShading::eval`] bit for bit.
+#[inline(always)]
+fn horizon_image(pivot: &Vec3) -> Cap {
+    visible_image(&Cap::from_axis_one_minus_cos(Vec3::Z, 1.0), pivot)
+}
+
+/// The image `g(V)` of a bent cone by the pivot (made valid first).
+#[inline(always)]
+fn visible_image(visibility: &Cap, pivot: &Vec3) -> Cap {
+    pivot_cap_fast_by_ref(&visibility.sanitized(), pivot).0
 }
 
 /// `Ω(g(light) ∩ clip)` for a valid light cap and the pivoted clip (`g(H)` or `g(V)`): the

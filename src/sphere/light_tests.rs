@@ -126,6 +126,97 @@ fn real_time_shading_is_the_pivoted_probability_of_the_clipped_cap() {
     }
 }
 
+/// A shading prepared with a bent cone (`new_occluded`) evaluates every light as
+/// `eval_occluded` with that cone does, bit for bit, over random views, roughnesses, F0,
+/// lights (small and large, crossing the horizon, the shading point inside, invalid caps)
+/// and bent cones (the hemisphere, narrow, wide, below the horizon, empty, whole sphere,
+/// not finite); the separable baseline of an occluded shading still uses `g(H)`, and the
+/// bent cone `H` prepares the unoccluded shading itself.
+#[test]
+fn prepared_bent_cones_shade_as_eval_occluded() {
+    let mut rng = Rng::new(38);
+    let mut zero = 0;
+    let mut lit = 0;
+    for i in 0..3000 {
+        let wo = Vec3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(0.01, 1.0),
+        );
+        let roughness = rng.range(0.0, 1.0);
+        let f0 = Vec3::new(rng.uniform_f32(), rng.uniform_f32(), rng.uniform_f32());
+        let cones = [
+            Cap::from_axis_cos(Vec3::Z, 0.0),
+            Cap::from_axis_cos(
+                Vec3::new(
+                    rng.range(-1.0, 1.0),
+                    rng.range(-1.0, 1.0),
+                    rng.range(0.0, 1.0),
+                ),
+                rng.range(-0.5, 0.999),
+            ),
+            Cap::from_axis_cos(Vec3::new(0.1, 0.0, 1.0), 0.99),
+            Cap::from_axis_cos(-Vec3::Z, 0.5),
+            Cap::EMPTY,
+            Cap::WHOLE_SPHERE,
+            Cap {
+                axis: Vec3::new(f32::NAN, 0.0, 1.0),
+                one_minus_cos: 0.5,
+                one_plus_cos: 1.5,
+                sin2: 0.75,
+            },
+        ];
+        let visibility = cones[i % cones.len()];
+        let (Some(shading), Some(occluded)) = (
+            SphereLightShading::new(wo, roughness, f0),
+            SphereLightShading::new_occluded(wo, roughness, f0, &visibility),
+        ) else {
+            panic!("{wo} is above the horizon");
+        };
+        let distance = 10f32.powf(rng.range(-0.5, 2.0));
+        let center = Vec3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-0.3, 1.0),
+        ) * distance;
+        let radius = distance * 10f32.powf(rng.range(-4.0, 0.2));
+        let lights = [
+            Cap::from_sphere(center, radius),
+            Cap::from_axis_cos(Vec3::new(0.0, 0.3, 1.0), rng.range(-0.9, 0.9999)),
+            Cap {
+                axis: Vec3::new(0.0, 0.0, 2.0),
+                one_minus_cos: -1.0,
+                one_plus_cos: 3.0,
+                sin2: 7.0,
+            },
+        ];
+        for light in lights {
+            let expected = shading.eval_occluded(&light, &visibility);
+            let got = occluded.eval(&light);
+            assert_eq!(
+                got.to_array().map(f32::to_bits),
+                expected.to_array().map(f32::to_bits),
+                "{i}: {wo} {roughness} {visibility:?} {light:?}"
+            );
+            assert_eq!(
+                occluded.eval_occluded_separable(&light, &visibility),
+                shading.eval_occluded_separable(&light, &visibility)
+            );
+            zero += (got == Vec3::ZERO) as u32;
+            lit += (got.x > 0.0) as u32;
+        }
+    }
+    // Both outcomes occur (the draws are not all blocked or all lit).
+    assert!(zero > 1000 && lit > 1000, "{zero} {lit}");
+    let wo = Vec3::new(0.3, 0.1, 0.8);
+    let horizon = Cap::from_axis_cos(Vec3::Z, 0.0);
+    assert_eq!(
+        SphereLightShading::new_occluded(wo, 0.4, Vec3::ONE, &horizon),
+        SphereLightShading::new(wo, 0.4, Vec3::ONE)
+    );
+    assert!(SphereLightShading::new_occluded(-wo, 0.4, Vec3::ONE, &horizon).is_none());
+}
+
 /// `∫_C f cos θ dω` (F = 1) by the midpoint rule over the cap in f64.
 fn reference_integral(wo: Vec3, roughness: f32, cap: &Cap) -> f64 {
     let wo64 = d3(wo);

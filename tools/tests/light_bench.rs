@@ -22,6 +22,7 @@ const POOLS: [(&str, &[&str]); 4] = [
             "sptd",
             "rt_shade",
             "rt_shade_bent",
+            "rt_shade_occluded",
         ],
     ),
     (

@@ -64,12 +64,12 @@ fn main() {
         let quarter = 0.25 / std::f32::consts::PI;
         let albedo = shading.fit.albedo;
         let oat = (albedo
-            * cap_intersection_solid_angle_oat_sander(&image, &shading.horizon_image)
+            * cap_intersection_solid_angle_oat_sander(&image, &shading.clip_image)
             * quarter) as f64;
         let unclipped = (albedo * image.solid_angle() * quarter) as f64;
         debug_assert!(
             (exact
-                - (albedo * cap_intersection_solid_angle(&image, &shading.horizon_image) * quarter)
+                - (albedo * cap_intersection_solid_angle(&image, &shading.clip_image) * quarter)
                     as f64)
                 .abs()
                 < 1e-9

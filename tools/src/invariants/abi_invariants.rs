@@ -1876,6 +1876,27 @@ pub fn sptd_entry_points(data: &[u8]) {
                 assert_eq!(value, zero, "{what} after a failed prepare");
             }
         }
+        // The bent cone `b` prepared in: `_eval` is `_eval_occluded` with `b`.
+        assert!(!sphera_sphere_light_shading_prepare_occluded(
+            std::ptr::null_mut(),
+            wo,
+            roughness,
+            f0,
+            b
+        ));
+        let (occluded, ok_occluded) = prepared::<SphereLightShading>(|out| {
+            sphera_sphere_light_shading_prepare_occluded(out, wo, roughness, f0, b)
+        });
+        assert_words_finite(&occluded, "occluded shading");
+        assert_eq!(
+            ok_occluded, ok,
+            "prepare_occluded and prepare disagree on {wo:?}"
+        );
+        assert_eq!(
+            sphera_sphere_light_shading_eval(&occluded, a),
+            sphera_sphere_light_shading_eval_occluded(&shading, a, b),
+            "prepared bent cone (wo {wo:?}, r {roughness}, {a:?}, {b:?})"
+        );
     }
 
     // The joint light sampler.
