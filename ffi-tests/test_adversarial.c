@@ -992,6 +992,7 @@ static void sptd_suite(void) {
   EXPECT(vec3_equal(sphera_sphere_light_shading_eval_occluded_separable(NULL, hard_caps[3], hard_caps[7]),
                     vec3(0, 0, 0)));
   EXPECT(!sphera_sphere_light_sampler_prepare(NULL, vec3(0, 0, 2), 0.5f, directions[1], 0.5f));
+  EXPECT(!sphera_sphere_light_sampler_prepare_with_fit(NULL, vec3(0, 0, 2), 0.5f, NULL));
   EXPECT(is_no_sample(sphera_sphere_light_sampler_sample(NULL, 0.5f, 0.5f)));
   EXPECT(sphera_sphere_light_sampler_pdf(NULL, directions[0]) == 0.0f);
   EXPECT(!sphera_sphere_light_sampler_uses_sptd(NULL));
@@ -1126,6 +1127,21 @@ static void sptd_suite(void) {
         if (!finite3(center) || !(radius > 0.0f) || !isfinite(radius)) EXPECT(!ok);
         CHECK_SAMPLES(&sampler, ok, sphera_sphere_light_sampler_sample,
                       sphera_sphere_light_sampler_pdf);
+        {
+          /* From a fit of this view (any pivot, even garbage): no NaN, the contract. */
+          SpheraGgxPivot fit;
+          SpheraSphereLightSampler from_fit;
+          bool has_fit = sphera_ggx_pivot_from_view(&fit, wo, specials[(j + 5) % SPECIAL_COUNT]);
+          if (!has_fit) fit.pivot = special_vec(j + 3 * k);
+          memset(&from_fit, 0xff, sizeof from_fit);
+          ok = sphera_sphere_light_sampler_prepare_with_fit(&from_fit, center, radius, &fit);
+          calls += 2;
+          expect_words_not_nan(&from_fit, sizeof from_fit);
+          if (has_fit) EXPECT(memcmp(&from_fit, &sampler, sizeof sampler) == 0);
+          if (!finite3(center) || !(radius > 0.0f) || !isfinite(radius)) EXPECT(!ok);
+          CHECK_SAMPLES(&from_fit, ok, sphera_sphere_light_sampler_sample,
+                        sphera_sphere_light_sampler_pdf);
+        }
       }
     }
   }

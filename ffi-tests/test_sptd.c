@@ -209,6 +209,17 @@ static void check_sphere_light(void) {
 
   CHECK(sphera_sphere_light_sampler_prepare(&sampler, mirror, 0.5f, wo, 0.3f));
   CHECK(sphera_sphere_light_sampler_uses_sptd(&sampler));
+  /* The fit of the shading point prepared once: the same sampler, byte for byte. */
+  {
+    SpheraSphereLightSampler from_fit;
+    memset(&from_fit, 0xff, sizeof from_fit);
+    CHECK(sphera_sphere_light_sampler_prepare_with_fit(&from_fit, mirror, 0.5f, &fit));
+    CHECK(memcmp(&from_fit, &sampler, sizeof sampler) == 0);
+    CHECK(!sphera_sphere_light_sampler_prepare_with_fit(&from_fit, mirror, 0.5f, NULL));
+    CHECK(sphera_sphere_light_sampler_sample(&from_fit, 0.5f, 0.5f).pdf == 0.0f);
+    CHECK(!sphera_sphere_light_sampler_prepare_with_fit(&from_fit, mirror, -1.0f, &fit));
+    CHECK(sphera_sphere_light_sampler_sample(&from_fit, 0.5f, 0.5f).pdf == 0.0f);
+  }
   fill_u_values(u);
   for (i = 0; i < U_COUNT; i++) {
     for (j = 0; j < U_COUNT; j++) {
@@ -261,6 +272,8 @@ static void check_bad_input(void) {
   CHECK(vec3_equal(sphera_sphere_light_shading_eval_occluded(NULL, cap, cap), vec3(0, 0, 0)));
   CHECK(vec3_equal(sphera_sphere_light_shading_eval_occluded_separable(NULL, cap, cap), vec3(0, 0, 0)));
   CHECK(!sphera_sphere_light_sampler_prepare(NULL, vec3(0, 0, 3), 1.0f, vec3(0, 0, 1), 0.5f));
+  CHECK(!sphera_sphere_light_sampler_prepare_with_fit(NULL, vec3(0, 0, 3), 1.0f, &fit));
+  CHECK(!sphera_sphere_light_sampler_prepare_with_fit(NULL, vec3(0, 0, 3), 1.0f, NULL));
   CHECK(sphera_sphere_light_sampler_sample(NULL, 0.5f, 0.5f).pdf == 0.0f);
   CHECK(sphera_sphere_light_sampler_pdf(NULL, vec3(0, 0, 1)) == 0.0f);
   CHECK(!sphera_sphere_light_sampler_uses_sptd(NULL));
@@ -309,6 +322,12 @@ static void check_bad_input(void) {
       sphera_sphere_light_sampler_prepare(&sampler, v, bad[k], v, bad[i]);
       s = sphera_sphere_light_sampler_sample(&sampler, bad[i], bad[k]);
       CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf));
+      fit.pivot = v;
+      fit.albedo = bad[i];
+      sphera_sphere_light_sampler_prepare_with_fit(&sampler, v, bad[k], &fit);
+      s = sphera_sphere_light_sampler_sample(&sampler, bad[i], bad[k]);
+      CHECK(vec3_is_finite(s.dir) && isfinite(s.pdf));
+      CHECK(isfinite(sphera_sphere_light_sampler_pdf(&sampler, v)));
       CHECK(isfinite(sphera_sphere_light_sampler_pdf(&sampler, v)));
       sphera_sptd_in_cap_prepare_pivot_phase(&prepared, v, bad[k], garbage);
       s = sphera_sptd_in_cap_sample(&prepared, bad[i], bad[k]);

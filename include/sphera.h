@@ -1072,6 +1072,19 @@ bool sphera_sphere_light_sampler_prepare(struct SpheraSphereLightSampler *out,
                                          struct SpheraVec3 center, float radius,
                                          struct SpheraVec3 wo, float roughness);
 
+/* `sphera_sphere_light_sampler_prepare` with the fit of the view computed by the caller,
+ * `sphera_ggx_pivot_from_view(&fit, wo, roughness)`: the fit belongs to the shading point and
+ * the material, not to the light, so fit once per shading point and prepare each sphere light
+ * from it. The same sampler, bit for bit, as `_prepare` with that `wo` and roughness; a pivot
+ * with a component that is not finite counts as zero, and one longer than the fits' maximum
+ * length is shortened to it. Returns `false` (writing a sampler without samples) for a null
+ * `fit`, an empty cap (bad center or radius) or a cap wholly below the horizon; does nothing for
+ * a null `out`. A failed `sphera_ggx_pivot_from_view` writes a zero pivot, with which the
+ * sampler draws uniformly in the cap's part above the horizon: check its result. */
+bool sphera_sphere_light_sampler_prepare_with_fit(struct SpheraSphereLightSampler *out,
+                                                  struct SpheraVec3 center, float radius,
+                                                  const struct SpheraGgxPivot *fit);
+
 /* Draws a direction in the light's cap above the horizon; its pdf is
  * `sphera_sphere_light_sampler_pdf` at the direction, bit for bit (a draw that rounding puts
  * just outside the cap is returned as no sample). pdf 0 for null or a failed prepare. */

@@ -54,6 +54,7 @@ typedef struct {
   float radius;
   float wo[3]; /* unit view direction above the horizon */
   float roughness;
+  SpheraGgxPivot fit; /* the view's SPTD fit, once per shading point (sptd_fit) */
   float dir[3]; /* unit direction above the horizon, for the pdf rows */
   int n;
   float v[QUAD][3]; /* polygon vertices */
@@ -404,6 +405,10 @@ struct ConeVndfC {
 #define SPTD_PREPARE(out, in) \
   sphera_sphere_light_sampler_prepare(out, vec3((in)->center), (in)->radius, vec3((in)->wo), (in)->roughness)
 #define SPTD_SAMPLE(p, u0, u1) sphera_sphere_light_sampler_sample(p, u0, u1)
+/* The fit of the view prepared per shading point (in the pool, untimed): per light, the
+ * sampler from it, the same sampler as sptd's, byte for byte. */
+#define SPTD_FIT_PREPARE(out, in) \
+  sphera_sphere_light_sampler_prepare_with_fit(out, vec3((in)->center), (in)->radius, &(in)->fit)
 
 struct Shading {
   SpheraSphereLightShading shading;
@@ -599,6 +604,7 @@ typedef struct {
   X(solid_angle_sphere, SPHERES, c_cone, SpheraSolidAngleSphere, SOLID_ANGLE_SPHERE_PREPARE, SOLID_ANGLE_SPHERE_SAMPLE) \
   X(c_cone_vndf, SPHERES, c_cone_vndf, struct ConeVndfC, C_CONE_VNDF_PREPARE, C_CONE_VNDF_SAMPLE)     \
   X(sptd, SPHERES, c_cone_vndf, SpheraSphereLightSampler, SPTD_PREPARE, SPTD_SAMPLE)                  \
+  X(sptd_fit, SPHERES, c_cone_vndf, SpheraSphereLightSampler, SPTD_FIT_PREPARE, SPTD_SAMPLE)         \
   X(rt_shade, SPHERES, c_cone, struct Shading, RT_SHADE_PREPARE, RT_SHADE_SAMPLE)                     \
   X(rt_shade_bent, SPHERES, c_cone, struct Shading, RT_SHADE_PREPARE, RT_SHADE_BENT_SAMPLE)           \
   X(rt_shade_occluded, SPHERES, c_cone, struct Shading, RT_SHADE_OCCLUDED_PREPARE, RT_SHADE_SAMPLE)    \
@@ -723,6 +729,7 @@ static void make_pool(Pool *pool, enum Family family) {
     in->radius = (float)(distance * sqrt(sin2));
     store(in->wo, direction(&rng, 0.1, 1.0));
     in->roughness = (float)uniform_in(&rng, 0.1, 0.9);
+    if (!sphera_ggx_pivot_from_view(&in->fit, vec3(in->wo), in->roughness)) abort();
     store(in->dir, direction(&rng, 0.02, 1.0));
     in->n = 0;
     if (family == POLYGONS) generate_quad(&rng, i & 1, in);

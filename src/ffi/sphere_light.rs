@@ -184,6 +184,38 @@ pub unsafe extern "C" fn sphera_sphere_light_sampler_prepare(
     }
 }
 
+/// `sphera_sphere_light_sampler_prepare` with the fit of the view computed by the caller,
+/// `sphera_ggx_pivot_from_view(&fit, wo, roughness)`: the fit belongs to the shading point
+/// and the material, not to the light, so fit once per shading point and prepare each
+/// sphere light from it. The same sampler, bit for bit, as `_prepare` with that `wo` and
+/// roughness; a pivot with a component that is not finite counts as zero, and one longer
+/// than the fits' maximum length is shortened to it. Returns `false` (writing a sampler without samples) for a null `fit`, an empty
+/// cap (bad center or radius) or a cap wholly below the horizon; does nothing for a null
+/// `out`. A failed `sphera_ggx_pivot_from_view` writes a zero pivot, with which the
+/// sampler draws uniformly in the cap's part above the horizon: check its result.
+///
+/// # Safety
+///
+/// Pointers as in the conventions of the C ABI ([`crate::ffi`]).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sphera_sphere_light_sampler_prepare_with_fit(
+    out: *mut SphereLightSampler,
+    center: SpheraVec3,
+    radius: f32,
+    fit: *const GgxPivot,
+) -> bool {
+    // SAFETY: the caller guarantees that a non-null `out` is writable and that a
+    // non-null `fit` is readable.
+    match unsafe { (out.as_mut(), fit.as_ref()) } {
+        (Some(out), Some(fit)) => out.prepare_with_fit(center.into(), radius, fit),
+        (Some(out), None) => {
+            *out = SphereLightSampler::EMPTY;
+            false
+        }
+        (None, _) => false,
+    }
+}
+
 /// Draws a direction in the light's cap above the horizon; its pdf is
 /// `sphera_sphere_light_sampler_pdf` at
 /// the direction, bit for bit (a draw that rounding puts just outside the cap is returned

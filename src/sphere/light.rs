@@ -360,6 +360,26 @@ impl SphereLightSampler {
         prepared
     }
 
+    /// [`prepare`](Self::prepare) with the view's fit computed by the caller
+    /// ([`GgxPivot::from_view`] of the shading point's view and roughness): the fit
+    /// depends on the shading point and the material, not on the light, so that a
+    /// renderer fits once per shading point and prepares each sphere light from it. The
+    /// same bits as `prepare` for the fit that `from_view` returns; any other pivot is
+    /// made valid first (as [`prepare_with_pivot`](Self::prepare_with_pivot) does).
+    /// `false` and [`SphereLightSampler::EMPTY`] written where `prepare` fails (an
+    /// empty cap, one wholly below the horizon).
+    #[inline(always)]
+    pub fn prepare_with_fit(&mut self, center: Vec3, radius: f32, fit: &GgxPivot) -> bool {
+        let cap = Cap::from_sphere(center, radius);
+        // Not `VALID_PIVOT`: a C caller's fit may hold anything; `valid_pivot` returns a
+        // fitted pivot bit for bit (`fitted_pivots_are_valid_as_they_stand`).
+        let prepared = cap.one_minus_cos > 0.0 && self.prepare_sanitized::<false>(&cap, fit.pivot);
+        if !prepared {
+            *self = Self::EMPTY;
+        }
+        prepared
+    }
+
     /// Prepares sampling of a cap with an explicit pivot (any uniform SPTD). `None` for
     /// an empty cap or one wholly below the horizon.
     pub fn with_pivot(cap: &Cap, pivot: Vec3) -> Option<SphereLightSampler> {

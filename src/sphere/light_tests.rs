@@ -696,6 +696,23 @@ fn prepares_in_place_write_every_word() {
             previous = sampler;
         }
         assert!(written.windows(2).all(|w| w[0] == w[1]), "{i}");
+        // `prepare_with_fit` of the view's fit writes `prepare`'s words, from any start;
+        // where the view has no fit, its zero pivot prepares a sampler (or fails as the
+        // cap does), and `prepare` fails.
+        let fit = GgxPivot::from_view(wo, roughness);
+        for start in [nan_filled(SphereLightSampler::EMPTY), previous] {
+            let mut sampler = start;
+            let zero = GgxPivot {
+                pivot: Vec3::ZERO,
+                albedo: 0.0,
+            };
+            let ok = sampler.prepare_with_fit(center, radius, fit.as_ref().unwrap_or(&zero));
+            if fit.is_some() {
+                assert_eq!((ok, words(&sampler).to_vec()), written[0], "{i}");
+            } else if !ok {
+                assert_eq!(words(&sampler), words(&SphereLightSampler::EMPTY), "{i}");
+            }
+        }
         match (written[0].0, previous.is_clipped()) {
             (false, _) => failed += 1,
             (true, false) => above += 1,

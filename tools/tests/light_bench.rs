@@ -20,6 +20,7 @@ const POOLS: [(&str, &[&str]); 4] = [
             "solid_angle_sphere",
             "c_cone_vndf",
             "sptd",
+            "sptd_fit",
             "rt_shade",
             "rt_shade_bent",
             "rt_shade_occluded",

@@ -1923,6 +1923,28 @@ pub fn sptd_entry_points(data: &[u8]) {
         })
     };
     assert_words_not_nan(&sampler, "light sampler");
+    // The same sampler from the view's fit, prepared by the caller: byte for byte where
+    // the view has a fit; a null fit fails.
+    // SAFETY: `out` is writable, `fit` readable; null is allowed.
+    unsafe {
+        let mut fit = MaybeUninit::<GgxPivot>::uninit();
+        if sphera_ggx_pivot_from_view(fit.as_mut_ptr(), wo, roughness) {
+            let fit = fit.assume_init();
+            let (from_fit, ok_fit) = prepared::<SphereLightSampler>(|out| {
+                sphera_sphere_light_sampler_prepare_with_fit(out, center, radius, &fit)
+            });
+            assert_eq!(ok_fit, ok, "prepare_with_fit and prepare disagree");
+            assert_eq!(from_fit, sampler, "prepare_with_fit (center {center:?})");
+        }
+        let (empty, ok_null) = prepared::<SphereLightSampler>(|out| {
+            sphera_sphere_light_sampler_prepare_with_fit(out, center, radius, std::ptr::null())
+        });
+        assert!(!ok_null);
+        assert_no_sample(
+            sphera_sphere_light_sampler_sample(&empty, 0.5, 0.5),
+            "null fit",
+        );
+    }
     if !(is_finite3(center) && radius > 0.0 && radius.is_finite()) {
         assert!(
             !ok,
