@@ -8,8 +8,6 @@ mod bits;
 mod fast_functions_generated;
 mod frame;
 mod lanes;
-// Until the callers switch to it (the next commits).
-#[allow(dead_code)]
 mod length;
 mod products;
 mod roots;
@@ -29,7 +27,6 @@ pub(crate) use lanes::{
     difference_of_products4, finite_or_zero4, lane_starts, load4, max4, min4, sqrt4,
     store_records4, store4,
 };
-#[allow(unused_imports)]
 pub(crate) use length::{length, normalize_or, normalize_or_zero, try_normalize};
 pub(crate) use products::plain_difference_is_certain;
 pub use products::{
