@@ -40,7 +40,7 @@ pub(crate) fn table_coordinates(wo: Vec3, roughness: f32) -> Option<(f32, f32, f
     // Normalised by the shared helper first: `wo.length()` overflowed for views of
     // length 1e20 and underflowed for 2⁻¹⁰⁰ (issue 17, 5); a unit `wo` stays as it is.
     let wo = unit(wo)?;
-    let length = wo.length();
+    let length = crate::math::length(wo);
     let cos_theta = wo.z / length;
     if !(cos_theta > 0.0) || !(length < f32::INFINITY) {
         return None;

@@ -8,6 +8,7 @@ mod bits;
 mod fast_functions_generated;
 mod frame;
 mod lanes;
+mod length;
 mod products;
 mod roots;
 mod sin_cos;
@@ -26,6 +27,7 @@ pub(crate) use lanes::{
     difference_of_products4, finite_or_zero4, lane_starts, load4, max4, min4, sqrt4,
     store_records4, store4,
 };
+pub(crate) use length::{length, normalize_or, normalize_or_zero, try_normalize};
 pub(crate) use products::plain_difference_is_certain;
 pub use products::{
     HAS_HARDWARE_FMA, cross_precise, cross_with_residual, determinant_is_exactly_zero,

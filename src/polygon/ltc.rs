@@ -55,7 +55,7 @@ fn plane_misses_origin(vertices: &[Vec3]) -> bool {
         normal += (pair[0] * scale - first).cross(pair[1] * scale - first);
     }
     let offset = normal.dot(first).abs();
-    offset > 8.0 * f32::EPSILON * normal.length() * first.length()
+    offset > 8.0 * f32::EPSILON * crate::math::length(normal) * crate::math::length(first)
 }
 
 /// The slack of [`LtcPolygon::pdf`] in the cosine's space for the transformed polygon
@@ -83,10 +83,10 @@ fn round_trip_tolerance(transformed: &[Vec3], projected_solid_angle: f32) -> f32
     // The edges in order, the closing one last.
     let mut perimeter = 0.0f32;
     for pair in units[..count].windows(2) {
-        perimeter += (pair[1] - pair[0]).length();
+        perimeter += crate::math::length(pair[1] - pair[0]);
     }
     if let [first, .., last] = units[..count] {
-        perimeter += (first - last).length();
+        perimeter += crate::math::length(first - last);
     }
     let width = projected_solid_angle / perimeter;
     if width.is_finite() {
@@ -274,7 +274,7 @@ impl LtcPolygon {
     #[inline(always)]
     fn through_m(&self, w_cosine: Vec3) -> Vec3 {
         let w = self.ltc.from_cosine_space(w_cosine);
-        w / w.length()
+        w / crate::math::length(w)
     }
 
     /// The rare end of [`sample_through_m`](Self::sample_through_m), out of line: the
@@ -298,7 +298,10 @@ impl LtcPolygon {
         crate::sample::INWARD_PULLS
             .iter()
             .map(|&pull| {
-                let pulled = (w_cosine * (1.0 - pull) + inner.dir * pull).normalize_or(inner.dir);
+                let pulled = crate::math::normalize_or(
+                    w_cosine * (1.0 - pull) + inner.dir * pull,
+                    inner.dir,
+                );
                 finish(self.through_m(pulled))
             })
             .find(|pulled| accepted(pulled))
@@ -360,7 +363,7 @@ impl LtcPolygon {
     #[inline(never)]
     #[cold]
     fn pdf_careful(&self, w: Vec3) -> f32 {
-        let length = w.length();
+        let length = crate::math::length(w);
         let p = self.transformed.pdf_within(w, self.tolerance);
         if !(p > 0.0) || !(length > 0.0) {
             return 0.0;

@@ -1373,7 +1373,7 @@ impl ProjectedPolygon {
             // `pdf` (slack 1e-5 rad) accepts.
             let inner = self.small().inner_direction();
             let pulled = crate::sample::INWARD_PULLS.iter().find_map(|&pull| {
-                let dir = (s.dir * (1.0 - pull) + inner * pull).normalize_or(inner);
+                let dir = crate::math::normalize_or(s.dir * (1.0 - pull) + inner * pull, inner);
                 let pdf = self.small_pdf_within(dir, tolerance);
                 (pdf > 0.0).then_some(Sample { dir, pdf })
             });
@@ -1472,7 +1472,8 @@ impl ProjectedPolygon {
     #[inline(never)]
     #[cold]
     fn contains_within_slack(&self, dir: Vec3, tolerance: f32) -> bool {
-        self.edge_normals.all_within(dir, tolerance, dir.length())
+        self.edge_normals
+            .all_within(dir, tolerance, crate::math::length(dir))
     }
 
     /// The slack of [`pdf`](Self::pdf) in radians: how far outside the polygon a

@@ -144,7 +144,7 @@ impl SmallPolygonCosineSampler {
         let mut perimeter = 0.0f32;
         for i in 0..count {
             let next = if i + 1 == count { 0 } else { i + 1 };
-            perimeter += (fan.vertices[next] - fan.vertices[i]).length();
+            perimeter += crate::math::length(fan.vertices[next] - fan.vertices[i]);
         }
         let width = fan.solid_angle() / perimeter;
         if width.is_finite() {
@@ -171,7 +171,7 @@ impl SmallPolygonCosineSampler {
         for v in &fan.vertices[..count] {
             sum += *v;
         }
-        sum.normalize_or(Vec3::Z)
+        crate::math::normalize_or(sum, Vec3::Z)
     }
 
     /// The projected solid angle `Φ` (within relative `O(s⁴)`).

@@ -1058,10 +1058,10 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         for v in &self.vertices[..count] {
             sum += *v;
         }
-        let centroid = sum.normalize_or(self.vertices[0]);
+        let centroid = crate::math::normalize_or(sum, self.vertices[0]);
         crate::sample::INWARD_PULLS
             .iter()
-            .map(|&pull| (dir * (1.0 - pull) + centroid * pull).normalize_or(centroid))
+            .map(|&pull| crate::math::normalize_or(dir * (1.0 - pull) + centroid * pull, centroid))
             .find(|&pulled| self.contains(pulled))
             .map_or(Sample::NONE, |dir| Sample {
                 dir,
@@ -1246,7 +1246,7 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         let mut perimeter = 0.0f32;
         for i in 0..count {
             let next = if i + 1 == count { 0 } else { i + 1 };
-            perimeter += (self.vertices[next] - self.vertices[i]).length();
+            perimeter += crate::math::length(self.vertices[next] - self.vertices[i]);
         }
         // `min` returns the number where the width is NaN (a corrupted value).
         let slack = EDGE_ROUNDING.min(SLACK_PER_WIDTH * (self.solid_angle / perimeter));
@@ -1258,12 +1258,12 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
     /// `tolerance = 0` this is [`contains`](Self::contains).
     #[inline]
     pub fn contains_within(&self, dir: Vec3, tolerance: f32) -> bool {
-        let length = dir.length();
+        let length = crate::math::length(dir);
         let mut inside = self.vertex_count > 0 && dir.is_finite() && length > 0.0;
         for i in 0..N {
             // Unused slots hold zero normals, whose dot product 0 passes.
             let n = self.edge_normals[i];
-            inside &= self.edge_side(i, dir) >= -tolerance * n.length() * length;
+            inside &= self.edge_side(i, dir) >= -tolerance * crate::math::length(n) * length;
         }
         inside
     }
@@ -1358,9 +1358,9 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         }
         let (v0, v1, v2) = (self.vertices[k + 1], apex, self.vertices[k + 2]);
         // v2' is where the great circle through the apex and w meets the edge v0 v2.
-        let mut new_vertex = crate::math::cross_precise(v1, w)
-            .cross(crate::math::cross_precise(v0, v2))
-            .normalize_or_zero();
+        let mut new_vertex = crate::math::normalize_or_zero(
+            crate::math::cross_precise(v1, w).cross(crate::math::cross_precise(v0, v2)),
+        );
         if new_vertex.dot(v0 + v2) < 0.0 {
             new_vertex = -new_vertex;
         }

@@ -119,7 +119,7 @@ pub fn incoming_radiance(lobe: &Sg, mean: Vec3, variance: f32) -> Sg {
     let largest = mean.abs().max_element();
     let spatial = if largest > 0.0 {
         let scaled = mean / largest;
-        let scaled_length = scaled.length();
+        let scaled_length = crate::math::length(scaled);
         let axis = scaled / scaled_length;
         // ln |μ|², without overflow or underflow of |μ|².
         let log_distance2 = 2.0 * (libm::logf(largest) + libm::logf(scaled_length));

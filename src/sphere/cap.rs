@@ -207,7 +207,7 @@ impl Cap {
             return cap;
         }
         // `d ≤ r`: the shading point is inside or on the sphere.
-        let axis = if c.length() > 0.0 {
+        let axis = if crate::math::length(c) > 0.0 {
             crate::math::normalize_scaled(c)
         } else {
             Vec3::Z
@@ -652,7 +652,7 @@ pub(crate) fn sample_uniform_in_frame(
 fn pulled_inside(cap: &Cap, dir: Vec3, pdf: f32) -> Sample {
     INWARD_PULLS
         .iter()
-        .map(|&pull| (dir * (1.0 - pull) + cap.axis * pull).normalize_or(cap.axis))
+        .map(|&pull| crate::math::normalize_or(dir * (1.0 - pull) + cap.axis * pull, cap.axis))
         .find(|&pulled| cap.contains(pulled))
         .map_or(Sample::NONE, |dir| Sample { dir, pdf })
 }

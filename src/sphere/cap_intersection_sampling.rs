@@ -259,7 +259,7 @@ impl CapIntersection {
         let middle = 0.5 * (low + high);
         // `middle` lies in `[0, θ_A] ⊂ [0, π]`.
         let (sin_m, cos_m) = crate::math::sin_cos_0_to_pi(middle);
-        let inner = (axis * cos_m + self.e1 * sin_m).normalize_or(axis);
+        let inner = crate::math::normalize_or(axis * cos_m + self.e1 * sin_m, axis);
         if radial.contains(inner) && other.contains(inner) {
             inner
         } else if other.contains(axis) {
@@ -457,7 +457,10 @@ impl CapIntersection {
         let (sin_psi, cos_psi) = crate::math::sin_cos_0_to_pi(psi.abs());
         let sin_psi = sin_psi.copysign(psi);
         let axis = self.radial.axis;
-        (axis * (1.0 - s) + (self.e1 * cos_psi + self.e2 * sin_psi) * sin_theta).normalize_or(axis)
+        crate::math::normalize_or(
+            axis * (1.0 - s) + (self.e1 * cos_psi + self.e2 * sin_psi) * sin_theta,
+            axis,
+        )
     }
 
     /// Draws a direction uniformly (in solid angle) in `A ∩ B`, pdf `1 / Ω(A ∩ B)`; no
@@ -508,7 +511,7 @@ impl CapIntersection {
         let inner = self.inner_point();
         INWARD_PULLS
             .iter()
-            .map(|&pull| (dir * (1.0 - pull) + inner * pull).normalize_or(inner))
+            .map(|&pull| crate::math::normalize_or(dir * (1.0 - pull) + inner * pull, inner))
             .find(|&pulled| self.contains(pulled))
     }
 

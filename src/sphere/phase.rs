@@ -152,7 +152,7 @@ pub fn sample_pivot_phase(wo: Vec3, g: f32, u: [f32; 2]) -> Sample {
     } else {
         uniform
     };
-    let local = local.normalize_or_zero();
+    let local = crate::math::normalize_or_zero(local);
     if local == Vec3::ZERO {
         return Sample::NONE;
     }

@@ -63,10 +63,10 @@ pub(crate) fn valid_pivot(pivot: Vec3) -> Vec3 {
     if !pivot.is_finite() {
         return Vec3::ZERO;
     }
-    let length = pivot.length();
+    let length = crate::math::length(pivot);
     if !length.is_finite() {
         // Huge finite components: the direction survives a rescale.
-        return (pivot * 5.421_011e-20).normalize_or_zero() * MAX_PIVOT_LENGTH;
+        return crate::math::normalize_or_zero(pivot * 5.421_011e-20) * MAX_PIVOT_LENGTH;
     }
     if length > MAX_PIVOT_LENGTH {
         pivot * (MAX_PIVOT_LENGTH / length)
@@ -87,9 +87,9 @@ pub(crate) fn valid_pivot(pivot: Vec3) -> Vec3 {
 #[inline(always)]
 pub(crate) fn transform(dir: Vec3, pivot: Vec3) -> Vec3 {
     let e = dir - pivot;
-    let rho = pivot.length();
+    let rho = crate::math::length(pivot);
     let scale = (1.0 - rho) * (1.0 + rho) / e.length_squared();
-    (pivot - e * scale).normalize_or(-dir)
+    crate::math::normalize_or(pivot - e * scale, -dir)
 }
 
 /// The pivot transformation `g(ω; r_p)` (Eq. 2): the second intersection with the
@@ -126,9 +126,9 @@ pub(crate) fn jacobian_of_unit(dir: Vec3, pivot: Vec3) -> f32 {
 #[inline(always)]
 fn transform_2d(w: Vec2, pivot: Vec2) -> Vec2 {
     let e = w - pivot;
-    let rho = pivot.length();
+    let rho = crate::math::length(pivot);
     let scale = (1.0 - rho) * (1.0 + rho) / e.length_squared();
-    (pivot - e * scale).normalize_or(-w)
+    crate::math::normalize_or(pivot - e * scale, -w)
 }
 
 /// The counterclockwise angle from `a` to `b` in `[0, 2π)`.
@@ -159,7 +159,7 @@ pub fn pivot_cap(cap: &Cap, pivot: Vec3) -> Cap {
     // perpendicular component (any tangent when the pivot is on the axis line).
     let along = pivot.dot(cap.axis);
     let perpendicular = pivot - cap.axis * along;
-    let across = perpendicular.length();
+    let across = crate::math::length(perpendicular);
     let tangent = if across > 1e-30 {
         perpendicular / across
     } else {
@@ -300,7 +300,7 @@ fn pivot_cap_fast_with<const VALID: bool>(cap: &Cap, pivot: &Vec3) -> (Cap, Pivo
     let a = g1 - gc;
     let b = g2 - gc;
     let q = a.dot(b);
-    let margin = 4e-6 * (a.length() + b.length()) + 1e-12;
+    let margin = 4e-6 * (crate::math::length(a) + crate::math::length(b)) + 1e-12;
     let mid = g1 + g2;
     if !(sin2 <= FAST_MAX_SIN2) || !(q.abs() > margin) {
         return pivot_cap_careful(cap, pivot);
@@ -309,7 +309,7 @@ fn pivot_cap_fast_with<const VALID: bool>(cap: &Cap, pivot: &Vec3) -> (Cap, Pivo
     // normalisation is safe (in 3D: the tangent is orthogonal to the axis only to
     // 6e-8 / |perpendicular|, and `Cap` wants a unit axis to 1e-6).
     let mid_axis = cap.axis * mid.x + tangent * mid.y;
-    let mid_axis = mid_axis * (1.0 / mid_axis.length());
+    let mid_axis = mid_axis * (1.0 / crate::math::length(mid_axis));
     let abs_cos = crate::math::sqrtf(1.0 - sin2);
     // 1 ∓ cos ψ' ≤ 1; the other side 2 − it is exact (Sterbenz), and sin²ψ' = t h as
     // `Cap::with_sides` stores it.
@@ -358,7 +358,7 @@ pub(crate) fn pivot_upper_hemisphere(pivot: Vec3) -> Cap {
     let rho2 = pivot.length_squared();
     let k = 1.0 - rho2;
     let m = Vec3::new(0.0, 0.0, k) + pivot * (2.0 * pivot.z);
-    let length = m.length();
+    let length = crate::math::length(m);
     let abs_z = pivot.z.abs();
     // (`|m| ≥ k > 0` for a valid pivot; `min` keeps a cap, and the axis unit, if not.)
     let side = ((k * k) / (length * (length + 2.0 * abs_z))).min(1.0);

@@ -104,7 +104,7 @@ pub struct Sptd {
 /// the module documentation), for a unit `dir` and a valid pivot.
 #[inline(always)]
 fn jacobian(dir: Vec3, pivot: Vec3) -> f32 {
-    let rho = pivot.length();
+    let rho = crate::math::length(pivot);
     let distance2 = if rho > 0.0 {
         let one_minus_rho = 1.0 - rho;
         rho * (dir - pivot / rho).length_squared() + one_minus_rho * one_minus_rho
@@ -123,8 +123,10 @@ fn sample_cosine(axis: Vec3, u: [f32; 2]) -> Vec3 {
     let r = crate::math::sqrtf(r2);
     let (sin_phi, cos_phi) = crate::math::sin_cos_of_turn(clamp_random(u[1]));
     let (t, b) = orthonormal_basis(axis);
-    (t * (r * cos_phi) + b * (r * sin_phi) + axis * crate::math::sqrtf((1.0 - r2).max(0.0)))
-        .normalize_or(axis)
+    crate::math::normalize_or(
+        t * (r * cos_phi) + b * (r * sin_phi) + axis * crate::math::sqrtf((1.0 - r2).max(0.0)),
+        axis,
+    )
 }
 
 impl Sptd {
@@ -921,7 +923,7 @@ impl SptdInCap {
         let y = libm::copysignf(inner + (outer - inner) * v.abs(), v);
         // `1 − x² − y² = h (2 − h) − y²`: no cancellation of `x² ≈ 1` near the rim.
         let z = crate::math::sqrtf((h * (2.0 - h) - y * y).max(0.0));
-        (self.e1 * (1.0 - h) + e2 * y + a * z).normalize_or(a)
+        crate::math::normalize_or(self.e1 * (1.0 - h) + e2 * y + a * z, a)
     }
 
     /// The random numbers of the clipped sampler for a base direction.
@@ -970,7 +972,10 @@ impl SptdInCap {
                 let (sin_phi, cos_phi) = crate::math::sin_cos_of_turn(clamp_random(u[1]));
                 let p = self.e1 * (self.ellipse.x + self.ellipse.y * r * cos_phi)
                     + e2 * (self.ellipse.z * r * sin_phi);
-                (p + a * crate::math::sqrtf((1.0 - p.length_squared()).max(0.0))).normalize_or(a)
+                crate::math::normalize_or(
+                    p + a * crate::math::sqrtf((1.0 - p.length_squared()).max(0.0)),
+                    a,
+                )
             }
         };
         let dir = transform(base, self.sptd.pivot);

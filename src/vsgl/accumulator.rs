@@ -252,7 +252,7 @@ fn toksvig_mean_direction(lobe: &Sg) -> Vec3 {
     } else {
         lambda / (lambda + 1.0)
     };
-    lobe.axis.normalize_or_zero() * length
+    crate::math::normalize_or_zero(lobe.axis) * length
 }
 
 /// A virtual spherical Gaussian light (supplement Sections 3.1–3.2): the radiant intensity
@@ -467,7 +467,7 @@ fn filtered_lobe(power: Vec3, direction_sum: Vec3) -> Sg {
         return UNIFORM_SG;
     }
     let mean_direction = direction_sum / weight;
-    let length = mean_direction.length();
+    let length = crate::math::length(mean_direction);
     let max_length = Vsgl::MAX_SHARPNESS / (Vsgl::MAX_SHARPNESS + 1.0);
     let sharpness = if !(length > 0.0) {
         0.0
@@ -477,7 +477,7 @@ fn filtered_lobe(power: Vec3, direction_sum: Vec3) -> Sg {
         length / (1.0 - length)
     };
     let axis = if length > 0.0 {
-        (mean_direction / length).normalize_or(Vec3::Z)
+        crate::math::normalize_or(mean_direction / length, Vec3::Z)
     } else {
         Vec3::Z
     };

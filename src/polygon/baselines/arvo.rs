@@ -68,9 +68,9 @@ struct Triangle {
 /// Girard's theorem: the area is `α + β + γ - π`, with each interior angle the angle
 /// between the normals of the two edge planes through the vertex.
 fn girard(a: Vec3, b: Vec3, c: Vec3) -> Triangle {
-    let ab = a.cross(b).normalize_or_zero();
-    let bc = b.cross(c).normalize_or_zero();
-    let ca = c.cross(a).normalize_or_zero();
+    let ab = crate::math::normalize_or_zero(a.cross(b));
+    let bc = crate::math::normalize_or_zero(b.cross(c));
+    let ca = crate::math::normalize_or_zero(c.cross(a));
     if ab == Vec3::ZERO || bc == Vec3::ZERO || ca == Vec3::ZERO {
         return Triangle {
             area: 0.0,
@@ -151,14 +151,14 @@ impl ArvoPolygon {
         for i in 1..count - 1 {
             normal_sum += (scaled[i] - scaled[0]).cross(scaled[i + 1] - scaled[0]);
         }
-        let Some(normal) = normal_sum.try_normalize() else {
+        let Some(normal) = crate::math::try_normalize(normal_sum) else {
             return false;
         };
         let mut offset_sum = 0.0;
         let mut extent = 0.0f32;
         for v in scaled {
             offset_sum += normal.dot(*v);
-            extent = extent.max(v.length());
+            extent = extent.max(crate::math::length(*v));
         }
         let plane_offset = offset_sum / count as f32;
         if plane_offset.abs() <= 8.0 * f32::EPSILON * extent || !plane_offset.is_finite() {
@@ -166,7 +166,7 @@ impl ArvoPolygon {
         }
         let polygon = self;
         for (unit, v) in polygon.vertices.iter_mut().zip(scaled) {
-            let Some(direction) = v.try_normalize() else {
+            let Some(direction) = crate::math::try_normalize(*v) else {
                 return false;
             };
             *unit = direction;
@@ -194,7 +194,7 @@ impl ArvoPolygon {
             let sin_alpha = libm::sinf(triangle.alpha);
             polygon.sin_alpha[i] = sin_alpha;
             polygon.sin_alpha_cos_c[i] = sin_alpha * a.dot(b);
-            polygon.towards_c[i] = (c - c.dot(a) * a).normalize_or_zero();
+            polygon.towards_c[i] = crate::math::normalize_or_zero(c - c.dot(a) * a);
             total += area;
         }
         if !(total > 0.0 && total.is_finite()) {
@@ -260,8 +260,8 @@ impl ArvoPolygon {
         let c_hat = q * a + sqrt_clamped(1.0 - q * q) * self.towards_c[i];
         // A point on the arc B Ĉ with the cosine of its distance from B uniform.
         let z = 1.0 - u1 * (1.0 - c_hat.dot(b));
-        let dir =
-            z * b + sqrt_clamped(1.0 - z * z) * (c_hat - c_hat.dot(b) * b).normalize_or_zero();
+        let dir = z * b
+            + sqrt_clamped(1.0 - z * z) * crate::math::normalize_or_zero(c_hat - c_hat.dot(b) * b);
         // Far, tiny triangles lose the unit length to about 1e-5 (found by fuzzing).
         let dir = crate::math::unit_if_needed(dir);
         // No sample where Arvo's f32 construction put the direction outside the polygon
@@ -287,7 +287,7 @@ impl ArvoPolygon {
         let count = crate::polygon::stored_count(self.count, MAX_POLYGON_VERTICES);
         self.edge_normals[..count]
             .iter()
-            .all(|normal| dir.dot(*normal) >= -(ANGLE * normal.length() + ABSOLUTE))
+            .all(|normal| dir.dot(*normal) >= -(ANGLE * crate::math::length(*normal) + ABSOLUTE))
             && dir.is_finite()
     }
 

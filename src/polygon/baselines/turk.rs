@@ -227,7 +227,7 @@ impl TurkPolygon {
             reach = reach.max(b.abs());
             let c = a.cross(b);
             normal_sum += c;
-            total += c.length();
+            total += crate::math::length(c);
             cdf[i + 1] = total;
             a = b;
         }
@@ -241,7 +241,7 @@ impl TurkPolygon {
                 cdf[k] = total;
             }
         }
-        let doubled_area = normal_sum.length();
+        let doubled_area = crate::math::length(normal_sum);
         let normal = normal_sum * (1.0 / doubled_area);
         // Signed distance of the plane from the shading point, from the first vertex:
         // rounded by about 4ε |v0| (the normal's rounding and the dot product's).
@@ -562,7 +562,7 @@ impl TurkPolygon {
                 dir.dot(orientation * v.cross(edge))
             };
             if !(side >= 0.0) {
-                let (v_length, edge_length) = (v.length(), edge.length());
+                let (v_length, edge_length) = (crate::math::length(v), crate::math::length(edge));
                 let tolerance = (EDGE_TOLERANCE * v_length * edge_length)
                     .min(SIZE_TOLERANCE * edge_length * edge_length);
                 if side < -tolerance * scale || side.is_nan() {
