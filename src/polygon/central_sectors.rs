@@ -6,8 +6,10 @@
 //! four sectors' lanes, each sector was a transposition and a record of mostly constant
 //! words (about 35 instructions per sector). Here preparation writes each quantity of
 //! four sectors with one 16-byte store, and the per-sample constants that do not depend
-//! on the sample (`C s0` and `det(s0, u)`) are computed once per sector instead of once
-//! per sample, bit for bit as the sample computed them.
+//! on the sample are computed once per sector instead of once per sample: the two
+//! directions that span the sector's arc and their dot products with `u`, already divided
+//! by the ellipse norm `√(wᵀ C w)`, which is the same at every point of the arc (see
+//! [`CentralSectors::sample`]).
 
 use super::ellipse::{add2, det2, dot2, scale2};
 use super::ellipse_sector::EllipseSector;
@@ -27,19 +29,27 @@ type Row = [f32; MAX_POLYGON_VERTICES];
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct CentralSectors {
+    /// `â = s0 / √(1 + t0²)`: `√|C| s0` over the ellipse norm `√(wᵀ C w) = √|C| √(1 + t0²)`
+    /// of the arc's points (see [`sample`](Self::sample)): x and y rows (finite, as `t0`
+    /// is).
+    a_hat: [Row; 2],
+    /// `b̂ = R C s0 / (√|C| √(1 + t0²))` for `C = I + u uᵀ` (the ellipse's matrix; `R` the
+    /// rotation by +90°): the direction at the right angle to `s0` in the circle's
+    /// coordinates, mapped back and divided by the same norm. 0 where not finite (a
+    /// degenerate ellipse, whose sector has zero area and is never sampled).
+    b_hat: [Row; 2],
+    /// `2k = 2 √|C| = 2 √(1 + |u|²)`, the factor from the area to the angle in the
+    /// circle's coordinates (doubling is exact, so `k` is `0.5` times it bit for bit).
+    two_k: Row,
+    /// `u · â = t0 / √(1 + t0²)` (finite, in [-1, 1]).
+    at_hat: Row,
+    /// `u · b̂ = det(s0, u) / (√|C| √(1 + t0²))` (`det(s0, u)` by Kahan's difference of
+    /// products, as `det2`); 0 where not finite.
+    bt_hat: Row,
     /// `s0`, the clockwise boundary (unit direction): x and y rows.
     s0: [Row; 2],
-    /// `R C s0 = R (s0 + (u · s0) u)` for `C = I + u uᵀ` (the ellipse's matrix; `R` the
-    /// rotation by +90°): the direction at the right angle to `s0` in the circle's
-    /// coordinates, mapped back (see [`EllipseSector::sample_central`]). 0 where not
-    /// finite (a degenerate ellipse, whose sector has zero area and is never sampled).
-    rotated: [Row; 2],
-    /// `k = √|C| = √(1 + |u|²)`.
-    root_det: Row,
     /// `t0 = u · s0`, from the vertex positions.
     t0: Row,
-    /// `det(s0, u)` (Kahan's difference of products, as `det2`); 0 where not finite.
-    det_s0_u: Row,
     /// `s1`, the counter-clockwise boundary: x and y rows.
     s1: [Row; 2],
     /// `det(s0, s1)` from the vertex positions.
@@ -54,8 +64,8 @@ pub(crate) struct CentralSectors {
     // products with its error-free products and a division per four sectors, issue 15).
 }
 
-/// The 4-byte words of [`CentralSectors`] (13 rows of 8 slots).
-pub(crate) const CENTRAL_WORDS: usize = 13 * MAX_POLYGON_VERTICES;
+/// The 4-byte words of [`CentralSectors`] (16 rows of 8 slots).
+pub(crate) const CENTRAL_WORDS: usize = 16 * MAX_POLYGON_VERTICES;
 const _: () = assert!(core::mem::size_of::<CentralSectors>() == 4 * CENTRAL_WORDS);
 
 /// Four sectors' values as lanes, as the two central paths of the preparation compute
@@ -92,21 +102,38 @@ impl CentralSectors {
         let [s0x, s0y] = lanes.s0;
         let [ux, uy] = lanes.outer;
         let [t0, t1] = lanes.outer_dots;
-        // `rotate(add2(s0, scale2(u, t0)))` lane by lane: R (x, y) = (-y, x), the
-        // negation exact.
+        let k = lanes.root_det;
+        // `C s0 = s0 + (u · s0) u` lane by lane.
         let (cx, cy) = (s0x + ux * t0, s0y + uy * t0);
+        // The ellipse norm of the arc's points over √|C|: √(wᵀ C w) / k = √(1 + t0²)
+        // (see `sample`). `1 / √(wᵀ C w)` is taken as the product of `g = 1 / √(1 + t0²)`
+        // and `1 / k`, not as the root of k² (1 + t0²): with |u| and |t0| up to 2^40.5
+        // (ELLIPSE_LIMIT) the product of the squares overflows f32, each root stays below
+        // 2^41. `t0` is finite (both central paths store 0 where it is not), so `g` lies
+        // in (0, 1] and `â`, `u · â` are finite (|s0| = 1), without a select.
+        let root = crate::math::sqrt4(Vec4::ONE + t0 * t0);
+        let g = Vec4::ONE / root;
+        // 1 / k as `0.5 / k` (which both central paths compute for the sector areas, the
+        // same operation, so the compiler computes it once) doubled, exactly.
+        let half_inverse_k = Vec4::splat(0.5) / k;
+        let h = g * (half_inverse_k + half_inverse_k);
         let finite = |v: Vec4| Vec4::select(v.is_finite_mask(), v, Vec4::ZERO);
-        put(&mut self.rotated[0], finite(-cy));
-        put(&mut self.rotated[1], finite(cx));
+        put(&mut self.a_hat[0], s0x * g);
+        put(&mut self.a_hat[1], s0y * g);
+        // R (x, y) = (-y, x), the negation exact. Not finite for a degenerate ellipse
+        // (k = ∞, `C s0` ∞ or NaN).
+        put(&mut self.b_hat[0], finite(-cy * h));
+        put(&mut self.b_hat[1], finite(cx * h));
+        put(&mut self.at_hat, t0 * g);
         // `det2(s0, u)`: `difference_of_products4` is `difference_of_products` lane by
         // lane.
         put(
-            &mut self.det_s0_u,
-            finite(difference_of_products4(s0x, uy, s0y, ux)),
+            &mut self.bt_hat,
+            finite(difference_of_products4(s0x, uy, s0y, ux) * h),
         );
         put(&mut self.s0[0], s0x);
         put(&mut self.s0[1], s0y);
-        put(&mut self.root_det, lanes.root_det);
+        put(&mut self.two_k, k + k);
         put(&mut self.t0, t0);
         put(&mut self.s1[0], lanes.s1[0]);
         put(&mut self.s1[1], lanes.s1[1]);
@@ -119,19 +146,23 @@ impl CentralSectors {
     /// Writes the sectors `first..first + 4` as 0 (slots past the polygon).
     #[inline(always)]
     pub(crate) fn store_zeros(&mut self, first: usize) {
-        let rows: [&mut Row; 13] = {
+        let rows: [&mut Row; 16] = {
             let Self {
+                a_hat: [a0, a1],
+                b_hat: [b0, b1],
+                two_k,
+                at_hat,
+                bt_hat,
                 s0: [a, b],
-                rotated: [c, d],
-                root_det,
                 t0,
-                det_s0_u,
                 s1: [e, f],
                 det,
                 outer: [g, h],
                 t1,
             } = self;
-            [a, b, c, d, root_det, t0, det_s0_u, e, f, det, g, h, t1]
+            [
+                a0, a1, b0, b1, two_k, at_hat, bt_hat, a, b, t0, e, f, det, g, h, t1,
+            ]
         };
         for row in rows {
             store4(Vec4::ZERO, row, first);
@@ -164,34 +195,55 @@ impl CentralSectors {
             self.det[j],
             pair(&self.outer),
             [self.t0[j], self.t1[j]],
-            self.root_det[j],
+            0.5 * self.two_k[j],
             dot2(s0, s1),
             inverse_basis,
         )
     }
 
-    /// [`EllipseSector::sample_central`] of sector `j` (bit for bit), from the rows: a
-    /// point uniformly distributed in the sector's part of the outer ellipse, at area
-    /// `area` from `s0` counter-clockwise and relative radius² `xi1`, and `ω_z²`.
+    /// [`EllipseSector::sample_central`] of sector `j` with the ellipse norm taken from
+    /// the rows: a point uniformly distributed in the sector's part of the outer
+    /// ellipse, at area `area` from `s0` counter-clockwise and relative radius² `xi1`,
+    /// and `ω_z²`.
     ///
-    /// As there (supplement A.7): `w = cos(2kA) k s0 + sin(2kA) R C s0` and
-    /// `u · w = cos · k t0 + sin · det(s0, u)`, with `R C s0` and `det(s0, u)` read from
-    /// the rows instead of computed here (one difference of products, with its
-    /// error-free products, and four operations fewer per sample).
+    /// As there (supplement A.7), the point is `√ξ1 w / √(wᵀ C w)` for
+    /// `w = cos(2kA) k s0 + sin(2kA) R C s0`. The norm is the same along the whole arc:
+    /// with `a = k s0` and `b = R C s0`, `bᵀ C b = s0ᵀ C Rᵀ C R C s0 = |C| s0ᵀ C s0 = aᵀ C a`
+    /// (`Rᵀ C R = adj C = |C| C⁻¹` for a symmetric 2×2 `C`) and `aᵀ C b = k (C s0)ᵀ R (C s0)
+    /// = 0` (`R` is antisymmetric), so `wᵀ C w = (cos² + sin²) aᵀ C a = k² (1 + t0²)`
+    /// (`|s0| = 1`). Preparation stores `a` and `b` and their dot products with `u`
+    /// divided by it (`â`, `b̂`, `u · â`, `u · b̂`), and the sample needs no division and
+    /// no square root of `w`: `p = √ξ1 ŵ` with `ŵ = cos â + sin b̂`, and with
+    /// `|ŵ|² + (u · ŵ)² = 1`, `ω_z² = 1 - |p|² = 1 - ξ1 + ξ1 (u · ŵ)²`, a sum of two
+    /// non-negative terms (no cancellation next to the horizon, where both are small),
+    /// from `u · ŵ = cos (u · â) + sin (u · b̂)` (as `u · R u = 0`, `u · b = det(s0, u)`).
+    ///
+    /// The chain of dependent operations after `sin_cos` (issue 15: the central sample
+    /// waited on it) is a multiplication and an addition to `√ξ1 u · ŵ`, two operations
+    /// to `ω_z²` and its square root in the caller; the point is a multiplication and an
+    /// addition. Before, it was `|w|²`, the norm, a division and a square root for the
+    /// point and a division for `ω_z²` (llvm-mca, znver3, the whole central sample: 161
+    /// -> 130 cycles). `|p|² + ω_z²` is 1 to within the rows' and `sin_cos`'
+    /// roundings (a few ulps; the test `central_rows_sample_as_the_sectors` bounds it,
+    /// and the distance to an `f64` evaluation of Algorithm 4).
     #[inline(always)]
     pub(crate) fn sample(&self, j: usize, area: f32, xi1: f32) -> (Vec2, f32) {
         // `& 7` only shows the compiler the slot in bounds (sector indices are below 8).
         let j = j & (MAX_POLYGON_VERTICES - 1);
-        let s0 = [self.s0[0][j], self.s0[1][j]];
-        let rotated = [self.rotated[0][j], self.rotated[1][j]];
-        let (k, t0) = (self.root_det[j], self.t0[j]);
-        let (sin, cos) = crate::math::sin_cos_0_to_pi(2.0 * k * area);
-        let w = add2(scale2(s0, cos * k), scale2(rotated, sin));
-        let uw = cos * k * t0 + sin * self.det_s0_u[j];
-        let length2 = dot2(w, w);
-        let norm = (length2 + uw * uw).max(f32::MIN_POSITIVE);
-        let z2 = ((1.0 - xi1) * length2 + uw * uw) / norm;
-        (scale2(w, crate::math::sqrtf(xi1 / norm)), z2)
+        // `√ξ1 â`, `√ξ1 b̂` and their dot products with `u`: the point's factor applied
+        // while `sin_cos` runs (it depends on the random number and the rows only), so
+        // that the point is `cos √ξ1 â + sin √ξ1 b̂` and `ω_z² = 1 - ξ1 + (√ξ1 u · ŵ)²`
+        // are an operation shorter after `sin_cos` than with `√ξ1` multiplied last.
+        let r = crate::math::sqrtf(xi1);
+        let a = scale2([self.a_hat[0][j], self.a_hat[1][j]], r);
+        let b = scale2([self.b_hat[0][j], self.b_hat[1][j]], r);
+        let (at, bt) = (r * self.at_hat[j], r * self.bt_hat[j]);
+        // 2 k area is the sector's angle in the circle's coordinates up to `area`: in
+        // [0, π] (the sector's area is atan2_upper_half_plane / (2 k)).
+        let (sin, cos) = crate::math::sin_cos_0_to_pi(self.two_k[j] * area);
+        let point = add2(scale2(a, cos), scale2(b, sin));
+        let uw = cos * at + sin * bt;
+        (point, (1.0 - xi1) + uw * uw)
     }
 }
 
@@ -242,11 +294,13 @@ mod tests {
                 }
             }
             let mut rows = CentralSectors {
+                a_hat: [[f32::NAN; MAX_POLYGON_VERTICES]; 2],
+                b_hat: [[f32::NAN; MAX_POLYGON_VERTICES]; 2],
+                two_k: [f32::NAN; MAX_POLYGON_VERTICES],
+                at_hat: [f32::NAN; MAX_POLYGON_VERTICES],
+                bt_hat: [f32::NAN; MAX_POLYGON_VERTICES],
                 s0: [[f32::NAN; MAX_POLYGON_VERTICES]; 2],
-                rotated: [[f32::NAN; MAX_POLYGON_VERTICES]; 2],
-                root_det: [f32::NAN; MAX_POLYGON_VERTICES],
                 t0: [f32::NAN; MAX_POLYGON_VERTICES],
-                det_s0_u: [f32::NAN; MAX_POLYGON_VERTICES],
                 s1: [[f32::NAN; MAX_POLYGON_VERTICES]; 2],
                 det: [f32::NAN; MAX_POLYGON_VERTICES],
                 outer: [[f32::NAN; MAX_POLYGON_VERTICES]; 2],

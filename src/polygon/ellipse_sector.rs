@@ -947,8 +947,9 @@ impl EllipseSector {
     /// `u · R u = 0`), from the accurate `t0 = u · s0`.
     ///
     /// The projected sampler samples central sectors from their rows
-    /// (`CentralSectors::sample`, the same arithmetic with the sector's constants
-    /// precomputed); this form is the reference its test compares with.
+    /// (`CentralSectors::sample`: the same point, with `wᵀ C w`, which is the same along
+    /// the sector's arc, divided out in preparation); this direct form is what its test
+    /// compares the accuracy with.
     #[cfg(test)]
     #[inline(always)]
     pub(crate) fn sample_central(&self, area: f32, xi1: f32) -> (Vec2, f32) {
