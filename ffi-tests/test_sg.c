@@ -2,6 +2,7 @@
  * (sphera_sg_*, sphera_asg_*). */
 #include <float.h>
 #include <stddef.h>
+#include <string.h>
 
 #include "check.h"
 
@@ -281,6 +282,66 @@ static void check_bad_input(void) {
   }
 }
 
+/* The prepared shading point: the same bits as the free functions for valid points
+ * (a grid of views, roughnesses, f0 and lobes, grazing and below-horizon views
+ * included); a failed prepare (zero or non-finite normal or view) writes the empty
+ * point, which shades to zeros; a null point shades to zeros, a null `out` is false. */
+static void check_shading_point(void) {
+  static const float VIEWS[][3] = {{0.5f, 0.0f, 0.8660254f}, {0.0f, 0.0f, 2.0f}, {0.3f, -0.2f, 0.01f},
+                                   {0.6f, 0.0f, -0.8f}, {-1e20f, 3e19f, 1e20f}, {1e-30f, 0.0f, 2e-30f}};
+  static const float ROUGHNESS[] = {0.0f, 0.09f, 0.3f, 0.8f, 1.0f, 2.0f, NAN};
+  static const float F0[] = {0.04f, 1.0f, -1.0f, NAN};
+  SpheraVec3 n = vec3(0.0f, 0.3f, 2.0f);
+  SpheraSg lobes[4];
+  SpheraSgShadingPoint point;
+  SpheraSgShading s;
+  int v, r, f, l, positive = 0;
+  lobes[0] = sphera_sg_incoming_radiance(sphera_sg_new(vec3(0.0f, 0.0f, -1.0f), 4.0f, 10.0f), vec3(0.0f, 1.0f, 3.0f), 0.04f);
+  lobes[1] = sphera_sg_incoming_radiance(sphera_sg_new(vec3(0.3f, 0.1f, -1.0f), 40.0f, 2.0f), vec3(-1.0f, 0.5f, 2.0f), 0.5f);
+  lobes[2] = sphera_sg_new(vec3(-0.5f, 0.0f, 0.8660254f), 1e4f, 1.0f);
+  lobes[3] = sphera_sg_new(vec3(0.0f, 0.0f, -1.0f), 1.0f, 1.0f);
+  for (v = 0; v < 6; v++)
+    for (r = 0; r < 7; r++)
+      for (f = 0; f < 4; f++) {
+        SpheraVec3 view = vec3(VIEWS[v][0], VIEWS[v][1], VIEWS[v][2]);
+        CHECK(sphera_sg_shading_point_prepare(&point, n, view, ROUGHNESS[r], F0[f]));
+        for (l = 0; l < 4; l++) {
+          float d = sphera_sg_diffuse_shading_constant_cosine(lobes[l], n, 0.7f, 0.5f);
+          float sp = sphera_sg_specular_shading(lobes[l], n, view, ROUGHNESS[r], F0[f], 0.5f);
+          s = sphera_sg_shading_point_shade(&point, lobes[l], 0.7f, 0.5f);
+          CHECK(memcmp(&s.diffuse, &d, sizeof d) == 0 && memcmp(&s.specular, &sp, sizeof sp) == 0);
+          positive += d > 0.0f && sp > 0.0f;
+        }
+      }
+  CHECK(positive > 100);
+  /* Bad input. */
+  CHECK(!sphera_sg_shading_point_prepare(NULL, n, vec3(0.0f, 0.0f, 1.0f), 0.5f, 0.04f));
+  CHECK(sphera_sg_shading_point_prepare(&point, n, vec3(0.0f, 0.0f, 1.0f), 0.5f, 0.04f));
+  CHECK(!sphera_sg_shading_point_prepare(&point, vec3(0.0f, 0.0f, 0.0f), vec3(0.0f, 0.0f, 1.0f), 0.5f, 0.04f));
+  s = sphera_sg_shading_point_shade(&point, lobes[0], 1.0f, 1.0f);
+  CHECK(s.diffuse == 0.0f && s.specular == 0.0f);
+  CHECK(!sphera_sg_shading_point_prepare(&point, n, vec3(NAN, 0.0f, 1.0f), 0.5f, 0.04f));
+  CHECK(!sphera_sg_shading_point_prepare(&point, vec3(0.0f, INFINITY, 1.0f), n, 0.5f, 0.04f));
+  s = sphera_sg_shading_point_shade(&point, lobes[0], 1.0f, 1.0f);
+  CHECK(s.diffuse == 0.0f && s.specular == 0.0f);
+  s = sphera_sg_shading_point_shade(NULL, lobes[0], 1.0f, 1.0f);
+  CHECK(s.diffuse == 0.0f && s.specular == 0.0f);
+  /* Non-finite albedo, visibility and lobe: finite, non-negative. */
+  CHECK(sphera_sg_shading_point_prepare(&point, n, vec3(0.5f, 0.0f, 0.8660254f), 0.3f, 0.04f));
+  {
+    SpheraSg raw = lobes[2];
+    raw.sharpness = NAN;
+    raw.log_amplitude = INFINITY;
+    s = sphera_sg_shading_point_shade(&point, raw, INFINITY, NAN);
+    CHECK(isfinite(s.diffuse) && s.diffuse >= 0.0f && isfinite(s.specular) && s.specular >= 0.0f);
+    s = sphera_sg_shading_point_shade(&point, raw, FLT_MAX, 1.0f);
+    CHECK(isfinite(s.diffuse) && s.diffuse >= 0.0f && isfinite(s.specular) && s.specular >= 0.0f);
+    raw.axis = vec3(NAN, 0.0f, 0.0f);
+    s = sphera_sg_shading_point_shade(&point, raw, 1.0f, 1.0f);
+    CHECK(s.diffuse == 0.0f && s.specular == 0.0f);
+  }
+}
+
 static void check_layout(void) {
   CHECK(sizeof(SpheraSg) == 5 * sizeof(float));
   CHECK(offsetof(SpheraSg, sharpness) == 3 * sizeof(float));
@@ -288,6 +349,9 @@ static void check_layout(void) {
   CHECK(sizeof(SpheraAsg) == 12 * sizeof(float));
   CHECK(offsetof(SpheraAsg, z) == 6 * sizeof(float));
   CHECK(offsetof(SpheraAsg, amplitude) == 11 * sizeof(float));
+  CHECK(sizeof(SpheraSgShading) == 2 * sizeof(float));
+  CHECK(offsetof(SpheraSgShading, specular) == sizeof(float));
+  CHECK(sizeof(SpheraSgShadingPoint) == 23 * sizeof(float));
 }
 
 int main(void) {
@@ -296,6 +360,7 @@ int main(void) {
   check_lobes_and_shading();
   check_beckmann();
   check_bad_input();
+  check_shading_point();
   check_layout();
   return check_summary();
 }

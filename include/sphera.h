@@ -376,6 +376,18 @@ typedef struct SpheraAsg {
   float amplitude; /* Amplitude `a ≥ 0` (finite). */
 } SpheraAsg;
 
+/* A shading point prepared for VSGL shading: what the diffuse and specular terms need that does
+ * not depend on the lobe (see the module documentation). 23 `f32` words, 92 bytes. */
+typedef struct SpheraSgShadingPoint {
+  uint32_t opaque[23]; /* 92 bytes, private: see the preamble */
+} SpheraSgShadingPoint;
+
+/* The two shading terms of one incoming-radiance SG at a prepared point. */
+typedef struct SpheraSgShading {
+  float diffuse; /* `V (c_in R_d/π) A(λ_in) max(ξ_in·n, 0)`: constant-cosine diffuse shading. */
+  float specular; /* `V c_in C(ξ_in) ∫ G_in Ĝ dω`: GGX specular shading through the ASG fit. */
+} SpheraSgShading;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -1285,6 +1297,28 @@ struct SpheraAsg sphera_asg_from_ggx(struct SpheraVec3 normal, struct SpheraVec3
  * the same `λ_h = 2/α²`, so the same ASG as `sphera_asg_from_ggx`. */
 struct SpheraAsg sphera_asg_from_beckmann(struct SpheraVec3 normal, struct SpheraVec3 view,
                                           float alpha);
+
+/* Prepares a shading point for `sphera_sg_shading_point_shade`: what the constant-cosine diffuse
+ * and the ASG specular terms need that does not depend on the lobe (the unit normal and view,
+ * the ASG fit of the GGX lobe, `α`, `f0` and Smith's `Λ` of the view). `view` points toward the
+ * viewer; normal and view are normalised here and may be in any frame, the same as the incoming
+ * SGs'. `α = roughness²` (clamped to [1e-3, 1], NaN roughness as 1); `f0` is Schlick's
+ * reflectance of one channel (clamped to [0, 1], NaN as 0). Returns `false`, writing the empty
+ * point (which shades every lobe to zeros), for a zero or non-finite normal or view; does
+ * nothing for a null `out`. A view at or below the horizon is valid (the specular term is then
+ * 0). `SpheraSgShadingPoint` is 92 bytes. */
+bool sphera_sg_shading_point_prepare(struct SpheraSgShadingPoint *out, struct SpheraVec3 normal,
+                                     struct SpheraVec3 view, float roughness, float f0);
+
+/* The diffuse and specular shading of the incoming-radiance SG `incoming`
+ * (`sphera_sg_incoming_radiance`) at a prepared point: bit for bit
+ * `sphera_sg_diffuse_shading_constant_cosine(incoming, normal, r_d, visibility)` and
+ * `sphera_sg_specular_shading(incoming, normal, view, roughness, f0, visibility)` with the
+ * point's normal, view, roughness and `f0`. `r_d` is clamped to [0, FLT_MAX] and `visibility` to
+ * [0, 1] (NaN to 0). Zeros for a null or empty point. */
+struct SpheraSgShading sphera_sg_shading_point_shade(const struct SpheraSgShadingPoint *point,
+                                                     struct SpheraSg incoming, float r_d,
+                                                     float visibility);
 
 #ifdef __cplusplus
 }  // extern "C"

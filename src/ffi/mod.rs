@@ -93,6 +93,8 @@ mod vmf;
 
 mod asg;
 
+mod sg_shading_point;
+
 pub use arvo_polygon::*;
 pub use arvo_projected_polygon::*;
 pub use asg::*;
@@ -111,6 +113,7 @@ pub use polygon::*;
 pub use polygon_light::*;
 pub use projected_polygon::*;
 pub use sg::*;
+pub use sg_shading_point::*;
 pub use solid_angle_polygon::*;
 pub use solid_angle_quad::*;
 pub use solid_angle_triangle::*;

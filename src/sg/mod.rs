@@ -9,6 +9,7 @@ pub mod lobes;
 #[allow(clippy::module_inception)] // the interface fixes `sg::sg::Sg`
 pub mod sg;
 pub mod shading;
+pub mod shading_point;
 pub mod vmf;
 
 pub use asg::Asg;
@@ -17,6 +18,7 @@ pub use lobes::{
     specular_lobe, specular_lobe_normalized,
 };
 pub use sg::{MAX_SHARPNESS, Sg, sg_inner_product, sg_integral, sg_product};
+pub use shading_point::{SgShading, SgShadingPoint};
 pub use vmf::{vmf_invert, vmf_pdf, vmf_sample};
 
 #[cfg(test)]
@@ -25,6 +27,8 @@ mod asg_tests;
 mod lobes_tests;
 #[cfg(test)]
 mod sg_tests;
+#[cfg(test)]
+mod shading_point_tests;
 #[cfg(test)]
 mod shading_tests;
 #[cfg(test)]

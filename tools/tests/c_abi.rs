@@ -545,7 +545,7 @@ fn struct_layouts_match_rust() {
         ClippedSolidAnglePolygon, ProjectedPolygon, SolidAnglePolygon, SolidAngleQuad,
         SolidAngleTriangle,
     };
-    use sphera::sg::{Asg, Sg};
+    use sphera::sg::{Asg, Sg, SgShading, SgShadingPoint};
     use sphera::sphere::{
         Cap, CapUnion, GgxPivot, SolidAngleSphere, SphereLightSampler, SphereLightShading,
         SptdInCap,
@@ -714,6 +714,16 @@ fn struct_layouts_match_rust() {
         ("offsetof(SpheraAsg, z)", offset_of!(Asg, z)),
         ("offsetof(SpheraAsg, eta_y)", offset_of!(Asg, eta_y)),
         ("offsetof(SpheraAsg, amplitude)", offset_of!(Asg, amplitude)),
+        ("sizeof(SpheraSgShadingPoint)", size_of::<SgShadingPoint>()),
+        (
+            "alignof(SpheraSgShadingPoint)",
+            align_of::<SgShadingPoint>(),
+        ),
+        ("sizeof(SpheraSgShading)", size_of::<SgShading>()),
+        (
+            "offsetof(SpheraSgShading, specular)",
+            offset_of!(SgShading, specular),
+        ),
     ];
     let mut source =
         String::from("#include <stddef.h>\n#include <stdio.h>\n#include \"sphera.h\"\n");
@@ -745,6 +755,7 @@ fn struct_layouts_match_rust() {
         "SpheraVsgl",
         "SpheraSg",
         "SpheraAsg",
+        "SpheraSgShadingPoint",
     ] {
         source += &format!("struct align_{name} {{ char c; {name} t; }};\n");
     }

@@ -48,7 +48,17 @@ const POOLS: [(&str, &[&str]); 4] = [
             "light_optimal",
         ],
     ),
-    ("vsgls", &["c_vsgl", "vsgl_shade", "c_vmf", "vmf"]),
+    (
+        "vsgls",
+        &[
+            "c_vsgl",
+            "vsgl_shade",
+            "c_vsgl_point",
+            "vsgl_point",
+            "c_vmf",
+            "vmf",
+        ],
+    ),
 ];
 
 #[test]

@@ -82,6 +82,7 @@ fn opaque_types() -> Vec<Opaque> {
         ClippedSolidAnglePolygon, LtcPolygon, ProjectedPolygon, SolidAnglePolygon, SolidAngleQuad,
         SolidAngleTriangle,
     };
+    use sphera::sg::SgShadingPoint;
     use sphera::sphere::CapUnion;
     use sphera::sphere::light::{SphereLightSampler, SphereLightShading};
     use sphera::sphere::solid_angle_sphere::SolidAngleSphere;
@@ -115,6 +116,7 @@ fn opaque_types() -> Vec<Opaque> {
         opaque::<CapUnion>("SpheraCapUnion"),
         opaque::<SphereLightShading>("SpheraSphereLightShading"),
         opaque::<SphereLightSampler>("SpheraSphereLightSampler"),
+        opaque::<SgShadingPoint>("SpheraSgShadingPoint"),
     ]
 }
 

@@ -1508,6 +1508,50 @@ pub fn sg_entry_points(data: &[u8]) {
             assert_density(sphera_asg_eval(asg, probe), "ASG eval");
         }
     }
+    // The prepared shading point: finite words, the empty point after a failed prepare,
+    // and per lobe the free functions' diffuse and specular terms, bit for bit.
+    let mut point = MaybeUninit::<sphera::sg::SgShadingPoint>::uninit();
+    // SAFETY: `point` is writable storage of the type.
+    let prepared = unsafe {
+        sphera_sg_shading_point_prepare(point.as_mut_ptr(), normal, view, alpha, scalars[2])
+    };
+    // SAFETY: the prepare writes `*out` whenever `out` is non-null.
+    let point = unsafe { point.assume_init() };
+    assert_words_finite(&point, "SG shading point");
+    if !prepared {
+        assert_eq!(point, sphera::sg::SgShadingPoint::EMPTY);
+    }
+    for sg in [incoming, a, b] {
+        // SAFETY: `point` was written by the prepare.
+        let shading = unsafe { sphera_sg_shading_point_shade(&point, sg, scalars[0], scalars[1]) };
+        assert_density(shading.diffuse, "prepared diffuse shading");
+        assert_density(shading.specular, "prepared specular shading");
+        if prepared {
+            let diffuse =
+                sphera_sg_diffuse_shading_constant_cosine(sg, normal, scalars[0], scalars[1]);
+            let specular =
+                sphera_sg_specular_shading(sg, normal, view, alpha, scalars[2], scalars[1]);
+            assert_eq!(
+                shading.diffuse.to_bits(),
+                diffuse.to_bits(),
+                "prepared diffuse {sg:?}"
+            );
+            assert_eq!(
+                shading.specular.to_bits(),
+                specular.to_bits(),
+                "prepared specular {sg:?}"
+            );
+        } else {
+            assert_eq!((shading.diffuse, shading.specular), (0.0, 0.0));
+        }
+    }
+    // SAFETY: null pointers are allowed.
+    let null = unsafe { sphera_sg_shading_point_shade(std::ptr::null(), a, 1.0, 1.0) };
+    assert_eq!((null.diffuse, null.specular), (0.0, 0.0));
+    // SAFETY: as above.
+    assert!(!unsafe {
+        sphera_sg_shading_point_prepare(std::ptr::null_mut(), normal, view, alpha, 0.5)
+    });
 }
 
 fn decode_vpl(input: &mut Input) -> sphera::vsgl::Vpl {
