@@ -227,6 +227,17 @@ fn denominator(v0: Vec3, v1: Vec3, v2: Vec3, sums: [Vec3; 3], length_squares: [f
     }
 }
 
+/// `2 (v·r) / (r·r) r - v`, the reflection of `-v` about the line of `r` (Algorithm 5's
+/// new vertex), with the factor 2 on `r` (off the chain of dependent operations, which
+/// runs through the division) instead of on the dividend `2 (v·r)`: doubling is exact,
+/// so `(2r) ((v·r) / (r·r))` and `r (2 (v·r) / (r·r))` are the same rounding of the same
+/// product, bit for bit, while the quotient is a normal number
+/// (`reflection_doubles_r_bit_for_bit`).
+#[inline(always)]
+fn reflect_about(v: Vec3A, r: Vec3A) -> Vec3A {
+    (r + r) * (v.dot(r) / r.length_squared()) - v
+}
+
 /// Slots of the structure-of-arrays working set (`VertexGroups`, `VertexLanes`): up to 8
 /// vertices, the copy of the first that closes the polygon, and what the last lanes of
 /// the fan read (up to slot `LANES + 2 + 3 = 9`), in whole lanes.
@@ -1185,7 +1196,7 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // G0 and G1 + G2 are both tiny and G1 alone would be off by an ulp of 1.
         let (sin_half, cos_half) = crate::math::sin_cos_0_to_pi(0.5 * local);
         let r = v0 * (g0 * cos_half - g1_plus_g2 * sin_half) + outer_sum * (g2 * sin_half);
-        let new_vertex = r * (2.0 * v0.dot(r) / r.length_squared()) - v0;
+        let new_vertex = reflect_about(v0, r);
         // Uniform in solid angle along the arc from the apex v1 to v2': the cosine to
         // the apex is s = (1 - ξ1) + ξ1 s'. With a = 1 - s' = |v1 - v2'|²/2 and
         // b = 1 + s' = |v1 + v2'|²/2, each accurate where the other cancels (tiny

@@ -1073,3 +1073,53 @@ fn shifted_slots_are_the_working_set_in_memory() {
         }
     }
 }
+
+/// `reflect_about` gives the bits of Algorithm 5's form `r (2 (v·r) / (r·r)) - v`, with
+/// the factor 2 on the dividend: for the bisectors of sampled fan triangles and for
+/// random vectors from 1e-18 to 1e18 in length (the quotient stays a normal number).
+#[test]
+fn reflection_doubles_r_bit_for_bit() {
+    let written = |v: Vec3A, r: Vec3A| r * (2.0 * v.dot(r) / r.length_squared()) - v;
+    let mut rng = Rng::new(0x5a38);
+    let mut checked = 0;
+    for _ in 0..200_000 {
+        let v = Vec3A::from(rng.unit_vector_f32());
+        let scale = 10f32.powf(rng.range(-18.0, 18.0));
+        let r = Vec3A::from(rng.unit_vector_f32()) * scale;
+        let (a, b) = (reflect_about(v, r), written(v, r));
+        assert_eq!(
+            a.to_array().map(f32::to_bits),
+            b.to_array().map(f32::to_bits),
+            "{v} {r}"
+        );
+        checked += 1;
+    }
+    // The bisectors that sampling forms: Algorithm 5's r for random fan triangles and
+    // random sub-triangles.
+    for _ in 0..2_000 {
+        let n = 3 + rng.below(6) as usize;
+        let vertices = random_polygon_above(&mut rng, n, 0.2, 3.0);
+        let Some(polygon) = SolidAnglePolygon::new(&vertices) else {
+            continue;
+        };
+        for k in 0..polygon.selectable_triangles as usize {
+            let (v0, s) = (
+                Vec3A::from(polygon.vertices[k + 1]),
+                Vec3A::from(polygon.outer_sum[k]),
+            );
+            for _ in 0..20 {
+                let local = rng.uniform_f32() * polygon.triangle_solid_angle(k);
+                let (sin_half, cos_half) = crate::math::sin_cos_0_to_pi(0.5 * local);
+                let r = v0 * (polygon.g0[k] * cos_half - polygon.g1_plus_g2[k] * sin_half)
+                    + s * (polygon.g2[k] * sin_half);
+                let (a, b) = (reflect_about(v0, r), written(v0, r));
+                assert_eq!(
+                    a.to_array().map(f32::to_bits),
+                    b.to_array().map(f32::to_bits)
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 250_000, "{checked}");
+}
