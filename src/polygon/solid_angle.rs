@@ -1215,14 +1215,12 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // ulps of r·r: as accurate as the dot product.
         let v0_r = alpha + beta * m;
         let r_r = v0_r * v0_r + (beta * beta) * orthogonal2;
-        // (The factor 2 on r, off the chain, is exact. v2' is formed, and rounded at the
-        // magnitude of a unit vector, before v1 ± v2': forming v1 + v2' as
-        // 2 (v0·r) / (r·r) r + (v1 - v0) and v2' - s' v1 as 2 (v0·r) / (r·r) r -
-        // (v0 + s' v1) saved 3 cycles on the chain, but rounded both at the magnitude of
-        // 2 v0 for a tiny triangle, twice the error of v2' in the part of the direction
-        // that decides whether it lies inside: the report's samples outside tiny
-        // polygons rose from 15 to 19 and the worst miss at 1e-5 sr from 2.6e-9 to
-        // 1.1e-8.)
+        // (The factor 2 on r, off the chain, is exact. v2' is formed before v1 ± v2':
+        // forming v1 + v2' as 2 (v0·r) / (r·r) r + (v1 - v0) and v2' - s' v1 as
+        // 2 (v0·r) / (r·r) r - (v0 + s' v1) would save 3 cycles on the chain, but adds a
+        // rounding at the magnitude of 2 v0 to the tangent of a tiny triangle, the part
+        // of the direction that decides whether it lies inside; the report's accuracy
+        // tables could not tell the two forms apart, and the shorter error was kept.)
         let new_vertex = (r + r) * (v0_r / r_r) - v0;
         // Uniform in solid angle along the arc from the apex v1 to v2': the cosine to
         // the apex is s = (1 - ξ1) + ξ1 s'. With a = 1 - s' and b = 1 + s' =
