@@ -1008,6 +1008,17 @@ static int check_c_cosine(void) {
   return bad;
 }
 
+/* Whether the C terms `a` (diffuse as pdf, specular as dir.x) differ from the library's
+ * `b` by more than 1e-3 relative (or 1e-30 absolute); the first four are reported. */
+static int vsgl_terms_differ(const char *what, int i, SpheraSample a, SpheraSample b, int reported) {
+  if (fabsf(a.pdf - b.pdf) <= 1e-3f * b.pdf + 1e-30f && fabsf(a.dir.x - b.dir.x) <= 1e-3f * b.dir.x + 1e-30f)
+    return 0;
+  if (reported < 4)
+    fprintf(stderr, "%s %d: C diffuse %.9g specular %.9g, library %.9g %.9g\n", what, i, a.pdf, a.dir.x, b.pdf,
+            b.dir.x);
+  return 1;
+}
+
 /* VSGL shading: the C terms agree with the library's (sphera_sg_incoming_radiance,
  * sphera_sg_diffuse_shading_constant_cosine, sphera_sg_specular_shading) to 1e-3
  * relative, or 1e-30 absolute for values the library gives as (almost) 0; and most
@@ -1022,11 +1033,7 @@ static int check_c_vsgl(const Pool *pool) {
     vsgl_lobe_prepare(&lib, &pool->inputs[i]);
     a = vsgl_c_shade(&c, 0.0f, 0.0f);
     b = vsgl_lobe_shade(&lib);
-    if (!(fabsf(a.pdf - b.pdf) <= 1e-3f * b.pdf + 1e-30f) || !(fabsf(a.dir.x - b.dir.x) <= 1e-3f * b.dir.x + 1e-30f)) {
-      if (bad < 4)
-        fprintf(stderr, "vsgl %d: C diffuse %.9g specular %.9g, library %.9g %.9g\n", i, a.pdf, a.dir.x, b.pdf, b.dir.x);
-      bad++;
-    }
+    bad += vsgl_terms_differ("vsgl", i, a, b, bad);
     diffuse_positive += b.pdf > 0.0f;
     specular_positive += b.dir.x > 0.0f;
   }
@@ -1052,12 +1059,7 @@ static int check_c_vsgl_point(const Pool *pool) {
     vsgl_point_prepare(&lib, &pool->inputs[i]);
     a = vsgl_c_point_shade(&c, 0.0f, 0.0f);
     b = vsgl_point_shade(&lib);
-    if (!(fabsf(a.pdf - b.pdf) <= 1e-3f * b.pdf + 1e-30f) || !(fabsf(a.dir.x - b.dir.x) <= 1e-3f * b.dir.x + 1e-30f)) {
-      if (bad < 4)
-        fprintf(stderr, "vsgl point %d: C diffuse %.9g specular %.9g, library %.9g %.9g\n", i, a.pdf, a.dir.x, b.pdf,
-                b.dir.x);
-      bad++;
-    }
+    bad += vsgl_terms_differ("vsgl point", i, a, b, bad);
   }
   if (bad) fprintf(stderr, "FAILED: VSGL shading at a prepared point: %d lobes where the C terms differ\n", bad);
   return bad;

@@ -90,13 +90,13 @@ use core::f32::consts::PI;
 
 /// `x` clamped to `[0, 1]`, NaN to 0.
 #[inline(always)]
-fn clamp_unit(x: f32) -> f32 {
+pub(super) fn clamp_unit(x: f32) -> f32 {
     x.max(0.0).min(1.0)
 }
 
 /// `x` clamped to `[0, f32::MAX]`, NaN to 0.
 #[inline(always)]
-fn clamp_nonnegative(x: f32) -> f32 {
+pub(super) fn clamp_nonnegative(x: f32) -> f32 {
     x.max(0.0).min(f32::MAX)
 }
 

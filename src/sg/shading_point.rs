@@ -41,22 +41,10 @@
 use super::asg::Asg;
 use super::lobes::{MIN_SPECULAR_COSINE, clamp_lobe_alpha};
 use super::sg::{Sg, exp_finite, log_of_amplitude, log_sg_integral, unit_or_none};
-use super::shading::roughness_to_alpha;
+use super::shading::{clamp_nonnegative, clamp_unit, roughness_to_alpha};
 use crate::Vec3;
 use crate::brdf::ggx::GgxBrdf;
 use core::f32::consts::PI;
-
-/// `x` clamped to `[0, 1]`, NaN to 0 (as in [`crate::sg::shading`]).
-#[inline(always)]
-fn clamp_unit(x: f32) -> f32 {
-    x.max(0.0).min(1.0)
-}
-
-/// `x` clamped to `[0, f32::MAX]`, NaN to 0 (as in [`crate::sg::shading`]).
-#[inline(always)]
-fn clamp_nonnegative(x: f32) -> f32 {
-    x.max(0.0).min(f32::MAX)
-}
 
 /// The two shading terms of one incoming-radiance SG at a prepared point.
 #[repr(C)]
