@@ -1247,6 +1247,32 @@ static void sg_suite(void) {
       expect_density(sphera_sg_diffuse_shading_sharp_lobe(g, normal, x, vis));
       expect_density(sphera_sg_specular_shading(g, normal, view, x, vis, 1.0f));
       expect_density(sphera_sg_specular_shading_sg(g, normal, view, x, 0.04f, vis));
+      {
+        /* The prepared shading point: the free functions' bits where prepared, zeros
+         * otherwise and for null. */
+        SpheraSgShadingPoint point;
+        SpheraSgShading shaded;
+        bool prepared;
+        memset(&point, 0xff, sizeof point);
+        prepared = sphera_sg_shading_point_prepare(&point, normal, view, x, vis);
+        expect_words_finite(&point, sizeof point);
+        shaded = sphera_sg_shading_point_shade(&point, g, x, 1.0f);
+        calls += 2;
+        expect_density(shaded.diffuse);
+        expect_density(shaded.specular);
+        if (prepared) {
+          float diffuse = sphera_sg_diffuse_shading_constant_cosine(g, normal, x, 1.0f);
+          float specular = sphera_sg_specular_shading(g, normal, view, x, vis, 1.0f);
+          EXPECT(memcmp(&shaded.diffuse, &diffuse, sizeof diffuse) == 0);
+          EXPECT(memcmp(&shaded.specular, &specular, sizeof specular) == 0);
+        } else {
+          EXPECT(shaded.diffuse == 0.0f && shaded.specular == 0.0f);
+        }
+        if (!finite3(normal) || !finite3(view)) EXPECT(!prepared);
+        EXPECT(!sphera_sg_shading_point_prepare(NULL, normal, view, x, vis));
+        shaded = sphera_sg_shading_point_shade(NULL, g, x, vis);
+        EXPECT(shaded.diffuse == 0.0f && shaded.specular == 0.0f);
+      }
       EXPECT(sg_is_valid(beckmann) && sg_is_valid(beckmann_unnormalized));
       expect_words_finite(&beckmann_asg, sizeof beckmann_asg);
       expect_density(sphera_sg_beckmann_specular_shading(g, normal, view, x, vis, 1.0f));
