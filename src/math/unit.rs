@@ -56,6 +56,9 @@ pub(crate) fn is_unit(v: Vec3) -> bool {
 /// The tolerance of [`unit_if_needed`] for a sampler's own output: 2e-6, twice
 /// [`UNIT_TOLERANCE`] (an argument's), as a computed direction carries a few more
 /// roundings than one a caller normalised.
+// The definition of the tolerance: the code tests the bits of its interval
+// (`OUTPUT_UNIT_LOW`, `OUTPUT_UNIT_HIGH`), the tests compare the two.
+#[cfg_attr(not(test), allow(dead_code))]
 const OUTPUT_UNIT_TOLERANCE: f32 = 2e-6;
 
 /// `dir` unchanged when `| |dir|² - 1 | <= 2e-6` (every direction a sampler computes
@@ -86,7 +89,28 @@ pub(crate) fn unit_if_needed_or_none(dir: Vec3) -> Option<Vec3> {
 /// directions to their rare path.
 #[inline(always)]
 pub(crate) fn is_unit_output(dir: Vec3) -> bool {
-    (dir.length_squared() - 1.0).abs() <= OUTPUT_UNIT_TOLERANCE
+    is_unit_output_length_squared(dir.length_squared())
+}
+
+/// The bit patterns of the smallest and the largest `f32` `x` with
+/// `|x - 1| <= OUTPUT_UNIT_TOLERANCE`: 1 - 1.967e-6 and 1 + 1.907e-6 (one ulp of 1 below
+/// is 2^-24, above 2^-23; `output_unit_interval_is_the_tolerance` finds them again).
+const OUTPUT_UNIT_LOW: u32 = 0x3F7F_FFDF;
+const OUTPUT_UNIT_HIGH: u32 = 0x3F80_0010;
+
+/// `| x - 1 | <= OUTPUT_UNIT_TOLERANCE` for `x = |dir|²`, as a range test on the bits:
+/// for `x` in `[0.5, 2]` the difference `x - 1` is exact (Sterbenz), so the test holds
+/// exactly for the `f32` from [`OUTPUT_UNIT_LOW`] to [`OUTPUT_UNIT_HIGH`], and it fails
+/// everywhere else (`|x - 1| >= 0.5`, NaN). Non-negative floats are ordered as their
+/// bits are, so one wrapping subtraction and one unsigned comparison decide it: bits
+/// below the low end wrap around to huge values, and negative `x` (the sign bit) and
+/// NaN (above +∞) lie above the high end. The same predicate as the subtraction, the
+/// absolute value and the comparison (tested for every `f32`), with two operations fewer
+/// after `|dir|²`: the test ends a sampler's chain of dependent operations, and the
+/// sample's instructions cannot retire before it.
+#[inline(always)]
+pub(crate) fn is_unit_output_length_squared(x: f32) -> bool {
+    x.to_bits().wrapping_sub(OUTPUT_UNIT_LOW) <= OUTPUT_UNIT_HIGH - OUTPUT_UNIT_LOW
 }
 
 /// `v / |v|` by the shared helper [`normalize_by_largest`] (tiny vectors,
@@ -101,6 +125,44 @@ pub(crate) fn normalize_scaled(v: Vec3) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `is_unit_output_length_squared` is `(x - 1).abs() <= OUTPUT_UNIT_TOLERANCE` for
+    /// every `f32` bit pattern (NaN, infinities, negative values and subnormals
+    /// included).
+    #[test]
+    fn output_unit_interval_is_the_tolerance() {
+        let reference = |x: f32| (x - 1.0).abs() <= OUTPUT_UNIT_TOLERANCE;
+        // Every pattern from 0.25 to 4 (where the test can hold, and around), then a
+        // stride through all of them.
+        let (low, high) = (0.25f32.to_bits(), 4.0f32.to_bits());
+        let mut inside = 0u32;
+        for bits in low..=high {
+            let x = f32::from_bits(bits);
+            assert_eq!(is_unit_output_length_squared(x), reference(x), "{x:e}");
+            inside += reference(x) as u32;
+        }
+        // The interval's ends: 33 patterns below 1 and 17 from 1 up.
+        assert_eq!(inside, OUTPUT_UNIT_HIGH - OUTPUT_UNIT_LOW + 1);
+        assert!(reference(f32::from_bits(OUTPUT_UNIT_LOW)));
+        assert!(!reference(f32::from_bits(OUTPUT_UNIT_LOW - 1)));
+        assert!(reference(f32::from_bits(OUTPUT_UNIT_HIGH)));
+        assert!(!reference(f32::from_bits(OUTPUT_UNIT_HIGH + 1)));
+        for bits in (0..=u32::MAX).step_by(4099).chain([u32::MAX, 0x8000_0000]) {
+            let x = f32::from_bits(bits);
+            assert_eq!(is_unit_output_length_squared(x), reference(x), "{bits:#x}");
+        }
+        for x in [
+            f32::NAN,
+            -f32::NAN,
+            f32::INFINITY,
+            -f32::INFINITY,
+            -1.0,
+            -0.0,
+            0.0,
+        ] {
+            assert_eq!(is_unit_output_length_squared(x), reference(x), "{x}");
+        }
+    }
 
     #[test]
     fn unit_normalises_rejects_and_is_idempotent() {

@@ -227,6 +227,17 @@ fn denominator(v0: Vec3, v1: Vec3, v2: Vec3, sums: [Vec3; 3], length_squares: [f
     }
 }
 
+/// The dot products `a·b` and `c·d`, each rounded as `Vec3A::dot` rounds it,
+/// `(x x' + y y') + z z'`, with the two sums side by side in two lanes (one shuffle
+/// per component pair instead of a horizontal sum each).
+#[inline(always)]
+fn dot_pair(a: Vec3A, b: Vec3A, c: Vec3A, d: Vec3A) -> (f32, f32) {
+    let (p, q) = (a * b, c * d);
+    let sum = (Vec4::new(p.x, q.x, 0.0, 0.0) + Vec4::new(p.y, q.y, 0.0, 0.0))
+        + Vec4::new(p.z, q.z, 0.0, 0.0);
+    (sum.x, sum.y)
+}
+
 /// Slots of the structure-of-arrays working set (`VertexGroups`, `VertexLanes`): up to 8
 /// vertices, the copy of the first that closes the polygon, and what the last lanes of
 /// the fan read (up to slot `LANES + 2 + 3 = 9`), in whole lanes.
@@ -1183,22 +1194,57 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // factors are known to full relative precision, it stays accurate when v0 and v2
         // are nearly antipodal (a shading point just above a large polygon), where
         // G0 and G1 + G2 are both tiny and G1 alone would be off by an ulp of 1.
+        // What depends on the fan triangle alone, off the chain of dependent operations
+        // (which runs from `local` through the sine and cosine, a division and a square
+        // root to the direction): m = v0·(v0 + v2) = 1 + v0·v2 and |s|² - m² for
+        // s = v0 + v2, the squared length of the part of s orthogonal to v0 (sin²Θ for
+        // the arc Θ from v0 to v2), both rounded to within a few ulps of |s|², which is
+        // small exactly when they are (v0 and v2 nearly antipodal).
+        let (m, outer2) = dot_pair(v0, outer_sum, outer_sum, outer_sum);
+        let orthogonal2 = outer2 - m * m;
         let (sin_half, cos_half) = crate::math::sin_cos_0_to_pi(0.5 * local);
-        let r = v0 * (g0 * cos_half - g1_plus_g2 * sin_half) + outer_sum * (g2 * sin_half);
-        let new_vertex = r * (2.0 * v0.dot(r) / r.length_squared()) - v0;
+        let (alpha, beta) = (g0 * cos_half - g1_plus_g2 * sin_half, g2 * sin_half);
+        let r = v0 * alpha + outer_sum * beta;
+        // The reflection of -v0 about r, 2 (v0·r) / (r·r) r - v0, with v0·r and r·r from
+        // the scalars instead of two dot products of r (which waited for r and for a
+        // horizontal sum): v0·r = α + β m and, as r = (α + β m) v0 + β (s - m v0) splits
+        // into two orthogonal parts, r·r = (v0·r)² + β² (|s|² - m²), a sum of two squares
+        // without cancellation. The error of |s|² - m² (a few ulps of |s|²) enters r·r
+        // with the weight β² ≤ |r|² / |s|² (the orthogonal part of r, β |s - m v0|, is
+        // |r| sin(θ/2), at most |r| sin(Θ/2) = |r| |s - m v0| / |s|), so at most a few
+        // ulps of r·r: as accurate as the dot product.
+        let v0_r = alpha + beta * m;
+        let r_r = v0_r * v0_r + (beta * beta) * orthogonal2;
+        // (The factor 2 on r, off the chain, is exact. v2' is formed before v1 ± v2':
+        // forming v1 + v2' as 2 (v0·r) / (r·r) r + (v1 - v0) and v2' - s' v1 as
+        // 2 (v0·r) / (r·r) r - (v0 + s' v1) would save 3 cycles on the chain, but adds a
+        // rounding at the magnitude of 2 v0 to the tangent of a tiny triangle, the part
+        // of the direction that decides whether it lies inside; the report's accuracy
+        // tables could not tell the two forms apart, and the shorter error was kept.)
+        let new_vertex = (r + r) * (v0_r / r_r) - v0;
         // Uniform in solid angle along the arc from the apex v1 to v2': the cosine to
-        // the apex is s = (1 - ξ1) + ξ1 s'. With a = 1 - s' = |v1 - v2'|²/2 and
-        // b = 1 + s' = |v1 + v2'|²/2, each accurate where the other cancels (tiny
-        // triangles; v2' nearly opposite the apex), 1 + s = b + (1 - ξ1) a and the
-        // tangent coefficient t' = sqrt((1 - s²) / (1 - s'²)) equals
-        // sqrt(ξ1 (1 + s) / b) because 1 - s = ξ1 a: no cancellation anywhere.
-        let a = 0.5 * (v1 - new_vertex).length_squared();
-        let b = 0.5 * (v1 + new_vertex).length_squared();
-        let one_plus_s = b + (1.0 - u1) * a;
-        let s = 1.0 - u1 * a;
+        // the apex is s = (1 - ξ1) + ξ1 s'. With a = 1 - s' and b = 1 + s' =
+        // |v1 + v2'|²/2 (accurate where v2' is nearly opposite the apex, and b is
+        // small), the tangent coefficient t' = sqrt((1 - s²) / (1 - s'²)) is
+        // sqrt(ξ1 (1 + s) / b) because 1 - s = ξ1 a, and 1 + s = b + (1 - ξ1) a with
+        // a = 2 - b (v1 and v2' are unit vectors) is ξ1 b + 2 (1 - ξ1), so that
+        // t'² = ξ1² + 2 ξ1 (1 - ξ1) / b = ξ1² + 4 ξ1 (1 - ξ1) / |v1 + v2'|²: one division
+        // and a sum of two positive terms, no cancellation. a enters only through
+        // 1 + s and s, where its rounding (an ulp of 2, where a itself may be tiny: a
+        // tiny triangle) moves the direction along v1 alone, i.e. changes its length by
+        // an ulp, not where it points.
+        let sum2 = (v1 + new_vertex).length_squared();
+        let b = 0.5 * sum2;
         let s_new = b - 1.0;
-        let t = crate::math::sqrtf(u1 * one_plus_s / b.max(f32::MIN_POSITIVE));
-        Vec3::from(v1 * (s - t * s_new) + new_vertex * t)
+        let s = 1.0 - u1 * (2.0 - b);
+        let t = crate::math::sqrtf(
+            u1 * u1 + (4.0 * u1 * (1.0 - u1)) / sum2.max(2.0 * f32::MIN_POSITIVE),
+        );
+        // s v1 + t' (v2' - s' v1): the part along v1 and t' times the part of v2'
+        // orthogonal to it (of length sqrt(1 - s'²)), which is formed while the division
+        // and the square root run.
+        let tangent = new_vertex - v1 * s_new;
+        Vec3::from(v1 * s + tangent * t)
     }
 
     /// `1 / Ω` for a direction inside the polygon (or on its boundary, or outside it by at
