@@ -100,12 +100,68 @@ pub(super) fn clamp_nonnegative(x: f32) -> f32 {
     x.max(0.0).min(f32::MAX)
 }
 
+/// The largest `|μ|²` and `s²` that [`spatial_lobe_linear`] takes: `2⁶⁰ ≈ 1.15e18`
+/// (exact: a power of two converts without rounding).
+pub(crate) const LINEAR_MAX: f32 = (1u64 << 60) as f32;
+
+/// The smallest `|μ|²` and `s²` that [`spatial_lobe_linear`] takes: `2⁻⁶⁰ ≈ 8.7e-19`
+/// (exact: the reciprocal of a power of two).
+pub(crate) const LINEAR_MIN: f32 = 1.0 / LINEAR_MAX;
+
+/// The spatial SG `G(ω, ξ_μ, λ_σ)/(2πs²)` of Eq. 6 (`ξ_μ = μ/|μ|`, `λ_σ = |μ|²/s²`,
+/// log amplitude `−ln 2π − ln s²`) formed in linear space, the fast path of
+/// [`incoming_radiance`]; `None` outside the range where it is as accurate as the log-space
+/// path, which then decides. `s2` is `s² = σ²/2`.
+///
+/// The range: `|μ|²` and `s²` in `[2⁻⁶⁰, 2⁶⁰]` and `λ_σ ≤ MAX_SHARPNESS`. There
+/// - `|μ|² = μ·μ` cannot overflow (every component is below `2³⁰`), and a component whose
+///   square is subnormal (`< 2⁻¹²⁶`) changes `|μ|² ≥ 2⁻⁶⁰` by less than `2⁻⁶⁶` relative,
+///   so `|μ|²` keeps the 1.5 ulp of a sum of three squares;
+/// - `λ_σ = |μ|²/s²` lies in `[2⁻¹²⁰, 1e8]`, a normal number: one more rounding (2 ulp
+///   in all), where the log-space path's `exp(ln|μ|² − ln s²)` carries the rounding of its
+///   argument amplified by its size (`|ln λ_σ|` up to 18: up to ~20 ulp);
+/// - `ξ_μ = μ/|μ|` with `|μ| ≥ 2⁻³⁰`: each component within 1.5 ulp, a unit vector to the
+///   `UNIT_TOLERANCE` that `Sg::sanitized` accepts as it is;
+/// - the log amplitude is the log-space path's own `−ln 2π − ln s²` (the same bits).
+///
+/// Outside it (a point light, `λ_σ` clamped at `MAX_SHARPNESS`, or distances and variances
+/// beyond `2^±30`) the log-space code of [`incoming_radiance`] runs as before; at the
+/// clamp boundary both give `λ_σ = MAX_SHARPNESS` with the same energy, so the switch is
+/// continuous. Test: `linear_spatial_lobe_agrees_with_f64_and_the_log_space_path`.
+#[inline(always)]
+pub(crate) fn spatial_lobe_linear(mean: Vec3, s2: f32) -> Option<Sg> {
+    let d2 = mean.length_squared();
+    // NaN fails every comparison, and s² = 0 (a point light) is below LINEAR_MIN.
+    let range = LINEAR_MIN..=LINEAR_MAX;
+    if !(range.contains(&d2) && range.contains(&s2)) {
+        return None;
+    }
+    let sharpness = d2 / s2;
+    if !(sharpness <= MAX_SHARPNESS) {
+        return None;
+    }
+    let distance = crate::math::sqrtf(d2);
+    Some(Sg {
+        axis: mean / distance,
+        sharpness,
+        log_amplitude: -LN_TAU - libm::logf(s2),
+    })
+}
+
 /// The incoming radiance `c_in G(ω, ξ_in, λ_in)` of Eq. 7 from the VSGL lobe
 /// `lobe` (`c_v`, `ξ_v`, `λ_v`), its positional mean `mean` relative to the shading point
 /// and its positional variance `variance` (`σ_v² = E‖y − μ‖²`, as [`crate::vsgl::Vsgl`]
 /// holds it; the planar Gaussian gets `s² = σ_v²/2`, see the module documentation, also
 /// for the degenerate cases).
 pub fn incoming_radiance(lobe: &Sg, mean: Vec3, variance: f32) -> Sg {
+    incoming_radiance_paths(lobe, mean, variance, true)
+}
+
+/// [`incoming_radiance`], with the linear-space fast path [`spatial_lobe_linear`] where it
+/// applies when `linear` (always, outside tests), or the log-space path alone (the
+/// reference of the fast path's test).
+#[inline(always)]
+pub(crate) fn incoming_radiance_paths(lobe: &Sg, mean: Vec3, variance: f32, linear: bool) -> Sg {
     let lobe = lobe.sanitized();
     if lobe == Sg::ZERO || !mean.is_finite() || variance == f32::INFINITY {
         return Sg::ZERO;
@@ -116,6 +172,11 @@ pub fn incoming_radiance(lobe: &Sg, mean: Vec3, variance: f32) -> Sg {
         axis: -lobe.axis,
         ..lobe
     };
+    if linear {
+        if let Some(spatial) = spatial_lobe_linear(mean, variance) {
+            return emitted.product(&spatial.sanitized());
+        }
+    }
     let largest = mean.abs().max_element();
     let spatial = if largest > 0.0 {
         let scaled = mean / largest;

@@ -349,3 +349,99 @@ fn beckmann_shading_of_a_delta_like_light_is_the_brdf_at_its_direction() {
         0.0
     );
 }
+
+/// The linear-space fast path of `incoming_radiance` (`spatial_lobe_linear`): which
+/// inputs take it, and its agreement with an f64 evaluation of Eq. 6–7 next to the
+/// log-space path's on the same inputs.
+#[test]
+fn linear_spatial_lobe_agrees_with_f64_and_the_log_space_path() {
+    use super::shading::{LINEAR_MAX, LINEAR_MIN, incoming_radiance_paths, spatial_lobe_linear};
+    assert_eq!(LINEAR_MIN, 2f32.powi(-60));
+    assert_eq!(LINEAR_MAX, 2f32.powi(60));
+    // The path: typical VSGLs take it; point lights, clamped sharpness, distances and
+    // variances beyond 2^±60 (squared), NaN and infinity do not.
+    let m = Vec3::new(0.3, -1.0, 2.0);
+    assert!(spatial_lobe_linear(m, 0.02).is_some());
+    assert!(spatial_lobe_linear(m * 1e-9, 1e-18).is_some());
+    assert!(spatial_lobe_linear(m * 1e8, 1e17).is_some());
+    assert!(spatial_lobe_linear(m, 0.0).is_none());
+    assert!(spatial_lobe_linear(m, 1e-8).is_none()); // λ_σ = 5.1e8 > MAX_SHARPNESS
+    assert!(spatial_lobe_linear(m, m.length_squared() / 1e8 * 1.001).is_some());
+    assert!(spatial_lobe_linear(m * 1e10, 1e17).is_none()); // |μ|² > 2^60
+    assert!(spatial_lobe_linear(m * 1e-10, 1e-20).is_none()); // |μ|² < 2^-60
+    assert!(spatial_lobe_linear(m, 1e-19).is_none()); // s² < 2^-60
+    assert!(spatial_lobe_linear(m, 2e18).is_none()); // s² > 2^60
+    assert!(spatial_lobe_linear(Vec3::ZERO, 1.0).is_none());
+    assert!(spatial_lobe_linear(Vec3::new(f32::NAN, 0.0, 1.0), 1.0).is_none());
+    assert!(spatial_lobe_linear(m, f32::NAN).is_none());
+    assert!(spatial_lobe_linear(m, f32::INFINITY).is_none());
+    let mut rng = Rng::new(3838);
+    let (mut worst_fast, mut worst_log) = ([0.0f64; 3], [0.0f64; 3]);
+    let mut taken = 0;
+    for i in 0..20000 {
+        let lobe = Sg::new(
+            rng.unit_vector_f32(),
+            rng.log_uniform(-2.0, 3.0) as f32,
+            rng.log_uniform(-2.0, 2.0) as f32,
+        );
+        // Most draws as the tracer's; every fourth over a wide range of scales.
+        let (mean, variance) = if i % 4 == 0 {
+            let scale = rng.log_uniform(-8.0, 8.0);
+            (
+                rng.unit_vector_f32() * scale as f32,
+                (scale * scale * rng.log_uniform(-7.0, 1.0)) as f32,
+            )
+        } else {
+            let d = rng.log_uniform(-1.0, 1.0);
+            (
+                rng.unit_vector_f32() * d as f32,
+                (d * d * rng.log_uniform(-3.0, 0.0)) as f32,
+            )
+        };
+        let fast = incoming_radiance_paths(&lobe, mean, variance, true);
+        let log = incoming_radiance_paths(&lobe, mean, variance, false);
+        assert_eq!(fast, incoming_radiance(&lobe, mean, variance));
+        if spatial_lobe_linear(mean, 0.5 * variance).is_none() {
+            assert_eq!(fast, log, "off the fast path: the log-space path's bits");
+            continue;
+        }
+        taken += 1;
+        // f64: G(ω, −ξ_v, λ_v) · G(ω, ξ_μ, λ_σ)/(2πs²), the product in the
+        // cancellation-free form of `Sg::product`.
+        let (mu, xv) = (d3(mean), d3(lobe.axis));
+        let (d2, s2) = (dot(mu, mu), 0.5 * variance as f64);
+        let (ls, lv) = (d2 / s2, lobe.sharpness as f64);
+        let xm = normalize(mu);
+        let v = [
+            ls * xm[0] - lv * xv[0],
+            ls * xm[1] - lv * xv[1],
+            ls * xm[2] - lv * xv[2],
+        ];
+        let lin = dot(v, v).sqrt();
+        let sum = [xm[0] + xv[0], xm[1] + xv[1], xm[2] + xv[2]]; // ξ_μ − (−ξ_v)
+        let exponent = -ls * lv * dot(sum, sum) / (lin + ls + lv);
+        let log_amplitude = lobe.log_amplitude as f64 - (2.0 * PI64).ln() - s2.ln() + exponent;
+        if lin < 1e-3 || log_amplitude < -80.0 || lin > 1e7 {
+            continue;
+        }
+        let axis = [v[0] / lin, v[1] / lin, v[2] / lin];
+        for (value, worst) in [(fast, &mut worst_fast), (log, &mut worst_log)] {
+            let errors = [
+                (value.sharpness as f64 - lin).abs() / lin,
+                // The log amplitude's error relative to its size, 1 + |ln c_in|.
+                (value.log_amplitude as f64 - log_amplitude).abs() / (1.0 + log_amplitude.abs()),
+                // The axis' angle, in units of the lobe's width 1/√λ_in.
+                dot(sub(d3(value.axis), axis), sub(d3(value.axis), axis)).sqrt() * lin.sqrt(),
+            ];
+            for (w, e) in worst.iter_mut().zip(errors) {
+                *w = w.max(e);
+            }
+        }
+    }
+    eprintln!("fast path taken {taken}: worst fast {worst_fast:?}, log space {worst_log:?}");
+    assert!(taken > 15000, "{taken}");
+    assert!(
+        worst_fast.iter().zip(&worst_log).all(|(f, l)| f <= l),
+        "{worst_fast:?} vs {worst_log:?}"
+    );
+}
