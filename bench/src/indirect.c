@@ -504,21 +504,43 @@ typedef struct ShadeJob {
     const uint32_t *assignment;   /* k-means: the cluster of each texel */
 } ShadeJob;
 
-/* The GGX layer's shading of one incoming-radiance SG per RGB channel of F0 (one call
- * when the channels agree). */
-static float3 specular_rgb(SpheraSg incoming, SpheraVec3 n, SpheraVec3 view, const Material *m,
-                           float visibility) {
-    float r =
-        sphera_sg_specular_shading(incoming, n, view, m->roughness, m->specular.x, visibility);
-    float g = m->specular.y == m->specular.x
-                  ? r
-                  : sphera_sg_specular_shading(incoming, n, view, m->roughness, m->specular.y,
-                                               visibility);
-    float b = m->specular.z == m->specular.x
-                  ? r
-                  : sphera_sg_specular_shading(incoming, n, view, m->roughness, m->specular.z,
-                                               visibility);
-    return f3(r, g, b);
+/* A camera hit's SG shading points (sphera_sg_shading_point_prepare): what the diffuse and
+ * specular terms need that does not depend on the lobe, prepared once per hit and shared by
+ * every VSGL. Schlick's f0 is per point: one point per distinct RGB channel of F0 (`of[c]` is
+ * the point of channel c). */
+typedef struct {
+    SpheraSgShadingPoint points[3];
+    uint32_t count; /* points prepared, 1 to 3 */
+    uint32_t of[3];
+} HitShading;
+
+static void hit_shading_prepare(HitShading *h, SpheraVec3 n, SpheraVec3 view, const Material *m) {
+    const float f0[3] = {m->specular.x, m->specular.y, m->specular.z};
+    float value[3] = {0.0f, 0.0f, 0.0f};
+    h->count = 0;
+    for (uint32_t c = 0; c < 3; ++c) {
+        uint32_t k = 0;
+        while (k < h->count && value[k] != f0[c]) ++k;
+        h->of[c] = k;
+        if (k == h->count) {
+            /* A point that cannot be prepared is the empty one, which shades to zeros, as
+             * the free functions do for such a normal or view. */
+            (void)sphera_sg_shading_point_prepare(&h->points[k], n, view, m->roughness, f0[c]);
+            value[k] = f0[c];
+            ++h->count;
+        }
+    }
+}
+
+/* The diffuse term (R_d = 1, V = 1; the same at every point) and the GGX layer's specular
+ * term per RGB channel of one incoming-radiance SG: bit for bit
+ * sphera_sg_diffuse_shading_constant_cosine and sphera_sg_specular_shading at the hit. */
+static float shade_rgb(const HitShading *h, SpheraSg incoming, float3 *specular) {
+    SpheraSgShading s[3];
+    for (uint32_t k = 0; k < h->count; ++k)
+        s[k] = sphera_sg_shading_point_shade(&h->points[k], incoming, 1.0f, 1.0f);
+    *specular = f3(s[h->of[0]].specular, s[h->of[1]].specular, s[h->of[2]].specular);
+    return s[0].diffuse;
 }
 
 /* VARIANT_RECEIVER_QUADRATURE: ∫ L_in(ω) f(wo, ω) max(ω·n, 0) dω for the incoming SG
@@ -549,6 +571,8 @@ static float3 shade_vsgls(const Scene *scene, struct RTCIntersectContext *rtc,
     SpheraVec3 n = hit->frame.normal;
     SpheraVec3 view = sv(frame_to_world(&hit->frame, hit->wo));
     bool glossy = m->roughness > 0.0f;
+    HitShading shading;
+    if (glossy) hit_shading_prepare(&shading, n, view, m);
     float3 sum = f3(0, 0, 0);
     for (uint32_t v = 0; v < count; ++v) {
         const SpheraVsgl *g = &vsgls[v];
@@ -565,9 +589,15 @@ static float3 shade_vsgls(const Scene *scene, struct RTCIntersectContext *rtc,
             if (variant & VARIANT_RECEIVER_QUADRATURE) {
                 r = receiver_quadrature(incoming, hit, m);
             } else {
-                float d = sphera_sg_diffuse_shading_constant_cosine(incoming, n, 1.0f, 1.0f);
-                r = f3_scale(m->diffuse, d);
-                if (glossy) r = f3_add(r, specular_rgb(incoming, n, view, m, 1.0f));
+                if (glossy) {
+                    float3 specular;
+                    r = f3_scale(m->diffuse, shade_rgb(&shading, incoming, &specular));
+                    r = f3_add(r, specular);
+                } else {
+                    /* No GGX layer: the diffuse term alone, which needs no prepared point. */
+                    float d = sphera_sg_diffuse_shading_constant_cosine(incoming, n, 1.0f, 1.0f);
+                    r = f3_scale(m->diffuse, d);
+                }
             }
             value = f3_add(value, f3_mul(power, r));
         }
