@@ -533,12 +533,6 @@ impl VertexGroups {
 }
 
 impl VertexLanes {
-    /// Every slot 0 (the value of the fast path, which does not read it).
-    const ZERO: VertexLanes = VertexLanes {
-        position: [[0.0; SLOTS]; 3],
-        length: [0.0; SLOTS],
-    };
-
     /// The (rescaled) position of vertex `i`; slot `count` is vertex 0 again.
     #[inline(always)]
     fn position(&self, i: usize) -> Vec3 {
@@ -652,13 +646,6 @@ fn store_triangle_lanes<const T: usize>(lanes: Vec4, values: &mut [f32; T], firs
     }
 }
 
-/// [`EdgeLanes::compute`]: an edge short enough for the short-edge rule to look at it.
-const EDGE_MAYBE_SHORT: u32 = 1;
-/// An edge longer than `Ω / SAMPLE_CHECK_WIDTH`.
-const EDGE_NARROW: u32 = 2;
-/// An edge longer than `Ω / PRECISE_PLANE_WIDTH`.
-const EDGE_NARROWEST: u32 = 4;
-
 /// The edge planes four edges at a time, with the tests on their lengths.
 struct EdgeLanes {
     /// `sin²` of an edge `Ω / SAMPLE_CHECK_WIDTH` long (as `Ω²` over the square).
@@ -672,15 +659,20 @@ struct EdgeLanes {
 
 impl EdgeLanes {
     /// The oriented normals of edges `first..first + 4` into `normals` (lanes past the
-    /// polygon get zero vectors from the repeated first vertex), and the flags of the
-    /// lengths of those that exist.
+    /// polygon get zero vectors from the repeated first vertex), and the tests on the
+    /// lengths of those that exist, as lane masks (lanes past the polygon false): an edge
+    /// short enough for the short-edge rule to look at it, an edge longer than
+    /// `Ω / SAMPLE_CHECK_WIDTH`, and one longer than `Ω / PRECISE_PLANE_WIDTH`. The
+    /// caller combines the groups' masks with `|` and reads each once: one mask
+    /// extraction per test instead of one per test and group, with the bit arithmetic
+    /// that joined them (hexagons 1299 -> 1275 instructions per prepare + 1, callgrind).
     #[inline(always)]
     fn compute<const N: usize>(
         &self,
         lanes: &VertexGroups,
         first: usize,
         normals: &mut [Vec3; N],
-    ) -> u32 {
+    ) -> [BVec4A; 3] {
         let [px, py, pz] = lanes.slots3(|g| g.position, first);
         let [qx, qy, qz] = lanes.slots3(|g| g.position, first + 1);
         // p_i × p_(i+1) = p_i × (p_(i+1) - p_i): the edge vector is exact up to one
@@ -698,23 +690,20 @@ impl EdgeLanes {
         // length against SHORT_EDGE_SINE²), on the same values: the common polygon has
         // no short edge and skips it.
         let short_sine2 = Vec4::splat(super::SHORT_EDGE_SINE * super::SHORT_EDGE_SINE);
+        // The lanes of edges that exist (`first` and `count` are constants where this is
+        // inlined: the mask is a constant).
         let count = self.count;
-        let flag = |mask: BVec4A, bit: u32| {
-            if lane_bits(mask, first, count) != 0 {
-                bit
-            } else {
-                0
-            }
-        };
-        let flags = flag(normal2.cmple(short_sine2 * scale2), EDGE_MAYBE_SHORT)
-            | flag(
-                normal2.cmpgt(Vec4::splat(self.long_edge_sine2) * scale2),
-                EDGE_NARROW,
-            )
-            | flag(
-                normal2.cmpgt(Vec4::splat(self.longest_edge_sine2) * scale2),
-                EDGE_NARROWEST,
-            );
+        let exists = BVec4A::new(
+            first < count,
+            first + 1 < count,
+            first + 2 < count,
+            first + 3 < count,
+        );
+        let masks = [
+            normal2.cmple(short_sine2 * scale2) & exists,
+            normal2.cmpgt(Vec4::splat(self.long_edge_sine2) * scale2) & exists,
+            normal2.cmpgt(Vec4::splat(self.longest_edge_sine2) * scale2) & exists,
+        ];
         let orientation = Vec4::splat(self.orientation);
         let (nx, ny, nz) = (
             (nx * orientation).to_array(),
@@ -725,7 +714,7 @@ impl EdgeLanes {
         for j in 0..if first + LANES <= N { LANES } else { N - first } {
             normals[first + j] = Vec3::new(nx[j], ny[j], nz[j]);
         }
-        flags
+        masks
     }
 }
 
@@ -850,58 +839,59 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // One pass per set bit (the lanes' flags have no bits past `triangles`): the
         // common polygon, with no flag, skips the loop at once.
         let mut flagged = fan.maybe_flat | fan.wide_pairs;
-        // The working set in memory, for the run-time indices below (rare).
-        let memory = if flagged != 0 {
-            groups.lanes()
-        } else {
-            VertexLanes::ZERO
-        };
-        while flagged != 0 {
+        // The working set in memory, for the run-time indices below (rare), built only
+        // when a triangle is flagged: an `if` that chose between it and a zero value
+        // stored the 576 zero bytes on the common path too (14 instructions per
+        // hexagon, callgrind).
+        if flagged != 0 {
+            let memory = groups.lanes();
             let lanes = &memory;
-            let k = flagged.trailing_zeros() as usize;
-            // Clears the lowest set bit.
-            flagged &= flagged - 1;
-            let (b, c) = (k + 1, k + 2);
-            // A triangle exactly in a plane through the shading point has G0 = 0, which
-            // the reflection's rounding would turn into noise (and a polygon in such a
-            // plane into a tiny light with a huge pdf): below the noise bound, the exact
-            // test decides.
-            if fan.maybe_flat & (1 << k) != 0
-                && determinant_is_exactly_zero(
-                    lanes.position(0),
-                    lanes.position(b),
-                    lanes.position(c),
-                )
-            {
-                fan.signed_g0[k] = 0.0;
-            }
-            // The pair sums `v_i + v_j`. Fast path (the lanes): the plain sums of the
-            // rounded unit vectors. Each unit vector is off by at most half an ulp of 1 per
-            // component (correctly rounded division), so a sum of length `|s|` carries a
-            // relative error of at most about `ε / |s| + ε/2`: for `|s|² >= 2` (the
-            // vertices at most 90° apart) at most 1.2ε, against the compensated sums' ε/2.
-            // The bound was chosen by measurement: with `|s|² >= 1` (120°) the largest
-            // error of Ω at 1 sr in the report's accuracy table grew from 6.4e-7 to
-            // 7.8e-7; with 90° every row stays as docs/polygon-lights.md states it but for 1e-8 sr
-            // (max 5.2e-7 against 4.9e-7). Only for pairs farther apart (up to nearly
-            // antipodal, where the plain sum loses its relative precision: a shading
-            // point close to a large polygon) do the compensated sums run.
-            if fan.wide_pairs & (1 << k) != 0 {
-                let unit_sum = |i: usize, j: usize| {
-                    let (p, q) = (lanes.position(i), lanes.position(j));
-                    unit_vector_sum(p, q, lanes.length[i], lanes.length[j])
-                };
-                let (s01, s02, s12) = (unit_sum(b, 0), unit_sum(b, c), unit_sum(0, c));
-                let (l01, l02, l12) = (
-                    s01.length_squared(),
-                    s02.length_squared(),
-                    s12.length_squared(),
-                );
-                let (v0, v1, v2) = (self.vertices[b], apex, self.vertices[c]);
-                self.g1_plus_g2[k] = denominator(v0, v1, v2, [s01, s02, s12], [l01, l02, l12]);
-                self.g2[k] = 0.5 * l01;
-                self.outer_sum[k] = s02;
-                careful_paths |= CAREFUL_PAIR_SUMS;
+            while flagged != 0 {
+                let k = flagged.trailing_zeros() as usize;
+                // Clears the lowest set bit.
+                flagged &= flagged - 1;
+                let (b, c) = (k + 1, k + 2);
+                // A triangle exactly in a plane through the shading point has G0 = 0, which
+                // the reflection's rounding would turn into noise (and a polygon in such a
+                // plane into a tiny light with a huge pdf): below the noise bound, the exact
+                // test decides.
+                if fan.maybe_flat & (1 << k) != 0
+                    && determinant_is_exactly_zero(
+                        lanes.position(0),
+                        lanes.position(b),
+                        lanes.position(c),
+                    )
+                {
+                    fan.signed_g0[k] = 0.0;
+                }
+                // The pair sums `v_i + v_j`. Fast path (the lanes): the plain sums of the
+                // rounded unit vectors. Each unit vector is off by at most half an ulp of 1 per
+                // component (correctly rounded division), so a sum of length `|s|` carries a
+                // relative error of at most about `ε / |s| + ε/2`: for `|s|² >= 2` (the
+                // vertices at most 90° apart) at most 1.2ε, against the compensated sums' ε/2.
+                // The bound was chosen by measurement: with `|s|² >= 1` (120°) the largest
+                // error of Ω at 1 sr in the report's accuracy table grew from 6.4e-7 to
+                // 7.8e-7; with 90° every row stays as docs/polygon-lights.md states it but for 1e-8 sr
+                // (max 5.2e-7 against 4.9e-7). Only for pairs farther apart (up to nearly
+                // antipodal, where the plain sum loses its relative precision: a shading
+                // point close to a large polygon) do the compensated sums run.
+                if fan.wide_pairs & (1 << k) != 0 {
+                    let unit_sum = |i: usize, j: usize| {
+                        let (p, q) = (lanes.position(i), lanes.position(j));
+                        unit_vector_sum(p, q, lanes.length[i], lanes.length[j])
+                    };
+                    let (s01, s02, s12) = (unit_sum(b, 0), unit_sum(b, c), unit_sum(0, c));
+                    let (l01, l02, l12) = (
+                        s01.length_squared(),
+                        s02.length_squared(),
+                        s12.length_squared(),
+                    );
+                    let (v0, v1, v2) = (self.vertices[b], apex, self.vertices[c]);
+                    self.g1_plus_g2[k] = denominator(v0, v1, v2, [s01, s02, s12], [l01, l02, l12]);
+                    self.g2[k] = 0.5 * l01;
+                    self.outer_sum[k] = s02;
+                    careful_paths |= CAREFUL_PAIR_SUMS;
+                }
             }
         }
         // Algorithm 5: A = 2 atan2(G0, G2 + G1), with G0 >= 0, four triangles at a time
@@ -910,8 +900,30 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // calls anyway, and the lanes' round trip, scalar results stored, loaded back as
         // lanes and stored again, stalled on store-to-load forwarding): the solid angles,
         // the running sums and the tests on them.
-        // Whether every determinant is zero (below).
+        // `G0 = |det|` four triangles at a time, and whether every determinant is zero
+        // (below), from the lanes: one store and one comparison per four triangles in
+        // place of a store and a comparison per triangle in the loop (lanes past
+        // `triangles` store values that the unused slots' zeros overwrite at the end, and
+        // their comparisons are masked off; `-0 == 0` and a NaN compares unequal, as in
+        // the scalar `g0 == 0.0`).
+        // Triangles and quads (one or two fan triangles) keep the scalar form in the loop,
+        // which costs them less (a triangle's prepare + 1 sample: 762 -> 773 instructions
+        // with the lanes, callgrind).
+        let in_lanes = triangles > 2;
         let mut edge_on = true;
+        if in_lanes {
+            let signed_lanes =
+                |first: usize| Vec4::from_slice(&fan.signed_g0[first..first + LANES]);
+            let signed0 = signed_lanes(0);
+            store_triangle_lanes(signed0.abs(), &mut self.g0, 0);
+            let mut zero_determinants = lane_bits(signed0.cmpeq(Vec4::ZERO), 0, triangles);
+            if triangles > LANES {
+                let signed1 = signed_lanes(LANES);
+                store_triangle_lanes(signed1.abs(), &mut self.g0, LANES);
+                zero_determinants |= lane_bits(signed1.cmpeq(Vec4::ZERO), LANES, triangles);
+            }
+            edge_on = zero_determinants == (1 << triangles) - 1;
+        }
         // Fan triangles up to the last one with a positive solid angle are selectable.
         let mut selectable = 0usize;
         let mut signed_sum = 0.0f32;
@@ -919,9 +931,11 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         #[allow(clippy::needless_range_loop)] // k indexes the fan's and the polygon's arrays
         for k in 0..triangles {
             let g0 = fan.signed_g0[k].abs();
-            self.g0[k] = g0;
+            if !in_lanes {
+                self.g0[k] = g0;
+                edge_on &= g0 == 0.0;
+            }
             let angle = 2.0 * atan2_upper_half_plane(g0, self.g1_plus_g2[k]);
-            edge_on &= g0 == 0.0;
             if angle > 0.0 {
                 selectable = k + 1;
             }
@@ -961,10 +975,10 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // again, so the lanes need no wrap-around).
         let mut flags = edges.compute(&groups, 0, &mut self.edge_normals);
         if count > LANES {
-            flags |= edges.compute(&groups, LANES, &mut self.edge_normals);
+            let [short, narrow, narrowest] = edges.compute(&groups, LANES, &mut self.edge_normals);
+            flags = [flags[0] | short, flags[1] | narrow, flags[2] | narrowest];
         }
-        let maybe_short = flags & EDGE_MAYBE_SHORT != 0;
-        let (narrow, narrowest) = (flags & EDGE_NARROW != 0, flags & EDGE_NARROWEST != 0);
+        let [maybe_short, narrow, narrowest] = flags.map(|mask| mask.any());
         self.checks_samples = narrow as u32 + narrowest as u32;
         // The narrowest polygons: the edge planes to about ε² (see `edge_residuals`), in
         // place of the rounded ones; the others keep zero residuals.
