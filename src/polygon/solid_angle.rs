@@ -486,6 +486,13 @@ impl VertexGroups {
         }
     }
 
+    /// The value that `field` picks from a group, of slot `i` alone (`i` is a constant
+    /// where this is inlined: one lane of a register).
+    #[inline(always)]
+    fn slot(&self, field: impl Fn(&SlotGroup) -> Vec4, i: usize) -> f32 {
+        field(&self.groups[i / LANES]).to_array()[i % LANES]
+    }
+
     /// [`slots`](Self::slots) of the three coordinates of a vector value.
     #[inline(always)]
     fn slots3(&self, field: impl Fn(&SlotGroup) -> [Vec4; 3], start: usize) -> [Vec4; 3] {
@@ -630,6 +637,70 @@ impl FanLanes {
         for j in 0..LANES.min(T - first) {
             polygon.outer_sum[first + j] = Vec3::new(s02x[j], s02y[j], s02z[j]);
         }
+    }
+}
+
+impl FanLanes {
+    /// [`compute`](Self::compute) of the one fan triangle `k` alone, in scalar
+    /// arithmetic: the same operations on the same values in the same order (Rust never
+    /// contracts `a * b + c`, and the lanes' `min` and selections are the comparisons
+    /// written out; none of these values is NaN: the unit vectors and the reflected edges
+    /// are finite), so the same bits (tested: `a_lone_fan_triangle_is_prepared_as_in_lanes`).
+    /// For a group of lanes that would hold one triangle (a triangle's, a heptagon's
+    /// fifth), where the four lanes' work, their shuffles and transposed stores cost more
+    /// than the one triangle's scalar work.
+    #[inline(always)]
+    fn compute_one<const N: usize, const T: usize>(
+        &mut self,
+        polygon: &mut SolidAngleFan<N, T>,
+        lanes: &VertexGroups,
+        reflection: &Householder,
+        apex: Vec3,
+        k: usize,
+    ) {
+        let (b, c) = (k + 1, k + 2);
+        let slot = |field: fn(&SlotGroup) -> Vec4, i: usize| lanes.slot(field, i);
+        let (rb0, rb1) = (slot(|g| g.reflected[0], b), slot(|g| g.reflected[1], b));
+        let (rc0, rc1) = (slot(|g| g.reflected[0], c), slot(|g| g.reflected[1], c));
+        // As the lanes: `difference_of_products_unless_cancelling4` is this lane by lane.
+        let det = difference_of_products_unless_cancelling(rb0, rc1, rb1, rc0) * reflection.sigma;
+        let noise = super::FAN_DETERMINANT_NOISE * slot(|g| g.extent, b) * slot(|g| g.extent, c);
+        if det.abs() <= noise {
+            self.maybe_flat |= 1 << k;
+        }
+        self.signed_g0[k] = det / (slot(|g| g.length, b) * slot(|g| g.length, c));
+        let (bx, by, bz) = (
+            slot(|g| g.unit[0], b),
+            slot(|g| g.unit[1], b),
+            slot(|g| g.unit[2], b),
+        );
+        let (cx, cy, cz) = (
+            slot(|g| g.unit[0], c),
+            slot(|g| g.unit[1], c),
+            slot(|g| g.unit[2], c),
+        );
+        let (ax, ay, az) = (apex.x, apex.y, apex.z);
+        let (s01x, s01y, s01z) = (bx + ax, by + ay, bz + az);
+        let (s02x, s02y, s02z) = (bx + cx, by + cy, bz + cz);
+        let (s12x, s12y, s12z) = (ax + cx, ay + cy, az + cz);
+        let l01 = (s01x * s01x + s01y * s01y) + s01z * s01z;
+        let l02 = (s02x * s02x + s02y * s02y) + s02z * s02z;
+        let l12 = (s12x * s12x + s12y * s12y) + s12z * s12z;
+        if l01 < 2.0 || l02 < 2.0 || l12 < 2.0 {
+            self.wide_pairs |= 1 << k;
+        }
+        let d02 = 0.5 * l02 + ((ax * s02x + ay * s02y) + az * s02z);
+        let d12 = 0.5 * l12 + ((bx * s12x + by * s12y) + bz * s12z);
+        let d01 = 0.5 * l01 + ((cx * s01x + cy * s01y) + cz * s01z);
+        polygon.g1_plus_g2[k] = if l02 <= l01 && l02 <= l12 {
+            d02
+        } else if l12 <= l01 {
+            d12
+        } else {
+            d01
+        };
+        polygon.g2[k] = 0.5 * l01;
+        polygon.outer_sum[k] = Vec3::new(s02x, s02y, s02z);
     }
 }
 
@@ -830,8 +901,19 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         let apex = groups.apex();
         let triangles = count - 2;
         let mut fan = FanLanes::default();
-        fan.compute(self, &groups, &reflection, apex, 0, triangles);
-        if triangles > LANES {
+        // A triangle's one fan triangle in scalar arithmetic too, the same bits (triangles
+        // 763 -> 734 instructions per prepare + 1, callgrind; quads' two fan triangles
+        // stay in lanes).
+        if triangles == 1 {
+            fan.compute_one(self, &groups, &reflection, apex, 0);
+        } else {
+            fan.compute(self, &groups, &reflection, apex, 0, triangles);
+        }
+        // A last group of one triangle (heptagons) in scalar arithmetic, the same bits
+        // (heptagons 1588 -> 1546 instructions per prepare + 1, callgrind).
+        if triangles == LANES + 1 {
+            fan.compute_one(self, &groups, &reflection, apex, LANES);
+        } else if triangles > LANES {
             fan.compute(self, &groups, &reflection, apex, LANES, triangles);
         }
         // The rare triangles that the lanes flagged, in the scalar careful forms.
