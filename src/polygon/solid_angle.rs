@@ -486,6 +486,13 @@ impl VertexGroups {
         }
     }
 
+    /// The value that `field` picks from a group, of slot `i` alone (`i` is a constant
+    /// where this is inlined: one lane of a register).
+    #[inline(always)]
+    fn slot(&self, field: impl Fn(&SlotGroup) -> Vec4, i: usize) -> f32 {
+        field(&self.groups[i / LANES]).to_array()[i % LANES]
+    }
+
     /// [`slots`](Self::slots) of the three coordinates of a vector value.
     #[inline(always)]
     fn slots3(&self, field: impl Fn(&SlotGroup) -> [Vec4; 3], start: usize) -> [Vec4; 3] {
@@ -533,12 +540,6 @@ impl VertexGroups {
 }
 
 impl VertexLanes {
-    /// Every slot 0 (the value of the fast path, which does not read it).
-    const ZERO: VertexLanes = VertexLanes {
-        position: [[0.0; SLOTS]; 3],
-        length: [0.0; SLOTS],
-    };
-
     /// The (rescaled) position of vertex `i`; slot `count` is vertex 0 again.
     #[inline(always)]
     fn position(&self, i: usize) -> Vec3 {
@@ -639,6 +640,70 @@ impl FanLanes {
     }
 }
 
+impl FanLanes {
+    /// [`compute`](Self::compute) of the one fan triangle `k` alone, in scalar
+    /// arithmetic: the same operations on the same values in the same order (Rust never
+    /// contracts `a * b + c`, and the lanes' `min` and selections are the comparisons
+    /// written out; none of these values is NaN: the unit vectors and the reflected edges
+    /// are finite), so the same bits (tested: `a_lone_fan_triangle_is_prepared_as_in_lanes`).
+    /// For a group of lanes that would hold one triangle (a triangle's, a heptagon's
+    /// fifth), where the four lanes' work, their shuffles and transposed stores cost more
+    /// than the one triangle's scalar work.
+    #[inline(always)]
+    fn compute_one<const N: usize, const T: usize>(
+        &mut self,
+        polygon: &mut SolidAngleFan<N, T>,
+        lanes: &VertexGroups,
+        reflection: &Householder,
+        apex: Vec3,
+        k: usize,
+    ) {
+        let (b, c) = (k + 1, k + 2);
+        let slot = |field: fn(&SlotGroup) -> Vec4, i: usize| lanes.slot(field, i);
+        let (rb0, rb1) = (slot(|g| g.reflected[0], b), slot(|g| g.reflected[1], b));
+        let (rc0, rc1) = (slot(|g| g.reflected[0], c), slot(|g| g.reflected[1], c));
+        // As the lanes: `difference_of_products_unless_cancelling4` is this lane by lane.
+        let det = difference_of_products_unless_cancelling(rb0, rc1, rb1, rc0) * reflection.sigma;
+        let noise = super::FAN_DETERMINANT_NOISE * slot(|g| g.extent, b) * slot(|g| g.extent, c);
+        if det.abs() <= noise {
+            self.maybe_flat |= 1 << k;
+        }
+        self.signed_g0[k] = det / (slot(|g| g.length, b) * slot(|g| g.length, c));
+        let (bx, by, bz) = (
+            slot(|g| g.unit[0], b),
+            slot(|g| g.unit[1], b),
+            slot(|g| g.unit[2], b),
+        );
+        let (cx, cy, cz) = (
+            slot(|g| g.unit[0], c),
+            slot(|g| g.unit[1], c),
+            slot(|g| g.unit[2], c),
+        );
+        let (ax, ay, az) = (apex.x, apex.y, apex.z);
+        let (s01x, s01y, s01z) = (bx + ax, by + ay, bz + az);
+        let (s02x, s02y, s02z) = (bx + cx, by + cy, bz + cz);
+        let (s12x, s12y, s12z) = (ax + cx, ay + cy, az + cz);
+        let l01 = (s01x * s01x + s01y * s01y) + s01z * s01z;
+        let l02 = (s02x * s02x + s02y * s02y) + s02z * s02z;
+        let l12 = (s12x * s12x + s12y * s12y) + s12z * s12z;
+        if l01 < 2.0 || l02 < 2.0 || l12 < 2.0 {
+            self.wide_pairs |= 1 << k;
+        }
+        let d02 = 0.5 * l02 + ((ax * s02x + ay * s02y) + az * s02z);
+        let d12 = 0.5 * l12 + ((bx * s12x + by * s12y) + bz * s12z);
+        let d01 = 0.5 * l01 + ((cx * s01x + cy * s01y) + cz * s01z);
+        polygon.g1_plus_g2[k] = if l02 <= l01 && l02 <= l12 {
+            d02
+        } else if l12 <= l01 {
+            d12
+        } else {
+            d01
+        };
+        polygon.g2[k] = 0.5 * l01;
+        polygon.outer_sum[k] = Vec3::new(s02x, s02y, s02z);
+    }
+}
+
 /// Writes the lanes of triangles `first..first + 4` that exist into a per-triangle array
 /// of the prepared polygon (`first` is a constant where this is inlined, so the test
 /// is made at compile time).
@@ -651,13 +716,6 @@ fn store_triangle_lanes<const T: usize>(lanes: Vec4, values: &mut [f32; T], firs
         values[first..].copy_from_slice(&lanes.to_array()[..end]);
     }
 }
-
-/// [`EdgeLanes::compute`]: an edge short enough for the short-edge rule to look at it.
-const EDGE_MAYBE_SHORT: u32 = 1;
-/// An edge longer than `Ω / SAMPLE_CHECK_WIDTH`.
-const EDGE_NARROW: u32 = 2;
-/// An edge longer than `Ω / PRECISE_PLANE_WIDTH`.
-const EDGE_NARROWEST: u32 = 4;
 
 /// The edge planes four edges at a time, with the tests on their lengths.
 struct EdgeLanes {
@@ -672,15 +730,20 @@ struct EdgeLanes {
 
 impl EdgeLanes {
     /// The oriented normals of edges `first..first + 4` into `normals` (lanes past the
-    /// polygon get zero vectors from the repeated first vertex), and the flags of the
-    /// lengths of those that exist.
+    /// polygon get zero vectors from the repeated first vertex), and the tests on the
+    /// lengths of those that exist, as lane masks (lanes past the polygon false): an edge
+    /// short enough for the short-edge rule to look at it, an edge longer than
+    /// `Ω / SAMPLE_CHECK_WIDTH`, and one longer than `Ω / PRECISE_PLANE_WIDTH`. The
+    /// caller combines the groups' masks with `|` and reads each once: one mask
+    /// extraction per test instead of one per test and group, with the bit arithmetic
+    /// that joined them (hexagons 1299 -> 1275 instructions per prepare + 1, callgrind).
     #[inline(always)]
     fn compute<const N: usize>(
         &self,
         lanes: &VertexGroups,
         first: usize,
         normals: &mut [Vec3; N],
-    ) -> u32 {
+    ) -> [BVec4A; 3] {
         let [px, py, pz] = lanes.slots3(|g| g.position, first);
         let [qx, qy, qz] = lanes.slots3(|g| g.position, first + 1);
         // p_i × p_(i+1) = p_i × (p_(i+1) - p_i): the edge vector is exact up to one
@@ -698,23 +761,20 @@ impl EdgeLanes {
         // length against SHORT_EDGE_SINE²), on the same values: the common polygon has
         // no short edge and skips it.
         let short_sine2 = Vec4::splat(super::SHORT_EDGE_SINE * super::SHORT_EDGE_SINE);
+        // The lanes of edges that exist (`first` and `count` are constants where this is
+        // inlined: the mask is a constant).
         let count = self.count;
-        let flag = |mask: BVec4A, bit: u32| {
-            if lane_bits(mask, first, count) != 0 {
-                bit
-            } else {
-                0
-            }
-        };
-        let flags = flag(normal2.cmple(short_sine2 * scale2), EDGE_MAYBE_SHORT)
-            | flag(
-                normal2.cmpgt(Vec4::splat(self.long_edge_sine2) * scale2),
-                EDGE_NARROW,
-            )
-            | flag(
-                normal2.cmpgt(Vec4::splat(self.longest_edge_sine2) * scale2),
-                EDGE_NARROWEST,
-            );
+        let exists = BVec4A::new(
+            first < count,
+            first + 1 < count,
+            first + 2 < count,
+            first + 3 < count,
+        );
+        let masks = [
+            normal2.cmple(short_sine2 * scale2) & exists,
+            normal2.cmpgt(Vec4::splat(self.long_edge_sine2) * scale2) & exists,
+            normal2.cmpgt(Vec4::splat(self.longest_edge_sine2) * scale2) & exists,
+        ];
         let orientation = Vec4::splat(self.orientation);
         let (nx, ny, nz) = (
             (nx * orientation).to_array(),
@@ -725,7 +785,7 @@ impl EdgeLanes {
         for j in 0..if first + LANES <= N { LANES } else { N - first } {
             normals[first + j] = Vec3::new(nx[j], ny[j], nz[j]);
         }
-        flags
+        masks
     }
 }
 
@@ -841,8 +901,19 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         let apex = groups.apex();
         let triangles = count - 2;
         let mut fan = FanLanes::default();
-        fan.compute(self, &groups, &reflection, apex, 0, triangles);
-        if triangles > LANES {
+        // A triangle's one fan triangle in scalar arithmetic too, the same bits (triangles
+        // 763 -> 734 instructions per prepare + 1, callgrind; quads' two fan triangles
+        // stay in lanes).
+        if triangles == 1 {
+            fan.compute_one(self, &groups, &reflection, apex, 0);
+        } else {
+            fan.compute(self, &groups, &reflection, apex, 0, triangles);
+        }
+        // A last group of one triangle (heptagons) in scalar arithmetic, the same bits
+        // (heptagons 1588 -> 1546 instructions per prepare + 1, callgrind).
+        if triangles == LANES + 1 {
+            fan.compute_one(self, &groups, &reflection, apex, LANES);
+        } else if triangles > LANES {
             fan.compute(self, &groups, &reflection, apex, LANES, triangles);
         }
         // The rare triangles that the lanes flagged, in the scalar careful forms.
@@ -850,58 +921,59 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // One pass per set bit (the lanes' flags have no bits past `triangles`): the
         // common polygon, with no flag, skips the loop at once.
         let mut flagged = fan.maybe_flat | fan.wide_pairs;
-        // The working set in memory, for the run-time indices below (rare).
-        let memory = if flagged != 0 {
-            groups.lanes()
-        } else {
-            VertexLanes::ZERO
-        };
-        while flagged != 0 {
+        // The working set in memory, for the run-time indices below (rare), built only
+        // when a triangle is flagged: an `if` that chose between it and a zero value
+        // stored the 576 zero bytes on the common path too (14 instructions per
+        // hexagon, callgrind).
+        if flagged != 0 {
+            let memory = groups.lanes();
             let lanes = &memory;
-            let k = flagged.trailing_zeros() as usize;
-            // Clears the lowest set bit.
-            flagged &= flagged - 1;
-            let (b, c) = (k + 1, k + 2);
-            // A triangle exactly in a plane through the shading point has G0 = 0, which
-            // the reflection's rounding would turn into noise (and a polygon in such a
-            // plane into a tiny light with a huge pdf): below the noise bound, the exact
-            // test decides.
-            if fan.maybe_flat & (1 << k) != 0
-                && determinant_is_exactly_zero(
-                    lanes.position(0),
-                    lanes.position(b),
-                    lanes.position(c),
-                )
-            {
-                fan.signed_g0[k] = 0.0;
-            }
-            // The pair sums `v_i + v_j`. Fast path (the lanes): the plain sums of the
-            // rounded unit vectors. Each unit vector is off by at most half an ulp of 1 per
-            // component (correctly rounded division), so a sum of length `|s|` carries a
-            // relative error of at most about `ε / |s| + ε/2`: for `|s|² >= 2` (the
-            // vertices at most 90° apart) at most 1.2ε, against the compensated sums' ε/2.
-            // The bound was chosen by measurement: with `|s|² >= 1` (120°) the largest
-            // error of Ω at 1 sr in the report's accuracy table grew from 6.4e-7 to
-            // 7.8e-7; with 90° every row stays as docs/polygon-lights.md states it but for 1e-8 sr
-            // (max 5.2e-7 against 4.9e-7). Only for pairs farther apart (up to nearly
-            // antipodal, where the plain sum loses its relative precision: a shading
-            // point close to a large polygon) do the compensated sums run.
-            if fan.wide_pairs & (1 << k) != 0 {
-                let unit_sum = |i: usize, j: usize| {
-                    let (p, q) = (lanes.position(i), lanes.position(j));
-                    unit_vector_sum(p, q, lanes.length[i], lanes.length[j])
-                };
-                let (s01, s02, s12) = (unit_sum(b, 0), unit_sum(b, c), unit_sum(0, c));
-                let (l01, l02, l12) = (
-                    s01.length_squared(),
-                    s02.length_squared(),
-                    s12.length_squared(),
-                );
-                let (v0, v1, v2) = (self.vertices[b], apex, self.vertices[c]);
-                self.g1_plus_g2[k] = denominator(v0, v1, v2, [s01, s02, s12], [l01, l02, l12]);
-                self.g2[k] = 0.5 * l01;
-                self.outer_sum[k] = s02;
-                careful_paths |= CAREFUL_PAIR_SUMS;
+            while flagged != 0 {
+                let k = flagged.trailing_zeros() as usize;
+                // Clears the lowest set bit.
+                flagged &= flagged - 1;
+                let (b, c) = (k + 1, k + 2);
+                // A triangle exactly in a plane through the shading point has G0 = 0, which
+                // the reflection's rounding would turn into noise (and a polygon in such a
+                // plane into a tiny light with a huge pdf): below the noise bound, the exact
+                // test decides.
+                if fan.maybe_flat & (1 << k) != 0
+                    && determinant_is_exactly_zero(
+                        lanes.position(0),
+                        lanes.position(b),
+                        lanes.position(c),
+                    )
+                {
+                    fan.signed_g0[k] = 0.0;
+                }
+                // The pair sums `v_i + v_j`. Fast path (the lanes): the plain sums of the
+                // rounded unit vectors. Each unit vector is off by at most half an ulp of 1 per
+                // component (correctly rounded division), so a sum of length `|s|` carries a
+                // relative error of at most about `ε / |s| + ε/2`: for `|s|² >= 2` (the
+                // vertices at most 90° apart) at most 1.2ε, against the compensated sums' ε/2.
+                // The bound was chosen by measurement: with `|s|² >= 1` (120°) the largest
+                // error of Ω at 1 sr in the report's accuracy table grew from 6.4e-7 to
+                // 7.8e-7; with 90° every row stays as docs/polygon-lights.md states it but for 1e-8 sr
+                // (max 5.2e-7 against 4.9e-7). Only for pairs farther apart (up to nearly
+                // antipodal, where the plain sum loses its relative precision: a shading
+                // point close to a large polygon) do the compensated sums run.
+                if fan.wide_pairs & (1 << k) != 0 {
+                    let unit_sum = |i: usize, j: usize| {
+                        let (p, q) = (lanes.position(i), lanes.position(j));
+                        unit_vector_sum(p, q, lanes.length[i], lanes.length[j])
+                    };
+                    let (s01, s02, s12) = (unit_sum(b, 0), unit_sum(b, c), unit_sum(0, c));
+                    let (l01, l02, l12) = (
+                        s01.length_squared(),
+                        s02.length_squared(),
+                        s12.length_squared(),
+                    );
+                    let (v0, v1, v2) = (self.vertices[b], apex, self.vertices[c]);
+                    self.g1_plus_g2[k] = denominator(v0, v1, v2, [s01, s02, s12], [l01, l02, l12]);
+                    self.g2[k] = 0.5 * l01;
+                    self.outer_sum[k] = s02;
+                    careful_paths |= CAREFUL_PAIR_SUMS;
+                }
             }
         }
         // Algorithm 5: A = 2 atan2(G0, G2 + G1), with G0 >= 0, four triangles at a time
@@ -910,8 +982,30 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // calls anyway, and the lanes' round trip, scalar results stored, loaded back as
         // lanes and stored again, stalled on store-to-load forwarding): the solid angles,
         // the running sums and the tests on them.
-        // Whether every determinant is zero (below).
+        // `G0 = |det|` four triangles at a time, and whether every determinant is zero
+        // (below), from the lanes: one store and one comparison per four triangles in
+        // place of a store and a comparison per triangle in the loop (lanes past
+        // `triangles` store values that the unused slots' zeros overwrite at the end, and
+        // their comparisons are masked off; `-0 == 0` and a NaN compares unequal, as in
+        // the scalar `g0 == 0.0`).
+        // Triangles and quads (one or two fan triangles) keep the scalar form in the loop,
+        // which costs them less (a triangle's prepare + 1 sample: 762 -> 773 instructions
+        // with the lanes, callgrind).
+        let in_lanes = triangles > 2;
         let mut edge_on = true;
+        if in_lanes {
+            let signed_lanes =
+                |first: usize| Vec4::from_slice(&fan.signed_g0[first..first + LANES]);
+            let signed0 = signed_lanes(0);
+            store_triangle_lanes(signed0.abs(), &mut self.g0, 0);
+            let mut zero_determinants = lane_bits(signed0.cmpeq(Vec4::ZERO), 0, triangles);
+            if triangles > LANES {
+                let signed1 = signed_lanes(LANES);
+                store_triangle_lanes(signed1.abs(), &mut self.g0, LANES);
+                zero_determinants |= lane_bits(signed1.cmpeq(Vec4::ZERO), LANES, triangles);
+            }
+            edge_on = zero_determinants == (1 << triangles) - 1;
+        }
         // Fan triangles up to the last one with a positive solid angle are selectable.
         let mut selectable = 0usize;
         let mut signed_sum = 0.0f32;
@@ -919,9 +1013,11 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         #[allow(clippy::needless_range_loop)] // k indexes the fan's and the polygon's arrays
         for k in 0..triangles {
             let g0 = fan.signed_g0[k].abs();
-            self.g0[k] = g0;
+            if !in_lanes {
+                self.g0[k] = g0;
+                edge_on &= g0 == 0.0;
+            }
             let angle = 2.0 * atan2_upper_half_plane(g0, self.g1_plus_g2[k]);
-            edge_on &= g0 == 0.0;
             if angle > 0.0 {
                 selectable = k + 1;
             }
@@ -961,10 +1057,10 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // again, so the lanes need no wrap-around).
         let mut flags = edges.compute(&groups, 0, &mut self.edge_normals);
         if count > LANES {
-            flags |= edges.compute(&groups, LANES, &mut self.edge_normals);
+            let [short, narrow, narrowest] = edges.compute(&groups, LANES, &mut self.edge_normals);
+            flags = [flags[0] | short, flags[1] | narrow, flags[2] | narrowest];
         }
-        let maybe_short = flags & EDGE_MAYBE_SHORT != 0;
-        let (narrow, narrowest) = (flags & EDGE_NARROW != 0, flags & EDGE_NARROWEST != 0);
+        let [maybe_short, narrow, narrowest] = flags.map(|mask| mask.any());
         self.checks_samples = narrow as u32 + narrowest as u32;
         // The narrowest polygons: the edge planes to about ε² (see `edge_residuals`), in
         // place of the rounded ones; the others keep zero residuals.

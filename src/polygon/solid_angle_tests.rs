@@ -1211,3 +1211,116 @@ fn sampled_directions_match_algorithm_5_in_f64() {
     }
     assert!(length[3] < 2e-6, "{length:?}");
 }
+
+/// `FanLanes::compute_one` (a triangle's fan triangle and a heptagon's fifth in scalar
+/// arithmetic) gives
+/// the bits of the lanes' `FanLanes::compute` for the same triangle: `G0` with its sign,
+/// `G1 + G2`, `G2`, `v0 + v2` and the flags of the careful forms, for every fan triangle
+/// of triangles, heptagons and octagons (not only a heptagon's fifth) of every kind: ordinary ones in both
+/// windings, tiny ones far away (products that cancel: the error-free determinant), ones
+/// close over the shading point (pairs more than 90° apart: the wide-pair flag) and ones
+/// within rounding of a plane through the shading point (the flat flag). And that a
+/// heptagon's prepare stores these bits for its fifth triangle (where no careful form
+/// replaces them).
+#[test]
+fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
+    let mut rng = Rng::new(3901);
+    let mut cases: Vec<Vec<Vec3>> = Vec::new();
+    for n in [3, 7, 8] {
+        for _ in 0..200 {
+            let v = random_polygon_above(&mut rng, n, 0.2, 0.7);
+            cases.push(reversed(&v));
+            cases.push(v);
+            // Tiny and far: 1e-5 across at 1e4.
+            let far = random_polygon_above(&mut rng, n, 1e-5, 1e-5);
+            cases.push(far.iter().map(|&p| p * 1e4).collect());
+            // Close over the shading point: vertices up to nearly antipodal.
+            let near = random_polygon_above(&mut rng, n, 2.0, 3.0);
+            cases.push(
+                near.iter()
+                    .map(|&p| Vec3::new(p.x, p.y, 1e-3 * p.z))
+                    .collect(),
+            );
+        }
+        // In a plane through the shading point up to rounding (the plane z = 0.3 x + 0.7 y
+        // evaluated in f32).
+        for _ in 0..50 {
+            let v: Vec<Vec3> = (0..n)
+                .map(|i| {
+                    let t = i as f32 / n as f32 * core::f32::consts::TAU;
+                    let (x, y) = (2.0 + t.cos(), 1.0 + t.sin() * (0.5 + rng.uniform_f32()));
+                    Vec3::new(x, y, 0.3 * x + 0.7 * y)
+                })
+                .collect();
+            cases.push(v);
+        }
+    }
+    let (mut flat, mut wide) = (0, 0);
+    for v in &cases {
+        let count = v.len();
+        let triangles = count - 2;
+        let (raw, factor) = gather_and_rescale(v, count);
+        let (groups, reflection) =
+            VertexGroups::new(raw, factor.expect("finite"), count).expect("no zero vertex");
+        let apex = groups.apex();
+        let mut lanes_polygon = SolidAnglePolygon::EMPTY;
+        let mut lanes = FanLanes::default();
+        lanes.compute(&mut lanes_polygon, &groups, &reflection, apex, 0, triangles);
+        if triangles > LANES {
+            lanes.compute(
+                &mut lanes_polygon,
+                &groups,
+                &reflection,
+                apex,
+                LANES,
+                triangles,
+            );
+        }
+        for k in 0..triangles {
+            let mut one_polygon = SolidAnglePolygon::EMPTY;
+            let mut one = FanLanes::default();
+            one.compute_one(&mut one_polygon, &groups, &reflection, apex, k);
+            let what = format!("{v:?}, triangle {k}");
+            assert_eq!(
+                one.signed_g0[k].to_bits(),
+                lanes.signed_g0[k].to_bits(),
+                "{what}"
+            );
+            assert_eq!(
+                one_polygon.g1_plus_g2[k].to_bits(),
+                lanes_polygon.g1_plus_g2[k].to_bits(),
+                "{what}"
+            );
+            assert_eq!(
+                one_polygon.g2[k].to_bits(),
+                lanes_polygon.g2[k].to_bits(),
+                "{what}"
+            );
+            let bits = |s: Vec3| s.to_array().map(f32::to_bits);
+            assert_eq!(
+                bits(one_polygon.outer_sum[k]),
+                bits(lanes_polygon.outer_sum[k]),
+                "{what}"
+            );
+            assert_eq!(one.maybe_flat, lanes.maybe_flat & (1 << k), "{what}");
+            assert_eq!(one.wide_pairs, lanes.wide_pairs & (1 << k), "{what}");
+            flat += (one.maybe_flat != 0) as u32;
+            wide += (one.wide_pairs != 0) as u32;
+        }
+        // A heptagon's prepare takes `compute_one` for its fifth triangle, a triangle's
+        // for its one: the prepared values are the lanes'.
+        if count == 7 || count == 3 {
+            let mut prepared = SolidAnglePolygon::EMPTY;
+            let k = if count == 7 { LANES } else { 0 };
+            if prepared.prepare(v) && lanes.wide_pairs & (1 << k) == 0 {
+                assert_eq!(
+                    prepared.g1_plus_g2[k].to_bits(),
+                    lanes_polygon.g1_plus_g2[k].to_bits()
+                );
+                assert_eq!(prepared.g2[k].to_bits(), lanes_polygon.g2[k].to_bits());
+            }
+        }
+    }
+    // Each kind was met (the careful flags many times).
+    assert!(flat > 50 && wide > 50, "flat {flat}, wide {wide}");
+}
