@@ -14,7 +14,8 @@
 use super::ellipse::{Vec2, add2, det2, dot2, is_degenerate, rotate, scale2};
 use crate::math::{
     LANES, atan_fast_nonneg, atan_fast_nonneg4, atan2_upper_half_plane, atan2_upper_half_plane4,
-    copy_sign, difference_of_products4, finite_or_zero4, max4, min4, sqrt4, store_records4,
+    copy_sign, difference_of_products4, finite_or_zero4, max4, min4, select_bits, sqrt4,
+    store_records4,
 };
 use glam::{BVec4A, Vec4};
 
@@ -1124,7 +1125,9 @@ impl EllipseSector {
         let second_half = j >= 2;
         let k = j + second_half as usize;
         let h = j + 1 - second_half as usize;
-        let measured = if second_half { x - quads[j] } else { x };
+        // Without a branch: `second_half` is random in the sample's coordinates (a branch
+        // on it was mispredicted about every other sample, callgrind's branch simulation).
+        let measured = select_bits(second_half, x - quads[j], x);
         // Only the end quads of sectors whose ellipses touch there (flagged by
         // preparation) pay for the shape's correction.
         let end_bit = (j == 0) as u32 | (((j == 3) as u32) << 1);
@@ -1162,11 +1165,14 @@ impl EllipseSector {
         let c1 = (lok * lok - lik * lik) - m * (ratio_o + ratio_i);
         let c2 = ratio_o * ratio_i * (quads[j] - m).max(0.0);
         let root = crate::math::sqrtf(c1 * c1 + 4.0 * m * c2);
-        let (mu, nu) = if c1 >= 0.0 {
-            (c1 + root, 2.0 * m)
-        } else {
-            (2.0 * c2, root - c1)
-        };
+        // Both forms, chosen without a branch (the sign of `c1` is random in the sample's
+        // coordinates; the branch the compiler made of it was mispredicted about every
+        // other sample).
+        let positive = c1 >= 0.0;
+        let (mu, nu) = (
+            select_bits(positive, c1 + root, 2.0 * c2),
+            select_bits(positive, 2.0 * m, root - c1),
+        );
         // For the biased variant (`guess_only`: no iterations), the guess is the sample:
         // its point follows from `w = μ s_k + ν s_h` itself, with
         // `u · w = μ (u · s_k) + ν (u · s_h)` from the quarter directions' dot products
@@ -1219,11 +1225,17 @@ impl EllipseSector {
             // Residual A_δ = A - (area between the ellipses from s0 to w).
             let residual = area - self.area_between(&c, AreaPrecision::Exact);
             let x = c.chord();
-            if residual > 0.0 {
-                x_lo = x_lo.max(x);
-            } else {
-                x_hi = x_hi.min(x);
-            }
+            // Without a branch: the residual's sign is random, and a branch on it,
+            // decided only at the end of the arc tangents' chain, was mispredicted about
+            // every other sample (discarding the step issued after it).
+            // The maximum and minimum as single comparisons (`maxss`/`minss`): `x` and the
+            // bounds are finite (`chord` returns a number in [0, 1]), so `f32::max`'s NaN
+            // handling (four more instructions each) has nothing to do.
+            let below = residual > 0.0;
+            let raised = if x_lo > x { x_lo } else { x };
+            let lowered = if x_hi < x { x_hi } else { x };
+            x_lo = select_bits(below, raised, x_lo);
+            x_hi = select_bits(below, x_hi, lowered);
             let proposal = self.tangent_step(&c, residual);
             c = match self.locate(&proposal, x_lo, x_hi) {
                 Location::Inside => proposal,
@@ -1347,8 +1359,13 @@ pub(crate) fn point_between_ellipses(
     uow: f32,
 ) -> Option<(Vec2, f32)> {
     let (qi, qo) = (length2 + uiw * uiw, length2 + uow * uow);
-    let radius2 = (1.0 - xi1) / qi + xi1 / qo;
-    let z2 = (1.0 - xi1) * (uiw * uiw / qi) + xi1 * (uow * uow / qo);
+    // The four quotients `(1 - ξ1)/q_i`, `ξ1/q_o`, `(u_i·w)²/q_i` and `(u_o·w)²/q_o` as one
+    // four-lane division (each lane the correctly rounded quotient, so the same bits as
+    // four scalar divisions): they end every sample's chain, and as scalars they queued
+    // one after another at the divider (llvm-mca: the last one 30 cycles after the first).
+    let quotients = Vec4::new(1.0 - xi1, xi1, uiw * uiw, uow * uow) / Vec4::new(qi, qo, qi, qo);
+    let radius2 = quotients.x + quotients.y;
+    let z2 = (1.0 - xi1) * quotients.z + xi1 * quotients.w;
     let scale = crate::math::sqrtf(radius2);
     if scale.is_finite() && z2.is_finite() && length2 > 0.0 {
         Some((scale2(w, scale), z2))
