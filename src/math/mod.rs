@@ -27,7 +27,9 @@ pub(crate) use lanes::{
     difference_of_products4, finite_or_zero4, lane_starts, load4, max4, min4, sqrt4,
     store_records4, store4,
 };
-pub(crate) use length::{length, normalize_or, normalize_or_zero, try_normalize};
+pub(crate) use length::{
+    length, normalize_or, normalize_or_predicted, normalize_or_zero, try_normalize,
+};
 pub(crate) use products::plain_difference_is_certain;
 pub use products::{
     HAS_HARDWARE_FMA, cross_precise, cross_with_residual, determinant_is_exactly_zero,
@@ -36,7 +38,7 @@ pub use products::{
 };
 pub(crate) use roots::safeguarded_newton_step;
 pub use sin_cos::sin_cos_0_to_pi;
-pub(crate) use sin_cos::{sin_cos_of_quarter_turns, sin_cos_of_turn};
+pub(crate) use sin_cos::{sin_cos_of_quarter_turns, sin_cos_of_turn, sincosf_in_line};
 pub use sqrt::sqrtf;
 pub(crate) use unit::{
     UNIT_TOLERANCE, is_unit, is_unit_output, normalize_scaled, unit, unit_if_needed,

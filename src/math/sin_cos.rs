@@ -192,6 +192,81 @@ pub(crate) fn sin_cos_of_quarter_turns(q: u32, r: f32) -> (f32, f32) {
     )
 }
 
+/// `libm::sincosf(x)`, bit for bit, inlined for `|x| ≤ 3π/4` (libm's first two ranges;
+/// beyond them the call itself, out of line). Not a new approximation: the same
+/// reduction and the same `f64` kernels (`__kernel_sindf`, `__kernel_cosdf` of FreeBSD's
+/// `s_sincosf.c`: `sin y ≈ y + y³ (S1 + S2 y²) + y⁷ (S3 + S4 y²)`, `cos y ≈ 1 + C0 y² +
+/// C1 y⁴ + y⁶ (C2 + C3 y²)` for `|y| ≤ π/4`, coefficients copied), evaluated in the same
+/// order with the same roundings (Rust never contracts `a * b + c` into a fused
+/// multiply-add, and `f64` arithmetic is IEEE on every target, soft-float included), so
+/// the same bits for every `f32` (`sincosf_in_line_is_libm_s_sincosf`). For `π/4 < |x| ≤
+/// 3π/4` libm reduces to `y = x + π/2` (`x < 0`: `sin x = −cos y`, `cos x = sin y`) or
+/// `y = π/2 − x` (`sin x = cos y`, `cos x = sin y`), in `f64` from the `f64` `π/2`, where
+/// both kernels take the same `y`: one reduction, both kernels, and a swap. Below
+/// `2⁻¹²`, `(x, 1)` as libm returns (its `force_eval` only raises floating-point flags).
+/// Why: the sphere light sampler's fit (`GgxPivot::from_view`, elevations in `[−π/2,
+/// 0.04]`) called `sincosf` at every preparation, a call with libm's range dispatch
+/// around two kernels (issue 18).
+#[inline(always)]
+pub(crate) fn sincosf_in_line(x: f32) -> (f32, f32) {
+    // libm's constants, by their bits (its decimal literals round to these; the hex
+    // forms are in its comments, e.g. S1 = −0x15555554cbac77p−55). `S1PIO2`, libm's
+    // `0.5 · 3.1415926535897931160`, is the `f64` π/2.
+    const S1PIO2: f64 = core::f64::consts::FRAC_PI_2;
+    const S1: f64 = f64::from_bits(0xbfc5_5555_54cb_ac77);
+    const S2: f64 = f64::from_bits(0x3f81_1110_896e_fbb2);
+    const S3: f64 = f64::from_bits(0xbf2a_00f9_e2ca_e774);
+    const S4: f64 = f64::from_bits(0x3ec6_cd87_8c3b_46a7);
+    const C0: f64 = f64::from_bits(0xbfdf_ffff_fd0c_5e81);
+    const C1: f64 = f64::from_bits(0x3fa5_5553_e105_3a42);
+    const C2: f64 = f64::from_bits(0xbf56_c087_e80f_1e27);
+    const C3: f64 = f64::from_bits(0x3ef9_9342_e0ee_5069);
+    // `|x|`'s bits, compared as libm compares them (`0x3f490fda` ≈ π/4, `0x4016cbe3` ≈
+    // 3π/4, `0x39800000` = 2⁻¹²); NaN and everything above 3π/4 go to the call.
+    let ix = x.to_bits() & 0x7fff_ffff;
+    if ix > 0x4016_cbe3 {
+        return sincosf_call(x);
+    }
+    if ix < 0x3980_0000 {
+        return (x, 1.0);
+    }
+    let wide = ix > 0x3f49_0fda;
+    let xd = x as f64;
+    let y = if !wide {
+        xd
+    } else if x < 0.0 {
+        xd + S1PIO2
+    } else {
+        S1PIO2 - xd
+    };
+    // k_sinf(y) and k_cosf(y), libm's expressions as written.
+    let z = y * y;
+    let w = z * z;
+    let sin_y = {
+        let r = S3 + z * S4;
+        let s = z * y;
+        ((y + s * (S1 + z * S2)) + s * w * r) as f32
+    };
+    let cos_y = {
+        let r = C2 + z * C3;
+        (((1.0 + z * C0) + w * C1) + (w * z) * r) as f32
+    };
+    if !wide {
+        (sin_y, cos_y)
+    } else if x < 0.0 {
+        (-cos_y, sin_y)
+    } else {
+        (cos_y, sin_y)
+    }
+}
+
+/// `libm::sincosf` out of line, for [`sincosf_in_line`]'s arguments beyond `3π/4`.
+#[cold]
+#[inline(never)]
+fn sincosf_call(x: f32) -> (f32, f32) {
+    libm::sincosf(x)
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::test_sweep::{Errors, points, sweep};
@@ -405,6 +480,46 @@ mod tests {
         assert_eq!(sin_cos_0_to_pi(PI), (PI_LO, -1.0));
         assert_eq!(sin_cos_0_to_pi(FRAC_PI_2), (1.0, HALF_PI_LO));
         let (s, c) = sin_cos_0_to_pi(f32::NAN);
+        assert!(s.is_nan() && c.is_nan());
+    }
+
+    /// `sincosf_in_line` is `libm::sincosf` bit for bit: every 127th `f32` of either
+    /// sign from 0 to 4 (past 3π/4, where the call takes over: about 17 million), every
+    /// `f32` within 64 ulps of each of libm's range boundaries (2⁻¹², π/4, 3π/4) and the
+    /// sphere light fit's elevations' range `[−π/2, 0.04]` every 31st `f32`, the
+    /// non-finite values. (The fit's `from_view` calls it.)
+    #[test]
+    fn sincosf_in_line_is_libm_s_sincosf() {
+        let check = |x: f32| {
+            let (s, c) = sincosf_in_line(x);
+            let (ls, lc) = libm::sincosf(x);
+            assert!(
+                s.to_bits() == ls.to_bits() && c.to_bits() == lc.to_bits(),
+                "{x:e}: ({s:e}, {c:e}) where libm gives ({ls:e}, {lc:e})"
+            );
+        };
+        let four = 4.0f32.to_bits();
+        for sign in [0u32, 0x8000_0000] {
+            for bits in (0..=four).step_by(127) {
+                check(f32::from_bits(bits | sign));
+            }
+            for boundary in [0x3980_0000u32, 0x3f49_0fda, 0x4016_cbe3] {
+                for bits in boundary - 64..=boundary + 64 {
+                    check(f32::from_bits(bits | sign));
+                }
+            }
+        }
+        let (low, high) = ((-core::f32::consts::FRAC_PI_2).to_bits(), 0.04f32.to_bits());
+        for bits in (0x8000_0000..=low)
+            .step_by(31)
+            .chain((0..=high).step_by(31))
+        {
+            check(f32::from_bits(bits));
+        }
+        for x in [f32::INFINITY, f32::NEG_INFINITY, f32::MAX, f32::MIN] {
+            check(x);
+        }
+        let (s, c) = sincosf_in_line(f32::NAN);
         assert!(s.is_nan() && c.is_nan());
     }
 }

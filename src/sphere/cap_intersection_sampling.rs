@@ -450,14 +450,20 @@ impl CapIntersection {
     }
 
     /// The direction at radial coordinate `s` and azimuth `psi` about `a` from `e1`.
-    #[inline]
+    /// Always inlined (into `sample_direction`, its caller on the sampling path): out of
+    /// line, its call, the arguments' moves and the frame's loads were 8 instructions per
+    /// clipped sample of the SPTD sphere light sampler (callgrind, light bench `sptd`:
+    /// 860 -> 852 per clipped sample; the same bits, it is the same code).
+    #[inline(always)]
     fn direction(&self, s: f32, psi: f32) -> Vec3 {
         let sin_theta = crate::math::sqrtf((s * (2.0 - s)).max(0.0));
         // `psi` lies in `[−φ, φ] ⊂ [−π, π]`: the sine is odd, the cosine even.
         let (sin_psi, cos_psi) = crate::math::sin_cos_0_to_pi(psi.abs());
         let sin_psi = sin_psi.copysign(psi);
         let axis = self.radial.axis;
-        crate::math::normalize_or(
+        // (`normalize_or`'s bits by a predicted branch: the sample's chain does not wait
+        // for the test of the reciprocal.)
+        crate::math::normalize_or_predicted(
             axis * (1.0 - s) + (self.e1 * cos_psi + self.e2 * sin_psi) * sin_theta,
             axis,
         )

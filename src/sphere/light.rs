@@ -86,7 +86,10 @@ impl GgxPivot {
     pub fn from_view(wo: Vec3, roughness: f32) -> Option<GgxPivot> {
         let (x, y, cos_phi, sin_phi) = table_coordinates(wo, roughness)?;
         let [norm, elevation, albedo] = table_bilinear(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y);
-        let (sin_e, cos_e) = libm::sincosf(elevation);
+        // libm's `sincosf`, bit for bit, in line (the elevations lie in `[−π/2, 0.04]`,
+        // within its first two ranges): the call and its range dispatch were 52
+        // instructions per preparation (callgrind, light bench `sptd`).
+        let (sin_e, cos_e) = crate::math::sincosf_in_line(elevation);
         // Elevation from the normal, negative towards −x of the view frame, whose x axis
         // has the view's azimuth.
         let pivot = Vec3::new(norm * sin_e * cos_phi, norm * sin_e * sin_phi, norm * cos_e);

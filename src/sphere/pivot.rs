@@ -89,7 +89,9 @@ pub(crate) fn transform(dir: Vec3, pivot: Vec3) -> Vec3 {
     let e = dir - pivot;
     let rho = crate::math::length(pivot);
     let scale = (1.0 - rho) * (1.0 + rho) / e.length_squared();
-    crate::math::normalize_or(pivot - e * scale, -dir)
+    // (`normalize_or`'s bits by a predicted branch: the samplers' chain does not wait for
+    // the test of the reciprocal.)
+    crate::math::normalize_or_predicted(pivot - e * scale, -dir)
 }
 
 /// The pivot transformation `g(ω; r_p)` (Eq. 2): the second intersection with the

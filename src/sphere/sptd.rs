@@ -55,7 +55,7 @@
 
 use super::cap::{Cap, sample_uniform_in_frame};
 use super::cap_intersection::cap_intersection_solid_angle;
-use super::cap_intersection_sampling::MAX_ITERATIONS;
+use super::cap_intersection_sampling::{MAX_ITERATIONS, MIN_NORMALISER};
 use super::pivot::{pivot_cap, pivot_cap_fast, pivot_cap_fast_of_valid, transform, valid_pivot};
 use crate::Sample;
 use crate::math::orthonormal_basis;
@@ -1004,12 +1004,19 @@ impl SptdInCap {
         // `Cap::sample_uniform` of the image with its frame prepared (the same bits:
         // `orthonormal_basis(image.axis)`, see `e1`).
         let image = &self.image;
-        let pdf = image.uniform_pdf();
-        if pdf == 0.0 {
+        // `image.uniform_pdf() == 0` without its division: the uniform pdf `1/Ω` only fed
+        // that test and `sample_uniform_in_frame`'s pdf, which the test below reads only
+        // for 0 (the density is `J(ω)/Ω`, below). `uniform_pdf` is 0 for `t ≤ 0` or NaN
+        // and where `1/(2π t)` is infinite or 0, i.e. for `Ω = 2π t` (the same product)
+        // below `MIN_NORMALISER` or infinite (only a struct corrupted through C): the
+        // range test below, which NaN fails (`the_uniform_base_sample_skips_the_uniform_pdf`).
+        let normaliser = TAU * image.one_minus_cos;
+        if !(MIN_NORMALISER..f32::INFINITY).contains(&normaliser) {
             return Sample::NONE;
         }
         let frame = [image.axis.into(), self.e1.into(), self.ellipse.into()];
-        let s = sample_uniform_in_frame(frame, image.one_minus_cos, image.one_plus_cos, pdf, u);
+        // (Any non-zero pdf: `sample_uniform_in_frame` returns it or 0 for no sample.)
+        let s = sample_uniform_in_frame(frame, image.one_minus_cos, image.one_plus_cos, 1.0, u);
         if s.pdf == 0.0 {
             return Sample::NONE;
         }

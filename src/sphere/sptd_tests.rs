@@ -1019,3 +1019,89 @@ fn the_uniform_base_s_prepared_frame_gives_cap_sampling_s_bits() {
     }
     assert!(compared > 20_000, "{compared}");
 }
+
+/// `sample_uniform_base` tests the uniform pdf `1/Ω` for 0 without computing it (the
+/// comparisons of `Ω = 2π t` with `MIN_NORMALISER` and infinity): its samples are bit for
+/// bit the old path's (`uniform_pdf`, no sample where it is 0, `sample_uniform_in_frame`
+/// with it, then the same steps) for the hard cases' and random uniform SPTDs in caps with
+/// random and extreme `u`, and with the image's `t = 1 − cos` corrupted as only a struct
+/// from C can hold it: 0, −0, negative, NaN, every 97th denormal, the `t` within 64 ulps
+/// of where `1/(2π t)` overflows, huge ones within 64 ulps of where `2π t` overflows (its
+/// reciprocal 0), `f32::MAX` and infinity. Both paths give no sample in the same cases.
+#[test]
+fn the_uniform_base_sample_skips_the_uniform_pdf() {
+    let old_path = |p: &SptdInCap, u: [f32; 2]| -> Sample {
+        let image = &p.image;
+        let pdf = image.uniform_pdf();
+        if pdf == 0.0 {
+            return Sample::NONE;
+        }
+        let frame = [image.axis.into(), p.e1.into(), p.ellipse.into()];
+        let s = sample_uniform_in_frame(frame, image.one_minus_cos, image.one_plus_cos, pdf, u);
+        if s.pdf == 0.0 {
+            return Sample::NONE;
+        }
+        let dir = transform(s.dir, p.sptd.pivot);
+        if !p.cap.contains_inlined(dir) {
+            return Sample::NONE;
+        }
+        let pdf = jacobian(dir, p.sptd.pivot) / image.solid_angle();
+        if pdf > 0.0 && pdf.is_finite() {
+            Sample { dir, pdf }
+        } else {
+            Sample::NONE
+        }
+    };
+    let bits = |s: Sample| (s.dir.to_array().map(f32::to_bits), s.pdf.to_bits());
+    let mut rng = Rng::new(3907);
+    let mut prepared: Vec<SptdInCap> = hard_cases()
+        .iter()
+        .filter_map(|(pivot, cap)| SptdInCap::new(&Sptd::uniform(*pivot), cap))
+        .collect();
+    while prepared.len() < 300 {
+        let pivot = rng.unit_vector_f32() * (0.99 * rng.uniform_f32());
+        let cap = Cap::from_axis_cos(rng.unit_vector_f32(), 2.0 * rng.uniform_f32() - 1.0);
+        if let Some(p) = SptdInCap::new(&Sptd::uniform(pivot), &cap) {
+            prepared.push(p);
+        }
+    }
+    let extremes = [0.0, 0.5, 1.0 - f32::EPSILON / 2.0];
+    let mut us: Vec<[f32; 2]> = (0..40)
+        .map(|_| [rng.uniform_f32(), rng.uniform_f32()])
+        .collect();
+    for a in extremes {
+        for b in extremes {
+            us.push([a, b]);
+        }
+    }
+    let mut samples = 0;
+    for p in &prepared {
+        for &u in &us {
+            let (got, expected) = (p.sample_uniform_base(u), old_path(p, u));
+            assert_eq!(bits(got), bits(expected), "{p:?} {u:?}");
+            samples += (got.pdf > 0.0) as u32;
+        }
+    }
+    assert!(samples > 10_000, "{samples}");
+    // Corrupted images' `t`.
+    let overflow_of_reciprocal = (MIN_NORMALISER / TAU).to_bits();
+    let overflow_of_product = (f32::MAX / TAU).to_bits();
+    let mut corrupted: Vec<f32> = vec![0.0, -0.0, -1.0, f32::NAN, f32::MAX, f32::INFINITY];
+    corrupted.extend((1..0x0080_0000u32).step_by(97).map(f32::from_bits));
+    for centre in [overflow_of_reciprocal, overflow_of_product] {
+        corrupted.extend((centre - 64..=centre + 64).map(f32::from_bits));
+    }
+    let mut none = 0;
+    for &t in &corrupted {
+        for p in prepared.iter().take(20) {
+            let mut p = *p;
+            p.image.one_minus_cos = t;
+            for &u in us.iter().take(8) {
+                let (got, expected) = (p.sample_uniform_base(u), old_path(&p, u));
+                assert_eq!(bits(got), bits(expected), "t = {t:e} {u:?}");
+                none += (got.pdf == 0.0) as u32;
+            }
+        }
+    }
+    assert!(none > 1000, "{none}");
+}
