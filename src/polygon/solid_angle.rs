@@ -288,27 +288,30 @@ fn gather(vertices: &[Vec3], count: usize, first: usize) -> [Vec4; 3] {
 /// for bit, in lanes (the repeated vertex 0 changes no maximum).
 #[inline(always)]
 fn gather_and_rescale(vertices: &[Vec3], count: usize) -> ([[Vec4; 3]; 3], Option<f32>) {
-    // Slots `0..=count` need the groups up to slot `count`: `count >= 3`, so group 1 is
-    // needed from `count = 4` on and group 2 for `count = 8`.
+    // Slots `0..count` need the groups up to slot `count - 1`: `count >= 3`, so group 1
+    // is needed from `count = 5` on and group 2 never (`count <= 8`). Slot `count`, which
+    // closes the polygon, holds vertex 0 again, which `VertexGroups::new` takes from
+    // slot 0 where it falls in a group of its own (quads: the second group's vertex
+    // work, a square root and three divisions, for the one slot 4; 982 -> see the commit).
     let zero = [Vec4::ZERO; 3];
     let raw0 = gather(vertices, count, 0);
-    let raw1 = if count >= LANES {
+    let raw1 = if count > LANES {
         gather(vertices, count, LANES)
     } else {
         zero
     };
-    let raw2 = if count >= 2 * LANES {
+    let raw2 = if count > 2 * LANES {
         gather(vertices, count, 2 * LANES)
     } else {
         zero
     };
     // Over the groups that hold vertices (the zero groups would change nothing).
     let (mut largest, mut finite) = super::largest_magnitude4(raw0);
-    if count >= LANES {
+    if count > LANES {
         let (m1, f1) = super::largest_magnitude4(raw1);
         (largest, finite) = (largest.max(m1), finite & f1);
     }
-    if count >= 2 * LANES {
+    if count > 2 * LANES {
         let (m2, f2) = super::largest_magnitude4(raw2);
         (largest, finite) = (largest.max(m2), finite & f2);
     }
@@ -370,6 +373,26 @@ impl SlotGroup {
         (group, nonzero)
     }
 
+    /// The group whose four slots all hold slot 0 of `self` (each lane of each value
+    /// `self`'s lane 0): for a group that lies wholly past the polygon, whose slots hold
+    /// vertex 0 again. Its values are those that [`vertices`](Self::vertices) and
+    /// [`reflect`](Self::reflect) would compute from the copies of vertex 0, bit for bit
+    /// (the same operations on the same inputs; the edge vector `p_0 - p_0` is `+0`, and
+    /// so are its reflection `0 - h·0` and extent), without the square root and the
+    /// divisions.
+    #[inline(always)]
+    fn first_in_every_slot(&self) -> SlotGroup {
+        let splat = |v: Vec4| Vec4::splat(v.x);
+        SlotGroup {
+            position: self.position.map(splat),
+            length_squared: splat(self.length_squared),
+            length: splat(self.length),
+            unit: self.unit.map(splat),
+            reflected: self.reflected.map(splat),
+            extent: splat(self.extent),
+        }
+    }
+
     /// `reflected` and `extent`: the edge vectors `p_i - p_0` (exact differences of the
     /// inputs up to one rounding each, so that tiny and distant polygons keep their
     /// relative precision) through the reflection, for the apex at `origin`.
@@ -418,15 +441,16 @@ impl VertexGroups {
     #[inline(always)]
     fn new(raw: [[Vec4; 3]; 3], factor: f32, count: usize) -> Option<(VertexGroups, Householder)> {
         let factor = Vec4::splat(factor);
-        // Slots `0..=count` need the groups up to slot `count`: `count >= 3`, so group 1
-        // is needed from `count = 4` on and group 2 for `count = 8`.
+        // Slots `0..count` need the groups up to slot `count - 1`: `count >= 3`, so group
+        // 1 is computed from `count = 5` on and group 2 never (`count <= 8`); the group
+        // of slot `count`, where that is a group of its own, gets slot 0's values (below).
         let (mut g0, ok0) = SlotGroup::vertices(raw[0], factor);
-        let (mut g1, ok1) = if count >= LANES {
+        let (mut g1, ok1) = if count > LANES {
             SlotGroup::vertices(raw[1], factor)
         } else {
             (SlotGroup::ZERO, true)
         };
-        let (mut g2, ok2) = if count >= 2 * LANES {
+        let (mut g2, ok2) = if count > 2 * LANES {
             SlotGroup::vertices(raw[2], factor)
         } else {
             (SlotGroup::ZERO, true)
@@ -442,11 +466,19 @@ impl VertexGroups {
             g0.position[2].x,
         ));
         g0.reflect(&reflection, origin);
-        if count >= LANES {
+        // A group past the polygon that holds slot `count` (which closes the last edge):
+        // vertex 0 in every slot, slot 0's values. Other groups past the polygon stay
+        // zero (only lanes that the masks leave out read them; the copies cost shuffles:
+        // hexagons 1279 -> 1289 instructions with group 2 copied, callgrind).
+        if count > LANES {
             g1.reflect(&reflection, origin);
+        } else if count == LANES {
+            g1 = g0.first_in_every_slot();
         }
-        if count >= 2 * LANES {
+        if count > 2 * LANES {
             g2.reflect(&reflection, origin);
+        } else if count == 2 * LANES {
+            g2 = g0.first_in_every_slot();
         }
         Some((
             VertexGroups {
@@ -704,6 +736,67 @@ impl FanLanes {
     }
 }
 
+impl FanLanes {
+    /// [`compute_one`](Self::compute_one) of a triangle's one fan triangle (`count == 3`),
+    /// with the pair sums in the lanes of group 0 instead of scalars taken out of them.
+    /// A triangle's three pair sums are its three "edges" `v_i + v_(i+1)` taken
+    /// cyclically, and each sum's opposite vertex is `v_(i+2)`: with slot 3 holding vertex
+    /// 0 again, the lanes `(v0, v1, v2)`, shifted by one slot `(v1, v2, v0)` and by two
+    /// `(v2, v0, v1)`, give in lanes 0, 1, 2 the sums `s01 = v_b + v_a`, `s02 = v_b + v_c`,
+    /// `s12 = v_a + v_c` of `compute_one` (fan triangle `(v_b, v_a, v_c) = (v1, v0, v2)`)
+    /// and their opposite vertices `v_c`, `v_a`, `v_b`. Addition and multiplication are
+    /// commutative in IEEE arithmetic and every other operation is `compute_one`'s in its
+    /// order, so each lane holds `compute_one`'s value bit for bit (tested:
+    /// `a_lone_fan_triangle_is_prepared_as_in_lanes`). The three lengths, the three
+    /// candidates of `denominator` and the wide-pair test take one lane operation each
+    /// instead of three scalar ones and the shuffles that fed them (triangles' prepare +
+    /// 1 sample: see the commit).
+    #[inline(always)]
+    fn compute_triangle<const N: usize, const T: usize>(
+        &mut self,
+        polygon: &mut SolidAngleFan<N, T>,
+        lanes: &VertexGroups,
+        reflection: &Householder,
+    ) {
+        // The determinant as `compute_one` (scalar: one product pair).
+        let slot = |field: fn(&SlotGroup) -> Vec4, i: usize| lanes.slot(field, i);
+        let (rb0, rb1) = (slot(|g| g.reflected[0], 1), slot(|g| g.reflected[1], 1));
+        let (rc0, rc1) = (slot(|g| g.reflected[0], 2), slot(|g| g.reflected[1], 2));
+        let det = difference_of_products_unless_cancelling(rb0, rc1, rb1, rc0) * reflection.sigma;
+        let noise = super::FAN_DETERMINANT_NOISE * slot(|g| g.extent, 1) * slot(|g| g.extent, 2);
+        if det.abs() <= noise {
+            self.maybe_flat |= 1;
+        }
+        self.signed_g0[0] = det / (slot(|g| g.length, 1) * slot(|g| g.length, 2));
+        // Slots 0..4 of group 0 hold vertices 0, 1, 2, 0: `next` is (v1, v2, v0, ·) and
+        // `opposite` (v2, v0, v1, ·) (lane 3 is finite and unused).
+        let [x, y, z] = lanes.groups[0].unit;
+        let next = |v: Vec4| Vec4::new(v.y, v.z, v.w, v.y);
+        let opposite = |v: Vec4| Vec4::new(v.z, v.w, v.y, v.z);
+        // Lanes 0, 1, 2: s01, s02, s12 (`v_a + v_b`, `v_b + v_c`, `v_c + v_a`).
+        let (sx, sy, sz) = (x + next(x), y + next(y), z + next(z));
+        let length2 = (sx * sx + sy * sy) + sz * sz;
+        if length2.cmplt(Vec4::splat(2.0)).bitmask() & 0b111 != 0 {
+            self.wide_pairs |= 1;
+        }
+        let half_length2 = Vec4::splat(0.5) * length2;
+        // Lanes 0, 1, 2: d01 (with v_c), d02 (with v_a), d12 (with v_b).
+        let (ox, oy, oz) = (opposite(x), opposite(y), opposite(z));
+        let candidates = half_length2 + ((ox * sx + oy * sy) + oz * sz);
+        let [l01, l02, l12, _] = length2.to_array();
+        let [d01, d02, d12, _] = candidates.to_array();
+        polygon.g1_plus_g2[0] = if l02 <= l01 && l02 <= l12 {
+            d02
+        } else if l12 <= l01 {
+            d12
+        } else {
+            d01
+        };
+        polygon.g2[0] = half_length2.x;
+        polygon.outer_sum[0] = Vec3::new(sx.y, sy.y, sz.y);
+    }
+}
+
 /// Writes the lanes of triangles `first..first + 4` that exist into a per-triangle array
 /// of the prepared polygon (`first` is a constant where this is inlined, so the test
 /// is made at compile time).
@@ -901,11 +994,13 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         let apex = groups.apex();
         let triangles = count - 2;
         let mut fan = FanLanes::default();
-        // A triangle's one fan triangle in scalar arithmetic too, the same bits (triangles
-        // 763 -> 734 instructions per prepare + 1, callgrind; quads' two fan triangles
-        // stay in lanes).
+        // A triangle's one fan triangle on its own, the same bits: the determinant in
+        // scalar arithmetic, the pair sums in the lanes of its three vertices
+        // (`compute_triangle`; triangles 763 -> 734 instructions per prepare + 1 with
+        // `compute_one`, 734 -> 675 with the pair sums in lanes, callgrind; quads' two
+        // fan triangles stay in `compute`'s lanes).
         if triangles == 1 {
-            fan.compute_one(self, &groups, &reflection, apex, 0);
+            fan.compute_triangle(self, &groups, &reflection);
         } else {
             fan.compute(self, &groups, &reflection, apex, 0, triangles);
         }

@@ -1256,6 +1256,7 @@ fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
         }
     }
     let (mut flat, mut wide) = (0, 0);
+    let (mut triangle_flat, mut triangle_wide) = (0, 0);
     for v in &cases {
         let count = v.len();
         let triangles = count - 2;
@@ -1306,6 +1307,37 @@ fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
             assert_eq!(one.wide_pairs, lanes.wide_pairs & (1 << k), "{what}");
             flat += (one.maybe_flat != 0) as u32;
             wide += (one.wide_pairs != 0) as u32;
+            // A triangle's prepare takes `compute_triangle`, the pair sums in lanes: the
+            // same values and flags bit for bit.
+            if count == 3 {
+                let mut triangle_polygon = SolidAnglePolygon::EMPTY;
+                let mut triangle = FanLanes::default();
+                triangle.compute_triangle(&mut triangle_polygon, &groups, &reflection);
+                assert_eq!(
+                    triangle.signed_g0[0].to_bits(),
+                    one.signed_g0[0].to_bits(),
+                    "{what}"
+                );
+                assert_eq!(
+                    triangle_polygon.g1_plus_g2[0].to_bits(),
+                    one_polygon.g1_plus_g2[0].to_bits(),
+                    "{what}"
+                );
+                assert_eq!(
+                    triangle_polygon.g2[0].to_bits(),
+                    one_polygon.g2[0].to_bits(),
+                    "{what}"
+                );
+                assert_eq!(
+                    bits(triangle_polygon.outer_sum[0]),
+                    bits(one_polygon.outer_sum[0]),
+                    "{what}"
+                );
+                assert_eq!(triangle.maybe_flat, one.maybe_flat, "{what}");
+                assert_eq!(triangle.wide_pairs, one.wide_pairs, "{what}");
+                triangle_flat += (triangle.maybe_flat != 0) as u32;
+                triangle_wide += (triangle.wide_pairs != 0) as u32;
+            }
         }
         // A heptagon's prepare takes `compute_one` for its fifth triangle, a triangle's
         // for its one: the prepared values are the lanes'.
@@ -1323,4 +1355,71 @@ fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
     }
     // Each kind was met (the careful flags many times).
     assert!(flat > 50 && wide > 50, "flat {flat}, wide {wide}");
+    assert!(
+        triangle_flat > 10 && triangle_wide > 10,
+        "triangles: flat {triangle_flat}, wide {triangle_wide}"
+    );
+}
+
+/// The group of slot `count` where it is a group of its own (quads: slots 4..8;
+/// octagons: 8..12) is taken from slot 0 (`first_in_every_slot`) in place of the vertex
+/// work on the copies of vertex 0 that fill it: every value the same bits as that work
+/// gives, for polygons at every scale and near the shading point.
+#[test]
+fn the_group_that_closes_the_polygon_is_slot_zero_again() {
+    let mut rng = Rng::new(4001);
+    let bits4 = |v: Vec4| v.to_array().map(f32::to_bits);
+    let mut checked = 0;
+    for n in [4usize, 8] {
+        for i in 0..400 {
+            let v = match i % 4 {
+                0 => random_polygon_above(&mut rng, n, 0.2, 0.7),
+                1 => random_polygon_above(&mut rng, n, 1e-5, 1e-5)
+                    .iter()
+                    .map(|&p| p * 1e4)
+                    .collect(),
+                2 => random_polygon_above(&mut rng, n, 2.0, 3.0)
+                    .iter()
+                    .map(|&p| Vec3::new(p.x, p.y, 1e-3 * p.z))
+                    .collect(),
+                _ => reversed(&random_polygon_above(&mut rng, n, 0.5, 1.5)),
+            };
+            let (raw, factor) = gather_and_rescale(&v, n);
+            let factor = factor.expect("finite");
+            let (groups, reflection) = VertexGroups::new(raw, factor, n).expect("no zero vertex");
+            // The group of slot `n`, computed as every other group is.
+            let first = n;
+            let (mut expected, ok) = SlotGroup::vertices(gather(&v, n, first), Vec4::splat(factor));
+            assert!(ok);
+            let p0 = groups.groups[0].position;
+            let origin = [
+                Vec4::splat(p0[0].x),
+                Vec4::splat(p0[1].x),
+                Vec4::splat(p0[2].x),
+            ];
+            expected.reflect(&reflection, origin);
+            let got = groups.groups[first / LANES];
+            let what = format!("{v:?}");
+            for c in 0..3 {
+                assert_eq!(
+                    bits4(got.position[c]),
+                    bits4(expected.position[c]),
+                    "{what}"
+                );
+                assert_eq!(bits4(got.unit[c]), bits4(expected.unit[c]), "{what}");
+            }
+            for c in 0..2 {
+                assert_eq!(
+                    bits4(got.reflected[c]),
+                    bits4(expected.reflected[c]),
+                    "{what}"
+                );
+            }
+            assert_eq!(bits4(got.length_squared), bits4(expected.length_squared));
+            assert_eq!(bits4(got.length), bits4(expected.length), "{what}");
+            assert_eq!(bits4(got.extent), bits4(expected.extent), "{what}");
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 800);
 }
