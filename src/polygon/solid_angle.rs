@@ -499,11 +499,25 @@ impl VertexGroups {
     /// group (`start` is a constant where this is inlined: the group and the shuffle are
     /// chosen at compile time).
     #[inline(always)]
-    fn slots(&self, field: impl Fn(&SlotGroup) -> Vec4, start: usize) -> Vec4 {
+    fn slots(&self, field: impl Fn(&SlotGroup) -> Vec4, start: usize, count: usize) -> Vec4 {
         let group = start / LANES;
         let low = field(&self.groups[group]);
         if start % LANES == 0 {
             return low;
+        }
+        // For triangles and quads (`count <= 4`, group 0): every slot of group 1 that a
+        // used lane reads holds vertex 0 again, slot 0's value (the others are left out
+        // by the masks), so the shuffle takes it from `low` itself: a rotation of one
+        // register, where the zero group 1 of a triangle took a zeroing and two shuffles
+        // (its edges: 675 -> 667 instructions per prepare + 1, quads 866 -> 862,
+        // callgrind; the same for group 1 of hexagons and heptagons, which took slot 0
+        // from group 0, cost them 3).
+        if group == 0 && count <= LANES {
+            return match start % LANES {
+                1 => Vec4::new(low.y, low.z, low.w, low.x),
+                2 => Vec4::new(low.z, low.w, low.x, low.x),
+                _ => Vec4::new(low.w, low.x, low.x, low.x),
+            };
         }
         let high = if group + 1 < self.groups.len() {
             field(&self.groups[group + 1])
@@ -527,11 +541,16 @@ impl VertexGroups {
 
     /// [`slots`](Self::slots) of the three coordinates of a vector value.
     #[inline(always)]
-    fn slots3(&self, field: impl Fn(&SlotGroup) -> [Vec4; 3], start: usize) -> [Vec4; 3] {
+    fn slots3(
+        &self,
+        field: impl Fn(&SlotGroup) -> [Vec4; 3],
+        start: usize,
+        count: usize,
+    ) -> [Vec4; 3] {
         [
-            self.slots(|g| field(g)[0], start),
-            self.slots(|g| field(g)[1], start),
-            self.slots(|g| field(g)[2], start),
+            self.slots(|g| field(g)[0], start, count),
+            self.slots(|g| field(g)[1], start, count),
+            self.slots(|g| field(g)[2], start, count),
         ]
     }
 
@@ -619,13 +638,14 @@ impl FanLanes {
         triangles: usize,
     ) {
         let (b, c) = (first + 1, first + 2);
+        let count = triangles + 2;
         let rb = [
-            lanes.slots(|g| g.reflected[0], b),
-            lanes.slots(|g| g.reflected[1], b),
+            lanes.slots(|g| g.reflected[0], b, count),
+            lanes.slots(|g| g.reflected[1], b, count),
         ];
         let rc = [
-            lanes.slots(|g| g.reflected[0], c),
-            lanes.slots(|g| g.reflected[1], c),
+            lanes.slots(|g| g.reflected[0], c, count),
+            lanes.slots(|g| g.reflected[1], c, count),
         ];
         // G0 = det(v0, v1, v2) = det(p_b, p_a, p_c) / (|p_a| |p_b| |p_c|).
         let triangle = Vec4::new(0.0, 1.0, 2.0, 3.0) + Vec4::splat(first as f32);
@@ -634,13 +654,14 @@ impl FanLanes {
             rb[0], rc[1], rb[1], rc[0], needed,
         ) * Vec4::splat(reflection.sigma);
         let noise = Vec4::splat(super::FAN_DETERMINANT_NOISE)
-            * lanes.slots(|g| g.extent, b)
-            * lanes.slots(|g| g.extent, c);
+            * lanes.slots(|g| g.extent, b, count)
+            * lanes.slots(|g| g.extent, c, count);
         self.maybe_flat |= lane_bits(det.abs().cmple(noise), first, triangles);
-        let signed_g0 = det / (lanes.slots(|g| g.length, b) * lanes.slots(|g| g.length, c));
+        let signed_g0 =
+            det / (lanes.slots(|g| g.length, b, count) * lanes.slots(|g| g.length, c, count));
         store4(signed_g0, &mut self.signed_g0, first);
-        let [bx, by, bz] = lanes.slots3(|g| g.unit, b);
-        let [cx, cy, cz] = lanes.slots3(|g| g.unit, c);
+        let [bx, by, bz] = lanes.slots3(|g| g.unit, b, count);
+        let [cx, cy, cz] = lanes.slots3(|g| g.unit, c, count);
         let [ax, ay, az] = splat3(apex);
         let (s01x, s01y, s01z) = (bx + ax, by + ay, bz + az);
         let (s02x, s02y, s02z) = (bx + cx, by + cy, bz + cz);
@@ -837,8 +858,8 @@ impl EdgeLanes {
         first: usize,
         normals: &mut [Vec3; N],
     ) -> [BVec4A; 3] {
-        let [px, py, pz] = lanes.slots3(|g| g.position, first);
-        let [qx, qy, qz] = lanes.slots3(|g| g.position, first + 1);
+        let [px, py, pz] = lanes.slots3(|g| g.position, first, self.count);
+        let [qx, qy, qz] = lanes.slots3(|g| g.position, first + 1, self.count);
         // p_i × p_(i+1) = p_i × (p_(i+1) - p_i): the edge vector is exact up to one
         // rounding and nearly orthogonal to p_i, so no cancellation occurs (the
         // components in the order of `Vec3::cross`).
@@ -848,8 +869,8 @@ impl EdgeLanes {
         let nz = px * dy - dx * py;
         // sin²ℓ = |n|² / (|p_i|² |p_(i+1)|²), kept as products (no division).
         let normal2 = (nx * nx + ny * ny) + nz * nz;
-        let scale2 =
-            lanes.slots(|g| g.length_squared, first) * lanes.slots(|g| g.length_squared, first + 1);
+        let scale2 = lanes.slots(|g| g.length_squared, first, self.count)
+            * lanes.slots(|g| g.length_squared, first + 1, self.count);
         // The first test of `ignore_short_edges_in_containment` (sin² of the edge's
         // length against SHORT_EDGE_SINE²), on the same values: the common polygon has
         // no short edge and skips it.
