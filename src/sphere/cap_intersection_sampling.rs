@@ -313,6 +313,18 @@ impl CapIntersection {
             let value = (omega_s - lens).max(low).min(omega_s.min(2.0 * PI * t_b));
             return [value, 2.0 * (PI - phi)];
         }
+        self.cumulative_and_slope_general(s)
+    }
+
+    /// [`cumulative_and_slope`](Self::cumulative_and_slope) off its fast path: the cap at
+    /// `s` built and the general two-cap solid angle. Out of line and cold: in line, the
+    /// compiler hoisted the cap's axis normalisation (loop-invariant: three divisions and
+    /// a square root) out of the Newton loop, so that every sample beyond the nested part
+    /// paid for it although the fast path takes nearly all of them (issue 18, stop 40:
+    /// about 80 instructions per such sample of the SPTD sphere light sampler).
+    #[cold]
+    #[inline(never)]
+    fn cumulative_and_slope_general(&self, s: f32) -> [f32; 2] {
         let cap = Cap::from_axis_one_minus_cos(self.radial.axis, s);
         [
             cap_intersection_solid_angle(&cap, &self.other),

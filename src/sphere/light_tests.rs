@@ -960,6 +960,74 @@ fn fitted_pivots_are_valid_as_they_stand() {
     assert!(compared > 15_000 && clipped > 3_000, "{compared} {clipped}");
 }
 
+/// `prepare_with_fit` takes the valid-pivot path (`prepare_sanitized::<true>`) exactly
+/// for the pivots that `valid_pivot` returns as they are (`is_valid_as_it_stands`), and
+/// gives `prepare_with_pivot`'s bits for every pivot: random ones inside the ball, lengths
+/// within ulps of the bound `1 − 2⁻²⁰` on either side, at and beyond 1, zero, huge,
+/// infinite and NaN, for lights above and across the horizon.
+#[test]
+fn a_fit_s_pivot_takes_the_valid_path_where_it_is_valid() {
+    use crate::sphere::pivot::{is_valid_as_it_stands, valid_pivot};
+    let bits = |p: Vec3| p.to_array().map(f32::to_bits);
+    let mut rng = Rng::new(4018);
+    let bound = 1.0f32 - 1.0 / 1_048_576.0;
+    let mut pivots = vec![
+        Vec3::ZERO,
+        Vec3::new(0.0, 0.0, 1.0),
+        Vec3::new(1e30, 0.0, 0.0),
+        Vec3::new(3e19, 3e19, 3e19),
+        Vec3::new(f32::INFINITY, 0.0, 0.0),
+        Vec3::new(0.1, f32::NAN, 0.2),
+        Vec3::new(f32::MIN_POSITIVE, 0.0, -f32::MIN_POSITIVE),
+    ];
+    for _ in 0..400 {
+        let dir = rng.unit_vector_f32();
+        pivots.push(dir * rng.uniform_f32());
+        // Lengths from 8 ulps below the bound to 8 above.
+        let mut length = bound;
+        for _ in 0..8 {
+            length = f32::from_bits(length.to_bits() - 1);
+        }
+        for _ in 0..17 {
+            pivots.push(dir * length);
+            length = f32::from_bits(length.to_bits() + 1);
+        }
+        pivots.push(dir * (1.0 + rng.uniform_f32()));
+    }
+    let (mut valid, mut invalid, mut compared, mut clipped) = (0, 0, 0, 0);
+    for (k, &pivot) in pivots.iter().enumerate() {
+        let as_it_stands = bits(valid_pivot(pivot)) == bits(pivot);
+        assert_eq!(is_valid_as_it_stands(pivot), as_it_stands, "{pivot:?}");
+        if as_it_stands {
+            valid += 1;
+        } else {
+            invalid += 1;
+        }
+        // Two lights a pivot: one above the horizon, one across it (every 4th also a
+        // small one near the horizon).
+        let lights = [
+            (Vec3::new(0.3, -0.2, 2.0), 0.7),
+            (
+                Vec3::new(2.0, 0.5, 0.3),
+                0.8 - 0.6 * (k % 4 == 0) as u32 as f32,
+            ),
+        ];
+        for (center, radius) in lights {
+            let fit = GgxPivot { pivot, albedo: 0.5 };
+            let mut fast = SphereLightSampler::EMPTY;
+            let ok = fast.prepare_with_fit(center, radius, &fit);
+            let mut careful = SphereLightSampler::EMPTY;
+            let careful_ok = careful.prepare_with_pivot(&Cap::from_sphere(center, radius), pivot);
+            assert_eq!(ok, careful_ok, "{pivot:?}");
+            assert_eq!(format!("{fast:?}"), format!("{careful:?}"), "{pivot:?}");
+            compared += 1;
+            clipped += (ok && fast.is_clipped()) as u32;
+        }
+    }
+    assert!(valid > 4000 && invalid > 3000, "{valid} {invalid}");
+    assert!(compared > 14_000 && clipped > 3_000, "{compared} {clipped}");
+}
+
 /// The sampler's direct uniform-base path (`SptdInCap::sample_uniform_base`, taken for
 /// lights above the horizon that use the SPTD) gives `SptdInCap::sample`'s bits (its
 /// dispatch on the base), for random lights, views and roughnesses and random and extreme

@@ -75,6 +75,14 @@ pub(crate) fn valid_pivot(pivot: Vec3) -> Vec3 {
     }
 }
 
+/// Whether [`valid_pivot`] returns `pivot` as it is, bit for bit: finite and
+/// `|r_p| ≤ MAX_PIVOT_LENGTH` (its length as `valid_pivot` computes it; a finite pivot of
+/// infinite length fails the comparison, as it fails `valid_pivot`'s).
+#[inline(always)]
+pub(crate) fn is_valid_as_it_stands(pivot: Vec3) -> bool {
+    pivot.is_finite() && crate::math::length(pivot) <= MAX_PIVOT_LENGTH
+}
+
 /// `g(ω)` for a unit `dir` and a valid pivot, as `r_p − (1 − |r_p|²)(ω − r_p)/|ω − r_p|²`
 /// with `1 − |r_p|² = (1 − ρ)(1 + ρ)`, `ρ = |r_p|`.
 ///
