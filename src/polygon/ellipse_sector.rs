@@ -1156,7 +1156,7 @@ impl EllipseSector {
         // once in four lanes, each rounded as the scalar form ([`quad_root4`]), and takes
         // quad `j`'s lane: then `j` (known only after the fraction's division and the
         // comparisons with `ends`) waits neither for loads indexed by it nor for the
-        // ratios' division, the square root and the products (llvm-mca: 20 cycles off
+        // ratios' division, the square root and the products (llvm-mca: 15 cycles off
         // the sample's chain). `the_quads_lanes_solve_as_the_scalar_form` compares the
         // two bit for bit.
         let (mu, nu) = if self.touching_ends & end_bit != 0 {
