@@ -83,6 +83,76 @@ pub fn select_bits(condition: bool, if_true: f32, if_false: f32) -> f32 {
     }
 }
 
+/// [`select_bits`] of four lanes by one condition: every lane of `if_true` where
+/// `condition` holds, of `if_false` otherwise, bit for bit, by a mask instead of a
+/// branch (the same bit trick and the same `asm!` as there: a `select` of two vectors
+/// by a scalar condition becomes a branch on x86-64, whose conditional moves of vector
+/// registers are branches).
+#[inline(always)]
+pub fn select_bits4(condition: bool, if_true: glam::Vec4, if_false: glam::Vec4) -> glam::Vec4 {
+    let mask = 0u32.wrapping_sub(condition as u32);
+    #[cfg(target_arch = "x86_64")]
+    {
+        use core::arch::x86_64::{
+            __m128, _mm_and_ps, _mm_andnot_ps, _mm_castsi128_ps, _mm_or_ps, _mm_set1_epi32,
+        };
+        // SAFETY: the intrinsics need SSE2, which every x86_64 target has, and touch no
+        // memory; the `asm!` is an empty template (a comment naming the register) that
+        // reads and writes nothing but its one operand, which it leaves as it is.
+        unsafe {
+            let mut m: __m128 = _mm_castsi128_ps(_mm_set1_epi32(mask as i32));
+            core::arch::asm!(
+                "/* {0} */",
+                inout(xmm_reg) m,
+                options(pure, nomem, nostack, preserves_flags)
+            );
+            glam::Vec4::from(_mm_or_ps(
+                _mm_and_ps(m, if_true.into()),
+                _mm_andnot_ps(m, if_false.into()),
+            ))
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        let pick = |t: f32, f: f32| f32::from_bits((t.to_bits() & mask) | (f.to_bits() & !mask));
+        glam::Vec4::new(
+            pick(if_true.x, if_false.x),
+            pick(if_true.y, if_false.y),
+            pick(if_true.z, if_false.z),
+            pick(if_true.w, if_false.w),
+        )
+    }
+}
+
+/// `x` itself, bit for bit, as a value the optimiser cannot see through (an empty
+/// `asm!` on x86-64 that takes and returns the register; `x` elsewhere). For a value
+/// that one branch keeps across calls (which clobber every vector register, so the
+/// value goes to a stack slot) and another branch uses at once: the copy's own live
+/// range takes the spill, and the other branch keeps the register (without it the
+/// register allocator spilled the value where it was computed, and the other branch
+/// reloaded it from the stack: about 8 cycles on its chain).
+#[inline(always)]
+pub fn opaque(x: f32) -> f32 {
+    #[cfg(target_arch = "x86_64")]
+    {
+        let mut x = x;
+        // SAFETY: an empty template (a comment naming the register) that reads and
+        // writes nothing but its one operand, which it leaves as it is.
+        unsafe {
+            core::arch::asm!(
+                "/* {0} */",
+                inout(xmm_reg) x,
+                options(pure, nomem, nostack, preserves_flags)
+            );
+        }
+        x
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        x
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -113,6 +183,46 @@ mod tests {
                     };
                     assert_eq!(with_sign_of_product(x, a, b).to_bits(), expected.to_bits());
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn opaque_keeps_every_bit() {
+        for bits in [
+            0u32,
+            0x8000_0000,
+            1,
+            0x3F80_0000,
+            0x7F80_0000,
+            0x7FC0_1234,
+            0xFFA0_0001,
+        ] {
+            assert_eq!(opaque(f32::from_bits(bits)).to_bits(), bits);
+        }
+    }
+
+    #[test]
+    fn select_bits4_takes_every_bit_of_one_operand() {
+        let values = [
+            0.0f32,
+            -0.0,
+            1.0,
+            -1.5,
+            1e-45,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::from_bits(0x7FC0_1234),
+            f32::from_bits(0xFFA0_0001),
+        ];
+        for (i, &a) in values.iter().enumerate() {
+            for &b in &values {
+                let t = glam::Vec4::new(a, b, values[(i + 3) % values.len()], -a);
+                let f = glam::Vec4::new(b, a, -b, values[(i + 5) % values.len()]);
+                let bits = |v: glam::Vec4| v.to_array().map(f32::to_bits);
+                assert_eq!(bits(select_bits4(true, t, f)), bits(t));
+                assert_eq!(bits(select_bits4(false, t, f)), bits(f));
             }
         }
     }

@@ -20,7 +20,9 @@ pub use atan::{
     atan_fast_nonneg, atan_unit, atan_unit_estrin, atan_unit_estrin4, atan2_upper_half_plane,
 };
 pub(crate) use atan_lanes::atanf4;
-pub use bits::{copy_sign, is_sign_negative, select_bits, sign_mask, with_sign_of_product};
+pub use bits::{
+    copy_sign, is_sign_negative, opaque, select_bits, select_bits4, sign_mask, with_sign_of_product,
+};
 pub use frame::{Frame, orthonormal_basis};
 pub(crate) use lanes::{
     LANES, atan2_upper_half_plane4, cross_precise4, difference_of_products_unless_cancelling4,

@@ -14,8 +14,8 @@
 use super::ellipse::{Vec2, add2, det2, dot2, is_degenerate, rotate, scale2};
 use crate::math::{
     LANES, atan_fast_nonneg, atan_fast_nonneg4, atan2_upper_half_plane, atan2_upper_half_plane4,
-    copy_sign, difference_of_products4, finite_or_zero4, max4, min4, select_bits, sqrt4,
-    store_records4,
+    copy_sign, difference_of_products4, finite_or_zero4, max4, min4, select_bits, select_bits4,
+    sqrt4, store_records4,
 };
 use glam::{BVec4A, Vec4};
 
@@ -733,33 +733,29 @@ impl EllipseSector {
         areas
     }
 
-    /// Where `c` lies against the bracket `[x_lo, x_hi]` of chord parameters, widened by
-    /// 1 % of its width so that rounding noise of a converged step is not mistaken for an
-    /// overshoot: [`Location::Beside`] for a direction within the widened bracket but
-    /// (by at most that margin) outside the sector.
+    /// Where the direction `[α, β]` lies against the bracket `[x_lo, x_hi]` of chord
+    /// parameters, widened by 1 % of its width so that rounding noise of a converged step
+    /// is not mistaken for an overshoot: [`Location::Beside`] for a direction within the
+    /// widened bracket but (by at most that margin) outside the sector.
     #[inline(always)]
-    fn locate(&self, c: &Coordinates, x_lo: f32, x_hi: f32) -> Location {
-        let sum = c.alpha + c.beta;
+    fn locate([alpha, beta]: [f32; 2], x_lo: f32, x_hi: f32) -> Location {
+        let sum = alpha + beta;
         let margin = 0.01 * (x_hi - x_lo);
-        if !(sum > 0.0) || c.beta < (x_lo - margin) * sum {
+        if !(sum > 0.0) || beta < (x_lo - margin) * sum {
             Location::Below
-        } else if c.beta > (x_hi + margin) * sum {
+        } else if beta > (x_hi + margin) * sum {
             Location::Above
-        } else if c.alpha < 0.0 || c.beta < 0.0 {
+        } else if alpha < 0.0 || beta < 0.0 {
             Location::Beside
         } else {
             Location::Inside
         }
     }
 
-    /// `c` moved onto the nearer end of the sector (`α` or `β` set to 0).
+    /// `[α, β]` moved onto the nearer end of the sector (`α` or `β` set to 0).
     #[inline(always)]
-    fn clamped(&self, c: Coordinates) -> Coordinates {
-        if c.alpha < 0.0 {
-            Coordinates::new(self, 0.0, 1.0)
-        } else {
-            Coordinates::new(self, 1.0, 0.0)
-        }
+    fn clamped([alpha, _]: [f32; 2]) -> [f32; 2] {
+        if alpha < 0.0 { [0.0, 1.0] } else { [1.0, 0.0] }
     }
 
     /// The coordinates `(α, β)` of `w = α s0 + β s1`. Plain determinants suffice: any
@@ -767,10 +763,17 @@ impl EllipseSector {
     /// ([`Coordinates`]) is consistent with it.
     #[inline(always)]
     pub(crate) fn coordinates(&self, w: Vec2) -> Coordinates {
+        let [alpha, beta] = self.alpha_beta(w);
+        Coordinates::new(self, alpha, beta)
+    }
+
+    /// `[α, β]` of [`coordinates`](Self::coordinates) alone.
+    #[inline(always)]
+    fn alpha_beta(&self, w: Vec2) -> [f32; 2] {
         let (s0, s1) = (self.s0(), self.s1());
         let alpha = (w[0] * s1[1] - w[1] * s1[0]) * self.inverse_basis;
         let beta = (s0[0] * w[1] - s0[1] * w[0]) * self.inverse_basis;
-        Coordinates::new(self, alpha, beta)
+        [alpha, beta]
     }
 
     /// `(u_i · w, u_o · w)` for `w` in (or near) the sector.
@@ -1099,12 +1102,11 @@ impl EllipseSector {
         // shifted by one element defeats store-to-load forwarding.
         let (li, lo) = (&self.inner_radius, &self.outer_radius);
         // Twice the quad areas over det(b_j, b_j+1), the same for all four quads.
-        let quads = [
-            lo[0] * lo[1] - li[0] * li[1],
-            lo[1] * lo[2] - li[1] * li[2],
-            lo[2] * lo[3] - li[2] * li[3],
-            lo[3] * lo[4] - li[3] * li[4],
-        ];
+        // (As four lanes, each rounded as the scalar `lo[j] * lo[j + 1] - li[j] * li[j + 1]`.)
+        let (lo_from, lo_to) = (Vec4::from_slice(&lo[..4]), Vec4::from_slice(&lo[1..]));
+        let (li_from, li_to) = (Vec4::from_slice(&li[..4]), Vec4::from_slice(&li[1..]));
+        let quads4 = lo_from * lo_to - li_from * li_to;
+        let quads = quads4.to_array();
         let ends = [
             quads[0],
             quads[0] + quads[1],
@@ -1116,8 +1118,6 @@ impl EllipseSector {
         let target = fraction * total;
         let j =
             (target > ends[0]) as usize + (target > ends[1]) as usize + (target > ends[2]) as usize;
-        let start = [0.0, ends[0], ends[1], ends[2]][j];
-        let x = (target - start).clamp(0.0, quads[j].max(0.0));
         // As in the supplement, the area is measured from the quad's boundary towards the
         // sector's end that it is nearest to (s0 for the first two quads,
         // counter-clockwise and positive; s1 for the last two, clockwise and negative), so
@@ -1125,17 +1125,8 @@ impl EllipseSector {
         let second_half = j >= 2;
         let k = j + second_half as usize;
         let h = j + 1 - second_half as usize;
-        // Without a branch: `second_half` is random in the sample's coordinates (a branch
-        // on it was mispredicted about every other sample, callgrind's branch simulation).
-        let measured = select_bits(second_half, x - quads[j], x);
-        // Only the end quads of sectors whose ellipses touch there (flagged by
-        // preparation) pay for the shape's correction.
         let end_bit = (j == 0) as u32 | (((j == 3) as u32) << 1);
-        let measured = if self.touching_ends & end_bit != 0 {
-            self.towards_a_tangency(j == 3, measured, quads[j])
-        } else {
-            measured
-        };
+        let (sk, sh) = (self.quarters[k], self.quarters[h]);
         // The quad's area from s_k to w = μ s_k + ν s_h (μ, ν >= 0): the triangle from
         // the origin to the outer edge, through λ_o,k s_k and λ_o,h s_h, reaches along w to
         // λ_o,k λ_o,h / (μ λ_o,h + ν λ_o,k), so it has the area
@@ -1158,21 +1149,40 @@ impl EllipseSector {
         // otherwise; both components are non-negative, so `w` needs no sign. The ratios
         // keep every coefficient within f32 (`λ >= 2^-41`, so `a_l <= 2^41`), where
         // products of four `λ` could underflow.
-        let (sk, sh) = (self.quarters[k], self.quarters[h]);
-        let (lik, lok, lih, loh) = (li[k], lo[k], li[h], lo[h]);
-        let m = measured.abs();
-        let (ratio_o, ratio_i) = (lok / loh, lik / lih);
-        let c1 = (lok * lok - lik * lik) - m * (ratio_o + ratio_i);
-        let c2 = ratio_o * ratio_i * (quads[j] - m).max(0.0);
-        let root = crate::math::sqrtf(c1 * c1 + 4.0 * m * c2);
-        // Both forms, chosen without a branch (the sign of `c1` is random in the sample's
-        // coordinates; the branch the compiler made of it was mispredicted about every
-        // other sample).
-        let positive = c1 >= 0.0;
-        let (mu, nu) = (
-            select_bits(positive, c1 + root, 2.0 * c2),
-            select_bits(positive, 2.0 * m, root - c1),
-        );
+        //
+        // Only the end quads of sectors whose ellipses touch there (flagged by
+        // preparation) pay for the shape's correction, in scalar arithmetic
+        // ([`quad_root`]). Every other sample solves the quadratic of all four quads at
+        // once in four lanes, each rounded as the scalar form ([`quad_root4`]), and takes
+        // quad `j`'s lane: then `j` (known only after the fraction's division and the
+        // comparisons with `ends`) waits neither for loads indexed by it nor for the
+        // ratios' division, the square root and the products (llvm-mca: 15 cycles off
+        // the sample's chain). `the_quads_lanes_solve_as_the_scalar_form` compares the
+        // two bit for bit.
+        let (mu, nu) = if self.touching_ends & end_bit != 0 {
+            // The share `x` of quad j that the target asks for, and the area measured from
+            // the quad's boundary (`quad_measures4` for the four quads at once).
+            let start = [0.0, ends[0], ends[1], ends[2]][j];
+            let x = (target - start).clamp(0.0, quads[j].max(0.0));
+            // Without a branch: `second_half` is random in the sample's coordinates (a
+            // branch on it was mispredicted about every other sample, callgrind's branch
+            // simulation).
+            let measured = select_bits(second_half, x - quads[j], x);
+            let measured = self.towards_a_tangency(j == 3, measured, quads[j]);
+            quad_root([lo[k], li[k], lo[h], li[h]], quads[j], measured.abs())
+        } else {
+            // Quad j's `k` and `h`, (0, 1), (1, 2), (3, 2), (4, 3): the `from` lanes of
+            // the first half and the `to` lanes of the second, and the other way round
+            // (constant blends, single shuffles).
+            let first_half = BVec4A::new(true, true, false, false);
+            let lok = Vec4::select(first_half, lo_from, lo_to);
+            let lik = Vec4::select(first_half, li_from, li_to);
+            let loh = Vec4::select(first_half, lo_to, lo_from);
+            let lih = Vec4::select(first_half, li_to, li_from);
+            let measured = quad_measures4(target, ends, quads4);
+            let (mu, nu) = quad_root4([lok, lik, loh, lih], quads4, measured.abs());
+            lane_pair(mu, nu, j)
+        };
         // For the biased variant (`guess_only`: no iterations), the guess is the sample:
         // its point follows from `w = μ s_k + ν s_h` itself, with
         // `u · w = μ (u · s_k) + ν (u · s_h)` from the quarter directions' dot products
@@ -1208,20 +1218,26 @@ impl EllipseSector {
         // the area's derivative vanishes and the unguarded step overshot (issue 16, 3:
         // samples up to 0.06 rad outside the polygon after two iterations).
         let (mut x_lo, mut x_hi) = (0.0f32, 1.0f32);
-        let guess = self.coordinates(normalize_magnitude(w));
-        let mut c = match self.locate(&guess, x_lo, x_hi) {
+        // Only `(α, β)` goes through the safeguard's choices and from one iteration to
+        // the next; everything else about the direction is computed from it where it is
+        // used (`Coordinates::new`, the same bits wherever it is computed). With the whole
+        // `Coordinates` chosen and carried, the compiler kept its ten values in stack
+        // slots, and each store and reload (about 8 cycles) lay on the sample's chain.
+        let guess = self.alpha_beta(normalize_magnitude(w));
+        let mut ab = match Self::locate(guess, x_lo, x_hi) {
             Location::Inside => guess,
-            Location::Beside => self.clamped(guess),
+            Location::Beside => Self::clamped(guess),
             // An initial guess far outside the sector (found for issue 17, 1: a sector of
             // 1.7e-4 rad whose inner ellipse is nearly degenerate, |u| = 326, put it 0.012
             // rad outside, and the iteration did not return): the direction at the
             // chord parameter equal to the area fraction instead, inside the sector.
             Location::Below | Location::Above => {
                 let x = fraction.max(0.0).min(1.0);
-                Coordinates::new(self, 1.0 - x, x)
+                [1.0 - x, x]
             }
         };
         for _ in 0..iterations {
+            let c = Coordinates::new(self, ab[0], ab[1]);
             // Residual A_δ = A - (area between the ellipses from s0 to w).
             let residual = area - self.area_between(&c, AreaPrecision::Exact);
             let x = c.chord();
@@ -1237,18 +1253,19 @@ impl EllipseSector {
             x_lo = select_bits(below, raised, x_lo);
             x_hi = select_bits(below, x_hi, lowered);
             let proposal = self.tangent_step(&c, residual);
-            c = match self.locate(&proposal, x_lo, x_hi) {
+            ab = match Self::locate(proposal, x_lo, x_hi) {
                 Location::Inside => proposal,
-                Location::Beside => self.clamped(proposal),
+                Location::Beside => Self::clamped(proposal),
                 // Back past the current direction, which is the bound on that side.
-                Location::Below if residual > 0.0 => c,
-                Location::Above if residual <= 0.0 => c,
+                Location::Below if residual > 0.0 => ab,
+                Location::Above if residual <= 0.0 => ab,
                 Location::Below | Location::Above => {
                     let x = 0.5 * (x_lo + x_hi);
-                    Coordinates::new(self, 1.0 - x, x)
+                    [1.0 - x, x]
                 }
             };
         }
+        let c = Coordinates::new(self, ab[0], ab[1]);
         point_between_ellipses(c.w, xi1, c.length2, c.inner_dot, c.outer_dot)
     }
 
@@ -1293,7 +1310,7 @@ impl EllipseSector {
     /// nearly degenerate ellipse, a zero denominator) gives a NaN direction, which the
     /// safeguard of [`sample_between`](Self::sample_between) replaces.
     #[inline(always)]
-    fn tangent_step(&self, c: &Coordinates, residual: f32) -> Coordinates {
+    fn tangent_step(&self, c: &Coordinates, residual: f32) -> [f32; 2] {
         let (ti, to) = (c.inner_dot, c.outer_dot);
         let (ai, ao) = (c.length2 + ti * ti, c.length2 + to * to);
         // u · R w = det(w, u).
@@ -1315,8 +1332,7 @@ impl EllipseSector {
         };
         let tau = numerator / (denominator * self.det);
         let s1w = c.alpha * self.cosine + c.beta;
-        let [alpha, beta] = normalize_magnitude([c.alpha - tau * s1w, c.beta + tau * c.dot]);
-        Coordinates::new(self, alpha, beta)
+        normalize_magnitude([c.alpha - tau * s1w, c.beta + tau * c.dot])
     }
 }
 
@@ -1336,11 +1352,104 @@ fn normalize_magnitude(w: Vec2) -> Vec2 {
     // A factor of 1 (exact) otherwise, so that both cases multiply: no blend of two
     // vectors by a mask (the same bits as returning `w` itself).
     let factor = if sum.is_normal() {
-        f32::from_bits(sum.to_bits() ^ 0x7F80_0000)
+        flip_exponent(sum)
     } else {
         1.0
     };
     scale2(w, factor)
+}
+
+/// `f32::from_bits(x.to_bits() ^ 0x7F80_0000)`, the bit trick of [`normalize_magnitude`]
+/// (the same bits), as an `xorps` with the constant in the vector register that holds
+/// `x` on x86-64: the integer `xor` went through a general-purpose register and back
+/// (`movd`, `xor`, `movd`: 3 cycles on the sample's chain instead of 1, in the guess and
+/// in every step).
+#[inline(always)]
+fn flip_exponent(x: f32) -> f32 {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use core::arch::x86_64::{
+            _mm_castsi128_ps, _mm_cvtss_f32, _mm_set_ss, _mm_set1_epi32, _mm_xor_ps,
+        };
+        // SAFETY: the intrinsics need SSE2, which every x86_64 target has, and touch no
+        // memory.
+        unsafe {
+            _mm_cvtss_f32(_mm_xor_ps(
+                _mm_set_ss(x),
+                _mm_castsi128_ps(_mm_set1_epi32(0x7F80_0000)),
+            ))
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        f32::from_bits(x.to_bits() ^ 0x7F80_0000)
+    }
+}
+
+/// The root `(μ, ν)` of the quad's quadratic `-m μ² + c1 μν + c2 ν² = 0` inside the quad
+/// (see [`EllipseSector::sample_between`]), from `[λ_o,k, λ_i,k, λ_o,h, λ_i,h]`, the
+/// quad's measure `Q` and `m = |measured|`.
+#[inline(always)]
+fn quad_root([lok, lik, loh, lih]: [f32; 4], quad: f32, m: f32) -> (f32, f32) {
+    let (ratio_o, ratio_i) = (lok / loh, lik / lih);
+    let c1 = (lok * lok - lik * lik) - m * (ratio_o + ratio_i);
+    let c2 = ratio_o * ratio_i * (quad - m).max(0.0);
+    let root = crate::math::sqrtf(c1 * c1 + 4.0 * m * c2);
+    // Both forms, chosen without a branch (the sign of `c1` is random in the sample's
+    // coordinates; the branch the compiler made of it was mispredicted about every
+    // other sample).
+    let positive = c1 >= 0.0;
+    (
+        select_bits(positive, c1 + root, 2.0 * c2),
+        select_bits(positive, 2.0 * m, root - c1),
+    )
+}
+
+/// [`quad_root`] of four quads (lanes), each lane the bits of the scalar form: the same
+/// operations in the same order, each correctly rounded (division and square root
+/// included), glam's `max` (`maxps`) for `f32::max` against 0 (0 for a NaN difference,
+/// as there; the two could differ only for `-0`, and neither `Q` nor `Q - m` is ever
+/// `-0`: `Q` is a difference of products of positive radii and `m >= +0`), and the
+/// blends by the mask of `c1 >= 0`.
+#[inline(always)]
+fn quad_root4([lok, lik, loh, lih]: [Vec4; 4], quad: Vec4, m: Vec4) -> (Vec4, Vec4) {
+    let (ratio_o, ratio_i) = (lok / loh, lik / lih);
+    let c1 = (lok * lok - lik * lik) - m * (ratio_o + ratio_i);
+    let c2 = ratio_o * ratio_i * (quad - m).max(Vec4::ZERO);
+    let root = sqrt4(c1 * c1 + Vec4::splat(4.0) * m * c2);
+    let positive = c1.cmpge(Vec4::ZERO);
+    (
+        Vec4::select(positive, c1 + root, Vec4::splat(2.0) * c2),
+        Vec4::select(positive, Vec4::splat(2.0) * m, root - c1),
+    )
+}
+
+/// `measured` of [`EllipseSector::sample_between`] for each of the four quads (lanes) at
+/// once, each lane the bits of the scalar form for that `j`: `x` by `f32::clamp`'s two
+/// comparisons (a NaN stays NaN) and `x - quads[j]` in the second half.
+#[inline(always)]
+fn quad_measures4(target: f32, ends: [f32; 3], quads: Vec4) -> Vec4 {
+    let x = Vec4::splat(target) - Vec4::new(0.0, ends[0], ends[1], ends[2]);
+    let x = Vec4::select(x.cmplt(Vec4::ZERO), Vec4::ZERO, x);
+    // `f32::max` against 0 as `maxps` (glam's `max`), which gives its second operand, 0,
+    // for a NaN first one, as `f32::max` does (no NaN test of the constant, as `max4`
+    // has); `quads` is never `-0` (see `quad_root4`), where the two could differ.
+    let upper = quads.max(Vec4::ZERO);
+    let x = Vec4::select(x.cmpgt(upper), upper, x);
+    Vec4::select(BVec4A::new(false, false, true, true), x - quads, x)
+}
+
+/// Lane `j` (0 to 3) of `mu` and of `nu`, by blends on the comparisons of `j` (no index
+/// into memory: a store and a reload would add about 8 cycles to the chain, and a load
+/// indexed by `j` waits for `j`): the lanes interleaved, `[μ0, ν0, μ1, ν1]` and
+/// `[μ2, ν2, μ3, ν3]`, the half by `j >= 2`, the pair by `j` odd.
+#[inline(always)]
+fn lane_pair(mu: Vec4, nu: Vec4, j: usize) -> (f32, f32) {
+    let low = Vec4::new(mu.x, nu.x, mu.y, nu.y);
+    let high = Vec4::new(mu.z, nu.z, mu.w, nu.w);
+    let half = select_bits4(j >= 2, high, low);
+    let pair = select_bits4(j & 1 != 0, Vec4::new(half.z, half.w, half.z, half.w), half);
+    (pair.x, pair.y)
 }
 
 /// The point along the direction `w` at relative radius² `xi1` between the inner and
@@ -1865,6 +1974,128 @@ mod tests {
         }
     }
 
+    /// The quad guess's four lanes ([`quad_measures4`], [`quad_root4`], [`lane_pair`]),
+    /// which every sample takes but those in the end quad of a sector whose ellipses
+    /// touch there (`touching_ends`), give the bits of the scalar form ([`quad_root`],
+    /// which those take) for every quad `j`: over random radii of many magnitudes (down
+    /// to the `2^-41` of the clamp), fractions in and outside `[0, 1]`, and zeros,
+    /// infinities and NaN among the inputs.
+    #[test]
+    fn the_quads_lanes_solve_as_the_scalar_form() {
+        let mut rng = Rng::new(0x51ab_7e40);
+        let special = [
+            0.0f32,
+            -0.0,
+            f32::INFINITY,
+            f32::NAN,
+            1e-30,
+            3e38,
+            f32::MIN_POSITIVE,
+        ];
+        let bits = |x: f32| x.to_bits();
+        let mut cases = 0u64;
+        for case in 0..200_000u32 {
+            let scale = 2f32.powi((rng.uniform_f32() * 60.0) as i32 - 41);
+            let mut lo = [0.0f32; 5];
+            let mut li = [0.0f32; 5];
+            for i in 0..5 {
+                let outer = scale * (0.05 + rng.uniform_f32());
+                lo[i] = outer;
+                li[i] = outer * rng.uniform_f32();
+            }
+            if case % 97 == 0 {
+                // Coincident radii somewhere (a quad of measure 0: the ellipses meet).
+                let i = (rng.uniform_f32() * 5.0) as usize % 5;
+                li[i] = lo[i];
+            }
+            let mut fraction = 1.2 * rng.uniform_f32() - 0.1;
+            if case % 101 == 0 {
+                fraction = special[(case / 101) as usize % special.len()];
+            }
+            if case % 89 == 0 {
+                let i = (case / 89) as usize % 5;
+                lo[i] = special[(case / 7) as usize % special.len()];
+            }
+            // As `sample_between`.
+            let quads4 = Vec4::from_slice(&lo[..4]) * Vec4::from_slice(&lo[1..])
+                - Vec4::from_slice(&li[..4]) * Vec4::from_slice(&li[1..]);
+            let quads = quads4.to_array();
+            for j in 0..4 {
+                let scalar = lo[j] * lo[j + 1] - li[j] * li[j + 1];
+                assert_eq!(bits(quads[j]), bits(scalar), "{lo:?} {li:?}");
+            }
+            let ends = [
+                quads[0],
+                quads[0] + quads[1],
+                quads[0] + quads[1] + quads[2],
+            ];
+            let target = fraction * (ends[2] + quads[3]);
+            let measured4 = quad_measures4(target, ends, quads4);
+            let first_half = BVec4A::new(true, true, false, false);
+            let (lo_from, lo_to) = (Vec4::from_slice(&lo[..4]), Vec4::from_slice(&lo[1..]));
+            let (li_from, li_to) = (Vec4::from_slice(&li[..4]), Vec4::from_slice(&li[1..]));
+            let radii = [
+                Vec4::select(first_half, lo_from, lo_to),
+                Vec4::select(first_half, li_from, li_to),
+                Vec4::select(first_half, lo_to, lo_from),
+                Vec4::select(first_half, li_to, li_from),
+            ];
+            let (mu4, nu4) = quad_root4(radii, quads4, measured4.abs());
+            for j in 0..4 {
+                let start = [0.0, ends[0], ends[1], ends[2]][j];
+                let x = (target - start).clamp(0.0, quads[j].max(0.0));
+                let second_half = j >= 2;
+                let (k, h) = (j + second_half as usize, j + 1 - second_half as usize);
+                let measured = select_bits(second_half, x - quads[j], x);
+                assert_eq!(bits(measured4.to_array()[j]), bits(measured));
+                let (mu, nu) = quad_root([lo[k], li[k], lo[h], li[h]], quads[j], measured.abs());
+                let (mu_lane, nu_lane) = lane_pair(mu4, nu4, j);
+                assert_eq!(
+                    (bits(mu_lane), bits(nu_lane)),
+                    (bits(mu), bits(nu)),
+                    "j {j}: {lo:?} {li:?} {fraction}"
+                );
+                cases += 1;
+            }
+        }
+        assert_eq!(cases, 800_000);
+    }
+
+    /// [`flip_exponent`] is the integer `xor` of the exponent bits, bit for bit, for every
+    /// 4097th `f32` bit pattern and the special values.
+    #[test]
+    fn flip_exponent_is_the_xor_of_the_exponent_bits() {
+        let specials = [
+            0u32,
+            0x8000_0000,
+            1,
+            0x0080_0000,
+            0x7F7F_FFFF,
+            0x7F80_0000,
+            0x7FC0_0001,
+        ];
+        for bits in (0..=u32::MAX).step_by(4097).chain(specials) {
+            let flipped = flip_exponent(f32::from_bits(bits)).to_bits();
+            assert_eq!(flipped, bits ^ 0x7F80_0000, "{bits:#x}");
+        }
+    }
+
+    /// [`lane_pair`] takes lane `j` of both vectors, every bit (NaN payloads included).
+    #[test]
+    fn lane_pair_takes_lane_j() {
+        let mu = Vec4::from_array(
+            [0x7FC0_0001, 0xFFC0_0002, 0x8000_0000, 0x3F80_0000].map(f32::from_bits),
+        );
+        let nu = Vec4::from_array(
+            [0x0000_0001, 0x7F80_0000, 0xFF80_0000, 0x7FA0_0003].map(f32::from_bits),
+        );
+        for j in 0..4 {
+            let (m, n) = lane_pair(mu, nu, j);
+            assert_eq!(m.to_bits(), mu.to_array()[j].to_bits());
+            assert_eq!(n.to_bits(), nu.to_array()[j].to_bits());
+        }
+    }
+
     /// The step of [`EllipseSector::tangent_step`], solved in the basis `(w, R w)`, is the
     /// step of supplement A.3 by Algorithm 2 on Proposition 2's `T`: from directions 1e-4
     /// to 0.1 rad off the solution in random sectors (both ellipses' shapes as in
@@ -1918,8 +2149,8 @@ mod tests {
             let expected = cubic_step(ui64, uo64, s0, target, phi);
             let (a, b) = ((from + width - phi).sin(), (phi - from).sin());
             let c = Coordinates::new(&sector, a as f32, b as f32);
-            let next = sector.tangent_step(&c, residual);
-            let (alpha, beta) = (next.alpha as f64, next.beta as f64);
+            let [alpha, beta] = sector.tangent_step(&c, residual);
+            let (alpha, beta) = (alpha as f64, beta as f64);
             let got = from + (beta * width.sin()).atan2(alpha + beta * width.cos());
             let error = (got - expected).abs() / (1e-6 + 1e-4 * (expected - phi).abs());
             assert!(
