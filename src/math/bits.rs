@@ -157,6 +157,22 @@ pub fn opaque(x: f32) -> f32 {
 mod tests {
     use super::*;
 
+    /// Values whose bits a selection must keep: both zeros, a subnormal, the largest
+    /// finite value, both infinities, a quiet NaN with a payload and a negative
+    /// signalling NaN.
+    const SELECTED_VALUES: [f32; 10] = [
+        0.0,
+        -0.0,
+        1.0,
+        -1.5,
+        1e-45,
+        f32::MAX,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::from_bits(0x7FC0_1234),
+        f32::from_bits(0xFFA0_0001),
+    ];
+
     #[test]
     fn sign_helpers_agree_with_arithmetic() {
         let values = [
@@ -204,18 +220,7 @@ mod tests {
 
     #[test]
     fn select_bits4_takes_every_bit_of_one_operand() {
-        let values = [
-            0.0f32,
-            -0.0,
-            1.0,
-            -1.5,
-            1e-45,
-            f32::MAX,
-            f32::INFINITY,
-            f32::NEG_INFINITY,
-            f32::from_bits(0x7FC0_1234),
-            f32::from_bits(0xFFA0_0001),
-        ];
+        let values = SELECTED_VALUES;
         for (i, &a) in values.iter().enumerate() {
             for &b in &values {
                 let t = glam::Vec4::new(a, b, values[(i + 3) % values.len()], -a);
@@ -229,18 +234,7 @@ mod tests {
 
     #[test]
     fn select_bits_takes_every_bit_of_one_operand() {
-        let values = [
-            0.0f32,
-            -0.0,
-            1.0,
-            -1.5,
-            1e-45,
-            f32::MAX,
-            f32::INFINITY,
-            f32::NEG_INFINITY,
-            f32::from_bits(0x7FC0_1234),
-            f32::from_bits(0xFFA0_0001),
-        ];
+        let values = SELECTED_VALUES;
         for &a in &values {
             for &b in &values {
                 assert_eq!(select_bits(true, a, b).to_bits(), a.to_bits());
