@@ -2050,10 +2050,15 @@ mod tests {
                 assert_eq!(bits(measured4.to_array()[j]), bits(measured));
                 let (mu, nu) = quad_root([lo[k], li[k], lo[h], li[h]], quads[j], measured.abs());
                 let (mu_lane, nu_lane) = lane_pair(mu4, nu4, j);
-                assert_eq!(
-                    (bits(mu_lane), bits(nu_lane)),
-                    (bits(mu), bits(nu)),
-                    "j {j}: {lo:?} {li:?} {fraction}"
+                // Bit for bit, except that a NaN (from an infinite radius: ∞ − ∞) is any
+                // NaN: its sign depends on the order in which the compiler puts the
+                // operands of the instruction that makes it (the `+fma` debug build
+                // gave the scalar form a positive NaN and the lanes a negative one), and
+                // nothing reads a NaN's bits (the sample's checks send it to no sample).
+                let same = |a: f32, b: f32| bits(a) == bits(b) || (a.is_nan() && b.is_nan());
+                assert!(
+                    same(mu_lane, mu) && same(nu_lane, nu),
+                    "j {j}: {lo:?} {li:?} {fraction}: ({mu_lane}, {nu_lane}) against ({mu}, {nu})"
                 );
                 cases += 1;
             }
