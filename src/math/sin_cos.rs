@@ -129,7 +129,13 @@ const COS_QUARTER_OF_DOUBLE: [f32; 3] = [
 pub(crate) fn sin_cos_of_half(y: f32) -> (f32, f32) {
     // `y` in [0, π/2) exactly when `y/2` is in [0, π/4): `FRAC_PI_2` is `2 FRAC_PI_4`
     // (scaling by 2 is exact) and `0.5 y` is exact; NaN fails here as it fails there.
-    if !(0.0..FRAC_PI_2).contains(&y) {
+    // One unsigned comparison of the bits instead of two of floats (three instructions
+    // fewer per solid angle sample, callgrind): non-negative floats are ordered as their
+    // bits, so `+0 <= y < π/2` holds exactly for the bits below those of `FRAC_PI_2`;
+    // negative `y` (the sign bit) and NaN (above +∞) lie above. `-0.0`, which the float
+    // comparisons let through, takes the general form here, which gives the shortcut's
+    // bits for it (`sin_cos_0_to_pi` takes its own shortcut at `-0.0`; tested below).
+    if y.to_bits() >= FRAC_PI_2.to_bits() {
         return sin_cos_0_to_pi(0.5 * y);
     }
     let x = 0.5 * y;

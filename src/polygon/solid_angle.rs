@@ -1386,6 +1386,48 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         }
     }
 
+    /// Element `i < len` of the `[Vec3; len]` field at byte offset `field` of `self` as a
+    /// `Vec3A`, by one 16-byte load whose fourth lane is the float that follows the element
+    /// in `self` (`Vec3A::from(Vec3)` took four instructions per vector: a 4-byte and an
+    /// 8-byte load and two shuffles). The fourth lane is garbage that nothing reads: every
+    /// use of these vectors in [`direction_in_triangle`](Self::direction_in_triangle) takes
+    /// `x`, `y` and `z` lane by lane (products, sums, the dot products of `dot_pair` and
+    /// `length_squared`, whose sums leave `w` out), and the direction returned is the
+    /// `Vec3` of the first three lanes, so the bits are those of the 12-byte loads
+    /// (`padded_loads_read_the_elements` pins it). The load stays inside `self`: the
+    /// struct is `repr(C)` of `f32`, `u32` and `Vec3` fields without padding (its size is
+    /// the sum of theirs, asserted below), and both fields read this way are followed by
+    /// another field (`PADDED_FIELDS_ARE_FOLLOWED`), so the float after the last element
+    /// is an initialised word of `self`.
+    #[inline(always)]
+    fn padded(&self, field: usize, i: usize, len: usize) -> Vec3A {
+        let () = Self::PADDED_FIELDS_ARE_FOLLOWED;
+        assert!(i < len);
+        let offset = field + 12 * i;
+        // SAFETY: `offset + 16 <= size_of::<Self>()` for `i < len` (see
+        // `PADDED_FIELDS_ARE_FOLLOWED`), the pointer derives from `self`, which covers
+        // the whole struct, the read is unaligned, and every bit pattern is an `f32`.
+        let lanes = unsafe {
+            core::ptr::from_ref(self)
+                .cast::<u8>()
+                .add(offset)
+                .cast::<[f32; 4]>()
+                .read_unaligned()
+        };
+        Vec3A::from_vec4(Vec4::from_array(lanes))
+    }
+
+    /// [`padded`](Self::padded)'s fields, `vertices` and `outer_sum`, are each followed by
+    /// at least one 4-byte word of `self` (`edge_normals`, `start`), and the struct has no
+    /// padding (a byte of padding would be uninitialised).
+    const PADDED_FIELDS_ARE_FOLLOWED: () = {
+        use core::mem::{offset_of, size_of};
+        assert!(offset_of!(Self, vertices) + 12 * N + 4 <= size_of::<Self>());
+        assert!(offset_of!(Self, outer_sum) + 12 * T + 4 <= size_of::<Self>());
+        // Three `[Vec3; N]`, four `[f32; T]`, one `[Vec3; T]` and seven 4-byte words.
+        assert!(size_of::<Self>() == 4 * (9 * N + 7 * T + 7));
+    };
+
     /// The direction of [`sample_in_triangle`](Self::sample_in_triangle) before its
     /// length is checked.
     #[inline(always)]
@@ -1395,10 +1437,10 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // both, so the bits are the same, with fewer shuffles between the three
         // components (callgrind: 230 -> 213 instructions per sample).
         let (v0, v1) = (
-            Vec3A::from(self.vertices[k + 1]),
-            Vec3A::from(self.vertices[0]),
+            self.padded(core::mem::offset_of!(Self, vertices), k + 1, N),
+            self.padded(core::mem::offset_of!(Self, vertices), 0, N),
         );
-        let outer_sum = Vec3A::from(self.outer_sum[k]);
+        let outer_sum = self.padded(core::mem::offset_of!(Self, outer_sum), k, T);
         let (g0, g1_plus_g2, g2) = (self.g0[k], self.g1_plus_g2[k], self.g2[k]);
         // Algorithm 5's r = (G0 cos(A/2) - G1 sin(A/2)) v0 + G2 sin(A/2) v2 bisects the
         // arc from v0 to the new vertex v2', the reflection of -v0 about r. Rewritten as

@@ -1435,3 +1435,47 @@ fn the_group_that_closes_the_polygon_is_slot_zero_again() {
     }
     assert_eq!(checked, 800);
 }
+
+/// `padded` (the sample's 16-byte loads of a vertex and a pair sum) gives each element's
+/// three components bit for bit, for every slot of both fields (the last ones, whose
+/// fourth lane is the next field's first word, included), in all three sizes, for
+/// prepared polygons of every count and for the empty value.
+#[test]
+fn padded_loads_read_the_elements() {
+    fn check<const N: usize, const T: usize>(polygon: &SolidAngleFan<N, T>) -> usize {
+        let bits = |v: Vec3A| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
+        let bits3 = |v: Vec3| [v.x.to_bits(), v.y.to_bits(), v.z.to_bits()];
+        let vertices = core::mem::offset_of!(SolidAngleFan<N, T>, vertices);
+        let outer_sum = core::mem::offset_of!(SolidAngleFan<N, T>, outer_sum);
+        for i in 0..N {
+            assert_eq!(
+                bits(polygon.padded(vertices, i, N)),
+                bits3(polygon.vertices[i])
+            );
+        }
+        for k in 0..T {
+            assert_eq!(
+                bits(polygon.padded(outer_sum, k, T)),
+                bits3(polygon.outer_sum[k])
+            );
+        }
+        N + T
+    }
+    let mut rng = Rng::new(41);
+    let mut checked = 0;
+    for _ in 0..50 {
+        for n in 3..=MAX_POLYGON_VERTICES {
+            let v = random_polygon_above(&mut rng, n, 0.2, 1.0);
+            let polygon = SolidAnglePolygon::new(&v).expect("a polygon above");
+            checked += check(&polygon);
+            if n <= 4 {
+                checked += check(&SolidAngleQuad::new(&v).expect("a quad above"));
+            }
+            if n == 3 {
+                checked += check(&SolidAngleTriangle::new(&v).expect("a triangle above"));
+            }
+        }
+    }
+    checked += check(&SolidAnglePolygon::EMPTY);
+    assert_eq!(checked, 50 * (6 * 14 + 2 * 6 + 4) + 14);
+}
