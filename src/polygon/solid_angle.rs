@@ -819,6 +819,16 @@ impl FanLanes {
     }
 }
 
+/// `0 < x < ∞` (false for NaN) as one unsigned comparison of the bits: positive floats
+/// are ordered as their bits, `+0` wraps around to the top, and negative values (the sign
+/// bit), `∞` and NaN lie at or above the bits of `∞` minus one. The float comparisons and
+/// the test for NaN took 14 instructions (tested for every bit pattern's class:
+/// `positive_and_finite_is_the_float_test`).
+#[inline(always)]
+fn positive_and_finite(x: f32) -> bool {
+    x.to_bits().wrapping_sub(1) < f32::INFINITY.to_bits() - 1
+}
+
 /// Writes the lanes of triangles `first..first + 4` that exist into a per-triangle array
 /// of the prepared polygon (`first` is a constant where this is inlined, so the test
 /// is made at compile time).
@@ -1155,15 +1165,9 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // (`total` positive and finite, and `density` finite: for a positive `total`,
         // `density` is positive and not NaN, so comparisons with ∞ are the whole test;
         // `is_finite` compiled to a classification of the bits, 20 instructions.)
-        // `0 < total < ∞` as one unsigned comparison of the bits (positive floats are
-        // ordered as their bits; `+0` wraps around to the top, and negative values (the
-        // sign bit), `∞` and NaN lie at or above the bits of `∞` minus one): the float
-        // comparisons and the test for NaN took 14 instructions (hexagons 1266 -> see the
-        // commit, callgrind). `density < ∞` stays a comparison of floats: under
-        // denormals-are-zero a subnormal `total` gives an infinite `density`.
-        let positive_finite =
-            total.to_bits().wrapping_sub(1) < f32::INFINITY.to_bits() - 1;
-        let accepted = positive_finite && density < f32::INFINITY;
+        // `density < ∞` stays a comparison of floats: under denormals-are-zero a
+        // subnormal `total` gives an infinite `density`.
+        let accepted = positive_and_finite(total) && density < f32::INFINITY;
         if edge_on || !accepted {
             return false;
         }

@@ -1479,3 +1479,25 @@ fn padded_loads_read_the_elements() {
     checked += check(&SolidAnglePolygon::EMPTY);
     assert_eq!(checked, 50 * (6 * 14 + 2 * 6 + 4) + 14);
 }
+
+/// `positive_and_finite` is `0 < x < ∞` for every 4093rd bit pattern and those around
+/// 0, the smallest subnormal, 1, the largest finite value, ∞ and NaN, of either sign.
+#[test]
+fn positive_and_finite_is_the_float_test() {
+    let check = |bits: u32| {
+        let x = f32::from_bits(bits);
+        assert_eq!(positive_and_finite(x), x > 0.0 && x < f32::INFINITY, "{bits:#x}");
+    };
+    let edges = [0u32, 1, 1.0f32.to_bits(), f32::MAX.to_bits(), f32::INFINITY.to_bits()];
+    for edge in edges {
+        for sign in [0, 0x8000_0000u32] {
+            for d in 0..=16u32 {
+                check((edge | sign).wrapping_add(d));
+                check((edge | sign).wrapping_sub(d));
+            }
+        }
+    }
+    for bits in (0..=u32::MAX).step_by(4093) {
+        check(bits);
+    }
+}
