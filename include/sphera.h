@@ -109,19 +109,19 @@ typedef struct SpheraVec3 {
 /* A convex polygon of 3 to SPHERA_MAX_POLYGON_VERTICES vertices prepared for solid angle
  * sampling (Peters 2021, supplement C, Algorithm 5). */
 typedef struct SpheraSolidAnglePolygon {
-  uint32_t opaque[121]; /* 484 bytes, private: see the preamble */
+  uint32_t opaque[133]; /* 532 bytes, private: see the preamble */
 } SpheraSolidAnglePolygon;
 
 /* A convex quad prepared for solid angle sampling: SpheraSolidAnglePolygon in the storage of 4
  * vertices. */
 typedef struct SpheraSolidAngleQuad {
-  uint32_t opaque[57]; /* 228 bytes, private: see the preamble */
+  uint32_t opaque[61]; /* 244 bytes, private: see the preamble */
 } SpheraSolidAngleQuad;
 
 /* A triangle prepared for solid angle sampling: SpheraSolidAnglePolygon in the storage of 3
  * vertices. */
 typedef struct SpheraSolidAngleTriangle {
-  uint32_t opaque[41]; /* 164 bytes, private: see the preamble */
+  uint32_t opaque[43]; /* 172 bytes, private: see the preamble */
 } SpheraSolidAngleTriangle;
 
 /* A sampled direction and its density per steradian, as the C ABI returns it.
@@ -154,7 +154,7 @@ typedef struct SpheraFrame {
  * is exact for the samples it draws. Directions at or below the horizon get "no sample" and pdf
  * 0. */
 typedef struct SpheraHartBilinearPolygon {
-  uint32_t opaque[126]; /* 504 bytes, private: see the preamble */
+  uint32_t opaque[138]; /* 552 bytes, private: see the preamble */
 } SpheraHartBilinearPolygon;
 
 /* Solid angle sampling warped by a biquadratic density fitted to the cosine at 3×3 points of the
@@ -162,12 +162,12 @@ typedef struct SpheraHartBilinearPolygon {
  * an approximation of cosine-weighted sampling whose pdf is exact for the samples it draws.
  * Directions at or below the horizon get "no sample" and pdf 0. */
 typedef struct SpheraHartBiquadraticPolygon {
-  uint32_t opaque[134]; /* 536 bytes, private: see the preamble */
+  uint32_t opaque[146]; /* 584 bytes, private: see the preamble */
 } SpheraHartBiquadraticPolygon;
 
 /* A convex polygon clipped to the upper hemisphere and prepared for solid angle sampling. */
 typedef struct SpheraClippedSolidAnglePolygon {
-  uint32_t opaque[121]; /* 484 bytes, private: see the preamble */
+  uint32_t opaque[133]; /* 532 bytes, private: see the preamble */
 } SpheraClippedSolidAnglePolygon;
 
 /* A convex polygon prepared for projected solid angle sampling: the first part of Algorithm 4

@@ -1,6 +1,6 @@
 //! C ABI, `sphera_solid_angle_triangle_*`: solid angle sampling of a triangle (Peters 2021,
 //! supplement C), the sampler of `sphera_solid_angle_polygon_*` in the storage of 3
-//! vertices (164 bytes in place of 484).
+//! vertices (172 bytes in place of 532).
 use super::polygon::prepare;
 use super::solid_angle_polygon::invert;
 use super::types::{SpheraSample, SpheraVec3, sample_common_or_rare, with_ref};

@@ -37,8 +37,8 @@ pub(crate) const MAX_TRIANGLES: usize = MAX_POLYGON_VERTICES - 2;
 /// Algorithm 5 computes once per polygon, for its `T = N - 2` fan triangles.
 ///
 /// One algorithm in three sizes (issue 15, 3): [`SolidAnglePolygon`] (up to
-/// [`MAX_POLYGON_VERTICES`], 484 bytes), [`SolidAngleQuad`] (triangles and quads, 228
-/// bytes) and [`SolidAngleTriangle`] (triangles, 164 bytes). A scene of triangle or quad
+/// [`MAX_POLYGON_VERTICES`], 532 bytes), [`SolidAngleQuad`] (triangles and quads, 244
+/// bytes) and [`SolidAngleTriangle`] (triangles, 172 bytes). A scene of triangle or quad
 /// lights does not pay for the storage of eight vertices: the unused slots that
 /// preparation writes, the edges that `pdf` tests and the fan triangles that sampling
 /// looks through. The three give the same samples and densities, bit for bit, for the
@@ -67,6 +67,15 @@ pub struct SolidAngleFan<const N: usize, const T: usize> {
     g2: [f32; T],
     /// `v0 + v2` per fan triangle, accurate even when `v0 ≈ -v2`.
     outer_sum: [Vec3; T],
+    /// `m = v0·(v0 + v2)` per fan triangle, of the stored `vertices[k + 1]` and
+    /// `outer_sum[k]`, rounded as `Vec3::dot` rounds it, `(x x' + y y') + z z'`: what the
+    /// sample's step depends on of the fan triangle alone (see
+    /// [`direction_in_triangle`](Self::direction_in_triangle)), computed once here instead
+    /// of in every sample.
+    outer_along: [f32; T],
+    /// `|v0 + v2|² - m²` per fan triangle, with `|v0 + v2|²` of the stored `outer_sum[k]`
+    /// rounded as `Vec3::length_squared` rounds it.
+    outer_across2: [f32; T],
     /// Solid angle of the fan triangles before triangle `k`; `+∞` from the first triangle
     /// that cannot be selected on, which
     /// [`select_piece`](crate::sample::select_piece) then skips.
@@ -108,9 +117,9 @@ pub type SolidAngleTriangle = SolidAngleFan<3, 1>;
 
 // The sizes that the documentation states.
 const _: () = {
-    assert!(core::mem::size_of::<SolidAnglePolygon>() == 484);
-    assert!(core::mem::size_of::<SolidAngleQuad>() == 228);
-    assert!(core::mem::size_of::<SolidAngleTriangle>() == 164);
+    assert!(core::mem::size_of::<SolidAnglePolygon>() == 532);
+    assert!(core::mem::size_of::<SolidAngleQuad>() == 244);
+    assert!(core::mem::size_of::<SolidAngleTriangle>() == 172);
 };
 
 /// How far outside an edge (radians, approximately) `pdf` still finds a direction inside,
@@ -225,17 +234,6 @@ fn denominator(v0: Vec3, v1: Vec3, v2: Vec3, sums: [Vec3; 3], length_squares: [f
     } else {
         0.5 * l01 + v2.dot(s01)
     }
-}
-
-/// The dot products `a·b` and `c·d`, each rounded as `Vec3A::dot` rounds it,
-/// `(x x' + y y') + z z'`, with the two sums side by side in two lanes (one shuffle
-/// per component pair instead of a horizontal sum each).
-#[inline(always)]
-fn dot_pair(a: Vec3A, b: Vec3A, c: Vec3A, d: Vec3A) -> (f32, f32) {
-    let (p, q) = (a * b, c * d);
-    let sum = (Vec4::new(p.x, q.x, 0.0, 0.0) + Vec4::new(p.y, q.y, 0.0, 0.0))
-        + Vec4::new(p.z, q.z, 0.0, 0.0);
-    (sum.x, sum.y)
 }
 
 /// Slots of the structure-of-arrays working set (`VertexGroups`, `VertexLanes`): up to 8
@@ -670,6 +668,19 @@ impl FanLanes {
         let l01 = (s01x * s01x + s01y * s01y) + s01z * s01z;
         let l02 = (s02x * s02x + s02y * s02y) + s02z * s02z;
         let l12 = (s12x * s12x + s12y * s12y) + s12z * s12z;
+        // `m = v0·(v0 + v2)` and `|v0 + v2|² - m²` (`l02` is `|v0 + v2|²`, rounded as
+        // `length_squared`), for the sample. Where they are computed changes how the
+        // compiler allocates registers: here, for a quad's two fan triangles, 11 register
+        // copies more than below (hexagons 1240.3 instructions per prepare + 1 here,
+        // 1246.3 below; quads 853.2 here, 842.2 below, callgrind).
+        let outer_terms = |polygon: &mut SolidAngleFan<N, T>| {
+            let along = (bx * s02x + by * s02y) + bz * s02z;
+            store_triangle_lanes(along, &mut polygon.outer_along, first);
+            store_triangle_lanes(l02 - along * along, &mut polygon.outer_across2, first);
+        };
+        if triangles > 2 {
+            outer_terms(polygon);
+        }
         self.wide_pairs |= lane_bits(
             l01.min(l02).min(l12).cmplt(Vec4::splat(2.0)),
             first,
@@ -687,6 +698,9 @@ impl FanLanes {
         );
         store_triangle_lanes(g1_plus_g2, &mut polygon.g1_plus_g2, first);
         store_triangle_lanes(half * l01, &mut polygon.g2, first);
+        if triangles <= 2 {
+            outer_terms(polygon);
+        }
         let (s02x, s02y, s02z) = (s02x.to_array(), s02y.to_array(), s02z.to_array());
         for j in 0..LANES.min(T - first) {
             polygon.outer_sum[first + j] = Vec3::new(s02x[j], s02y[j], s02z[j]);
@@ -755,6 +769,9 @@ impl FanLanes {
         };
         polygon.g2[k] = 0.5 * l01;
         polygon.outer_sum[k] = Vec3::new(s02x, s02y, s02z);
+        let along = (bx * s02x + by * s02y) + bz * s02z;
+        polygon.outer_along[k] = along;
+        polygon.outer_across2[k] = l02 - along * along;
     }
 }
 
@@ -816,6 +833,13 @@ impl FanLanes {
         };
         polygon.g2[0] = half_length2.x;
         polygon.outer_sum[0] = Vec3::new(sx.y, sy.y, sz.y);
+        // `m = v_b·(v_b + v_c)` and `|s02|² - m²` in lane 1 (vertex 1 and the sum s02),
+        // as `compute_one` rounds them; the lanes' work costs less than taking the six
+        // scalars out of them.
+        let along = (x * sx + y * sy) + z * sz;
+        let across2 = length2 - along * along;
+        polygon.outer_along[0] = along.y;
+        polygon.outer_across2[0] = across2.y;
     }
 }
 
@@ -928,6 +952,8 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         g1_plus_g2: [0.0; T],
         g2: [0.0; T],
         outer_sum: [Vec3::ZERO; T],
+        outer_along: [0.0; T],
+        outer_across2: [0.0; T],
         start: [0.0; T],
         solid_angle: 0.0,
         density: 0.0,
@@ -1099,6 +1125,9 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
                     self.g1_plus_g2[k] = denominator(v0, v1, v2, [s01, s02, s12], [l01, l02, l12]);
                     self.g2[k] = 0.5 * l01;
                     self.outer_sum[k] = s02;
+                    let along = self.vertices[b].dot(s02);
+                    self.outer_along[k] = along;
+                    self.outer_across2[k] = l02 - along * along;
                     careful_paths |= CAREFUL_PAIR_SUMS;
                 }
             }
@@ -1236,6 +1265,8 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
             self.g1_plus_g2[k] = 0.0;
             self.g2[k] = 0.0;
             self.outer_sum[k] = Vec3::ZERO;
+            self.outer_along[k] = 0.0;
+            self.outer_across2[k] = 0.0;
             self.start[k] = f32::INFINITY;
         }
         self.solid_angle = total;
@@ -1404,8 +1435,7 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
     /// in `self` (`Vec3A::from(Vec3)` took four instructions per vector: a 4-byte and an
     /// 8-byte load and two shuffles). The fourth lane is garbage that nothing reads: every
     /// use of these vectors in [`direction_in_triangle`](Self::direction_in_triangle) takes
-    /// `x`, `y` and `z` lane by lane (products, sums, the dot products of `dot_pair` and
-    /// `length_squared`, whose sums leave `w` out), and the direction returned is the
+    /// `x`, `y` and `z` lane by lane (products, sums and `length_squared`, whose sums leave `w` out), and the direction returned is the
     /// `Vec3` of the first three lanes, so the bits are those of the 12-byte loads
     /// (`padded_loads_read_the_elements` pins it). The load stays inside `self`: the
     /// struct is `repr(C)` of `f32`, `u32` and `Vec3` fields without padding (its size is
@@ -1437,8 +1467,8 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         use core::mem::{offset_of, size_of};
         assert!(offset_of!(Self, vertices) + 12 * N + 4 <= size_of::<Self>());
         assert!(offset_of!(Self, outer_sum) + 12 * T + 4 <= size_of::<Self>());
-        // Three `[Vec3; N]`, four `[f32; T]`, one `[Vec3; T]` and seven 4-byte words.
-        assert!(size_of::<Self>() == 4 * (9 * N + 7 * T + 7));
+        // Three `[Vec3; N]`, six `[f32; T]`, one `[Vec3; T]` and seven 4-byte words.
+        assert!(size_of::<Self>() == 4 * (9 * N + 9 * T + 7));
     };
 
     /// The direction of [`sample_in_triangle`](Self::sample_in_triangle) before its
@@ -1466,9 +1496,11 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // root to the direction): m = v0·(v0 + v2) = 1 + v0·v2 and |s|² - m² for
         // s = v0 + v2, the squared length of the part of s orthogonal to v0 (sin²Θ for
         // the arc Θ from v0 to v2), both rounded to within a few ulps of |s|², which is
-        // small exactly when they are (v0 and v2 nearly antipodal).
-        let (m, outer2) = dot_pair(v0, outer_sum, outer_sum, outer_sum);
-        let orthogonal2 = outer2 - m * m;
+        // small exactly when they are (v0 and v2 nearly antipodal). Both come from the
+        // prepared value (`outer_along`, `outer_across2`), computed there as the dot
+        // products of the stored `v0` and `s` were computed here (per sample: 196 -> see
+        // the commit, callgrind).
+        let (m, orthogonal2) = (self.outer_along[k], self.outer_across2[k]);
         // sin and cos of A/2 from A itself (`sin_cos_of_half`: the bits of
         // `sin_cos_0_to_pi(0.5 * local)`, one multiplication fewer on the chain).
         let (sin_half, cos_half) = crate::math::sin_cos_of_half(local);

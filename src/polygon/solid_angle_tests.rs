@@ -1486,9 +1486,19 @@ fn padded_loads_read_the_elements() {
 fn positive_and_finite_is_the_float_test() {
     let check = |bits: u32| {
         let x = f32::from_bits(bits);
-        assert_eq!(positive_and_finite(x), x > 0.0 && x < f32::INFINITY, "{bits:#x}");
+        assert_eq!(
+            positive_and_finite(x),
+            x > 0.0 && x < f32::INFINITY,
+            "{bits:#x}"
+        );
     };
-    let edges = [0u32, 1, 1.0f32.to_bits(), f32::MAX.to_bits(), f32::INFINITY.to_bits()];
+    let edges = [
+        0u32,
+        1,
+        1.0f32.to_bits(),
+        f32::MAX.to_bits(),
+        f32::INFINITY.to_bits(),
+    ];
     for edge in edges {
         for sign in [0, 0x8000_0000u32] {
             for d in 0..=16u32 {
@@ -1500,4 +1510,69 @@ fn positive_and_finite_is_the_float_test() {
     for bits in (0..=u32::MAX).step_by(4093) {
         check(bits);
     }
+}
+
+/// The prepared `outer_along` and `outer_across2` are, bit for bit, what the sample
+/// computed from the stored vertex and pair sum before they were prepared: `m =
+/// vertices[k + 1]·outer_sum[k]` and `|outer_sum[k]|² - m²`, rounded as `Vec3::dot` and
+/// `length_squared` round them; 0 past the fan triangles. For every count in all three
+/// sizes, on the lanes' path (`compute`, `compute_one` for a heptagon's fifth,
+/// `compute_triangle`) and on the careful pair sums (large polygons just above the
+/// shading point, which some of them take: counted).
+#[test]
+fn the_outer_terms_are_the_samples_dot_products() {
+    fn check<const N: usize, const T: usize>(polygon: &SolidAngleFan<N, T>) -> bool {
+        let triangles = polygon.vertex_count as usize - 2;
+        for k in 0..T {
+            let (m, across2) = if k < triangles {
+                let (v0, s) = (polygon.vertices[k + 1], polygon.outer_sum[k]);
+                let m = v0.dot(s);
+                (m, s.length_squared() - m * m)
+            } else {
+                (0.0, 0.0)
+            };
+            assert_eq!(
+                polygon.outer_along[k].to_bits(),
+                m.to_bits(),
+                "{k} {polygon:?}"
+            );
+            assert_eq!(polygon.outer_across2[k].to_bits(), across2.to_bits(), "{k}");
+        }
+        polygon.careful_paths() & CAREFUL_PAIR_SUMS != 0
+    }
+    let mut rng = Rng::new(4141);
+    let (mut checked, mut careful) = (0, 0);
+    for n in 3..=MAX_POLYGON_VERTICES {
+        for i in 0..200 {
+            let mut v = if i % 2 == 0 {
+                random_polygon_above(&mut rng, n, 0.2, 0.7)
+            } else {
+                // Large and close: vertices far more than 90° apart from the apex.
+                let mut v = random_polygon_above(&mut rng, n, 3.0, 3.0);
+                for p in &mut v {
+                    p.z = 1e-3 + 1e-2 * (p.z - 1.0).abs();
+                }
+                v
+            };
+            if i % 4 < 2 {
+                v.reverse();
+            }
+            let Some(polygon) = SolidAnglePolygon::new(&v) else {
+                continue;
+            };
+            careful += check(&polygon) as u32;
+            checked += 1;
+            if n <= 4 {
+                check(&SolidAngleQuad::new(&v).expect("as the polygon"));
+            }
+            if n == 3 {
+                check(&SolidAngleTriangle::new(&v).expect("as the polygon"));
+            }
+        }
+    }
+    assert!(checked >= 1100, "{checked}");
+    assert!(
+        careful >= 100,
+        "{careful} of {checked} took the careful pair sums"
+    );
 }
