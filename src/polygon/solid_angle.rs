@@ -997,31 +997,39 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // The sizes' parameters, checked where a size is first used.
         let () = Self::VALID_SIZE;
         let count = vertices.len();
+        // 5 to 8 vertices first, by a tail call into their own function, which writes the
+        // empty value itself: this function's frame (the registers that the inlined
+        // triangle and quad bodies save) is then set up on their paths only, where the
+        // call through it saved and restored six registers twice (hexagons: see the
+        // commit, callgrind).
+        if (5..=MAX_POLYGON_VERTICES).contains(&count) && count <= N {
+            return self.prepare_five_to_eight(vertices);
+        }
         let prepared = match count {
             3 => self.prepare_or_fail(vertices, 3),
             4 if N >= 4 => self.prepare_or_fail(vertices, 4),
-            5..=MAX_POLYGON_VERTICES if count <= N => self.prepare_five_to_eight(vertices),
             _ => false,
         };
         super::keep_or_empty(self, prepared, Self::EMPTY)
     }
 
-    /// [`prepare_or_fail`](Self::prepare_or_fail) for 5 to 8 vertices, a copy per count
-    /// (kept apart so that the triangles' and quads' copies do not change how the
-    /// compiler inlines them).
+    /// [`prepare`](Self::prepare) for 5 to 8 vertices, a copy of
+    /// [`prepare_or_fail`](Self::prepare_or_fail) per count (kept apart so that the
+    /// triangles' and quads' copies do not change how the compiler inlines them).
     #[inline(never)]
     fn prepare_five_to_eight(&mut self, vertices: &[Vec3]) -> bool {
         let count = vertices.len();
         // One copy per count (for `N < 8`, `prepare_or_fail`'s range test folds the
         // copies above `N` to `false`; guards `if N >= 5` here instead cost the triangle
         // size 10 instructions per prepare + 1, callgrind).
-        match count {
+        let prepared = match count {
             5 => self.prepare_or_fail(vertices, 5),
             6 => self.prepare_or_fail(vertices, 6),
             7 => self.prepare_or_fail(vertices, 7),
             8 => self.prepare_or_fail(vertices, 8),
             _ => false,
-        }
+        };
+        super::keep_or_empty(self, prepared, Self::EMPTY)
     }
 
     /// The body of [`prepare`](Self::prepare) for `count == vertices.len()` (3 to 8); on
