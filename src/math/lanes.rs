@@ -79,32 +79,27 @@ pub fn min4(a: Vec4, b: Vec4) -> Vec4 {
     Vec4::select(b.is_nan_mask(), a, a.min(b))
 }
 
-/// Writes four records of `N` words, one per lane: record `lane` gets `words[w][lane]`
-/// as its word `w`. Four words of every record at a time: a 4×4 transpose (glam's
-/// `Mat4::transpose`, shuffles on SSE) turns the four words' lanes into each record's
-/// four consecutive words, stored at once; where `N` is not a multiple of 4 the last
-/// group overlaps the one before (its words written twice, with the same bits). A fixed
-/// count of records, so that the compiler unrolls it all into straight-line code. Moves
-/// bits only (no arithmetic), so every word is stored as computed, NaN payloads included.
+/// Writes the words `start..start + 4` of four records of `N` words, one record per
+/// lane: record `lane` gets `words[w][lane]` as its word `start + w`. A 4×4 transpose
+/// (glam's `Mat4::transpose`, shuffles on SSE) turns the four words' lanes into each
+/// record's four consecutive words, stored at once. A caller that writes whole records
+/// this way (`EllipseSector::new4`) stores each group of four words as soon as it has
+/// computed them, so that fewer values are live at once (all 46 words of a sector held
+/// to the end spilled to the stack). Moves bits only (no arithmetic), so every word is
+/// stored as computed, NaN payloads included.
 #[inline(always)]
-pub(crate) fn store_records4<const N: usize>(words: &[Vec4; N], records: &mut [[f32; N]; LANES]) {
-    const { assert!(N >= LANES) };
-    for group in 0..N.div_ceil(LANES) {
-        let start = (group * LANES).min(N - LANES);
-        let rows = Mat4::from_cols(
-            words[start],
-            words[start + 1],
-            words[start + 2],
-            words[start + 3],
-        )
-        .transpose();
-        for (record, row) in
-            records
-                .iter_mut()
-                .zip([rows.x_axis, rows.y_axis, rows.z_axis, rows.w_axis])
-        {
-            row.write_to_slice(&mut record[start..start + LANES]);
-        }
+pub(crate) fn store_record_words4<const N: usize>(
+    words: [Vec4; LANES],
+    records: &mut [[f32; N]; LANES],
+    start: usize,
+) {
+    let rows = Mat4::from_cols(words[0], words[1], words[2], words[3]).transpose();
+    for (record, row) in
+        records
+            .iter_mut()
+            .zip([rows.x_axis, rows.y_axis, rows.z_axis, rows.w_axis])
+    {
+        row.write_to_slice(&mut record[start..start + LANES]);
     }
 }
 
@@ -215,6 +210,30 @@ mod tests {
 
     /// The lanes round as the scalar forms, bit for bit, on cancelling and
     /// non-cancelling products, tiny and huge magnitudes.
+    /// `store_record_words4` puts lane `l` of word `w` at word `start + w` of record `l`
+    /// and leaves every other word as it was.
+    #[test]
+    fn store_record_words4_writes_one_group_of_each_record() {
+        let mut records = [[f32::NAN; 7]; LANES];
+        let words = core::array::from_fn(|w| {
+            Vec4::from_array(core::array::from_fn(|lane| (10 * w + lane) as f32))
+        });
+        store_record_words4(words, &mut records, 2);
+        for (lane, record) in records.iter().enumerate() {
+            for (i, word) in record.iter().enumerate() {
+                if (2..6).contains(&i) {
+                    assert_eq!(
+                        *word,
+                        (10 * (i - 2) + lane) as f32,
+                        "record {lane} word {i}"
+                    );
+                } else {
+                    assert!(word.is_nan(), "record {lane} word {i}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn lanes_round_as_the_scalar_forms() {
         let mut rng = Rng::new(5);

@@ -15,7 +15,7 @@ use super::ellipse::{Vec2, add2, det2, dot2, is_degenerate, rotate, scale2};
 use crate::math::{
     LANES, atan_fast_nonneg, atan_fast_nonneg4, atan2_upper_half_plane, atan2_upper_half_plane4,
     copy_sign, difference_of_products4, finite_or_zero4, max4, min4, select_bits, select_bits4,
-    sqrt4, store_records4,
+    sqrt4, store_record_words4,
 };
 use glam::{BVec4A, Vec4};
 
@@ -577,9 +577,19 @@ impl EllipseSector {
         lanes: usize,
         sectors: &mut [Self; LANES],
     ) -> [f32; LANES] {
+        // SAFETY: `EllipseSector` is `repr(C)` of `SECTOR_WORDS` 4-byte `f32` and `u32`
+        // fields (no padding; asserted at `SECTOR_WORDS`), and every bit pattern is a
+        // value of each, so the sectors are `[f32; SECTOR_WORDS]` records (as the
+        // `ProjectedPieces` union relies on).
+        let records =
+            unsafe { &mut *(sectors as *mut [Self; LANES]).cast::<[[f32; SECTOR_WORDS]; LANES]>() };
+        // The sectors' words in memory order (see `SECTOR_WORDS`), one lane per sector,
+        // each group of four words stored (`store_record_words4`) as soon as it is
+        // computed, so that fewer values are live at once (issue 15: the 46 words held
+        // until the end spilled to the stack).
+        let mut store = |start: usize, words: [Vec4; 4]| store_record_words4(words, records, start);
         // `dot2`: a_x b_x + a_y b_y.
         let dot = |ax: Vec4, ay: Vec4, bx: Vec4, by: Vec4| ax * bx + ay * by;
-        let (ui2, uo2) = (dot(uix, uiy, uix, uiy), dot(uox, uoy, uox, uoy));
         // `unit`: scaled by 1 / sqrt(|v|²), zero unless both components are finite.
         let unit = |x: Vec4, y: Vec4| {
             let inverse = Vec4::ONE / sqrt4(x * x + y * y);
@@ -600,6 +610,8 @@ impl EllipseSector {
         );
         let (b1x, b1y) = unit(s0x + b2x, s0y + b2y);
         let (b3x, b3y) = unit(b2x + s1x, b2y + s1y);
+        store(0, [s0x, s0y, b1x, b1y]);
+        store(4, [b2x, b2y, b3x, b3y]);
         let inverse_basis =
             finite_or_zero4(Vec4::ONE / difference_of_products4(s0x, s1y, s0y, s1x));
         // u · b_j = α (u · s0) + β (u · s1), with α and β of b_j once for both ellipses
@@ -613,9 +625,17 @@ impl EllipseSector {
         let (ti_1, to_1) = quarter_dots(b1x, b1y);
         let (ti_2, to_2) = quarter_dots(b2x, b2y);
         let (ti_3, to_3) = quarter_dots(b3x, b3y);
+        // `outer_quarter_dots` and `inner_quarter_dots`.
+        store(8, [s1x, s1y, to0, to_1]);
+        store(12, [to_2, to_3, to1, det]);
+        store(28, [ti_1, ti_2, ti_3, ti1]);
         // `ellipse_radius(1, t)`: 1 / sqrt(1 + t²).
         let radius = |t: Vec4| Vec4::ONE / sqrt4(Vec4::ONE + t * t);
+        store(32, [radius(ti0), radius(ti_1), radius(ti_2), radius(ti_3)]);
+        store(36, [radius(ti1), radius(to0), radius(to_1), radius(to_2)]);
+        let (ui2, uo2) = (dot(uix, uiy, uix, uiy), dot(uox, uoy, uox, uoy));
         let (ki, ko) = (sqrt4(Vec4::ONE + ui2), sqrt4(Vec4::ONE + uo2));
+        store(16, [inverse_basis, uix, uiy, uox]);
         // σ: 1 with the sign bit of u_i · u_o (`copysign` moves the bit, as `copy_sign`).
         let sigma = Vec4::ONE.copysign(dot(uix, uiy, uox, uoy));
         let (deltax, deltay) = (uox - sigma * uix, uoy - sigma * uiy);
@@ -625,6 +645,8 @@ impl EllipseSector {
         let root_det_difference = finite_or_zero4(-length_difference / sum);
         let inverse_root_det_difference = finite_or_zero4(length_difference / (sum * ki * ko));
         let quarter_det = difference_of_products4(s0x, b1y, s0y, b1x);
+        store(20, [uoy, ki, ko, root_det_difference]);
+        store(24, [inverse_root_det_difference, sigma, quarter_det, ti0]);
         let cosine = dot(s0x, s0y, s1x, s1y);
         // `area_form` lane by lane, its comparisons as there (`max4` and `min4` are
         // `f32::max` and `f32::min`, NaN included), as the bits of a lane.
@@ -642,62 +664,11 @@ impl EllipseSector {
             form(QUADRATURE_FORM),
             Vec4::select(difference, form(DIFFERENCE_FORM), form(DIRECT_FORM)),
         );
-        // The sectors' words in memory order (see `SECTOR_WORDS`), one lane per sector.
-        let words: [Vec4; SECTOR_WORDS] = [
-            s0x,
-            s0y,
-            b1x,
-            b1y,
-            b2x,
-            b2y,
-            b3x,
-            b3y,
-            s1x,
-            s1y, // quarters
-            to0,
-            to_1,
-            to_2,
-            to_3,
-            to1, // outer_quarter_dots
-            det,
-            inverse_basis,
-            uix,
-            uiy,
-            uox,
-            uoy,
-            ki,
-            ko,
-            root_det_difference,
-            inverse_root_det_difference,
-            sigma,
-            quarter_det, // det ..= quarter_det
-            ti0,
-            ti_1,
-            ti_2,
-            ti_3,
-            ti1, // inner_quarter_dots
-            radius(ti0),
-            radius(ti_1),
-            radius(ti_2),
-            radius(ti_3),
-            radius(ti1),
-            radius(to0),
-            radius(to_1),
-            radius(to_2),
-            radius(to_3),
-            radius(to1),
-            cosine,
-            area_forms,
-            Vec4::ZERO,
-            Vec4::ZERO, // .., extra_iterations, touching_ends
-        ];
-        // SAFETY: `EllipseSector` is `repr(C)` of `SECTOR_WORDS` 4-byte `f32` and `u32`
-        // fields (no padding; asserted at `SECTOR_WORDS`), and every bit pattern is a
-        // value of each, so the sectors are `[f32; SECTOR_WORDS]` records (as the
-        // `ProjectedPieces` union relies on).
-        let records =
-            unsafe { &mut *(sectors as *mut [Self; LANES]).cast::<[[f32; SECTOR_WORDS]; LANES]>() };
-        store_records4(&words, records);
+        // The last group overlaps the one before (the same bits twice): words 42..46,
+        // `cosine`, `area_form`, `extra_iterations` and `touching_ends`.
+        store(40, [radius(to_3), radius(to1), cosine, area_forms]);
+        store(42, [cosine, area_forms, Vec4::ZERO, Vec4::ZERO]);
+        const { assert!(SECTOR_WORDS == 46) };
         // The areas (`area(false, precision)`) of the first `lanes` sectors.
         let proper = |ux: Vec4| ux.abs().cmple(Vec4::splat(super::ellipse::ELLIPSE_LIMIT));
         let (outer_proper, inner_proper) = (proper(uox), proper(uix));

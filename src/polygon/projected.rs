@@ -346,7 +346,7 @@ fn sort_by_certain_azimuths(
 fn own_edge_dots(
     vertex: &[[f32; VERTEX_SLOTS]; 3],
     normals: &[[f32; 2 * LANES]; 3],
-    edge: &[[f32; 2]; MAX_POLYGON_VERTICES],
+    ux: &[f32; MAX_POLYGON_VERTICES],
     xy_length: &[f32; MAX_POLYGON_VERTICES],
     count: usize,
 ) -> [[f32; 2 * LANES]; 2] {
@@ -355,14 +355,13 @@ fn own_edge_dots(
     let mut xy = [0.0f32; VERTEX_SLOTS];
     xy[..count].copy_from_slice(&xy_length[..count]);
     xy[count] = xy_length[0];
-    let ux = edge.map(|u| u[0]);
     let mut dots = [[0.0f32; 2 * LANES]; 2];
     for first in lane_starts(count) {
         let (nx, nz) = (load4(&normals[0], first), load4(&normals[2], first));
         // σ: 1 with the sign bit of n_x (`copysign` moves the bit, as `copy_sign`).
         let sigma = Vec4::ONE.copysign(nx);
         // `is_degenerate`: not |u_x| <= the limit (NaN included).
-        let proper = load4(&ux, first)
+        let proper = load4(ux, first)
             .abs()
             .cmple(Vec4::splat(super::ellipse::ELLIPSE_LIMIT));
         for (end, dots) in dots.iter_mut().enumerate() {
@@ -896,9 +895,10 @@ impl ProjectedPolygon {
                 central_unclipped_sectors(polygon, &vertex, &normals, count, precision);
             return finish(polygon, count, 0.0, maybe_short);
         }
-        polygon.edge_normals = EdgeNormalRows::ZERO;
-        let mut edge = [DEGENERATE; MAX_POLYGON_VERTICES];
-        let mut direction = [[0.0f32; 2]; MAX_POLYGON_VERTICES];
+        // The edges' ellipses `u` and the vertices' unit directions `s`, as rows of x and
+        // y (the lanes' path stores its lanes there; slots past the polygon are not read).
+        let mut edge_rows = DEGENERATE.map(|c| [c; MAX_POLYGON_VERTICES]);
+        let mut direction_rows = [[0.0f32; MAX_POLYGON_VERTICES]; 2];
         let mut xy_length = [0.0f32; MAX_POLYGON_VERTICES];
         let mut maybe_short = false;
         let edge_ends = |j: usize| match &planes {
@@ -906,10 +906,11 @@ impl ProjectedPolygon {
             None => [positions[j], positions[next(j)]],
         };
         if allow_fast {
-            // Four edges and vertices at a time, bit for bit as the loop below.
-            // Columns: u_x, u_y, s_x, s_y of the edges' ellipses and the vertices'
-            // directions.
-            let mut columns = [[0.0f32; 2 * LANES]; 4];
+            // Four edges and vertices at a time, bit for bit as the loop below, stored
+            // as rows: the edge normals (slots past the polygon 0, as in
+            // `EdgeNormalRows::ZERO`), u_x, u_y of the edges' ellipses and s_x, s_y of the
+            // vertices' directions (issue 15: copied slot by slot from columns, 150
+            // instructions per hexagon).
             for first in lane_starts(count) {
                 let [nx, ny, nz] = normals.each_ref().map(|c| load4(c, first));
                 let (ux, uy) = ellipse_from_normal4(nx, ny, nz);
@@ -917,9 +918,13 @@ impl ProjectedPolygon {
                 let (sx, sy) = unit_direction4(x, y);
                 // `dot2(direction, p_xy)`.
                 store4(sx * x + sy * y, &mut xy_length, first);
-                for (column, lanes) in columns.iter_mut().zip([ux, uy, sx, sy]) {
-                    store4(lanes, column, first);
+                let rows = edge_rows.iter_mut().chain(direction_rows.iter_mut());
+                for (row, lanes) in rows.zip([ux, uy, sx, sy]) {
+                    store4(lanes, row, first);
                 }
+                polygon
+                    .edge_normals
+                    .store4(first, [nx, ny, nz], lanes_kept(first, count));
                 // The first test of `ignore_short_edges_in_containment`, as below (lanes
                 // past the edges masked: their zero normals would count as short).
                 let [a, b] =
@@ -932,19 +937,19 @@ impl ProjectedPolygon {
                 let lanes = (count - first).min(LANES);
                 maybe_short |= short.bitmask() & ((1u32 << lanes) - 1) != 0;
             }
-            for j in 0..count {
+            if count <= LANES {
+                let zero = [Vec4::ZERO; 3];
                 polygon
                     .edge_normals
-                    .set(j, Vec3::new(normals[0][j], normals[1][j], normals[2][j]));
-                edge[j] = [columns[0][j], columns[1][j]];
-                direction[j] = [columns[2][j], columns[3][j]];
+                    .store4(LANES, zero, glam::BVec4A::splat(true));
             }
         } else {
+            polygon.edge_normals = EdgeNormalRows::ZERO;
             for j in 0..count {
                 let [pa, pb] = edge_ends(j);
                 let normal = Vec3::new(normals[0][j], normals[1][j], normals[2][j]);
                 let u = ellipse_from_normal(normal);
-                edge[j] = u;
+                [edge_rows[0][j], edge_rows[1][j]] = u;
                 polygon.edge_normals.set(j, normal);
                 // The first test of `ignore_short_edges_in_containment` on the same
                 // values: the common polygon has no short edge and skips it.
@@ -952,10 +957,13 @@ impl ProjectedPolygon {
                     > super::SHORT_EDGE_SINE
                         * super::SHORT_EDGE_SINE
                         * (pa.length_squared() * pb.length_squared()));
-                direction[j] = unit_direction(positions[j]);
-                xy_length[j] = dot2(direction[j], [positions[j].x, positions[j].y]);
+                let s = unit_direction(positions[j]);
+                [direction_rows[0][j], direction_rows[1][j]] = s;
+                xy_length[j] = dot2(s, [positions[j].x, positions[j].y]);
             }
         }
+        let edge = |j: usize| [edge_rows[0][j], edge_rows[1][j]];
+        let direction = |j: usize| [direction_rows[0][j], direction_rows[1][j]];
         // `u_e · s_c` for the ellipse of edge e and the direction of vertex c, from the
         // positions. With u = σ n_xy / n_z (n = p_a × p_b, σ the sign that marks inner
         // ellipses), u · s_c = σ (n_xy · p_c,xy) / (n_z |p_c,xy|) and
@@ -964,7 +972,7 @@ impl ProjectedPolygon {
         // the rounded u instead, the dot product loses all precision when |u| is large
         // and s nearly orthogonal to it (a great circle passing near the zenith).
         let edge_dot = |e: usize, c: usize| -> f32 {
-            let u = edge[e];
+            let u = edge(e);
             if is_degenerate(u) || !(xy_length[c] > 0.0) {
                 return 0.0;
             }
@@ -996,8 +1004,8 @@ impl ProjectedPolygon {
         let mut first_inner = None;
         for j in 0..count {
             let previous = if j == 0 { count - 1 } else { j - 1 };
-            vertex_edge[j] = if is_inner(edge[j]) { previous } else { j };
-            if is_inner(edge[previous]) && !is_inner(edge[j]) {
+            vertex_edge[j] = if is_inner(edge(j)) { previous } else { j };
+            if is_inner(edge(previous)) && !is_inner(edge(j)) {
                 first_inner = Some(previous);
             }
         }
@@ -1018,7 +1026,7 @@ impl ProjectedPolygon {
                 let p = positions[(k & 7) as usize];
                 [p.x, p.y]
             };
-            let degenerate = |k: u8| is_degenerate(edge[vertex_edge[k as usize]]);
+            let degenerate = |k: u8| is_degenerate(edge(vertex_edge[k as usize]));
             let less = |a: &u8, b: &u8| {
                 // Only the sign of det(p_a,xy, p_b,xy) matters: the careful form only
                 // where the plain one may have it wrong.
@@ -1040,7 +1048,7 @@ impl ProjectedPolygon {
                 // `& 7` only shows the compiler the index in bounds (entries are below 8).
                 let k = (k & 7) as usize;
                 let p = positions[k];
-                let values = [p.x, p.y, xy_length[k], direction[k][0], direction[k][1]];
+                let values = [p.x, p.y, xy_length[k], direction(k)[0], direction(k)[1]];
                 for (column, value) in sorted.iter_mut().zip(values) {
                     column[j] = value;
                 }
@@ -1079,15 +1087,15 @@ impl ProjectedPolygon {
             // its s1, this sector's s0: the same `edge_dot` where the ellipse is the same.
             let mut previous = [(usize::MAX, 0.0f32); 2];
             // The table of `edge_dot` at each edge's own vertices (see `own_edge_dots`).
-            let own =
-                allow_fast.then(|| own_edge_dots(&vertex, &normals, &edge, &xy_length, count));
+            let own = allow_fast
+                .then(|| own_edge_dots(&vertex, &normals, &edge_rows[0], &xy_length, count));
             for j in 0..sectors {
                 let (a, b) = (order[j] as usize, order[j + 1] as usize);
                 let e = vertex_edge[a];
-                if j > 0 && is_inner(edge[e]) {
+                if j > 0 && is_inner(edge(e)) {
                     inner = e;
                 }
-                if j == 0 || !is_inner(edge[e]) {
+                if j == 0 || !is_inner(edge(e)) {
                     outer = e;
                 }
                 let mut dots = [[0.0f32; 2]; 2];
@@ -1103,12 +1111,12 @@ impl ProjectedPolygon {
                 }
                 let [ti, to] = dots;
                 let values = [
-                    edge[inner][0],
-                    edge[inner][1],
+                    edge(inner)[0],
+                    edge(inner)[1],
                     ti[0],
                     ti[1],
-                    edge[outer][0],
-                    edge[outer][1],
+                    edge(outer)[0],
+                    edge(outer)[1],
                     to[0],
                     to[1],
                 ];
@@ -1226,12 +1234,12 @@ impl ProjectedPolygon {
             for j in 0..count {
                 let (a, b) = (j, next(j));
                 let values = [
-                    direction[a][0],
-                    direction[a][1],
-                    direction[b][0],
-                    direction[b][1],
-                    edge[j][0],
-                    edge[j][1],
+                    direction(a)[0],
+                    direction(a)[1],
+                    direction(b)[0],
+                    direction(b)[1],
+                    edge(j)[0],
+                    edge(j)[1],
                     edge_dot(j, a),
                     edge_dot(j, b),
                     sector_det[j],
