@@ -68,7 +68,6 @@ fn plane_misses_origin(vertices: &[Vec3]) -> bool {
 /// and `∫ pdf dω` over the sphere equals that over the cosine's space (the pdf carries
 /// the exact Jacobian of `M`).
 fn round_trip_tolerance(transformed: &[Vec3], projected_solid_angle: f32) -> f32 {
-    let count = transformed.len();
     // Each vertex normalised once (it ends two edges). Where `|t|²` is a normal float
     // well inside the range (1e-30 to 1e30), the squares neither overflow nor lose
     // more than 1e-15 of `|t|²` to denormals, so `t / |t|` directly (one square root,
@@ -76,18 +75,23 @@ fn round_trip_tolerance(transformed: &[Vec3], projected_solid_angle: f32) -> f32
     // the largest component (three more divisions); elsewhere the careful form. The
     // perimeter only sets the slack `τ`, bounded below by `pdf_slack()` in the caller,
     // and a few ulps of `P'` move `τ` by a few ulps, well inside the 2e-5 budget.
-    let mut units = [Vec3::ZERO; MAX_POLYGON_VERTICES];
-    for (u, t) in units.iter_mut().zip(transformed) {
-        *u = perimeter_unit(*t);
-    }
-    // The edges in order, the closing one last.
+    //
+    // The edges in order, the closing one last; each unit vertex is kept only until
+    // both of its edges are summed (an array of the units, zeroed, stored and reloaded,
+    // cost 43 instructions more per quad; the same operations in the same order, so
+    // the same bits).
+    let Some((first, rest)) = transformed.split_first() else {
+        return ROUND_TRIP_TOLERANCE;
+    };
+    let first = perimeter_unit(*first);
+    let mut previous = first;
     let mut perimeter = 0.0f32;
-    for pair in units[..count].windows(2) {
-        perimeter += crate::math::length(pair[1] - pair[0]);
+    for t in rest {
+        let unit = perimeter_unit(*t);
+        perimeter += crate::math::length(unit - previous);
+        previous = unit;
     }
-    if let [first, .., last] = units[..count] {
-        perimeter += crate::math::length(first - last);
-    }
+    perimeter += crate::math::length(first - previous);
     let width = projected_solid_angle / perimeter;
     if width.is_finite() {
         ROUND_TRIP_TOLERANCE.min(TOLERANCE_PER_WIDTH * width)
@@ -215,17 +219,29 @@ impl LtcPolygon {
     /// even the inner direction fails (polygons that the round trip cannot resolve) the
     /// sample is dropped (`Sample::NONE`).
     pub fn sample(&self, u: [f32; 2]) -> Sample {
-        self.sample_through_m(
-            u,
-            Sample::NONE,
-            |dir| Sample {
-                dir,
-                // `pdf`'s own body, inlined here: the same operations on the same
-                // direction, so the same bits.
-                pdf: self.pdf_inline(dir),
-            },
-            |sample| sample.pdf > 0.0,
-        )
+        let Some(w_cosine) = self.transformed_sample(u) else {
+            return Sample::NONE;
+        };
+        let sample = self.finish_sample(self.through_m(w_cosine));
+        if sample.pdf > 0.0 {
+            return sample;
+        }
+        self.pulled_inward(w_cosine, Sample::NONE, &Self::finish_sample, &|sample| {
+            sample.pdf > 0.0
+        })
+    }
+
+    /// The result of [`sample`](Self::sample) for a direction mapped by `M`: the
+    /// direction and `pdf`'s own body (the same operations on the same direction, so
+    /// the same bits). Called directly on the common path, where it is inlined (as a
+    /// closure passed to a generic body it was called out of line, with its `Sample`
+    /// returned through the stack), and through a reference by the rare one.
+    #[inline(always)]
+    fn finish_sample(&self, dir: Vec3) -> Sample {
+        Sample {
+            dir,
+            pdf: self.pdf_inline(dir),
+        }
     }
 
     /// [`sample`](Self::sample) (the same bits) and the sample's direction as
@@ -234,38 +250,36 @@ impl LtcPolygon {
     /// that start with `unit` (the polygon light's BRDF).
     #[inline(always)]
     pub(crate) fn sample_and_unit(&self, u: [f32; 2]) -> (Sample, Option<Vec3>) {
-        self.sample_through_m(
-            u,
+        let Some(w_cosine) = self.transformed_sample(u) else {
+            return (Sample::NONE, None);
+        };
+        let result = self.finish_sample_and_unit(self.through_m(w_cosine));
+        if result.0.pdf > 0.0 {
+            return result;
+        }
+        self.pulled_inward(
+            w_cosine,
             (Sample::NONE, None),
-            |dir| {
-                let unit = crate::math::unit(dir);
-                let pdf = unit.map_or(0.0, |d| self.pdf_of_unit(d));
-                (Sample { dir, pdf }, unit)
-            },
-            |sample| sample.0.pdf > 0.0,
+            &Self::finish_sample_and_unit,
+            &|result| result.0.pdf > 0.0,
         )
     }
 
-    /// The body of [`sample`](Self::sample) for either result: `finish` turns a direction
-    /// (mapped by `M` and normalised) into the result (with its pdf), `accepted` tells
-    /// whether that pdf is positive, `none` is the result without a sample.
+    /// The result of [`sample_and_unit`](Self::sample_and_unit) for a direction mapped
+    /// by `M`, as [`finish_sample`](Self::finish_sample) is `sample`'s.
     #[inline(always)]
-    fn sample_through_m<T: Copy>(
-        &self,
-        u: [f32; 2],
-        none: T,
-        finish: impl Fn(Vec3) -> T,
-        accepted: impl Fn(&T) -> bool,
-    ) -> T {
+    fn finish_sample_and_unit(&self, dir: Vec3) -> (Sample, Option<Vec3>) {
+        let unit = crate::math::unit(dir);
+        let pdf = unit.map_or(0.0, |d| self.pdf_of_unit(d));
+        (Sample { dir, pdf }, unit)
+    }
+
+    /// The transformed polygon's sample `ω'` (in the cosine's space), `None` where it
+    /// has none; [`through_m`](Self::through_m) maps it to the sample's direction.
+    #[inline(always)]
+    fn transformed_sample(&self, u: [f32; 2]) -> Option<Vec3> {
         let s = self.transformed.sample(u);
-        if !(s.pdf > 0.0) {
-            return none;
-        }
-        let sample = finish(self.through_m(s.dir));
-        if accepted(&sample) {
-            return sample;
-        }
-        self.pulled_inward(s.dir, none, &finish, &accepted)
+        (s.pdf > 0.0).then_some(s.dir)
     }
 
     /// `M ω' / ‖M ω'‖`. `|M ω'|` is finite and positive for a finite unit direction and
@@ -277,7 +291,7 @@ impl LtcPolygon {
         w / crate::math::length(w)
     }
 
-    /// The rare end of [`sample_through_m`](Self::sample_through_m), out of line: the
+    /// The rare end of [`sample`](Self::sample) and [`sample_and_unit`](Self::sample_and_unit), out of line: the
     /// transformed polygon's sample `w_cosine` went through `M` to a direction that the
     /// pdf does not accept, which only samples within the round trip's rounding of the
     /// boundary do, so the inner direction (the transformed polygon's sample at the
@@ -288,7 +302,7 @@ impl LtcPolygon {
         &self,
         w_cosine: Vec3,
         none: T,
-        finish: &impl Fn(Vec3) -> T,
+        finish: &impl Fn(&Self, Vec3) -> T,
         accepted: &impl Fn(&T) -> bool,
     ) -> T {
         let inner = self.transformed.sample([0.5, 0.5]);
@@ -302,7 +316,7 @@ impl LtcPolygon {
                     w_cosine * (1.0 - pull) + inner.dir * pull,
                     inner.dir,
                 );
-                finish(self.through_m(pulled))
+                finish(self, self.through_m(pulled))
             })
             .find(|pulled| accepted(pulled))
             .unwrap_or(none)
