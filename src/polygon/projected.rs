@@ -1002,6 +1002,7 @@ impl ProjectedPolygon {
         // clockwise end of the polygon.
         let mut vertex_edge = [0usize; MAX_POLYGON_VERTICES];
         let mut first_inner = None;
+        #[allow(clippy::needless_range_loop)] // j indexes the edge rows (`edge(j)`) too
         for j in 0..count {
             let previous = if j == 0 { count - 1 } else { j - 1 };
             vertex_edge[j] = if is_inner(edge(j)) { previous } else { j };
