@@ -34,23 +34,27 @@ pub fn with_sign_of_product(x: f32, a: f32, b: f32) -> f32 {
     f32::from_bits(x.to_bits() ^ sign_mask(a) ^ sign_mask(b))
 }
 
-/// The mask `m` of [`select_bits`] and [`select_bits4`], unchanged, through an empty
-/// `asm!` that hides from the optimiser that it is 0 or all ones (so that the blend is
-/// not recognised as a `select` and turned back into a branch).
+/// Its operand (an `f32` or an SSE vector), unchanged, through an empty `asm!` that
+/// hides the value from the optimiser: the one mechanism behind [`select_bits`] and
+/// [`select_bits4`] (whose mask, 0 or all ones, would otherwise be recognised as a
+/// `select` and turned back into a branch) and [`opaque`].
 #[cfg(target_arch = "x86_64")]
-#[inline(always)]
-fn hidden_mask(m: core::arch::x86_64::__m128) -> core::arch::x86_64::__m128 {
-    let mut m = m;
-    // SAFETY: an empty template (a comment naming the register) that reads and writes
-    // nothing but its one operand, which it leaves as it is.
-    unsafe {
-        core::arch::asm!(
-            "/* {0} */",
-            inout(xmm_reg) m,
-            options(pure, nomem, nostack, preserves_flags)
-        );
-    }
-    m
+macro_rules! hidden_from_optimiser {
+    ($value:expr) => {{
+        let mut value = $value;
+        // SAFETY: an empty template (a comment naming the register) that reads and
+        // writes nothing but its one operand, which it leaves as it is. (Allowed to be
+        // nested: the selects expand it inside their own `unsafe` blocks.)
+        #[allow(unused_unsafe)]
+        unsafe {
+            core::arch::asm!(
+                "/* {0} */",
+                inout(xmm_reg) value,
+                options(pure, nomem, nostack, preserves_flags)
+            );
+        }
+        value
+    }};
 }
 
 /// `if_true` where `condition` holds, `if_false` otherwise, bit for bit, by a mask
@@ -83,7 +87,7 @@ pub fn select_bits(condition: bool, if_true: f32, if_false: f32) -> f32 {
         // SAFETY: the intrinsics need SSE2, which every x86_64 target has, and touch no
         // memory.
         unsafe {
-            let m = hidden_mask(_mm_castsi128_ps(_mm_cvtsi32_si128(mask as i32)));
+            let m = hidden_from_optimiser!(_mm_castsi128_ps(_mm_cvtsi32_si128(mask as i32)));
             _mm_cvtss_f32(_mm_or_ps(
                 _mm_and_ps(m, _mm_set_ss(if_true)),
                 _mm_andnot_ps(m, _mm_set_ss(if_false)),
@@ -112,7 +116,7 @@ pub fn select_bits4(condition: bool, if_true: glam::Vec4, if_false: glam::Vec4) 
         // SAFETY: the intrinsics need SSE2, which every x86_64 target has, and touch no
         // memory.
         unsafe {
-            let m = hidden_mask(_mm_castsi128_ps(_mm_set1_epi32(mask as i32)));
+            let m = hidden_from_optimiser!(_mm_castsi128_ps(_mm_set1_epi32(mask as i32)));
             glam::Vec4::from(_mm_or_ps(
                 _mm_and_ps(m, if_true.into()),
                 _mm_andnot_ps(m, if_false.into()),
@@ -142,17 +146,7 @@ pub fn select_bits4(condition: bool, if_true: glam::Vec4, if_false: glam::Vec4) 
 pub fn opaque(x: f32) -> f32 {
     #[cfg(target_arch = "x86_64")]
     {
-        let mut x = x;
-        // SAFETY: an empty template (a comment naming the register) that reads and
-        // writes nothing but its one operand, which it leaves as it is.
-        unsafe {
-            core::arch::asm!(
-                "/* {0} */",
-                inout(xmm_reg) x,
-                options(pure, nomem, nostack, preserves_flags)
-            );
-        }
-        x
+        hidden_from_optimiser!(x)
     }
     #[cfg(not(target_arch = "x86_64"))]
     {
