@@ -309,6 +309,7 @@ impl PolygonLight {
         // at `wi`, which the LTC polygon's sample has just evaluated, and which the
         // projected sampler's `pdf` may round to 0 on the polygon's edge): only the
         // other technique's density is evaluated.
+        // The projected density's body inlined (`pdf_inline`, the bits of `pdf`).
         // `wi` through `unit` once (the LTC's sample has done it), for the BRDF and the
         // LTC's density, which both start with it (the same bits as their public forms
         // `eval` and `pdf`).
@@ -319,7 +320,7 @@ impl PolygonLight {
                 wi_unit.map_or(0.0, |d| self.specular.pdf_of_unit(d)),
             ]
         } else {
-            [self.diffuse.pdf(wi), sample.pdf]
+            [self.diffuse.pdf_inline(wi), sample.pdf]
         };
         // The stored view is unit and above the horizon (`prepare`), which the BRDF's
         // evaluation then does not test again: `eval(self.wo, wi)` bit for bit.
