@@ -1197,7 +1197,7 @@ impl ProjectedPolygon {
                 // vertex that clipping repeated (det 0). Elsewhere the region has a width
                 // at the sector's ends, and the test (two divisions, an arc tangent at a
                 // meeting point) is not made; the last end is tested after the loop.
-                let touching = all_empty_before && sector.end_shape(false) < 1.0;
+                let touching = all_empty_before && sector.ends_touch(false);
                 all_empty_before &= sector.det == 0.0;
                 sector.touching_ends = touching as u32;
                 let limit = 200.0 * area;
@@ -1211,7 +1211,7 @@ impl ProjectedPolygon {
                 .find(|&j| polygon.pieces.sectors_mut()[j].det != 0.0)
             {
                 let sector = &mut polygon.pieces.sectors_mut()[last];
-                if sector.end_shape(true) < 1.0 {
+                if sector.ends_touch(true) {
                     sector.touching_ends |= 2;
                     sector.extra_iterations = 1;
                 }
