@@ -202,11 +202,51 @@ pub fn atan2_upper_half_plane4(y: Vec4, x: Vec4, lanes: usize) -> Vec4 {
     Vec4::select(angle.cmpgt(Vec4::ZERO) & used, angle, Vec4::ZERO)
 }
 
+/// glam's `Vec3::cross` of vectors held as the lanes `(x, y, z, _)`, each component
+/// rounded as there: `a_y b_z - b_y a_z`, `a_z b_x - b_z a_x`, `a_x b_y - b_x a_y`, as
+/// `a.yzx · b.zxy - b.yzx · a.zxy` (two products and a difference per lane; the fourth
+/// lane is `a_w b_w - b_w a_w`). Explicit products and a difference, where glam's own
+/// lanes (`Vec3A::cross`) fuse them with hardware FMA and would round differently.
+#[inline(always)]
+#[must_use]
+pub(crate) fn cross3_lanes(a: Vec4, b: Vec4) -> Vec4 {
+    use glam::Vec4Swizzles;
+    a.yzxw() * b.zxyw() - b.yzxw() * a.zxyw()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::math::{difference_of_products, difference_of_products_unless_cancelling};
     use crate::testing::Rng;
+
+    /// `cross3_lanes` is `Vec3::cross` bit for bit, on cancelling and non-cancelling
+    /// products over many magnitudes.
+    #[test]
+    fn cross3_lanes_is_the_scalar_cross() {
+        let mut rng = Rng::new(37);
+        for case in 0..100_000 {
+            let mut v = || {
+                crate::Vec3::from_array(core::array::from_fn(|_| {
+                    rng.signed_log_uniform(-20.0, 20.0) as f32
+                }))
+            };
+            let a = v();
+            // Every other pair nearly parallel (the products nearly cancel).
+            let b = if case % 2 == 0 {
+                v()
+            } else {
+                a * 1.000_001 + v() * 1e-6
+            };
+            let lanes = cross3_lanes(Vec4::from((a, 0.0)), Vec4::from((b, 0.0)));
+            let expected = a.cross(b).to_array().map(f32::to_bits);
+            assert_eq!(
+                lanes.truncate().to_array().map(f32::to_bits),
+                expected,
+                "{a} {b}"
+            );
+        }
+    }
 
     /// The lanes round as the scalar forms, bit for bit, on cancelling and
     /// non-cancelling products, tiny and huge magnitudes.

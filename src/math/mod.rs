@@ -25,9 +25,9 @@ pub use bits::{
 };
 pub use frame::{Frame, orthonormal_basis};
 pub(crate) use lanes::{
-    LANES, atan2_upper_half_plane4, cross_precise4, difference_of_products_unless_cancelling4,
-    difference_of_products4, finite_or_zero4, lane_starts, load4, max4, min4, sqrt4,
-    store_record_words4, store4,
+    LANES, atan2_upper_half_plane4, cross_precise4, cross3_lanes,
+    difference_of_products_unless_cancelling4, difference_of_products4, finite_or_zero4,
+    lane_starts, load4, max4, min4, sqrt4, store_record_words4, store4,
 };
 pub(crate) use length::{
     length, normalize_or, normalize_or_predicted, normalize_or_zero, try_normalize,

@@ -335,6 +335,36 @@ fn area_form(
     }
 }
 
+/// The terms of [`EllipseSector::end_shape`]: `c = slope · atan2(y, x) / width`.
+#[derive(Clone, Copy)]
+struct EndShapeTerms {
+    slope: f32,
+    width: f32,
+    y: f32,
+    x: f32,
+}
+
+impl EndShapeTerms {
+    /// `c < 1` where the bound of [`EllipseSector::ends_touch`] decides it, else `None`.
+    #[inline(always)]
+    fn below_one_by_bound(self) -> Option<bool> {
+        let Self { slope, width, y, x } = self;
+        let r = y / x;
+        let r2 = r * r;
+        let estimate = slope * (r * (1.0 - r2 * (1.0 / 3.0) + r2 * r2 * 0.1)) / width;
+        let slack = estimate.abs() * (0.16 * (r2 * r2) + 1e-5);
+        if !(x > 0.0 && r <= 1.0 && width > 1e-30) {
+            None
+        } else if estimate + slack < 1.0 {
+            Some(true)
+        } else if estimate - slack > 1.0 {
+            Some(false)
+        } else {
+            None
+        }
+    }
+}
+
 impl EllipseSector {
     pub const EMPTY: Self = Self {
         quarters: [[0.0; 2]; 5],
@@ -953,34 +983,91 @@ impl EllipseSector {
     /// degenerate.
     #[inline(always)]
     pub(crate) fn end_shape(&self, at_s1: bool) -> f32 {
+        match self.end_shape_terms(at_s1) {
+            Some(EndShapeTerms { slope, width, y, x }) => {
+                slope * atan2_upper_half_plane(y, x) / width
+            }
+            None => f32::NAN,
+        }
+    }
+
+    /// `end_shape(at_s1) < 1`, the preparation's test of whether the ellipses touch or
+    /// nearly touch at an end, bit for bit, mostly without the arc tangent of `Δ`
+    /// (issue 15: the two ends' `atanf` and their set-up were about 120 instructions of
+    /// a decentral preparation).
+    ///
+    /// Where `x > 0`, `Δ = atanf(r)` with `r = fl(y / x)`, the very quotient computed
+    /// here. For `0 <= r <= 1` the series `atan r = r - r³/3 + r⁵/5 - …` alternates with
+    /// terms decreasing in size, so `atan r` lies between `r - r³/3` and
+    /// `r - r³/3 + r⁵/5`: the midpoint `P = r (1 - r²/3 + r⁴/10)` is within `r⁵/10` of
+    /// it, a relative `0.15 r⁴` (`atan r >= 2r/3` there). `atanf` is within an ulp of
+    /// `atan r`, and `c` and its estimate `ĉ = (slope P) / width` take two roundings
+    /// each, `P` five, so the `c` that `end_shape` rounds lies within
+    /// `|ĉ| (0.16 r⁴ + 1e-5)` of `ĉ` (the `1e-5` covers the ulps, about `1.1e-6`, nine
+    /// times over). Relative errors need normal numbers: `width` (at most 1/2) is kept
+    /// above 1e-30, so that a numerator near `width` (`ĉ` near 1, where it matters) is
+    /// normal too. Where `ĉ` is farther than that from 1 (on either side) this decides
+    /// the comparison (rounding is monotone and 1 is a float, so `fl(ĉ + slack) < 1`
+    /// implies `ĉ + slack < 1`); elsewhere (and for NaN or infinite terms, `x <= 0`,
+    /// `r > 1`, where the comparisons fail) `end_shape` itself decides. The test
+    /// `ends_touch_is_the_end_shape_test` pins both outcomes and the fallback.
+    #[inline(always)]
+    pub(crate) fn ends_touch(&self, at_s1: bool) -> bool {
+        let Some(terms) = self.end_shape_terms(at_s1) else {
+            // NaN: not below 1.
+            return false;
+        };
+        terms.below_one_by_bound().unwrap_or_else(|| {
+            let EndShapeTerms { slope, width, y, x } = terms;
+            slope * atan2_upper_half_plane(y, x) / width < 1.0
+        })
+    }
+
+    /// Whether [`ends_touch`](Self::ends_touch) decides without the arc tangent, and how
+    /// (`None`: not decided by the bound, or `end_shape` NaN), for its test.
+    #[cfg(test)]
+    pub(crate) fn ends_touch_by_bound(&self, at_s1: bool) -> Option<bool> {
+        self.end_shape_terms(at_s1)?.below_one_by_bound()
+    }
+
+    /// The terms of [`end_shape`](Self::end_shape), `slope · atan2(y, x) / width`
+    /// (`atan2` of the upper half plane: the end quad's angle `Δ`), or `None` where it
+    /// is NaN.
+    #[inline(always)]
+    fn end_shape_terms(&self, at_s1: bool) -> Option<EndShapeTerms> {
         let (end, quarter) = if at_s1 { (1, 3) } else { (0, 1) };
         let s = if at_s1 { self.s1() } else { self.s0() };
         if is_degenerate(self.inner) || is_degenerate(self.outer) {
-            return f32::NAN;
+            return None;
         }
         // s' = ±R s, pointing into the sector.
         let into = scale2(rotate(s), if at_s1 { -1.0 } else { 1.0 });
         let (ti, to) = (self.inner_dots()[end], self.outer_dots()[end]);
-        let width_at = |ti: f32, to: f32| {
-            0.5 * (ti.abs() - to.abs()) * (ti.abs() + to.abs())
-                / ((1.0 + ti * ti) * (1.0 + to * to))
-        };
         let (bi, bo) = (
             self.inner_quarter_dots[quarter],
             self.outer_quarter_dots[quarter],
         );
-        let width = width_at(bi, bo);
+        // The width `½ (|t_i| - |t_o|)(|t_i| + |t_o|) / ((1 + t_i²)(1 + t_o²))` at the
+        // quad's other boundary (lane 0) and at the end (lane 1), in lanes: the same
+        // operations in each (issue 15: two scalar evaluations per end).
+        let (inner, outer) = (Vec4::new(bi, ti, 0.0, 0.0), Vec4::new(bo, to, 0.0, 0.0));
+        let (a, b) = (inner.abs(), outer.abs());
+        let widths = Vec4::splat(0.5) * (a - b) * (a + b)
+            / ((Vec4::ONE + inner * inner) * (Vec4::ONE + outer * outer));
+        let (width, end_width) = (widths.x, widths.y);
         // Only where the ellipses meet at the end (the quad is a triangle): elsewhere the
         // region has a width there, and the quad's trapezoid is the right shape.
-        if !(width_at(ti, to).abs() <= 1e-3 * width) {
-            return f32::NAN;
+        if !(end_width.abs() <= 1e-3 * width) {
+            return None;
         }
         let (dti, dto) = (dot2(self.inner, into), dot2(self.outer, into));
         let t2 = 1.0 + 0.5 * (ti * ti + to * to);
-        let slope = (ti * dti - to * dto) / (t2 * t2);
-        let angle =
-            atan2_upper_half_plane(self.quarter_det.max(0.0), dot2(s, self.quarters[quarter]));
-        slope * angle / width
+        Some(EndShapeTerms {
+            slope: (ti * dti - to * dto) / (t2 * t2),
+            width,
+            y: self.quarter_det.max(0.0),
+            x: dot2(s, self.quarters[quarter]),
+        })
     }
 
     /// The area to hand the quad at an end of the sector (`measured`, signed as in

@@ -67,18 +67,29 @@ pub(crate) const FAN_DETERMINANT_NOISE: f32 = 64.0 * f32::EPSILON;
 /// [`FAN_DETERMINANT_NOISE`] answers `false`; only polygons within the noise of such a
 /// plane run the exact test on every fan triangle. `positions` as rescaled (a power of
 /// two times the input: exact), 3 or more of them.
+///
+/// The plain determinants in the lanes `(x, y, z, 0)`, each rounded as `Vec3`'s
+/// differences, `cross` ([`cross3_lanes`](crate::math::cross3_lanes)) and `dot` round
+/// it; the largest magnitudes as `max_element` of the magnitudes (the fourth lane's 0
+/// changes no maximum, and no lane is NaN: the positions are finite, their differences
+/// finite or infinite). Issue 15: the scalar form was about 100 instructions of every
+/// projected preparation.
 pub(crate) fn lies_in_a_plane_through_the_shading_point(positions: &[Vec3]) -> bool {
     let apex = positions[0];
-    let apex_extent = apex.abs().max_element();
-    for pair in positions[1..].windows(2) {
-        let (b, c) = (pair[0] - apex, pair[1] - apex);
+    let lanes = |p: Vec3| Vec4::from((p, 0.0));
+    let apex_lanes = lanes(apex);
+    let apex_extent = apex_lanes.abs().max_element();
+    let mut b = lanes(positions[1]) - apex_lanes;
+    for &next in &positions[2..] {
+        let c = lanes(next) - apex_lanes;
         // det(p0, pb, pc) = (pb - p0) × (pc - p0) · p0.
-        let det = b.cross(c).dot(apex);
+        let det = crate::math::cross3_lanes(b, c).truncate().dot(apex);
         let bound =
             FAN_DETERMINANT_NOISE * b.abs().max_element() * c.abs().max_element() * apex_extent;
         if !(det.abs() <= bound) {
             return false;
         }
+        b = c;
     }
     positions[1..]
         .windows(2)
@@ -186,17 +197,43 @@ pub(crate) fn ignore_short_edges_in_containment<const N: usize>(
 /// while the result stays normal, so the polygon's shape is unchanged. For subnormal `m`
 /// (`E = 0`) the factor is `2^127`, still exact; `E` is at most 254 for finite values
 /// and the factor's exponent is kept at least 1 (a normal number).
+///
+/// The factor comes from each vertex as the lanes `(x, y, z, 0)`: their running maximum
+/// and finiteness mask ([`largest_magnitude4`]'s operations on one vertex's coordinates
+/// instead of one coordinate of four vertices) give `rescale_factor`'s factor, bit for
+/// bit, through [`rescale_factor_of_lanes`] (the maximum is over the same coordinates and
+/// a 0 that does not change it; issue 15: the scalar pass, 18 dependent integer maxima,
+/// was about 90 instructions of a hexagon's preparation). Tested by
+/// `rescale_takes_the_scalar_factor`.
 pub(crate) fn rescale(vertices: &[Vec3], out: &mut [Vec3]) -> Option<()> {
-    let factor = rescale_factor(vertices)?;
+    rescale_above_the_horizon(vertices, out).map(|_| ())
+}
+
+/// [`rescale`], returning also whether every rescaled vertex lies above the horizon
+/// (`z > 0`): the test of the projected preparation for a polygon that needs no clipping,
+/// made as the vertices are written (issue 15: a pass of its own over them, with its
+/// loop, was about 55 instructions per hexagon).
+#[inline(always)]
+pub(crate) fn rescale_above_the_horizon(vertices: &[Vec3], out: &mut [Vec3]) -> Option<bool> {
+    let (mut largest, mut finite) = (Vec4::ZERO, BVec4A::splat(true));
+    for v in vertices {
+        let lanes = Vec4::from((*v, 0.0)).abs();
+        finite &= lanes.cmplt(Vec4::splat(f32::INFINITY));
+        largest = largest.max(lanes);
+    }
+    let factor = rescale_factor_of_lanes(largest, finite)?;
+    let mut above = true;
     for (o, v) in out.iter_mut().zip(vertices) {
         *o = *v * factor;
+        above &= o.z > 0.0;
     }
-    Some(())
+    Some(above)
 }
 
 /// The power of two by which [`rescale`] multiplies, or `None` when all coordinates are
-/// zero or any is not finite.
-#[inline(always)]
+/// zero or any is not finite: the scalar pass that [`rescale`] and the lanes of
+/// [`largest_magnitude4`] are tested against.
+#[cfg(test)]
 pub(crate) fn rescale_factor(vertices: &[Vec3]) -> Option<f32> {
     // Bit trick: with the sign bit cleared, IEEE-754 bit patterns order as unsigned
     // integers in the order of the magnitudes they encode, and +inf (0x7f80_0000) and
@@ -215,7 +252,7 @@ pub(crate) fn rescale_factor(vertices: &[Vec3]) -> Option<f32> {
     factor_for_largest_bits(largest_bits)
 }
 
-/// [`rescale_factor`] from the largest magnitude's bits (finite, sign bit clear): `None`
+/// `rescale_factor` from the largest magnitude's bits (finite, sign bit clear): `None`
 /// when it is 0 (all coordinates zero), else the power of two of the bit trick described
 /// at [`rescale`].
 #[inline(always)]
@@ -230,13 +267,13 @@ fn factor_for_largest_bits(largest_bits: u32) -> Option<f32> {
 }
 
 /// The coordinates' largest magnitude lane by lane, and the lanes whose coordinates are
-/// all finite: the lane form of [`rescale_factor`]'s pass over the coordinates, for
+/// all finite: the lane form of `rescale_factor`'s pass over the coordinates, for
 /// vertices already gathered into x, y and z lanes (the preparations that work in lanes
 /// load them so anyway: the scalar pass cost about 90 instructions per hexagon, 18
 /// dependent integer maxima).
 ///
 /// The maximum of floats is the maximum of their magnitudes' bit patterns (the order of
-/// [`rescale_factor`]'s bit trick) for every value but NaN, and the lanes with a NaN or
+/// `rescale_factor`'s bit trick) for every value but NaN, and the lanes with a NaN or
 /// an infinity are rejected by the finiteness mask (`|c| < ∞` is false for both), so
 /// whatever the maximum makes of a NaN is never used.
 #[inline(always)]
@@ -248,7 +285,7 @@ pub(crate) fn largest_magnitude4(coordinates: [Vec4; 3]) -> (Vec4, BVec4A) {
     (x.max(y).max(z), finite)
 }
 
-/// [`rescale_factor`] from [`largest_magnitude4`]'s lanes (combined over the groups of
+/// `rescale_factor` from [`largest_magnitude4`]'s lanes (combined over the groups of
 /// vertices by `max` and `&`): the same factor, bit for bit, and `None` in the same
 /// cases (tested: `lanes_rescale_as_the_scalar_pass`).
 #[inline(always)]
@@ -263,6 +300,55 @@ pub(crate) fn rescale_factor_of_lanes(largest: Vec4, finite: BVec4A) -> Option<f
 mod tests {
     use super::*;
     use crate::testing::Rng;
+
+    /// `rescale` (the factor from each vertex's lanes) multiplies by the scalar pass's
+    /// factor, bit for bit, and fails in the same cases: coordinates from subnormal to
+    /// near `f32::MAX`, zeros of both signs, infinities and NaNs, 3 to 8 vertices.
+    #[test]
+    fn rescale_takes_the_scalar_factor() {
+        let mut rng = Rng::new(36);
+        let special = [
+            0.0,
+            -0.0,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            1e-45,
+            f32::MAX,
+        ];
+        let (mut nones, mut somes) = (0, 0);
+        for case in 0..100_000 {
+            let count = 3 + (case % 6);
+            let top = if rng.below(20) == 0 { -37.5 } else { 38.5 };
+            let all_zero = rng.below(50) == 0;
+            let vertices: Vec<Vec3> = (0..count)
+                .map(|_| {
+                    Vec3::from_array(core::array::from_fn(|_| match rng.below(30) {
+                        _ if all_zero => 0.0,
+                        0 => special[rng.below(special.len() as u64) as usize],
+                        _ => rng.signed_log_uniform(-45.0, top) as f32,
+                    }))
+                })
+                .collect();
+            let mut out = [Vec3::splat(7.0); 8];
+            let factor = rescale_factor(&vertices);
+            assert_eq!(
+                rescale(&vertices, &mut out).is_some(),
+                factor.is_some(),
+                "{vertices:?}"
+            );
+            if let Some(factor) = factor {
+                somes += 1;
+                for (o, v) in out.iter().zip(&vertices) {
+                    let expected = (*v * factor).to_array().map(f32::to_bits);
+                    assert_eq!(o.to_array().map(f32::to_bits), expected, "{vertices:?}");
+                }
+            } else {
+                nones += 1;
+            }
+        }
+        assert!(nones > 1000 && somes > 50_000, "{nones} {somes}");
+    }
 
     /// The lane form of the rescale factor (`largest_magnitude4` over groups of four
     /// vertices, then `rescale_factor_of_lanes`) gives the scalar pass's factor bit for

@@ -30,7 +30,6 @@ use super::ellipse::{
     is_inner, unit_direction, unit_direction4,
 };
 use super::ellipse_sector::{AreaPrecision, EllipseSector, atan2_positive_fast4};
-use super::rescale;
 use super::small_projected::{SLIVER_EXTENT2, SMALL_EXTENT, SmallPolygonCosineSampler};
 use super::sorting_networks::sort_bitonic;
 use crate::math::{
@@ -687,14 +686,15 @@ impl ProjectedPolygon {
             return false;
         }
         let mut positions = [Vec3::ZERO; MAX_POLYGON_VERTICES];
-        if rescale(vertices, &mut positions).is_none()
-            || super::lies_in_a_plane_through_the_shading_point(&positions[..count])
-        {
-            return false;
-        }
         // A polygon wholly above the horizon (the common case) is its own clipped polygon
         // (clipping would return it unchanged) and its edges are their own planes.
-        let was_clipped = !positions[..count].iter().all(|v| v.z > 0.0);
+        let Some(above) = super::rescale_above_the_horizon(vertices, &mut positions) else {
+            return false;
+        };
+        if super::lies_in_a_plane_through_the_shading_point(&positions[..count]) {
+            return false;
+        }
+        let was_clipped = !above;
         // (None where not clipped: not even zeros are written.)
         let mut planes = None;
         let mut count = count;
@@ -715,11 +715,19 @@ impl ProjectedPolygon {
         // positive when the polygon winds counter-clockwise around the zenith seen from
         // above (and around its centre seen from the shading point). Zero means the
         // shading point lies in the polygon's plane: nothing to sample.
-        let mut area_vector = Vec3::ZERO;
+        // In the lanes `(x, y, z, 0)`, each component rounded as `Vec3`'s differences,
+        // `cross` and sums round it (`cross3_lanes`; issue 15: about 26 instructions a
+        // fan triangle as scalars, 4 per hexagon).
+        let lanes = |k: usize| Vec4::from((positions[k], 0.0));
+        let apex = lanes(0);
+        let mut area_vector = Vec4::ZERO;
+        let mut previous = lanes(1) - apex;
         for k in 1..count - 1 {
-            area_vector += (positions[k] - positions[0]).cross(positions[k + 1] - positions[0]);
+            let next = lanes(k + 1) - apex;
+            area_vector += crate::math::cross3_lanes(previous, next);
+            previous = next;
         }
-        let orientation = area_vector.dot(positions[0]);
+        let orientation = area_vector.truncate().dot(positions[0]);
         if !(orientation != 0.0) {
             return false;
         }
@@ -1197,7 +1205,7 @@ impl ProjectedPolygon {
                 // vertex that clipping repeated (det 0). Elsewhere the region has a width
                 // at the sector's ends, and the test (two divisions, an arc tangent at a
                 // meeting point) is not made; the last end is tested after the loop.
-                let touching = all_empty_before && sector.end_shape(false) < 1.0;
+                let touching = all_empty_before && sector.ends_touch(false);
                 all_empty_before &= sector.det == 0.0;
                 sector.touching_ends = touching as u32;
                 let limit = 200.0 * area;
@@ -1211,7 +1219,7 @@ impl ProjectedPolygon {
                 .find(|&j| polygon.pieces.sectors_mut()[j].det != 0.0)
             {
                 let sector = &mut polygon.pieces.sectors_mut()[last];
-                if sector.end_shape(true) < 1.0 {
+                if sector.ends_touch(true) {
                     sector.touching_ends |= 2;
                     sector.extra_iterations = 1;
                 }

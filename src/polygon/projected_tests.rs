@@ -1651,6 +1651,104 @@ fn outer_area_bounds_decide_as_the_exact_areas() {
     );
 }
 
+/// `EllipseSector::end_shape` as it was written one value at a time, for its test (it
+/// now takes its two widths in lanes): the same bits, NaN included.
+fn end_shape_one_by_one(sector: &EllipseSector, at_s1: bool) -> f32 {
+    use super::super::ellipse::{rotate, scale2};
+    let (end, quarter) = if at_s1 { (1, 3) } else { (0, 1) };
+    let s = if at_s1 { sector.s1() } else { sector.s0() };
+    if is_degenerate(sector.inner) || is_degenerate(sector.outer) {
+        return f32::NAN;
+    }
+    let into = scale2(rotate(s), if at_s1 { -1.0 } else { 1.0 });
+    let (ti, to) = (sector.inner_dots()[end], sector.outer_dots()[end]);
+    let width_at = |ti: f32, to: f32| {
+        0.5 * (ti.abs() - to.abs()) * (ti.abs() + to.abs()) / ((1.0 + ti * ti) * (1.0 + to * to))
+    };
+    let width = width_at(
+        sector.inner_quarter_dots[quarter],
+        sector.outer_quarter_dots[quarter],
+    );
+    if !(width_at(ti, to).abs() <= 1e-3 * width) {
+        return f32::NAN;
+    }
+    let (dti, dto) = (dot2(sector.inner, into), dot2(sector.outer, into));
+    let t2 = 1.0 + 0.5 * (ti * ti + to * to);
+    let slope = (ti * dti - to * dto) / (t2 * t2);
+    let angle = crate::math::atan2_upper_half_plane(
+        sector.quarter_det.max(0.0),
+        dot2(s, sector.quarters[quarter]),
+    );
+    slope * angle / width
+}
+
+/// `EllipseSector::ends_touch`, which the decentral preparation asks at the polygon's
+/// azimuthal ends, is `end_shape(at_s1) < 1` at both ends of every sector in use, over
+/// random decentral polygons (off the zenith and tilted, random, over many scales), with
+/// a vertex on, just above or just below the horizon (touching, nearly touching and
+/// crossing ellipses): the arc tangent's bound decides each outcome somewhere, falls back
+/// to `end_shape` somewhere (`c` near 1, or a quarter past its range), and never decides
+/// against `end_shape`; and `end_shape` (its widths in lanes) is, bit for bit, the
+/// one-value-at-a-time form `end_shape_one_by_one`.
+#[test]
+fn ends_touch_is_the_end_shape_test() {
+    let mut rng = Rng::new(59);
+    // Decided true, decided false, left to `end_shape` (terms finite), `end_shape` NaN.
+    let mut counts = [0u32; 4];
+    for trial in 0..30_000 {
+        let n = 3 + rng.below(6) as usize;
+        let mut v = match trial % 3 {
+            0 => {
+                let radius = rng.log_uniform(-3.0, 0.5) as f32;
+                random_polygon(&mut rng, n, radius)
+            }
+            1 => off_zenith_polygon(&mut rng, n, 1.2),
+            _ => {
+                let scale = rng.log_uniform(-20.0, 20.0) as f32;
+                (0..n).map(|_| rng.unit_vector_f32() * scale).collect()
+            }
+        };
+        match trial % 5 {
+            0 => v[0].z = 0.0,
+            1 => v[0].z = v[0].length() * rng.log_uniform(-6.0, -1.0) as f32,
+            2 => v[0].z = -v[0].length() * rng.log_uniform(-6.0, -1.0) as f32,
+            _ => {}
+        }
+        if trial % 2 == 1 {
+            v = reversed(&v);
+        }
+        let mut p = ProjectedPolygon::EMPTY;
+        let (ok, _) = p.prepare_choosing_path(&v, AreaPrecision::Exact, true);
+        if !ok || p.central != 0 || p.uses_small_polygon_sampler() {
+            continue;
+        }
+        for sector in p.sectors() {
+            if sector.inner == [0.0; 2] && sector.outer == [0.0; 2] {
+                continue;
+            }
+            for at_s1 in [false, true] {
+                let shape = sector.end_shape(at_s1);
+                let scalar = end_shape_one_by_one(sector, at_s1);
+                assert_eq!(shape.to_bits(), scalar.to_bits(), "{v:?} {at_s1}");
+                let expected = shape < 1.0;
+                assert_eq!(sector.ends_touch(at_s1), expected, "{v:?} {at_s1} {shape}");
+                let by_bound = sector.ends_touch_by_bound(at_s1);
+                if let Some(decided) = by_bound {
+                    assert_eq!(decided, expected, "{v:?} {at_s1} {shape}");
+                }
+                counts[match by_bound {
+                    Some(true) => 0,
+                    Some(false) => 1,
+                    None if shape.is_nan() => 3,
+                    None => 2,
+                }] += 1;
+            }
+        }
+    }
+    eprintln!("ends touching / not / left to end_shape / NaN: {counts:?}");
+    assert!(counts.iter().all(|&c| c > 0), "{counts:?}");
+}
+
 /// A random convex polygon off the zenith, tilted, some crossing or touching the
 /// horizon: `n` vertices on an ellipse of radius 1e-2 to 10^0.5 (log-uniform), its center at
 /// `nearest` to `nearest + 4` radii from the z axis.

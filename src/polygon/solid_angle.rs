@@ -281,7 +281,7 @@ fn gather(vertices: &[Vec3], count: usize, first: usize) -> [Vec4; 3] {
 
 /// The input lanes of [`gather`] for the groups of slots `0..=count` (the last closes
 /// the polygon; groups 1 and 2 are zero where not needed, and nothing reads them then),
-/// and [`rescale_factor`](super::rescale_factor) of the polygon computed from them
+/// and `rescale_factor` of the polygon computed from them
 /// (`None` for a non-finite coordinate or all coordinates zero): the same factor bit
 /// for bit, in lanes (the repeated vertex 0 changes no maximum).
 #[inline(always)]
