@@ -1141,3 +1141,53 @@ fn the_clipped_sample_skips_the_uniform_pdf() {
     }
     assert!(fallbacks > 0, "{fallbacks}");
 }
+
+/// The clipped sampler's density takes a direction that `is_unit` accepts as it is and
+/// normalises any other (`clipped_pdf` in line, `clipped_pdf_of_non_unit` out of line):
+/// the samples of lights across the horizon are unit, their density is the sample's pdf
+/// bit for bit, and the same direction scaled by 2, 2⁻⁷⁰ and 2⁷⁰ (normalised by the
+/// out-of-line path) has the density of its normalised form, bit for bit; zero and
+/// non-finite directions have density 0.
+#[test]
+fn the_clipped_pdf_takes_unit_directions_in_line_and_normalises_the_others() {
+    let mut rng = Rng::new(4242);
+    let mut checked = 0;
+    for (degrees, roughness) in [(30.0, 0.5), (60.0, 0.3), (0.0, 0.8)] {
+        let wo = view(degrees);
+        let m = mirror(wo);
+        let low = Vec3::new(m.x, m.y, 0.0).normalize_or(Vec3::X);
+        for (center, radius) in [
+            (low * 2.0 + Vec3::Z * 0.3, 1.0f32),
+            (low * 2.0 - Vec3::Z * 0.3, 1.0),
+        ] {
+            let sampler = SphereLightSampler::new(center, radius, wo, roughness).unwrap();
+            assert!(sampler.is_clipped());
+            for _ in 0..2000 {
+                let s = sampler.sample([rng.uniform_f32(), rng.uniform_f32()]);
+                if !(s.pdf > 0.0) {
+                    continue;
+                }
+                assert!(crate::math::is_unit(s.dir), "{s:?}");
+                assert_eq!(sampler.clipped_pdf(s.dir).to_bits(), s.pdf.to_bits());
+                // `normalize_scaled` is what `unit` does to a direction it does not take
+                // as it is, and gives the same bits for every power-of-two multiple.
+                let unit = crate::math::normalize_scaled(s.dir);
+                assert!(crate::math::is_unit(unit));
+                for scale in [2.0f32, 2f32.powi(-70), 2f32.powi(70)] {
+                    let scaled = s.dir * scale;
+                    assert!(!crate::math::is_unit(scaled));
+                    assert_eq!(
+                        sampler.pdf(scaled).to_bits(),
+                        sampler.pdf(unit).to_bits(),
+                        "{s:?} {scale}"
+                    );
+                }
+                checked += 1;
+            }
+            for bad in [Vec3::ZERO, Vec3::NAN, Vec3::new(f32::INFINITY, 0.0, 1.0)] {
+                assert_eq!(sampler.pdf(bad), 0.0);
+            }
+        }
+    }
+    assert!(checked > 5000, "{checked}");
+}
