@@ -520,6 +520,25 @@ impl CapIntersection {
     /// only; [`MIN_NORMALISER`] is that test without the division).
     #[inline(always)]
     pub(crate) fn sample_direction(&self, u: [f32; 2]) -> Option<Vec3> {
+        let dir = self.sample_direction_unchecked(u);
+        if self.contains_inlined(dir) {
+            return Some(dir);
+        }
+        // Rounding put a sample from the boundary just outside, where `pdf` is 0:
+        // pulled towards the inner point until inside (`INWARD_PULLS`).
+        let inner = self.inner_point();
+        INWARD_PULLS
+            .iter()
+            .map(|&pull| crate::math::normalize_or(dir * (1.0 - pull) + inner * pull, inner))
+            .find(|&pulled| self.contains(pulled))
+    }
+
+    /// The direction that [`sample_direction`](Self::sample_direction) tests for
+    /// containment in both caps (and returns where it passes): the inverted radial
+    /// coordinate and the azimuth, without the test, for a caller that tests its own
+    /// image of it (the clipped sphere light sampler tests `g(ω)` in `C ∩ H`).
+    #[inline(always)]
+    pub(crate) fn sample_direction_unchecked(&self, u: [f32; 2]) -> Vec3 {
         let target = clamp_random(u[0]) * self.solid_angle;
         // In the nested part the whole circle at `s` lies in `B`: `half_arc(s)` clamps its
         // cosine to −1 and returns `acos(−1)`, the constant below, without the square root,
@@ -533,17 +552,7 @@ impl CapIntersection {
             }
         };
         let psi = (2.0 * clamp_random(u[1]) - 1.0) * phi;
-        let dir = self.direction(s, psi);
-        if self.contains_inlined(dir) {
-            return Some(dir);
-        }
-        // Rounding put a sample from the boundary just outside, where `pdf` is 0:
-        // pulled towards the inner point until inside (`INWARD_PULLS`).
-        let inner = self.inner_point();
-        INWARD_PULLS
-            .iter()
-            .map(|&pull| crate::math::normalize_or(dir * (1.0 - pull) + inner * pull, inner))
-            .find(|&pulled| self.contains(pulled))
+        self.direction(s, psi)
     }
 
     /// The density of [`sample_uniform`](Self::sample_uniform): `1 / Ω(A ∩ B)` in both
