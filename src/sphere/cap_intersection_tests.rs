@@ -597,3 +597,34 @@ fn the_sides_form_of_the_lens_is_as_accurate() {
     assert!(worst_phi <= 1.1 * worst_phi_angles && worst_phi <= 2e-3);
     assert!(mean_phi <= 1.05 * mean_phi_angles);
 }
+
+/// `min_ordered` and `max_ordered` are `f32::min` and `f32::max`, bit for bit, for
+/// operands that are not NaN and not zeros of opposite signs (their contract): every
+/// pair of a set of values across the range (zeros, denormals, ±∞, neighbours).
+#[test]
+fn ordered_min_and_max_are_the_std_ones_without_nan() {
+    let mut values = vec![
+        0.0f32,
+        f32::MIN_POSITIVE,
+        1e-45,
+        0.5,
+        1.0,
+        1.0 + f32::EPSILON,
+        2.0,
+        1e30,
+        f32::MAX,
+        f32::INFINITY,
+    ];
+    let mut rng = Rng::new(7);
+    values.extend((0..40).map(|_| rng.uniform_f32() * 10.0));
+    let values: Vec<f32> = values.iter().flat_map(|&v| [v, -v]).collect();
+    for &a in &values {
+        for &b in &values {
+            if a == 0.0 && b == 0.0 && a.to_bits() != b.to_bits() {
+                continue;
+            }
+            assert_eq!(min_ordered(a, b).to_bits(), a.min(b).to_bits(), "{a} {b}");
+            assert_eq!(max_ordered(a, b).to_bits(), a.max(b).to_bits(), "{a} {b}");
+        }
+    }
+}

@@ -1123,6 +1123,12 @@ fn the_clipped_sample_skips_the_uniform_pdf() {
                 2 => [0.5, crate::sample::ONE_MINUS_ULP],
                 _ => [rng.uniform_f32(), rng.uniform_f32()],
             };
+            // (A draw whose region direction rounding put outside the region is sampled
+            // by its image where that has a density: `the_clipped_sample_tests_its_image_only`.)
+            let base = sampler.clipped_region.sample_direction_unchecked(u);
+            if !sampler.clipped_region.contains(base) {
+                continue;
+            }
             assert_eq!(
                 bits(sampler.sample(u)),
                 bits(old_path(&sampler, u)),
@@ -1140,4 +1146,120 @@ fn the_clipped_sample_skips_the_uniform_pdf() {
         }
     }
     assert!(fallbacks > 0, "{fallbacks}");
+}
+
+/// The clipped sampler's density takes a direction that `is_unit` accepts as it is and
+/// normalises any other (`clipped_pdf` in line, `clipped_pdf_of_non_unit` out of line):
+/// the samples of lights across the horizon are unit, their density is the sample's pdf
+/// bit for bit, and the same direction scaled by 2, 2⁻⁷⁰ and 2⁷⁰ (normalised by the
+/// out-of-line path) has the density of its normalised form, bit for bit; zero and
+/// non-finite directions have density 0.
+#[test]
+fn the_clipped_pdf_takes_unit_directions_in_line_and_normalises_the_others() {
+    let mut rng = Rng::new(4242);
+    let mut checked = 0;
+    for (degrees, roughness) in [(30.0, 0.5), (60.0, 0.3), (0.0, 0.8)] {
+        let wo = view(degrees);
+        let m = mirror(wo);
+        let low = Vec3::new(m.x, m.y, 0.0).normalize_or(Vec3::X);
+        for (center, radius) in [
+            (low * 2.0 + Vec3::Z * 0.3, 1.0f32),
+            (low * 2.0 - Vec3::Z * 0.3, 1.0),
+        ] {
+            let sampler = SphereLightSampler::new(center, radius, wo, roughness).unwrap();
+            assert!(sampler.is_clipped());
+            for _ in 0..2000 {
+                let s = sampler.sample([rng.uniform_f32(), rng.uniform_f32()]);
+                if !(s.pdf > 0.0) {
+                    continue;
+                }
+                assert!(crate::math::is_unit(s.dir), "{s:?}");
+                assert_eq!(sampler.clipped_pdf(s.dir).to_bits(), s.pdf.to_bits());
+                // `normalize_scaled` is what `unit` does to a direction it does not take
+                // as it is, and gives the same bits for every power-of-two multiple.
+                let unit = crate::math::normalize_scaled(s.dir);
+                assert!(crate::math::is_unit(unit));
+                for scale in [2.0f32, 2f32.powi(-70), 2f32.powi(70)] {
+                    let scaled = s.dir * scale;
+                    assert!(!crate::math::is_unit(scaled));
+                    assert_eq!(
+                        sampler.pdf(scaled).to_bits(),
+                        sampler.pdf(unit).to_bits(),
+                        "{s:?} {scale}"
+                    );
+                }
+                checked += 1;
+            }
+            for bad in [Vec3::ZERO, Vec3::NAN, Vec3::new(f32::INFINITY, 0.0, 1.0)] {
+                assert_eq!(sampler.pdf(bad), 0.0);
+            }
+        }
+    }
+    assert!(checked > 5000, "{checked}");
+}
+
+/// The clipped sample tests its direction in `C ∩ H` only (`clipped_pdf`), not its
+/// preimage in the region `g(C) ∩ g(H)`: where the region's direction lies in the region
+/// (every draw but those that rounding puts across its boundary) the sample is the
+/// region's sample mapped by `g`, its test and pulls included (`sample_clipped_pulled`),
+/// bit for bit; where it does not, the sample is its image if that has a density, else
+/// the pulled one. Either way `pdf(sample.dir) == sample.pdf`. Lights as the light
+/// bench draws them (none of whose preimages left the region) and tiny ones across the
+/// horizon (2% of whose preimages rounding put outside it, a ninth of those kept), with
+/// `u` at the ends of `[0, 1)`.
+#[test]
+fn the_clipped_sample_tests_its_image_only() {
+    let mut rng = Rng::new(1842);
+    let bits = |s: Sample| (s.dir.to_array().map(f32::to_bits), s.pdf.to_bits());
+    let (mut samplers, mut draws, mut outside, mut kept) = (0, 0, 0, 0);
+    while samplers < 2000 {
+        let v = rng.unit_vector_f32();
+        let wo = Vec3::new(v.x, v.y, v.z.abs().max(0.05));
+        let roughness = rng.uniform_f32();
+        let distance = rng.log_uniform(0.0, 4f64.log10()) as f32;
+        let sin2 = if samplers % 4 == 0 {
+            rng.log_uniform(-7.0, -2.0) as f32
+        } else {
+            0.06 + 0.38 * rng.uniform_f32()
+        };
+        let c = rng.unit_vector_f32();
+        let center = Vec3::new(c.x, c.y, c.z.abs() * sin2.sqrt()) * distance;
+        let Some(sampler) = SphereLightSampler::new(center, distance * sin2.sqrt(), wo, roughness)
+        else {
+            continue;
+        };
+        if !sampler.is_clipped() {
+            continue;
+        }
+        samplers += 1;
+        for k in 0..50 {
+            let u = match k {
+                0 => [0.0, 0.0],
+                1 => [crate::sample::ONE_MINUS_ULP, crate::sample::ONE_MINUS_ULP],
+                2 => [crate::sample::ONE_MINUS_ULP, 0.0],
+                _ => [rng.uniform_f32(), rng.uniform_f32()],
+            };
+            draws += 1;
+            let s = sampler.sample(u);
+            if s.pdf > 0.0 {
+                assert_eq!(sampler.pdf(s.dir).to_bits(), s.pdf.to_bits(), "{u:?}");
+            }
+            let base = sampler.clipped_region.sample_direction_unchecked(u);
+            if sampler.clipped_region.contains(base) {
+                assert_eq!(bits(s), bits(sampler.sample_clipped_pulled(u)), "{u:?}");
+                continue;
+            }
+            outside += 1;
+            let image = sampler.clipped_image(base);
+            if sampler.clipped_pdf(image) > 0.0 {
+                kept += 1;
+                assert_eq!(s.dir.to_array(), image.to_array(), "{u:?}");
+            } else {
+                assert_eq!(bits(s), bits(sampler.sample_clipped_pulled(u)), "{u:?}");
+            }
+        }
+    }
+    println!("{draws} draws: {outside} preimages outside the region, {kept} of them kept");
+    // Both ways are taken (the tiny lights' preimages cross the region's boundary).
+    assert!(kept > 0 && kept < outside, "{kept} of {outside} of {draws}");
 }
