@@ -638,13 +638,16 @@ struct FanLanes {
 /// [`atan2_upper_half_plane4_small_first`](crate::math::atan2_upper_half_plane4_small_first)
 /// (the scalar form's bits in each lane) per group of up to four in place of a scalar
 /// `atanf` per triangle (hexagons 1217.3 -> 1159.0 instructions per prepare + 1 with
-/// `atan2_upper_half_plane4`, 1120.0 with the branch for small ratios; quads 847.2 ->
-/// 831.6, callgrind). A triangle's one fan triangle and a heptagon's fifth, which
-/// `compute_triangle` and `compute_one` prepare in scalar arithmetic, keep the scalar
-/// call.
+/// `atan2_upper_half_plane4`, 1120.0 with the branch for small ratios, callgrind). A
+/// triangle's one fan triangle and a heptagon's fifth, which `compute_triangle` and
+/// `compute_one` prepare in scalar arithmetic, keep the scalar call, and so do a quad's
+/// two: since `atan2_upper_half_plane` inlines the small range of `atanf`, two scalar
+/// calls take fewer instructions than the lanes (828.3 against 829.3 per prepare + 1)
+/// and less time (the lanes' division and branch lengthen the chain: 106 against 110 ns,
+/// C benchmark).
 #[inline(always)]
 const fn angles_in_lanes(triangles: usize) -> usize {
-    if triangles <= 1 {
+    if triangles <= 2 {
         0
     } else if triangles == LANES + 1 {
         LANES
