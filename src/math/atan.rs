@@ -27,15 +27,39 @@ use core::f32::consts::FRAC_PI_2;
 #[inline(always)]
 pub fn atan2_upper_half_plane(y: f32, x: f32) -> f32 {
     let angle = if x > 0.0 {
-        libm::atanf(y / x)
+        atanf(y / x)
     } else {
-        FRAC_PI_2 + libm::atanf(-x / y)
+        FRAC_PI_2 + atanf(-x / y)
     };
     // 0/0 and NaN inputs give NaN, mapped to 0, as are -0 (from `y = -0`) and negative
     // angles (from a negative `y`). An explicit comparison rather than `angle.max(0.0)`,
     // whose result for `-0` IEEE maxNum leaves open (x86-64 compiled that `max` into
     // this very comparison, `maxss`; the lanes of `atan2_upper_half_plane4` use it too).
     if angle > 0.0 { angle } else { 0.0 }
+}
+
+/// `libm::atanf(x)`, the same bits for every `f32`, with fdlibm's range
+/// `2^-12 <= |x| < 7/16` inline: there `atanf` computes `x - x·S(x²)` (no reduction; the
+/// polynomial and its order as in [`atanf4`](super::atanf4)), and that range is tested
+/// the way fdlibm tests it, one unsigned comparison of the bits of `|x|`. The call, its
+/// return and fdlibm's tests for the huge and tiny ranges before it are left out for
+/// the small ratios of small solid angles (a fan triangle below 0.82 sr); other
+/// arguments (and NaN) call `libm::atanf` (tested over that range and its ends:
+/// `inline_atanf_is_libm_atanf`).
+#[inline(always)]
+pub fn atanf(x: f32) -> f32 {
+    let magnitude = x.to_bits() & 0x7fff_ffff;
+    // 2^-12 (0x3980_0000) <= |x| < 7/16 (0x3ee0_0000), as fdlibm decides its ranges.
+    if magnitude.wrapping_sub(0x3980_0000) < 0x3ee0_0000 - 0x3980_0000 {
+        let t = &super::atan_lanes::T;
+        let z = x * x;
+        let w = z * z;
+        let s1 = z * (t[0] + w * (t[2] + w * t[4]));
+        let s2 = w * (t[1] + w * t[3]);
+        x - x * (s1 + s2)
+    } else {
+        libm::atanf(x)
+    }
 }
 
 /// `atan(t)` for `t` in `[0, 1]`: `t + t³ P(t²)` with the degree-8 polynomial `P`
@@ -282,6 +306,39 @@ mod tests {
         }
         std::println!("worst relative error {:e} at {}", worst.0, worst.1);
         assert!(worst.0 < 1.3 * f32::EPSILON as f64, "{worst:?}");
+    }
+
+    /// [`atanf`] is `libm::atanf`, bit for bit: every 61st `f32` over the inline range
+    /// `2^-12 <= |x| < 7/16` and a margin on either side, in both signs, its ends ±4
+    /// ulps, and special values (zeros, subnormals, the reduced ranges, ∞, NaN).
+    #[test]
+    fn inline_atanf_is_libm_atanf() {
+        let same = |x: f32| {
+            let (got, expected) = (atanf(x), libm::atanf(x));
+            assert!(
+                got.to_bits() == expected.to_bits() || (got.is_nan() && expected.is_nan()),
+                "{x:e} ({:#x}): {got:e}, libm {expected:e}",
+                x.to_bits()
+            );
+        };
+        sweep(0x3900_0000, 0x3f00_0000, 61, |first, last, step| {
+            for x in points(first, last, step) {
+                same(x);
+                same(-x);
+            }
+        });
+        for end in [0x3980_0000u32, 0x3ee0_0000] {
+            for b in end - 4..=end + 4 {
+                same(f32::from_bits(b));
+                same(-f32::from_bits(b));
+            }
+        }
+        for x in [0.0f32, -0.0, f32::from_bits(1), 1e-30, 0.5, 1.0, 2.0, 1e30] {
+            same(x);
+            same(-x);
+        }
+        same(f32::INFINITY);
+        same(f32::NAN);
     }
 
     #[test]

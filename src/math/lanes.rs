@@ -188,18 +188,53 @@ pub fn difference_of_products_unless_cancelling4(
 #[inline(always)]
 #[must_use]
 pub fn atan2_upper_half_plane4(y: Vec4, x: Vec4, lanes: usize) -> Vec4 {
+    atan2_upper_half_plane4_with(y, x, lanes, false)
+}
+
+/// [`atan2_upper_half_plane4`], the same bits, for callers whose ratios are mostly below
+/// 7/16 (angles below 0.41 rad, or within 0.41 rad of π/2): when every used lane's ratio
+/// is, one branch takes [`atanf4_below_7_16`](super::atanf4_below_7_16), which
+/// leaves out the reduction's comparisons, selections and its second division (on the
+/// critical path of the solid angle prepare); otherwise the general form.
+#[inline(always)]
+#[must_use]
+pub fn atan2_upper_half_plane4_small_first(y: Vec4, x: Vec4, lanes: usize) -> Vec4 {
+    atan2_upper_half_plane4_with(y, x, lanes, true)
+}
+
+/// The body of the two: `small_first` (a constant where this is inlined) tests for the
+/// small ratios.
+#[inline(always)]
+fn atan2_upper_half_plane4_with(y: Vec4, x: Vec4, lanes: usize, small_first: bool) -> Vec4 {
     // `x > 0`, false for a NaN `x`, which takes the second form as in the scalar.
     let right = x.cmpgt(Vec4::ZERO);
     let ratio = Vec4::select(right, y, -x) / Vec4::select(right, x, y);
+    // Below 7/16 in every used lane (false for NaN, which takes the general form); the
+    // unused lanes' values are discarded below.
+    let small = || (ratio.abs().cmplt(Vec4::splat(0.4375)) | !used_lanes(lanes)).all();
+    let atan = if small_first && small() {
+        super::atanf4_below_7_16(ratio)
+    } else {
+        super::atanf4(ratio)
+    };
     // The offset 0 or π/2 added in every lane: `0 + a` is `a` but for `a = -0`, where it
     // is +0, which the clamp below turns into +0 in either case.
     let offset = Vec4::select(right, Vec4::ZERO, Vec4::splat(core::f32::consts::FRAC_PI_2));
-    let angle = offset + super::atanf4(ratio);
+    let angle = offset + atan;
     // The scalar's clamp `if angle > 0 { angle } else { 0 }` (NaN and ±0 give +0), and 0
-    // in the lanes at or past `lanes` (their index compared as an `f32`: exact, at most
-    // 4 — larger counts only mean "all").
-    let used = Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(Vec4::splat(lanes.min(LANES) as f32));
-    Vec4::select(angle.cmpgt(Vec4::ZERO) & used, angle, Vec4::ZERO)
+    // in the unused lanes.
+    Vec4::select(
+        angle.cmpgt(Vec4::ZERO) & used_lanes(lanes),
+        angle,
+        Vec4::ZERO,
+    )
+}
+
+/// The lanes below `lanes` (their index compared as an `f32`: exact, at most 4 — larger
+/// counts only mean "all").
+#[inline(always)]
+fn used_lanes(lanes: usize) -> BVec4A {
+    Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(Vec4::splat(lanes.min(LANES) as f32))
 }
 
 /// glam's `Vec3::cross` of vectors held as the lanes `(x, y, z, _)`, each component
@@ -355,13 +390,16 @@ mod tests {
     /// smallest subnormal, ±1, ratios at fdlibm's thresholds, huge values, infinities,
     /// NaN, negative `y` outside the contract), every lane position and lane count
     /// (0 to 5: more than four means all), and random pairs of all magnitudes and of
-    /// random bit patterns.
+    /// random bit patterns; and the same for `atan2_upper_half_plane4_small_first`, also
+    /// on random pairs whose used lanes all have ratios below 7/16 (its branch without the
+    /// reduction) and whose unused lanes do not.
     #[test]
     fn atan2_upper_half_plane4_is_the_scalar_form() {
         use crate::math::atan2_upper_half_plane;
         let check = |y: Vec4, x: Vec4, lanes: usize| {
-            let angles = atan2_upper_half_plane4(y, x, lanes);
-            for lane in 0..LANES {
+            let general = atan2_upper_half_plane4(y, x, lanes);
+            let small_first = atan2_upper_half_plane4_small_first(y, x, lanes);
+            for (lane, angles) in (0..LANES).flat_map(|l| [(l, general), (l, small_first)]) {
                 let scalar = if lane < lanes {
                     atan2_upper_half_plane(y[lane], x[lane])
                 } else {
@@ -423,6 +461,26 @@ mod tests {
                 f32::from_bits((r >> 8) as u32),
             );
             check(bits, glam::Vec4Swizzles::zwxy(bits), 4);
+        }
+        // Ratios `y / x` or `-x / y` below 7/16 (up to 0.5, so that a few lanes are just
+        // above), with a large ratio in the lanes past `lanes`.
+        for _ in 0..200_000 {
+            let lanes = 1 + (rng.next_u64() % 4) as usize;
+            let mut lane = |i: usize| {
+                let ratio = 0.5 * rng.uniform_f32() * [1.0, 1e-3, 1e-20][i % 3];
+                let along = rng.log_uniform(-20.0, 20.0) as f32;
+                match i {
+                    _ if i >= lanes => (along, 0.1 * along),
+                    0 | 2 => (ratio * along, along),
+                    _ => (along, -ratio * along),
+                }
+            };
+            let [a, b, c, d] = [lane(0), lane(1), lane(2), lane(3)];
+            check(
+                Vec4::new(a.0, b.0, c.0, d.0),
+                Vec4::new(a.1, b.1, c.1, d.1),
+                lanes,
+            );
         }
     }
 }

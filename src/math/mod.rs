@@ -19,15 +19,15 @@ pub(crate) use atan::atan_fast_nonneg4;
 pub use atan::{
     atan_fast_nonneg, atan_unit, atan_unit_estrin, atan_unit_estrin4, atan2_upper_half_plane,
 };
-pub(crate) use atan_lanes::atanf4;
+pub(crate) use atan_lanes::{atanf4, atanf4_below_7_16};
 pub use bits::{
     copy_sign, is_sign_negative, opaque, select_bits, select_bits4, sign_mask, with_sign_of_product,
 };
 pub use frame::{Frame, orthonormal_basis};
 pub(crate) use lanes::{
-    LANES, atan2_upper_half_plane4, cross_precise4, cross3_lanes,
-    difference_of_products_unless_cancelling4, difference_of_products4, finite_or_zero4,
-    lane_starts, load4, max4, min4, sqrt4, store_record_words4, store4,
+    LANES, atan2_upper_half_plane4, atan2_upper_half_plane4_small_first, cross_precise4,
+    cross3_lanes, difference_of_products_unless_cancelling4, difference_of_products4,
+    finite_or_zero4, lane_starts, load4, max4, min4, sqrt4, store_record_words4, store4,
 };
 pub(crate) use length::{
     length, normalize_or, normalize_or_predicted, normalize_or_zero, try_normalize,

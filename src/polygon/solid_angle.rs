@@ -509,8 +509,14 @@ impl VertexGroups {
         // register, where the zero group 1 of a triangle took a zeroing and two shuffles
         // (its edges: 675 -> 667 instructions per prepare + 1, quads 866 -> 862,
         // callgrind; the same for group 1 of hexagons and heptagons, which took slot 0
-        // from group 0, cost them 3).
-        if group == 0 && count <= LANES {
+        // from group 0, cost them 3). And where this group holds slot `count` (the last
+        // one that a used lane reads: the edges read up to slot `count`, the fan up to
+        // `count - 1`), no used lane reads the next group at all: the same rotation fills
+        // the unused lanes with finite values of this group (the edges of group 1 of
+        // pentagons to heptagons, whose next group is zero: hexagons 1120.7 -> 1112.7
+        // instructions per prepare + 1, heptagons 1387.8 -> 1378.8, callgrind; tested:
+        // `shifted_slots_are_the_working_set_in_memory`).
+        if (group == 0 && count <= LANES) || count < (group + 1) * LANES {
             return match start % LANES {
                 1 => Vec4::new(low.y, low.z, low.w, low.x),
                 2 => Vec4::new(low.z, low.w, low.x, low.x),
@@ -622,6 +628,32 @@ struct FanLanes {
     /// Bit `k`: triangle `k` has two vertices more than 90° apart (`|v_i + v_j|² < 2`),
     /// whose sum the compensated form must compute.
     wide_pairs: u32,
+    /// Algorithm 5's solid angle `2 atan2(G0, G1 + G2)` of the triangles below
+    /// [`angles_in_lanes`], four at a time (see there).
+    angles: [f32; 2 * LANES],
+}
+
+/// The fan triangles `0..angles_in_lanes(triangles)` get their solid angles in lanes,
+/// from `G0` and `G1 + G2` still in registers ([`FanLanes::compute`]): one
+/// [`atan2_upper_half_plane4_small_first`](crate::math::atan2_upper_half_plane4_small_first)
+/// (the scalar form's bits in each lane) per group of up to four in place of a scalar
+/// `atanf` per triangle (hexagons 1217.3 -> 1159.0 instructions per prepare + 1 with
+/// `atan2_upper_half_plane4`, 1120.0 with the branch for small ratios, callgrind). A
+/// triangle's one fan triangle and a heptagon's fifth, which `compute_triangle` and
+/// `compute_one` prepare in scalar arithmetic, keep the scalar call, and so do a quad's
+/// two: since `atan2_upper_half_plane` inlines the small range of `atanf`, two scalar
+/// calls take fewer instructions than the lanes (828.3 against 829.3 per prepare + 1)
+/// and less time (the lanes' division and branch lengthen the chain: 106 against 110 ns,
+/// C benchmark).
+#[inline(always)]
+const fn angles_in_lanes(triangles: usize) -> usize {
+    if triangles <= 2 {
+        0
+    } else if triangles == LANES + 1 {
+        LANES
+    } else {
+        triangles
+    }
 }
 
 impl FanLanes {
@@ -698,6 +730,18 @@ impl FanLanes {
         );
         store_triangle_lanes(g1_plus_g2, &mut polygon.g1_plus_g2, first);
         store_triangle_lanes(half * l01, &mut polygon.g2, first);
+        if first < angles_in_lanes(triangles) {
+            // `2 atan2(G0, G1 + G2)` with `G0 = |det|` as the loop of `prepare_or_fail`
+            // computes it for the others (lanes past `triangles` give 0).
+            let g0 = signed_g0.abs();
+            let angles = Vec4::splat(2.0)
+                * crate::math::atan2_upper_half_plane4_small_first(
+                    g0,
+                    g1_plus_g2,
+                    triangles - first,
+                );
+            store4(angles, &mut self.angles, first);
+        }
         if triangles <= 2 {
             outer_terms(polygon);
         }
@@ -841,6 +885,13 @@ impl FanLanes {
         polygon.outer_along[0] = along.y;
         polygon.outer_across2[0] = across2.y;
     }
+}
+
+/// Algorithm 5's solid angle of a fan triangle, `2 atan2(G0, G1 + G2)` for `G0 >= 0`
+/// (van Oosterom and Strackee).
+#[inline(always)]
+fn triangle_angle(g0: f32, g1_plus_g2: f32) -> f32 {
+    2.0 * atan2_upper_half_plane(g0, g1_plus_g2)
 }
 
 /// `0 < x < ∞` (false for NaN) as one unsigned comparison of the bits: positive floats
@@ -1138,14 +1189,18 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
                     self.outer_across2[k] = l02 - along * along;
                     careful_paths |= CAREFUL_PAIR_SUMS;
                 }
+                // The lanes' solid angle of the values just replaced, again (scalar).
+                if k < angles_in_lanes(triangles) {
+                    fan.angles[k] = triangle_angle(fan.signed_g0[k].abs(), self.g1_plus_g2[k]);
+                }
             }
         }
-        // Algorithm 5: A = 2 atan2(G0, G2 + G1), with G0 >= 0, four triangles at a time
-        // (bit for bit as `triangle_solid_angle` computes it again when sampling).
-        // One loop over the triangles (one triangle at a time: the arc tangents are scalar
-        // calls anyway, and the lanes' round trip, scalar results stored, loaded back as
-        // lanes and stored again, stalled on store-to-load forwarding): the solid angles,
-        // the running sums and the tests on them.
+        // Algorithm 5: A = 2 atan2(G0, G2 + G1), with G0 >= 0 (bit for bit as
+        // `triangle_solid_angle` computes it again when sampling): in lanes where
+        // `FanLanes::compute` computed them from its registers (`angles_in_lanes`; a lanes'
+        // round trip, scalar `G0` and `G1 + G2` stored and loaded back as lanes, stalled
+        // on store-to-load forwarding), else here. One loop over the triangles: the
+        // running sums and the tests on the solid angles.
         // `G0 = |det|` four triangles at a time, and whether every determinant is zero
         // (below), from the lanes: one store and one comparison per four triangles in
         // place of a store and a comparison per triangle in the loop (lanes past
@@ -1181,7 +1236,11 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
                 self.g0[k] = g0;
                 edge_on &= g0 == 0.0;
             }
-            let angle = 2.0 * atan2_upper_half_plane(g0, self.g1_plus_g2[k]);
+            let angle = if k < angles_in_lanes(triangles) {
+                fan.angles[k]
+            } else {
+                triangle_angle(g0, self.g1_plus_g2[k])
+            };
             if angle > 0.0 {
                 selectable = k + 1;
             }
@@ -1416,7 +1475,7 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
     /// next to large ones).
     #[inline(always)]
     pub(crate) fn triangle_solid_angle(&self, k: usize) -> f32 {
-        2.0 * atan2_upper_half_plane(self.g0[k], self.g1_plus_g2[k])
+        triangle_angle(self.g0[k], self.g1_plus_g2[k])
     }
 
     /// Algorithm 5 in fan triangle `k`: the direction at solid angle `local` from the
@@ -1730,7 +1789,7 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         let g0 = reflection.determinant(x, y).abs();
         let g1 = v0.dot(new_vertex) + v1.dot(new_vertex);
         let g2 = self.g2[k];
-        let local = 2.0 * atan2_upper_half_plane(g0, g2 + g1);
+        let local = triangle_angle(g0, g2 + g1);
         // 1 - s = ξ1 (1 - s'), with 1 - a·b = |a - b|² / 2 for unit vectors.
         let u1 = (v1 - w).length_squared() / (v1 - new_vertex).length_squared();
         let u1 = clamp_inverted(u1);

@@ -1576,3 +1576,72 @@ fn the_outer_terms_are_the_samples_dot_products() {
         "{careful} of {checked} took the careful pair sums"
     );
 }
+
+/// The fan triangles' solid angles that `FanLanes::compute` takes in lanes
+/// (`angles_in_lanes`: all of 3, 4 and 6 fan triangles, the first four of 5) are the
+/// scalar `triangle_angle` of the prepared `G0` and `G1 + G2`, bit for bit, as are the
+/// running sums `start` and the total built from them: for 3 to 8 vertices, on small fan
+/// triangles (every ratio `G0 / (G1 + G2)` below 7/16: the branch of
+/// `atan2_upper_half_plane4_small_first` without the reduction) and large ones (the
+/// general branch), both windings, and polygons close over the shading point (the
+/// careful pair sums, after which the angle of the replaced values is computed again),
+/// with triangles of zero solid angle (a duplicated vertex: `start` is `+∞` past the
+/// last selectable one).
+#[test]
+fn the_fan_angles_in_lanes_are_the_scalar_ones() {
+    let mut rng = Rng::new(4201);
+    let (mut small, mut general, mut careful, mut unselectable) = (0, 0, 0, 0);
+    for n in 3..=8 {
+        for trial in 0..600 {
+            let mut v = match trial % 4 {
+                0 => random_polygon_above(&mut rng, n, 0.05, 0.3),
+                1 => random_polygon_above(&mut rng, n, 1.0, 3.0),
+                2 => reversed(&random_polygon_above(&mut rng, n, 0.05, 3.0)),
+                _ => random_polygon_above(&mut rng, n, 2.0, 3.0)
+                    .iter()
+                    .map(|&p| Vec3::new(p.x, p.y, 1e-2 * p.z))
+                    .collect(),
+            };
+            if trial % 7 == 0 {
+                // The last vertex again: the last fan triangle has no solid angle.
+                let last = v[n - 1];
+                v.push(last);
+                if v.len() > MAX_POLYGON_VERTICES {
+                    v.remove(1);
+                }
+            }
+            let Some(polygon) = SolidAnglePolygon::new(&v) else {
+                continue;
+            };
+            let triangles = v.len() - 2;
+            let in_lanes = angles_in_lanes(triangles);
+            let mut total = 0.0f32;
+            for k in 0..triangles {
+                let angle = triangle_angle(polygon.g0[k], polygon.g1_plus_g2[k]);
+                if k < polygon.selectable_triangles as usize {
+                    assert_eq!(polygon.start[k].to_bits(), total.to_bits(), "{v:?} {k}");
+                } else {
+                    assert_eq!(polygon.start[k], f32::INFINITY, "{v:?} {k}");
+                    unselectable += 1;
+                }
+                total += angle;
+            }
+            assert_eq!(polygon.solid_angle.to_bits(), total.to_bits(), "{v:?}");
+            if in_lanes > 0 {
+                let ratios_small = (0..in_lanes.min(LANES))
+                    .all(|k| polygon.g0[k] / polygon.g1_plus_g2[k] < 0.4375);
+                small += ratios_small as u32;
+                general += !ratios_small as u32;
+                careful += (polygon.careful_paths() & CAREFUL_PAIR_SUMS != 0) as u32;
+            }
+        }
+    }
+    std::println!(
+        "small {small}, general {general}, careful {careful}, unselectable {unselectable}"
+    );
+    assert!(small > 300 && general > 300, "{small} {general}");
+    assert!(
+        careful > 100 && unselectable > 50,
+        "{careful} {unselectable}"
+    );
+}
