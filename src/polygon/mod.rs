@@ -204,7 +204,7 @@ pub(crate) fn ignore_short_edges_in_containment<const N: usize>(
 /// bit, through [`rescale_factor_of_lanes`] (the maximum is over the same coordinates and
 /// a 0 that does not change it; issue 15: the scalar pass, 18 dependent integer maxima,
 /// was about 90 instructions of a hexagon's preparation). Tested by
-/// `rescale_takes_the_scalar_factor`.
+/// `lanes_rescale_as_the_scalar_pass`.
 pub(crate) fn rescale(vertices: &[Vec3], out: &mut [Vec3]) -> Option<()> {
     rescale_above_the_horizon(vertices, out).map(|_| ())
 }
@@ -301,61 +301,14 @@ mod tests {
     use super::*;
     use crate::testing::Rng;
 
-    /// `rescale` (the factor from each vertex's lanes) multiplies by the scalar pass's
-    /// factor, bit for bit, and fails in the same cases: coordinates from subnormal to
-    /// near `f32::MAX`, zeros of both signs, infinities and NaNs, 3 to 8 vertices.
-    #[test]
-    fn rescale_takes_the_scalar_factor() {
-        let mut rng = Rng::new(36);
-        let special = [
-            0.0,
-            -0.0,
-            f32::INFINITY,
-            f32::NEG_INFINITY,
-            f32::NAN,
-            1e-45,
-            f32::MAX,
-        ];
-        let (mut nones, mut somes) = (0, 0);
-        for case in 0..100_000 {
-            let count = 3 + (case % 6);
-            let top = if rng.below(20) == 0 { -37.5 } else { 38.5 };
-            let all_zero = rng.below(50) == 0;
-            let vertices: Vec<Vec3> = (0..count)
-                .map(|_| {
-                    Vec3::from_array(core::array::from_fn(|_| match rng.below(30) {
-                        _ if all_zero => 0.0,
-                        0 => special[rng.below(special.len() as u64) as usize],
-                        _ => rng.signed_log_uniform(-45.0, top) as f32,
-                    }))
-                })
-                .collect();
-            let mut out = [Vec3::splat(7.0); 8];
-            let factor = rescale_factor(&vertices);
-            assert_eq!(
-                rescale(&vertices, &mut out).is_some(),
-                factor.is_some(),
-                "{vertices:?}"
-            );
-            if let Some(factor) = factor {
-                somes += 1;
-                for (o, v) in out.iter().zip(&vertices) {
-                    let expected = (*v * factor).to_array().map(f32::to_bits);
-                    assert_eq!(o.to_array().map(f32::to_bits), expected, "{vertices:?}");
-                }
-            } else {
-                nones += 1;
-            }
-        }
-        assert!(nones > 1000 && somes > 50_000, "{nones} {somes}");
-    }
-
-    /// The lane form of the rescale factor (`largest_magnitude4` over groups of four
-    /// vertices, then `rescale_factor_of_lanes`) gives the scalar pass's factor bit for
-    /// bit, and `None` in the same cases: coordinates from subnormal to near `f32::MAX`,
-    /// zeros of both signs, all-zero polygons, infinities and NaNs of either sign, 3 to
-    /// 8 vertices with the groups' unused slots filled as the preparations fill them
-    /// (vertex 0 again).
+    /// The lane forms of the rescale factor (`largest_magnitude4` over groups of four
+    /// vertices, as the solid angle preparation takes them, then
+    /// `rescale_factor_of_lanes`; and `rescale`'s, from each vertex's lanes) give the
+    /// scalar pass's factor bit for bit, and `None` in the same cases, and `rescale`
+    /// writes each vertex times that factor: coordinates from subnormal to near
+    /// `f32::MAX`, zeros of both signs, all-zero polygons, infinities and NaNs of either
+    /// sign, 3 to 8 vertices with the groups' unused slots filled as the preparations
+    /// fill them (vertex 0 again).
     #[test]
     fn lanes_rescale_as_the_scalar_pass() {
         let mut rng = Rng::new(35);
@@ -372,7 +325,7 @@ mod tests {
             f32::MAX,
             -f32::MAX,
         ];
-        let (mut nones, mut subnormal_largest) = (0, 0);
+        let (mut nones, mut subnormal_largest, mut above_count) = (0, 0, 0);
         for case in 0..200_000 {
             let count = 3 + (case % 6);
             // One polygon in 20 of subnormal (and tiny normal) coordinates only.
@@ -415,6 +368,17 @@ mod tests {
                 lanes.map(f32::to_bits),
                 "{vertices:?}"
             );
+            let mut out = [Vec3::splat(7.0); 8];
+            let above = rescale_above_the_horizon(&vertices, &mut out);
+            assert_eq!(above.is_some(), scalar.is_some(), "{vertices:?}");
+            if let (Some(factor), Some(above)) = (scalar, above) {
+                for (o, v) in out.iter().zip(&vertices) {
+                    let expected = (*v * factor).to_array().map(f32::to_bits);
+                    assert_eq!(o.to_array().map(f32::to_bits), expected, "{vertices:?}");
+                }
+                assert_eq!(above, out[..count].iter().all(|o| o.z > 0.0));
+                above_count += above as u32;
+            }
             nones += scalar.is_none() as u32;
             subnormal_largest +=
                 (scalar.is_some() && largest.max_element() < f32::MIN_POSITIVE) as u32;
@@ -422,5 +386,6 @@ mod tests {
         // Both outcomes and the subnormal case were exercised.
         assert!(nones > 10_000 && nones < 190_000, "{nones}");
         assert!(subnormal_largest > 0);
+        assert!(above_count > 100, "{above_count}");
     }
 }

@@ -1593,18 +1593,7 @@ fn outer_area_bounds_decide_as_the_exact_areas() {
     let mut rng = Rng::new(47);
     let (mut decentral, mut sectors, mut settled) = (0, 0, 0);
     for trial in 0..40_000 {
-        let n = 3 + rng.below(6) as usize;
-        let mut v = match trial % 3 {
-            0 => {
-                let radius = rng.log_uniform(-3.0, 0.5) as f32;
-                random_polygon(&mut rng, n, radius)
-            }
-            1 => off_zenith_polygon(&mut rng, n, 1.2),
-            _ => {
-                let scale = rng.log_uniform(-20.0, 20.0) as f32;
-                (0..n).map(|_| rng.unit_vector_f32() * scale).collect()
-            }
-        };
+        let mut v = mixed_test_polygon(&mut rng, trial);
         match trial % 7 {
             // An edge on a great circle through the zenith, a vertex on the horizon.
             0 => v[1] = Vec3::new(v[0].x * 2.0, v[0].y * 2.0, v[0].z * 2.0),
@@ -1696,18 +1685,7 @@ fn ends_touch_is_the_end_shape_test() {
     // Decided true, decided false, left to `end_shape` (terms finite), `end_shape` NaN.
     let mut counts = [0u32; 4];
     for trial in 0..30_000 {
-        let n = 3 + rng.below(6) as usize;
-        let mut v = match trial % 3 {
-            0 => {
-                let radius = rng.log_uniform(-3.0, 0.5) as f32;
-                random_polygon(&mut rng, n, radius)
-            }
-            1 => off_zenith_polygon(&mut rng, n, 1.2),
-            _ => {
-                let scale = rng.log_uniform(-20.0, 20.0) as f32;
-                (0..n).map(|_| rng.unit_vector_f32() * scale).collect()
-            }
-        };
+        let mut v = mixed_test_polygon(&mut rng, trial);
         match trial % 5 {
             0 => v[0].z = 0.0,
             1 => v[0].z = v[0].length() * rng.log_uniform(-6.0, -1.0) as f32,
@@ -1747,6 +1725,24 @@ fn ends_touch_is_the_end_shape_test() {
     }
     eprintln!("ends touching / not / left to end_shape / NaN: {counts:?}");
     assert!(counts.iter().all(|&c| c > 0), "{counts:?}");
+}
+
+/// A polygon of 3 to 8 vertices for the decentral preparation's tests, by `trial % 3`:
+/// around the zenith (radius log-uniform), off the zenith (`off_zenith_polygon`), or
+/// random unit directions at one scale log-uniform over 40 decades.
+fn mixed_test_polygon(rng: &mut Rng, trial: u32) -> Vec<Vec3> {
+    let n = 3 + rng.below(6) as usize;
+    match trial % 3 {
+        0 => {
+            let radius = rng.log_uniform(-3.0, 0.5) as f32;
+            random_polygon(rng, n, radius)
+        }
+        1 => off_zenith_polygon(rng, n, 1.2),
+        _ => {
+            let scale = rng.log_uniform(-20.0, 20.0) as f32;
+            (0..n).map(|_| rng.unit_vector_f32() * scale).collect()
+        }
+    }
 }
 
 /// A random convex polygon off the zenith, tilted, some crossing or touching the
