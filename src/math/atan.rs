@@ -341,6 +341,27 @@ mod tests {
         same(f32::NAN);
     }
 
+    /// [`atanf`] is `libm::atanf` for every `f32` bit pattern (its inline range and the
+    /// call outside it, so the range test too): 2^32 evaluations of both, ignored by
+    /// `cargo test`; `.ci/run` runs it with the other exhaustive tests (its name starts
+    /// with `exhaustive`).
+    #[test]
+    #[ignore]
+    fn exhaustive_inline_atanf_is_libm_atanf() {
+        sweep(0, u32::MAX, 1 << 20, |first, last, step| {
+            for start in (first..=last).step_by(step as usize) {
+                for b in start..=start.saturating_add(step - 1) {
+                    let x = f32::from_bits(b);
+                    let (got, expected) = (atanf(x), libm::atanf(x));
+                    assert!(
+                        got.to_bits() == expected.to_bits() || (got.is_nan() && expected.is_nan()),
+                        "{x:e} ({b:#x}): {got:e}, libm {expected:e}"
+                    );
+                }
+            }
+        });
+    }
+
     #[test]
     fn atan2_upper_half_plane_edges() {
         assert_eq!(atan2_upper_half_plane(0.0, 1.0), 0.0);

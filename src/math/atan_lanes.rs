@@ -282,6 +282,28 @@ mod tests {
         });
     }
 
+    /// `atanf4_below_7_16` is `libm::atanf` for every `f32` below 7/16 in magnitude (its
+    /// domain), both signs, four at a time (each lane position takes every fourth
+    /// pattern): 2.1e9 evaluations of both, ignored by `cargo test`; `.ci/run` runs it
+    /// with the other exhaustive tests.
+    #[test]
+    #[ignore]
+    fn exhaustive_atanf4_below_7_16_is_libm_atanf() {
+        let end = 0.4375f32.to_bits(); // exclusive; a multiple of 4
+        sweep(0, end - 1, 1 << 16, |first, last, step| {
+            for start in (first..=last).step_by(step as usize) {
+                for b in (start..start + step).step_by(4) {
+                    for sign in [0, 0x8000_0000u32] {
+                        let lanes = [b, b + 1, b + 2, b + 3].map(|b| b | sign);
+                        let got = atanf4_below_7_16(Vec4::from_array(lanes.map(f32::from_bits)));
+                        let expected = lanes.map(|b| libm::atanf(f32::from_bits(b)).to_bits());
+                        assert_eq!(got.to_array().map(f32::to_bits), expected, "{lanes:#x?}");
+                    }
+                }
+            }
+        });
+    }
+
     /// Every `f32` bit pattern, four at a time: 2^32 evaluations of both forms, about
     /// 40 s of one core (measured; `sweep` uses every core) after the release build, so
     /// ignored by `cargo test`; `.ci/run` runs it with the other exhaustive tests (its
