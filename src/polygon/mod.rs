@@ -217,9 +217,9 @@ pub(crate) fn rescale(vertices: &[Vec3], out: &mut [Vec3]) -> Option<()> {
 pub(crate) fn rescale_above_the_horizon(vertices: &[Vec3], out: &mut [Vec3]) -> Option<bool> {
     let (mut largest, mut finite) = (Vec4::ZERO, BVec4A::splat(true));
     for v in vertices {
-        let lanes = Vec4::from((*v, 0.0)).abs();
-        finite &= lanes.cmplt(Vec4::splat(f32::INFINITY));
-        largest = largest.max(lanes);
+        let (magnitude, finite_lanes) = magnitudes4(Vec4::from((*v, 0.0)));
+        finite &= finite_lanes;
+        largest = largest.max(magnitude);
     }
     let factor = rescale_factor_of_lanes(largest, finite)?;
     let mut above = true;
@@ -278,11 +278,17 @@ fn factor_for_largest_bits(largest_bits: u32) -> Option<f32> {
 /// whatever the maximum makes of a NaN is never used.
 #[inline(always)]
 pub(crate) fn largest_magnitude4(coordinates: [Vec4; 3]) -> (Vec4, BVec4A) {
-    let [x, y, z] = coordinates;
-    let (x, y, z) = (x.abs(), y.abs(), z.abs());
-    let infinity = Vec4::splat(f32::INFINITY);
-    let finite = x.cmplt(infinity) & y.cmplt(infinity) & z.cmplt(infinity);
-    (x.max(y).max(z), finite)
+    let [(x, fx), (y, fy), (z, fz)] = coordinates.map(magnitudes4);
+    (x.max(y).max(z), fx & fy & fz)
+}
+
+/// The magnitudes of four coordinates and the lanes where they are finite (`|c| < ∞`,
+/// false for an infinity and a NaN): the terms of [`largest_magnitude4`] and of
+/// [`rescale_above_the_horizon`]'s factor.
+#[inline(always)]
+fn magnitudes4(c: Vec4) -> (Vec4, BVec4A) {
+    let magnitude = c.abs();
+    (magnitude, magnitude.cmplt(Vec4::splat(f32::INFINITY)))
 }
 
 /// `rescale_factor` from [`largest_magnitude4`]'s lanes (combined over the groups of
