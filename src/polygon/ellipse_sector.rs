@@ -17,7 +17,7 @@ use crate::math::{
     copy_sign, difference_of_products4, finite_or_zero4, max4, min4, select_bits, select_bits4,
     sqrt4, store_record_words4,
 };
-use glam::{BVec4A, Vec4};
+use glam::{BVec4A, Vec4, Vec4Swizzles};
 
 /// A sector between two ellipses, prepared for sampling.
 #[repr(C)]
@@ -335,24 +335,99 @@ fn area_form(
     }
 }
 
-/// The terms of [`EllipseSector::end_shape`]: `c = slope · atan2(y, x) / width`.
+/// The arithmetic of the end test ([`EndShapeTerms`]) on one value or on four lanes: the
+/// same operations in the same order in both, so that each lane gives the scalar's bits.
+trait EndArithmetic:
+    Copy
+    + core::ops::Add<Output = Self>
+    + core::ops::Sub<Output = Self>
+    + core::ops::Mul<Output = Self>
+    + core::ops::Div<Output = Self>
+{
+    fn splat(value: f32) -> Self;
+    fn abs(self) -> Self;
+}
+
+impl EndArithmetic for f32 {
+    #[inline(always)]
+    fn splat(value: f32) -> Self {
+        value
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        f32::abs(self)
+    }
+}
+
+impl EndArithmetic for Vec4 {
+    #[inline(always)]
+    fn splat(value: f32) -> Self {
+        Vec4::splat(value)
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        Vec4::abs(self)
+    }
+}
+
+/// The terms of [`EllipseSector::end_shape`]: `c = slope · atan2(y, x) / width` (one end,
+/// or four ends as lanes).
 #[derive(Clone, Copy)]
-struct EndShapeTerms {
-    slope: f32,
-    width: f32,
-    y: f32,
-    x: f32,
+struct EndShapeTerms<T = f32> {
+    slope: T,
+    width: T,
+    y: T,
+    x: T,
+}
+
+/// The widths `½ (|t_i| - |t_o|)(|t_i| + |t_o|) / ((1 + t_i²)(1 + t_o²))` between the
+/// ellipses of the dot products `t_i` (`inner`) and `t_o` (`outer`), lane by lane: for
+/// [`EllipseSector::end_shape_terms`] at an end quad's other boundary (lane 0) and at the
+/// end (lane 1), for [`EllipseSector::ends_touch_pair`] at two ends' (lanes 0, 1 and 2, 3).
+#[inline(always)]
+fn end_widths(inner: Vec4, outer: Vec4) -> Vec4 {
+    let (a, b) = (inner.abs(), outer.abs());
+    Vec4::splat(0.5) * (a - b) * (a + b)
+        / ((Vec4::ONE + inner * inner) * (Vec4::ONE + outer * outer))
+}
+
+impl<T: EndArithmetic> EndShapeTerms<T> {
+    /// The terms at an end where the ellipses meet: the width's slope
+    /// `(t_i t_i' - t_o t_o') / (1 + ½ (t_i² + t_o²))²` from the dot products `t` at the
+    /// end and `t' = u · s'` along the direction `s'` into the sector, the width at the
+    /// quad's other boundary, and the quad's angle as `atan2(y, x)`.
+    #[inline(always)]
+    fn new([ti, to]: [T; 2], [dti, dto]: [T; 2], width: T, y: T, x: T) -> Self {
+        let t2 = T::splat(1.0) + T::splat(0.5) * (ti * ti + to * to);
+        Self {
+            slope: (ti * dti - to * dto) / (t2 * t2),
+            width,
+            y,
+            x,
+        }
+    }
+
+    /// `r = y / x`, the estimate `ĉ` of `c` and its slack (see
+    /// [`EllipseSector::ends_touch`]).
+    #[inline(always)]
+    fn estimate(self) -> (T, T, T) {
+        let Self { slope, width, y, x } = self;
+        let r = y / x;
+        let r2 = r * r;
+        let estimate = slope
+            * (r * (T::splat(1.0) - r2 * T::splat(1.0 / 3.0) + r2 * r2 * T::splat(0.1)))
+            / width;
+        let slack = estimate.abs() * (T::splat(0.16) * (r2 * r2) + T::splat(1e-5));
+        (r, estimate, slack)
+    }
 }
 
 impl EndShapeTerms {
     /// `c < 1` where the bound of [`EllipseSector::ends_touch`] decides it, else `None`.
     #[inline(always)]
     fn below_one_by_bound(self) -> Option<bool> {
-        let Self { slope, width, y, x } = self;
-        let r = y / x;
-        let r2 = r * r;
-        let estimate = slope * (r * (1.0 - r2 * (1.0 / 3.0) + r2 * r2 * 0.1)) / width;
-        let slack = estimate.abs() * (0.16 * (r2 * r2) + 1e-5);
+        let (r, estimate, slack) = self.estimate();
+        let Self { width, x, .. } = self;
         if !(x > 0.0 && r <= 1.0 && width > 1e-30) {
             None
         } else if estimate + slack < 1.0 {
@@ -362,6 +437,13 @@ impl EndShapeTerms {
         } else {
             None
         }
+    }
+
+    /// `c < 1` with the arc tangent (`end_shape`'s own comparison).
+    #[inline(always)]
+    fn below_one(self) -> bool {
+        let Self { slope, width, y, x } = self;
+        slope * atan2_upper_half_plane(y, x) / width < 1.0
     }
 }
 
@@ -1017,10 +1099,70 @@ impl EllipseSector {
             // NaN: not below 1.
             return false;
         };
-        terms.below_one_by_bound().unwrap_or_else(|| {
-            let EndShapeTerms { slope, width, y, x } = terms;
-            slope * atan2_upper_half_plane(y, x) / width < 1.0
-        })
+        terms
+            .below_one_by_bound()
+            .unwrap_or_else(|| terms.below_one())
+    }
+
+    /// `[first.ends_touch(false), last.ends_touch(true)]`, the preparation's two end tests
+    /// (the polygon's clockwise and counter-clockwise azimuthal ends), in lanes: the
+    /// widths of both ends in one group of four lanes, the rest of
+    /// [`end_shape_terms`](Self::end_shape_terms) and of the bound in two, each lane the
+    /// same operations on the same values as the scalar form (so the same values and the
+    /// same comparisons); an end that the bound leaves open takes
+    /// [`ends_touch`](Self::ends_touch) itself (issue 15: the two scalar tests were about
+    /// 220 instructions of a decentral preparation). The test
+    /// `ends_touch_is_the_end_shape_test` compares the two forms.
+    #[inline(always)]
+    pub(crate) fn ends_touch_pair(first: &Self, last: &Self) -> [bool; 2] {
+        // Lane 0: the end s0 of `first` (its quarter b_1), lane 1: the end s1 of `last`
+        // (its quarter b_3); lanes 2 and 3 repeat them.
+        let lanes = |a: f32, b: f32| Vec4::new(a, b, a, b);
+        let pair = |a: Vec2, b: Vec2| [lanes(a[0], b[0]), lanes(a[1], b[1])];
+        // The widths at the quarter (x, z) and at the end (y, w).
+        let (inner, outer) = (first.inner_quarter_dots, last.inner_quarter_dots);
+        let inner = Vec4::new(inner[1], inner[0], outer[3], outer[4]);
+        let (first_outer, last_outer) = (first.outer_quarter_dots, last.outer_quarter_dots);
+        let outer = Vec4::new(first_outer[1], first_outer[0], last_outer[3], last_outer[4]);
+        let widths = end_widths(inner, outer);
+        let (width, end_width) = (widths.xzxz(), widths.ywyw());
+        let meet = end_width.abs().cmple(Vec4::splat(1e-3) * width);
+        // s' = ±R s = (-s_y, s_x) · ±1: + at s0, - at s1 (`scale2(rotate(s), ±1)`).
+        let [sx, sy] = pair(first.s0(), last.s1());
+        let sign = lanes(1.0, -1.0);
+        let (intox, intoy) = (-sy * sign, sx * sign);
+        let dot = |[ax, ay]: [Vec4; 2], bx: Vec4, by: Vec4| ax * bx + ay * by;
+        let (ui, uo) = (pair(first.inner, last.inner), pair(first.outer, last.outer));
+        let terms = EndShapeTerms::new(
+            [inner.ywyw(), outer.ywyw()],
+            [dot(ui, intox, intoy), dot(uo, intox, intoy)],
+            width,
+            max4(lanes(first.quarter_det, last.quarter_det), Vec4::ZERO),
+            dot(pair(first.quarters[1], last.quarters[3]), sx, sy),
+        );
+        // `end_shape_terms` is not `None` (`is_degenerate`: not |u_x| <= the limit) ...
+        let proper =
+            |[ux, _]: [Vec4; 2]| ux.abs().cmple(Vec4::splat(super::ellipse::ELLIPSE_LIMIT));
+        let valid = proper(ui) & proper(uo) & meet;
+        // ... and `below_one_by_bound` decides.
+        let (r, estimate, slack) = terms.estimate();
+        let in_range =
+            terms.x.cmpgt(Vec4::ZERO) & r.cmple(Vec4::ONE) & terms.width.cmpgt(Vec4::splat(1e-30));
+        let below = (estimate + slack).cmplt(Vec4::ONE);
+        let decided = valid & in_range & (below | (estimate - slack).cmpgt(Vec4::ONE));
+        // Lanes 0 and 1: below 1 where decided so; false where not valid (`end_shape` NaN).
+        let (touch, open) = (
+            (decided & below).bitmask() & 3,
+            (valid & !decided).bitmask() & 3,
+        );
+        let test = |lane: u32, sector: &Self, at_s1: bool| {
+            if open & (1 << lane) != 0 {
+                sector.ends_touch(at_s1)
+            } else {
+                touch & (1 << lane) != 0
+            }
+        };
+        [test(0, first, false), test(1, last, true)]
     }
 
     /// Whether [`ends_touch`](Self::ends_touch) decides without the arc tangent, and how
@@ -1050,24 +1192,20 @@ impl EllipseSector {
         // The width `½ (|t_i| - |t_o|)(|t_i| + |t_o|) / ((1 + t_i²)(1 + t_o²))` at the
         // quad's other boundary (lane 0) and at the end (lane 1), in lanes: the same
         // operations in each (issue 15: two scalar evaluations per end).
-        let (inner, outer) = (Vec4::new(bi, ti, 0.0, 0.0), Vec4::new(bo, to, 0.0, 0.0));
-        let (a, b) = (inner.abs(), outer.abs());
-        let widths = Vec4::splat(0.5) * (a - b) * (a + b)
-            / ((Vec4::ONE + inner * inner) * (Vec4::ONE + outer * outer));
+        let widths = end_widths(Vec4::new(bi, ti, 0.0, 0.0), Vec4::new(bo, to, 0.0, 0.0));
         let (width, end_width) = (widths.x, widths.y);
         // Only where the ellipses meet at the end (the quad is a triangle): elsewhere the
         // region has a width there, and the quad's trapezoid is the right shape.
         if !(end_width.abs() <= 1e-3 * width) {
             return None;
         }
-        let (dti, dto) = (dot2(self.inner, into), dot2(self.outer, into));
-        let t2 = 1.0 + 0.5 * (ti * ti + to * to);
-        Some(EndShapeTerms {
-            slope: (ti * dti - to * dto) / (t2 * t2),
+        Some(EndShapeTerms::new(
+            [ti, to],
+            [dot2(self.inner, into), dot2(self.outer, into)],
             width,
-            y: self.quarter_det.max(0.0),
-            x: dot2(s, self.quarters[quarter]),
-        })
+            self.quarter_det.max(0.0),
+            dot2(s, self.quarters[quarter]),
+        ))
     }
 
     /// The area to hand the quad at an end of the sector (`measured`, signed as in

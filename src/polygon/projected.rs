@@ -1184,7 +1184,28 @@ impl ProjectedPolygon {
                     areas[j] = scalar_sector(sector, j);
                 }
             }
-            let mut all_empty_before = true;
+            // The polygon's azimuthal ends: the first and the last sector with det != 0
+            // (past the empty sectors of a vertex that clipping repeated), tested together
+            // (`ends_touch_pair`; both exist or neither).
+            // (Bit j: sector j's det, as stored, is not 0; lanes past the sectors masked.)
+            let live = (0..2).fold(0u32, |bits, group| {
+                let det = load4(&sector_det, group * LANES);
+                bits | det.cmpne(Vec4::ZERO).bitmask() << (group * LANES)
+            }) & ((1u32 << sectors) - 1);
+            let (first_live, last_live) = match live {
+                0 => (None, None),
+                _ => (
+                    Some(live.trailing_zeros() as usize),
+                    Some(31 - live.leading_zeros() as usize),
+                ),
+            };
+            let [first_touches, last_touches] = match (first_live, last_live) {
+                (Some(first), Some(last)) => {
+                    let sectors = polygon.pieces.sectors_mut();
+                    EllipseSector::ends_touch_pair(&sectors[first], &sectors[last])
+                }
+                _ => [false; 2],
+            };
             #[allow(clippy::needless_range_loop)] // j indexes the sectors and their areas
             for j in 0..sectors {
                 let sector = &mut polygon.pieces.sectors_mut()[j];
@@ -1205,8 +1226,12 @@ impl ProjectedPolygon {
                 // vertex that clipping repeated (det 0). Elsewhere the region has a width
                 // at the sector's ends, and the test (two divisions, an arc tangent at a
                 // meeting point) is not made; the last end is tested after the loop.
-                let touching = all_empty_before && sector.ends_touch(false);
-                all_empty_before &= sector.det == 0.0;
+                // (The sectors before the first live one, all empty, one by one.)
+                let touching = match first_live {
+                    Some(first) if j == first => first_touches,
+                    Some(first) if j > first => false,
+                    _ => sector.ends_touch(false),
+                };
                 sector.touching_ends = touching as u32;
                 let limit = 200.0 * area;
                 // (A NaN bound, which no finite ellipse gives, falls back too.)
@@ -1214,15 +1239,10 @@ impl ProjectedPolygon {
                 sector.extra_iterations = (ill_conditioned || touching) as u32;
                 polygon.sector_area[j] = area;
             }
-            if let Some(last) = (0..sectors)
-                .rev()
-                .find(|&j| polygon.pieces.sectors_mut()[j].det != 0.0)
-            {
+            if let (Some(last), true) = (last_live, last_touches) {
                 let sector = &mut polygon.pieces.sectors_mut()[last];
-                if sector.ends_touch(true) {
-                    sector.touching_ends |= 2;
-                    sector.extra_iterations = 1;
-                }
+                sector.touching_ends |= 2;
+                sector.extra_iterations = 1;
             }
         } else {
             // Central case: sector j reaches from the origin to the ellipse of edge j,

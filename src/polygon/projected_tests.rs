@@ -1678,7 +1678,8 @@ fn end_shape_one_by_one(sector: &EllipseSector, at_s1: bool) -> f32 {
 /// crossing ellipses): the arc tangent's bound decides each outcome somewhere, falls back
 /// to `end_shape` somewhere (`c` near 1, or a quarter past its range), and never decides
 /// against `end_shape`; and `end_shape` (its widths in lanes) is, bit for bit, the
-/// one-value-at-a-time form `end_shape_one_by_one`.
+/// one-value-at-a-time form `end_shape_one_by_one`; and `ends_touch_pair` is
+/// `ends_touch` at both ends, for every pair of sectors.
 #[test]
 fn ends_touch_is_the_end_shape_test() {
     let mut rng = Rng::new(59);
@@ -1720,6 +1721,14 @@ fn ends_touch_is_the_end_shape_test() {
                     None if shape.is_nan() => 3,
                     None => 2,
                 }] += 1;
+            }
+        }
+        // `ends_touch_pair` is the two scalar tests, for every pair of sectors.
+        for first in p.sectors() {
+            for last in p.sectors() {
+                let expected = [first.ends_touch(false), last.ends_touch(true)];
+                let pair = EllipseSector::ends_touch_pair(first, last);
+                assert_eq!(pair, expected, "{v:?}");
             }
         }
     }
