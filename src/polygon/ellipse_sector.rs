@@ -11,7 +11,9 @@
 //! [`EllipseSector::area_to`]), which stays accurate when both ellipses are close to the
 //! unit circle (polygons near the horizon).
 
-use super::ellipse::{Vec2, add2, det2, dot2, is_degenerate, rotate, scale2};
+#[cfg(test)]
+use super::ellipse::det2;
+use super::ellipse::{Vec2, add2, dot2, is_degenerate, rotate, scale2};
 use crate::math::{
     LANES, atan_fast_nonneg, atan_fast_nonneg4, atan2_upper_half_plane, atan2_upper_half_plane4,
     copy_sign, difference_of_products4, finite_or_zero4, max4, min4, select_bits, select_bits4,
@@ -231,7 +233,8 @@ where
 /// `(k_i det, x_i)`, is the same in both; the other is `θ_o` at `(k_o det, x_o)` in the
 /// direct form and the angle difference at `(|Im|, Re)` in the difference form. So four
 /// sectors need two four-lane arc tangents, whichever form each lane takes (where the
-/// scalar areas took two scalar ones per sector: issue 15).
+/// scalar areas took two scalar ones per sector: issue 15), and one to two sectors one.
+/// Only the first `lanes` lanes of the result are areas.
 #[inline(always)]
 fn areas_between4(
     v: &SectorLanes,
@@ -260,13 +263,24 @@ fn areas_between4(
         sigma,
         v.root_det_difference,
     );
-    let first = atan2_positive4(
+    let (first_y, first_x) = (
         Vec4::select(direct, ko * det, im.abs()),
         Vec4::select(direct, xo, re),
-        precision,
-        lanes,
     );
-    let theta_i = atan2_positive4(ki * det, xi, precision, lanes);
+    let (first, theta_i) = if lanes <= LANES / 2 {
+        // At most two sectors (a decentral heptagon's second group, a triangle's): both
+        // angles in one group of lanes, `first` in lanes 0 and 1, `θ_i` in 2 and 3 (each
+        // lane is computed on its own, so its bits do not depend on its neighbours; the
+        // lanes past `lanes` are not used). Issue 15: one four-lane arc tangent less.
+        let pack = |a: Vec4, b: Vec4| Vec4::new(a.x, a.y, b.x, b.y);
+        let angles = atan2_positive4(pack(first_y, ki * det), pack(first_x, xi), precision, LANES);
+        (angles, angles.zwzw())
+    } else {
+        (
+            atan2_positive4(first_y, first_x, precision, lanes),
+            atan2_positive4(ki * det, xi, precision, lanes),
+        )
+    };
     // The direct form: each ellipse's area, 0 for a degenerate one.
     let direct_area = Vec4::select(outer_proper, first * (Vec4::splat(0.5) / ko), Vec4::ZERO)
         - Vec4::select(inner_proper, theta_i * (Vec4::splat(0.5) / ki), Vec4::ZERO);
@@ -602,7 +616,17 @@ impl EllipseSector {
         };
         let (b1, b3) = (unit(add2(s0, b2)), unit(add2(b2, s1)));
         let boundaries = [s0, b1, b2, b3, s1];
-        let inverse_basis = 1.0 / det2(s0, s1);
+        // `det2(s0, s1)` and `det2(s0, b1)` in two lanes (`difference_of_products4` is
+        // `difference_of_products` lane by lane: the same bits; issue 15: the two scalar
+        // error-free forms were about 85 instructions of a decentral hexagon's lone
+        // fifth sector).
+        let dets = difference_of_products4(
+            Vec4::splat(s0[0]),
+            Vec4::new(s1[1], b1[1], 0.0, 0.0),
+            Vec4::splat(s0[1]),
+            Vec4::new(s1[0], b1[0], 0.0, 0.0),
+        );
+        let inverse_basis = 1.0 / dets.x;
         let inverse_basis = if inverse_basis.is_finite() {
             inverse_basis
         } else {
@@ -648,7 +672,7 @@ impl EllipseSector {
             inverse_root_det_difference: finite(length_difference / ((ki + ko) * ki * ko)),
             coincidence_sign: sigma,
             quarters: boundaries,
-            quarter_det: det2(s0, b1),
+            quarter_det: dets.y,
             inner_quarter_dots,
             outer_quarter_dots,
             inner_radius: radii(inner_quarter_dots),
@@ -668,7 +692,10 @@ impl EllipseSector {
     /// [`new`](Self::new) of four sectors at a time (their values as lanes: `s0`, `s1`,
     /// `det`, the inner ellipse and its dot products with `s0` and `s1`, the outer one and
     /// its), written into the four `sectors` (all four, so that the stores unroll into
-    /// straight-line code: the caller overwrites the slots of lanes past its sectors).
+    /// straight-line code: the caller overwrites the slots of lanes past its sectors),
+    /// all their words but the last two, `extra_iterations` and `touching_ends`, which
+    /// `new` sets to 0 and the decentral preparation, the one caller, sets for every
+    /// sector after its end tests (so the prepared value is the same).
     /// Every lane rounds as `new` computes it one sector at a time, bit for bit:
     /// the same operations in the same order (no fused multiply-add, `1 / sqrt` then a
     /// product where `new` scales by the inverse length, a division by the root where it
@@ -776,10 +803,10 @@ impl EllipseSector {
             form(QUADRATURE_FORM),
             Vec4::select(difference, form(DIFFERENCE_FORM), form(DIRECT_FORM)),
         );
-        // The last group overlaps the one before (the same bits twice): words 42..46,
-        // `cosine`, `area_form`, `extra_iterations` and `touching_ends`.
+        // Words 40..44; 44 and 45, `extra_iterations` and `touching_ends`, are the
+        // caller's (issue 15: a last group of four words for them, overlapping this one,
+        // was a transpose and four stores more).
         store(40, [radius(to_3), radius(to1), cosine, area_forms]);
-        store(42, [cosine, area_forms, Vec4::ZERO, Vec4::ZERO]);
         const { assert!(SECTOR_WORDS == 46) };
         // The areas (`area(false, precision)`) of the first `lanes` sectors.
         let proper = |ux: Vec4| ux.abs().cmple(Vec4::splat(super::ellipse::ELLIPSE_LIMIT));

@@ -1232,6 +1232,8 @@ impl ProjectedPolygon {
                     Some(first) if j > first => false,
                     _ => sector.ends_touch(false),
                 };
+                // (This and `extra_iterations` below are written for every sector here:
+                // `new4` leaves both words.)
                 sector.touching_ends = touching as u32;
                 let limit = 200.0 * area;
                 // (A NaN bound, which no finite ellipse gives, falls back too.)

@@ -1820,7 +1820,8 @@ fn awkward_vertices(rng: &mut Rng, n: usize, trial: usize) -> Vec<Vec3> {
 /// `R (s0 - s1)`; a zero direction of a vertex on the z axis; a zero inverse basis; a
 /// degenerate ellipse) and every area form. The sectors' areas are among the words
 /// compared: in lanes they come from `new4` (`areas_between4`, two four-lane arc
-/// tangents per four sectors, and the quadrature form's scalar fallback), which the
+/// tangents per three or four sectors, one for one or two, as the triangles' and the
+/// heptagons' second group, and the quadrature form's scalar fallback), which the
 /// first four slots, always lanes, are checked to reach with each area form. The dot
 /// products `u · s` at a sector's ends come, in the lanes' path, from the table of each
 /// edge at its own vertices (`own_edge_dots`, four edges at a time) wherever the vertex
