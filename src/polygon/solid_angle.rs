@@ -642,9 +642,9 @@ struct FanLanes {
 /// triangle's one fan triangle and a heptagon's fifth, which `compute_triangle` and
 /// `compute_one` prepare in scalar arithmetic, keep the scalar call, and so do a quad's
 /// two: since `atan2_upper_half_plane` inlines the small range of `atanf`, two scalar
-/// calls take fewer instructions than the lanes (828.3 against 829.3 per prepare + 1)
-/// and less time (the lanes' division and branch lengthen the chain: 106 against 110 ns,
-/// C benchmark).
+/// calls take fewer instructions than the lanes (828.3 against 829.3 per prepare + 1,
+/// before `atanf` was inline over its whole range: 821.3 since) and less time (the
+/// lanes' division and branch lengthen the chain: 106 against 110 ns, C benchmark).
 #[inline(always)]
 const fn angles_in_lanes(triangles: usize) -> usize {
     if triangles <= 2 {
