@@ -38,28 +38,79 @@ pub fn atan2_upper_half_plane(y: f32, x: f32) -> f32 {
     if angle > 0.0 { angle } else { 0.0 }
 }
 
-/// `libm::atanf(x)`, the same bits for every `f32`, with fdlibm's range
-/// `2^-12 <= |x| < 7/16` inline: there `atanf` computes `x - x·S(x²)` (no reduction; the
-/// polynomial and its order as in [`atanf4`](super::atanf4)), and that range is tested
-/// the way fdlibm tests it, one unsigned comparison of the bits of `|x|`. The call, its
-/// return and fdlibm's tests for the huge and tiny ranges before it are left out for
-/// the small ratios of small solid angles (a fan triangle below 0.82 sr); other
-/// arguments (and NaN) call `libm::atanf` (tested over that range and its ends:
-/// `inline_atanf_is_libm_atanf`).
+/// `libm::atanf(x)`, the same bits for every `f32`, inline over its whole range (Sun's
+/// fdlibm `s_atanf.c`, the form and the constants of [`atanf4`](super::atanf4), whose
+/// module states the algorithm). fdlibm's range `2^-12 <= |x| < 7/16` comes first: there
+/// `atanf` computes `x - x·S(x²)` (no reduction), and that range is tested the way
+/// fdlibm tests it, one unsigned comparison of the bits of `|x|`, so the small ratios of
+/// small solid angles (a fan triangle below 0.82 sr) take one branch; the others
+/// ([`atanf_outside_small`]) follow fdlibm's branches. Inline throughout (issue 15): the
+/// call of `libm::atanf` for the other ranges, its return and its tests for the huge and
+/// tiny ranges before the small one cost those arguments about 37 instructions. Tested
+/// against `libm::atanf` over every `f32` (`exhaustive_inline_atanf_is_libm_atanf`) and,
+/// by `cargo test`, its ranges' ends and every 61st `f32` of the small range
+/// (`inline_atanf_is_libm_atanf`).
 #[inline(always)]
 pub fn atanf(x: f32) -> f32 {
     let magnitude = x.to_bits() & 0x7fff_ffff;
     // 2^-12 (0x3980_0000) <= |x| < 7/16 (0x3ee0_0000), as fdlibm decides its ranges.
     if magnitude.wrapping_sub(0x3980_0000) < 0x3ee0_0000 - 0x3980_0000 {
-        let t = &super::atan_lanes::T;
-        let z = x * x;
-        let w = z * z;
-        let s1 = z * (t[0] + w * (t[2] + w * t[4]));
-        let s2 = w * (t[1] + w * t[3]);
-        x - x * (s1 + s2)
+        x - t_times_s(x)
     } else {
-        libm::atanf(x)
+        atanf_outside_small(x, magnitude)
     }
+}
+
+/// fdlibm's `t·S(t²)` with `S = s1 + s2` (its polynomial `aT` as written there: the odd
+/// and even terms apart, the same operations in the same order; the scalar form of
+/// `atan_lanes`' `t_times_s`).
+#[inline(always)]
+fn t_times_s(t: f32) -> f32 {
+    let c = &super::atan_lanes::T;
+    let z = t * t;
+    let w = z * z;
+    let s1 = z * (c[0] + w * (c[2] + w * c[4]));
+    let s2 = w * (c[1] + w * c[3]);
+    t * (s1 + s2)
+}
+
+/// [`atanf`] for `|x|` (whose bits, sign cleared, are `magnitude`) outside
+/// `2^-12 <= |x| < 7/16`: fdlibm's other ranges in its order, each step its operation.
+/// - `|x| < 2^-12` (zeros, subnormals): `x` (the cubic term is below half an ulp);
+/// - `|x| >= 2^26`: NaN as it came, else `±(atan(∞)_hi + 2^-120)`, the `f32` below π/2
+///   (the addition is fdlibm's way of raising the inexact flag; its sum rounds to `hi`);
+/// - otherwise `atan |x| = atan c + atan t`, `t` by the tangent's subtraction formula for
+///   `c` = 1/2, 1, 3/2 below 11/16, 19/16, 39/16 (fdlibm's forms `(2a - 1)/(2 + a)`,
+///   `(a - 1)/(a + 1)`, `(a - 1.5)/(1 + 1.5a)`), and `t = -1/a` above (`c = ∞`), summed as
+///   `hi - ((t·S(t²) - lo) - t)` with `atan c = hi + lo`, then the sign of `x`.
+#[inline]
+fn atanf_outside_small(x: f32, magnitude: u32) -> f32 {
+    use super::atan_lanes::{ATAN_HI, ATAN_LO};
+    let negative = x.is_sign_negative();
+    if magnitude < 0x3980_0000 {
+        return x;
+    }
+    if magnitude >= 0x4c80_0000 {
+        if x.is_nan() {
+            return x;
+        }
+        let z = ATAN_HI[3] + f32::from_bits(0x0380_0000);
+        return if negative { -z } else { z };
+    }
+    let a = f32::from_bits(magnitude);
+    let (t, range) = if magnitude < 0x3f98_0000 {
+        if magnitude < 0x3f30_0000 {
+            ((2.0 * a - 1.0) / (2.0 + a), 0)
+        } else {
+            ((a - 1.0) / (a + 1.0), 1)
+        }
+    } else if magnitude < 0x401c_0000 {
+        ((a - 1.5) / (1.0 + 1.5 * a), 2)
+    } else {
+        (-1.0 / a, 3)
+    };
+    let z = ATAN_HI[range] - ((t_times_s(t) - ATAN_LO[range]) - t);
+    if negative { -z } else { z }
 }
 
 /// `atan(t)` for `t` in `[0, 1]`: `t + t³ P(t²)` with the degree-8 polynomial `P`
@@ -308,9 +359,11 @@ mod tests {
         assert!(worst.0 < 1.3 * f32::EPSILON as f64, "{worst:?}");
     }
 
-    /// [`atanf`] is `libm::atanf`, bit for bit: every 61st `f32` over the inline range
-    /// `2^-12 <= |x| < 7/16` and a margin on either side, in both signs, its ends ±4
-    /// ulps, and special values (zeros, subnormals, the reduced ranges, ∞, NaN).
+    /// [`atanf`] is `libm::atanf`, bit for bit: every 61st `f32` over the small range
+    /// `2^-12 <= |x| < 7/16` and a margin on either side, every 997th over all finite
+    /// `f32` (each of fdlibm's ranges), in both signs; the ends of every range (2^-12,
+    /// 7/16, 11/16, 19/16, 39/16, 2^26, ∞) ±4 ulps, the points where the reduced
+    /// argument is 0, and special values (zeros, subnormals, ∞, NaN).
     #[test]
     fn inline_atanf_is_libm_atanf() {
         let same = |x: f32| {
@@ -327,13 +380,39 @@ mod tests {
                 same(-x);
             }
         });
-        for end in [0x3980_0000u32, 0x3ee0_0000] {
+        sweep(0, f32::MAX.to_bits(), 997, |first, last, step| {
+            for x in points(first, last, step) {
+                same(x);
+                same(-x);
+            }
+        });
+        for end in [
+            0x3980_0000u32,
+            0x3ee0_0000,
+            0x3f30_0000,
+            0x3f98_0000,
+            0x401c_0000,
+            0x4c80_0000,
+            0x7f80_0000,
+        ] {
             for b in end - 4..=end + 4 {
                 same(f32::from_bits(b));
                 same(-f32::from_bits(b));
             }
         }
-        for x in [0.0f32, -0.0, f32::from_bits(1), 1e-30, 0.5, 1.0, 2.0, 1e30] {
+        for x in [
+            0.0f32,
+            -0.0,
+            f32::from_bits(1),
+            f32::MIN_POSITIVE,
+            1e-30,
+            0.5,
+            1.0,
+            1.5,
+            2.0,
+            1e30,
+            f32::MAX,
+        ] {
             same(x);
             same(-x);
         }
@@ -341,8 +420,8 @@ mod tests {
         same(f32::NAN);
     }
 
-    /// [`atanf`] is `libm::atanf` for every `f32` bit pattern (its inline range and the
-    /// call outside it, so the range test too): 2^32 evaluations of both, ignored by
+    /// [`atanf`] is `libm::atanf` for every `f32` bit pattern (each of fdlibm's ranges,
+    /// inline, so the range tests too): 2^32 evaluations of both, ignored by
     /// `cargo test`; `.ci/run` runs it with the other exhaustive tests (its name starts
     /// with `exhaustive`).
     #[test]

@@ -27,7 +27,7 @@ use glam::Vec4;
 /// `atan(1/2)`, `atan(1)`, `atan(3/2)` and `atan(∞) = π/2`, rounded to `f32` (fdlibm's
 /// `atanhi`; bit patterns `0x3eed6338`, `0x3f490fda`, `0x3f7b985e`, `0x3fc90fda`).
 #[allow(clippy::excessive_precision)] // the f32 values as fdlibm prints them
-const ATAN_HI: [f32; 4] = [
+pub(super) const ATAN_HI: [f32; 4] = [
     4.636_476_039_9e-1,
     7.853_981_256_5e-1,
     9.827_936_887_7e-1,
@@ -37,7 +37,7 @@ const ATAN_HI: [f32; 4] = [
 /// The remainders `atan c - ATAN_HI` (fdlibm's `atanlo`; `0x31ac3769`, `0x33222168`,
 /// `0x33140fb4`, `0x33a22168`).
 #[allow(clippy::excessive_precision)]
-const ATAN_LO: [f32; 4] = [
+pub(super) const ATAN_LO: [f32; 4] = [
     5.012_158_244_0e-9,
     3.774_894_707_9e-8,
     3.447_321_717_0e-8,

@@ -642,9 +642,9 @@ struct FanLanes {
 /// triangle's one fan triangle and a heptagon's fifth, which `compute_triangle` and
 /// `compute_one` prepare in scalar arithmetic, keep the scalar call, and so do a quad's
 /// two: since `atan2_upper_half_plane` inlines the small range of `atanf`, two scalar
-/// calls take fewer instructions than the lanes (828.3 against 829.3 per prepare + 1)
-/// and less time (the lanes' division and branch lengthen the chain: 106 against 110 ns,
-/// C benchmark).
+/// calls take fewer instructions than the lanes (828.3 against 829.3 per prepare + 1,
+/// before `atanf` was inline over its whole range: 821.3 since) and less time (the
+/// lanes' division and branch lengthen the chain: 106 against 110 ns, C benchmark).
 #[inline(always)]
 const fn angles_in_lanes(triangles: usize) -> usize {
     if triangles <= 2 {
@@ -866,15 +866,16 @@ impl FanLanes {
         // Lanes 0, 1, 2: d01 (with v_c), d02 (with v_a), d12 (with v_b).
         let (ox, oy, oz) = (opposite(x), opposite(y), opposite(z));
         let candidates = half_length2 + ((ox * sx + oy * sy) + oz * sz);
-        let [l01, l02, l12, _] = length2.to_array();
-        let [d01, d02, d12, _] = candidates.to_array();
-        polygon.g1_plus_g2[0] = if l02 <= l01 && l02 <= l12 {
-            d02
-        } else if l12 <= l01 {
-            d12
-        } else {
-            d01
-        };
+        // `compute_one`'s choice of a candidate from the comparisons `l02 <= l01`,
+        // `l02 <= l12` and `l12 <= l01`, made in lanes 0, 1, 2 at once (no lane is NaN:
+        // the unit vectors are finite), then read from the candidates' lane that
+        // `SHORTEST_PAIR` names: the same value, where the scalar comparisons and their
+        // selections took 25 instructions (see the commit).
+        let (l01, l02, l12) = (length2.x, length2.y, length2.z);
+        let tests = Vec4::new(l02, l02, l12, l12)
+            .cmple(Vec4::new(l01, l12, l01, l01))
+            .bitmask();
+        polygon.g1_plus_g2[0] = candidates.to_array()[SHORTEST_PAIR[tests as usize & 0b111]];
         polygon.g2[0] = half_length2.x;
         polygon.outer_sum[0] = Vec3::new(sx.y, sy.y, sz.y);
         // `m = v_b·(v_b + v_c)` and `|s02|² - m²` in lane 1 (vertex 1 and the sum s02),
@@ -886,6 +887,12 @@ impl FanLanes {
         polygon.outer_across2[0] = across2.y;
     }
 }
+
+/// The lane of `denominator`'s candidate (0: with `s01`, 1: `s02`, 2: `s12`) from the
+/// bits of its comparisons, bit 0 `l02 <= l01`, bit 1 `l02 <= l12`, bit 2 `l12 <= l01`:
+/// `s02` where bits 0 and 1 are set, else `s12` where bit 2 is, else `s01` (tested against
+/// `denominator` for every combination: `shortest_pair_is_the_choice_of_denominator`).
+const SHORTEST_PAIR: [usize; 8] = [0, 0, 0, 1, 2, 2, 2, 1];
 
 /// Algorithm 5's solid angle of a fan triangle, `2 atan2(G0, G1 + G2)` for `G0 >= 0`
 /// (van Oosterom and Strackee).
@@ -1229,6 +1236,13 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         let mut selectable = 0usize;
         let mut signed_sum = 0.0f32;
         let mut total = 0.0f32;
+        // The solid angles of the triangles that the lanes left out, before the loop: a
+        // loop of its own for them and the running sums, each with a scalar `atanf`
+        // inline over its whole range, stayed a loop of two passes for a quad (828 -> 861
+        // instructions per prepare + 1, callgrind).
+        for k in angles_in_lanes(triangles)..triangles {
+            fan.angles[k] = triangle_angle(fan.signed_g0[k].abs(), self.g1_plus_g2[k]);
+        }
         #[allow(clippy::needless_range_loop)] // k indexes the fan's and the polygon's arrays
         for k in 0..triangles {
             let g0 = fan.signed_g0[k].abs();
@@ -1236,11 +1250,7 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
                 self.g0[k] = g0;
                 edge_on &= g0 == 0.0;
             }
-            let angle = if k < angles_in_lanes(triangles) {
-                fan.angles[k]
-            } else {
-                triangle_angle(g0, self.g1_plus_g2[k])
-            };
+            let angle = fan.angles[k];
             if angle > 0.0 {
                 selectable = k + 1;
             }

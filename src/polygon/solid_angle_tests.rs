@@ -1315,6 +1315,11 @@ fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
                 bits(lanes_polygon.outer_sum[k]),
                 "{what}"
             );
+            // The sample's terms of the fan triangle, `m` and `|v0 + v2|² - m²`.
+            let outer = |p: &SolidAnglePolygon, k: usize| {
+                [p.outer_along[k], p.outer_across2[k]].map(f32::to_bits)
+            };
+            assert_eq!(outer(&one_polygon, k), outer(&lanes_polygon, k), "{what}");
             assert_eq!(one.maybe_flat, lanes.maybe_flat & (1 << k), "{what}");
             assert_eq!(one.wide_pairs, lanes.wide_pairs & (1 << k), "{what}");
             flat += (one.maybe_flat != 0) as u32;
@@ -1343,6 +1348,11 @@ fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
                 assert_eq!(
                     bits(triangle_polygon.outer_sum[0]),
                     bits(one_polygon.outer_sum[0]),
+                    "{what}"
+                );
+                assert_eq!(
+                    outer(&triangle_polygon, 0),
+                    outer(&one_polygon, 0),
                     "{what}"
                 );
                 assert_eq!(triangle.maybe_flat, one.maybe_flat, "{what}");
@@ -1644,4 +1654,30 @@ fn the_fan_angles_in_lanes_are_the_scalar_ones() {
         careful > 100 && unselectable > 50,
         "{careful} {unselectable}"
     );
+}
+
+/// `SHORTEST_PAIR`, the lane that `compute_triangle` reads its `G1 + G2` from, names
+/// `denominator`'s choice for every order of the three squared pair sums, ties included:
+/// each candidate made distinct by its own dot product.
+#[test]
+fn shortest_pair_is_the_choice_of_denominator() {
+    let v = Vec3::X;
+    let sums = [Vec3::X * 1000.0, Vec3::X * 2000.0, Vec3::X * 3000.0];
+    for l01 in [1.0f32, 2.0, 3.0] {
+        for l02 in [1.0f32, 2.0, 3.0] {
+            for l12 in [1.0f32, 2.0, 3.0] {
+                let lengths = [l01, l02, l12];
+                // Lanes 0, 1, 2 as `compute_triangle` orders them: with s01, s02, s12.
+                let candidates = [0, 1, 2].map(|i| 0.5 * lengths[i] + v.dot(sums[i]));
+                let tests = usize::from(l02 <= l01)
+                    | usize::from(l02 <= l12) << 1
+                    | usize::from(l12 <= l01) << 2;
+                assert_eq!(
+                    candidates[SHORTEST_PAIR[tests]],
+                    denominator(v, v, v, sums, lengths),
+                    "{lengths:?}"
+                );
+            }
+        }
+    }
 }
