@@ -293,7 +293,7 @@ typedef struct SpheraSphereLightShading {
  * `g` (density `J(ω) / Ω(g(C) ∩ g(H))`; the fallback uniformly in `C ∩ H`), so that no sample is
  * wasted below the horizon. */
 typedef struct SpheraSphereLightSampler {
-  uint32_t opaque[69]; /* 276 bytes, private: see the preamble */
+  uint32_t opaque[71]; /* 284 bytes, private: see the preamble */
 } SpheraSphereLightSampler;
 
 /* The sums of a cluster of VPLs (tabled in the docs of `sphera::vsgl::accumulator`), relative to

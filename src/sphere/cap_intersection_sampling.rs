@@ -160,9 +160,15 @@ impl CapIntersection {
         let (sin_half_d, cos_half_d) = (half(t_d), half(h_d));
         let (sin_half_b, cos_half_b) = (half(other.one_minus_cos), half(other.one_plus_cos));
         let t_a = radial.one_minus_cos;
+        // The clamps to `t_A` below and `s_high.max(s_low)` as compares and selects
+        // (`min_ordered`, `max_ordered`; `f32::min`'s NaN test and blend were 6 instructions
+        // each): the caps are valid, so no operand is NaN (the half sines and cosines are
+        // square roots of sides in `[0, 2]`), and `2x²` is +0 or positive, so that the zeros
+        // that meet are +0 but where `t_A = −0`, whose intersection is empty (`new` gives
+        // `None` there whatever the bounds).
         let below = sin_half_d * cos_half_b - cos_half_d * sin_half_b;
         let s_low = if below > 0.0 {
-            (2.0 * below * below).min(t_a)
+            min_ordered(2.0 * below * below, t_a)
         } else {
             0.0
         };
@@ -170,7 +176,7 @@ impl CapIntersection {
         let s_high = if cos_half_d * cos_half_b - sin_half_d * sin_half_b <= 0.0 {
             t_a
         } else {
-            (2.0 * above * above).min(t_a)
+            min_ordered(2.0 * above * above, t_a)
         };
         // `cap(a, s)` lies inside B while θ + d ≤ θ_B: up to `1 − cos(θ_B − d)` =
         // `2 sin²((θ_B − d)/2)`, the half sine being `−below`. Its rounding (the half
@@ -178,7 +184,7 @@ impl CapIntersection {
         // short of it, the lens formula surely says "inside" up to `s_nested`.
         let inside = -below - 4e-6;
         let nested = if inside > 0.0 {
-            (2.0 * inside * inside).min(t_a)
+            min_ordered(2.0 * inside * inside, t_a)
         } else {
             0.0
         };
@@ -205,7 +211,7 @@ impl CapIntersection {
             t_d,
             lens_partner,
             s_low,
-            s_high: s_high.max(s_low),
+            s_high: max_ordered(s_high, s_low),
             nested,
             reserved: [0.0; 2],
         };

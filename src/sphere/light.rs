@@ -39,8 +39,8 @@ use super::cap::Cap;
 use super::cap_intersection::cap_intersection_solid_angle;
 use super::cap_intersection_sampling::{CapIntersection, MIN_NORMALISER};
 use super::pivot::{
-    jacobian_of_unit, pivot_cap, pivot_cap_fast, pivot_cap_fast_by_ref, pivot_cap_fast_of_valid,
-    transform,
+    jacobian_numerator, jacobian_of_numerator, pivot_cap, pivot_cap_fast, pivot_cap_fast_by_ref,
+    pivot_cap_fast_of_valid, transform_numerator, transform_of_numerator,
 };
 use super::shading_fast::pivoted_intersection_fast;
 use super::sptd::{Sptd, SptdBase, SptdInCap};
@@ -277,6 +277,15 @@ fn pivoted_intersection_careful(light: &Cap, pivot: &Vec3, clip: &Cap) -> f32 {
     cap_intersection_solid_angle(&image, clip)
 }
 
+/// `[transform_numerator(pivot), jacobian_numerator(pivot)]`, the numerators of
+/// [`transform`](super::pivot::transform) and of
+/// [`jacobian_of_unit`](super::pivot::jacobian_of_unit) that [`SphereLightSampler`]
+/// prepares for its pivot (`[1, 1]` for the zero pivot, exactly).
+#[inline(always)]
+fn pivot_numerators(pivot: Vec3) -> [f32; 2] {
+    [transform_numerator(pivot), jacobian_numerator(pivot)]
+}
+
 /// Light sampling of a sphere light by the fitted SPTD restricted to its cap (Section 6.1),
 /// with the paper's fallback to uniform cap sampling when `Ω(g(C)) < 10⁻³`; combine it with
 /// [`crate::brdf::GgxBrdf::sample`] by MIS. Its pdf is per steradian and 0 outside the cap.
@@ -297,6 +306,11 @@ pub struct SphereLightSampler {
     /// For a cap that crosses the horizon and the SPTD: the pivot, made valid
     /// (`valid_pivot`, as `pivot_transform` and `pivot_jacobian` make it; zero otherwise).
     pivot: Vec3,
+    /// The numerators of the transformation and of the Jacobian for `pivot`,
+    /// `(1 − ρ)(1 + ρ)` and `1 − |r_p|²` ([`pivot_numerators`]): computed once in `prepare`
+    /// rather than per sample (the same bits; a length and its square root per clipped
+    /// sample).
+    pivot_numerators: [f32; 2],
     /// 1 when the SPTD is used, 0 for uniform sampling (any other value, from a
     /// corrupted struct, counts as 1). A `u32`, not a `bool`: a `bool` left three
     /// padding bytes that a C caller copying the struct reads uninitialised (issue 16, 7;
@@ -315,6 +329,7 @@ impl SphereLightSampler {
         clipped_region: CapIntersection::EMPTY,
         light: Cap::EMPTY,
         pivot: Vec3::ZERO,
+        pivot_numerators: [1.0; 2],
         uses_sptd: 0,
         clipped: 0,
     };
@@ -469,6 +484,7 @@ impl SphereLightSampler {
         self.clipped_region = CapIntersection::EMPTY;
         self.light = Cap::EMPTY;
         self.pivot = Vec3::ZERO;
+        self.pivot_numerators = [1.0; 2];
         self.uses_sptd = uses_sptd as u32;
         self.clipped = 0;
         true
@@ -517,12 +533,18 @@ impl SphereLightSampler {
         self.light = *cap;
         // Made valid once here rather than per sample (the same bits: the transformation
         // and the Jacobian made the same pivot valid at every call).
-        self.pivot = if uses_sptd && VALID_PIVOT {
+        let pivot = if uses_sptd && VALID_PIVOT {
             pivot
         } else if uses_sptd {
             super::pivot::valid_pivot(pivot)
         } else {
             Vec3::ZERO
+        };
+        self.pivot = pivot;
+        self.pivot_numerators = if uses_sptd {
+            pivot_numerators(pivot)
+        } else {
+            [1.0; 2]
         };
         self.uses_sptd = uses_sptd as u32;
         self.clipped = 1;
@@ -562,7 +584,7 @@ impl SphereLightSampler {
     }
 
     /// [`clipped_pdf`](Self::clipped_pdf) of a unit `dir`, with the pivot made valid in
-    /// `prepare` (it was made valid at every call).
+    /// `prepare` (it was made valid at every call) and the Jacobian's numerator prepared.
     #[inline(always)]
     fn clipped_pdf_of_unit(&self, dir: Vec3) -> f32 {
         if !(self.light.contains_unit(dir) && dir.z >= 0.0) {
@@ -572,10 +594,10 @@ impl SphereLightSampler {
         if !(area > 0.0) {
             return 0.0;
         }
-        // A struct corrupted through C may hold any pivot: the Jacobian is then finite,
-        // infinite or NaN, and the last two give 0 below.
+        // A struct corrupted through C may hold any pivot and numerator: the Jacobian is
+        // then finite, infinite or NaN, and the last two give 0 below.
         let jacobian = if self.uses_sptd() {
-            jacobian_of_unit(dir, self.pivot)
+            jacobian_of_numerator(dir, self.pivot, self.pivot_numerators[1])
         } else {
             1.0
         };
@@ -630,11 +652,12 @@ impl SphereLightSampler {
     /// The direction of the clipped sampler for a direction `base` of its region: `g(ω)`
     /// for the SPTD, `ω` for the uniform fallback. `base` is unit (normalised by the
     /// region's sampler) and the pivot valid (prepared): `transform` is `pivot_transform`
-    /// without their checks, and its result is unit again.
+    /// without their checks (here with its numerator prepared, `transform_of_numerator`),
+    /// and its result is unit again.
     #[inline(always)]
     fn clipped_image(&self, base: Vec3) -> Vec3 {
         if self.uses_sptd() {
-            transform(base, self.pivot)
+            transform_of_numerator(base, self.pivot, self.pivot_numerators[0])
         } else {
             base
         }

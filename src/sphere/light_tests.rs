@@ -11,6 +11,7 @@
 use super::*;
 use crate::brdf::GgxBrdf;
 use crate::brdf::pivot_table::PIVOT_TABLE;
+use crate::sphere::pivot::{jacobian_of_unit, transform};
 use crate::testing::*;
 use glam::Quat;
 
@@ -466,6 +467,7 @@ fn the_sphere_light_sampler_has_no_padding() {
             + core::mem::size_of_val(&sampler.clipped_region)
             + core::mem::size_of_val(&sampler.light)
             + core::mem::size_of_val(&sampler.pivot)
+            + core::mem::size_of_val(&sampler.pivot_numerators)
             + core::mem::size_of_val(&sampler.uses_sptd)
             + core::mem::size_of_val(&sampler.clipped)
     );
@@ -1262,4 +1264,65 @@ fn the_clipped_sample_tests_its_image_only() {
     println!("{draws} draws: {outside} preimages outside the region, {kept} of them kept");
     // Both ways are taken (the tiny lights' preimages cross the region's boundary).
     assert!(kept > 0 && kept < outside, "{kept} of {outside} of {draws}");
+}
+
+/// The prepared numerators of the transformation and the Jacobian are those of the
+/// prepared pivot, bit for bit (`pivot_numerators`; `[1, 1]`, written as a constant for
+/// the uniform fallback and the caps above the horizon, is the zero pivot's), so that
+/// `transform_of_numerator` and `jacobian_of_numerator` give `transform`'s and
+/// `jacobian_of_unit`'s bits per sample; for lights above, across and below the horizon,
+/// fitted and arbitrary pivots (tiny caps take the fallback).
+#[test]
+fn the_prepared_pivot_numerators_are_the_pivot_s() {
+    assert_eq!(
+        pivot_numerators(Vec3::ZERO).map(f32::to_bits),
+        [1.0f32; 2].map(f32::to_bits)
+    );
+    assert_eq!(
+        SphereLightSampler::EMPTY.pivot_numerators,
+        pivot_numerators(SphereLightSampler::EMPTY.pivot)
+    );
+    let mut rng = Rng::new(4318);
+    let (mut clipped, mut fallback) = (0, 0);
+    for i in 0..20_000 {
+        let center = rng.unit_vector_f32() * (1.0 + 3.0 * rng.uniform_f32());
+        let radius = if i % 4 == 3 {
+            1e-3 * rng.uniform_f32()
+        } else {
+            center.length() * (0.06 + 0.38 * rng.uniform_f32()).sqrt()
+        };
+        let cap = Cap::from_sphere(center, radius);
+        let pivot = if i % 2 == 0 {
+            let wo = Vec3::new(
+                rng.uniform_f32() - 0.5,
+                rng.uniform_f32() - 0.5,
+                0.1 + rng.uniform_f32(),
+            );
+            GgxPivot::from_view(wo, rng.uniform_f32()).unwrap().pivot
+        } else {
+            rng.unit_vector_f32() * (0.99997 * rng.uniform_f32())
+        };
+        let Some(sampler) = SphereLightSampler::with_pivot(&cap, pivot) else {
+            continue;
+        };
+        assert_eq!(
+            sampler.pivot_numerators.map(f32::to_bits),
+            pivot_numerators(sampler.pivot).map(f32::to_bits),
+            "{cap:?} {pivot:?}"
+        );
+        clipped += sampler.is_clipped() as u32;
+        fallback += (sampler.is_clipped() && !sampler.uses_sptd()) as u32;
+        if sampler.is_clipped() && sampler.uses_sptd() {
+            let dir = rng.unit_vector_f32();
+            assert_eq!(
+                transform_of_numerator(dir, sampler.pivot, sampler.pivot_numerators[0]).to_array(),
+                transform(dir, sampler.pivot).to_array()
+            );
+            assert_eq!(
+                jacobian_of_numerator(dir, sampler.pivot, sampler.pivot_numerators[1]).to_bits(),
+                jacobian_of_unit(dir, sampler.pivot).to_bits()
+            );
+        }
+    }
+    assert!(clipped > 1000 && fallback > 10, "{clipped} {fallback}");
 }

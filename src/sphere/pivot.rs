@@ -94,9 +94,24 @@ pub(crate) fn is_valid_as_it_stands(pivot: Vec3) -> bool {
 /// rounding of a unit vector, is 1.2e-5 there).
 #[inline(always)]
 pub(crate) fn transform(dir: Vec3, pivot: Vec3) -> Vec3 {
-    let e = dir - pivot;
+    transform_of_numerator(dir, pivot, transform_numerator(pivot))
+}
+
+/// `(1 − ρ)(1 + ρ) = 1 − |r_p|²` (`ρ = |r_p|`) as [`transform`] computes it (without the
+/// cancellation of `1 − ρ²` near `ρ = 1`).
+#[inline(always)]
+pub(crate) fn transform_numerator(pivot: Vec3) -> f32 {
     let rho = crate::math::length(pivot);
-    let scale = (1.0 - rho) * (1.0 + rho) / e.length_squared();
+    (1.0 - rho) * (1.0 + rho)
+}
+
+/// [`transform`] with its numerator `k = transform_numerator(pivot)` given: for a caller
+/// that holds the pivot for many directions (the clipped sphere light sampler computes it
+/// in its preparation, not per sample). The same bits.
+#[inline(always)]
+pub(crate) fn transform_of_numerator(dir: Vec3, pivot: Vec3, k: f32) -> Vec3 {
+    let e = dir - pivot;
+    let scale = k / e.length_squared();
     // (`normalize_or`'s bits by a predicted branch: the samplers' chain does not wait for
     // the test of the reciprocal.)
     crate::math::normalize_or_predicted(pivot - e * scale, -dir)
@@ -127,7 +142,21 @@ pub fn pivot_jacobian(dir: Vec3, pivot: Vec3) -> f32 {
 /// whose prepared pivot is valid): the same bits.
 #[inline(always)]
 pub(crate) fn jacobian_of_unit(dir: Vec3, pivot: Vec3) -> f32 {
-    let ratio = (1.0 - pivot.length_squared()) / (dir - pivot).length_squared();
+    jacobian_of_numerator(dir, pivot, jacobian_numerator(pivot))
+}
+
+/// `1 − |r_p|²`, the numerator of [`jacobian_of_unit`]'s ratio, as it computes it (the
+/// same value as [`pivot_upper_hemisphere`]'s `k`, which the compiler shares).
+#[inline(always)]
+pub(crate) fn jacobian_numerator(pivot: Vec3) -> f32 {
+    1.0 - pivot.length_squared()
+}
+
+/// [`jacobian_of_unit`] with its numerator `n = jacobian_numerator(pivot)` given (see
+/// [`transform_of_numerator`]). The same bits.
+#[inline(always)]
+pub(crate) fn jacobian_of_numerator(dir: Vec3, pivot: Vec3, n: f32) -> f32 {
+    let ratio = n / (dir - pivot).length_squared();
     ratio * ratio
 }
 
