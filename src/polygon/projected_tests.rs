@@ -1991,3 +1991,78 @@ fn certain_azimuth_order_matches_the_network() {
     // by their flags, which the cheap path never claims to know.
     assert_ne!(careful(&same_azimuth, 0b01), careful(&same_azimuth, 0b10));
 }
+
+/// The C entry point's central path (issue 15): `sample_central_common` gives
+/// `sample`'s sample bit for bit for every prepared central value (random and edge
+/// `u`, NaN and values outside `[0, 1)` included) and `None` for every other value
+/// (decentral, small-polygon, empty, and corrupted flags), and
+/// `sphera_projected_polygon_sample`, which takes it or jumps to `sample`, gives
+/// `sample`'s bits for all of them.
+#[test]
+fn central_common_path_samples_as_sample() {
+    let bits = |s: Sample| [s.dir.x, s.dir.y, s.dir.z, s.pdf].map(f32::to_bits);
+    let c_bits = |s: crate::ffi::SpheraSample| [s.dir.x, s.dir.y, s.dir.z, s.pdf].map(f32::to_bits);
+    let edges = [
+        0.0,
+        1e-30,
+        0.5,
+        crate::sample::ONE_MINUS_ULP,
+        1.0,
+        2.0,
+        -1.0,
+        -0.0,
+        f32::NAN,
+    ];
+    let mut rng = Rng::new(43);
+    let mut cases = [0u32; 2];
+    let mut check = |p: &ProjectedPolygon, rng: &mut Rng| {
+        let central = p.central != 0 && p.is_small == 0 && p.selectable_sectors != 0;
+        cases[central as usize] += 1;
+        let draws = (0..20)
+            .map(|_| [rng.uniform_f32(), rng.uniform_f32()])
+            .chain(edges.iter().flat_map(|&a| edges.map(|b| [a, b])));
+        for u in draws {
+            let expected = p.sample(u);
+            let common = p.sample_central_common(u);
+            assert_eq!(common.is_some(), central, "{u:?}");
+            if let Some(s) = common {
+                assert_eq!(bits(s), bits(expected), "{u:?}");
+            }
+            // SAFETY: `p` is a valid value.
+            let c = unsafe { crate::ffi::sphera_projected_polygon_sample(p, u[0], u[1]) };
+            assert_eq!(c_bits(c), bits(expected), "{u:?}");
+        }
+    };
+    for trial in 0..800 {
+        // Mixed polygons, and a quarter convex ones around the zenith (on a circle in a
+        // plane z = h, either winding: the central case).
+        let v = if trial % 4 == 3 {
+            let (n, h) = (3 + trial as usize % 6, 0.05 + 2.0 * rng.uniform_f32());
+            let sign = if trial % 8 == 3 { 1.0 } else { -1.0 };
+            (0..n)
+                .map(|k| {
+                    let a = sign * (k as f32 + 0.5 * rng.uniform_f32()) * core::f32::consts::TAU;
+                    let a = a / n as f32;
+                    Vec3::new(a.cos(), a.sin(), h)
+                })
+                .collect()
+        } else {
+            mixed_test_polygon(&mut rng, trial)
+        };
+        let mut p = nan_filled(ProjectedPolygon::EMPTY);
+        p.prepare(&v);
+        check(&p, &mut rng);
+        // Corrupted flags: central with the small sampler's flag, or with no sector.
+        for (central, is_small, selectable) in [(1, 1, p.selectable_sectors), (1, 0, 0)] {
+            let mut q = p;
+            (q.central, q.is_small, q.selectable_sectors) = (central, is_small, selectable);
+            check(&q, &mut rng);
+        }
+    }
+    check(&ProjectedPolygon::EMPTY, &mut rng);
+    // SAFETY: null is the documented empty argument.
+    let null = unsafe { crate::ffi::sphera_projected_polygon_sample(core::ptr::null(), 0.5, 0.5) };
+    assert_eq!(c_bits(null), bits(Sample::NONE));
+    // Both kinds of value were seen, central ones from the polygons around the zenith.
+    assert!(cases.iter().all(|&c| c > 100), "{cases:?}");
+}
