@@ -62,19 +62,11 @@ pub unsafe extern "C" fn sphera_projected_polygon_sample(
     u0: f32,
     u1: f32,
 ) -> SpheraSample {
-    // The central case inline, where it is a leaf without a stack frame, and every
-    // other case (a null or empty value, the small and the decentral case) by a jump to
-    // `sample_general` (issue 15: inline beside the decentral iteration, the central
-    // sample paid that path's prologue and epilogue, five pushes, five pops and the
-    // frame: 14 of its 179 instructions). The same bits as `sample`, which takes the
-    // same central path. (Not in `sample_fast`: its decentral sample, 336 instructions
-    // per hexagon, would pay 4 for the test and the jump.)
     // SAFETY: the caller guarantees that a non-null `polygon` points to a prepared value.
-    let central = unsafe { polygon.as_ref() }.and_then(|p| p.sample_central_common([u0, u1]));
-    match central {
-        Some(sample) => sample.into(),
-        // SAFETY: as above.
-        None => unsafe { sample_general(polygon, u0, u1) },
+    unsafe {
+        with_ref(polygon, Sample::NONE.into(), |polygon| {
+            polygon.sample([u0, u1]).into()
+        })
     }
 }
 
@@ -100,25 +92,6 @@ pub unsafe extern "C" fn sphera_projected_polygon_sample_fast(
             polygon.sample_fast([u0, u1]).into()
         })
     }
-}
-
-/// `sample` of the value at `polygon` (the empty sample for null), out of line with the
-/// entry point's signature, so that the jump to it passes the arguments and the result
-/// in their registers. It takes the pointer, as the entry point did: given a reference
-/// (or as one function generic over both variants), the decentral sample spilled about
-/// 30 more values to the stack per hexagon sample (788 instructions instead of 758).
-///
-/// # Safety
-///
-/// `polygon` must be null or point to a prepared value.
-#[inline(never)]
-unsafe extern "C" fn sample_general(
-    polygon: *const ProjectedPolygon,
-    u0: f32,
-    u1: f32,
-) -> SpheraSample {
-    // SAFETY: forwarded from the caller.
-    unsafe { with_ref(polygon, Sample::NONE.into(), |p| p.sample([u0, u1]).into()) }
 }
 
 /// The density per steradian with which `sphera_projected_polygon_sample` produces the

@@ -1421,12 +1421,17 @@ impl ProjectedPolygon {
             }
             return Sample::new_or_none(s.dir, self.small_pdf_within(s.dir, SMALL_ROUNDING));
         }
-        let (k, local) = self.select_sector(u0);
+        let target = u0 * self.projected_solid_angle;
+        // The sector: the number of sectors (among all but the last selectable) that start
+        // at or before the target. `<=` skips sectors of zero area.
+        let k = select_piece(&self.sector_start, target);
+        let sector_area = self.sector_area[k];
+        let local = (target - self.sector_start[k]).max(0.0).min(sector_area);
         let point_and_z2 = if self.central != 0 {
             Some(self.central_sectors().sample(k, local, u1))
         } else {
             let sector = &self.sectors()[k];
-            let fraction = local / self.sector_area[k];
+            let fraction = local / sector_area;
             // Both counts clamped: `extra_iterations` is a 0/1 flag, and a corrupted
             // prepared value (or a huge argument) must not loop without bound (issue 16,
             // 6). Convergence is cubic (supplement A.5, Proposition 6): more than
@@ -1446,51 +1451,6 @@ impl ProjectedPolygon {
         let Some((point, z2)) = point_and_z2 else {
             return Sample::NONE;
         };
-        self.sample_at(point, z2)
-    }
-
-    /// The sample of the central case (`central` 1, `is_small` 0) for the C entry
-    /// points' common path ([`CommonAndRareSamples`](crate::ffi)), `None` for the other
-    /// cases and an empty value: [`sample`](Self::sample)'s bits where it gives one.
-    /// Inline there, the central sample paid the prologue and epilogue that the
-    /// decentral iteration's registers and stack need (five pushes, five pops and the
-    /// frame: 14 of its 179 instructions, issue 15); without the decentral path beside
-    /// it, it needs no frame.
-    #[inline(always)]
-    pub(crate) fn sample_central_common(&self, u: [f32; 2]) -> Option<Sample> {
-        if self.central == 0 || self.is_small != 0 || self.selectable_sectors == 0 {
-            return None;
-        }
-        Some(self.sample_central(clamp_random(u[0]), clamp_random(u[1])))
-    }
-
-    /// The sector that the clamped random number `u0` selects and the area from the
-    /// sector's start to the target `u0 Φ`, within the sector's area.
-    #[inline(always)]
-    fn select_sector(&self, u0: f32) -> (usize, f32) {
-        let target = u0 * self.projected_solid_angle;
-        // The sector: the number of sectors (among all but the last selectable) that start
-        // at or before the target. `<=` skips sectors of zero area.
-        let k = select_piece(&self.sector_start, target);
-        let local = (target - self.sector_start[k])
-            .max(0.0)
-            .min(self.sector_area[k]);
-        (k, local)
-    }
-
-    /// The central case of [`sample_impl`](Self::sample_impl) from the clamped random
-    /// numbers (`central` 1, `is_small` 0, a selectable sector).
-    #[inline(always)]
-    fn sample_central(&self, u0: f32, u1: f32) -> Sample {
-        let (k, local) = self.select_sector(u0);
-        let (point, z2) = self.central_sectors().sample(k, local, u1);
-        self.sample_at(point, z2)
-    }
-
-    /// The sample at the point `point` of the unit disk with `ω_z² = z2`: the direction
-    /// above it and its pdf (both sectors' cases).
-    #[inline(always)]
-    fn sample_at(&self, point: [f32; 2], z2: f32) -> Sample {
         let dir = Vec3::new(point[0], point[1], crate::math::sqrtf(z2.max(0.0)));
         // In a sector of nearly π (a large polygon seen nearly edge-on, crossing the
         // horizon), |w|² from the sector's coordinates cancels, and the point and its z
