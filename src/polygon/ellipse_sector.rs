@@ -1147,8 +1147,8 @@ impl EllipseSector {
         let lanes = |a: f32, b: f32| Vec4::new(a, b, a, b);
         let pair = |a: Vec2, b: Vec2| [lanes(a[0], b[0]), lanes(a[1], b[1])];
         // The widths at the quarter (x, z) and at the end (y, w).
-        let (inner, outer) = (first.inner_quarter_dots, last.inner_quarter_dots);
-        let inner = Vec4::new(inner[1], inner[0], outer[3], outer[4]);
+        let (first_inner, last_inner) = (first.inner_quarter_dots, last.inner_quarter_dots);
+        let inner = Vec4::new(first_inner[1], first_inner[0], last_inner[3], last_inner[4]);
         let (first_outer, last_outer) = (first.outer_quarter_dots, last.outer_quarter_dots);
         let outer = Vec4::new(first_outer[1], first_outer[0], last_outer[3], last_outer[4]);
         let widths = end_widths(inner, outer);
