@@ -150,13 +150,14 @@ pub fn cross_precise4(a: [Vec4; 3], b: [Vec4; 3]) -> [Vec4; 3] {
     ]
 }
 
-/// [`difference_of_products_unless_cancelling`](super::difference_of_products_unless_cancelling)
-/// lane by lane: the plain difference in the lanes whose products cannot cancel, the
-/// error-free form in the others (computed for all four lanes only when one of the lanes
-/// in `needed` needs it; the other lanes may hold anything, NaN included).
+/// [`difference_of_products_unless_half_cancels`](super::difference_of_products_unless_half_cancels)
+/// lane by lane: the plain difference in the lanes where at most half of the products'
+/// magnitude cancels, the error-free form in the others (computed for all four lanes only
+/// when one of the lanes in `needed` needs it; the other lanes may hold anything, NaN
+/// included).
 #[inline(always)]
 #[must_use]
-pub fn difference_of_products_unless_cancelling4(
+pub fn difference_of_products_unless_half_cancels4(
     a: Vec4,
     b: Vec4,
     c: Vec4,
@@ -165,7 +166,8 @@ pub fn difference_of_products_unless_cancelling4(
 ) -> Vec4 {
     let (p1, p2) = (a * b, c * d);
     let plain = p1 - p2;
-    let plain_is_accurate: BVec4A = (p1.abs() + p2.abs()).cmple(plain.abs())
+    // `plain_difference_is_within_half` in lanes (`2 |plain|` exact in each).
+    let plain_is_accurate: BVec4A = (p1.abs() + p2.abs()).cmple(Vec4::splat(2.0) * plain.abs())
         & plain
             .abs()
             .cmpge(Vec4::splat(super::products::MIN_PLAIN_DIFFERENCE));
@@ -252,7 +254,7 @@ pub(crate) fn cross3_lanes(a: Vec4, b: Vec4) -> Vec4 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::{difference_of_products, difference_of_products_unless_cancelling};
+    use crate::math::{difference_of_products, difference_of_products_unless_half_cancels};
     use crate::testing::Rng;
 
     /// `cross3_lanes` is `Vec3::cross` bit for bit, on cancelling and non-cancelling
@@ -325,12 +327,12 @@ mod tests {
             d.x = a.x * b.x / c.x * (1.0 + 1e-6);
             d.z = a.z * b.z / c.z;
             let (plain, careful) = (
-                difference_of_products_unless_cancelling4(a, b, c, d, BVec4A::splat(true)),
+                difference_of_products_unless_half_cancels4(a, b, c, d, BVec4A::splat(true)),
                 difference_of_products4(a, b, c, d),
             );
             for lane in 0..4 {
                 let (a, b, c, d) = (a[lane], b[lane], c[lane], d[lane]);
-                let scalar = difference_of_products_unless_cancelling(a, b, c, d);
+                let scalar = difference_of_products_unless_half_cancels(a, b, c, d);
                 assert_eq!(plain[lane].to_bits(), scalar.to_bits(), "{a} {b} {c} {d}");
                 let scalar = difference_of_products(a, b, c, d);
                 assert_eq!(careful[lane].to_bits(), scalar.to_bits(), "{a} {b} {c} {d}");

@@ -26,7 +26,7 @@ pub use bits::{
 pub use frame::{Frame, orthonormal_basis};
 pub(crate) use lanes::{
     LANES, atan2_upper_half_plane4, atan2_upper_half_plane4_small_first, cross_precise4,
-    cross3_lanes, difference_of_products_unless_cancelling4, difference_of_products4,
+    cross3_lanes, difference_of_products_unless_half_cancels4, difference_of_products4,
     finite_or_zero4, lane_starts, load4, max4, min4, sqrt4, store_record_words4, store4,
 };
 pub(crate) use length::{
@@ -36,7 +36,7 @@ pub(crate) use products::plain_difference_is_certain;
 pub use products::{
     HAS_HARDWARE_FMA, cross_precise, cross_with_residual, determinant_is_exactly_zero,
     difference_of_products, difference_of_products_sign, difference_of_products_unless_cancelling,
-    dot_precise, fma, two_product, two_sum,
+    difference_of_products_unless_half_cancels, dot_precise, fma, two_product, two_sum,
 };
 pub(crate) use roots::safeguarded_newton_step;
 pub use sin_cos::sin_cos_0_to_pi;

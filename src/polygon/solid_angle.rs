@@ -24,7 +24,8 @@
 use crate::Sample;
 use crate::math::{
     LANES, atan2_upper_half_plane, determinant_is_exactly_zero,
-    difference_of_products_unless_cancelling, dot_precise, store4,
+    difference_of_products_unless_cancelling, difference_of_products_unless_half_cancels,
+    dot_precise, store4,
 };
 use crate::sample::{clamp_inverted, clamp_random, select_piece};
 use crate::{MAX_POLYGON_VERTICES, Vec3};
@@ -619,7 +620,8 @@ fn splat3(v: Vec3) -> [Vec4; 3] {
 /// determinants and the flags of the triangles that need a careful form stay here.
 #[derive(Default)]
 struct FanLanes {
-    /// `det(v0, v1, v2)` with its sign (as `Householder::determinant`, over the product
+    /// `det(v0, v1, v2)` with its sign (as `Householder::determinant`, but by
+    /// [`difference_of_products_unless_half_cancels`], over the product
     /// of the two vertices' lengths).
     signed_g0: [f32; 2 * LANES],
     /// Bit `k`: triangle `k`'s determinant is within the rounding noise of zero, so the
@@ -681,7 +683,7 @@ impl FanLanes {
         // G0 = det(v0, v1, v2) = det(p_b, p_a, p_c) / (|p_a| |p_b| |p_c|).
         let triangle = Vec4::new(0.0, 1.0, 2.0, 3.0) + Vec4::splat(first as f32);
         let needed = triangle.cmplt(Vec4::splat(triangles as f32));
-        let det = crate::math::difference_of_products_unless_cancelling4(
+        let det = crate::math::difference_of_products_unless_half_cancels4(
             rb[0], rc[1], rb[1], rc[0], needed,
         ) * Vec4::splat(reflection.sigma);
         let noise = Vec4::splat(super::FAN_DETERMINANT_NOISE)
@@ -774,8 +776,8 @@ impl FanLanes {
         let slot = |field: fn(&SlotGroup) -> Vec4, i: usize| lanes.slot(field, i);
         let (rb0, rb1) = (slot(|g| g.reflected[0], b), slot(|g| g.reflected[1], b));
         let (rc0, rc1) = (slot(|g| g.reflected[0], c), slot(|g| g.reflected[1], c));
-        // As the lanes: `difference_of_products_unless_cancelling4` is this lane by lane.
-        let det = difference_of_products_unless_cancelling(rb0, rc1, rb1, rc0) * reflection.sigma;
+        // As the lanes: `difference_of_products_unless_half_cancels4` is this lane by lane.
+        let det = difference_of_products_unless_half_cancels(rb0, rc1, rb1, rc0) * reflection.sigma;
         let noise = super::FAN_DETERMINANT_NOISE * slot(|g| g.extent, b) * slot(|g| g.extent, c);
         if det.abs() <= noise {
             self.maybe_flat |= 1 << k;
@@ -845,7 +847,7 @@ impl FanLanes {
         let slot = |field: fn(&SlotGroup) -> Vec4, i: usize| lanes.slot(field, i);
         let (rb0, rb1) = (slot(|g| g.reflected[0], 1), slot(|g| g.reflected[1], 1));
         let (rc0, rc1) = (slot(|g| g.reflected[0], 2), slot(|g| g.reflected[1], 2));
-        let det = difference_of_products_unless_cancelling(rb0, rc1, rb1, rc0) * reflection.sigma;
+        let det = difference_of_products_unless_half_cancels(rb0, rc1, rb1, rc0) * reflection.sigma;
         let noise = super::FAN_DETERMINANT_NOISE * slot(|g| g.extent, 1) * slot(|g| g.extent, 2);
         if det.abs() <= noise {
             self.maybe_flat |= 1;
