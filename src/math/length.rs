@@ -254,9 +254,20 @@ mod tests {
     fn is_positive_finite_is_the_comparisons() {
         let check = |bits: u32| {
             let x = f32::from_bits(bits);
-            assert_eq!(is_positive_finite(x), x > 0.0 && x < f32::INFINITY, "{bits:#x}");
+            assert_eq!(
+                is_positive_finite(x),
+                x > 0.0 && x < f32::INFINITY,
+                "{bits:#x}"
+            );
         };
-        for base in [0u32, 0x0080_0000, 0x7f7f_ffff, 0x7f80_0000, 0x7fc0_0000, 0x8000_0000] {
+        for base in [
+            0u32,
+            0x0080_0000,
+            0x7f7f_ffff,
+            0x7f80_0000,
+            0x7fc0_0000,
+            0x8000_0000,
+        ] {
             for offset in 0..64u32 {
                 check(base.wrapping_add(offset));
                 check(base.wrapping_sub(offset));
