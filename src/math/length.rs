@@ -121,17 +121,31 @@ pub(crate) fn normalize_or<V: Normalize>(v: V, fallback: V) -> V {
 /// at once. `normalize_or`'s selection waits for its test, which x86-64 computes on the
 /// reciprocal's bits in the integer unit and moves back as a mask (about 12 cycles on
 /// the critical path of the SPTD sphere light sample, llvm-mca). The same test, written
-/// as `0 < 1/|v| < ∞` (false for NaN, as `is_finite() && > 0`); the fallback is a call
-/// to a cold function that returns it, which the compiler cannot hoist into a selection.
+/// as `0 < 1/|v| < ∞` (false for NaN, as `is_finite() && > 0`, [`is_positive_finite`]);
+/// the fallback is a call to a cold function that returns it, which the compiler cannot
+/// hoist into a selection.
 #[inline(always)]
 #[must_use]
 pub(crate) fn normalize_or_predicted<V: Normalize>(v: V, fallback: V) -> V {
     let rcp = length_recip(v);
-    if rcp > 0.0 && rcp < f32::INFINITY {
+    if is_positive_finite(rcp) {
         v * rcp
     } else {
         cold_fallback(fallback)
     }
+}
+
+/// `0 < x < ∞` (false for NaN) as one comparison of the bits: the positive finite
+/// non-zero `f32` are the patterns `0x0000_0001` (the smallest subnormal) to
+/// `0x7f7f_ffff` (`f32::MAX`), in order, and `bits − 1` (wrapping) maps them onto
+/// `0..0x7f7f_ffff` and everything else (+0 onto `u32::MAX`, +∞ and NaN above `f32::MAX`,
+/// the negative ones from `0x7fff_ffff` on) above it (`is_positive_finite_is_the_comparisons`).
+/// Written as two float comparisons, the compiler tested the class of the bits instead,
+/// positive normal or positive subnormal, in 14 integer instructions per call (twice per
+/// clipped sample of the SPTD sphere light sampler, callgrind, light bench `sptd`).
+#[inline(always)]
+fn is_positive_finite(x: f32) -> bool {
+    x.to_bits().wrapping_sub(1) < 0x7f7f_ffff
 }
 
 /// `fallback` itself, out of line and cold (see [`normalize_or_predicted`]).
@@ -231,6 +245,41 @@ mod tests {
         let mut rng = Rng::new(39);
         let random = (0..200_000).map(move |_| Vec2::new(component(&mut rng), component(&mut rng)));
         hard.chain(random)
+    }
+
+    /// `is_positive_finite` is `0 < x < ∞` for every class of `f32`: around each end of
+    /// the positive finite range (0, the subnormals, `f32::MAX`, +∞), the negative
+    /// patterns, NaNs of both signs, and random patterns.
+    #[test]
+    fn is_positive_finite_is_the_comparisons() {
+        let check = |bits: u32| {
+            let x = f32::from_bits(bits);
+            assert_eq!(
+                is_positive_finite(x),
+                x > 0.0 && x < f32::INFINITY,
+                "{bits:#x}"
+            );
+        };
+        for base in [
+            0u32,
+            0x0080_0000,
+            0x7f7f_ffff,
+            0x7f80_0000,
+            0x7fc0_0000,
+            0x8000_0000,
+        ] {
+            for offset in 0..64u32 {
+                check(base.wrapping_add(offset));
+                check(base.wrapping_sub(offset));
+            }
+        }
+        for bits in [u32::MAX, 0xff80_0000, 0xffc0_0000, 0x3f80_0000, 0xbf80_0000] {
+            check(bits);
+        }
+        let mut rng = Rng::new(4419);
+        for _ in 0..1_000_000 {
+            check(rng.next_u64() as u32);
+        }
     }
 
     #[test]

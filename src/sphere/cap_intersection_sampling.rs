@@ -216,7 +216,9 @@ impl CapIntersection {
             reserved: [0.0; 2],
         };
         let solid_angle = self.whole_solid_angle();
-        if !(solid_angle > 0.0) || !(1.0 / solid_angle).is_finite() {
+        // `Ω > 0` with `1/Ω` finite, without the division ([`MIN_NORMALISER`]; issue 18:
+        // the division was on the path of every preparation of a light across the horizon).
+        if !(solid_angle >= MIN_NORMALISER) {
             *self = CapIntersection::EMPTY;
             return false;
         }

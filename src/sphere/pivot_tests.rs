@@ -464,3 +464,64 @@ fn the_upper_hemisphere_s_image_in_closed_form() {
     );
     assert!(worst_side <= 1.1 * worst_side_fast && worst_axis <= 1.1 * worst_axis_fast);
 }
+
+/// `valid_pivot`'s short path (a length at most `MAX_PIVOT_LENGTH`, the pivot as it is)
+/// gives `valid_pivot_careful`'s bits, the body that made every pivot valid before, for
+/// every pivot: zero, lengths within ulps of the bound on either side, at and beyond 1,
+/// huge components whose square overflows, infinities, NaN, subnormals, random pivots
+/// and random bit patterns. And `is_valid_as_it_stands`, its test, holds exactly for
+/// finite pivots of such a length (the comparison alone fails for the others).
+#[test]
+fn the_valid_pivot_s_short_path_is_the_careful_one() {
+    let bits = |p: Vec3| p.to_array().map(f32::to_bits);
+    let mut rng = Rng::new(4418);
+    let mut pivots = vec![
+        Vec3::ZERO,
+        Vec3::new(-0.0, 0.0, -0.0),
+        Vec3::new(0.0, 0.0, 1.0),
+        Vec3::new(0.0, 0.0, MAX_PIVOT_LENGTH),
+        Vec3::new(1e30, 0.0, 0.0),
+        Vec3::new(3e19, 3e19, 3e19),
+        Vec3::new(f32::MAX, f32::MAX, 0.0),
+        Vec3::new(f32::INFINITY, 0.0, 0.0),
+        Vec3::new(0.0, f32::NEG_INFINITY, 0.1),
+        Vec3::new(0.1, f32::NAN, 0.2),
+        Vec3::new(f32::INFINITY, f32::NAN, 0.0),
+        Vec3::new(f32::MIN_POSITIVE, 0.0, -f32::MIN_POSITIVE),
+        Vec3::new(1e-45, -1e-45, 1e-45),
+    ];
+    for _ in 0..2000 {
+        let dir = rng.unit_vector_f32();
+        pivots.push(dir * rng.uniform_f32());
+        // Lengths from 8 ulps below the bound to 8 above.
+        let mut length = MAX_PIVOT_LENGTH;
+        for _ in 0..8 {
+            length = f32::from_bits(length.to_bits() - 1);
+        }
+        for _ in 0..17 {
+            pivots.push(dir * length);
+            length = f32::from_bits(length.to_bits() + 1);
+        }
+        pivots.push(dir * (1.0 + rng.uniform_f32()));
+        pivots.push(Vec3::from_array(core::array::from_fn(|_| {
+            f32::from_bits(rng.next_u64() as u32)
+        })));
+    }
+    let (mut short, mut careful) = (0, 0);
+    for pivot in pivots {
+        let stands = pivot.is_finite() && crate::math::length(pivot) <= MAX_PIVOT_LENGTH;
+        assert_eq!(is_valid_as_it_stands(pivot), stands, "{pivot:?}");
+        assert_eq!(
+            bits(valid_pivot(pivot)),
+            bits(valid_pivot_careful(pivot)),
+            "{pivot:?}"
+        );
+        if stands {
+            assert_eq!(bits(valid_pivot(pivot)), bits(pivot), "{pivot:?}");
+            short += 1;
+        } else {
+            careful += 1;
+        }
+    }
+    assert!(short > 10_000 && careful > 10_000, "{short} {careful}");
+}
