@@ -520,3 +520,85 @@ fn perimeter_units_agree_with_the_careful_normalisation() {
         );
     }
 }
+
+/// `unit_chord_perimeter` (four vertices at a time in lanes) is the scalar perimeter
+/// bit for bit, for every vertex count, at scales that take the lanes and at scales
+/// (and with vertices) that send some lane out of the direct range, to the scalar form.
+#[test]
+fn unit_chord_perimeter_is_the_scalar_one() {
+    let mut rng = Rng::new(0x44);
+    let mut lanes = 0;
+    for count in 1..=MAX_POLYGON_VERTICES {
+        for scale in [1e-16f32, 1e-14, 1e-3, 1.0, 7.0, 1e5, 1e14, 1e16] {
+            for trial in 0..300 {
+                let mut vertices: Vec<Vec3> = (0..count)
+                    .map(|_| {
+                        Vec3::new(
+                            rng.range(-1.0, 1.0),
+                            rng.range(-1.0, 1.0),
+                            rng.range(-1.0, 1.0),
+                        ) * scale
+                    })
+                    .collect();
+                // Now and then one vertex far out of the others' range (or not finite).
+                if trial % 7 == 0 {
+                    let k = trial / 7 % count;
+                    vertices[k] = [
+                        Vec3::new(1e-20, 0.0, 0.0),
+                        Vec3::new(3e16, -1e16, 2e16),
+                        Vec3::ZERO,
+                        Vec3::new(f32::NAN, 1.0, 0.0),
+                    ][trial / 7 % 4];
+                }
+                let scalar = unit_chord_perimeter_scalar(&vertices);
+                let all_direct = vertices.iter().all(|t| {
+                    let length2 = t.length_squared();
+                    length2 > 1e-30 && length2 < 1e30
+                });
+                lanes += all_direct as u32;
+                // The slots past the polygon hold anything (here the scalar's NaN).
+                let mut array = [Vec3::NAN; MAX_POLYGON_VERTICES];
+                array[..count].copy_from_slice(&vertices);
+                assert_eq!(
+                    unit_chord_perimeter(&array, count).to_bits(),
+                    scalar.to_bits(),
+                    "{vertices:?}"
+                );
+            }
+        }
+    }
+    assert!(lanes > 5000, "the lanes ran only {lanes} times");
+}
+
+/// `largest_magnitude` is the fold with `f32::max` bit for bit, NaN and infinite
+/// coordinates included.
+#[test]
+fn largest_magnitude_is_the_max_fold() {
+    let mut rng = Rng::new(0x4444);
+    let specials = [
+        f32::NAN,
+        f32::INFINITY,
+        -f32::INFINITY,
+        0.0,
+        -0.0,
+        1e-40,
+        -3.0,
+    ];
+    for trial in 0..20_000 {
+        let count = 1 + trial % MAX_POLYGON_VERTICES;
+        let mut vertices: Vec<Vec3> = (0..count).map(|_| rng.cube() * 10.0).collect();
+        if trial % 3 == 0 {
+            let k = rng.below(count as u64) as usize;
+            let axis = rng.below(3) as usize;
+            vertices[k][axis] = specials[rng.below(specials.len() as u64) as usize];
+        }
+        let fold = vertices
+            .iter()
+            .fold(0.0f32, |m, v| m.max(v.abs().max_element()));
+        assert_eq!(
+            largest_magnitude(&vertices).to_bits(),
+            fold.to_bits(),
+            "{vertices:?}"
+        );
+    }
+}
