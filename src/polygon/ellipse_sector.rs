@@ -755,15 +755,26 @@ impl EllipseSector {
             finite_or_zero4(Vec4::ONE / difference_of_products4(s0x, s1y, s0y, s1x));
         // u · b_j = α (u · s0) + β (u · s1), with α and β of b_j once for both ellipses
         // (`new` computes the same products twice).
-        let quarter_dots = |bx: Vec4, by: Vec4| {
+        // A function rather than a closure, so that it is always inlined: when the
+        // decentral preparation grew (issue 15, stop 44: the sectors' dot products in
+        // lanes), LLVM made the closure an out-of-line call, three per group of sectors
+        // with its captures spilled, about 140 instructions a decentral hexagon more.
+        #[inline(always)]
+        fn quarter_dots(
+            [bx, by]: [Vec4; 2],
+            [s0x, s0y, s1x, s1y]: [Vec4; 4],
+            inverse_basis: Vec4,
+            [ti0, ti1, to0, to1]: [Vec4; 4],
+        ) -> (Vec4, Vec4) {
             let alpha = (bx * s1y - by * s1x) * inverse_basis;
             let beta = (s0x * by - s0y * bx) * inverse_basis;
             let dots = |t0: Vec4, t1: Vec4| finite_or_zero4(alpha * t0 + beta * t1);
             (dots(ti0, ti1), dots(to0, to1))
-        };
-        let (ti_1, to_1) = quarter_dots(b1x, b1y);
-        let (ti_2, to_2) = quarter_dots(b2x, b2y);
-        let (ti_3, to_3) = quarter_dots(b3x, b3y);
+        }
+        let (ends, dots) = ([s0x, s0y, s1x, s1y], [ti0, ti1, to0, to1]);
+        let (ti_1, to_1) = quarter_dots([b1x, b1y], ends, inverse_basis, dots);
+        let (ti_2, to_2) = quarter_dots([b2x, b2y], ends, inverse_basis, dots);
+        let (ti_3, to_3) = quarter_dots([b3x, b3y], ends, inverse_basis, dots);
         // `outer_quarter_dots` and `inner_quarter_dots`.
         store(8, [s1x, s1y, to0, to_1]);
         store(12, [to_2, to_3, to1, det]);
