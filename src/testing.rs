@@ -582,6 +582,13 @@ pub fn ltcs() -> Vec<crate::brdf::Ltc> {
     out
 }
 
+/// The `f32` values from `ulps` below `x` to `ulps` above it, one ulp apart (positive
+/// finite `x` away from the ends of the range): the lengths around a bound that a test
+/// pins on both sides.
+pub fn ulps_around(x: f32, ulps: u32) -> impl Iterator<Item = f32> {
+    (x.to_bits() - ulps..=x.to_bits() + ulps).map(f32::from_bits)
+}
+
 /// A prepared value's words. For the `repr(C)` prepared values, whose fields are all
 /// `f32` and `u32` (no padding).
 pub fn words<T: Copy>(value: &T) -> &[u32] {

@@ -101,18 +101,15 @@ pub fn difference_of_products(a: f32, b: f32, c: f32, d: f32) -> f32 {
 /// difference by ε/2 of its own). When the products have opposite signs (or one is 0),
 /// `|ab| + |cd| = |ab - cd|` and that is at most ε: no cancellation is possible. Otherwise,
 /// and when the difference is below 2⁻¹⁰⁰ (where the products' rounding may be
-/// subnormal), the careful form runs. A wider switch (`|ab| + |cd| <= 2 |ab - cd|`, 1.5ε)
-/// saved 6% more of the solid angle prepare but raised the largest error of Ω at 1e-9 sr
-/// in the accuracy table of docs/polygon-lights.md from 4.7e-7 to 5.3e-7; this one leaves every maximum there as it was.
+/// subnormal), the careful form runs. The wider switch of
+/// [`difference_of_products_unless_half_cancels`] (1.5ε) raised the largest error of Ω at
+/// 1e-9 sr in the accuracy table of docs/polygon-lights.md from 4.7e-7 to 5.3e-7; the
+/// solid angle fan determinants take it since stop 44, for their time.
 #[inline(always)]
 pub fn difference_of_products_unless_cancelling(a: f32, b: f32, c: f32, d: f32) -> f32 {
-    let (p1, p2) = (a * b, c * d);
-    let plain = p1 - p2;
-    if p1.abs() + p2.abs() <= plain.abs() && plain.abs() >= MIN_PLAIN_DIFFERENCE {
-        plain
-    } else {
-        difference_of_products(a, b, c, d)
-    }
+    plain_difference_where(a, b, c, d, |p1, p2, plain| {
+        p1.abs() + p2.abs() <= plain.abs() && plain.abs() >= MIN_PLAIN_DIFFERENCE
+    })
 }
 
 /// `a * b - c * d` to within 1.5ε relative (to first order in ε = 2⁻²³): the plain
@@ -142,13 +139,7 @@ pub fn difference_of_products_unless_cancelling(a: f32, b: f32, c: f32, d: f32) 
 /// ulp(max(|p1|, |p2|))` when the products have the same sign).
 #[inline(always)]
 pub fn difference_of_products_unless_half_cancels(a: f32, b: f32, c: f32, d: f32) -> f32 {
-    let (p1, p2) = (a * b, c * d);
-    let plain = p1 - p2;
-    if plain_difference_is_within_half(p1, p2, plain) {
-        plain
-    } else {
-        difference_of_products(a, b, c, d)
-    }
+    plain_difference_where(a, b, c, d, plain_difference_is_within_half)
 }
 
 /// The test of [`difference_of_products_unless_half_cancels`]: `|p1| + |p2| <= 2 |plain|`
@@ -156,6 +147,28 @@ pub fn difference_of_products_unless_half_cancels(a: f32, b: f32, c: f32, d: f32
 #[inline(always)]
 pub(crate) fn plain_difference_is_within_half(p1: f32, p2: f32, plain: f32) -> bool {
     p1.abs() + p2.abs() <= 2.0 * plain.abs() && plain.abs() >= MIN_PLAIN_DIFFERENCE
+}
+
+/// `fl(fl(ab) - fl(cd))` where `plain_is_enough(fl(ab), fl(cd), fl(fl(ab) - fl(cd)))`,
+/// otherwise the error-free form of [`difference_of_products`]: the one body of the three
+/// plain-or-careful differences of products ([`difference_of_products_unless_cancelling`],
+/// [`difference_of_products_unless_half_cancels`], [`difference_of_products_sign`]), each
+/// with its own test.
+#[inline(always)]
+fn plain_difference_where(
+    a: f32,
+    b: f32,
+    c: f32,
+    d: f32,
+    plain_is_enough: impl Fn(f32, f32, f32) -> bool,
+) -> f32 {
+    let (p1, p2) = (a * b, c * d);
+    let plain = p1 - p2;
+    if plain_is_enough(p1, p2, plain) {
+        plain
+    } else {
+        difference_of_products(a, b, c, d)
+    }
 }
 
 /// A number with the sign of the exact `a * b - c * d` (and 0 exactly when it is 0): the
@@ -170,13 +183,7 @@ pub(crate) fn plain_difference_is_within_half(p1: f32, p2: f32, plain: f32) -> b
 /// 2⁻¹⁰⁰, where the products' rounding may be subnormal, the careful form runs.
 #[inline(always)]
 pub fn difference_of_products_sign(a: f32, b: f32, c: f32, d: f32) -> f32 {
-    let (p1, p2) = (a * b, c * d);
-    let plain = p1 - p2;
-    if plain_difference_is_certain(p1, p2, plain) {
-        plain
-    } else {
-        difference_of_products(a, b, c, d)
-    }
+    plain_difference_where(a, b, c, d, plain_difference_is_certain)
 }
 
 /// Whether the plain difference `plain = fl(p1 - p2)` of the rounded products `p1`, `p2`

@@ -986,14 +986,7 @@ fn a_fit_s_pivot_takes_the_valid_path_where_it_is_valid() {
         let dir = rng.unit_vector_f32();
         pivots.push(dir * rng.uniform_f32());
         // Lengths from 8 ulps below the bound to 8 above.
-        let mut length = bound;
-        for _ in 0..8 {
-            length = f32::from_bits(length.to_bits() - 1);
-        }
-        for _ in 0..17 {
-            pivots.push(dir * length);
-            length = f32::from_bits(length.to_bits() + 1);
-        }
+        pivots.extend(crate::testing::ulps_around(bound, 8).map(|length| dir * length));
         pivots.push(dir * (1.0 + rng.uniform_f32()));
     }
     let (mut valid, mut invalid, mut compared, mut clipped) = (0, 0, 0, 0);

@@ -494,14 +494,7 @@ fn the_valid_pivot_s_short_path_is_the_careful_one() {
         let dir = rng.unit_vector_f32();
         pivots.push(dir * rng.uniform_f32());
         // Lengths from 8 ulps below the bound to 8 above.
-        let mut length = MAX_PIVOT_LENGTH;
-        for _ in 0..8 {
-            length = f32::from_bits(length.to_bits() - 1);
-        }
-        for _ in 0..17 {
-            pivots.push(dir * length);
-            length = f32::from_bits(length.to_bits() + 1);
-        }
+        pivots.extend(crate::testing::ulps_around(MAX_PIVOT_LENGTH, 8).map(|length| dir * length));
         pivots.push(dir * (1.0 + rng.uniform_f32()));
         pivots.push(Vec3::from_array(core::array::from_fn(|_| {
             f32::from_bits(rng.next_u64() as u32)
