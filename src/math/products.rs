@@ -305,6 +305,16 @@ mod tests {
         (a as f64 - exact).abs() / ulp
     }
 
+    /// A factor of the tests' products: random sign, log-uniform magnitude 1e-6 to 1e6.
+    fn random_factor(rng: &mut Rng) -> f32 {
+        rng.signed_log_uniform(-6.0, 6.0) as f32
+    }
+
+    /// `x` moved by up to 4 ulps either way (uniformly over the 9 patterns).
+    fn within_4_ulps(x: f32, rng: &mut Rng) -> f32 {
+        f32::from_bits((x.to_bits() as i64 + rng.below(9) as i64 - 4) as u32)
+    }
+
     #[test]
     fn two_product_is_error_free() {
         let mut rng = Rng::new(1);
@@ -324,8 +334,8 @@ mod tests {
             // c*d close to a*b: perturb a and b by a few ulp.
             let a = rng.signed_log_uniform(-5.0, 5.0) as f32;
             let b = rng.signed_log_uniform(-5.0, 5.0) as f32;
-            let c = f32::from_bits((a.to_bits() as i64 + rng.below(9) as i64 - 4) as u32);
-            let d = f32::from_bits((b.to_bits() as i64 + rng.below(9) as i64 - 4) as u32);
+            let c = within_4_ulps(a, &mut rng);
+            let d = within_4_ulps(b, &mut rng);
             let exact = a as f64 * b as f64 - c as f64 * d as f64;
             let got = difference_of_products(a, b, c, d);
             worst = worst.max(ulps_between(got, exact));
@@ -347,17 +357,11 @@ mod tests {
         let mut rng = Rng::new(23);
         let (mut plain_taken, mut careful_taken) = (0u32, 0u32);
         for i in 0..300_000 {
-            let a = rng.signed_log_uniform(-6.0, 6.0) as f32;
-            let b = rng.signed_log_uniform(-6.0, 6.0) as f32;
+            let a = random_factor(&mut rng);
+            let b = random_factor(&mut rng);
             let (c, d) = match i % 4 {
-                0 => (
-                    rng.signed_log_uniform(-6.0, 6.0) as f32,
-                    rng.signed_log_uniform(-6.0, 6.0) as f32,
-                ),
-                1 => (
-                    f32::from_bits((a.to_bits() as i64 + rng.below(9) as i64 - 4) as u32),
-                    f32::from_bits((b.to_bits() as i64 + rng.below(9) as i64 - 4) as u32),
-                ),
+                0 => (random_factor(&mut rng), random_factor(&mut rng)),
+                1 => (within_4_ulps(a, &mut rng), within_4_ulps(b, &mut rng)),
                 2 => (b, a),
                 _ => {
                     // c d = a b (1 + k ε) for a few k: differences near the threshold.
@@ -394,17 +398,11 @@ mod tests {
         let mut rng = Rng::new(21);
         let (mut worst, mut plain_taken) = (0.0f64, 0u32);
         for i in 0..300_000 {
-            let a = rng.signed_log_uniform(-6.0, 6.0) as f32;
-            let b = rng.signed_log_uniform(-6.0, 6.0) as f32;
+            let a = random_factor(&mut rng);
+            let b = random_factor(&mut rng);
             let (c, d) = match i % 3 {
-                0 => (
-                    rng.signed_log_uniform(-6.0, 6.0) as f32,
-                    rng.signed_log_uniform(-6.0, 6.0) as f32,
-                ),
-                1 => (
-                    f32::from_bits((a.to_bits() as i64 + rng.below(9) as i64 - 4) as u32),
-                    f32::from_bits((b.to_bits() as i64 + rng.below(9) as i64 - 4) as u32),
-                ),
+                0 => (random_factor(&mut rng), random_factor(&mut rng)),
+                1 => (within_4_ulps(a, &mut rng), within_4_ulps(b, &mut rng)),
                 _ => (
                     a * (1.0 / 3.0) * (1.0 + 1e-6 * (rng.uniform() as f32 - 0.5)),
                     b,
@@ -444,17 +442,11 @@ mod tests {
         let mut rng = Rng::new(24);
         let (mut worst, mut plain_taken, mut careful_taken) = (0.0f64, 0u32, 0u32);
         for i in 0..300_000 {
-            let a = rng.signed_log_uniform(-6.0, 6.0) as f32;
-            let b = rng.signed_log_uniform(-6.0, 6.0) as f32;
+            let a = random_factor(&mut rng);
+            let b = random_factor(&mut rng);
             let (c, d) = match i % 4 {
-                0 => (
-                    rng.signed_log_uniform(-6.0, 6.0) as f32,
-                    rng.signed_log_uniform(-6.0, 6.0) as f32,
-                ),
-                1 => (
-                    f32::from_bits((a.to_bits() as i64 + rng.below(9) as i64 - 4) as u32),
-                    f32::from_bits((b.to_bits() as i64 + rng.below(9) as i64 - 4) as u32),
-                ),
+                0 => (random_factor(&mut rng), random_factor(&mut rng)),
+                1 => (within_4_ulps(a, &mut rng), within_4_ulps(b, &mut rng)),
                 // Same signs, the ratio of the products around the switch at 1/3.
                 2 => (
                     a * (1.0 / 3.0) * (1.0 + 1e-3 * (rng.uniform() as f32 - 0.5)),
