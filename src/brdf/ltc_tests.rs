@@ -63,3 +63,50 @@ fn ggx_lookup_hits_table_entries_at_grid_nodes_and_rotates_with_the_view() {
         }
     }
 }
+
+/// `to_cosine_space_each` (the columns of `M⁻¹` in lanes) is `to_cosine_space` vertex by
+/// vertex, bit for bit, for fitted LTCs, the identity and vertices at every scale,
+/// zero, huge (overflowing products) and non-finite.
+#[test]
+fn to_cosine_space_each_is_to_cosine_space() {
+    let mut rng = Rng::new(0x45);
+    let mut ltcs = ltcs();
+    ltcs.push(Ltc::IDENTITY);
+    let specials = [
+        Vec3::ZERO,
+        Vec3::new(-0.0, 0.0, -0.0),
+        Vec3::new(3e38, -3e38, 1.0),
+        Vec3::new(f32::INFINITY, 1.0, 0.0),
+        Vec3::new(0.0, f32::NAN, 2.0),
+        Vec3::new(1e-40, -1e-45, 1e-39),
+    ];
+    for ltc in &ltcs {
+        for trial in 0..500 {
+            let count = 1 + trial % 8;
+            let scale = [1e-30f32, 1e-3, 1.0, 1e4, 1e30][trial % 5];
+            let mut vertices: Vec<Vec3> = (0..count)
+                .map(|_| {
+                    Vec3::new(
+                        rng.range(-1.0, 1.0),
+                        rng.range(-1.0, 1.0),
+                        rng.range(-1.0, 1.0),
+                    ) * scale
+                })
+                .collect();
+            if trial % 3 == 0 {
+                vertices[trial / 3 % count] = specials[trial / 3 % specials.len()];
+            }
+            let mut out = [Vec3::NAN; 8];
+            ltc.to_cosine_space_each(&vertices, &mut out);
+            for (v, t) in vertices.iter().zip(&out) {
+                assert_eq!(
+                    t.to_array().map(f32::to_bits),
+                    ltc.to_cosine_space(*v).to_array().map(f32::to_bits),
+                    "{ltc:?} {v:?}"
+                );
+            }
+            // Nothing written past the vertices.
+            assert!(out[count..].iter().all(|t| t.x.is_nan()));
+        }
+    }
+}
