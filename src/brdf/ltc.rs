@@ -54,6 +54,9 @@ impl Ltc {
     /// need not be normalised) and roughness `r = √α`, clamped to `[0, 1]` (NaN counts as
     /// 0; below the table's smallest α the first row is used). Returns `None` when `wo` is
     /// not finite, zero, or at or below the horizon.
+    // Inlined: the table's coordinates and fetch then run in the caller's frame, and a C
+    // caller's value is written once, not returned through a copy (issue 18, stop 45).
+    #[inline(always)]
     pub fn from_ggx(wo: Vec3, roughness: f32) -> Option<Ltc> {
         let (x, y, cos_phi, sin_phi) = super::table_coordinates(wo, roughness)?;
         let entry = super::table_bilinear(&LTC_TABLE, LTC_TABLE_SIZE, x, y);
@@ -75,7 +78,8 @@ impl Ltc {
         // The xz block [[a, b], [d, 1]] has the inverse [[1, −b], [−d, a]] / k.
         let k = a - b * d;
         let inverse_determinant = c * k;
-        if !(inverse_determinant > 0.0) || !(inverse_determinant < f32::INFINITY) {
+        // `0 < det < ∞` in one comparison of the bits.
+        if !crate::math::is_positive_finite(inverse_determinant) {
             return None;
         }
         let (ik, ic) = (1.0 / k, 1.0 / c);
