@@ -286,7 +286,7 @@ impl LtcPolygon {
         let mut transformed = [Vec3::ZERO; MAX_POLYGON_VERTICES];
         let accepted = (3..=MAX_POLYGON_VERTICES).contains(&count) && plane_misses_origin(vertices);
         if accepted {
-            ltc.to_cosine_space_each(vertices, &mut transformed);
+            ltc.map_to_cosine_space(vertices, &mut transformed);
         }
         // An empty slice (rejected input) makes the projected prepare write its empty
         // value.
