@@ -54,6 +54,9 @@ impl Ltc {
     /// need not be normalised) and roughness `r = √α`, clamped to `[0, 1]` (NaN counts as
     /// 0; below the table's smallest α the first row is used). Returns `None` when `wo` is
     /// not finite, zero, or at or below the horizon.
+    // Inlined: the table's coordinates and fetch then run in the caller's frame, and a C
+    // caller's value is written once, not returned through a copy (issue 18, stop 45).
+    #[inline(always)]
     pub fn from_ggx(wo: Vec3, roughness: f32) -> Option<Ltc> {
         let (x, y, cos_phi, sin_phi) = super::table_coordinates(wo, roughness)?;
         let entry = super::table_bilinear(&LTC_TABLE, LTC_TABLE_SIZE, x, y);
@@ -63,6 +66,9 @@ impl Ltc {
     /// The LTC with `M⁻¹ = [[a, 0, b], [0, c, 0], [d, 0, 1]]` in the frame whose x axis
     /// has azimuth `(cos φ, sin φ)`, from a table entry `[a, b, c, d, albedo, fresnel]`.
     /// `None` when the matrix is not invertible with a positive determinant.
+    // Out of line: inlined into the sphere light's shading (with the smaller
+    // `is_finite`), its prepare took 12 instructions more (issue 18, stop 45).
+    #[inline(never)]
     pub(crate) fn from_view_frame(entry: [f32; 6], cos_phi: f32, sin_phi: f32) -> Option<Ltc> {
         let [a, b, c, d, albedo, fresnel] = entry;
         // M⁻¹ (view frame) times R, where R maps local to view-frame coordinates:
@@ -75,7 +81,8 @@ impl Ltc {
         // The xz block [[a, b], [d, 1]] has the inverse [[1, −b], [−d, a]] / k.
         let k = a - b * d;
         let inverse_determinant = c * k;
-        if !(inverse_determinant > 0.0) || !(inverse_determinant < f32::INFINITY) {
+        // `0 < det < ∞` in one comparison of the bits.
+        if !crate::math::is_positive_finite(inverse_determinant) {
             return None;
         }
         let (ik, ic) = (1.0 / k, 1.0 / c);
@@ -96,7 +103,30 @@ impl Ltc {
         ltc.is_finite().then_some(ltc)
     }
 
+    /// Whether the rows of `M⁻¹`, the columns of `M`, `albedo` and `fresnel` are all
+    /// finite ([`is_finite_by_field`](Self::is_finite_by_field), the definition), as
+    /// `Σ 0·x = 0` over the twenty values in five groups of lanes: `0·x` is ±0 for a
+    /// finite `x` and NaN for an infinite or NaN one, a sum of ±0 is ±0 and one NaN
+    /// makes it NaN. Six vector operations where the twenty tests of the bits took
+    /// about 60 instructions (issue 18, stop 45; test `is_finite_is_by_field`).
     fn is_finite(&self) -> bool {
+        use glam::Vec4;
+        let ([r0, r1, r2], [c0, c1, c2]) = (self.inverse_rows, self.matrix_columns);
+        let groups = [
+            Vec4::new(r0.x, r0.y, r0.z, r1.x),
+            Vec4::new(r1.y, r1.z, r2.x, r2.y),
+            Vec4::new(r2.z, c0.x, c0.y, c0.z),
+            Vec4::new(c1.x, c1.y, c1.z, c2.x),
+            Vec4::new(c2.y, c2.z, self.albedo, self.fresnel),
+        ];
+        let zeros = groups.iter().fold(Vec4::ZERO, |sum, g| sum + *g * 0.0);
+        zeros.cmpeq(Vec4::ZERO).all()
+    }
+
+    /// The definition of [`is_finite`](Self::is_finite), field by field (its test's
+    /// reference).
+    #[cfg(test)]
+    fn is_finite_by_field(&self) -> bool {
         self.inverse_rows.iter().all(|r| r.is_finite())
             && self.matrix_columns.iter().all(|c| c.is_finite())
             && self.albedo.is_finite()
@@ -111,6 +141,27 @@ impl Ltc {
             self.inverse_rows[1].dot(v),
             self.inverse_rows[2].dot(v),
         )
+    }
+
+    /// [`to_cosine_space`](Self::to_cosine_space) of each of `vertices`, written to the
+    /// start of `out`, bit for bit: coordinate `k` of `M⁻¹v` is
+    /// `(m_k0 v_x + m_k1 v_y) + m_k2 v_z` either way (glam's `dot` sums in that order),
+    /// here the three coordinates at once in the lanes of one register per column of
+    /// `M⁻¹` (three broadcasts, three products and two sums a vertex, where the three
+    /// dot products took 22 instructions; issue 18, stop 45). The fourth lane is 0 and
+    /// dropped. Test `map_to_cosine_space_is_to_cosine_space`.
+    #[inline(always)]
+    pub(crate) fn map_to_cosine_space(&self, vertices: &[Vec3], out: &mut [Vec3]) {
+        use glam::Vec4;
+        let [r0, r1, r2] = self.inverse_rows;
+        let (c0, c1, c2) = (
+            Vec4::new(r0.x, r1.x, r2.x, 0.0),
+            Vec4::new(r0.y, r1.y, r2.y, 0.0),
+            Vec4::new(r0.z, r1.z, r2.z, 0.0),
+        );
+        for (t, v) in out.iter_mut().zip(vertices) {
+            *t = ((c0 * v.x + c1 * v.y) + c2 * v.z).truncate();
+        }
     }
 
     /// `M v`: from the cosine's space to the shading frame.

@@ -63,3 +63,90 @@ fn ggx_lookup_hits_table_entries_at_grid_nodes_and_rotates_with_the_view() {
         }
     }
 }
+
+/// `map_to_cosine_space` (the columns of `M⁻¹` in lanes) is `to_cosine_space` vertex by
+/// vertex, bit for bit, for fitted LTCs, the identity and vertices at every scale,
+/// zero, huge (overflowing products) and non-finite.
+#[test]
+fn map_to_cosine_space_is_to_cosine_space() {
+    let mut rng = Rng::new(0x45);
+    let mut ltcs = ltcs();
+    ltcs.push(Ltc::IDENTITY);
+    let specials = [
+        Vec3::ZERO,
+        Vec3::new(-0.0, 0.0, -0.0),
+        Vec3::new(3e38, -3e38, 1.0),
+        Vec3::new(f32::INFINITY, 1.0, 0.0),
+        Vec3::new(0.0, f32::NAN, 2.0),
+        Vec3::new(1e-40, -1e-45, 1e-39),
+    ];
+    for ltc in &ltcs {
+        for trial in 0..500 {
+            let count = 1 + trial % 8;
+            let scale = [1e-30f32, 1e-3, 1.0, 1e4, 1e30][trial % 5];
+            let mut vertices: Vec<Vec3> = (0..count)
+                .map(|_| {
+                    Vec3::new(
+                        rng.range(-1.0, 1.0),
+                        rng.range(-1.0, 1.0),
+                        rng.range(-1.0, 1.0),
+                    ) * scale
+                })
+                .collect();
+            if trial % 3 == 0 {
+                vertices[trial / 3 % count] = specials[trial / 3 % specials.len()];
+            }
+            let mut out = [Vec3::NAN; 8];
+            ltc.map_to_cosine_space(&vertices, &mut out);
+            for (v, t) in vertices.iter().zip(&out) {
+                assert_eq!(
+                    t.to_array().map(f32::to_bits),
+                    ltc.to_cosine_space(*v).to_array().map(f32::to_bits),
+                    "{ltc:?} {v:?}"
+                );
+            }
+            // Nothing written past the vertices.
+            assert!(out[count..].iter().all(|t| t.x.is_nan()));
+        }
+    }
+}
+
+/// `Ltc::is_finite` (a sum of `0·x` in lanes) is the field-by-field test, for finite
+/// values of every size and with infinities and NaNs of both signs in every field, one
+/// or two at a time.
+#[test]
+fn is_finite_is_by_field() {
+    let mut rng = Rng::new(0x46);
+    let specials = [
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::NAN,
+        -f32::NAN,
+        f32::MAX,
+        -f32::MAX,
+        -0.0,
+        1e-45,
+    ];
+    let mut non_finite = 0;
+    for trial in 0..20_000 {
+        let mut values = [0.0f32; 20];
+        for v in &mut values {
+            *v = rng.range(-1.0, 1.0) * [1e-30f32, 1.0, 1e30][trial % 3];
+        }
+        for k in 0..trial % 3 {
+            let slot = (trial / 3 + 7 * k) % 20;
+            values[slot] = specials[(trial / 60 + k) % specials.len()];
+        }
+        let vec3 = |k: usize| Vec3::new(values[k], values[k + 1], values[k + 2]);
+        let ltc = Ltc {
+            inverse_rows: [vec3(0), vec3(3), vec3(6)],
+            matrix_columns: [vec3(9), vec3(12), vec3(15)],
+            inverse_determinant: 1.0,
+            albedo: values[18],
+            fresnel: values[19],
+        };
+        assert_eq!(ltc.is_finite(), ltc.is_finite_by_field(), "{values:?}");
+        non_finite += !ltc.is_finite() as u32;
+    }
+    assert!(non_finite > 5000, "only {non_finite} non-finite cases");
+}

@@ -24,10 +24,19 @@ pub unsafe extern "C" fn sphera_ltc_prepare(out: *mut Ltc, wo: SpheraVec3, rough
     if out.is_null() {
         return false;
     }
-    let ltc = Ltc::from_ggx(wo.into(), roughness);
-    // SAFETY: `out` is non-null and the caller guarantees it is writable.
-    unsafe { out.write(ltc.unwrap_or(Ltc::IDENTITY)) };
-    ltc.is_some()
+    // Each arm writes its value (where `unwrap_or` went through a copy on the stack).
+    match Ltc::from_ggx(wo.into(), roughness) {
+        Some(ltc) => {
+            // SAFETY: `out` is non-null and the caller guarantees it is writable.
+            unsafe { out.write(ltc) };
+            true
+        }
+        None => {
+            // SAFETY: as above.
+            unsafe { out.write(Ltc::IDENTITY) };
+            false
+        }
+    }
 }
 
 /// The LTC's density per steradian at `dir` over the whole sphere (`dir` is normalised

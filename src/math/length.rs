@@ -144,7 +144,7 @@ pub(crate) fn normalize_or_predicted<V: Normalize>(v: V, fallback: V) -> V {
 /// positive normal or positive subnormal, in 14 integer instructions per call (twice per
 /// clipped sample of the SPTD sphere light sampler, callgrind, light bench `sptd`).
 #[inline(always)]
-fn is_positive_finite(x: f32) -> bool {
+pub(crate) fn is_positive_finite(x: f32) -> bool {
     x.to_bits().wrapping_sub(1) < 0x7f7f_ffff
 }
 

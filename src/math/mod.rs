@@ -29,6 +29,7 @@ pub(crate) use lanes::{
     cross3_lanes, difference_of_products_unless_half_cancels4, difference_of_products4,
     finite_or_zero4, lane_starts, load4, max4, min4, sqrt4, store_record_words4, store4,
 };
+pub(crate) use length::is_positive_finite;
 pub(crate) use length::{
     length, normalize_or, normalize_or_predicted, normalize_or_zero, try_normalize,
 };
