@@ -392,6 +392,28 @@ fn own_edge_dot(
     }
 }
 
+/// The first `count` positions in counter-clockwise order: reversed where `reversed`
+/// (the polygon winds clockwise; slots from `count` on are left as they are). The
+/// preparation reverses them only on the paths that read them (see `prepare_or_fail`).
+#[inline(always)]
+fn counter_clockwise(positions: &mut [Vec3; MAX_POLYGON_VERTICES], count: usize, reversed: bool) {
+    if reversed {
+        positions[..count].reverse();
+    }
+}
+
+/// [`counter_clockwise`] out of line, for the rare paths (small polygons, short edges),
+/// so that the general path keeps its own copy inline.
+#[inline(never)]
+#[cold]
+fn counter_clockwise_cold(
+    positions: &mut [Vec3; MAX_POLYGON_VERTICES],
+    count: usize,
+    reversed: bool,
+) {
+    counter_clockwise(positions, count, reversed);
+}
+
 /// The central case of Algorithm 4 for an unclipped polygon whose edges are all outer and
 /// none degenerate (`n_z > 0` for every edge plane `n = p_j × p_j+1`, so no vertex lies
 /// on the z axis): the common case, four edges and sectors at a time straight from the
@@ -542,13 +564,11 @@ fn central_unclipped_sectors(
     maybe_short
 }
 
-/// The polygon as both paths of `prepare_or_fail` finish it: its positions (clipped,
-/// counter-clockwise, rescaled), their count, the extent of the small-polygon test (the
-/// largest sin² of the angle between the first vertex and another) and whether the
-/// small-polygon sampler may take over.
+/// What `finish` reads besides the positions: the vertex count, the extent of the
+/// small-polygon test (the largest sin² of the angle between the first vertex and
+/// another) and whether the small-polygon sampler may take over.
 #[derive(Clone, Copy)]
-struct Outline<'a> {
-    positions: &'a [Vec3; MAX_POLYGON_VERTICES],
+struct FinishInputs {
     count: usize,
     extent2: f32,
     allow_small: bool,
@@ -743,10 +763,17 @@ impl ProjectedPolygon {
         if !(orientation != 0.0) {
             return false;
         }
-        if orientation < 0.0 {
-            positions[..count].reverse();
-        }
-        if let (Some(planes), true) = (planes.as_mut(), orientation < 0.0) {
+        // A clockwise polygon is taken in reverse order. Unclipped, `positions` is
+        // reversed only where it is read (`counter_clockwise`: the small polygons, the
+        // short edges and the general path) and `reversed` tells that it still runs
+        // clockwise; the vertex lanes below take the vertices in counter-clockwise order
+        // straight from it, so that the central fast path, which reads only the lanes,
+        // does not move the vertices (issue 15: 44 instructions per clockwise hexagon).
+        // A clipped polygon, which never takes that path, is reversed here.
+        let mut reversed = orientation < 0.0;
+        if let (Some(planes), true) = (planes.as_mut(), reversed) {
+            counter_clockwise(&mut positions, count, true);
+            reversed = false;
             // Edge k now runs backwards along the edge that was m - 2 - k.
             let forward = *planes;
             for (k, plane) in planes[..count].iter_mut().enumerate() {
@@ -765,7 +792,7 @@ impl ProjectedPolygon {
         // angle sampler, whose only approximation is of relative order s², takes over.
         // The extent: the largest sin² of the angle between the first vertex and another
         // (no square roots; a vertex in the opposite half-space counts as far away).
-        let first = positions[0];
+        let first = positions[if reversed { count - 1 } else { 0 }];
         let first2 = first.length_squared();
         // Four vertices at a time, each lane rounded as the scalar
         // `p.cross(first).length_squared() / (p.length_squared() * first2)`; lanes past
@@ -775,9 +802,21 @@ impl ProjectedPolygon {
         // first vertex again, so that the lanes from slot 1 hold each edge's other end
         // (the edge planes of an unclipped polygon take both below) and, past the
         // polygon, the first vertex (sin² 0 here).
+        // (Slot j from vertex `count - 1 - j` of a clockwise polygon: `counter_clockwise`'s
+        // order; one loop for each order, as an index chosen per slot cost a selection
+        // and a bounds check per vertex.)
         let mut vertex = first.to_array().map(|c| [c; VERTEX_SLOTS]);
-        for (slot, p) in positions[..count].iter().enumerate().skip(1) {
+        let mut put = |slot: usize, p: &Vec3| {
             [vertex[0][slot], vertex[1][slot], vertex[2][slot]] = p.to_array();
+        };
+        if reversed {
+            for (slot, p) in positions[..count].iter().rev().enumerate().skip(1) {
+                put(slot, p);
+            }
+        } else {
+            for (slot, p) in positions[..count].iter().enumerate().skip(1) {
+                put(slot, p);
+            }
         }
         let [fx, fy, fz] = first.to_array().map(Vec4::splat);
         let mut largest = Vec4::ZERO;
@@ -793,6 +832,7 @@ impl ProjectedPolygon {
         if allow_small && extent2 < SMALL_EXTENT * SMALL_EXTENT {
             // As from the empty value: `contains` of the small case passes every edge.
             polygon.edge_normals = EdgeNormalRows::ZERO;
+            counter_clockwise_cold(&mut positions, count, reversed);
             return polygon.switch_to_small(&positions[..count]);
         }
         // The edge planes n = p_a × p_b, four edges at a time, bit for bit as
@@ -832,8 +872,7 @@ impl ProjectedPolygon {
         let outer_edges = outer_edges & all_edges == all_edges;
         // The common case: the zenith inside, nothing clipped, every edge outer and none
         // degenerate (n_z > 0 for every edge, so no vertex lies on the z axis).
-        let outline = Outline {
-            positions: &positions,
+        let inputs = FinishInputs {
             count,
             extent2,
             allow_small,
@@ -842,8 +881,12 @@ impl ProjectedPolygon {
             *took_fast = true;
             let maybe_short =
                 central_unclipped_sectors(polygon, &vertex, &normals, count, precision);
-            return polygon.finish(&outline, count, 0.0, maybe_short);
+            if maybe_short {
+                counter_clockwise_cold(&mut positions, count, reversed);
+            }
+            return polygon.finish(&positions, &inputs, count, 0.0, maybe_short);
         }
+        counter_clockwise(&mut positions, count, reversed);
         // Algorithm 1 per edge; edge j runs from vertex j to vertex j + 1.
         let next = |j: usize| if j + 1 == count { 0 } else { j + 1 };
         // The edges' ellipses `u` and the vertices' unit directions `s`, as rows of x and
@@ -1265,7 +1308,7 @@ impl ProjectedPolygon {
                 };
             }
         }
-        polygon.finish(&outline, sectors, outer_sum_bound, maybe_short)
+        polygon.finish(&positions, &inputs, sectors, outer_sum_bound, maybe_short)
     }
 
     /// Writes the small-polygon sampler of the polygon `positions` in place; the
@@ -1290,22 +1333,23 @@ impl ProjectedPolygon {
     }
 
     /// The end of both paths of [`prepare_or_fail`](Self::prepare_or_fail): the unused
-    /// slots, the sectors' starts, Φ and the checks.
+    /// slots, the sectors' starts, Φ and the checks (`positions` in counter-clockwise
+    /// order).
     #[inline(always)]
     fn finish(
         &mut self,
-        outline: &Outline,
+        positions: &[Vec3; MAX_POLYGON_VERTICES],
+        inputs: &FinishInputs,
         sectors: usize,
         outer_sum: f32,
         maybe_short: bool,
     ) -> bool {
         let polygon = self;
-        let Outline {
-            positions,
+        let FinishInputs {
             count,
             extent2,
             allow_small,
-        } = *outline;
+        } = *inputs;
         // The unused slots too (no stale or NaN word is left in a prepared value, which
         // the adversarial C test checks by filling the struct with NaN first).
         // `EllipseSector::EMPTY` from registers (see `empty_from`): copied from the
