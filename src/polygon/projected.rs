@@ -392,6 +392,28 @@ fn own_edge_dot(
     }
 }
 
+/// The first `count` positions in counter-clockwise order: reversed where `reversed`
+/// (the polygon winds clockwise; slots from `count` on are left as they are). The
+/// preparation reverses them only on the paths that read them (see `prepare_or_fail`).
+#[inline(always)]
+fn counter_clockwise(positions: &mut [Vec3; MAX_POLYGON_VERTICES], count: usize, reversed: bool) {
+    if reversed {
+        positions[..count].reverse();
+    }
+}
+
+/// [`counter_clockwise`] out of line, for the rare paths (small polygons, short edges),
+/// so that the general path keeps its own copy inline.
+#[inline(never)]
+#[cold]
+fn counter_clockwise_cold(
+    positions: &mut [Vec3; MAX_POLYGON_VERTICES],
+    count: usize,
+    reversed: bool,
+) {
+    counter_clockwise(positions, count, reversed);
+}
+
 /// The central case of Algorithm 4 for an unclipped polygon whose edges are all outer and
 /// none degenerate (`n_z > 0` for every edge plane `n = p_j × p_j+1`, so no vertex lies
 /// on the z axis): the common case, four edges and sectors at a time straight from the
@@ -540,6 +562,16 @@ fn central_unclipped_sectors(
             .store4(LANES, zero, glam::BVec4A::splat(true));
     }
     maybe_short
+}
+
+/// What `finish` reads besides the positions: the vertex count, the extent of the
+/// small-polygon test (the largest sin² of the angle between the first vertex and
+/// another) and whether the small-polygon sampler may take over.
+#[derive(Clone, Copy)]
+struct FinishInputs {
+    count: usize,
+    extent2: f32,
+    allow_small: bool,
 }
 
 impl ProjectedPolygon {
@@ -731,10 +763,17 @@ impl ProjectedPolygon {
         if !(orientation != 0.0) {
             return false;
         }
-        if orientation < 0.0 {
-            positions[..count].reverse();
-        }
-        if let (Some(planes), true) = (planes.as_mut(), orientation < 0.0) {
+        // A clockwise polygon is taken in reverse order. Unclipped, `positions` is
+        // reversed only where it is read (`counter_clockwise`: the small polygons, the
+        // short edges and the general path) and `reversed` tells that it still runs
+        // clockwise; the vertex lanes below take the vertices in counter-clockwise order
+        // straight from it, so that the central fast path, which reads only the lanes,
+        // does not move the vertices (issue 15: 44 instructions per clockwise hexagon).
+        // A clipped polygon, which never takes that path, is reversed here.
+        let mut reversed = orientation < 0.0;
+        if let (Some(planes), true) = (planes.as_mut(), reversed) {
+            counter_clockwise(&mut positions, count, true);
+            reversed = false;
             // Edge k now runs backwards along the edge that was m - 2 - k.
             let forward = *planes;
             for (k, plane) in planes[..count].iter_mut().enumerate() {
@@ -753,7 +792,7 @@ impl ProjectedPolygon {
         // angle sampler, whose only approximation is of relative order s², takes over.
         // The extent: the largest sin² of the angle between the first vertex and another
         // (no square roots; a vertex in the opposite half-space counts as far away).
-        let first = positions[0];
+        let first = positions[if reversed { count - 1 } else { 0 }];
         let first2 = first.length_squared();
         // Four vertices at a time, each lane rounded as the scalar
         // `p.cross(first).length_squared() / (p.length_squared() * first2)`; lanes past
@@ -763,9 +802,21 @@ impl ProjectedPolygon {
         // first vertex again, so that the lanes from slot 1 hold each edge's other end
         // (the edge planes of an unclipped polygon take both below) and, past the
         // polygon, the first vertex (sin² 0 here).
+        // (Slot j from vertex `count - 1 - j` of a clockwise polygon: `counter_clockwise`'s
+        // order; one loop for each order, as an index chosen per slot cost a selection
+        // and a bounds check per vertex.)
         let mut vertex = first.to_array().map(|c| [c; VERTEX_SLOTS]);
-        for (slot, p) in positions[..count].iter().enumerate().skip(1) {
+        let mut put = |slot: usize, p: &Vec3| {
             [vertex[0][slot], vertex[1][slot], vertex[2][slot]] = p.to_array();
+        };
+        if reversed {
+            for (slot, p) in positions[..count].iter().rev().enumerate().skip(1) {
+                put(slot, p);
+            }
+        } else {
+            for (slot, p) in positions[..count].iter().enumerate().skip(1) {
+                put(slot, p);
+            }
         }
         let [fx, fy, fz] = first.to_array().map(Vec4::splat);
         let mut largest = Vec4::ZERO;
@@ -778,88 +829,12 @@ impl ProjectedPolygon {
             largest = largest.max(Vec4::select(sin2.is_nan_mask(), Vec4::ZERO, sin2));
         }
         let extent2 = largest.max_element();
-        // Writes the small-polygon sampler in place; the sectors are then not read.
-        let switch_to_small = |polygon: &mut Self| {
-            // The whole storage first (the sectors' view is the larger), then the small
-            // sampler over its start: no stale word is left.
-            polygon.pieces = ProjectedPieces::EMPTY;
-            if !polygon.small_mut().prepare(&positions[..count]) {
-                return false;
-            }
-            polygon.sector_area = [0.0; MAX_POLYGON_VERTICES];
-            polygon.sector_start = [0.0; MAX_POLYGON_VERTICES];
-            polygon.projected_solid_angle = polygon.small().projected_solid_angle();
-            polygon.density = 1.0 / polygon.projected_solid_angle;
-            polygon.selectable_sectors = 1;
-            polygon.is_small = 1;
-            polygon.small_tolerance = polygon.small().tolerance(SMALL_ROUNDING);
-            true
-        };
-        // The end of both paths: the unused slots, the sectors' starts, Φ and the checks.
-        let finish = |polygon: &mut Self, sectors: usize, outer_sum: f32, maybe_short: bool| {
-            // The unused slots too (no stale or NaN word is left in a prepared value, which
-            // the adversarial C test checks by filling the struct with NaN first).
-            // `EllipseSector::EMPTY` from registers (see `empty_from`): copied from the
-            // constant, each slot was a call of `memcpy`. (The central sectors' rows have
-            // their unused slots written already, as 0.)
-            let one = core::hint::black_box(1.0f32);
-            for j in sectors..MAX_POLYGON_VERTICES {
-                if polygon.central == 0 {
-                    polygon.pieces.sectors_mut()[j] = EllipseSector::empty_from(one);
-                }
-                polygon.sector_area[j] = 0.0;
-            }
-            let mut total = 0.0f32;
-            for j in 0..sectors {
-                polygon.sector_start[j] = total;
-                if polygon.sector_area[j] > 0.0 {
-                    polygon.selectable_sectors = j as u32 + 1;
-                }
-                total += polygon.sector_area[j];
-            }
-            pad_unselectable(&mut polygon.sector_start, polygon.selectable_sectors);
-            let density = 1.0 / total;
-            // Positive and finite, as plain comparisons (`is_finite` compiled to a
-            // classification of the bits here).
-            if !(total > 0.0 && total < f32::INFINITY && density < f32::INFINITY) {
-                return false;
-            }
-            // Slivers seen nearly edge-on: the inner and outer ellipses almost coincide and Φ
-            // is a small difference of large areas, with a relative error of about
-            // 3e-7 × outer_sum / Φ. The small-polygon sampler deviates from the cosine by
-            // 0.2 extent² (and is exact for its own pdf); switch when that is smaller, as long
-            // as it stays within the 1e-4 that the pdf contract allows.
-            // `outer_sum` is an upper bound on that sum (the sum of `outer_area_bound`;
-            // rounding is monotone, so sums in the same order keep the order of their
-            // terms): the exact sum is formed only where the bound does not settle
-            // the test (NaN included). 0 (the central case, or only degenerate outer
-            // ellipses, whose areas are 0) never passes it.
-            if allow_small
-                && outer_sum != 0.0
-                && !(3e-7 * outer_sum <= 0.2 * extent2 * total)
-                && extent2 < SLIVER_EXTENT2
-            {
-                let exact_sum = exact_outer_sum(&polygon.sectors()[..sectors]);
-                if 3e-7 * exact_sum > 0.2 * extent2 * total {
-                    return switch_to_small(polygon);
-                }
-            }
-            polygon.projected_solid_angle = total;
-            polygon.density = density;
-            if maybe_short {
-                let mut normals = polygon.edge_normals.vectors();
-                super::ignore_short_edges_in_containment(&mut normals, &positions, count);
-                polygon.edge_normals.set_all(&normals);
-            }
-            true
-        };
         if allow_small && extent2 < SMALL_EXTENT * SMALL_EXTENT {
             // As from the empty value: `contains` of the small case passes every edge.
             polygon.edge_normals = EdgeNormalRows::ZERO;
-            return switch_to_small(polygon);
+            counter_clockwise_cold(&mut positions, count, reversed);
+            return polygon.switch_to_small(&positions[..count]);
         }
-        // Algorithm 1 per edge; edge j runs from vertex j to vertex j + 1.
-        let next = |j: usize| if j + 1 == count { 0 } else { j + 1 };
         // The edge planes n = p_a × p_b, four edges at a time, bit for bit as
         // `cross_precise` (each component's two products split error-free: without
         // hardware FMA the bulk of this preparation's arithmetic). A clipped edge takes
@@ -897,12 +872,23 @@ impl ProjectedPolygon {
         let outer_edges = outer_edges & all_edges == all_edges;
         // The common case: the zenith inside, nothing clipped, every edge outer and none
         // degenerate (n_z > 0 for every edge, so no vertex lies on the z axis).
+        let inputs = FinishInputs {
+            count,
+            extent2,
+            allow_small,
+        };
         if allow_fast && !was_clipped && outer_edges {
             *took_fast = true;
             let maybe_short =
                 central_unclipped_sectors(polygon, &vertex, &normals, count, precision);
-            return finish(polygon, count, 0.0, maybe_short);
+            if maybe_short {
+                counter_clockwise_cold(&mut positions, count, reversed);
+            }
+            return polygon.finish(&positions, &inputs, count, 0.0, maybe_short);
         }
+        counter_clockwise(&mut positions, count, reversed);
+        // Algorithm 1 per edge; edge j runs from vertex j to vertex j + 1.
+        let next = |j: usize| if j + 1 == count { 0 } else { j + 1 };
         // The edges' ellipses `u` and the vertices' unit directions `s`, as rows of x and
         // y (the lanes' path stores its lanes there; slots past the polygon are not read).
         let mut edge_rows = DEGENERATE.map(|c| [c; MAX_POLYGON_VERTICES]);
@@ -1322,7 +1308,103 @@ impl ProjectedPolygon {
                 };
             }
         }
-        finish(polygon, sectors, outer_sum_bound, maybe_short)
+        polygon.finish(&positions, &inputs, sectors, outer_sum_bound, maybe_short)
+    }
+
+    /// Writes the small-polygon sampler of the polygon `positions` in place; the
+    /// sectors are then not read.
+    #[inline(always)]
+    fn switch_to_small(&mut self, positions: &[Vec3]) -> bool {
+        let polygon = self;
+        // The whole storage first (the sectors' view is the larger), then the small
+        // sampler over its start: no stale word is left.
+        polygon.pieces = ProjectedPieces::EMPTY;
+        if !polygon.small_mut().prepare(positions) {
+            return false;
+        }
+        polygon.sector_area = [0.0; MAX_POLYGON_VERTICES];
+        polygon.sector_start = [0.0; MAX_POLYGON_VERTICES];
+        polygon.projected_solid_angle = polygon.small().projected_solid_angle();
+        polygon.density = 1.0 / polygon.projected_solid_angle;
+        polygon.selectable_sectors = 1;
+        polygon.is_small = 1;
+        polygon.small_tolerance = polygon.small().tolerance(SMALL_ROUNDING);
+        true
+    }
+
+    /// The end of both paths of [`prepare_or_fail`](Self::prepare_or_fail): the unused
+    /// slots, the sectors' starts, Φ and the checks (`positions` in counter-clockwise
+    /// order).
+    #[inline(always)]
+    fn finish(
+        &mut self,
+        positions: &[Vec3; MAX_POLYGON_VERTICES],
+        inputs: &FinishInputs,
+        sectors: usize,
+        outer_sum: f32,
+        maybe_short: bool,
+    ) -> bool {
+        let polygon = self;
+        let FinishInputs {
+            count,
+            extent2,
+            allow_small,
+        } = *inputs;
+        // The unused slots too (no stale or NaN word is left in a prepared value, which
+        // the adversarial C test checks by filling the struct with NaN first).
+        // `EllipseSector::EMPTY` from registers (see `empty_from`): copied from the
+        // constant, each slot was a call of `memcpy`. (The central sectors' rows have
+        // their unused slots written already, as 0.)
+        let one = core::hint::black_box(1.0f32);
+        for j in sectors..MAX_POLYGON_VERTICES {
+            if polygon.central == 0 {
+                polygon.pieces.sectors_mut()[j] = EllipseSector::empty_from(one);
+            }
+            polygon.sector_area[j] = 0.0;
+        }
+        let mut total = 0.0f32;
+        for j in 0..sectors {
+            polygon.sector_start[j] = total;
+            if polygon.sector_area[j] > 0.0 {
+                polygon.selectable_sectors = j as u32 + 1;
+            }
+            total += polygon.sector_area[j];
+        }
+        pad_unselectable(&mut polygon.sector_start, polygon.selectable_sectors);
+        let density = 1.0 / total;
+        // Positive and finite, as plain comparisons (`is_finite` compiled to a
+        // classification of the bits here).
+        if !(total > 0.0 && total < f32::INFINITY && density < f32::INFINITY) {
+            return false;
+        }
+        // Slivers seen nearly edge-on: the inner and outer ellipses almost coincide and Φ
+        // is a small difference of large areas, with a relative error of about
+        // 3e-7 × outer_sum / Φ. The small-polygon sampler deviates from the cosine by
+        // 0.2 extent² (and is exact for its own pdf); switch when that is smaller, as long
+        // as it stays within the 1e-4 that the pdf contract allows.
+        // `outer_sum` is an upper bound on that sum (the sum of `outer_area_bound`;
+        // rounding is monotone, so sums in the same order keep the order of their
+        // terms): the exact sum is formed only where the bound does not settle
+        // the test (NaN included). 0 (the central case, or only degenerate outer
+        // ellipses, whose areas are 0) never passes it.
+        if allow_small
+            && outer_sum != 0.0
+            && !(3e-7 * outer_sum <= 0.2 * extent2 * total)
+            && extent2 < SLIVER_EXTENT2
+        {
+            let exact_sum = exact_outer_sum(&polygon.sectors()[..sectors]);
+            if 3e-7 * exact_sum > 0.2 * extent2 * total {
+                return polygon.switch_to_small(&positions[..count]);
+            }
+        }
+        polygon.projected_solid_angle = total;
+        polygon.density = density;
+        if maybe_short {
+            let mut normals = polygon.edge_normals.vectors();
+            super::ignore_short_edges_in_containment(&mut normals, positions, count);
+            polygon.edge_normals.set_all(&normals);
+        }
+        true
     }
 
     /// Whether [`prepare`](Self::prepare) of `vertices` succeeds through the central fast

@@ -1991,3 +1991,67 @@ fn certain_azimuth_order_matches_the_network() {
     // by their flags, which the cheap path never claims to know.
     assert_ne!(careful(&same_azimuth, 0b01), careful(&same_azimuth, 0b10));
 }
+
+/// A clockwise polygon prepares bit for bit as its vertices in reverse order (the
+/// counter-clockwise polygon that the preparation takes): the vertex lanes read the
+/// clockwise positions backwards and `counter_clockwise` reverses them only where they
+/// are read. Unclipped polygons on every path: central (fast and general), central with
+/// a short edge (the fast path's short-edge test reads the positions), decentral, tiny
+/// (the small-polygon sampler), and random central and decentral ones.
+#[test]
+fn clockwise_prepares_as_its_reversal() {
+    let check = |clockwise: &[Vec3]| {
+        let counter_clockwise = reversed(clockwise);
+        for precision in [AreaPrecision::Exact, AreaPrecision::Fast] {
+            for allow_fast in [true, false] {
+                let mut a = nan_filled(ProjectedPolygon::EMPTY);
+                let mut b = nan_filled(ProjectedPolygon::EMPTY);
+                let (a_ok, a_fast) = a.prepare_choosing_path(clockwise, precision, allow_fast);
+                let (b_ok, b_fast) =
+                    b.prepare_choosing_path(&counter_clockwise, precision, allow_fast);
+                assert_eq!((a_ok, a_fast), (b_ok, b_fast), "{clockwise:?}");
+                assert_eq!(words(&a), words(&b), "{clockwise:?}");
+            }
+        }
+    };
+    // Clockwise seen from above (decreasing azimuth).
+    let ring = |n: usize, radius: f32, centre: [f32; 2], z: f32| -> Vec<Vec3> {
+        (0..n)
+            .map(|k| {
+                let a = -(k as f32) * core::f32::consts::TAU / n as f32;
+                Vec3::new(
+                    centre[0] + radius * a.cos(),
+                    centre[1] + radius * a.sin(),
+                    z,
+                )
+            })
+            .collect()
+    };
+    for n in 3..=MAX_POLYGON_VERTICES {
+        let central = ring(n, 1.0, [0.1, -0.2], 1.0);
+        let mut polygon = ProjectedPolygon::EMPTY;
+        assert!(polygon.prepare(&central) && polygon.central == 1);
+        check(&central);
+        let decentral = ring(n, 0.3, [1.0, 0.5], 1.0);
+        assert!(polygon.prepare(&decentral) && polygon.central == 0);
+        check(&decentral);
+        let tiny = ring(n, 1e-4, [0.3, 0.2], 1.0);
+        assert!(polygon.prepare(&tiny) && polygon.uses_small_polygon_sampler());
+        check(&tiny);
+    }
+    // A short edge (two vertices 1e-7 apart) in a central polygon.
+    let mut short = ring(6, 1.0, [0.0, 0.0], 1.0);
+    short.insert(1, short[0] + Vec3::new(0.0, -1e-7, 0.0));
+    check(&short);
+    let mut rng = Rng::new(44);
+    for _ in 0..2000 {
+        let n = 3 + (rng.uniform() * 6.0) as usize;
+        let radius = (0.05 + rng.uniform()) as f32;
+        let centre = [
+            (rng.uniform() - 0.5) as f32 * 2.0,
+            (rng.uniform() - 0.5) as f32 * 2.0,
+        ];
+        let z = (0.2 + rng.uniform()) as f32;
+        check(&ring(n.min(MAX_POLYGON_VERTICES), radius, centre, z));
+    }
+}
