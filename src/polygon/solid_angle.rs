@@ -916,8 +916,8 @@ impl FanLanes {
     /// value is `compute`'s bit for bit (tested:
     /// `a_lone_fan_triangle_is_prepared_as_in_lanes`), from two lengths and two
     /// candidates of `denominator` in lanes where `compute` took three (quads' prepare +
-    /// 1 sample 781 -> 767 instructions, the general polygon's at 4 vertices 858 -> 830,
-    /// callgrind).
+    /// 1 sample 781 -> 764 instructions, the general polygon's at 4 vertices 858 -> 828,
+    /// callgrind, 3 of them from the triangles' lanes 1 and 2, where their `s02` lies).
     #[inline(always)]
     fn compute_quad<const N: usize, const T: usize>(
         &mut self,
@@ -941,40 +941,35 @@ impl FanLanes {
         let edge_candidates = half * edge2 + ((ox * ex + oy * ey) + oz * ez);
         let (ox, oy, oz) = (next(x), next(y), next(z));
         let diagonal_candidates = half * diagonal2 + ((ox * dx + oy * dy) + oz * dz);
-        // The two triangles' `s01`, `s02` and `s12` values in lanes 0 and 1 (lanes 2 and
-        // 3 repeat them: finite, and left out below).
+        // The two triangles' `s01`, `s02` and `s12` values in lanes 1 and 2, where their
+        // `s02` (edges 1 and 2) lies (lanes 0 and 3 repeat them: finite, and left out
+        // below).
         let per_triangle = |e: Vec4, d: Vec4| {
             [
-                Vec4::new(e.x, d.z, e.x, d.z),
-                Vec4::new(e.y, e.z, e.y, e.z),
-                Vec4::new(d.x, e.w, d.x, e.w),
+                Vec4::new(e.x, e.x, d.z, d.z),
+                e,
+                Vec4::new(d.x, d.x, e.w, e.w),
             ]
         };
         let [l01, l02, l12] = per_triangle(edge2, diagonal2);
         let [d01, d02, d12] = per_triangle(edge_candidates, diagonal_candidates);
-        // As `compute`.
-        self.wide_pairs |= lane_bits(l01.min(l02).min(l12).cmplt(Vec4::splat(2.0)), 0, 2);
+        // As `compute`, in lanes 1 and 2.
+        let wide = l01.min(l02).min(l12).cmplt(Vec4::splat(2.0));
+        self.wide_pairs |= (wide.bitmask() >> 1) & 0b11;
         let g1_plus_g2 = Vec4::select(
             l02.cmple(l01) & l02.cmple(l12),
             d02,
             Vec4::select(l12.cmple(l01), d12, d01),
         );
-        store_triangle_lanes(g1_plus_g2, &mut polygon.g1_plus_g2, 0);
-        store_triangle_lanes(half * l01, &mut polygon.g2, 0);
+        let lanes_1_2 = |v: Vec4| Vec4::new(v.y, v.z, v.y, v.z);
+        store_triangle_lanes(lanes_1_2(g1_plus_g2), &mut polygon.g1_plus_g2, 0);
+        store_triangle_lanes(lanes_1_2(half * l01), &mut polygon.g2, 0);
         // `m = v_b·(v_b + v_c)` and `|s02|² - m²`: vertex 1 and edge 1, vertex 2 and
         // edge 2, in lanes 1 and 2.
         let along = (x * ex + y * ey) + z * ez;
         let across2 = edge2 - along * along;
-        store_triangle_lanes(
-            Vec4::new(along.y, along.z, 0.0, 0.0),
-            &mut polygon.outer_along,
-            0,
-        );
-        store_triangle_lanes(
-            Vec4::new(across2.y, across2.z, 0.0, 0.0),
-            &mut polygon.outer_across2,
-            0,
-        );
+        store_triangle_lanes(lanes_1_2(along), &mut polygon.outer_along, 0);
+        store_triangle_lanes(lanes_1_2(across2), &mut polygon.outer_across2, 0);
         let (ex, ey, ez) = (ex.to_array(), ey.to_array(), ez.to_array());
         for k in 0..2.min(T) {
             polygon.outer_sum[k] = Vec3::new(ex[k + 1], ey[k + 1], ez[k + 1]);
@@ -1217,7 +1212,7 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // (`compute_triangle`; triangles 763 -> 734 instructions per prepare + 1 with
         // `compute_one`, 734 -> 675 with the pair sums in lanes, callgrind). A quad's two
         // fan triangles share one group of lanes for their five pair sums
-        // (`compute_quad`; quads 781 -> 767 instructions per prepare + 1, callgrind).
+        // (`compute_quad`; quads 781 -> 764 instructions per prepare + 1, callgrind).
         if triangles == 1 {
             fan.compute_triangle(self, &groups, &reflection);
         } else if triangles == 2 {
