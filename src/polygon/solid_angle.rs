@@ -721,12 +721,20 @@ impl FanLanes {
         let l12 = (s12x * s12x + s12y * s12y) + s12z * s12z;
         // `m = v0·(v0 + v2)` and `|v0 + v2|² - m²` (`l02` is `|v0 + v2|²`, rounded as
         // `length_squared`), for the sample. Where they are computed changes how the
-        // compiler allocates registers: here rather than at the end (hexagons 1240.3
-        // instructions per prepare + 1 here, 1246.3 at the end, callgrind; quads, which
-        // took the end, 853.2 here against 842.2, now take `compute_quad`).
-        let along = (bx * s02x + by * s02y) + bz * s02z;
-        store_triangle_lanes(along, &mut polygon.outer_along, first);
-        store_triangle_lanes(l02 - along * along, &mut polygon.outer_across2, first);
+        // compiler allocates registers: here, for a quad's two fan triangles, 11 register
+        // copies more than below (hexagons 1240.3 instructions per prepare + 1 here,
+        // 1246.3 below; quads 853.2 here, 842.2 below, callgrind). Quads now take
+        // `compute_quad` (two fan triangles here are the tests' reference for it); the
+        // closure stays: written inline here, without the branch below, it cost native
+        // hexagons one instruction per prepare + 1 (856.4 -> 857.4, callgrind).
+        let outer_terms = |polygon: &mut SolidAngleFan<N, T>| {
+            let along = (bx * s02x + by * s02y) + bz * s02z;
+            store_triangle_lanes(along, &mut polygon.outer_along, first);
+            store_triangle_lanes(l02 - along * along, &mut polygon.outer_across2, first);
+        };
+        if triangles > 2 {
+            outer_terms(polygon);
+        }
         self.wide_pairs |= lane_bits(
             l01.min(l02).min(l12).cmplt(Vec4::splat(2.0)),
             first,
@@ -755,6 +763,9 @@ impl FanLanes {
                     triangles - first,
                 );
             store4(angles, &mut self.angles, first);
+        }
+        if triangles <= 2 {
+            outer_terms(polygon);
         }
         let (s02x, s02y, s02z) = (s02x.to_array(), s02y.to_array(), s02z.to_array());
         for j in 0..LANES.min(T - first) {
