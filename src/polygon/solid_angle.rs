@@ -659,17 +659,17 @@ const fn angles_in_lanes(triangles: usize) -> usize {
 }
 
 impl FanLanes {
-    /// The four fan triangles from triangle `first` on (of `triangles`).
+    /// The signed determinants `det(v0, v1, v2)` of the four fan triangles from
+    /// triangle `first` on (of `triangles`), stored into `signed_g0` and returned, with
+    /// their flat flags.
     #[inline(always)]
-    fn compute<const N: usize, const T: usize>(
+    fn determinants(
         &mut self,
-        polygon: &mut SolidAngleFan<N, T>,
         lanes: &VertexGroups,
         reflection: &Householder,
-        apex: Vec3,
         first: usize,
         triangles: usize,
-    ) {
+    ) -> Vec4 {
         let (b, c) = (first + 1, first + 2);
         let count = triangles + 2;
         let rb = [
@@ -693,6 +693,23 @@ impl FanLanes {
         let signed_g0 =
             det / (lanes.slots(|g| g.length, b, count) * lanes.slots(|g| g.length, c, count));
         store4(signed_g0, &mut self.signed_g0, first);
+        signed_g0
+    }
+
+    /// The four fan triangles from triangle `first` on (of `triangles`).
+    #[inline(always)]
+    fn compute<const N: usize, const T: usize>(
+        &mut self,
+        polygon: &mut SolidAngleFan<N, T>,
+        lanes: &VertexGroups,
+        reflection: &Householder,
+        apex: Vec3,
+        first: usize,
+        triangles: usize,
+    ) {
+        let (b, c) = (first + 1, first + 2);
+        let count = triangles + 2;
+        let signed_g0 = self.determinants(lanes, reflection, first, triangles);
         let [bx, by, bz] = lanes.slots3(|g| g.unit, b, count);
         let [cx, cy, cz] = lanes.slots3(|g| g.unit, c, count);
         let [ax, ay, az] = splat3(apex);
@@ -706,7 +723,10 @@ impl FanLanes {
         // `length_squared`), for the sample. Where they are computed changes how the
         // compiler allocates registers: here, for a quad's two fan triangles, 11 register
         // copies more than below (hexagons 1240.3 instructions per prepare + 1 here,
-        // 1246.3 below; quads 853.2 here, 842.2 below, callgrind).
+        // 1246.3 below; quads 853.2 here, 842.2 below, callgrind). Quads now take
+        // `compute_quad` (two fan triangles here are the tests' reference for it); the
+        // closure stays: written inline here, without the branch below, it cost native
+        // hexagons one instruction per prepare + 1 (856.4 -> 857.4, callgrind).
         let outer_terms = |polygon: &mut SolidAngleFan<N, T>| {
             let along = (bx * s02x + by * s02y) + bz * s02z;
             store_triangle_lanes(along, &mut polygon.outer_along, first);
@@ -887,6 +907,84 @@ impl FanLanes {
         let across2 = length2 - along * along;
         polygon.outer_along[0] = along.y;
         polygon.outer_across2[0] = across2.y;
+    }
+}
+
+impl FanLanes {
+    /// [`compute`](Self::compute) of a quad's two fan triangles (`count == 4`), with the
+    /// pair sums in the lanes of group 0 instead of two triangles' three sums each in
+    /// lanes of their own (of which two lanes were unused). The two triangles
+    /// `(v1, v0, v2)` and `(v2, v0, v3)` have five distinct pair sums, not six: the
+    /// quad's four edges `v_i + v_(i+1)` (lane `i` of the lanes `(v0, v1, v2, v3)` plus
+    /// the same shifted by one slot), whose opposite vertices in their fan triangle are
+    /// `(v2, v0, v0, v2)`, and the diagonal `v0 + v2`, which both triangles share (lanes
+    /// 0 and 2 of the lanes plus the same shifted by two slots: `v0 + v2` and
+    /// `v2 + v0`), whose opposite vertices are `v1` and `v3` (the lanes shifted by one).
+    /// So triangle 0's `s01`, `s02`, `s12` (`v_b + v_a`, `v_b + v_c`, `v_a + v_c` in
+    /// `compute`) are edge 0, edge 1 and the diagonal's lane 0, and triangle 1's are the
+    /// diagonal's lane 2, edge 2 and edge 3. Addition and multiplication are commutative
+    /// in IEEE arithmetic and every other operation is `compute`'s in its order, so each
+    /// value is `compute`'s bit for bit (tested:
+    /// `a_lone_fan_triangle_is_prepared_as_in_lanes`), from two lengths and two
+    /// candidates of `denominator` in lanes where `compute` took three (quads' prepare +
+    /// 1 sample 781 -> 764 instructions, the general polygon's at 4 vertices 858 -> 828,
+    /// callgrind, 3 of them from the triangles' lanes 1 and 2, where their `s02` lies).
+    #[inline(always)]
+    fn compute_quad<const N: usize, const T: usize>(
+        &mut self,
+        polygon: &mut SolidAngleFan<N, T>,
+        lanes: &VertexGroups,
+        reflection: &Householder,
+    ) {
+        self.determinants(lanes, reflection, 0, 2);
+        // Slots 0..4 of group 0 hold vertices 0, 1, 2, 3.
+        let [x, y, z] = lanes.groups[0].unit;
+        let next = |v: Vec4| Vec4::new(v.y, v.z, v.w, v.x);
+        let across = |v: Vec4| Vec4::new(v.z, v.w, v.x, v.y);
+        let edge_opposite = |v: Vec4| Vec4::new(v.z, v.x, v.x, v.z);
+        // The edges `v_i + v_(i+1)` and the diagonals `v_i + v_(i+2)`.
+        let (ex, ey, ez) = (x + next(x), y + next(y), z + next(z));
+        let (dx, dy, dz) = (x + across(x), y + across(y), z + across(z));
+        let edge2 = (ex * ex + ey * ey) + ez * ez;
+        let diagonal2 = (dx * dx + dy * dy) + dz * dz;
+        let half = Vec4::splat(0.5);
+        let (ox, oy, oz) = (edge_opposite(x), edge_opposite(y), edge_opposite(z));
+        let edge_candidates = half * edge2 + ((ox * ex + oy * ey) + oz * ez);
+        let (ox, oy, oz) = (next(x), next(y), next(z));
+        let diagonal_candidates = half * diagonal2 + ((ox * dx + oy * dy) + oz * dz);
+        // The two triangles' `s01`, `s02` and `s12` values in lanes 1 and 2, where their
+        // `s02` (edges 1 and 2) lies (lanes 0 and 3 repeat them: finite, and left out
+        // below).
+        let per_triangle = |e: Vec4, d: Vec4| {
+            [
+                Vec4::new(e.x, e.x, d.z, d.z),
+                e,
+                Vec4::new(d.x, d.x, e.w, e.w),
+            ]
+        };
+        let [l01, l02, l12] = per_triangle(edge2, diagonal2);
+        let [d01, d02, d12] = per_triangle(edge_candidates, diagonal_candidates);
+        // As `compute`, in lanes 1 and 2.
+        let wide = l01.min(l02).min(l12).cmplt(Vec4::splat(2.0));
+        self.wide_pairs |= (wide.bitmask() >> 1) & 0b11;
+        let g1_plus_g2 = Vec4::select(
+            l02.cmple(l01) & l02.cmple(l12),
+            d02,
+            Vec4::select(l12.cmple(l01), d12, d01),
+        );
+        let lanes_1_2 = |v: Vec4| Vec4::new(v.y, v.z, v.y, v.z);
+        store_triangle_lanes(lanes_1_2(g1_plus_g2), &mut polygon.g1_plus_g2, 0);
+        store_triangle_lanes(lanes_1_2(half * l01), &mut polygon.g2, 0);
+        // `m = v_b·(v_b + v_c)` and `|s02|² - m²`: vertex 1 and edge 1, vertex 2 and
+        // edge 2, in lanes 1 and 2.
+        let along = (x * ex + y * ey) + z * ez;
+        let across2 = edge2 - along * along;
+        store_triangle_lanes(lanes_1_2(along), &mut polygon.outer_along, 0);
+        store_triangle_lanes(lanes_1_2(across2), &mut polygon.outer_across2, 0);
+        let (ex, ey, ez) = (ex.to_array(), ey.to_array(), ez.to_array());
+        for k in 0..2.min(T) {
+            polygon.outer_sum[k] = Vec3::new(ex[k + 1], ey[k + 1], ez[k + 1]);
+        }
     }
 }
 
@@ -1123,10 +1221,13 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // A triangle's one fan triangle on its own, the same bits: the determinant in
         // scalar arithmetic, the pair sums in the lanes of its three vertices
         // (`compute_triangle`; triangles 763 -> 734 instructions per prepare + 1 with
-        // `compute_one`, 734 -> 675 with the pair sums in lanes, callgrind; quads' two
-        // fan triangles stay in `compute`'s lanes).
+        // `compute_one`, 734 -> 675 with the pair sums in lanes, callgrind). A quad's two
+        // fan triangles share one group of lanes for their five pair sums
+        // (`compute_quad`; quads 781 -> 764 instructions per prepare + 1, callgrind).
         if triangles == 1 {
             fan.compute_triangle(self, &groups, &reflection);
+        } else if triangles == 2 {
+            fan.compute_quad(self, &groups, &reflection);
         } else {
             fan.compute(self, &groups, &reflection, apex, 0, triangles);
         }

@@ -1225,10 +1225,10 @@ fn sampled_directions_match_algorithm_5_in_f64() {
 }
 
 /// `FanLanes::compute_one` (a triangle's fan triangle and a heptagon's fifth in scalar
-/// arithmetic) gives
+/// arithmetic), and `FanLanes::compute_quad` (a quad's two), give
 /// the bits of the lanes' `FanLanes::compute` for the same triangle: `G0` with its sign,
 /// `G1 + G2`, `G2`, `v0 + v2` and the flags of the careful forms, for every fan triangle
-/// of triangles, heptagons and octagons (not only a heptagon's fifth) of every kind: ordinary ones in both
+/// of triangles, quads, heptagons and octagons (not only a heptagon's fifth) of every kind: ordinary ones in both
 /// windings, tiny ones far away (products that cancel: the error-free determinant), ones
 /// close over the shading point (pairs more than 90° apart: the wide-pair flag) and ones
 /// within rounding of a plane through the shading point (the flat flag). And that a
@@ -1238,7 +1238,7 @@ fn sampled_directions_match_algorithm_5_in_f64() {
 fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
     let mut rng = Rng::new(3901);
     let mut cases: Vec<Vec<Vec3>> = Vec::new();
-    for n in [3, 7, 8] {
+    for n in [3, 4, 7, 8] {
         for _ in 0..200 {
             let v = random_polygon_above(&mut rng, n, 0.2, 0.7);
             cases.push(reversed(&v));
@@ -1269,6 +1269,7 @@ fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
     }
     let (mut flat, mut wide) = (0, 0);
     let (mut triangle_flat, mut triangle_wide) = (0, 0);
+    let (mut quad_flat, mut quad_wide) = (0, 0);
     for v in &cases {
         let count = v.len();
         let triangles = count - 2;
@@ -1361,6 +1362,38 @@ fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
                 triangle_wide += (triangle.wide_pairs != 0) as u32;
             }
         }
+        // A quad's prepare takes `compute_quad`, the pair sums of both triangles in one
+        // group of lanes: the lanes' values and flags bit for bit.
+        if count == 4 {
+            let mut quad_polygon = SolidAnglePolygon::EMPTY;
+            let mut quad = FanLanes::default();
+            quad.compute_quad(&mut quad_polygon, &groups, &reflection);
+            let what = format!("{v:?}");
+            let words = |p: &SolidAnglePolygon, f: &FanLanes| {
+                let mut words = std::vec![f.maybe_flat, f.wide_pairs];
+                for k in 0..2 {
+                    words.extend(
+                        [
+                            f.signed_g0[k],
+                            p.g1_plus_g2[k],
+                            p.g2[k],
+                            p.outer_along[k],
+                            p.outer_across2[k],
+                        ]
+                        .map(f32::to_bits),
+                    );
+                    words.extend(p.outer_sum[k].to_array().map(f32::to_bits));
+                }
+                words
+            };
+            assert_eq!(
+                words(&quad_polygon, &quad),
+                words(&lanes_polygon, &lanes),
+                "{what}"
+            );
+            quad_flat += (quad.maybe_flat != 0) as u32;
+            quad_wide += (quad.wide_pairs != 0) as u32;
+        }
         // A heptagon's prepare takes `compute_one` for its fifth triangle, a triangle's
         // for its one: the prepared values are the lanes'.
         if count == 7 || count == 3 {
@@ -1380,6 +1413,10 @@ fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
     assert!(
         triangle_flat > 10 && triangle_wide > 10,
         "triangles: flat {triangle_flat}, wide {triangle_wide}"
+    );
+    assert!(
+        quad_flat > 10 && quad_wide > 10,
+        "quads: flat {quad_flat}, wide {quad_wide}"
     );
 }
 
