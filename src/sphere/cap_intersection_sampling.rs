@@ -122,6 +122,14 @@ impl CapIntersection {
     /// sanitizing them again: the same bits, for the sphere light sampler, whose caps are
     /// images from `pivot_cap_fast`.
     pub(crate) fn prepare_sanitized(&mut self, a: &Cap, b: &Cap) -> bool {
+        self.prepare_sanitized_inlined(a, b)
+    }
+
+    /// [`prepare_sanitized`](Self::prepare_sanitized), always inlined (the sphere light
+    /// sampler's clipped preparation, whose pivoted images are then not passed through
+    /// memory).
+    #[inline(always)]
+    pub(crate) fn prepare_sanitized_inlined(&mut self, a: &Cap, b: &Cap) -> bool {
         let (a, b) = (*a, *b);
         let (radial, other) = if a.one_minus_cos <= b.one_minus_cos {
             (a, b)

@@ -524,7 +524,7 @@ impl SphereLightSampler {
             // The images are valid caps as `pivot_cap_fast` and `pivot_upper_hemisphere`
             // build them (tested by `the_sampler_s_pivoted_images_are_valid_caps` and
             // `the_upper_hemisphere_s_image_in_closed_form`): not sanitized again.
-            && self.clipped_region.prepare_sanitized(&pivoted(cap).0, &horizon_image())
+            && self.clipped_region.prepare_sanitized_inlined(&pivoted(cap).0, &horizon_image())
             && self.clipped_region.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE;
         if !uses_sptd && !self.clipped_region.prepare_sanitized(cap, &horizon) {
             return false;
