@@ -122,7 +122,16 @@ impl CapIntersection {
     /// sanitizing them again: the same bits, for the sphere light sampler, whose caps are
     /// images from `pivot_cap_fast`.
     pub(crate) fn prepare_sanitized(&mut self, a: &Cap, b: &Cap) -> bool {
-        let (a, b) = (*a, *b);
+        self.prepare_sanitized_inlined(*a, *b)
+    }
+
+    /// [`prepare_sanitized`](Self::prepare_sanitized) of caps by value, always inlined: the
+    /// sphere light sampler's clipped preparation, whose pivoted images are then not
+    /// passed through memory (issue 18, stop 45: with `SphereLightSampler::prepare`'s cap
+    /// no longer copied, 12 instructions per preparation and sample of `sptd`, 15 of
+    /// `sptd_fit`, callgrind, light bench). The other callers keep the out-of-line call.
+    #[inline(always)]
+    pub(crate) fn prepare_sanitized_inlined(&mut self, a: Cap, b: Cap) -> bool {
         let (radial, other) = if a.one_minus_cos <= b.one_minus_cos {
             (a, b)
         } else {
