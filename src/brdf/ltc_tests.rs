@@ -84,15 +84,7 @@ fn map_to_cosine_space_is_to_cosine_space() {
         for trial in 0..500 {
             let count = 1 + trial % 8;
             let scale = [1e-30f32, 1e-3, 1.0, 1e4, 1e30][trial % 5];
-            let mut vertices: Vec<Vec3> = (0..count)
-                .map(|_| {
-                    Vec3::new(
-                        rng.range(-1.0, 1.0),
-                        rng.range(-1.0, 1.0),
-                        rng.range(-1.0, 1.0),
-                    ) * scale
-                })
-                .collect();
+            let mut vertices: Vec<Vec3> = (0..count).map(|_| rng.cube() * scale).collect();
             if trial % 3 == 0 {
                 vertices[trial / 3 % count] = specials[trial / 3 % specials.len()];
             }

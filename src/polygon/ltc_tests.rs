@@ -531,15 +531,7 @@ fn unit_chord_perimeter_is_the_scalar_one() {
     for count in 1..=MAX_POLYGON_VERTICES {
         for scale in [1e-16f32, 1e-14, 1e-3, 1.0, 7.0, 1e5, 1e14, 1e16] {
             for trial in 0..300 {
-                let mut vertices: Vec<Vec3> = (0..count)
-                    .map(|_| {
-                        Vec3::new(
-                            rng.range(-1.0, 1.0),
-                            rng.range(-1.0, 1.0),
-                            rng.range(-1.0, 1.0),
-                        ) * scale
-                    })
-                    .collect();
+                let mut vertices: Vec<Vec3> = (0..count).map(|_| rng.cube() * scale).collect();
                 // Now and then one vertex far out of the others' range (or not finite).
                 if trial % 7 == 0 {
                     let k = trial / 7 % count;
