@@ -476,12 +476,8 @@ impl SphereLightSampler {
         };
         let uses_sptd = prepared && self.sptd.image.solid_angle() >= MIN_PIVOTED_SOLID_ANGLE;
         // The pivot at the origin gives J = 1: the uniform distribution in the cap,
-        // sampled directly below.
-        if !uses_sptd
-            && !self
-                .sptd
-                .prepare_sanitized(&Sptd::uniform_of_valid(Vec3::ZERO), cap)
-        {
+        // sampled directly below (its image, the antipodal cap, in closed form).
+        if !uses_sptd && !self.sptd.prepare_uniform_of_zero_pivot(cap) {
             return false;
         }
         self.clipped_region = CapIntersection::EMPTY;

@@ -65,6 +65,11 @@ use glam::Vec3;
 
 const INV_4PI: f32 = 0.25 * FRAC_1_PI;
 
+/// The smallest side `1 − cos θ` of a cap whose zero-pivot image is taken in closed form
+/// ([`SptdInCap::prepare_uniform_of_zero_pivot`]): far (a factor 1e8) above the sides
+/// whose `∫ = Ω/4π` has no finite inverse.
+const ANTIPODAL_MIN_SIDE: f32 = 1e-30;
+
 /// The base distribution that the pivot transforms.
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -694,6 +699,36 @@ impl SptdInCap {
         prepared
     }
 
+    /// [`SptdInCap::prepare_sanitized`] of the zero pivot, `Sptd::uniform_of_valid(Vec3::ZERO)`
+    /// (the sphere light sampler's fallback: `g(ω) = −ω` and `J = 1`, the uniform
+    /// distribution in the cap), with the image in closed form: the antipodal cap (axis
+    /// `−c`, the same sides), which `g` maps the cap onto exactly. `pivot_cap_fast` finds
+    /// the zero pivot on the axis line and takes the careful `pivot_cap` (three `atan2f`, a
+    /// `sincosf` and a `sinf`: about 550 instructions per fallback, issue 18, stop 45),
+    /// whose image is that cap to a few ulps. The sampler's fallback reads only `cap` and
+    /// the result (`SphereLightSampler::sample` and `pdf` sample and evaluate the cap
+    /// itself), and the result is the same: with `1 − cos θ ≥ ANTIPODAL_MIN_SIDE`
+    /// (1e-30) both images have a side within a few ulps of the cap's (or past a
+    /// hemisphere, a side ≥ 1), so `∫_C D = Ω/4π` is in `[2e-31, 1]` for both, positive
+    /// with a finite inverse, and both return `true`; below it (where `1/∫` overflows, near
+    /// `1 − cos θ = 6e-39`, the ulps of the careful image could decide) the careful path
+    /// itself (`the_zero_pivot_s_antipodal_image_prepares_as_the_careful_one`).
+    pub(crate) fn prepare_uniform_of_zero_pivot(&mut self, cap: &Cap) -> bool {
+        let sptd = Sptd::uniform_of_valid(Vec3::ZERO);
+        if !(cap.one_minus_cos >= ANTIPODAL_MIN_SIDE) {
+            return self.prepare_sanitized(&sptd, cap);
+        }
+        let image = Cap {
+            axis: -cap.axis,
+            ..*cap
+        };
+        let prepared = self.prepare_of_image(&sptd, *cap, image);
+        if !prepared {
+            *self = SptdInCap::EMPTY;
+        }
+        prepared
+    }
+
     /// The body of [`SptdInCap::prepare_sanitized`], which leaves `self` partly written
     /// when it returns `false`.
     #[inline(always)]
@@ -704,6 +739,13 @@ impl SptdInCap {
         } else {
             pivot_cap_fast(&cap, sptd.pivot).0
         };
+        self.prepare_of_image(sptd, cap, image)
+    }
+
+    /// The body of [`SptdInCap::prepare_sanitized_unchecked`] from the image `g(C)`, which
+    /// leaves `self` partly written when it returns `false`.
+    #[inline(always)]
+    fn prepare_of_image(&mut self, sptd: &Sptd, cap: Cap, image: Cap) -> bool {
         // (The uniform base's integral inline: the call was out of line.)
         let integral = match sptd.base {
             SptdBase::Uniform => image.solid_angle() * INV_4PI,

@@ -1105,3 +1105,73 @@ fn the_uniform_base_sample_skips_the_uniform_pdf() {
     }
     assert!(none > 1000, "{none}");
 }
+
+/// The zero pivot's image in closed form (`prepare_uniform_of_zero_pivot`, the sphere
+/// light sampler's fallback) prepares as the careful path (`prepare_sanitized` of
+/// `Sptd::uniform_of_valid(Vec3::ZERO)`, through `pivot_cap`) does: the same result for
+/// every cap, tiny ones around the overflow of `1/∫` and around `ANTIPODAL_MIN_SIDE`
+/// included, the same distribution and cap, and an integral within a few ulps.
+#[test]
+fn the_zero_pivot_s_antipodal_image_prepares_as_the_careful_one() {
+    let mut rng = Rng::new(45);
+    let mut sides: Vec<f32> = vec![
+        f32::from_bits(1),
+        1e-45,
+        1e-40,
+        5.8e-39,
+        5.9e-39,
+        6e-39,
+        1.2e-38,
+        1e-35,
+        ANTIPODAL_MIN_SIDE,
+        f32::from_bits(ANTIPODAL_MIN_SIDE.to_bits() - 1),
+        f32::from_bits(ANTIPODAL_MIN_SIDE.to_bits() + 1),
+        1e-12,
+        1e-6,
+        0.5,
+        1.0,
+        1.5,
+        2.0 - f32::EPSILON,
+        2.0,
+    ];
+    for _ in 0..2000 {
+        sides.push(rng.log_uniform(-45.0, 0.3) as f32);
+    }
+    let (mut closed, mut careful) = (0, 0);
+    for (i, &side) in sides.iter().enumerate() {
+        let axis = if i % 3 == 0 {
+            Vec3::Z
+        } else {
+            rng.unit_vector_f32()
+        };
+        let cap = Cap::from_axis_one_minus_cos(axis, side.min(2.0)).sanitized();
+        let zero = Sptd::uniform_of_valid(Vec3::ZERO);
+        let mut old = SptdInCap::EMPTY;
+        let old_ok = old.prepare_sanitized(&zero, &cap);
+        let mut new = SptdInCap::EMPTY;
+        let new_ok = new.prepare_uniform_of_zero_pivot(&cap);
+        assert_eq!(new_ok, old_ok, "{cap:?}");
+        if cap.one_minus_cos >= ANTIPODAL_MIN_SIDE {
+            closed += 1;
+            assert!(new_ok, "{cap:?}");
+            assert_eq!(new.image.axis, -cap.axis);
+            assert_eq!(new.image.one_minus_cos, cap.one_minus_cos);
+        } else {
+            careful += 1;
+            assert_eq!(new, old);
+        }
+        if new_ok {
+            assert_eq!((new.sptd, new.cap), (old.sptd, old.cap));
+            let error = (new.integral - old.integral).abs() / old.integral;
+            assert!(
+                error <= 2e-6,
+                "{cap:?}: {} vs {}",
+                new.integral,
+                old.integral
+            );
+        } else {
+            assert_eq!(new, SptdInCap::EMPTY);
+        }
+    }
+    assert!(closed > 500 && careful > 100, "{closed} {careful}");
+}
