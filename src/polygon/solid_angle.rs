@@ -280,13 +280,45 @@ fn gather(vertices: &[Vec3], count: usize, first: usize) -> [Vec4; 3] {
     ]
 }
 
+/// [`rescale_factor_of_lanes`](super::rescale_factor_of_lanes) in every lane, computed
+/// in the lanes from `largest_magnitude4`'s values (combined over the groups): the same
+/// power of two bit for bit, and `None` in the same cases (tested:
+/// `rescale_factor_in_lanes_is_the_scalar_one`). The factor heads the preparation's
+/// chain of dependent operations (it scales the positions whose lengths, units,
+/// reflection and determinant follow), and the scalar form took it out of the lanes and
+/// back (a reduction to one lane, two moves between the register files, five integer
+/// operations and a broadcast, about 25 cycles); here the maximum reaches every lane by
+/// two exchanges, and the factor's bits are integer operations in the lanes. For a
+/// finite largest magnitude of biased exponent `e <= 254`, `rescale_factor`'s
+/// `max(254 - e, 1) << 23` is `0x7F00_0000 - (bits & 0x7F80_0000)` (no borrow: the
+/// exponent field is at most `254 << 23`) raised to `1 << 23` where it is 0; the raise
+/// is a maximum of floats with `f32::MIN_POSITIVE` (bits `1 << 23`), as non-negative
+/// floats order as their bits.
+#[inline(always)]
+fn rescale_factor_in_lanes(largest: Vec4, finite: BVec4A) -> Option<Vec4> {
+    if !finite.all() {
+        return None;
+    }
+    // The maximum of the four lanes in every lane (a maximum of finite values is exact,
+    // in any order).
+    let pairs = largest.max(Vec4::new(largest.z, largest.w, largest.x, largest.y));
+    let all = pairs.max(Vec4::new(pairs.y, pairs.x, pairs.w, pairs.z));
+    // All coordinates zero (the bits, not `== 0.0`, which counts a subnormal as zero
+    // under denormals-are-zero).
+    if all.x.to_bits() == 0 {
+        return None;
+    }
+    let power = |m: f32| f32::from_bits(0x7F00_0000 - (m.to_bits() & 0x7F80_0000));
+    Some(Vec4::from_array(all.to_array().map(power)).max(Vec4::splat(f32::MIN_POSITIVE)))
+}
+
 /// The input lanes of [`gather`] for the groups of slots `0..=count` (the last closes
 /// the polygon; groups 1 and 2 are zero where not needed, and nothing reads them then),
-/// and `rescale_factor` of the polygon computed from them
+/// and `rescale_factor` of the polygon computed from them, in every lane
 /// (`None` for a non-finite coordinate or all coordinates zero): the same factor bit
 /// for bit, in lanes (the repeated vertex 0 changes no maximum).
 #[inline(always)]
-fn gather_and_rescale(vertices: &[Vec3], count: usize) -> ([[Vec4; 3]; 3], Option<f32>) {
+fn gather_and_rescale(vertices: &[Vec3], count: usize) -> ([[Vec4; 3]; 3], Option<Vec4>) {
     // Slots `0..count` need the groups up to slot `count - 1`: `count >= 3`, so group 1
     // is needed from `count = 5` on and group 2 never (`count <= 8`). Slot `count`, which
     // closes the polygon, holds vertex 0 again, which `VertexGroups::new` takes from
@@ -314,7 +346,7 @@ fn gather_and_rescale(vertices: &[Vec3], count: usize) -> ([[Vec4; 3]; 3], Optio
         let (m2, f2) = super::largest_magnitude4(raw2);
         (largest, finite) = (largest.max(m2), finite & f2);
     }
-    let factor = super::rescale_factor_of_lanes(largest, finite);
+    let factor = rescale_factor_in_lanes(largest, finite);
     ([raw0, raw1, raw2], factor)
 }
 
@@ -435,11 +467,10 @@ struct VertexGroups {
 impl VertexGroups {
     /// The working set of the polygon: the groups of slots `0..=count` (the last closes
     /// the polygon) from the input lanes of [`gather`], the groups above 0 (only lanes
-    /// that the masks leave out read them), with the apex's reflection; `None` when a
-    /// vertex has length 0.
+    /// that the masks leave out read them), scaled by `factor` (the rescale factor in
+    /// every lane), with the apex's reflection; `None` when a vertex has length 0.
     #[inline(always)]
-    fn new(raw: [[Vec4; 3]; 3], factor: f32, count: usize) -> Option<(VertexGroups, Householder)> {
-        let factor = Vec4::splat(factor);
+    fn new(raw: [[Vec4; 3]; 3], factor: Vec4, count: usize) -> Option<(VertexGroups, Householder)> {
         // Slots `0..count` need the groups up to slot `count - 1`: `count >= 3`, so group
         // 1 is computed from `count = 5` on and group 2 never (`count <= 8`); the group
         // of slot `count`, where that is a group of its own, gets slot 0's values (below).

@@ -1420,6 +1420,58 @@ fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
     );
 }
 
+/// `rescale_factor_in_lanes` gives `rescale_factor_of_lanes`'s factor in every lane, bit
+/// for bit, and `None` in the same cases: every biased exponent from subnormal (0) to the
+/// largest finite (254) in each lane, with random mantissas and the other lanes random
+/// magnitudes below it, zeros (all lanes, or some), infinities and NaNs.
+#[test]
+fn rescale_factor_in_lanes_is_the_scalar_one() {
+    let mut rng = Rng::new(4501);
+    let bits4 = |v: Vec4| v.to_array().map(f32::to_bits);
+    let magnitude = |rng: &mut Rng, exponent: u32| {
+        let mantissa = rng.next_u64() as u32 & 0x007F_FFFF;
+        f32::from_bits((exponent << 23) | mantissa)
+    };
+    let mut cases: Vec<Vec4> = vec![
+        Vec4::ZERO,
+        Vec4::new(0.0, 0.0, f32::from_bits(1), 0.0),
+        Vec4::splat(f32::MAX),
+        Vec4::new(1.0, f32::INFINITY, 2.0, 3.0),
+        Vec4::new(f32::NAN, 1.0, 2.0, 3.0),
+        Vec4::new(0.0, 0.0, 0.0, f32::MIN_POSITIVE),
+        Vec4::new(0.0, 0.0, 0.0, f32::MIN_POSITIVE * 2.0),
+    ];
+    for exponent in 0..=254u32 {
+        for lane in 0..4 {
+            for _ in 0..8 {
+                let mut v = [0.0f32; 4];
+                for (j, x) in v.iter_mut().enumerate() {
+                    *x = if j == lane {
+                        magnitude(&mut rng, exponent)
+                    } else {
+                        match rng.below(3) {
+                            0 => 0.0,
+                            1 => {
+                                let below = rng.below(u64::from(exponent) + 1) as u32;
+                                magnitude(&mut rng, below)
+                            }
+                            _ => magnitude(&mut rng, exponent),
+                        }
+                    };
+                }
+                cases.push(Vec4::from_array(v));
+            }
+        }
+    }
+    for largest in cases {
+        let finite = largest.cmplt(Vec4::splat(f32::INFINITY));
+        let got = rescale_factor_in_lanes(largest, finite).map(bits4);
+        let expected =
+            crate::polygon::rescale_factor_of_lanes(largest, finite).map(|f| bits4(Vec4::splat(f)));
+        assert_eq!(got, expected, "{largest:?}");
+    }
+}
+
 /// The group of slot `count` where it is a group of its own (quads: slots 4..8;
 /// octagons: 8..12) is taken from slot 0 (`first_in_every_slot`) in place of the vertex
 /// work on the copies of vertex 0 that fill it: every value the same bits as that work
@@ -1448,7 +1500,7 @@ fn the_group_that_closes_the_polygon_is_slot_zero_again() {
             let (groups, reflection) = VertexGroups::new(raw, factor, n).expect("no zero vertex");
             // The group of slot `n`, computed as every other group is.
             let first = n;
-            let (mut expected, ok) = SlotGroup::vertices(gather(&v, n, first), Vec4::splat(factor));
+            let (mut expected, ok) = SlotGroup::vertices(gather(&v, n, first), factor);
             assert!(ok);
             let p0 = groups.groups[0].position;
             let origin = [
