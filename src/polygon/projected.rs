@@ -262,6 +262,78 @@ fn outer_area_bound(sector: &EllipseSector) -> f32 {
 /// Lanes of the vertices: one per vertex, read four at a time from slot 0 and slot 1.
 const VERTEX_SLOTS: usize = 2 * LANES + 1;
 
+/// The counts that [`SLOT_VERTEX`] has rows for: a power of two above the largest, so that
+/// `count & (SLOT_VERTEX_COUNTS - 1)` is in bounds without a check (rows of counts below 3
+/// and above 8 are never read).
+const SLOT_VERTEX_COUNTS: usize = 2 * MAX_POLYGON_VERTICES;
+
+/// The vertex in each slot of [`vertex_rows`], by order (`[1]` clockwise) and count:
+/// vertex j (`count - 1 - j` clockwise) in slot j < count, the first slot's vertex in the
+/// others. A table, where the index computed per slot was a comparison and two selections.
+const SLOT_VERTEX: [[[u8; VERTEX_SLOTS]; SLOT_VERTEX_COUNTS]; 2] = {
+    let mut table = [[[0u8; VERTEX_SLOTS]; SLOT_VERTEX_COUNTS]; 2];
+    let mut count = 1;
+    while count <= MAX_POLYGON_VERTICES {
+        let mut j = 0;
+        while j < VERTEX_SLOTS {
+            let k = if j < count { j } else { 0 };
+            table[0][count][j] = k as u8;
+            table[1][count][j] = (count - 1 - k) as u8;
+            j += 1;
+        }
+        count += 1;
+    }
+    table
+};
+
+/// The vertex lanes of `prepare_or_fail`: in the first rows (x, y, z) slot j holds vertex j
+/// (vertex `count - 1 - j` of a clockwise polygon, `counter_clockwise`'s order) and the
+/// slots from `count` on the first slot's vertex again; the second rows hold slot j + 1's
+/// vertex in slot j (the last slot, which has no successor, the first vertex too).
+///
+/// Each group of four slots is gathered in registers and written with one 16-byte store
+/// per row, and the rows from slot 1 are their own rows: written slot by slot (4-byte
+/// stores), the rows were read back at once by 16-byte loads, from slot 1 across two
+/// groups, which the store buffer cannot forward from the narrower stores (each such
+/// load waited for the stores to reach the cache, on the preparation's critical path).
+/// Reads of whole groups of these rows match their stores.
+#[inline(always)]
+fn vertex_rows(
+    positions: &[Vec3; MAX_POLYGON_VERTICES],
+    count: usize,
+    reversed: bool,
+) -> [[[f32; VERTEX_SLOTS]; 3]; 2] {
+    // Each row's lanes gathered straight from the positions (built in a temporary array,
+    // the lanes were themselves read back by a 16-byte load from narrower stores), the
+    // position of each slot from the table (`& 7` only shows the compiler the indices in
+    // bounds: they are below `count`).
+    let slots = &SLOT_VERTEX[reversed as usize][count & (SLOT_VERTEX_COUNTS - 1)];
+    let index = |j: usize| usize::from(slots[j]) & (MAX_POLYGON_VERTICES - 1);
+    let group = |first: usize| -> [Vec4; 3] {
+        let [i0, i1, i2, i3] = [first, first + 1, first + 2, first + 3].map(index);
+        let (p0, p1, p2, p3) = (positions[i0], positions[i1], positions[i2], positions[i3]);
+        [
+            Vec4::new(p0.x, p1.x, p2.x, p3.x),
+            Vec4::new(p0.y, p1.y, p2.y, p3.y),
+            Vec4::new(p0.z, p1.z, p2.z, p3.z),
+        ]
+    };
+    let (low, high) = (group(0), group(LANES));
+    let last = positions[index(2 * LANES)].to_array();
+    let mut rows = [[[0.0f32; VERTEX_SLOTS]; 3]; 2];
+    for c in 0..3 {
+        let (low, high, last) = (low[c], high[c], last[c]);
+        let [vertex, next] = &mut rows;
+        store4(low, &mut vertex[c], 0);
+        store4(high, &mut vertex[c], LANES);
+        vertex[c][2 * LANES] = last;
+        store4(Vec4::new(low.y, low.z, low.w, high.x), &mut next[c], 0);
+        store4(Vec4::new(high.y, high.z, high.w, last), &mut next[c], LANES);
+        next[c][2 * LANES] = last;
+    }
+    rows
+}
+
 /// `sort_bitonic` with the decentral preparation's careful comparator, out of line: it
 /// runs only where [`sort_by_certain_azimuths`] cannot decide (and in the careful path).
 #[inline(never)]
@@ -429,7 +501,7 @@ fn counter_clockwise_cold(
 #[inline(always)]
 fn central_unclipped_sectors(
     polygon: &mut ProjectedPolygon,
-    vertex: &[[f32; VERTEX_SLOTS]; 3],
+    [vertex, next]: [&[[f32; VERTEX_SLOTS]; 3]; 2],
     normals: &[[f32; 2 * LANES]; 3],
     count: usize,
     precision: AreaPrecision,
@@ -467,7 +539,7 @@ fn central_unclipped_sectors(
             Vec4::new(v.y, v.z, v.w, w.x)
         });
         let [s0x, s0y, la, a2] = *this;
-        let (az, bz) = (load4(&vertex[2], first), load4(&vertex[2], first + 1));
+        let (az, bz) = (load4(&vertex[2], first), load4(&next[2], first));
         let [nx, ny, nz] = normals.each_ref().map(|c| load4(c, first));
         // `ellipse_from_normal` for n_z > 0: u_x = |n_x| / n_z (an outer ellipse, sign bit
         // clear), u_y = n_y / n_z with the sign of n_x multiplied in (copying a sign to 1
@@ -799,29 +871,14 @@ impl ProjectedPolygon {
         // the polygon hold the first vertex again (sin² 0), and a NaN (a vertex whose
         // squared length underflows) counts as 0, as `f32::max` leaves it out.
         // The vertices as lanes: slot j holds vertex j, and the slots from `count` on the
-        // first vertex again, so that the lanes from slot 1 hold each edge's other end
-        // (the edge planes of an unclipped polygon take both below) and, past the
-        // polygon, the first vertex (sin² 0 here).
-        // (Slot j from vertex `count - 1 - j` of a clockwise polygon: `counter_clockwise`'s
-        // order; one loop for each order, as an index chosen per slot cost a selection
-        // and a bounds check per vertex.)
-        let mut vertex = first.to_array().map(|c| [c; VERTEX_SLOTS]);
-        let mut put = |slot: usize, p: &Vec3| {
-            [vertex[0][slot], vertex[1][slot], vertex[2][slot]] = p.to_array();
-        };
-        if reversed {
-            for (slot, p) in positions[..count].iter().rev().enumerate().skip(1) {
-                put(slot, p);
-            }
-        } else {
-            for (slot, p) in positions[..count].iter().enumerate().skip(1) {
-                put(slot, p);
-            }
-        }
+        // first vertex again, and `next` slot j + 1's vertex, each edge's other end (the
+        // edge planes of an unclipped polygon take both below) and, past the polygon, the
+        // first vertex (sin² 0 here).
+        let [vertex, next] = vertex_rows(&positions, count, reversed);
         let [fx, fy, fz] = first.to_array().map(Vec4::splat);
         let mut largest = Vec4::ZERO;
         for start in lane_starts(count - 1) {
-            let [x, y, z] = vertex.each_ref().map(|c| load4(c, start + 1));
+            let [x, y, z] = next.each_ref().map(|c| load4(c, start));
             let (cx, cy, cz) = (y * fz - fy * z, z * fx - fz * x, x * fy - fx * y);
             let sin2 = ((cx * cx + cy * cy) + cz * cz) / (((x * x + y * y) + z * z) * first2);
             let ahead = ((x * fx + y * fy) + z * fz).cmpgt(Vec4::ZERO);
@@ -839,7 +896,7 @@ impl ProjectedPolygon {
         // `cross_precise` (each component's two products split error-free: without
         // hardware FMA the bulk of this preparation's arithmetic). A clipped edge takes
         // the plane of the input edge it lies on (`planes`).
-        // Each end's lanes and the slot of edge 0's end in them.
+        // Each end's lanes (slot j: edge j's end).
         let clipped_ends;
         let ends = if let Some(planes) = &planes {
             let mut lanes = [[[0.0f32; VERTEX_SLOTS]; 3]; 2];
@@ -852,16 +909,15 @@ impl ProjectedPolygon {
                 }
             }
             clipped_ends = lanes;
-            [(&clipped_ends[0], 0), (&clipped_ends[1], 0)]
+            [&clipped_ends[0], &clipped_ends[1]]
         } else {
-            [(&vertex, 0), (&vertex, 1)]
+            [&vertex, &next]
         };
         let mut normals = [[0.0f32; 2 * LANES]; 3];
         // Bit j: n_z > 0 for edge j.
         let mut outer_edges = 0u32;
         for first in lane_starts(count) {
-            let [a, b] =
-                ends.map(|(lanes, offset)| lanes.each_ref().map(|c| load4(c, first + offset)));
+            let [a, b] = ends.map(|lanes| lanes.each_ref().map(|c| load4(c, first)));
             let n = cross_precise4(a, b);
             for (c, lanes) in n.iter().enumerate() {
                 store4(*lanes, &mut normals[c], first);
@@ -880,7 +936,7 @@ impl ProjectedPolygon {
         if allow_fast && !was_clipped && outer_edges {
             *took_fast = true;
             let maybe_short =
-                central_unclipped_sectors(polygon, &vertex, &normals, count, precision);
+                central_unclipped_sectors(polygon, [&vertex, &next], &normals, count, precision);
             if maybe_short {
                 counter_clockwise_cold(&mut positions, count, reversed);
             }
@@ -921,8 +977,7 @@ impl ProjectedPolygon {
                     .store4(first, [nx, ny, nz], lanes_kept(first, count));
                 // The first test of `ignore_short_edges_in_containment`, as below (lanes
                 // past the edges masked: their zero normals would count as short).
-                let [a, b] =
-                    ends.map(|(lanes, offset)| lanes.each_ref().map(|c| load4(c, first + offset)));
+                let [a, b] = ends.map(|lanes| lanes.each_ref().map(|c| load4(c, first)));
                 let length2 = |[x, y, z]: [Vec4; 3]| (x * x + y * y) + z * z;
                 let short = !(length2([nx, ny, nz])).cmpgt(
                     Vec4::splat(super::SHORT_EDGE_SINE * super::SHORT_EDGE_SINE)

@@ -2055,3 +2055,37 @@ fn clockwise_prepares_as_its_reversal() {
         check(&ring(n.min(MAX_POLYGON_VERTICES), radius, centre, z));
     }
 }
+
+/// `vertex_rows` gathers the vertex lanes by groups (and their rows from slot 1): the
+/// same values, bit for bit, as the slot-by-slot form it replaced (the first slot's vertex
+/// in every slot, then vertex j, or `count - 1 - j` of a clockwise polygon, into slot
+/// j < count), for every count and both orders, the positions past the count garbage.
+#[test]
+fn vertex_rows_match_the_slots() {
+    let mut rng = Rng::new(45);
+    for trial in 0..2_000 {
+        let count = 3 + trial % (MAX_POLYGON_VERTICES - 2);
+        let reversed = trial % 2 == 1;
+        let positions: [Vec3; MAX_POLYGON_VERTICES] =
+            core::array::from_fn(|_| rng.unit_vector_f32() * (1.0 + 9.0 * rng.uniform_f32()));
+        let first = positions[if reversed { count - 1 } else { 0 }];
+        let mut expected = first.to_array().map(|c| [c; VERTEX_SLOTS]);
+        for slot in 1..count {
+            let p = positions[if reversed { count - 1 - slot } else { slot }];
+            [expected[0][slot], expected[1][slot], expected[2][slot]] = p.to_array();
+        }
+        let [vertex, next] = vertex_rows(&positions, count, reversed);
+        let bits = |rows: &[[f32; VERTEX_SLOTS]; 3]| rows.map(|row| row.map(f32::to_bits));
+        assert_eq!(bits(&vertex), bits(&expected), "{count} {reversed}");
+        for c in 0..3 {
+            for slot in 0..VERTEX_SLOTS {
+                let following = expected[c][(slot + 1).min(VERTEX_SLOTS - 1)];
+                assert_eq!(
+                    next[c][slot].to_bits(),
+                    following.to_bits(),
+                    "{count} {slot}"
+                );
+            }
+        }
+    }
+}
