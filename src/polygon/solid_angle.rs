@@ -1573,7 +1573,7 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // `start[0] = 0`), so the difference is not negative: no clamp to 0 (a NaN start,
         // a corrupted value, gives a NaN direction, which the unit test sends to the rare
         // path).
-        let local = target - self.start[k];
+        let local = target - self.start_of_piece(k, target);
         let dir = self.direction_in_triangle(k, local, u[1]);
         crate::math::is_unit_output(dir).then_some(Sample {
             dir,
@@ -1610,8 +1610,34 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // Fan triangle k: the number of triangles (among all but the last selectable)
         // that end at or before the target. `<=` skips triangles of zero solid angle.
         let k = select_piece(&self.start, target);
-        let local = (target - self.start[k]).max(0.0);
+        let local = (target - self.start_of_piece(k, target)).max(0.0);
         (k, local, u1)
+    }
+
+    /// `start[k]` for the piece `k = select_piece(&self.start, target)`, for a prepared
+    /// polygon (`start[0] = 0`, as preparation writes it), without a load from the index
+    /// that the comparisons compute: such a load waits for the comparison and then for
+    /// the cache (about 10 cycles at the head of the sample's chain of dependent
+    /// operations, which runs from `target` through the sine and cosine, two divisions
+    /// and a square root to the direction). A triangle's one fan triangle starts at 0,
+    /// and `target - 0 = target` exactly (also for `-0`), so the subtraction goes too;
+    /// a quad's second starts at `start[1]` when `start[1] <= target` (the comparison of
+    /// `select_piece`), else the first at 0: a mask of the one value. Larger fans keep the
+    /// load. The same value bit for bit (tested: `start_of_piece_is_the_start_at_k`); a
+    /// corrupted `start[0]` (outside the contract) is read as 0.
+    #[inline(always)]
+    fn start_of_piece(&self, k: usize, target: f32) -> f32 {
+        if T == 1 {
+            0.0
+        } else if T == 2 {
+            if self.start[1] <= target {
+                self.start[1]
+            } else {
+                0.0
+            }
+        } else {
+            self.start[k]
+        }
     }
 
     /// The solid angle of fan triangle `k`, `2 atan2(G0, G1 + G2)`, computed anew (the

@@ -1770,3 +1770,52 @@ fn shortest_pair_is_the_choice_of_denominator() {
         }
     }
 }
+
+/// `start_of_piece` is `start[k]` bit for bit for the piece `k` that `select_piece` picks,
+/// for prepared triangles and quads (the sizes that do not load it) and the general size:
+/// at targets drawn across `[0, Ω)`, at the starts themselves and an ulp either side of
+/// them, and for quads whose first fan triangle has zero solid angle (a repeated vertex,
+/// `start[1] = 0`).
+#[test]
+fn start_of_piece_is_the_start_at_k() {
+    fn check<const N: usize, const T: usize>(p: &SolidAngleFan<N, T>, rng: &mut Rng) -> usize {
+        let mut targets: Vec<f32> = (0..64).map(|_| rng.uniform_f32() * p.solid_angle).collect();
+        for &start in &p.start {
+            if start.is_finite() {
+                targets.extend([start, start.next_down(), start.next_up()]);
+            }
+        }
+        targets.extend([0.0, p.solid_angle.next_down()]);
+        for &target in targets.iter().filter(|t| **t >= 0.0) {
+            let k = select_piece(&p.start, target);
+            assert_eq!(
+                p.start_of_piece(k, target).to_bits(),
+                p.start[k].to_bits(),
+                "{target:e} in {:?}",
+                p.start
+            );
+        }
+        targets.len()
+    }
+    let mut rng = Rng::new(46);
+    let mut checked = 0;
+    for n in 3..=MAX_POLYGON_VERTICES {
+        for _ in 0..50 {
+            let v = random_polygon_above(&mut rng, n, 0.6, 1.0);
+            checked += check(&SolidAnglePolygon::new(&v).expect("valid"), &mut rng);
+            if n <= 4 {
+                checked += check(&SolidAngleQuad::new(&v).expect("valid"), &mut rng);
+            }
+            if n == 3 {
+                checked += check(&SolidAngleTriangle::new(&v).expect("valid"), &mut rng);
+            }
+        }
+    }
+    // A quad with vertex 1 repeated: its first fan triangle is empty.
+    let v = random_polygon_above(&mut rng, 3, 0.6, 1.0);
+    let repeated = [v[0], v[1], v[1], v[2]];
+    let quad = SolidAngleQuad::new(&repeated).expect("valid");
+    assert_eq!(quad.start[1], 0.0);
+    checked += check(&quad, &mut rng);
+    assert!(checked > 10_000, "{checked}");
+}
