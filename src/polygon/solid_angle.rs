@@ -651,9 +651,17 @@ fn splat3(v: Vec3) -> [Vec4; 3] {
 /// determinants and the flags of the triangles that need a careful form stay here.
 #[derive(Default)]
 struct FanLanes {
-    /// `det(v0, v1, v2)` with its sign (as `Householder::determinant`, but by
-    /// [`difference_of_products_unless_half_cancels`], over the product
-    /// of the two vertices' lengths).
+    /// `σ det(v0, v1, v2)`: the determinant with its sign up to the reflection's `σ`
+    /// (as `Householder::determinant` without its factor `σ`, but by
+    /// [`difference_of_products_unless_half_cancels`], over the product of the two
+    /// vertices' lengths). `σ = ±1` is the same for every fan triangle, so the sum of
+    /// these values is `σ` times the sum of the determinants exactly (rounding is
+    /// symmetric under negation, up to the sign of a zero sum), and the orientation
+    /// applies `σ` once to the sum; `G0`, the magnitude, does not depend on it (`|σ x| =
+    /// |x|`, and `(σ a) / b = σ (a / b)` exactly). The multiplication by `σ` stood on the
+    /// chain of dependent operations from the vertices to the solid angle, on which the
+    /// sample's chain waits in the prepare + 1 sample use (one multiplication, about 3
+    /// cycles; see the commit).
     signed_g0: [f32; 2 * LANES],
     /// Bit `k`: triangle `k`'s determinant is within the rounding noise of zero, so the
     /// exact test decides whether it is zero.
@@ -694,13 +702,7 @@ impl FanLanes {
     /// triangle `first` on (of `triangles`), stored into `signed_g0` and returned, with
     /// their flat flags.
     #[inline(always)]
-    fn determinants(
-        &mut self,
-        lanes: &VertexGroups,
-        reflection: &Householder,
-        first: usize,
-        triangles: usize,
-    ) -> Vec4 {
+    fn determinants(&mut self, lanes: &VertexGroups, first: usize, triangles: usize) -> Vec4 {
         let (b, c) = (first + 1, first + 2);
         let count = triangles + 2;
         let rb = [
@@ -711,12 +713,12 @@ impl FanLanes {
             lanes.slots(|g| g.reflected[0], c, count),
             lanes.slots(|g| g.reflected[1], c, count),
         ];
-        // G0 = det(v0, v1, v2) = det(p_b, p_a, p_c) / (|p_a| |p_b| |p_c|).
+        // G0 = det(v0, v1, v2) = det(p_b, p_a, p_c) / (|p_a| |p_b| |p_c|), here times σ.
         let triangle = Vec4::new(0.0, 1.0, 2.0, 3.0) + Vec4::splat(first as f32);
         let needed = triangle.cmplt(Vec4::splat(triangles as f32));
         let det = crate::math::difference_of_products_unless_half_cancels4(
             rb[0], rc[1], rb[1], rc[0], needed,
-        ) * Vec4::splat(reflection.sigma);
+        );
         let noise = Vec4::splat(super::FAN_DETERMINANT_NOISE)
             * lanes.slots(|g| g.extent, b, count)
             * lanes.slots(|g| g.extent, c, count);
@@ -733,14 +735,13 @@ impl FanLanes {
         &mut self,
         polygon: &mut SolidAngleFan<N, T>,
         lanes: &VertexGroups,
-        reflection: &Householder,
         apex: Vec3,
         first: usize,
         triangles: usize,
     ) {
         let (b, c) = (first + 1, first + 2);
         let count = triangles + 2;
-        let signed_g0 = self.determinants(lanes, reflection, first, triangles);
+        let signed_g0 = self.determinants(lanes, first, triangles);
         let [bx, by, bz] = lanes.slots3(|g| g.unit, b, count);
         let [cx, cy, cz] = lanes.slots3(|g| g.unit, c, count);
         let [ax, ay, az] = splat3(apex);
@@ -819,7 +820,6 @@ impl FanLanes {
         &mut self,
         polygon: &mut SolidAngleFan<N, T>,
         lanes: &VertexGroups,
-        reflection: &Householder,
         apex: Vec3,
         k: usize,
     ) {
@@ -828,7 +828,7 @@ impl FanLanes {
         let (rb0, rb1) = (slot(|g| g.reflected[0], b), slot(|g| g.reflected[1], b));
         let (rc0, rc1) = (slot(|g| g.reflected[0], c), slot(|g| g.reflected[1], c));
         // As the lanes: `difference_of_products_unless_half_cancels4` is this lane by lane.
-        let det = difference_of_products_unless_half_cancels(rb0, rc1, rb1, rc0) * reflection.sigma;
+        let det = difference_of_products_unless_half_cancels(rb0, rc1, rb1, rc0);
         let noise = super::FAN_DETERMINANT_NOISE * slot(|g| g.extent, b) * slot(|g| g.extent, c);
         if det.abs() <= noise {
             self.maybe_flat |= 1 << k;
@@ -892,13 +892,12 @@ impl FanLanes {
         &mut self,
         polygon: &mut SolidAngleFan<N, T>,
         lanes: &VertexGroups,
-        reflection: &Householder,
     ) {
         // The determinant as `compute_one` (scalar: one product pair).
         let slot = |field: fn(&SlotGroup) -> Vec4, i: usize| lanes.slot(field, i);
         let (rb0, rb1) = (slot(|g| g.reflected[0], 1), slot(|g| g.reflected[1], 1));
         let (rc0, rc1) = (slot(|g| g.reflected[0], 2), slot(|g| g.reflected[1], 2));
-        let det = difference_of_products_unless_half_cancels(rb0, rc1, rb1, rc0) * reflection.sigma;
+        let det = difference_of_products_unless_half_cancels(rb0, rc1, rb1, rc0);
         let noise = super::FAN_DETERMINANT_NOISE * slot(|g| g.extent, 1) * slot(|g| g.extent, 2);
         if det.abs() <= noise {
             self.maybe_flat |= 1;
@@ -965,9 +964,8 @@ impl FanLanes {
         &mut self,
         polygon: &mut SolidAngleFan<N, T>,
         lanes: &VertexGroups,
-        reflection: &Householder,
     ) {
-        self.determinants(lanes, reflection, 0, 2);
+        self.determinants(lanes, 0, 2);
         // Slots 0..4 of group 0 hold vertices 0, 1, 2, 3.
         let [x, y, z] = lanes.groups[0].unit;
         let next = |v: Vec4| Vec4::new(v.y, v.z, v.w, v.x);
@@ -1256,18 +1254,18 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         // fan triangles share one group of lanes for their five pair sums
         // (`compute_quad`; quads 781 -> 764 instructions per prepare + 1, callgrind).
         if triangles == 1 {
-            fan.compute_triangle(self, &groups, &reflection);
+            fan.compute_triangle(self, &groups);
         } else if triangles == 2 {
-            fan.compute_quad(self, &groups, &reflection);
+            fan.compute_quad(self, &groups);
         } else {
-            fan.compute(self, &groups, &reflection, apex, 0, triangles);
+            fan.compute(self, &groups, apex, 0, triangles);
         }
         // A last group of one triangle (heptagons) in scalar arithmetic, the same bits
         // (heptagons 1588 -> 1546 instructions per prepare + 1, callgrind).
         if triangles == LANES + 1 {
-            fan.compute_one(self, &groups, &reflection, apex, LANES);
+            fan.compute_one(self, &groups, apex, LANES);
         } else if triangles > LANES {
-            fan.compute(self, &groups, &reflection, apex, LANES, triangles);
+            fan.compute(self, &groups, apex, LANES, triangles);
         }
         // The rare triangles that the lanes flagged, in the scalar careful forms.
         let mut careful_paths = 0;
@@ -1412,8 +1410,13 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
             return false;
         }
         // det(p_b, p_a, p_c) = -det(p_a, p_b, p_c): a positive sum means the polygon
-        // winds clockwise as seen from the shading point.
-        let orientation = if signed_sum > 0.0 { -1.0 } else { 1.0 };
+        // winds clockwise as seen from the shading point (`signed_sum` is σ times it: see
+        // `FanLanes::signed_g0`).
+        let orientation = if reflection.sigma * signed_sum > 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
         // Ω² · SAMPLE_CHECK_WIDTH⁻²: an edge with sin²ℓ above it is longer than
         // Ω / SAMPLE_CHECK_WIDTH.
         let edges = EdgeLanes {

@@ -1279,25 +1279,34 @@ fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
         let apex = groups.apex();
         let mut lanes_polygon = SolidAnglePolygon::EMPTY;
         let mut lanes = FanLanes::default();
-        lanes.compute(&mut lanes_polygon, &groups, &reflection, apex, 0, triangles);
+        lanes.compute(&mut lanes_polygon, &groups, apex, 0, triangles);
         if triangles > LANES {
-            lanes.compute(
-                &mut lanes_polygon,
-                &groups,
-                &reflection,
-                apex,
-                LANES,
-                triangles,
-            );
+            lanes.compute(&mut lanes_polygon, &groups, apex, LANES, triangles);
         }
         for k in 0..triangles {
             let mut one_polygon = SolidAnglePolygon::EMPTY;
             let mut one = FanLanes::default();
-            one.compute_one(&mut one_polygon, &groups, &reflection, apex, k);
+            one.compute_one(&mut one_polygon, &groups, apex, k);
             let what = format!("{v:?}, triangle {k}");
             assert_eq!(
                 one.signed_g0[k].to_bits(),
                 lanes.signed_g0[k].to_bits(),
+                "{what}"
+            );
+            // `signed_g0` is σ times the determinant that the reflection gives, divided
+            // by the lengths as before σ left the division: `(σ a) / b = σ (a / b)`.
+            let slot = |field: fn(&SlotGroup) -> Vec4, i: usize| groups.slot(field, i);
+            let (b, c) = (k + 1, k + 2);
+            let signed = difference_of_products_unless_half_cancels(
+                slot(|g| g.reflected[0], b),
+                slot(|g| g.reflected[1], c),
+                slot(|g| g.reflected[1], b),
+                slot(|g| g.reflected[0], c),
+            ) * reflection.sigma
+                / (slot(|g| g.length, b) * slot(|g| g.length, c));
+            assert_eq!(
+                (one.signed_g0[k] * reflection.sigma).to_bits(),
+                signed.to_bits(),
                 "{what}"
             );
             assert_eq!(
@@ -1330,7 +1339,7 @@ fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
             if count == 3 {
                 let mut triangle_polygon = SolidAnglePolygon::EMPTY;
                 let mut triangle = FanLanes::default();
-                triangle.compute_triangle(&mut triangle_polygon, &groups, &reflection);
+                triangle.compute_triangle(&mut triangle_polygon, &groups);
                 assert_eq!(
                     triangle.signed_g0[0].to_bits(),
                     one.signed_g0[0].to_bits(),
@@ -1367,7 +1376,7 @@ fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
         if count == 4 {
             let mut quad_polygon = SolidAnglePolygon::EMPTY;
             let mut quad = FanLanes::default();
-            quad.compute_quad(&mut quad_polygon, &groups, &reflection);
+            quad.compute_quad(&mut quad_polygon, &groups);
             let what = format!("{v:?}");
             let words = |p: &SolidAnglePolygon, f: &FanLanes| {
                 let mut words = std::vec![f.maybe_flat, f.wide_pairs];
