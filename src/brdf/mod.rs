@@ -69,16 +69,31 @@ pub(crate) fn table_bilinear<const K: usize>(
     x: f32,
     y: f32,
 ) -> [f32; K] {
-    let last = size - 1;
+    let (i0, j0) = (table_cell(x, size), table_cell(y, size));
+    table_interpolated(table, size, [i0, j0], x - i0 as f32, y - j0 as f32)
+}
+
+/// The cell of a fractional coordinate of [`table_bilinear`]: its integer part, at most
+/// `size − 2` (the last cell holds `size − 1`).
+#[inline(always)]
+fn table_cell(v: f32, size: usize) -> usize {
     // `as u32` truncates towards zero and maps NaN and negative numbers to 0, as
     // `as usize` does, with x86's one signed conversion and a clamp where `as usize`
     // needed a second conversion for the upper half of its range; the inputs are in
-    // [0, last].
-    let (i0, j0) = (
-        (x as u32 as usize).min(last - 1),
-        (y as u32 as usize).min(last - 1),
-    );
-    let (fx, fy) = (x - i0 as f32, y - j0 as f32);
+    // [0, size − 1].
+    (v as u32 as usize).min(size - 2)
+}
+
+/// The bilinear interpolation of [`table_bilinear`] in the cell `[i0, j0]` at the offsets
+/// `fx = x − i0`, `fy = y − j0`.
+#[inline(always)]
+fn table_interpolated<const K: usize>(
+    table: &[[f32; K]],
+    size: usize,
+    [i0, j0]: [usize; 2],
+    fx: f32,
+    fy: f32,
+) -> [f32; K] {
     let at = |i: usize, j: usize| &table[i * size + j];
     let (e00, e01, e10, e11) = (
         at(i0, j0),
@@ -93,4 +108,45 @@ pub(crate) fn table_bilinear<const K: usize>(
         out[k] = low + fx * (high - low);
     }
     out
+}
+
+/// [`table_bilinear`], bit for bit, with the cell along `y` read from a guess `y_guess`
+/// of `y` that is known earlier (fewer operations away from the inputs): the entries are
+/// loaded from the guessed cell while `y` is still being computed, and the guess is
+/// checked against `y` afterwards, by a predicted branch. The guessed cell `j` is
+/// `y`'s exactly when `j ≤ y < j + 1` (`y ≥ j` for the last cell, `size − 2`), i.e.
+/// `0 ≤ fy < 1` for `fy = y − j`, which is exact there (`j = 0`: `fy = y`; `j ≥ 1` and
+/// `j ≤ y < j + 1 ≤ 2j`: Sterbenz), and fails for every other `y` in `[0, size − 1]`
+/// (`y < j` gives `fy < 0`, `y ≥ j + 1` gives `fy ≥ 1`: rounding keeps the order with 0
+/// and 1) and for NaN; `fy` is then `table_bilinear`'s own offset. A wrong guess takes
+/// `table_bilinear` (out of line and cold). (Issue 18: the sphere light sampler's fit,
+/// whose row coordinate waited on a square root and two divisions before the table's
+/// loads could start, on the preparation's critical path.)
+#[inline(always)]
+pub(crate) fn table_bilinear_of_guess<const K: usize>(
+    table: &[[f32; K]],
+    size: usize,
+    x: f32,
+    y: f32,
+    y_guess: f32,
+) -> [f32; K] {
+    let (i0, j) = (table_cell(x, size), table_cell(y_guess, size));
+    let fy = y - j as f32;
+    if fy >= 0.0 && (fy < 1.0 || j == size - 2) {
+        table_interpolated(table, size, [i0, j], x - i0 as f32, fy)
+    } else {
+        table_bilinear_cold(table, size, x, y)
+    }
+}
+
+/// [`table_bilinear`] out of line and cold: [`table_bilinear_of_guess`] of a wrong guess.
+#[cold]
+#[inline(never)]
+fn table_bilinear_cold<const K: usize>(
+    table: &[[f32; K]],
+    size: usize,
+    x: f32,
+    y: f32,
+) -> [f32; K] {
+    table_bilinear(table, size, x, y)
 }

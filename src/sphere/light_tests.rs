@@ -1309,3 +1309,95 @@ fn the_prepared_pivot_numerators_are_the_pivot_s() {
     }
     assert!(clipped > 1000 && fallback > 10, "{clipped} {fallback}");
 }
+
+/// `table_bilinear_of_guess` (the fit's table read from a guessed cell) gives
+/// `table_bilinear`'s bits for every guess: the right cell, a cell off by one or more on
+/// either side (the checked path's fallback), the last cell, NaN, negative and
+/// out-of-range guesses, at coordinates on and next to the cells' boundaries.
+#[test]
+fn the_table_s_guessed_cell_gives_table_bilinear_s_bits() {
+    use crate::brdf::pivot_table::PIVOT_TABLE_SIZE;
+    use crate::brdf::{table_bilinear, table_bilinear_of_guess};
+    let bits = |e: [f32; 3]| e.map(f32::to_bits);
+    let last = (PIVOT_TABLE_SIZE - 1) as f32;
+    let mut ys = vec![0.0f32, 1e-30, 0.5, last, last - 1.0, 62.5];
+    for j in 1..PIVOT_TABLE_SIZE {
+        let j = j as f32;
+        ys.extend([j, j.next_down(), j.next_up(), j - 0.5]);
+    }
+    let guesses = |y: f32| {
+        [
+            y,
+            y.next_down(),
+            y.next_up(),
+            y - 1.0,
+            y + 1.0,
+            y - 7.0,
+            y + 7.0,
+            -1.0,
+            100.0,
+            f32::NAN,
+            last,
+        ]
+    };
+    let mut guessed_right = 0;
+    for &y in ys.iter().filter(|y| (0.0..=last).contains(*y)) {
+        for x in [0.0, 0.25, 17.5, last] {
+            let exact = table_bilinear(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y);
+            for guess in guesses(y) {
+                let of_guess = table_bilinear_of_guess(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y, guess);
+                assert_eq!(bits(of_guess), bits(exact), "x {x} y {y:e} guess {guess:e}");
+                guessed_right += (guess as u32 == y as u32) as u32;
+            }
+        }
+    }
+    assert!(guessed_right > 0);
+}
+
+/// The fit's guess of the table's row coordinate (`table_row_guess`) is the exact
+/// coordinate's cell for unit views (at least 99.9% of them: the checked path's fallback
+/// is rare),
+/// and the fit is `table_bilinear`'s (the former lookup) bit for bit for unit views and
+/// views of other lengths (whose guesses are wrong and take the fallback).
+#[test]
+fn the_fit_s_guessed_row_is_the_exact_cell_for_unit_views() {
+    use crate::brdf::pivot_table::PIVOT_TABLE_SIZE;
+    use crate::brdf::{table_bilinear, table_coordinates};
+    let former = |wo: Vec3, roughness: f32| -> Option<GgxPivot> {
+        let (x, y, cos_phi, sin_phi) = table_coordinates(wo, roughness)?;
+        let [norm, elevation, albedo] = table_bilinear(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y);
+        let (sin_e, cos_e) = crate::math::sincosf_in_line(elevation);
+        let pivot = Vec3::new(norm * sin_e * cos_phi, norm * sin_e * sin_phi, norm * cos_e);
+        Some(GgxPivot {
+            pivot: crate::sphere::pivot::valid_pivot(pivot),
+            albedo,
+        })
+    };
+    let bits =
+        |f: Option<GgxPivot>| f.map(|f| (f.pivot.to_array().map(f32::to_bits), f.albedo.to_bits()));
+    let mut rng = Rng::new(4618);
+    let (mut unit_views, mut right) = (0u32, 0u32);
+    for i in 0..200_000 {
+        let wo = rng.unit_vector_f32();
+        let roughness = rng.uniform_f32();
+        let scaled = if i % 4 == 3 { wo * 3.5 } else { wo };
+        assert_eq!(
+            bits(GgxPivot::from_view(scaled, roughness)),
+            bits(former(scaled, roughness)),
+            "{scaled:?} {roughness}"
+        );
+        if scaled == wo
+            && let Some((_, y, _, _)) = table_coordinates(wo, roughness)
+        {
+            unit_views += 1;
+            let guess = table_row_guess(wo);
+            right += ((guess as u32).min(62) == (y as u32).min(62)) as u32;
+        }
+    }
+    // (A wrong guess needs `y` within the guess's rounding, a few 1e-5, of a cell's
+    // boundary.)
+    assert!(
+        right as f64 >= 0.999 * unit_views as f64,
+        "{right} of {unit_views}"
+    );
+}
