@@ -196,12 +196,12 @@ typedef struct SpheraLtc {
 /* An LTC restricted to a convex polygon: projected solid angle sampling of the polygon
  * transformed by `M⁻¹`, mapped back by `M` (Peters 2021, Sec. 5). */
 typedef struct SpheraLtcPolygon {
-  uint32_t opaque[436]; /* 1744 bytes, private: see the preamble */
+  uint32_t opaque[460]; /* 1840 bytes, private: see the preamble */
 } SpheraLtcPolygon;
 
 /* A polygonal light prepared at one shading point for both techniques. */
 typedef struct SpheraPolygonLight {
-  uint32_t opaque[869]; /* 3476 bytes, private: see the preamble */
+  uint32_t opaque[893]; /* 3572 bytes, private: see the preamble */
 } SpheraPolygonLight;
 
 /* A surface's BRDF: Lambert with albedo `diffuse`, plus GGX with reflectance `f0` at normal

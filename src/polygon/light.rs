@@ -172,7 +172,7 @@ impl PolygonLight {
 
     /// [`new`](Self::new) in place: writes the prepared light into `self` and returns
     /// `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false` where `new` returns
-    /// `None`. Both techniques are prepared in their own fields (3476 bytes that are
+    /// `None`. Both techniques are prepared in their own fields (3572 bytes that are
     /// never copied), and the LTC polygon only for a material with a GGX layer: a
     /// Lambertian surface gives the LTC no weight (`c_1 = 0`) and no samples, so its
     /// transformed polygon is not built at all.
@@ -315,10 +315,7 @@ impl PolygonLight {
         // `eval` and `pdf`).
         let wi_unit = sample_unit.unwrap_or_else(|| crate::math::unit(wi));
         let p = if j == 0 {
-            [
-                sample.pdf,
-                wi_unit.map_or(0.0, |d| self.specular.pdf_of_unit(d)),
-            ]
+            [sample.pdf, self.specular.pdf_of_unit_or_zero(wi_unit)]
         } else {
             [self.diffuse.pdf_inline(wi), sample.pdf]
         };

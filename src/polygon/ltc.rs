@@ -79,7 +79,8 @@ fn largest_magnitude(vertices: &[Vec3]) -> f32 {
 }
 
 /// The slack of [`LtcPolygon::pdf`] in the cosine's space for the transformed polygon
-/// `M⁻¹P` (unclipped vertices) of projected solid angle `Φ'` (after clipping): the
+/// `M⁻¹P` (unclipped vertices) of projected solid angle `Φ'` (after clipping): 0 for
+/// the empty polygon (`count` 0, which contains nothing), else the
 /// smaller of `ROUND_TRIP_TOLERANCE` and `TOLERANCE_PER_WIDTH · Φ' / P'`, with `P'` the
 /// perimeter of the unclipped transformed polygon in radians (chords of its unit
 /// vertices; clipping a convex polygon does not lengthen its boundary, so `P'` bounds
@@ -93,7 +94,7 @@ fn round_trip_tolerance(
     projected_solid_angle: f32,
 ) -> f32 {
     if count == 0 {
-        return ROUND_TRIP_TOLERANCE;
+        return 0.0;
     }
     let width = projected_solid_angle / unit_chord_perimeter(transformed, count);
     if width.is_finite() {
@@ -250,10 +251,13 @@ pub struct LtcPolygon {
     ltc: Ltc,
     /// The transformed polygon `M⁻¹P`, clipped to its horizon.
     transformed: ProjectedPolygon,
-    /// How far (radians, in the cosine's space) outside the transformed polygon `pdf`
-    /// continues the density: the smaller of `ROUND_TRIP_TOLERANCE` and
-    /// `TOLERANCE_PER_WIDTH` of the polygon's width (0 when empty).
-    tolerance: f32,
+    /// The vertices of `M⁻¹P` before clipping (zero past `vertex_count`), from which
+    /// [`tolerance`](Self::tolerance) computes `pdf`'s slack only where `pdf` needs it
+    /// (next to the boundary): computed in every prepare, the slack's perimeter and
+    /// quotient were about 115 instructions of a quad's (issue 18, stop 46).
+    unclipped: [Vec3; MAX_POLYGON_VERTICES],
+    /// The number of `unclipped` vertices, 3 to 8 (0 when empty).
+    vertex_count: u32,
 }
 
 impl LtcPolygon {
@@ -263,7 +267,8 @@ impl LtcPolygon {
     pub const EMPTY: LtcPolygon = LtcPolygon {
         ltc: Ltc::IDENTITY,
         transformed: ProjectedPolygon::EMPTY,
-        tolerance: 0.0,
+        unclipped: [Vec3::ZERO; MAX_POLYGON_VERTICES],
+        vertex_count: 0,
     };
 
     /// Prepares `ltc` restricted to the convex polygon with the given vertices (relative
@@ -283,30 +288,75 @@ impl LtcPolygon {
     /// returns `true`, or writes [`EMPTY`](Self::EMPTY) and returns `false`.
     pub fn prepare(&mut self, ltc: &Ltc, vertices: &[Vec3]) -> bool {
         let count = vertices.len();
-        let mut transformed = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+        self.unclipped = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+        // Mapped before the plane's test, whatever its outcome (the first eight vertices
+        // at most; cleared again where rejected; the test reads only `vertices`): the
+        // test's chain of about 50 cycles lets the vertices' 8- and 4-byte stores reach
+        // the cache before the projected prepare loads them as 4- and 8-byte pieces at
+        // other offsets, which the store buffer cannot forward (with the test first,
+        // the loads came a few instructions after the stores). The same instructions;
+        // its time was within the noise of the timings (stop 46).
+        ltc.map_to_cosine_space(vertices, &mut self.unclipped);
         let accepted = (3..=MAX_POLYGON_VERTICES).contains(&count) && plane_misses_origin(vertices);
-        if accepted {
-            ltc.map_to_cosine_space(vertices, &mut transformed);
-        }
         // An empty slice (rejected input) makes the projected prepare write its empty
         // value.
         let count = if accepted { count } else { 0 };
-        if self.transformed.prepare(&transformed[..count]) {
+        if self.transformed.prepare(&self.unclipped[..count]) {
             self.ltc = *ltc;
-            // Never tighter than the transformed polygon's own `pdf`, which accepts its
-            // samples within its slack (the small-polygon path's, bounded the same way).
-            self.tolerance = round_trip_tolerance(
-                &transformed,
-                count,
-                self.transformed.projected_solid_angle(),
-            )
-            .max(self.transformed.pdf_slack());
+            self.vertex_count = count as u32;
             true
         } else {
             self.ltc = Ltc::IDENTITY;
-            self.tolerance = 0.0;
+            self.unclipped = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+            self.vertex_count = 0;
             false
         }
+    }
+
+    /// How far (radians, in the cosine's space) outside the transformed polygon `pdf`
+    /// continues the density: the smaller of `ROUND_TRIP_TOLERANCE` and
+    /// `TOLERANCE_PER_WIDTH` of the polygon's width ([`round_trip_tolerance`] of the
+    /// unclipped vertices), never tighter than the transformed polygon's own `pdf`,
+    /// which accepts its samples within its slack (the small-polygon path's, bounded
+    /// the same way); 0 when empty. Positive for every prepared polygon (`Φ' > 0`).
+    /// Out of line: only directions outside some edge's plane of the transformed
+    /// polygon (within rounding of its boundary) and the careful path need it.
+    #[cold]
+    #[inline(never)]
+    fn tolerance(&self) -> f32 {
+        let count = super::stored_count(self.vertex_count, MAX_POLYGON_VERTICES);
+        round_trip_tolerance(
+            &self.unclipped,
+            count,
+            self.transformed.projected_solid_angle(),
+        )
+        .max(self.transformed.pdf_slack())
+    }
+
+    /// `contains_within(w, tolerance())` of the transformed polygon, in three steps so
+    /// that the slack is computed only for directions within 1e-5 rad of the boundary:
+    /// `contains(w)` (the test without the slack, its fast accept) implies it for every
+    /// `τ >= 0`, and `contains_within(w, ROUND_TRIP_TOLERANCE)` false excludes it, as
+    /// that constant bounds the slack (`min(1e-5, …)` or 0, raised at most to the
+    /// small-polygon path's 16 ulps) and the test passes for a larger slack wherever it
+    /// passes for a smaller one (each edge's bound `(-τ |n|) |w|` only falls as `τ`
+    /// grows; without the small-polygon sampler `contains` is the fast accept of
+    /// `contains_within`, with it each edge's `side >= -0 · |n| |w|` implies
+    /// `side >= -τ |n| |w|`). Both tests inlined, their shared edge test once.
+    #[inline(always)]
+    fn contains_within_tolerance(&self, w: Vec3) -> bool {
+        if self.transformed.contains(w) {
+            return true;
+        }
+        self.transformed.contains_within(w, ROUND_TRIP_TOLERANCE) && self.within_tolerance(w)
+    }
+
+    /// The last step of [`contains_within_tolerance`](Self::contains_within_tolerance),
+    /// out of line: only directions within 1e-5 rad of the boundary take it.
+    #[cold]
+    #[inline(never)]
+    fn within_tolerance(&self, w: Vec3) -> bool {
+        self.transformed.contains_within(w, self.tolerance())
     }
 
     /// `∫_P D dω = Φ(M⁻¹P) / π`: the LTC's mass inside the polygon (Heitz 2016, the
@@ -394,7 +444,7 @@ impl LtcPolygon {
     #[inline(always)]
     fn finish_sample_and_unit(&self, dir: Vec3) -> (Sample, Option<Vec3>) {
         let unit = crate::math::unit(dir);
-        let pdf = unit.map_or(0.0, |d| self.pdf_of_unit(d));
+        let pdf = self.pdf_of_unit_or_zero(unit);
         (Sample { dir, pdf }, unit)
     }
 
@@ -462,10 +512,7 @@ impl LtcPolygon {
     /// evaluates it at every sample): no call, and the direction stays in registers.
     #[inline(always)]
     fn pdf_inline(&self, dir: Vec3) -> f32 {
-        let Some(dir) = crate::math::unit(dir) else {
-            return 0.0;
-        };
-        self.pdf_of_unit(dir)
+        self.pdf_of_unit_or_zero(crate::math::unit(dir))
     }
 
     /// [`pdf`](Self::pdf) of a direction already passed through
@@ -478,7 +525,7 @@ impl LtcPolygon {
         if !(length2 > 1e-18 && length2 < 1e18) {
             return self.pdf_careful(w);
         }
-        if !self.transformed.contains_within(w, self.tolerance) {
+        if !self.contains_within_tolerance(w) {
             return 0.0;
         }
         // `(ω'_z / |ω'|) / Φ' · |det M⁻¹| / |ω'|³` with `ω' = M⁻¹ω` as it is, not
@@ -495,6 +542,18 @@ impl LtcPolygon {
         }
     }
 
+    /// [`pdf_of_unit`](Self::pdf_of_unit) of a [`unit`](crate::math::unit) result, 0
+    /// for `None` (a zero or non-finite direction), as `pdf` gives. A `match`, always
+    /// inlined: through `Option::map_or` the body was called out of line once the slack
+    /// moved out of the prepared value (26 instructions per call, stop 46).
+    #[inline(always)]
+    pub(crate) fn pdf_of_unit_or_zero(&self, unit: Option<Vec3>) -> f32 {
+        match unit {
+            Some(dir) => self.pdf_of_unit(dir),
+            None => 0.0,
+        }
+    }
+
     /// [`pdf`](Self::pdf) for a transformed direction whose squared length lies outside
     /// `(1e-18, 1e18)` (only an `M` or `M⁻¹` with entries beyond 1e9 gives one): the density of
     /// the transformed polygon at the direction normalised by its largest component,
@@ -503,7 +562,7 @@ impl LtcPolygon {
     #[cold]
     fn pdf_careful(&self, w: Vec3) -> f32 {
         let length = crate::math::length(w);
-        let p = self.transformed.pdf_within(w, self.tolerance);
+        let p = self.transformed.pdf_within(w, self.tolerance());
         if !(p > 0.0) || !(length > 0.0) {
             return 0.0;
         }

@@ -265,7 +265,7 @@ fn sample_pdf_is_the_pdf_of_the_sampled_direction() {
                 // Only polygons narrower (in the cosine's space) than a couple of `f32`
                 // ulps of a direction, whose width `τ / TOLERANCE_PER_WIDTH` no direction
                 // resolves (measured: edge-on slivers 2e-9 to 2e-8 rad wide).
-                let width = polygon.tolerance / TOLERANCE_PER_WIDTH;
+                let width = polygon.tolerance() / TOLERANCE_PER_WIDTH;
                 assert!(
                     width < 1e-7,
                     "dropped with a width of {width} rad (|M⁻¹| {sharpness}): {vertices:?}"
@@ -593,4 +593,68 @@ fn largest_magnitude_is_the_max_fold() {
             "{vertices:?}"
         );
     }
+}
+
+/// `pdf`'s containment in three steps (`contains_within_tolerance`: the test without
+/// the slack, the 1e-5 rad bound, the slack computed last) decides as the transformed
+/// polygon's `contains_within` with the slack itself, on directions next to the
+/// transformed polygon's edges (inside, within the slack, beyond it), samples and
+/// random directions, for polygons of every size (the small-polygon sampler's too).
+#[test]
+fn containment_in_steps_is_contains_within_the_slack() {
+    let mut rng = Rng::new(46);
+    let (mut strict, mut slack, mut bound, mut beyond) = (0u32, 0u32, 0u32, 0u32);
+    for trial in 0..2000 {
+        let theta = 1.55 * rng.uniform() as f32;
+        let wo = Vec3::new(theta.sin(), 0.0, theta.cos());
+        let ltc = Ltc::from_ggx(wo, rng.uniform() as f32).expect("above the horizon");
+        let center = d3(rng.unit_vector_f32());
+        let distance = 10f64.powf(2.0 * rng.uniform());
+        let radius = 10f64.powf(-6.0 * rng.uniform()) * distance;
+        let c = center.map(|x| x * distance);
+        let normal = d3(rng.unit_vector_f32());
+        let vertices = circle_polygon(3 + trial % 6, c, normal, radius, trial % 2 == 0);
+        let Some(polygon) = LtcPolygon::new(&ltc, &vertices) else {
+            continue;
+        };
+        let tolerance = polygon.tolerance();
+        assert!(
+            tolerance > 0.0 && tolerance <= ROUND_TRIP_TOLERANCE,
+            "{tolerance}"
+        );
+        let count = polygon.vertex_count as usize;
+        for k in 0..60 {
+            let w = match k % 4 {
+                // A point of an edge (in the cosine's space) moved by up to 1e-4 of its
+                // length, in a random direction.
+                0 | 1 => {
+                    let j = rng.below(count as u64) as usize;
+                    let (a, b) = (polygon.unclipped[j], polygon.unclipped[(j + 1) % count]);
+                    let t = rng.uniform_f32();
+                    let point = a * (1.0 - t) + b * t;
+                    let offset = 10f32.powf(-4.0 - 4.0 * rng.uniform_f32());
+                    point + rng.unit_vector_f32() * (offset * point.length())
+                }
+                2 => polygon.transformed.sample(rng.u2()).dir,
+                _ => rng.unit_vector_f32(),
+            };
+            let expected = polygon.transformed.contains_within(w, tolerance);
+            assert_eq!(
+                polygon.contains_within_tolerance(w),
+                expected,
+                "{w:?} {vertices:?}"
+            );
+            let inside_strictly = polygon.transformed.contains(w);
+            let within_bound = polygon.transformed.contains_within(w, ROUND_TRIP_TOLERANCE);
+            match (inside_strictly, expected, within_bound) {
+                (true, ..) => strict += 1,
+                (false, true, _) => slack += 1,
+                (false, false, true) => bound += 1,
+                _ => beyond += 1,
+            }
+        }
+    }
+    println!("{strict} inside, {slack} in the slack, {bound} in the bound only, {beyond} beyond");
+    // Every step decided some directions.
+    assert!(strict > 1000 && slack > 100 && bound > 100 && beyond > 1000);
 }
