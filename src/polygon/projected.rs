@@ -23,7 +23,7 @@
 //! `ξ0` at 0, 1e-5, 1 - 1e-5 and 1 - ulp.
 
 use super::central_sectors::{CENTRAL_WORDS, CentralLanes, CentralSectors, lanes_kept};
-use super::clip::{clip_to_upper_hemisphere, clipped_edge_planes};
+use super::clip::{clip_to_upper_hemisphere, clipped_edge_planes, reverse_clipped_edge_planes};
 use super::edge_normal_rows::EdgeNormalRows;
 use super::ellipse::{
     DEGENERATE, dot2, ellipse_area, ellipse_from_normal, ellipse_from_normal4, is_degenerate,
@@ -330,6 +330,29 @@ fn vertex_rows(
         store4(Vec4::new(low.y, low.z, low.w, high.x), &mut next[c], 0);
         store4(Vec4::new(high.y, high.z, high.w, last), &mut next[c], LANES);
         next[c][2 * LANES] = last;
+    }
+    rows
+}
+
+/// The ends of a clipped polygon's edge planes as lanes, `[end][c][j]`: coordinate c of
+/// end `end` of edge j's plane (`planes[j]`, zeros past the polygon as there, and in the
+/// last slot), for the edge planes and the short-edge test of `prepare_or_fail`.
+///
+/// Each group of four slots is gathered in registers and written with one 16-byte store
+/// per row, as in [`vertex_rows`]: written one float at a time, the rows were read back
+/// at once by the 16-byte loads of the edge planes, which the store buffer cannot forward
+/// from the narrower stores (issue 15: the clipped path's regression of stop 45). Every
+/// slot is gathered, whatever the count: the planes past the polygon are zeros.
+#[inline(always)]
+fn clipped_end_rows(planes: &[[Vec3; 2]; MAX_POLYGON_VERTICES]) -> [[[f32; VERTEX_SLOTS]; 3]; 2] {
+    let mut rows = [[[0.0f32; VERTEX_SLOTS]; 3]; 2];
+    for first in [0, LANES] {
+        for (end, rows) in rows.iter_mut().enumerate() {
+            let [p0, p1, p2, p3] = [0, 1, 2, 3].map(|i| planes[first + i][end]);
+            store4(Vec4::new(p0.x, p1.x, p2.x, p3.x), &mut rows[0], first);
+            store4(Vec4::new(p0.y, p1.y, p2.y, p3.y), &mut rows[1], first);
+            store4(Vec4::new(p0.z, p1.z, p2.z, p3.z), &mut rows[2], first);
+        }
     }
     rows
 }
@@ -846,12 +869,7 @@ impl ProjectedPolygon {
         if let (Some(planes), true) = (planes.as_mut(), reversed) {
             counter_clockwise(&mut positions, count, true);
             reversed = false;
-            // Edge k now runs backwards along the edge that was m - 2 - k.
-            let forward = *planes;
-            for (k, plane) in planes[..count].iter_mut().enumerate() {
-                let [a, b] = forward[(2 * count - 2 - k) % count];
-                *plane = [b, a];
-            }
+            reverse_clipped_edge_planes(planes, count);
         }
         let polygon = self;
         polygon.selectable_sectors = 0;
@@ -899,16 +917,7 @@ impl ProjectedPolygon {
         // Each end's lanes (slot j: edge j's end).
         let clipped_ends;
         let ends = if let Some(planes) = &planes {
-            let mut lanes = [[[0.0f32; VERTEX_SLOTS]; 3]; 2];
-            #[allow(clippy::needless_range_loop)] // j indexes the innermost arrays
-            for j in 0..count {
-                for (end, p) in planes[j].into_iter().enumerate() {
-                    for (c, value) in p.to_array().into_iter().enumerate() {
-                        lanes[end][c][j] = value;
-                    }
-                }
-            }
-            clipped_ends = lanes;
+            clipped_ends = clipped_end_rows(planes);
             [&clipped_ends[0], &clipped_ends[1]]
         } else {
             [&vertex, &next]
