@@ -342,8 +342,10 @@ fn vertex_rows(
 /// per row, as in [`vertex_rows`]: written one float at a time, the rows were read back
 /// at once by the 16-byte loads of the edge planes, which the store buffer cannot forward
 /// from the narrower stores (issue 15: the clipped path's regression of stop 45). Every
-/// slot is gathered, whatever the count: the planes past the polygon are zeros.
-#[inline(always)]
+/// slot is gathered, whatever the count: the planes past the polygon are zeros. Out of
+/// line: only clipped polygons take it, and in line it moved the code of the unclipped
+/// paths (central hexagons about 10 ns slower, straddling ones 23 instructions more).
+#[inline(never)]
 fn clipped_end_rows(planes: &[[Vec3; 2]; MAX_POLYGON_VERTICES]) -> [[[f32; VERTEX_SLOTS]; 3]; 2] {
     let mut rows = [[[0.0f32; VERTEX_SLOTS]; 3]; 2];
     for first in [0, LANES] {
@@ -438,17 +440,30 @@ fn sort_by_certain_azimuths(
 /// prepared values with those of the scalar path, which calls `edge_dot` for all.
 #[inline(always)]
 fn own_edge_dots(
-    vertex: &[[f32; VERTEX_SLOTS]; 3],
+    [vertex, next]: [&[[f32; VERTEX_SLOTS]; 3]; 2],
     normals: &[[f32; 2 * LANES]; 3],
     ux: &[f32; MAX_POLYGON_VERTICES],
     xy_length: &[f32; MAX_POLYGON_VERTICES],
     count: usize,
 ) -> [[f32; 2 * LANES]; 2] {
-    // `|p_xy|` by vertex slot as `vertex` (slot `count` the first vertex again), and the
-    // edges' `u_x` for the test of a degenerate ellipse.
-    let mut xy = [0.0f32; VERTEX_SLOTS];
-    xy[..count].copy_from_slice(&xy_length[..count]);
-    xy[count] = xy_length[0];
+    // `|p_xy|` of each edge's two ends by group, in registers: `[0]` slot j's, `[1]` slot
+    // j + 1's (slot `count` the first vertex again). `xy_length` holds slot j's in slot j,
+    // stored a group of four at a time from the vertex lanes, whose slots from `count` on
+    // hold the first vertex: there it is the first vertex's, bit for bit (the same lane
+    // operations on the same values), and so is every lane of a group past the polygon
+    // (not computed: the first lane splatted) and the last slot. Copied into a row of
+    // slots one float at a time and read back at once by 16-byte loads (from slot 1
+    // across two groups), the lengths waited for the copy to reach the cache (the store
+    // buffer cannot forward a wider load from narrower stores). The `z` of the other end
+    // likewise from `next`, the vertex lanes from slot 1 stored as rows of their own.
+    let low = load4(xy_length, 0);
+    let high = if count > LANES {
+        load4(xy_length, LANES)
+    } else {
+        Vec4::splat(low.x)
+    };
+    let next_low = Vec4::new(low.y, low.z, low.w, high.x);
+    let next_high = Vec4::new(high.y, high.z, high.w, low.x);
     let mut dots = [[0.0f32; 2 * LANES]; 2];
     for first in lane_starts(count) {
         let (nx, nz) = (load4(&normals[0], first), load4(&normals[2], first));
@@ -458,12 +473,18 @@ fn own_edge_dots(
         let proper = load4(ux, first)
             .abs()
             .cmple(Vec4::splat(super::ellipse::ELLIPSE_LIMIT));
-        for (end, dots) in dots.iter_mut().enumerate() {
-            let (z, xy) = (load4(&vertex[2], first + end), load4(&xy, first + end));
+        let dot = |z: Vec4, xy: Vec4| {
             let t = sigma * (Vec4::ZERO - nz * z) / (nz * xy);
             let keep = proper & xy.cmpgt(Vec4::ZERO) & t.is_finite_mask();
-            store4(Vec4::select(keep, t, Vec4::ZERO), dots, first);
-        }
+            Vec4::select(keep, t, Vec4::ZERO)
+        };
+        let [start, end] = if first == 0 {
+            [low, next_low]
+        } else {
+            [high, next_high]
+        };
+        store4(dot(load4(&vertex[2], first), start), &mut dots[0], first);
+        store4(dot(load4(&next[2], first), end), &mut dots[1], first);
     }
     dots
 }
@@ -952,6 +973,8 @@ impl ProjectedPolygon {
             return polygon.finish(&positions, &inputs, count, 0.0, maybe_short);
         }
         counter_clockwise(&mut positions, count, reversed);
+        // (The vertex lanes, before `next` names the following vertex's index.)
+        let vertex_lanes = [&vertex, &next];
         // Algorithm 1 per edge; edge j runs from vertex j to vertex j + 1.
         let next = |j: usize| if j + 1 == count { 0 } else { j + 1 };
         // The edges' ellipses `u` and the vertices' unit directions `s`, as rows of x and
@@ -1147,7 +1170,7 @@ impl ProjectedPolygon {
             let mut previous = [(usize::MAX, 0.0f32); 2];
             // The table of `edge_dot` at each edge's own vertices (see `own_edge_dots`).
             let own = allow_fast
-                .then(|| own_edge_dots(&vertex, &normals, &edge_rows[0], &xy_length, count));
+                .then(|| own_edge_dots(vertex_lanes, &normals, &edge_rows[0], &xy_length, count));
             for j in 0..sectors {
                 let (a, b) = (order[j] as usize, order[j + 1] as usize);
                 let e = vertex_edge[a];
