@@ -23,7 +23,7 @@
 //! `ξ0` at 0, 1e-5, 1 - 1e-5 and 1 - ulp.
 
 use super::central_sectors::{CENTRAL_WORDS, CentralLanes, CentralSectors, lanes_kept};
-use super::clip::{clip_to_upper_hemisphere, clipped_edge_planes};
+use super::clip::{clip_to_upper_hemisphere, clipped_edge_planes, reverse_clipped_edge_planes};
 use super::edge_normal_rows::EdgeNormalRows;
 use super::ellipse::{
     DEGENERATE, dot2, ellipse_area, ellipse_from_normal, ellipse_from_normal4, is_degenerate,
@@ -334,6 +334,31 @@ fn vertex_rows(
     rows
 }
 
+/// The ends of a clipped polygon's edge planes as lanes, `[end][c][j]`: coordinate c of
+/// end `end` of edge j's plane (`planes[j]`, zeros past the polygon as there, and in the
+/// last slot), for the edge planes and the short-edge test of `prepare_or_fail`.
+///
+/// Each group of four slots is gathered in registers and written with one 16-byte store
+/// per row, as in [`vertex_rows`]: written one float at a time, the rows were read back
+/// at once by the 16-byte loads of the edge planes, which the store buffer cannot forward
+/// from the narrower stores (issue 15: the clipped path's regression of stop 45). Every
+/// slot is gathered, whatever the count: the planes past the polygon are zeros. Out of
+/// line: only clipped polygons take it, and in line it moved the code of the unclipped
+/// paths (central hexagons about 10 ns slower, straddling ones 23 instructions more).
+#[inline(never)]
+fn clipped_end_rows(planes: &[[Vec3; 2]; MAX_POLYGON_VERTICES]) -> [[[f32; VERTEX_SLOTS]; 3]; 2] {
+    let mut rows = [[[0.0f32; VERTEX_SLOTS]; 3]; 2];
+    for first in [0, LANES] {
+        for (end, rows) in rows.iter_mut().enumerate() {
+            let [p0, p1, p2, p3] = [0, 1, 2, 3].map(|i| planes[first + i][end]);
+            store4(Vec4::new(p0.x, p1.x, p2.x, p3.x), &mut rows[0], first);
+            store4(Vec4::new(p0.y, p1.y, p2.y, p3.y), &mut rows[1], first);
+            store4(Vec4::new(p0.z, p1.z, p2.z, p3.z), &mut rows[2], first);
+        }
+    }
+    rows
+}
+
 /// `sort_bitonic` with the decentral preparation's careful comparator, out of line: it
 /// runs only where [`sort_by_certain_azimuths`] cannot decide (and in the careful path).
 #[inline(never)]
@@ -415,17 +440,30 @@ fn sort_by_certain_azimuths(
 /// prepared values with those of the scalar path, which calls `edge_dot` for all.
 #[inline(always)]
 fn own_edge_dots(
-    vertex: &[[f32; VERTEX_SLOTS]; 3],
+    [vertex, next]: [&[[f32; VERTEX_SLOTS]; 3]; 2],
     normals: &[[f32; 2 * LANES]; 3],
     ux: &[f32; MAX_POLYGON_VERTICES],
     xy_length: &[f32; MAX_POLYGON_VERTICES],
     count: usize,
 ) -> [[f32; 2 * LANES]; 2] {
-    // `|p_xy|` by vertex slot as `vertex` (slot `count` the first vertex again), and the
-    // edges' `u_x` for the test of a degenerate ellipse.
-    let mut xy = [0.0f32; VERTEX_SLOTS];
-    xy[..count].copy_from_slice(&xy_length[..count]);
-    xy[count] = xy_length[0];
+    // `|p_xy|` of each edge's two ends by group, in registers: `[0]` slot j's, `[1]` slot
+    // j + 1's (slot `count` the first vertex again). `xy_length` holds slot j's in slot j,
+    // stored a group of four at a time from the vertex lanes, whose slots from `count` on
+    // hold the first vertex: there it is the first vertex's, bit for bit (the same lane
+    // operations on the same values), and so is every lane of a group past the polygon
+    // (not computed: the first lane splatted) and the last slot. Copied into a row of
+    // slots one float at a time and read back at once by 16-byte loads (from slot 1
+    // across two groups), the lengths waited for the copy to reach the cache (the store
+    // buffer cannot forward a wider load from narrower stores). The `z` of the other end
+    // likewise from `next`, the vertex lanes from slot 1 stored as rows of their own.
+    let low = load4(xy_length, 0);
+    let high = if count > LANES {
+        load4(xy_length, LANES)
+    } else {
+        Vec4::splat(low.x)
+    };
+    let next_low = Vec4::new(low.y, low.z, low.w, high.x);
+    let next_high = Vec4::new(high.y, high.z, high.w, low.x);
     let mut dots = [[0.0f32; 2 * LANES]; 2];
     for first in lane_starts(count) {
         let (nx, nz) = (load4(&normals[0], first), load4(&normals[2], first));
@@ -435,12 +473,18 @@ fn own_edge_dots(
         let proper = load4(ux, first)
             .abs()
             .cmple(Vec4::splat(super::ellipse::ELLIPSE_LIMIT));
-        for (end, dots) in dots.iter_mut().enumerate() {
-            let (z, xy) = (load4(&vertex[2], first + end), load4(&xy, first + end));
+        let dot = |z: Vec4, xy: Vec4| {
             let t = sigma * (Vec4::ZERO - nz * z) / (nz * xy);
             let keep = proper & xy.cmpgt(Vec4::ZERO) & t.is_finite_mask();
-            store4(Vec4::select(keep, t, Vec4::ZERO), dots, first);
-        }
+            Vec4::select(keep, t, Vec4::ZERO)
+        };
+        let [start, end] = if first == 0 {
+            [low, next_low]
+        } else {
+            [high, next_high]
+        };
+        store4(dot(load4(&vertex[2], first), start), &mut dots[0], first);
+        store4(dot(load4(&next[2], first), end), &mut dots[1], first);
     }
     dots
 }
@@ -846,12 +890,7 @@ impl ProjectedPolygon {
         if let (Some(planes), true) = (planes.as_mut(), reversed) {
             counter_clockwise(&mut positions, count, true);
             reversed = false;
-            // Edge k now runs backwards along the edge that was m - 2 - k.
-            let forward = *planes;
-            for (k, plane) in planes[..count].iter_mut().enumerate() {
-                let [a, b] = forward[(2 * count - 2 - k) % count];
-                *plane = [b, a];
-            }
+            reverse_clipped_edge_planes(planes, count);
         }
         let polygon = self;
         polygon.selectable_sectors = 0;
@@ -899,16 +938,7 @@ impl ProjectedPolygon {
         // Each end's lanes (slot j: edge j's end).
         let clipped_ends;
         let ends = if let Some(planes) = &planes {
-            let mut lanes = [[[0.0f32; VERTEX_SLOTS]; 3]; 2];
-            #[allow(clippy::needless_range_loop)] // j indexes the innermost arrays
-            for j in 0..count {
-                for (end, p) in planes[j].into_iter().enumerate() {
-                    for (c, value) in p.to_array().into_iter().enumerate() {
-                        lanes[end][c][j] = value;
-                    }
-                }
-            }
-            clipped_ends = lanes;
+            clipped_ends = clipped_end_rows(planes);
             [&clipped_ends[0], &clipped_ends[1]]
         } else {
             [&vertex, &next]
@@ -943,6 +973,8 @@ impl ProjectedPolygon {
             return polygon.finish(&positions, &inputs, count, 0.0, maybe_short);
         }
         counter_clockwise(&mut positions, count, reversed);
+        // (The vertex lanes, before `next` names the following vertex's index.)
+        let vertex_lanes = [&vertex, &next];
         // Algorithm 1 per edge; edge j runs from vertex j to vertex j + 1.
         let next = |j: usize| if j + 1 == count { 0 } else { j + 1 };
         // The edges' ellipses `u` and the vertices' unit directions `s`, as rows of x and
@@ -1138,7 +1170,7 @@ impl ProjectedPolygon {
             let mut previous = [(usize::MAX, 0.0f32); 2];
             // The table of `edge_dot` at each edge's own vertices (see `own_edge_dots`).
             let own = allow_fast
-                .then(|| own_edge_dots(&vertex, &normals, &edge_rows[0], &xy_length, count));
+                .then(|| own_edge_dots(vertex_lanes, &normals, &edge_rows[0], &xy_length, count));
             for j in 0..sectors {
                 let (a, b) = (order[j] as usize, order[j + 1] as usize);
                 let e = vertex_edge[a];

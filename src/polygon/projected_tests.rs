@@ -2089,3 +2089,30 @@ fn vertex_rows_match_the_slots() {
         }
     }
 }
+
+/// `clipped_end_rows` gathers the clipped edge planes' ends by groups: the same values,
+/// bit for bit, as the slot-by-slot rows it replaced (end `end` of `planes[j]` in slot j
+/// of the rows `[end]`, zeros past the polygon, where the planes are zeros, and in the
+/// last slot), for every count.
+#[test]
+fn clipped_end_rows_match_the_slots() {
+    let mut rng = Rng::new(46);
+    for trial in 0..2_000 {
+        let count = 3 + trial % (MAX_POLYGON_VERTICES - 2);
+        let mut planes = [[Vec3::ZERO; 2]; MAX_POLYGON_VERTICES];
+        for plane in &mut planes[..count] {
+            *plane = [0, 1].map(|_| rng.unit_vector_f32() * (1.0 + 9.0 * rng.uniform_f32()));
+        }
+        let mut expected = [[[0.0f32; VERTEX_SLOTS]; 3]; 2];
+        for (j, plane) in planes[..count].iter().enumerate() {
+            for (end, p) in plane.iter().enumerate() {
+                for (c, value) in p.to_array().into_iter().enumerate() {
+                    expected[end][c][j] = value;
+                }
+            }
+        }
+        let bits =
+            |rows: [[[f32; VERTEX_SLOTS]; 3]; 2]| rows.map(|r| r.map(|r| r.map(f32::to_bits)));
+        assert_eq!(bits(clipped_end_rows(&planes)), bits(expected), "{count}");
+    }
+}
