@@ -98,6 +98,21 @@ impl CentralSectors {
     /// sectors has the masks folded away.
     #[inline(always)]
     pub(crate) fn store(&mut self, first: usize, keep: BVec4A, lanes: &CentralLanes) {
+        self.store_with_half_inverse(first, keep, lanes, Vec4::splat(0.5) / lanes.root_det);
+    }
+
+    /// [`store`](Self::store) with `0.5 / k` given (`half_inverse_k`, which the caller
+    /// computed as `0.5 / root_det` for the sector areas: the same operation, so the same
+    /// bits). The central fast path stores the rows before the arc tangent of the areas
+    /// (a branch apart), where the compiler no longer shared the one division.
+    #[inline(always)]
+    pub(crate) fn store_with_half_inverse(
+        &mut self,
+        first: usize,
+        keep: BVec4A,
+        lanes: &CentralLanes,
+        half_inverse_k: Vec4,
+    ) {
         let put = |row: &mut Row, v: Vec4| store4(Vec4::select(keep, v, Vec4::ZERO), row, first);
         let [s0x, s0y] = lanes.s0;
         let [ux, uy] = lanes.outer;
@@ -113,9 +128,8 @@ impl CentralSectors {
         // in (0, 1] and `â`, `u · â` are finite (|s0| = 1), without a select.
         let root = crate::math::sqrt4(Vec4::ONE + t0 * t0);
         let g = Vec4::ONE / root;
-        // 1 / k as `0.5 / k` (which both central paths compute for the sector areas, the
-        // same operation, so the compiler computes it once) doubled, exactly.
-        let half_inverse_k = Vec4::splat(0.5) / k;
+        // 1 / k as `0.5 / k` (which both central paths compute for the sector areas)
+        // doubled, exactly.
         let h = g * (half_inverse_k + half_inverse_k);
         let finite = |v: Vec4| Vec4::select(v.is_finite_mask(), v, Vec4::ZERO);
         put(&mut self.a_hat[0], s0x * g);

@@ -78,15 +78,10 @@ pub(crate) fn lies_in_a_plane_through_the_shading_point(positions: &[Vec3]) -> b
     let apex = positions[0];
     let lanes = |p: Vec3| Vec4::from((p, 0.0));
     let apex_lanes = lanes(apex);
-    let apex_extent = apex_lanes.abs().max_element();
     let mut b = lanes(positions[1]) - apex_lanes;
     for &next in &positions[2..] {
         let c = lanes(next) - apex_lanes;
-        // det(p0, pb, pc) = (pb - p0) × (pc - p0) · p0.
-        let det = crate::math::cross3_lanes(b, c).truncate().dot(apex);
-        let bound =
-            FAN_DETERMINANT_NOISE * b.abs().max_element() * c.abs().max_element() * apex_extent;
-        if !(det.abs() <= bound) {
+        if fan_triangle_leaves_the_plane(apex_lanes, b, c, crate::math::cross3_lanes(b, c)) {
             return false;
         }
         b = c;
@@ -94,6 +89,24 @@ pub(crate) fn lies_in_a_plane_through_the_shading_point(positions: &[Vec3]) -> b
     positions[1..]
         .windows(2)
         .all(|pair| crate::math::determinant_is_exactly_zero(apex, pair[0], pair[1]))
+}
+
+/// The quick answer of [`lies_in_a_plane_through_the_shading_point`] for one fan
+/// triangle `(p0, p0 + b, p0 + c)` (`apex` = `p0`, `b`, `c` and `cross` = `b × c` as
+/// [`cross3_lanes`](crate::math::cross3_lanes) rounds it, all in the lanes
+/// `(x, y, z, 0)`): whether its plain determinant `det(p0, pb, pc) = (pb - p0) × (pc - p0)
+/// · p0` exceeds [`FAN_DETERMINANT_NOISE`] times the magnitudes, so that the polygon
+/// does not lie in a plane through the shading point. Inlined, so that a preparation
+/// that forms the first fan triangle's cross product anyway (the projected polygon's
+/// orientation) shares it and calls the whole test only where this does not answer.
+#[inline(always)]
+pub(crate) fn fan_triangle_leaves_the_plane(apex: Vec4, b: Vec4, c: Vec4, cross: Vec4) -> bool {
+    let det = cross.truncate().dot(apex.truncate());
+    let bound = FAN_DETERMINANT_NOISE
+        * b.abs().max_element()
+        * c.abs().max_element()
+        * apex.abs().max_element();
+    !(det.abs() <= bound)
 }
 
 /// Edges shorter than this (the sine of the angle between their endpoints) may be left
@@ -212,9 +225,14 @@ pub(crate) fn rescale(vertices: &[Vec3], out: &mut [Vec3]) -> Option<()> {
 /// [`rescale`], returning also whether every rescaled vertex lies above the horizon
 /// (`z > 0`): the test of the projected preparation for a polygon that needs no clipping,
 /// made as the vertices are written (issue 15: a pass of its own over them, with its
-/// loop, was about 55 instructions per hexagon).
+/// loop, was about 55 instructions per hexagon), and the factor (so that the caller can
+/// form a rescaled vertex from the input, bit for bit, instead of reading back `out`
+/// while its stores are in flight).
 #[inline(always)]
-pub(crate) fn rescale_above_the_horizon(vertices: &[Vec3], out: &mut [Vec3]) -> Option<bool> {
+pub(crate) fn rescale_above_the_horizon(
+    vertices: &[Vec3],
+    out: &mut [Vec3],
+) -> Option<(bool, f32)> {
     let (mut largest, mut finite) = (Vec4::ZERO, BVec4A::splat(true));
     for v in vertices {
         let (magnitude, finite_lanes) = magnitudes4(Vec4::from((*v, 0.0)));
@@ -227,7 +245,7 @@ pub(crate) fn rescale_above_the_horizon(vertices: &[Vec3], out: &mut [Vec3]) -> 
         *o = *v * factor;
         above &= o.z > 0.0;
     }
-    Some(above)
+    Some((above, factor))
 }
 
 /// The power of two by which [`rescale`] multiplies, or `None` when all coordinates are
@@ -377,7 +395,8 @@ mod tests {
             let mut out = [Vec3::splat(7.0); 8];
             let above = rescale_above_the_horizon(&vertices, &mut out);
             assert_eq!(above.is_some(), scalar.is_some(), "{vertices:?}");
-            if let (Some(factor), Some(above)) = (scalar, above) {
+            if let (Some(factor), Some((above, lanes_factor))) = (scalar, above) {
+                assert_eq!(lanes_factor.to_bits(), factor.to_bits(), "{vertices:?}");
                 for (o, v) in out.iter().zip(&vertices) {
                     let expected = (*v * factor).to_array().map(f32::to_bits);
                     assert_eq!(o.to_array().map(f32::to_bits), expected, "{vertices:?}");

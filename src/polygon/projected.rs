@@ -359,6 +359,27 @@ fn clipped_end_rows(planes: &[[Vec3; 2]; MAX_POLYGON_VERTICES]) -> [[[f32; VERTE
     rows
 }
 
+/// `Σ (p_k - p_0) × (p_k+1 - p_0)` over the fan triangles `k = from..count - 1` of the
+/// vertices `lanes(k)` (in the lanes `(x, y, z, 0)`, `apex` = `lanes(0)`), added to
+/// `sum` in order, each term rounded as `cross3_lanes` rounds it: the orientation's area
+/// vector, from either vertex source of `prepare_or_fail`.
+#[inline(always)]
+fn fan_cross_sum(
+    lanes: impl Fn(usize) -> Vec4,
+    count: usize,
+    from: usize,
+    apex: Vec4,
+    mut sum: Vec4,
+) -> Vec4 {
+    let mut previous = lanes(from) - apex;
+    for k in from..count - 1 {
+        let next = lanes(k + 1) - apex;
+        sum += crate::math::cross3_lanes(previous, next);
+        previous = next;
+    }
+    sum
+}
+
 /// `sort_bitonic` with the decentral preparation's careful comparator, out of line: it
 /// runs only where [`sort_by_certain_azimuths`] cannot decide (and in the careful path).
 #[inline(never)]
@@ -614,11 +635,7 @@ fn central_unclipped_sectors(
         let cosine = s0x * s1x + s0y * s1y;
         let x = (cosine + t0 * t1) / root_det;
         let y = det.max(Vec4::ZERO);
-        let angle = match precision {
-            AreaPrecision::Exact => crate::math::atan2_upper_half_plane4(y, x, count - first),
-            AreaPrecision::Fast => atan2_positive_fast4(y, x),
-        };
-        let area = (angle * (Vec4::splat(0.5) / root_det)).max(Vec4::ZERO);
+        let half_inverse_k = Vec4::splat(0.5) / root_det;
         let sectors = CentralLanes {
             s0: [s0x, s0y],
             s1: [s1x, s1y],
@@ -627,11 +644,15 @@ fn central_unclipped_sectors(
             outer_dots: [t0, t1],
             root_det,
         };
-        // The rows, the edge normals (slots past the polygon 0, as in
-        // `EdgeNormalRows::ZERO`) and the areas of this group. A group of four sectors
-        // stores its lanes without masks (a constant mask, folded away: thirteen fewer
-        // operations); the last group of a polygon whose count is not a multiple of four
-        // masks the lanes past it (`finish` writes the areas past the polygon as 0).
+        // The rows and the edge normals (slots past the polygon 0, as in
+        // `EdgeNormalRows::ZERO`) of this group, stored before the arc tangent of the
+        // areas, which needs most of the registers: stored after it, the lanes that the
+        // rows take from here were spilled to the stack across it and reloaded (issue
+        // 15: 26 fewer stack stores and loads per hexagon, as many register copies
+        // more; the time alike). A group of four sectors stores its lanes without masks
+        // (a constant mask, folded away: thirteen fewer operations); the last group of
+        // a polygon whose count is not a multiple of four masks the lanes past it
+        // (`finish` writes the areas past the polygon as 0).
         #[inline(always)]
         fn store_group(
             central: &mut CentralSectors,
@@ -639,9 +660,10 @@ fn central_unclipped_sectors(
             first: usize,
             keep: glam::BVec4A,
             sectors: &CentralLanes,
+            half_inverse_k: Vec4,
             normal: [Vec4; 3],
         ) {
-            central.store(first, keep, sectors);
+            central.store_with_half_inverse(first, keep, sectors, half_inverse_k);
             edge_normals.store4(first, normal, keep);
         }
         let normal = [nx, ny, nz];
@@ -655,6 +677,7 @@ fn central_unclipped_sectors(
                 first,
                 keep,
                 &sectors,
+                half_inverse_k,
                 normal,
             );
         } else {
@@ -665,9 +688,15 @@ fn central_unclipped_sectors(
                 first,
                 keep,
                 &sectors,
+                half_inverse_k,
                 normal,
             );
         }
+        let angle = match precision {
+            AreaPrecision::Exact => crate::math::atan2_upper_half_plane4(y, x, count - first),
+            AreaPrecision::Fast => atan2_positive_fast4(y, x),
+        };
+        let area = (angle * half_inverse_k).max(Vec4::ZERO);
         store4(area, &mut polygon.sector_area, first);
     }
     if count <= LANES {
@@ -836,10 +865,30 @@ impl ProjectedPolygon {
         let mut positions = [Vec3::ZERO; MAX_POLYGON_VERTICES];
         // A polygon wholly above the horizon (the common case) is its own clipped polygon
         // (clipping would return it unchanged) and its edges are their own planes.
-        let Some(above) = super::rescale_above_the_horizon(vertices, &mut positions) else {
+        let Some((above, factor)) = super::rescale_above_the_horizon(vertices, &mut positions)
+        else {
             return false;
         };
-        if super::lies_in_a_plane_through_the_shading_point(&positions[..count]) {
+        // Vertex k rescaled, as the lanes `(x, y, z, 0)`: `positions[k]` bit for bit (the
+        // same product per coordinate), formed from the input. Read back from `positions`
+        // right after their 8- and 4-byte stores, the vertices came with 16-byte loads
+        // across those stores (the compiler's), which the store buffer cannot forward:
+        // each waited for the stores to reach the cache.
+        let rescaled = |k: usize| Vec4::from((vertices[k], 0.0)) * factor;
+        // The first fan triangle, shared by the plane test and (nothing clipped) the
+        // orientation below: where its determinant clears the noise (almost always), the
+        // polygon is off the plane and the whole test is not called (issue 15: the call
+        // formed this triangle again, about 90 instructions per preparation).
+        let first_apex = rescaled(0);
+        let first_fan = [1, 2].map(|k| rescaled(k) - first_apex);
+        let first_cross = crate::math::cross3_lanes(first_fan[0], first_fan[1]);
+        if !super::fan_triangle_leaves_the_plane(
+            first_apex,
+            first_fan[0],
+            first_fan[1],
+            first_cross,
+        ) && super::lies_in_a_plane_through_the_shading_point(&positions[..count])
+        {
             return false;
         }
         let was_clipped = !above;
@@ -866,16 +915,20 @@ impl ProjectedPolygon {
         // In the lanes `(x, y, z, 0)`, each component rounded as `Vec3`'s differences,
         // `cross` and sums round it (`cross3_lanes`; issue 15: about 26 instructions a
         // fan triangle as scalars, 4 per hexagon).
-        let lanes = |k: usize| Vec4::from((positions[k], 0.0));
-        let apex = lanes(0);
-        let mut area_vector = Vec4::ZERO;
-        let mut previous = lanes(1) - apex;
-        for k in 1..count - 1 {
-            let next = lanes(k + 1) - apex;
-            area_vector += crate::math::cross3_lanes(previous, next);
-            previous = next;
-        }
-        let orientation = area_vector.truncate().dot(positions[0]);
+        // Unclipped, from the input's lanes (`rescaled`), the sum starting from the first
+        // fan triangle's cross product above (`0 + c`, as the sum adds it).
+        let (apex, area_vector) = if was_clipped {
+            let lanes = |k: usize| Vec4::from((positions[k], 0.0));
+            let apex = lanes(0);
+            (apex, fan_cross_sum(lanes, count, 1, apex, Vec4::ZERO))
+        } else {
+            let sum = Vec4::ZERO + first_cross;
+            (
+                first_apex,
+                fan_cross_sum(rescaled, count, 2, first_apex, sum),
+            )
+        };
+        let orientation = area_vector.truncate().dot(apex.truncate());
         if !(orientation != 0.0) {
             return false;
         }

@@ -2116,3 +2116,67 @@ fn clipped_end_rows_match_the_slots() {
         assert_eq!(bits(clipped_end_rows(&planes)), bits(expected), "{count}");
     }
 }
+
+/// The head of `prepare_or_fail` shares the first fan triangle between the plane test and
+/// the orientation, formed from the input times the rescale factor (`rescaled`): the
+/// rescaled lanes are `positions` bit for bit; the orientation's area vector summed from
+/// that triangle (`fan_cross_sum` from the second, as unclipped polygons take it) is the
+/// sum over every fan triangle from 0 bit for bit; and the quick test of the first
+/// triangle (`fan_triangle_leaves_the_plane`) answers only for polygons off the plane, so
+/// that `!quick && lies_in_a_plane_through_the_shading_point` is the whole test. Random
+/// and awkward polygons (over many scales, with vertices on the zenith and the horizon),
+/// and polygons in a plane through the shading point (the quick test must not answer).
+#[test]
+fn the_first_fan_triangle_is_shared_bit_for_bit() {
+    let mut rng = Rng::new(46);
+    let (mut quick, mut whole, mut in_plane) = (0, 0, 0);
+    for trial in 0..20_000 {
+        let n = 3 + trial % (MAX_POLYGON_VERTICES - 2);
+        let mut vertices = central_or_awkward_polygon(&mut rng, n, trial);
+        if trial % 7 == 3 {
+            // In a plane through the shading point, exactly: integer combinations of two
+            // integer vectors (every product and sum exact).
+            let mut integer = || (rng.below(9) as f32) - 4.0;
+            let a = Vec3::new(integer(), integer(), integer().abs() + 1.0);
+            let b = Vec3::new(integer(), integer(), integer().abs() + 1.0);
+            for v in &mut vertices {
+                *v = a * (1.0 + integer().abs()) + b * integer();
+            }
+        }
+        let mut positions = [Vec3::ZERO; MAX_POLYGON_VERTICES];
+        let Some((_, factor)) = super::super::rescale_above_the_horizon(&vertices, &mut positions)
+        else {
+            continue;
+        };
+        let rescaled = |k: usize| Vec4::from((vertices[k], 0.0)) * factor;
+        let lanes = |k: usize| Vec4::from((positions[k], 0.0));
+        for k in 0..n {
+            assert_eq!(
+                rescaled(k).to_array().map(f32::to_bits),
+                lanes(k).to_array().map(f32::to_bits),
+                "{vertices:?}"
+            );
+        }
+        let apex = rescaled(0);
+        let [b, c] = [1, 2].map(|k| rescaled(k) - apex);
+        let first_cross = crate::math::cross3_lanes(b, c);
+        let shared = fan_cross_sum(rescaled, n, 2, apex, Vec4::ZERO + first_cross);
+        let whole_sum = fan_cross_sum(lanes, n, 1, lanes(0), Vec4::ZERO);
+        assert_eq!(
+            shared.to_array().map(f32::to_bits),
+            whole_sum.to_array().map(f32::to_bits),
+            "{vertices:?}"
+        );
+        let leaves = super::super::fan_triangle_leaves_the_plane(apex, b, c, first_cross);
+        let lies = super::super::lies_in_a_plane_through_the_shading_point(&positions[..n]);
+        assert!(!(leaves && lies), "{vertices:?}");
+        quick += leaves as u32;
+        whole += !leaves as u32;
+        in_plane += lies as u32;
+    }
+    // Both answers of the quick test, and polygons in the plane, were exercised.
+    assert!(
+        quick > 10_000 && whole > 1_000 && in_plane > 1_000,
+        "{quick} {whole} {in_plane}"
+    );
+}
