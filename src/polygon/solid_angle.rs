@@ -1571,12 +1571,12 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
             return None;
         }
         let target = u[0] * self.solid_angle;
-        let k = select_piece(&self.start, target);
+        let (k, start) = self.piece(target);
         // `start[k] <= target` (`select_piece` counts the starts at or below it, and
         // `start[0] = 0`), so the difference is not negative: no clamp to 0 (a NaN start,
         // a corrupted value, gives a NaN direction, which the unit test sends to the rare
         // path).
-        let local = target - self.start_of_piece(k, target);
+        let local = target - start;
         let dir = self.direction_in_triangle(k, local, u[1]);
         crate::math::is_unit_output(dir).then_some(Sample {
             dir,
@@ -1612,34 +1612,39 @@ impl<const N: usize, const T: usize> SolidAngleFan<N, T> {
         let target = u0 * self.solid_angle;
         // Fan triangle k: the number of triangles (among all but the last selectable)
         // that end at or before the target. `<=` skips triangles of zero solid angle.
-        let k = select_piece(&self.start, target);
-        let local = (target - self.start_of_piece(k, target)).max(0.0);
+        let (k, start) = self.piece(target);
+        let local = (target - start).max(0.0);
         (k, local, u1)
     }
 
-    /// `start[k]` for the piece `k = select_piece(&self.start, target)`, for a prepared
-    /// polygon (`start[0] = 0`, as preparation writes it), without a load from the index
-    /// that the comparisons compute: such a load waits for the comparison and then for
-    /// the cache (about 10 cycles at the head of the sample's chain of dependent
+    /// The piece `k = select_piece(&self.start, target)` and its start `start[k]`, for a
+    /// prepared polygon (`start[0] = 0`, as preparation writes it), without a load from
+    /// the index that the comparisons compute: such a load waits for the comparison and
+    /// then for the cache (about 10 cycles at the head of the sample's chain of dependent
     /// operations, which runs from `target` through the sine and cosine, two divisions
     /// and a square root to the direction). A triangle's one fan triangle starts at 0,
     /// and `target - 0 = target` exactly (also for `-0`), so the subtraction goes too;
     /// a quad's second starts at `start[1]` when `start[1] <= target` (the comparison of
-    /// `select_piece`), else the first at 0: a mask of the one value. Larger fans keep the
-    /// load. The same value bit for bit (tested: `start_of_piece_is_the_start_at_k`); a
+    /// `select_piece`), else the first at 0: one lane comparison gives both the mask of
+    /// the one value and `k` (its sign bit), so that `k` is an integer that the loads
+    /// index, where the comparison's flag made the compiler select each field's address
+    /// by a `cmov` (quads: 6 instructions per sample). Larger fans keep the load. The
+    /// same values bit for bit (tested: `piece_is_select_piece_and_its_start`); a
     /// corrupted `start[0]` (outside the contract) is read as 0.
     #[inline(always)]
-    fn start_of_piece(&self, k: usize, target: f32) -> f32 {
+    fn piece(&self, target: f32) -> (usize, f32) {
         if T == 1 {
-            0.0
+            (0, 0.0)
         } else if T == 2 {
-            if self.start[1] <= target {
-                self.start[1]
-            } else {
-                0.0
-            }
+            // `start[1] <= target` in lane 0 (false for a NaN, as the scalar `<=`); the
+            // other lanes are not read (`start[1]` in lane 0 alone is one 4-byte load).
+            let start1 = Vec4::new(self.start[1], 0.0, 0.0, 0.0);
+            let second = start1.cmple(Vec4::splat(target));
+            let start = Vec4::select(second, start1, Vec4::ZERO);
+            ((second.bitmask() & 1) as usize, start.x)
         } else {
-            self.start[k]
+            let k = select_piece(&self.start, target);
+            (k, self.start[k])
         }
     }
 

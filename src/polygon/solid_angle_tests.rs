@@ -1780,13 +1780,13 @@ fn shortest_pair_is_the_choice_of_denominator() {
     }
 }
 
-/// `start_of_piece` is `start[k]` bit for bit for the piece `k` that `select_piece` picks,
+/// `piece` is the piece `k` that `select_piece` picks and `start[k]` bit for bit,
 /// for prepared triangles and quads (the sizes that do not load it) and the general size:
 /// at targets drawn across `[0, Ω)`, at the starts themselves and an ulp either side of
 /// them, and for quads whose first fan triangle has zero solid angle (a repeated vertex,
 /// `start[1] = 0`).
 #[test]
-fn start_of_piece_is_the_start_at_k() {
+fn piece_is_select_piece_and_its_start() {
     fn check<const N: usize, const T: usize>(p: &SolidAngleFan<N, T>, rng: &mut Rng) -> usize {
         let mut targets: Vec<f32> = (0..64).map(|_| rng.uniform_f32() * p.solid_angle).collect();
         for &start in &p.start {
@@ -1797,8 +1797,10 @@ fn start_of_piece_is_the_start_at_k() {
         targets.extend([0.0, p.solid_angle.next_down()]);
         for &target in targets.iter().filter(|t| **t >= 0.0) {
             let k = select_piece(&p.start, target);
+            let (piece, start) = p.piece(target);
+            assert_eq!(piece, k, "{target:e} in {:?}", p.start);
             assert_eq!(
-                p.start_of_piece(k, target).to_bits(),
+                start.to_bits(),
                 p.start[k].to_bits(),
                 "{target:e} in {:?}",
                 p.start
