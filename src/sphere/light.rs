@@ -47,7 +47,7 @@ use super::sptd::{Sptd, SptdBase, SptdInCap};
 use crate::Sample;
 use crate::brdf::Ltc;
 use crate::brdf::pivot_table::{PIVOT_TABLE, PIVOT_TABLE_SIZE};
-use crate::brdf::{table_bilinear_of_guess, table_coordinates};
+use crate::brdf::{table_bilinear_of_guess, table_coordinates, table_row_guess};
 use core::f32::consts::PI;
 use glam::Vec3;
 
@@ -109,19 +109,6 @@ impl GgxPivot {
     pub fn sptd(&self) -> Sptd {
         Sptd::uniform(self.pivot)
     }
-}
-
-/// A guess of the pivot table's row coordinate `y = √(1 − cos θo)·63` of
-/// [`table_coordinates`] from the view as given: `√(1 − wo_z)·63`, a square root away
-/// from the view where `y` is a square root, two divisions and another square root away
-/// (`cos θo = wo_z/|wo|`, `y = √(sin²θo/(1 + cos θo))·63`). For a unit view (the
-/// convention; `|wo|² = 1` to 1e-6) both are `√(1 − cos θo)·63` up to rounding, so the
-/// guess nearly always lies in `y`'s cell (`the_fit_s_guessed_row_is_the_exact_cell_for_unit_views`);
-/// a view of another length may guess wrong, and `table_bilinear_of_guess` then reads `y`'s
-/// own cell (the same bits either way).
-#[inline(always)]
-fn table_row_guess(wo: Vec3) -> f32 {
-    crate::math::sqrtf((1.0 - wo.z).max(0.0)) * 63.0
 }
 
 /// Real-time GGX shading of sphere lights by the fitted SPTD (biased; see the module
