@@ -154,6 +154,21 @@ pub(crate) fn table_bilinear_of_guess<const K: usize>(
     }
 }
 
+/// The entry at the low corner of [`table_bilinear_of_guess`]'s guessed cell (the first
+/// of its four loads, which the compiler shares): known as soon as the guess, where the
+/// interpolated entry waits on the exact coordinates and the interpolation. A caller
+/// may guess from it what the interpolated entry will be (the sphere light sampler's fit:
+/// the elevation's range for its sine and cosine).
+#[inline(always)]
+pub(crate) fn table_corner_of_guess<const K: usize>(
+    table: &[[f32; K]],
+    size: usize,
+    x: f32,
+    y_guess: f32,
+) -> [f32; K] {
+    table[table_cell(x, size) * size + table_cell(y_guess, size)]
+}
+
 /// [`table_bilinear`] out of line and cold: [`table_bilinear_of_guess`] of a wrong guess.
 #[cold]
 #[inline(never)]
