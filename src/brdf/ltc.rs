@@ -59,7 +59,11 @@ impl Ltc {
     #[inline(always)]
     pub fn from_ggx(wo: Vec3, roughness: f32) -> Option<Ltc> {
         let (x, y, cos_phi, sin_phi) = super::table_coordinates(wo, roughness)?;
-        let entry = super::table_bilinear(&LTC_TABLE, LTC_TABLE_SIZE, x, y);
+        // The table's loads start from the guessed row (`table_row_guess`) without
+        // waiting on `table_coordinates`' square root and two divisions: the bits of
+        // `table_bilinear` (see `table_bilinear_of_guess`; issue 18, stop 46).
+        let guess = super::table_row_guess(wo);
+        let entry = super::table_bilinear_of_guess(&LTC_TABLE, LTC_TABLE_SIZE, x, y, guess);
         Self::from_view_frame(entry, cos_phi, sin_phi)
     }
 

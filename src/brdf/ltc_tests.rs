@@ -142,3 +142,49 @@ fn is_finite_is_by_field() {
     }
     assert!(non_finite > 5000, "only {non_finite} non-finite cases");
 }
+
+/// `Ltc::from_ggx` reads the table from the guessed row (`table_row_guess`): the bits of
+/// the former lookup (`table_bilinear` at the exact coordinates) for unit views and for
+/// views of other lengths (whose guesses are wrong and take the checked fallback), and
+/// the guess is the exact coordinate's cell for at least 99.9% of unit views.
+#[test]
+fn the_ltc_s_guessed_row_gives_the_former_lookup_s_bits() {
+    use crate::brdf::{table_bilinear, table_coordinates, table_row_guess};
+    let former = |wo: Vec3, roughness: f32| -> Option<Ltc> {
+        let (x, y, cos_phi, sin_phi) = table_coordinates(wo, roughness)?;
+        let entry = table_bilinear(&LTC_TABLE, LTC_TABLE_SIZE, x, y);
+        Ltc::from_view_frame(entry, cos_phi, sin_phi)
+    };
+    let bits = |l: Option<Ltc>| {
+        l.map(|l| {
+            let rows = l.inverse_rows.map(|r| r.to_array().map(f32::to_bits));
+            let columns = l.matrix_columns.map(|c| c.to_array().map(f32::to_bits));
+            let scalars = [l.inverse_determinant, l.albedo, l.fresnel].map(f32::to_bits);
+            (rows, columns, scalars)
+        })
+    };
+    let mut rng = Rng::new(4619);
+    let (mut unit_views, mut right) = (0u32, 0u32);
+    for i in 0..200_000 {
+        let wo = rng.unit_vector_f32();
+        let roughness = rng.uniform_f32();
+        let scaled = if i % 4 == 3 { wo * 3.5 } else { wo };
+        assert_eq!(
+            bits(Ltc::from_ggx(scaled, roughness)),
+            bits(former(scaled, roughness)),
+            "{scaled:?} {roughness}"
+        );
+        if scaled == wo
+            && let Some((_, y, _, _)) = table_coordinates(wo, roughness)
+        {
+            unit_views += 1;
+            let last_cell = LTC_TABLE_SIZE as u32 - 2;
+            let guess = table_row_guess(wo) as u32;
+            right += (guess.min(last_cell) == (y as u32).min(last_cell)) as u32;
+        }
+    }
+    assert!(
+        right as f64 >= 0.999 * unit_views as f64,
+        "{right} of {unit_views}"
+    );
+}

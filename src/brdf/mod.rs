@@ -60,6 +60,21 @@ pub(crate) fn table_coordinates(wo: Vec3, roughness: f32) -> Option<(f32, f32, f
     Some((x, y, cos_phi, sin_phi))
 }
 
+/// A guess of the fitted tables' row coordinate `y = √(1 − cos θo)·63` of
+/// [`table_coordinates`] from the view as given: `√(1 − wo_z)·63`, a square root away
+/// from the view where `y` is a square root, two divisions and another square root away
+/// (`cos θo = wo_z/|wo|`, `y = √(sin²θo/(1 + cos θo))·63`). For a unit view (the
+/// convention; `|wo|² = 1` to 1e-6) both are `√(1 − cos θo)·63` up to rounding, so the
+/// guess nearly always lies in `y`'s cell (the pivot fit's
+/// `the_fit_s_guessed_row_is_the_exact_cell_for_unit_views`, the LTC's
+/// `the_ltc_s_guessed_row_gives_the_former_lookup_s_bits`); a view of another length may
+/// guess wrong, and [`table_bilinear_of_guess`] then reads `y`'s own cell (the same bits
+/// either way).
+#[inline(always)]
+pub(crate) fn table_row_guess(wo: Vec3) -> f32 {
+    crate::math::sqrtf((1.0 - wo.z).max(0.0)) * 63.0
+}
+
 /// The entry of a `size × size` table (row-major, rows along `x`) at fractional cell
 /// coordinates `(x, y)` in `[0, size − 1]²`, interpolated bilinearly.
 #[inline]
@@ -137,6 +152,21 @@ pub(crate) fn table_bilinear_of_guess<const K: usize>(
     } else {
         table_bilinear_cold(table, size, x, y)
     }
+}
+
+/// The entry at the low corner of [`table_bilinear_of_guess`]'s guessed cell (the first
+/// of its four loads, which the compiler shares): known as soon as the guess, where the
+/// interpolated entry waits on the exact coordinates and the interpolation. A caller
+/// may guess from it what the interpolated entry will be (the sphere light sampler's fit:
+/// the elevation's range for its sine and cosine).
+#[inline(always)]
+pub(crate) fn table_corner_of_guess<const K: usize>(
+    table: &[[f32; K]],
+    size: usize,
+    x: f32,
+    y_guess: f32,
+) -> [f32; K] {
+    table[table_cell(x, size) * size + table_cell(y_guess, size)]
 }
 
 /// [`table_bilinear`] out of line and cold: [`table_bilinear_of_guess`] of a wrong guess.

@@ -259,18 +259,8 @@ pub(crate) fn sin_cos_of_quarter_turns(q: u32, r: f32) -> (f32, f32) {
 /// around two kernels (issue 18).
 #[inline(always)]
 pub(crate) fn sincosf_in_line(x: f32) -> (f32, f32) {
-    // libm's constants, by their bits (its decimal literals round to these; the hex
-    // forms are in its comments, e.g. S1 = −0x15555554cbac77p−55). `S1PIO2`, libm's
-    // `0.5 · 3.1415926535897931160`, is the `f64` π/2.
+    // `S1PIO2`, libm's `0.5 · 3.1415926535897931160`, is the `f64` π/2.
     const S1PIO2: f64 = core::f64::consts::FRAC_PI_2;
-    const S1: f64 = f64::from_bits(0xbfc5_5555_54cb_ac77);
-    const S2: f64 = f64::from_bits(0x3f81_1110_896e_fbb2);
-    const S3: f64 = f64::from_bits(0xbf2a_00f9_e2ca_e774);
-    const S4: f64 = f64::from_bits(0x3ec6_cd87_8c3b_46a7);
-    const C0: f64 = f64::from_bits(0xbfdf_ffff_fd0c_5e81);
-    const C1: f64 = f64::from_bits(0x3fa5_5553_e105_3a42);
-    const C2: f64 = f64::from_bits(0xbf56_c087_e80f_1e27);
-    const C3: f64 = f64::from_bits(0x3ef9_9342_e0ee_5069);
     // `|x|`'s bits, compared as libm compares them (`0x3f490fda` ≈ π/4, `0x4016cbe3` ≈
     // 3π/4, `0x39800000` = 2⁻¹²); NaN and everything above 3π/4 go to the call.
     let ix = x.to_bits() & 0x7fff_ffff;
@@ -289,7 +279,29 @@ pub(crate) fn sincosf_in_line(x: f32) -> (f32, f32) {
     } else {
         S1PIO2 - xd
     };
-    // k_sinf(y) and k_cosf(y), libm's expressions as written.
+    let (sin_y, cos_y) = sincosf_kernels(y);
+    if !wide {
+        (sin_y, cos_y)
+    } else if x < 0.0 {
+        (-cos_y, sin_y)
+    } else {
+        (cos_y, sin_y)
+    }
+}
+
+/// libm's `k_sinf(y)` and `k_cosf(y)` of [`sincosf_in_line`], its expressions as written.
+#[inline(always)]
+fn sincosf_kernels(y: f64) -> (f32, f32) {
+    // libm's constants, by their bits (its decimal literals round to these; the hex
+    // forms are in its comments, e.g. S1 = −0x15555554cbac77p−55).
+    const S1: f64 = f64::from_bits(0xbfc5_5555_54cb_ac77);
+    const S2: f64 = f64::from_bits(0x3f81_1110_896e_fbb2);
+    const S3: f64 = f64::from_bits(0xbf2a_00f9_e2ca_e774);
+    const S4: f64 = f64::from_bits(0x3ec6_cd87_8c3b_46a7);
+    const C0: f64 = f64::from_bits(0xbfdf_ffff_fd0c_5e81);
+    const C1: f64 = f64::from_bits(0x3fa5_5553_e105_3a42);
+    const C2: f64 = f64::from_bits(0xbf56_c087_e80f_1e27);
+    const C3: f64 = f64::from_bits(0x3ef9_9342_e0ee_5069);
     let z = y * y;
     let w = z * z;
     let sin_y = {
@@ -301,13 +313,55 @@ pub(crate) fn sincosf_in_line(x: f32) -> (f32, f32) {
         let r = C2 + z * C3;
         (((1.0 + z * C0) + w * C1) + (w * z) * r) as f32
     };
-    if !wide {
-        (sin_y, cos_y)
-    } else if x < 0.0 {
-        (-cos_y, sin_y)
+    (sin_y, cos_y)
+}
+
+/// [`sincosf_in_line`], bit for bit, with its range (`|x|` above `π/4` or not) taken from
+/// a guess `wide` known before `x` (the sphere light sampler's fit guesses it from a
+/// corner of the table, which is loaded well before the interpolated elevation): the
+/// branch on the range, which the elevations' spread leaves mispredicted about half the
+/// time, is then resolved while `x` is still being computed, off its chain, and only a
+/// predicted check waits for `x`. The guessed range's reduction and kernels are
+/// `sincosf_in_line`'s (libm's) there: `|x|` in `[2⁻¹², π/4]` for `wide = false`, in
+/// `(π/4, 3π/4]` for `wide = true` (by the same comparisons of the bits); every other
+/// `x` (a wrong guess, tiny, large or NaN) takes `sincosf_in_line` itself, out of line
+/// and cold (`sincosf_in_line_predicted_is_sincosf_in_line`; issue 18, stop 46).
+#[inline(always)]
+pub(crate) fn sincosf_in_line_predicted(x: f32, wide: bool) -> (f32, f32) {
+    const S1PIO2: f64 = core::f64::consts::FRAC_PI_2;
+    let ix = x.to_bits() & 0x7fff_ffff;
+    let xd = x as f64;
+    let y = if wide {
+        // libm's `x + π/2` for `x < 0` and `π/2 − x` are both `π/2 − |x|`, exactly (a
+        // rounded sum does not depend on the order of its terms).
+        S1PIO2 - f32::from_bits(ix) as f64
     } else {
-        (cos_y, sin_y)
+        xd
+    };
+    let in_range = if wide {
+        ix > 0x3f49_0fda && ix <= 0x4016_cbe3
+    } else {
+        (0x3980_0000..=0x3f49_0fda).contains(&ix)
+    };
+    if !in_range {
+        return sincosf_in_line_cold(x);
     }
+    let (sin_y, cos_y) = sincosf_kernels(y);
+    if wide {
+        // libm's `(−cos y, sin y)` for `x < 0`, `(cos y, sin y)` otherwise (`cos y > 0`
+        // for `|y| ≤ π/4`: `copysign` is the negation exactly where libm negates).
+        (cos_y.copysign(x), sin_y)
+    } else {
+        (sin_y, cos_y)
+    }
+}
+
+/// [`sincosf_in_line`] out of line and cold: [`sincosf_in_line_predicted`] of a wrong
+/// guess.
+#[cold]
+#[inline(never)]
+fn sincosf_in_line_cold(x: f32) -> (f32, f32) {
+    sincosf_in_line(x)
 }
 
 /// `libm::sincosf` out of line, for [`sincosf_in_line`]'s arguments beyond `3π/4`.
@@ -609,5 +663,48 @@ mod tests {
         }
         let (s, c) = sincosf_in_line(f32::NAN);
         assert!(s.is_nan() && c.is_nan());
+    }
+
+    /// `sincosf_in_line_predicted` is `sincosf_in_line` bit for bit under either guess of
+    /// the range: the guessed range's own path on both sides of the range boundaries (π/4,
+    /// 3π/4, 2⁻¹²), the cold fallback for the wrong guess, tiny, large, infinite and NaN
+    /// arguments, and the fit's elevations in `[−π/2, 0.04]`.
+    #[test]
+    fn sincosf_in_line_predicted_is_sincosf_in_line() {
+        let check = |x: f32| {
+            let (s, c) = sincosf_in_line(x);
+            for wide in [false, true] {
+                let (ps, pc) = sincosf_in_line_predicted(x, wide);
+                assert!(
+                    ps.to_bits() == s.to_bits() && pc.to_bits() == c.to_bits(),
+                    "{x:e} wide {wide}: ({ps:e}, {pc:e}) where sincosf_in_line gives ({s:e}, {c:e})"
+                );
+            }
+        };
+        let four = 4.0f32.to_bits();
+        for sign in [0u32, 0x8000_0000] {
+            for bits in (0..=four).step_by(61) {
+                check(f32::from_bits(bits | sign));
+            }
+            for boundary in [0x3980_0000u32, 0x3f49_0fda, 0x4016_cbe3] {
+                for bits in boundary - 64..=boundary + 64 {
+                    check(f32::from_bits(bits | sign));
+                }
+            }
+        }
+        let (low, high) = ((-core::f32::consts::FRAC_PI_2).to_bits(), 0.04f32.to_bits());
+        for bits in (0x8000_0000..=low)
+            .step_by(13)
+            .chain((0..=high).step_by(13))
+        {
+            check(f32::from_bits(bits));
+        }
+        for x in [f32::INFINITY, f32::NEG_INFINITY, f32::MAX, f32::MIN] {
+            check(x);
+        }
+        for wide in [false, true] {
+            let (s, c) = sincosf_in_line_predicted(f32::NAN, wide);
+            assert!(s.is_nan() && c.is_nan());
+        }
     }
 }

@@ -47,7 +47,9 @@ use super::sptd::{Sptd, SptdBase, SptdInCap};
 use crate::Sample;
 use crate::brdf::Ltc;
 use crate::brdf::pivot_table::{PIVOT_TABLE, PIVOT_TABLE_SIZE};
-use crate::brdf::{table_bilinear_of_guess, table_coordinates};
+use crate::brdf::{
+    table_bilinear_of_guess, table_coordinates, table_corner_of_guess, table_row_guess,
+};
 use core::f32::consts::PI;
 use glam::Vec3;
 
@@ -89,12 +91,19 @@ impl GgxPivot {
         // waiting on `table_coordinates`' square root and two divisions (the bits of
         // `table_bilinear`, see `table_bilinear_of_guess`; issue 18, stop 46: light bench
         // `sptd` about −6 to −11 ns per prepare + 1, `rt_shade` about −10 ns).
+        let guess = table_row_guess(wo);
         let [norm, elevation, albedo] =
-            table_bilinear_of_guess(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y, table_row_guess(wo));
+            table_bilinear_of_guess(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y, guess);
         // libm's `sincosf`, bit for bit, in line (the elevations lie in `[−π/2, 0.04]`,
         // within its first two ranges): the call and its range dispatch were 52
-        // instructions per preparation (callgrind, light bench `sptd`).
-        let (sin_e, cos_e) = crate::math::sincosf_in_line(elevation);
+        // instructions per preparation (callgrind, light bench `sptd`). Its range
+        // (`|elevation| > π/4`) guessed from the guessed cell's corner, which arrives with
+        // the table's first load: the branch on it, mispredicted about half the time,
+        // resolves before the interpolation ends (any guess gives the same bits, see
+        // `sincosf_in_line_predicted`; test `the_fit_s_sine_range_guess_is_nearly_always_right`).
+        let corner = table_corner_of_guess(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, guess);
+        let (sin_e, cos_e) =
+            crate::math::sincosf_in_line_predicted(elevation, wide_elevation(corner[1]));
         // Elevation from the normal, negative towards −x of the view frame, whose x axis
         // has the view's azimuth.
         let pivot = Vec3::new(norm * sin_e * cos_phi, norm * sin_e * sin_phi, norm * cos_e);
@@ -111,17 +120,12 @@ impl GgxPivot {
     }
 }
 
-/// A guess of the pivot table's row coordinate `y = √(1 − cos θo)·63` of
-/// [`table_coordinates`] from the view as given: `√(1 − wo_z)·63`, a square root away
-/// from the view where `y` is a square root, two divisions and another square root away
-/// (`cos θo = wo_z/|wo|`, `y = √(sin²θo/(1 + cos θo))·63`). For a unit view (the
-/// convention; `|wo|² = 1` to 1e-6) both are `√(1 − cos θo)·63` up to rounding, so the
-/// guess nearly always lies in `y`'s cell (`the_fit_s_guessed_row_is_the_exact_cell_for_unit_views`);
-/// a view of another length may guess wrong, and `table_bilinear_of_guess` then reads `y`'s
-/// own cell (the same bits either way).
+/// Whether `sincosf_in_line` reduces `elevation` as wide (`|elevation| > π/4`, by the
+/// bits it compares): [`GgxPivot::from_view`]'s guess of its interpolated elevation's
+/// range, from a table corner.
 #[inline(always)]
-fn table_row_guess(wo: Vec3) -> f32 {
-    crate::math::sqrtf((1.0 - wo.z).max(0.0)) * 63.0
+fn wide_elevation(elevation: f32) -> bool {
+    (elevation.to_bits() & 0x7fff_ffff) > 0x3f49_0fda
 }
 
 /// Real-time GGX shading of sphere lights by the fitted SPTD (biased; see the module
