@@ -91,6 +91,19 @@ pub(crate) fn lanes_kept(first: usize, count: usize) -> BVec4A {
     Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(Vec4::splat(remaining))
 }
 
+/// [`lanes_kept`] of both groups of four slots, `[lanes_kept(0, count),
+/// lanes_kept(4, count)]` (`count` at most 8): the slot indices of each group compared
+/// with `count` itself (small integers, exact in f32), one conversion for the two groups
+/// and no subtraction.
+#[inline(always)]
+pub(crate) fn both_groups_kept(count: usize) -> [BVec4A; 2] {
+    let count = Vec4::splat(count as i32 as f32);
+    [
+        Vec4::new(0.0, 1.0, 2.0, 3.0).cmplt(count),
+        Vec4::new(4.0, 5.0, 6.0, 7.0).cmplt(count),
+    ]
+}
+
 impl CentralSectors {
     /// Writes the sectors `first..first + 4` from their lanes; lanes not in `keep`
     /// (past the polygon, whose values the caller may have computed from padding) are
@@ -271,6 +284,20 @@ mod tests {
     use super::*;
     use crate::math::{lane_starts, load4};
     use crate::testing::Rng;
+
+    /// `both_groups_kept` is `lanes_kept` of the two groups, for every count 0..=8.
+    #[test]
+    fn both_groups_kept_matches_lanes_kept() {
+        for count in 0..=MAX_POLYGON_VERTICES {
+            let [low, high] = both_groups_kept(count);
+            assert_eq!(low.bitmask(), lanes_kept(0, count).bitmask(), "{count}");
+            assert_eq!(
+                high.bitmask(),
+                lanes_kept(LANES, count).bitmask(),
+                "{count}"
+            );
+        }
+    }
 
     /// `sector` computes `s0 · s1` and `1 / det(s0, s1)` (0 where not finite) from the
     /// rows `s0` and `s1`, scalar, where they were rows that the preparations computed

@@ -22,7 +22,9 @@
 //! polygons touching and crossing the horizon, tiny and near-hemisphere polygons,
 //! `ξ0` at 0, 1e-5, 1 - 1e-5 and 1 - ulp.
 
-use super::central_sectors::{CENTRAL_WORDS, CentralLanes, CentralSectors, lanes_kept};
+use super::central_sectors::{
+    CENTRAL_WORDS, CentralLanes, CentralSectors, both_groups_kept, lanes_kept,
+};
 use super::clip::{clip_to_upper_hemisphere, clipped_edge_planes, reverse_clipped_edge_planes};
 use super::edge_normal_rows::EdgeNormalRows;
 use super::ellipse::{
@@ -560,9 +562,10 @@ fn counter_clockwise_cold(
 /// `central_fast_path_matches_the_general_path` pins which polygons come here and
 /// compares the prepared values bit for bit.
 ///
-/// Writes the edge normals, the sectors `0..count` and their areas and marks the polygon
-/// central; returns whether an edge may be short (the first test of
-/// `ignore_short_edges_in_containment`).
+/// Writes the edge normals, the sectors `0..count` and every slot's area (0 in the
+/// second group of four when `count <= 4`) and marks the polygon central; returns whether an edge may be short (the
+/// first test of `ignore_short_edges_in_containment`); `central_starts` takes the areas
+/// from there.
 #[inline(always)]
 fn central_unclipped_sectors(
     polygon: &mut ProjectedPolygon,
@@ -652,7 +655,7 @@ fn central_unclipped_sectors(
         // more; the time alike). A group of four sectors stores its lanes without masks
         // (a constant mask, folded away: thirteen fewer operations); the last group of
         // a polygon whose count is not a multiple of four masks the lanes past it
-        // (`finish` writes the areas past the polygon as 0).
+        // (the areas past the polygon are masked to 0 below).
         #[inline(always)]
         fn store_group(
             central: &mut CentralSectors,
@@ -705,8 +708,65 @@ fn central_unclipped_sectors(
         polygon
             .edge_normals
             .store4(LANES, zero, glam::BVec4A::splat(true));
+        store4(Vec4::ZERO, &mut polygon.sector_area, LANES);
     }
     maybe_short
+}
+
+/// `finish`'s sectors' starts and Φ from the areas of the central fast path as lanes
+/// (as `central_unclipped_sectors` stored them; the slots past the polygon are written
+/// as 0 here), bit for bit as
+/// `finish`'s loop over the stored areas: the starts `Σ_{i<j} area_i` and the total
+/// summed in the same order from `0.0`, `selectable_sectors` the index after the last
+/// positive area (from a mask of the lanes, where the loop read every area back from
+/// memory with a branch) and the starts from there on `+∞` (`pad_unselectable`), written
+/// with one 16-byte store per group. The lanes past the polygon add `+0`, which leaves
+/// every sum unchanged (the sum is never `-0`: it starts from `+0` and adds areas that
+/// are `+0` or positive, `max(0)` having removed `-0` and NaN), so a group is summed
+/// whole; the second group only for more than four sectors (with four or fewer, its
+/// starts are all past the selectable ones). Returns Φ.
+#[inline(always)]
+fn central_starts(polygon: &mut ProjectedPolygon, count: usize) -> f32 {
+    // The lanes past the polygon as 0 (as `finish` writes them), masked here where the
+    // areas' loop masked its last group (and moved the code of the loop: 25 instructions
+    // more per group). 16-byte loads and stores of the 16-byte stores of
+    // `central_unclipped_sectors` (forwarded).
+    let kept = both_groups_kept(count);
+    let areas: [Vec4; 2] = core::array::from_fn(|g| {
+        let first = g * LANES;
+        let area = load4(&polygon.sector_area, first);
+        let area = Vec4::select(kept[g], area, Vec4::ZERO);
+        store4(area, &mut polygon.sector_area, first);
+        area
+    });
+    let positive =
+        areas[0].cmpgt(Vec4::ZERO).bitmask() | areas[1].cmpgt(Vec4::ZERO).bitmask() << LANES;
+    let selectable = u32::BITS - positive.leading_zeros();
+    polygon.selectable_sectors = selectable;
+    // Each lane's start and the running total, in slot order.
+    let prefix = |lanes: Vec4, total: &mut f32| {
+        let area = lanes.to_array();
+        let mut start = [0.0f32; LANES];
+        for (start, area) in start.iter_mut().zip(area) {
+            *start = *total;
+            *total += area;
+        }
+        Vec4::from_array(start)
+    };
+    let mut total = 0.0f32;
+    let low = prefix(areas[0], &mut total);
+    // (With four sectors or fewer, the second group's starts are all unselectable.)
+    let high = if count > LANES {
+        prefix(areas[1], &mut total)
+    } else {
+        Vec4::ZERO
+    };
+    let selectable_lanes = both_groups_kept(selectable as usize);
+    for (g, starts) in [low, high].into_iter().enumerate() {
+        let starts = Vec4::select(selectable_lanes[g], starts, Vec4::splat(f32::INFINITY));
+        store4(starts, &mut polygon.sector_start, g * LANES);
+    }
+    total
 }
 
 /// What `finish` reads besides the positions: the vertex count, the extent of the
@@ -1020,10 +1080,11 @@ impl ProjectedPolygon {
             *took_fast = true;
             let maybe_short =
                 central_unclipped_sectors(polygon, [&vertex, &next], &normals, count, precision);
+            let total = central_starts(polygon, count);
             if maybe_short {
                 counter_clockwise_cold(&mut positions, count, reversed);
             }
-            return polygon.finish(&positions, &inputs, count, 0.0, maybe_short);
+            return polygon.finish_total(&positions, &inputs, count, total, 0.0, maybe_short);
         }
         counter_clockwise(&mut positions, count, reversed);
         // (The vertex lanes, before `next` names the following vertex's index.)
@@ -1472,9 +1533,10 @@ impl ProjectedPolygon {
         true
     }
 
-    /// The end of both paths of [`prepare_or_fail`](Self::prepare_or_fail): the unused
-    /// slots, the sectors' starts, Φ and the checks (`positions` in counter-clockwise
-    /// order).
+    /// The end of the general path of [`prepare_or_fail`](Self::prepare_or_fail): the
+    /// unused slots, the sectors' starts, Φ and the checks (`positions` in
+    /// counter-clockwise order). The central fast path writes its areas and starts from
+    /// lanes (`central_starts`) and joins at [`finish_total`](Self::finish_total).
     #[inline(always)]
     fn finish(
         &mut self,
@@ -1485,11 +1547,6 @@ impl ProjectedPolygon {
         maybe_short: bool,
     ) -> bool {
         let polygon = self;
-        let FinishInputs {
-            count,
-            extent2,
-            allow_small,
-        } = *inputs;
         // The unused slots too (no stale or NaN word is left in a prepared value, which
         // the adversarial C test checks by filling the struct with NaN first).
         // `EllipseSector::EMPTY` from registers (see `empty_from`): copied from the
@@ -1511,6 +1568,28 @@ impl ProjectedPolygon {
             total += polygon.sector_area[j];
         }
         pad_unselectable(&mut polygon.sector_start, polygon.selectable_sectors);
+        polygon.finish_total(positions, inputs, sectors, total, outer_sum, maybe_short)
+    }
+
+    /// The end of [`finish`](Self::finish) from Φ (`total`), with the sectors, their
+    /// areas and starts and `selectable_sectors` written: the checks, Φ, the density and
+    /// the short edges. The central fast path comes here from `central_starts`.
+    #[inline(always)]
+    fn finish_total(
+        &mut self,
+        positions: &[Vec3; MAX_POLYGON_VERTICES],
+        inputs: &FinishInputs,
+        sectors: usize,
+        total: f32,
+        outer_sum: f32,
+        maybe_short: bool,
+    ) -> bool {
+        let polygon = self;
+        let FinishInputs {
+            count,
+            extent2,
+            allow_small,
+        } = *inputs;
         let density = 1.0 / total;
         // Positive and finite, as plain comparisons (`is_finite` compiled to a
         // classification of the bits here).

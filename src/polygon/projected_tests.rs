@@ -1370,6 +1370,49 @@ fn central_fast_path_matches_the_general_path() {
     assert!(fast > 8_000, "{fast}");
 }
 
+/// `central_starts` writes the areas (0 past the polygon), the starts (`+∞` from
+/// `selectable_sectors` on), `selectable_sectors` and Φ bit for bit as `finish`'s loop
+/// over the stored areas, for every count 3..=8, from areas with zeros anywhere (the
+/// last selectable sector before the last one, none selectable), tiny and huge areas
+/// (sums that absorb a term) and garbage (NaN, negative) in the slots past the polygon.
+#[test]
+fn central_starts_match_the_scalar_loop() {
+    let mut rng = Rng::new(41);
+    for trial in 0..20_000 {
+        let count = 3 + trial % 6;
+        let mut p = ProjectedPolygon::EMPTY;
+        for j in 0..MAX_POLYGON_VERTICES {
+            p.sector_area[j] = if j >= count {
+                [f32::NAN, -1.0, 3.0, -0.0][rng.below(4) as usize]
+            } else {
+                match rng.below(4) {
+                    0 => 0.0,
+                    1 => rng.log_uniform(-40.0, 2.0) as f32,
+                    _ => rng.uniform() as f32,
+                }
+            };
+            p.sector_start[j] = f32::NAN;
+        }
+        // The scalar loop of `finish`.
+        let mut expected = p;
+        for j in count..MAX_POLYGON_VERTICES {
+            expected.sector_area[j] = 0.0;
+        }
+        let mut total = 0.0f32;
+        for j in 0..count {
+            expected.sector_start[j] = total;
+            if expected.sector_area[j] > 0.0 {
+                expected.selectable_sectors = j as u32 + 1;
+            }
+            total += expected.sector_area[j];
+        }
+        pad_unselectable(&mut expected.sector_start, expected.selectable_sectors);
+        let lanes_total = central_starts(&mut p, count);
+        assert_eq!(lanes_total.to_bits(), total.to_bits(), "trial {trial}");
+        assert_eq!(words(&p), words(&expected), "trial {trial}");
+    }
+}
+
 /// The central case's rows (`CentralSectors`, written by both central paths): over
 /// central polygons (fast and general path, both windings, clipped ones, an edge through
 /// the zenith, a vertex at the zenith, random and awkward ones), from a NaN-filled value,
