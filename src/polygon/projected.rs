@@ -309,7 +309,17 @@ fn vertex_rows(
     // the lanes were themselves read back by a 16-byte load from narrower stores), the
     // position of each slot from the table (`& 7` only shows the compiler the indices in
     // bounds: they are below `count`).
-    let slots = &SLOT_VERTEX[reversed as usize][count & (SLOT_VERTEX_COUNTS - 1)];
+    // The table's row chosen by a branch on the order, not indexed by it: indexed, every
+    // gather waited for the orientation (the rescaled vertices' fan sums and their dot
+    // product) before its first load, which put that whole sum on the preparation's
+    // critical path; a branch is predicted (a light's polygons come in one order, as
+    // seen from the side it faces) and the gathers start with the positions (issue 15:
+    // central hexagons 237 -> 224 ns in the default build, the instructions alike).
+    let slots = if reversed {
+        &SLOT_VERTEX[1][count & (SLOT_VERTEX_COUNTS - 1)]
+    } else {
+        &SLOT_VERTEX[0][count & (SLOT_VERTEX_COUNTS - 1)]
+    };
     let index = |j: usize| usize::from(slots[j]) & (MAX_POLYGON_VERTICES - 1);
     let group = |first: usize| -> [Vec4; 3] {
         let [i0, i1, i2, i3] = [first, first + 1, first + 2, first + 3].map(index);
