@@ -243,6 +243,28 @@ fn perimeter_unit(t: Vec3) -> Vec3 {
     }
 }
 
+/// `w / |w|` (as `w / length(w)`) and its [`unit`](crate::math::unit). Where `|w|²` (as
+/// computed, `d`) lies in `(1e-30, 1e30)` the quotient is its own `unit`, given without
+/// `unit`'s test (about 10 instructions per LTC sample, issue 18, stop 47): with
+/// `u = 2⁻²⁴`, `d` is `|w|² (1 + θ)` with `|θ| <= 3u` (three products and two sums of
+/// non-negative terms; a square below the normal range errs by at most 2⁻¹⁵⁰, nothing
+/// against `d > 1e-30`), its square root `|w| (1 + ε)` with `|ε| <= 2.5u`, and each
+/// quotient `w_k / √d` rounds by `u` relatively (or by 2⁻¹⁵⁰ absolutely), so the exact
+/// `|w / √d|²` is `1 ± 7u`, and `unit`'s computed `|·|²` rounds by `3u` more: within
+/// `10u = 6e-7` of 1, inside `UNIT_TOLERANCE` (1e-6), where `unit` returns its
+/// argument as it is. Elsewhere (tiny, huge or non-finite `w`) `unit` itself. Test
+/// `unit_quotient_is_unit`.
+#[inline(always)]
+fn unit_quotient(w: Vec3) -> (Vec3, Option<Vec3>) {
+    let length2 = w.length_squared();
+    let dir = w / crate::math::sqrtf(length2);
+    if length2 > 1e-30 && length2 < 1e30 {
+        (dir, Some(dir))
+    } else {
+        (dir, crate::math::unit(dir))
+    }
+}
+
 /// An LTC restricted to a convex polygon: projected solid angle sampling of the polygon
 /// transformed by `M⁻¹`, mapped back by `M` (Peters 2021, Sec. 5).
 #[repr(C)]
@@ -405,16 +427,16 @@ impl LtcPolygon {
         })
     }
 
-    /// The result of [`sample`](Self::sample) for a direction mapped by `M`: the
-    /// direction and `pdf`'s own body (the same operations on the same direction, so
-    /// the same bits). Called directly on the common path, where it is inlined (as a
+    /// The result of [`sample`](Self::sample) for a direction mapped by `M` and its
+    /// `unit` ([`through_m`](Self::through_m)): the direction and `pdf`'s own body after
+    /// `unit` (the same operations on the same direction, so the same bits). Called directly on the common path, where it is inlined (as a
     /// closure passed to a generic body it was called out of line, with its `Sample`
     /// returned through the stack), and through a reference by the rare one.
     #[inline(always)]
-    fn finish_sample(&self, dir: Vec3) -> Sample {
+    fn finish_sample(&self, (dir, unit): (Vec3, Option<Vec3>)) -> Sample {
         Sample {
             dir,
-            pdf: self.pdf_inline(dir),
+            pdf: self.pdf_of_unit_or_zero(unit),
         }
     }
 
@@ -442,10 +464,8 @@ impl LtcPolygon {
     /// The result of [`sample_and_unit`](Self::sample_and_unit) for a direction mapped
     /// by `M`, as [`finish_sample`](Self::finish_sample) is `sample`'s.
     #[inline(always)]
-    fn finish_sample_and_unit(&self, dir: Vec3) -> (Sample, Option<Vec3>) {
-        let unit = crate::math::unit(dir);
-        let pdf = self.pdf_of_unit_or_zero(unit);
-        (Sample { dir, pdf }, unit)
+    fn finish_sample_and_unit(&self, mapped: (Vec3, Option<Vec3>)) -> (Sample, Option<Vec3>) {
+        (self.finish_sample(mapped), mapped.1)
     }
 
     /// The transformed polygon's sample `ω'` (in the cosine's space), `None` where it
@@ -456,13 +476,13 @@ impl LtcPolygon {
         (s.pdf > 0.0).then_some(s.dir)
     }
 
-    /// `M ω' / ‖M ω'‖`. `|M ω'|` is finite and positive for a finite unit direction and
-    /// invertible `M`, unless `M` is so large that it overflows; `pdf` then sees a
+    /// `M ω' / ‖M ω'‖` and its [`unit`](crate::math::unit), with which `pdf` starts
+    /// ([`unit_quotient`]). `|M ω'|` is finite and positive for a finite unit direction
+    /// and invertible `M`, unless `M` is so large that it overflows; `pdf` then sees a
     /// non-finite or zero direction and returns 0.
     #[inline(always)]
-    fn through_m(&self, w_cosine: Vec3) -> Vec3 {
-        let w = self.ltc.from_cosine_space(w_cosine);
-        w / crate::math::length(w)
+    fn through_m(&self, w_cosine: Vec3) -> (Vec3, Option<Vec3>) {
+        unit_quotient(self.ltc.from_cosine_space(w_cosine))
     }
 
     /// The rare end of [`sample`](Self::sample) and [`sample_and_unit`](Self::sample_and_unit), out of line: the
@@ -476,7 +496,7 @@ impl LtcPolygon {
         &self,
         w_cosine: Vec3,
         none: T,
-        finish: &impl Fn(&Self, Vec3) -> T,
+        finish: &impl Fn(&Self, (Vec3, Option<Vec3>)) -> T,
         accepted: &impl Fn(&T) -> bool,
     ) -> T {
         let inner = self.transformed.sample([0.5, 0.5]);
@@ -505,13 +525,6 @@ impl LtcPolygon {
     /// `∫ pdf dω` stays within 2e-5 of 1 (measured by quadrature in the tests). `dir`
     /// is normalised first; zero or non-finite gives 0.
     pub fn pdf(&self, dir: Vec3) -> f32 {
-        self.pdf_inline(dir)
-    }
-
-    /// The body of [`pdf`](Self::pdf), inlined into [`sample`](Self::sample) (which
-    /// evaluates it at every sample): no call, and the direction stays in registers.
-    #[inline(always)]
-    fn pdf_inline(&self, dir: Vec3) -> f32 {
         self.pdf_of_unit_or_zero(crate::math::unit(dir))
     }
 
