@@ -364,21 +364,24 @@ impl LtcPolygon {
     /// passes for a smaller one (each edge's bound `(-τ |n|) |w|` only falls as `τ`
     /// grows; without the small-polygon sampler `contains` is the fast accept of
     /// `contains_within`, with it each edge's `side >= -0 · |n| |w|` implies
-    /// `side >= -τ |n| |w|`). Both tests inlined, their shared edge test once.
+    /// `side >= -τ |n| |w|`). The first step inlined, the others out of line.
     #[inline(always)]
     fn contains_within_tolerance(&self, w: Vec3) -> bool {
-        if self.transformed.contains(w) {
-            return true;
-        }
-        self.transformed.contains_within(w, ROUND_TRIP_TOLERANCE) && self.within_tolerance(w)
+        self.transformed.contains(w) || self.within_tolerance(w.x, w.y, w.z)
     }
 
-    /// The last step of [`contains_within_tolerance`](Self::contains_within_tolerance),
-    /// out of line: only directions within 1e-5 rad of the boundary take it.
+    /// The last two steps of
+    /// [`contains_within_tolerance`](Self::contains_within_tolerance), out of line: only
+    /// directions outside some edge's plane of the transformed polygon (within rounding
+    /// of its boundary, for the samples) take them. The direction by its coordinates,
+    /// which the caller passes in registers: as a `Vec3` it went through the stack, and
+    /// the sample stored it there (and copied it) before every containment test.
     #[cold]
     #[inline(never)]
-    fn within_tolerance(&self, w: Vec3) -> bool {
-        self.transformed.contains_within(w, self.tolerance())
+    fn within_tolerance(&self, x: f32, y: f32, z: f32) -> bool {
+        let w = Vec3::new(x, y, z);
+        self.transformed.contains_within(w, ROUND_TRIP_TOLERANCE)
+            && self.transformed.contains_within(w, self.tolerance())
     }
 
     /// `∫_P D dω = Φ(M⁻¹P) / π`: the LTC's mass inside the polygon (Heitz 2016, the
@@ -536,7 +539,7 @@ impl LtcPolygon {
         let w = self.ltc.to_cosine_space(dir);
         let length2 = w.length_squared();
         if !(length2 > 1e-18 && length2 < 1e18) {
-            return self.pdf_careful(w);
+            return self.pdf_careful(w.x, w.y, w.z);
         }
         if !self.contains_within_tolerance(w) {
             return 0.0;
@@ -570,10 +573,12 @@ impl LtcPolygon {
     /// [`pdf`](Self::pdf) for a transformed direction whose squared length lies outside
     /// `(1e-18, 1e18)` (only an `M` or `M⁻¹` with entries beyond 1e9 gives one): the density of
     /// the transformed polygon at the direction normalised by its largest component,
-    /// divided by `|ω'|³`.
+    /// divided by `|ω'|³`. The direction by its coordinates, in registers (see
+    /// [`within_tolerance`](Self::within_tolerance)).
     #[inline(never)]
     #[cold]
-    fn pdf_careful(&self, w: Vec3) -> f32 {
+    fn pdf_careful(&self, x: f32, y: f32, z: f32) -> f32 {
+        let w = Vec3::new(x, y, z);
         let length = crate::math::length(w);
         let p = self.transformed.pdf_within(w, self.tolerance());
         if !(p > 0.0) || !(length > 0.0) {
