@@ -243,6 +243,28 @@ fn perimeter_unit(t: Vec3) -> Vec3 {
     }
 }
 
+/// `w / |w|` (as `w / length(w)`) and its [`unit`](crate::math::unit). Where `|w|²` (as
+/// computed, `d`) lies in `(1e-30, 1e30)` the quotient is its own `unit`, given without
+/// `unit`'s test (about 10 instructions per LTC sample, issue 18, stop 47): with
+/// `u = 2⁻²⁴`, `d` is `|w|² (1 + θ)` with `|θ| <= 3u` (three products and two sums of
+/// non-negative terms; a square below the normal range errs by at most 2⁻¹⁵⁰, nothing
+/// against `d > 1e-30`), its square root `|w| (1 + ε)` with `|ε| <= 2.5u`, and each
+/// quotient `w_k / √d` rounds by `u` relatively (or by 2⁻¹⁵⁰ absolutely), so the exact
+/// `|w / √d|²` is `1 ± 7u`, and `unit`'s computed `|·|²` rounds by `3u` more: within
+/// `10u = 6e-7` of 1, inside `UNIT_TOLERANCE` (1e-6), where `unit` returns its
+/// argument as it is. Elsewhere (tiny, huge or non-finite `w`) `unit` itself. Test
+/// `unit_quotient_is_unit`.
+#[inline(always)]
+fn unit_quotient(w: Vec3) -> (Vec3, Option<Vec3>) {
+    let length2 = w.length_squared();
+    let dir = w / crate::math::sqrtf(length2);
+    if length2 > 1e-30 && length2 < 1e30 {
+        (dir, Some(dir))
+    } else {
+        (dir, crate::math::unit(dir))
+    }
+}
+
 /// An LTC restricted to a convex polygon: projected solid angle sampling of the polygon
 /// transformed by `M⁻¹`, mapped back by `M` (Peters 2021, Sec. 5).
 #[repr(C)]
@@ -342,21 +364,24 @@ impl LtcPolygon {
     /// passes for a smaller one (each edge's bound `(-τ |n|) |w|` only falls as `τ`
     /// grows; without the small-polygon sampler `contains` is the fast accept of
     /// `contains_within`, with it each edge's `side >= -0 · |n| |w|` implies
-    /// `side >= -τ |n| |w|`). Both tests inlined, their shared edge test once.
+    /// `side >= -τ |n| |w|`). The first step inlined, the others out of line.
     #[inline(always)]
     fn contains_within_tolerance(&self, w: Vec3) -> bool {
-        if self.transformed.contains(w) {
-            return true;
-        }
-        self.transformed.contains_within(w, ROUND_TRIP_TOLERANCE) && self.within_tolerance(w)
+        self.transformed.contains(w) || self.within_tolerance(w.x, w.y, w.z)
     }
 
-    /// The last step of [`contains_within_tolerance`](Self::contains_within_tolerance),
-    /// out of line: only directions within 1e-5 rad of the boundary take it.
+    /// The last two steps of
+    /// [`contains_within_tolerance`](Self::contains_within_tolerance), out of line: only
+    /// directions outside some edge's plane of the transformed polygon (within rounding
+    /// of its boundary, for the samples) take them. The direction by its coordinates,
+    /// which the caller passes in registers: as a `Vec3` it went through the stack, and
+    /// the sample stored it there (and copied it) before every containment test.
     #[cold]
     #[inline(never)]
-    fn within_tolerance(&self, w: Vec3) -> bool {
-        self.transformed.contains_within(w, self.tolerance())
+    fn within_tolerance(&self, x: f32, y: f32, z: f32) -> bool {
+        let w = Vec3::new(x, y, z);
+        self.transformed.contains_within(w, ROUND_TRIP_TOLERANCE)
+            && self.transformed.contains_within(w, self.tolerance())
     }
 
     /// `∫_P D dω = Φ(M⁻¹P) / π`: the LTC's mass inside the polygon (Heitz 2016, the
@@ -405,16 +430,16 @@ impl LtcPolygon {
         })
     }
 
-    /// The result of [`sample`](Self::sample) for a direction mapped by `M`: the
-    /// direction and `pdf`'s own body (the same operations on the same direction, so
-    /// the same bits). Called directly on the common path, where it is inlined (as a
+    /// The result of [`sample`](Self::sample) for a direction mapped by `M` and its
+    /// `unit` ([`through_m`](Self::through_m)): the direction and `pdf`'s own body after
+    /// `unit` (the same operations on the same direction, so the same bits). Called directly on the common path, where it is inlined (as a
     /// closure passed to a generic body it was called out of line, with its `Sample`
     /// returned through the stack), and through a reference by the rare one.
     #[inline(always)]
-    fn finish_sample(&self, dir: Vec3) -> Sample {
+    fn finish_sample(&self, (dir, unit): (Vec3, Option<Vec3>)) -> Sample {
         Sample {
             dir,
-            pdf: self.pdf_inline(dir),
+            pdf: self.pdf_of_unit_or_zero(unit),
         }
     }
 
@@ -442,10 +467,8 @@ impl LtcPolygon {
     /// The result of [`sample_and_unit`](Self::sample_and_unit) for a direction mapped
     /// by `M`, as [`finish_sample`](Self::finish_sample) is `sample`'s.
     #[inline(always)]
-    fn finish_sample_and_unit(&self, dir: Vec3) -> (Sample, Option<Vec3>) {
-        let unit = crate::math::unit(dir);
-        let pdf = self.pdf_of_unit_or_zero(unit);
-        (Sample { dir, pdf }, unit)
+    fn finish_sample_and_unit(&self, mapped: (Vec3, Option<Vec3>)) -> (Sample, Option<Vec3>) {
+        (self.finish_sample(mapped), mapped.1)
     }
 
     /// The transformed polygon's sample `ω'` (in the cosine's space), `None` where it
@@ -456,13 +479,13 @@ impl LtcPolygon {
         (s.pdf > 0.0).then_some(s.dir)
     }
 
-    /// `M ω' / ‖M ω'‖`. `|M ω'|` is finite and positive for a finite unit direction and
-    /// invertible `M`, unless `M` is so large that it overflows; `pdf` then sees a
+    /// `M ω' / ‖M ω'‖` and its [`unit`](crate::math::unit), with which `pdf` starts
+    /// ([`unit_quotient`]). `|M ω'|` is finite and positive for a finite unit direction
+    /// and invertible `M`, unless `M` is so large that it overflows; `pdf` then sees a
     /// non-finite or zero direction and returns 0.
     #[inline(always)]
-    fn through_m(&self, w_cosine: Vec3) -> Vec3 {
-        let w = self.ltc.from_cosine_space(w_cosine);
-        w / crate::math::length(w)
+    fn through_m(&self, w_cosine: Vec3) -> (Vec3, Option<Vec3>) {
+        unit_quotient(self.ltc.from_cosine_space(w_cosine))
     }
 
     /// The rare end of [`sample`](Self::sample) and [`sample_and_unit`](Self::sample_and_unit), out of line: the
@@ -476,7 +499,7 @@ impl LtcPolygon {
         &self,
         w_cosine: Vec3,
         none: T,
-        finish: &impl Fn(&Self, Vec3) -> T,
+        finish: &impl Fn(&Self, (Vec3, Option<Vec3>)) -> T,
         accepted: &impl Fn(&T) -> bool,
     ) -> T {
         let inner = self.transformed.sample([0.5, 0.5]);
@@ -505,13 +528,6 @@ impl LtcPolygon {
     /// `∫ pdf dω` stays within 2e-5 of 1 (measured by quadrature in the tests). `dir`
     /// is normalised first; zero or non-finite gives 0.
     pub fn pdf(&self, dir: Vec3) -> f32 {
-        self.pdf_inline(dir)
-    }
-
-    /// The body of [`pdf`](Self::pdf), inlined into [`sample`](Self::sample) (which
-    /// evaluates it at every sample): no call, and the direction stays in registers.
-    #[inline(always)]
-    fn pdf_inline(&self, dir: Vec3) -> f32 {
         self.pdf_of_unit_or_zero(crate::math::unit(dir))
     }
 
@@ -523,7 +539,7 @@ impl LtcPolygon {
         let w = self.ltc.to_cosine_space(dir);
         let length2 = w.length_squared();
         if !(length2 > 1e-18 && length2 < 1e18) {
-            return self.pdf_careful(w);
+            return self.pdf_careful(w.x, w.y, w.z);
         }
         if !self.contains_within_tolerance(w) {
             return 0.0;
@@ -557,10 +573,12 @@ impl LtcPolygon {
     /// [`pdf`](Self::pdf) for a transformed direction whose squared length lies outside
     /// `(1e-18, 1e18)` (only an `M` or `M⁻¹` with entries beyond 1e9 gives one): the density of
     /// the transformed polygon at the direction normalised by its largest component,
-    /// divided by `|ω'|³`.
+    /// divided by `|ω'|³`. The direction by its coordinates, in registers (see
+    /// [`within_tolerance`](Self::within_tolerance)).
     #[inline(never)]
     #[cold]
-    fn pdf_careful(&self, w: Vec3) -> f32 {
+    fn pdf_careful(&self, x: f32, y: f32, z: f32) -> f32 {
+        let w = Vec3::new(x, y, z);
         let length = crate::math::length(w);
         let p = self.transformed.pdf_within(w, self.tolerance());
         if !(p > 0.0) || !(length > 0.0) {

@@ -249,7 +249,7 @@ fn sample_pdf_is_the_pdf_of_the_sampled_direction() {
             if s.pdf > 0.0 {
                 assert_eq!(unit, crate::math::unit(s.dir));
                 let first = polygon.transformed.sample(u);
-                pulled += (polygon.pdf(polygon.through_m(first.dir)) == 0.0) as u32;
+                pulled += (polygon.pdf(polygon.through_m(first.dir).0) == 0.0) as u32;
             }
             drawn += 1;
             if s.pdf == 0.0 {
@@ -657,4 +657,50 @@ fn containment_in_steps_is_contains_within_the_slack() {
     println!("{strict} inside, {slack} in the slack, {bound} in the bound only, {beyond} beyond");
     // Every step decided some directions.
     assert!(strict > 1000 && slack > 100 && bound > 100 && beyond > 1000);
+}
+
+/// `unit_quotient` gives `unit` of its quotient bit for bit: for vectors of every
+/// magnitude from 1e-40 to 1e38 (inside the range where it skips `unit`'s test, at its
+/// ends and outside), one component dominating or not, with zero, infinite and NaN
+/// components; and for the directions through `M` of samples of the LTCs of the table.
+#[test]
+fn unit_quotient_is_unit() {
+    let mut rng = Rng::new(47);
+    let check = |w: Vec3| {
+        let (dir, unit) = unit_quotient(w);
+        assert_eq!(
+            dir.to_array().map(f32::to_bits),
+            (w / crate::math::length(w)).to_array().map(f32::to_bits)
+        );
+        assert_eq!(
+            unit.map(|u| u.to_array().map(f32::to_bits)),
+            crate::math::unit(dir).map(|u| u.to_array().map(f32::to_bits)),
+            "{w:?}"
+        );
+    };
+    let specials = [0.0, -0.0, f32::INFINITY, f32::NAN, 1e-45, f32::MAX];
+    for trial in 0..1_000_000 {
+        let scale = 10f32.powf(-40.0 + 78.0 * rng.uniform_f32());
+        let mut w = rng.unit_vector_f32() * scale;
+        // One or two components far smaller than the rest.
+        if trial % 3 == 1 {
+            let axis = rng.below(3) as usize;
+            w[axis] *= 10f32.powf(-12.0 * rng.uniform_f32());
+        }
+        if trial % 101 == 0 {
+            w[rng.below(3) as usize] = specials[rng.below(specials.len() as u64) as usize];
+        }
+        check(w);
+    }
+    for x in [1e-30f32, 1e30, 1e-15, 1e15] {
+        for bits in ulps_around(x.sqrt(), 64) {
+            check(Vec3::new(bits, 0.0, 0.0));
+            check(Vec3::splat(bits) / 3f32.sqrt());
+        }
+    }
+    for ltc in ltcs() {
+        for _ in 0..200 {
+            check(ltc.from_cosine_space(rng.unit_vector_f32()));
+        }
+    }
 }
