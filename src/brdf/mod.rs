@@ -19,6 +19,8 @@ pub mod ltc;
 #[rustfmt::skip]
 pub mod ltc_table;
 #[rustfmt::skip]
+pub mod pivot_cartesian_table;
+#[rustfmt::skip]
 pub mod pivot_table;
 
 pub use ggx::GgxBrdf;
@@ -76,7 +78,9 @@ pub(crate) fn table_row_guess(wo: Vec3) -> f32 {
 }
 
 /// The entry of a `size × size` table (row-major, rows along `x`) at fractional cell
-/// coordinates `(x, y)` in `[0, size − 1]²`, interpolated bilinearly.
+/// coordinates `(x, y)` in `[0, size − 1]²`, interpolated bilinearly. (The lookups read the
+/// tables from a guessed cell, [`table_bilinear_of_guess`]: this is their tests' reference.)
+#[cfg_attr(not(test), allow(dead_code))]
 #[inline]
 pub(crate) fn table_bilinear<const K: usize>(
     table: &[[f32; K]],
@@ -84,8 +88,35 @@ pub(crate) fn table_bilinear<const K: usize>(
     x: f32,
     y: f32,
 ) -> [f32; K] {
+    table_bilinear_in_order::<K, false>(table, size, x, y)
+}
+
+/// [`table_bilinear`] interpolated along `x` first and along `y` last (see
+/// [`table_interpolated`]): the pivot fit's order, in which the row coordinate `y`, the
+/// last to arrive, enters only the final interpolation. (The reference of the tests, as
+/// `table_bilinear`.)
+#[cfg_attr(not(test), allow(dead_code))]
+#[inline]
+pub(crate) fn table_bilinear_y_last<const K: usize>(
+    table: &[[f32; K]],
+    size: usize,
+    x: f32,
+    y: f32,
+) -> [f32; K] {
+    table_bilinear_in_order::<K, true>(table, size, x, y)
+}
+
+/// The body of [`table_bilinear`] (`Y_LAST = false`) and [`table_bilinear_y_last`]
+/// (`Y_LAST = true`).
+#[inline(always)]
+fn table_bilinear_in_order<const K: usize, const Y_LAST: bool>(
+    table: &[[f32; K]],
+    size: usize,
+    x: f32,
+    y: f32,
+) -> [f32; K] {
     let (i0, j0) = (table_cell(x, size), table_cell(y, size));
-    table_interpolated(table, size, [i0, j0], x - i0 as f32, y - j0 as f32)
+    table_interpolated::<K, Y_LAST>(table, size, [i0, j0], x - i0 as f32, y - j0 as f32)
 }
 
 /// The cell of a fractional coordinate of [`table_bilinear`]: its integer part, at most
@@ -100,9 +131,13 @@ fn table_cell(v: f32, size: usize) -> usize {
 }
 
 /// The bilinear interpolation of [`table_bilinear`] in the cell `[i0, j0]` at the offsets
-/// `fx = x − i0`, `fy = y − j0`.
+/// `fx = x − i0`, `fy = y − j0`: along `y` first, then along `x` (`Y_LAST = false`), or
+/// along `x` first, then along `y` (`Y_LAST = true`). Both are the same bilinear function
+/// in exact arithmetic, rounded differently; with `y` last, a `y` that arrives after `x`
+/// and the entries waits for one multiplication and two additions instead of four
+/// operations and a multiplication.
 #[inline(always)]
-fn table_interpolated<const K: usize>(
+fn table_interpolated<const K: usize, const Y_LAST: bool>(
     table: &[[f32; K]],
     size: usize,
     [i0, j0]: [usize; 2],
@@ -116,11 +151,14 @@ fn table_interpolated<const K: usize>(
         at(i0 + 1, j0),
         at(i0 + 1, j0 + 1),
     );
+    let lerp = |a: f32, b: f32, t: f32| a + t * (b - a);
     let mut out = [0.0; K];
     for k in 0..K {
-        let low = e00[k] + fy * (e01[k] - e00[k]);
-        let high = e10[k] + fy * (e11[k] - e10[k]);
-        out[k] = low + fx * (high - low);
+        out[k] = if Y_LAST {
+            lerp(lerp(e00[k], e10[k], fx), lerp(e01[k], e11[k], fx), fy)
+        } else {
+            lerp(lerp(e00[k], e01[k], fy), lerp(e10[k], e11[k], fy), fx)
+        };
     }
     out
 }
@@ -145,38 +183,50 @@ pub(crate) fn table_bilinear_of_guess<const K: usize>(
     y: f32,
     y_guess: f32,
 ) -> [f32; K] {
-    let (i0, j) = (table_cell(x, size), table_cell(y_guess, size));
-    let fy = y - j as f32;
-    if fy >= 0.0 && (fy < 1.0 || j == size - 2) {
-        table_interpolated(table, size, [i0, j], x - i0 as f32, fy)
-    } else {
-        table_bilinear_cold(table, size, x, y)
-    }
+    table_bilinear_of_guess_in_order::<K, false>(table, size, x, y, y_guess)
 }
 
-/// The entry at the low corner of [`table_bilinear_of_guess`]'s guessed cell (the first
-/// of its four loads, which the compiler shares): known as soon as the guess, where the
-/// interpolated entry waits on the exact coordinates and the interpolation. A caller
-/// may guess from it what the interpolated entry will be (the sphere light sampler's fit:
-/// the elevation's range for its sine and cosine).
+/// [`table_bilinear_y_last`], bit for bit, from a guess of `y` as
+/// [`table_bilinear_of_guess`] reads [`table_bilinear`].
 #[inline(always)]
-pub(crate) fn table_corner_of_guess<const K: usize>(
+pub(crate) fn table_bilinear_of_guess_y_last<const K: usize>(
     table: &[[f32; K]],
     size: usize,
     x: f32,
+    y: f32,
     y_guess: f32,
 ) -> [f32; K] {
-    table[table_cell(x, size) * size + table_cell(y_guess, size)]
+    table_bilinear_of_guess_in_order::<K, true>(table, size, x, y, y_guess)
 }
 
-/// [`table_bilinear`] out of line and cold: [`table_bilinear_of_guess`] of a wrong guess.
+/// The body of [`table_bilinear_of_guess`] (`Y_LAST = false`) and
+/// [`table_bilinear_of_guess_y_last`] (`Y_LAST = true`).
+#[inline(always)]
+fn table_bilinear_of_guess_in_order<const K: usize, const Y_LAST: bool>(
+    table: &[[f32; K]],
+    size: usize,
+    x: f32,
+    y: f32,
+    y_guess: f32,
+) -> [f32; K] {
+    let (i0, j) = (table_cell(x, size), table_cell(y_guess, size));
+    let fy = y - j as f32;
+    if fy >= 0.0 && (fy < 1.0 || j == size - 2) {
+        table_interpolated::<K, Y_LAST>(table, size, [i0, j], x - i0 as f32, fy)
+    } else {
+        table_bilinear_cold::<K, Y_LAST>(table, size, x, y)
+    }
+}
+
+/// [`table_bilinear`] (`Y_LAST = false`) or [`table_bilinear_y_last`] out of line and
+/// cold: [`table_bilinear_of_guess`] or [`table_bilinear_of_guess_y_last`] of a wrong guess.
 #[cold]
 #[inline(never)]
-fn table_bilinear_cold<const K: usize>(
+fn table_bilinear_cold<const K: usize, const Y_LAST: bool>(
     table: &[[f32; K]],
     size: usize,
     x: f32,
     y: f32,
 ) -> [f32; K] {
-    table_bilinear(table, size, x, y)
+    table_bilinear_in_order::<K, Y_LAST>(table, size, x, y)
 }

@@ -41,12 +41,7 @@ pub use products::{
 };
 pub(crate) use roots::safeguarded_newton_step;
 pub use sin_cos::sin_cos_0_to_pi;
-pub(crate) use sin_cos::{
-    sin_cos_of_half, sin_cos_of_quarter_turns, sin_cos_of_turn, sincosf_in_line_predicted,
-};
-// (The fit's former sine and cosine, the reference of its tests.)
-#[cfg(test)]
-pub(crate) use sin_cos::sincosf_in_line;
+pub(crate) use sin_cos::{sin_cos_of_half, sin_cos_of_quarter_turns, sin_cos_of_turn};
 pub use sqrt::sqrtf;
 pub(crate) use unit::{
     UNIT_TOLERANCE, is_unit, is_unit_output, normalize_scaled, unit, unit_if_needed,

@@ -2,10 +2,10 @@
 //! Sections 5 and 6.1).
 //!
 //! [`GgxPivot::from_view`] reads the pivot table (`brdf/pivot_table.rs`, fitted by
-//! `tools/src/fitters/pivot_fitter.rs`): for a view `ω_o` and roughness `r = √α`, the pivot
-//! `r_p` of the uniform SPTD `D ≈ f cos θ / albedo` and the albedo `∫ f cos θ dω`
-//! (Fresnel = 1), interpolated bilinearly like the LTC table and rotated to the view's
-//! azimuth.
+//! `tools/src/fitters/pivot_fitter.rs`, in its Cartesian form `brdf/pivot_cartesian_table.rs`):
+//! for a view `ω_o` and roughness `r = √α`, the pivot `r_p` of the uniform SPTD
+//! `D ≈ f cos θ / albedo` and the albedo `∫ f cos θ dω` (Fresnel = 1), its components
+//! interpolated bilinearly like the LTC table and rotated to the view's azimuth.
 //!
 //! **Real-time shading** (Section 5.2, Eq. 17–19; biased: the SPTD only approximates
 //! GGX): a sphere of radiance `L` subtending the cap `C` gives
@@ -46,10 +46,8 @@ use super::shading_fast::pivoted_intersection_fast;
 use super::sptd::{Sptd, SptdBase, SptdInCap};
 use crate::Sample;
 use crate::brdf::Ltc;
-use crate::brdf::pivot_table::{PIVOT_TABLE, PIVOT_TABLE_SIZE};
-use crate::brdf::{
-    table_bilinear_of_guess, table_coordinates, table_corner_of_guess, table_row_guess,
-};
+use crate::brdf::pivot_cartesian_table::{PIVOT_CARTESIAN_TABLE, PIVOT_CARTESIAN_TABLE_SIZE};
+use crate::brdf::{table_bilinear_of_guess_y_last, table_coordinates, table_row_guess};
 use core::f32::consts::PI;
 use glam::Vec3;
 
@@ -92,21 +90,19 @@ impl GgxPivot {
         // `table_bilinear`, see `table_bilinear_of_guess`; issue 18, stop 46: light bench
         // `sptd` about −6 to −11 ns per prepare + 1, `rt_shade` about −10 ns).
         let guess = table_row_guess(wo);
-        let [norm, elevation, albedo] =
-            table_bilinear_of_guess(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y, guess);
-        // libm's `sincosf`, bit for bit, in line (the elevations lie in `[−π/2, 0.04]`,
-        // within its first two ranges): the call and its range dispatch were 52
-        // instructions per preparation (callgrind, light bench `sptd`). Its range
-        // (`|elevation| > π/4`) guessed from the guessed cell's corner, which arrives with
-        // the table's first load: the branch on it, mispredicted about half the time,
-        // resolves before the interpolation ends (any guess gives the same bits, see
-        // `sincosf_in_line_predicted`; test `the_fit_s_sine_range_guess_is_nearly_always_right`).
-        let corner = table_corner_of_guess(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, guess);
-        let (sin_e, cos_e) =
-            crate::math::sincosf_in_line_predicted(elevation, wide_elevation(corner[1]));
-        // Elevation from the normal, negative towards −x of the view frame, whose x axis
-        // has the view's azimuth.
-        let pivot = Vec3::new(norm * sin_e * cos_phi, norm * sin_e * sin_phi, norm * cos_e);
+        // The pivot's components in the view frame, interpolated bilinearly (the Cartesian
+        // form of the fitted (norm, elevation) table, `pivot_cartesian_table.rs`): no sine
+        // and cosine of an interpolated elevation on the preparation's critical path
+        // (issue 18, stop 47). The view frame's x axis has the view's azimuth, so the
+        // pivot is `(x cos φ, x sin φ, z)`.
+        let [x_view, z_view, albedo] = table_bilinear_of_guess_y_last(
+            &PIVOT_CARTESIAN_TABLE,
+            PIVOT_CARTESIAN_TABLE_SIZE,
+            x,
+            y,
+            guess,
+        );
+        let pivot = Vec3::new(x_view * cos_phi, x_view * sin_phi, z_view);
         Some(GgxPivot {
             pivot: super::pivot::valid_pivot(pivot),
             albedo,
@@ -118,14 +114,6 @@ impl GgxPivot {
     pub fn sptd(&self) -> Sptd {
         Sptd::uniform(self.pivot)
     }
-}
-
-/// Whether `sincosf_in_line` reduces `elevation` as wide (`|elevation| > π/4`, by the
-/// bits it compares): [`GgxPivot::from_view`]'s guess of its interpolated elevation's
-/// range, from a table corner.
-#[inline(always)]
-fn wide_elevation(elevation: f32) -> bool {
-    (elevation.to_bits() & 0x7fff_ffff) > 0x3f49_0fda
 }
 
 /// Real-time GGX shading of sphere lights by the fitted SPTD (biased; see the module

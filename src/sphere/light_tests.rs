@@ -1310,14 +1310,19 @@ fn the_prepared_pivot_numerators_are_the_pivot_s() {
     assert!(clipped > 1000 && fallback > 10, "{clipped} {fallback}");
 }
 
-/// `table_bilinear_of_guess` (the fit's table read from a guessed cell) gives
-/// `table_bilinear`'s bits for every guess: the right cell, a cell off by one or more on
+/// `table_bilinear_of_guess` (a table read from a guessed cell) gives `table_bilinear`'s
+/// bits, and `table_bilinear_of_guess_y_last` (the fit's Cartesian table) gives
+/// `table_bilinear_y_last`'s, for every guess: the right cell, a cell off by one or more on
 /// either side (the checked path's fallback), the last cell, NaN, negative and
 /// out-of-range guesses, at coordinates on and next to the cells' boundaries.
 #[test]
 fn the_table_s_guessed_cell_gives_table_bilinear_s_bits() {
+    use crate::brdf::pivot_cartesian_table::PIVOT_CARTESIAN_TABLE;
     use crate::brdf::pivot_table::PIVOT_TABLE_SIZE;
-    use crate::brdf::{table_bilinear, table_bilinear_of_guess};
+    use crate::brdf::{
+        table_bilinear, table_bilinear_of_guess, table_bilinear_of_guess_y_last,
+        table_bilinear_y_last,
+    };
     let bits = |e: [f32; 3]| e.map(f32::to_bits);
     let last = (PIVOT_TABLE_SIZE - 1) as f32;
     let mut ys = vec![0.0f32, 1e-30, 0.5, last, last - 1.0, 62.5];
@@ -1344,9 +1349,23 @@ fn the_table_s_guessed_cell_gives_table_bilinear_s_bits() {
     for &y in ys.iter().filter(|y| (0.0..=last).contains(*y)) {
         for x in [0.0, 0.25, 17.5, last] {
             let exact = table_bilinear(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y);
+            let exact_y_last =
+                table_bilinear_y_last(&PIVOT_CARTESIAN_TABLE, PIVOT_TABLE_SIZE, x, y);
             for guess in guesses(y) {
                 let of_guess = table_bilinear_of_guess(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y, guess);
                 assert_eq!(bits(of_guess), bits(exact), "x {x} y {y:e} guess {guess:e}");
+                let of_guess_y_last = table_bilinear_of_guess_y_last(
+                    &PIVOT_CARTESIAN_TABLE,
+                    PIVOT_TABLE_SIZE,
+                    x,
+                    y,
+                    guess,
+                );
+                assert_eq!(
+                    bits(of_guess_y_last),
+                    bits(exact_y_last),
+                    "x {x} y {y:e} guess {guess:e}"
+                );
                 guessed_right += (guess as u32 == y as u32) as u32;
             }
         }
@@ -1357,17 +1376,17 @@ fn the_table_s_guessed_cell_gives_table_bilinear_s_bits() {
 /// The fit's guess of the table's row coordinate (`table_row_guess`) is the exact
 /// coordinate's cell for unit views (at least 99.9% of them: the checked path's fallback
 /// is rare),
-/// and the fit is `table_bilinear`'s (the former lookup) bit for bit for unit views and
-/// views of other lengths (whose guesses are wrong and take the fallback).
+/// and the fit is `table_bilinear_y_last`'s (the lookup at the exact cell) bit for bit for
+/// unit views and views of other lengths (whose guesses are wrong and take the fallback).
 #[test]
 fn the_fit_s_guessed_row_is_the_exact_cell_for_unit_views() {
-    use crate::brdf::pivot_table::PIVOT_TABLE_SIZE;
-    use crate::brdf::{table_bilinear, table_coordinates};
+    use crate::brdf::pivot_cartesian_table::{PIVOT_CARTESIAN_TABLE, PIVOT_CARTESIAN_TABLE_SIZE};
+    use crate::brdf::{table_bilinear_y_last, table_coordinates};
     let former = |wo: Vec3, roughness: f32| -> Option<GgxPivot> {
         let (x, y, cos_phi, sin_phi) = table_coordinates(wo, roughness)?;
-        let [norm, elevation, albedo] = table_bilinear(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y);
-        let (sin_e, cos_e) = crate::math::sincosf_in_line(elevation);
-        let pivot = Vec3::new(norm * sin_e * cos_phi, norm * sin_e * sin_phi, norm * cos_e);
+        let [x_view, z_view, albedo] =
+            table_bilinear_y_last(&PIVOT_CARTESIAN_TABLE, PIVOT_CARTESIAN_TABLE_SIZE, x, y);
+        let pivot = Vec3::new(x_view * cos_phi, x_view * sin_phi, z_view);
         Some(GgxPivot {
             pivot: crate::sphere::pivot::valid_pivot(pivot),
             albedo,
@@ -1389,35 +1408,4 @@ fn the_fit_s_guessed_row_is_the_exact_cell_for_unit_views() {
             table_coordinates(wo, roughness).map(|(_, y, _, _)| guess.min(62) == (y as u32).min(62))
         },
     );
-}
-
-/// The fit's guess of its elevation's range (`wide_elevation` of the guessed cell's
-/// corner, `table_corner_of_guess`) is the interpolated elevation's range for at least
-/// 97% of unit views (a wrong guess only costs the checked path's fallback: the fit's
-/// bits are the former lookup's either way, `the_fit_s_guessed_row_is_the_exact_cell_for_unit_views`).
-#[test]
-fn the_fit_s_sine_range_guess_is_nearly_always_right() {
-    use crate::brdf::pivot_table::PIVOT_TABLE_SIZE;
-    use crate::brdf::{table_bilinear, table_coordinates, table_corner_of_guess};
-    let mut rng = Rng::new(4620);
-    let (mut views, mut right, mut wide) = (0u32, 0u32, 0u32);
-    for _ in 0..200_000 {
-        let wo = rng.unit_vector_f32();
-        let roughness = rng.uniform_f32();
-        let Some((x, y, _, _)) = table_coordinates(wo, roughness) else {
-            continue;
-        };
-        let guess = table_row_guess(wo);
-        let corner = table_corner_of_guess(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, guess);
-        let [_, elevation, _] = table_bilinear(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y);
-        views += 1;
-        right += (wide_elevation(corner[1]) == wide_elevation(elevation)) as u32;
-        wide += wide_elevation(elevation) as u32;
-    }
-    // Both ranges are common (the branch on the range is not predictable by history).
-    assert!(
-        wide > views / 10 && wide < views - views / 10,
-        "{wide} of {views}"
-    );
-    assert!(right as f64 >= 0.97 * views as f64, "{right} of {views}");
 }

@@ -335,3 +335,26 @@ fn albedo_matches_the_ltc_table() {
         );
     }
 }
+
+/// The committed Cartesian table `src/brdf/pivot_cartesian_table.rs` is the generator's
+/// output for the committed (norm, elevation) table, and each of its pivots is the polar
+/// cell's, `norm · (sin θp, cos θp)`, to the rounding of its components (so its length is
+/// the stored norm's, below 1).
+#[test]
+fn cartesian_table_is_generated_from_the_committed_table() {
+    let table = committed_table();
+    assert!(
+        pivot_fitter::render_cartesian(&table) == read("src/brdf/pivot_cartesian_table.rs"),
+        "src/brdf/pivot_cartesian_table.rs differs from its generator's output: refresh it with \
+         `cargo run --release -p sphera-tools --bin generate_pivot_cartesian_table`"
+    );
+    for (k, cell) in table.iter().enumerate() {
+        let [x, z, albedo] = pivot_fitter::cartesian_cell(cell);
+        let p = pivot(cell);
+        let ulp = f64::from(f32::EPSILON);
+        assert!((f64::from(x) - p[0]).abs() <= ulp * p[0].abs(), "cell {k}");
+        assert!((f64::from(z) - p[2]).abs() <= ulp * p[2].abs(), "cell {k}");
+        assert_eq!(albedo.to_bits(), cell[2].to_bits(), "cell {k}");
+        assert!(f64::from(x).hypot(f64::from(z)) < 0.99999, "cell {k}");
+    }
+}

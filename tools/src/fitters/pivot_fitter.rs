@@ -553,3 +553,53 @@ pub fn runtime_line(text: &str) -> String {
 pub fn parse_table(text: &str) -> Vec<[f32; 3]> {
     ltc_fitter::parse_table(text)
 }
+
+/// The Cartesian cell of a stored cell `[norm, elevation, albedo]`: the pivot's
+/// components in the view frame, `[ρ sin θp, ρ cos θp, albedo]` (its `x` towards the
+/// view's azimuth and `z` along the normal; `y` is 0), computed in `f64` from the stored
+/// `f32` values and rounded once.
+pub fn cartesian_cell(values: &[f32; 3]) -> [f32; 3] {
+    let [norm, elevation, albedo] = values.map(f64::from);
+    [
+        (norm * libm::sin(elevation)) as f32,
+        (norm * libm::cos(elevation)) as f32,
+        albedo as f32,
+    ]
+}
+
+/// The text of `src/brdf/pivot_cartesian_table.rs` for the polar `table` of
+/// `src/brdf/pivot_table.rs`: its cells by [`cartesian_cell`], one line per cell as there.
+pub fn render_cartesian(table: &[[f32; 3]]) -> String {
+    let mut out = format!(
+        "\
+//! The pivot table `pivot_table.rs` in Cartesian form: per cell, the pivot's components in
+//! the view frame, `ρ sin θp` (along `x`, the view's azimuth) and `ρ cos θp` (along the
+//! normal `z`), and the albedo, so that the fit interpolates the pivot's components
+//! bilinearly and needs no sine and cosine of an interpolated elevation at run time.
+//!
+//! Generated from `pivot_table.rs` by `cargo run --release -p sphera-tools --bin
+//! generate_pivot_cartesian_table` (`pivot_fitter::render_cartesian`; the components in
+//! `f64` from the stored `f32` norm and elevation, rounded once); do not edit.
+//! `tools/tests/pivot_table.rs` regenerates it and compares.
+//!
+//! A bilinear interpolation is a convex combination of the four corners, so an
+//! interpolated pivot is no longer than the longest corner's (norm at most 0.9999671,
+//! `pivot_table.rs`), up to rounding: within `|r_p| < 1`.
+
+/// Cells per axis, as in `pivot_table.rs`.
+pub const PIVOT_CARTESIAN_TABLE_SIZE: usize = {size};
+/// `PIVOT_CARTESIAN_TABLE[i * PIVOT_CARTESIAN_TABLE_SIZE + j]` for roughness r = √α = i / 63
+/// and view t = √(1 − cos θo) = j / 63 (the cells of `PIVOT_TABLE`): `[x, z, albedo]`, the
+/// pivot r_p = (x, 0, z) = norm · (sin(elevation), 0, cos(elevation)) for the view
+/// (sin θo, 0, cos θo), and `PIVOT_TABLE`'s albedo.
+pub static PIVOT_CARTESIAN_TABLE: [[f32; 3]; PIVOT_CARTESIAN_TABLE_SIZE * PIVOT_CARTESIAN_TABLE_SIZE] = [
+",
+        size = TABLE_SIZE,
+    );
+    let cells: Vec<[f32; 3]> = table.iter().map(cartesian_cell).collect();
+    ltc_fitter::push_cell_lines(&mut out, &cells, |i, j, values: &[f32; 3]| {
+        let [x, z, albedo] = values;
+        format!("    [{x:?}, {z:?}, {albedo:?}], // ({i}, {j})")
+    });
+    out
+}
