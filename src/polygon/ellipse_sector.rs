@@ -72,7 +72,9 @@ pub struct EllipseSector {
     /// sector is ill-conditioned (its outer ellipse's area exceeds 200 times the area
     /// between the ellipses), where rounding makes the first iteration's result less
     /// reliable, or where its ellipses touch or nearly touch at an end
-    /// ([`end_shape`](Self::end_shape) below 1); 0 elsewhere.
+    /// ([`end_shape`](Self::end_shape) below 1); 0 elsewhere. The biased preparation
+    /// (fast areas), whose sampler reads no iteration count, leaves out the
+    /// ill-conditioned test: there only touching ends set it.
     pub(crate) extra_iterations: u32,
     /// The ends where the ellipses touch or nearly touch ([`end_shape`](Self::end_shape)
     /// below 1), as bits: 1 for `s0`, 2 for `s1`; 0 elsewhere. Set by preparation, so that
