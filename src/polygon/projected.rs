@@ -261,6 +261,30 @@ fn outer_area_bound(sector: &EllipseSector) -> f32 {
     1.6 / sector.outer_root_det
 }
 
+/// A tighter upper bound on [`exact_outer_area`] where [`outer_area_bound`] leaves the
+/// extra-iteration test open, without the arc tangent: `fl(fl(det / x) · fl(0.5 / k))`
+/// from the same `x = fl((s0 · s1 + t0 t1) / k)` and `k` (the same operations as
+/// `ellipse_area`, `det` clamped at 0 as there). Where `x > 0` the angle is
+/// `atanf(fl(det / x))`, and `atanf(r) <= r` for every `r >= 0`: `atan r < r`, and
+/// a faithful `atanf` rounds to a neighbour of `atan r`, which cannot pass the float `r`
+/// (checked over every non-negative `f32` against `libm::atanf`, of which the inline
+/// `atanf` gives the same bits). Rounding is monotone, so the exact area
+/// `fl(angle · fl(0.5 / k))` is at most this product. Elsewhere (`x <= 0`, NaN: an angle
+/// from `π/2` on) it gives ∞, which settles nothing. Narrow sectors (small `det`) are
+/// where `1.6 / k` is loosest and this bound tightest: it settled (issue 15, stop 47)
+/// most of the exact areas that the bench's decentral hexagons computed.
+#[inline(always)]
+fn outer_area_ratio_bound(sector: &EllipseSector) -> f32 {
+    let k = sector.outer_root_det;
+    let [t0, t1] = sector.outer_dots();
+    let x = (dot2(sector.s0(), sector.s1()) + t0 * t1) / k;
+    if x > 0.0 {
+        (sector.det.max(0.0) / x) * (0.5 / k)
+    } else {
+        f32::INFINITY
+    }
+}
+
 /// Lanes of the vertices: one per vertex, read four at a time from slot 0 and slot 1.
 const VERTEX_SLOTS: usize = 2 * LANES + 1;
 
@@ -1440,8 +1464,11 @@ impl ProjectedPolygon {
                 // a call) was where the bound left the test open, about a third of the
                 // bench's decentral hexagons (issue 15, stop 47). The precision is tested
                 // only there (`prepare_with` takes it as an argument, not a constant).
+                // Where `1.6 / k` does not settle it, the tighter `outer_area_ratio_bound`
+                // (a division more) mostly does, before the exact area's `atanf`.
                 let ill_conditioned = !(outer_bound < limit)
                     && precision == AreaPrecision::Exact
+                    && !(outer_area_ratio_bound(sector) < limit)
                     && exact_outer_area(sector) > limit;
                 sector.extra_iterations = (ill_conditioned || touching) as u32;
                 polygon.sector_area[j] = area;
