@@ -236,11 +236,27 @@ fn unit_chord_perimeter_scalar(transformed: &[Vec3]) -> f32 {
 #[inline(always)]
 fn perimeter_unit(t: Vec3) -> Vec3 {
     let length2 = t.length_squared();
-    if length2 > 1e-30 && length2 < 1e30 {
+    if strictly_between(length2, 1e-30, 1e30) {
         t * (1.0 / crate::math::sqrtf(length2))
     } else {
         crate::math::normalize_scaled(t)
     }
+}
+
+/// `lo < x < hi` for bounds `0 < lo < hi < ∞` (false for NaN), as one comparison of the
+/// bits, as [`is_positive_finite`](crate::math::is_positive_finite) does for `(0, ∞)`:
+/// the non-negative `f32` are ordered as their bits, and `bits − (lo_bits + 1)`
+/// (wrapping) maps `(lo, hi)` onto `0..hi_bits − lo_bits − 1` and everything else above
+/// it: `x <= lo` wraps to at least `2³² − lo_bits − 1`, `x >= hi` (with +∞ and the
+/// positive NaNs) stays at least `hi_bits − lo_bits − 1`, and the negative patterns
+/// (from `0x8000_0000`, −0 and the negative NaNs too) at least `0x8000_0000 − lo_bits − 1`,
+/// above the range as `hi_bits < 0x7f80_0000`. With constant bounds the compiler folds
+/// both; the two float comparisons took a comparison with a constant from memory more
+/// and a second branch (issue 18, stop 47). Test `strictly_between_is_the_comparisons`.
+#[inline(always)]
+fn strictly_between(x: f32, lo: f32, hi: f32) -> bool {
+    let (lo, hi) = (lo.to_bits(), hi.to_bits());
+    x.to_bits().wrapping_sub(lo + 1) < hi - lo - 1
 }
 
 /// `w / |w|` (as `w / length(w)`) and its [`unit`](crate::math::unit). Where `|w|²` (as
@@ -258,7 +274,7 @@ fn perimeter_unit(t: Vec3) -> Vec3 {
 fn unit_quotient(w: Vec3) -> (Vec3, Option<Vec3>) {
     let length2 = w.length_squared();
     let dir = w / crate::math::sqrtf(length2);
-    if length2 > 1e-30 && length2 < 1e30 {
+    if strictly_between(length2, 1e-30, 1e30) {
         (dir, Some(dir))
     } else {
         (dir, crate::math::unit(dir))
@@ -365,9 +381,13 @@ impl LtcPolygon {
     /// grows; without the small-polygon sampler `contains` is the fast accept of
     /// `contains_within`, with it each edge's `side >= -0 · |n| |w|` implies
     /// `side >= -τ |n| |w|`). The first step inlined, the others out of line.
+    ///
+    /// `w` is finite (the caller has tested `|w|²` to lie in a finite range), so the
+    /// first step is [`contains_finite`](ProjectedPolygon::contains_finite), `contains`
+    /// without its test of finiteness (about 12 instructions per sample, stop 47).
     #[inline(always)]
     fn contains_within_tolerance(&self, w: Vec3) -> bool {
-        self.transformed.contains(w) || self.within_tolerance(w.x, w.y, w.z)
+        self.transformed.contains_finite(w) || self.within_tolerance(w.x, w.y, w.z)
     }
 
     /// The last two steps of
@@ -425,16 +445,13 @@ impl LtcPolygon {
         if sample.pdf > 0.0 {
             return sample;
         }
-        self.pulled_inward(w_cosine, Sample::NONE, &Self::finish_sample, &|sample| {
-            sample.pdf > 0.0
-        })
+        self.pulled_inward(w_cosine)
     }
 
     /// The result of [`sample`](Self::sample) for a direction mapped by `M` and its
     /// `unit` ([`through_m`](Self::through_m)): the direction and `pdf`'s own body after
-    /// `unit` (the same operations on the same direction, so the same bits). Called directly on the common path, where it is inlined (as a
-    /// closure passed to a generic body it was called out of line, with its `Sample`
-    /// returned through the stack), and through a reference by the rare one.
+    /// `unit` (the same operations on the same direction, so the same bits). Called
+    /// directly on the common path, where it is inlined, and by the rare one.
     #[inline(always)]
     fn finish_sample(&self, (dir, unit): (Vec3, Option<Vec3>)) -> Sample {
         Sample {
@@ -447,28 +464,30 @@ impl LtcPolygon {
     /// [`unit`](crate::math::unit) gives it, which `pdf` computes on the way (`None`
     /// only with `Sample::NONE`), for a caller that passes the direction on to functions
     /// that start with `unit` (the polygon light's BRDF).
+    ///
+    /// The rare path (the inward pulls) returns only its `Sample`, whose direction's
+    /// `unit` is computed again here: the pulls' direction and its `unit` both come from
+    /// [`unit_quotient`], whose `unit` is `unit` of its direction bit for bit
+    /// (`unit_quotient_is_unit`), so it is the same value. Returned with its `unit`
+    /// through memory (the pulls' function is out of line), the pair made the common
+    /// path store its own pair to the stack and load it back where the paths merge
+    /// (8 stores and 2 loads per polygon light sample, issue 18, stop 47).
     #[inline(always)]
     pub(crate) fn sample_and_unit(&self, u: [f32; 2]) -> (Sample, Option<Vec3>) {
         let Some(w_cosine) = self.transformed_sample(u) else {
             return (Sample::NONE, None);
         };
-        let result = self.finish_sample_and_unit(self.through_m(w_cosine));
-        if result.0.pdf > 0.0 {
-            return result;
+        let (dir, unit) = self.through_m(w_cosine);
+        let sample = self.finish_sample((dir, unit));
+        if sample.pdf > 0.0 {
+            return (sample, unit);
         }
-        self.pulled_inward(
-            w_cosine,
-            (Sample::NONE, None),
-            &Self::finish_sample_and_unit,
-            &|result| result.0.pdf > 0.0,
-        )
-    }
-
-    /// The result of [`sample_and_unit`](Self::sample_and_unit) for a direction mapped
-    /// by `M`, as [`finish_sample`](Self::finish_sample) is `sample`'s.
-    #[inline(always)]
-    fn finish_sample_and_unit(&self, mapped: (Vec3, Option<Vec3>)) -> (Sample, Option<Vec3>) {
-        (self.finish_sample(mapped), mapped.1)
+        let pulled = self.pulled_inward(w_cosine);
+        if pulled.pdf > 0.0 {
+            (pulled, crate::math::unit(pulled.dir))
+        } else {
+            (pulled, None)
+        }
     }
 
     /// The transformed polygon's sample `ω'` (in the cosine's space), `None` where it
@@ -495,16 +514,10 @@ impl LtcPolygon {
     /// middle of the unit square) is drawn only here.
     #[cold]
     #[inline(never)]
-    fn pulled_inward<T: Copy>(
-        &self,
-        w_cosine: Vec3,
-        none: T,
-        finish: &impl Fn(&Self, (Vec3, Option<Vec3>)) -> T,
-        accepted: &impl Fn(&T) -> bool,
-    ) -> T {
+    fn pulled_inward(&self, w_cosine: Vec3) -> Sample {
         let inner = self.transformed.sample([0.5, 0.5]);
         if !(inner.pdf > 0.0) {
-            return none;
+            return Sample::NONE;
         }
         crate::sample::INWARD_PULLS
             .iter()
@@ -513,10 +526,10 @@ impl LtcPolygon {
                     w_cosine * (1.0 - pull) + inner.dir * pull,
                     inner.dir,
                 );
-                finish(self, self.through_m(pulled))
+                self.finish_sample(self.through_m(pulled))
             })
-            .find(|pulled| accepted(pulled))
-            .unwrap_or(none)
+            .find(|pulled| pulled.pdf > 0.0)
+            .unwrap_or(Sample::NONE)
     }
 
     /// The density of [`sample`](Self::sample) at `dir`: `D(ω) / ∫_P D` inside the
@@ -538,7 +551,7 @@ impl LtcPolygon {
     pub(crate) fn pdf_of_unit(&self, dir: Vec3) -> f32 {
         let w = self.ltc.to_cosine_space(dir);
         let length2 = w.length_squared();
-        if !(length2 > 1e-18 && length2 < 1e18) {
+        if !strictly_between(length2, 1e-18, 1e18) {
             return self.pdf_careful(w.x, w.y, w.z);
         }
         if !self.contains_within_tolerance(w) {

@@ -599,11 +599,14 @@ fn largest_magnitude_is_the_max_fold() {
 /// the slack, the 1e-5 rad bound, the slack computed last) decides as the transformed
 /// polygon's `contains_within` with the slack itself, on directions next to the
 /// transformed polygon's edges (inside, within the slack, beyond it), samples and
-/// random directions, for polygons of every size (the small-polygon sampler's too).
+/// random directions, for polygons of every size (the small-polygon sampler's too);
+/// and that `contains_finite` is `contains` on these directions, scaled from 1e-45 to
+/// 1e30 and reversed.
 #[test]
 fn containment_in_steps_is_contains_within_the_slack() {
     let mut rng = Rng::new(46);
     let (mut strict, mut slack, mut bound, mut beyond) = (0u32, 0u32, 0u32, 0u32);
+    let mut contains_checked = 0u32;
     for trial in 0..2000 {
         let theta = 1.55 * rng.uniform() as f32;
         let wo = Vec3::new(theta.sin(), 0.0, theta.cos());
@@ -645,6 +648,18 @@ fn containment_in_steps_is_contains_within_the_slack() {
                 "{w:?} {vertices:?}"
             );
             let inside_strictly = polygon.transformed.contains(w);
+            // `contains_finite` (the first step's form) answers as `contains` for
+            // finite directions of any length or orientation.
+            for v in [w, -w, w * 1e-30, w * 1e30, w * 1e-45, Vec3::ZERO] {
+                if v.is_finite() {
+                    assert_eq!(
+                        polygon.transformed.contains_finite(v),
+                        polygon.transformed.contains(v),
+                        "{v:?} {vertices:?}"
+                    );
+                    contains_checked += 1;
+                }
+            }
             let within_bound = polygon.transformed.contains_within(w, ROUND_TRIP_TOLERANCE);
             match (inside_strictly, expected, within_bound) {
                 (true, ..) => strict += 1,
@@ -657,6 +672,10 @@ fn containment_in_steps_is_contains_within_the_slack() {
     println!("{strict} inside, {slack} in the slack, {bound} in the bound only, {beyond} beyond");
     // Every step decided some directions.
     assert!(strict > 1000 && slack > 100 && bound > 100 && beyond > 1000);
+    assert!(contains_checked > 300_000, "{contains_checked}");
+    // The empty polygon contains nothing either way.
+    let empty = ProjectedPolygon::EMPTY;
+    assert!(!empty.contains_finite(Vec3::Z) && !empty.contains(Vec3::Z));
 }
 
 /// `unit_quotient` gives `unit` of its quotient bit for bit: for vectors of every
@@ -701,6 +720,34 @@ fn unit_quotient_is_unit() {
     for ltc in ltcs() {
         for _ in 0..200 {
             check(ltc.from_cosine_space(rng.unit_vector_f32()));
+        }
+    }
+}
+
+/// `strictly_between` is `lo < x && x < hi` for the bounds of its callers, on both signs
+/// of: every `f32` within 64 ulps of each bound, of the smallest normal and of 1; the
+/// patterns around 0, around `f32::MAX` (with +∞ and the first NaNs) and the last ones
+/// (NaNs); and random bit patterns.
+#[test]
+fn strictly_between_is_the_comparisons() {
+    let mut rng = Rng::new(4747);
+    for (lo, hi) in [(1e-30f32, 1e30f32), (1e-18, 1e18)] {
+        let check = |x: f32| assert_eq!(strictly_between(x, lo, hi), lo < x && x < hi, "{x:e}");
+        for around in [lo, hi, f32::MIN_POSITIVE, f32::MAX, 1.0] {
+            for x in ulps_around(around, 64) {
+                check(x);
+                check(-x);
+            }
+        }
+        for bits in (0..64u32)
+            .chain(0x7f7f_ffc0..0x7f80_0040)
+            .chain(0xff7f_ffc0..=u32::MAX)
+        {
+            check(f32::from_bits(bits));
+            check(f32::from_bits(bits ^ 0x8000_0000));
+        }
+        for _ in 0..1_000_000 {
+            check(f32::from_bits(rng.next_u64() as u32));
         }
     }
 }

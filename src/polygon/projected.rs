@@ -1931,6 +1931,22 @@ impl ProjectedPolygon {
             && dir.is_finite()
             && self.edge_normals.all_on_inner_side(dir)
     }
+
+    /// [`contains`](Self::contains) for a direction the caller knows to be finite
+    /// (the LTC polygon's, whose `|w|²` it has range-tested: a non-finite coordinate
+    /// makes `|w|²` infinite or NaN): the same answer without `contains`' test of
+    /// finiteness, about 12 instructions per call. The small-polygon path is `contains`'
+    /// own (it has no such test). Tested in the LTC polygon's
+    /// `containment_in_steps_is_contains_within_the_slack`.
+    #[inline(always)]
+    pub(crate) fn contains_finite(&self, dir: Vec3) -> bool {
+        debug_assert!(dir.is_finite());
+        if self.is_small != 0 {
+            return self.contains(dir);
+        }
+        // Unused slots hold zero normals, whose dot product 0 passes.
+        self.selectable_sectors > 0 && dir.z > 0.0 && self.edge_normals.all_on_inner_side(dir)
+    }
 }
 
 /// How far outside a polygon handled by the small-polygon sampler (in radians) a
