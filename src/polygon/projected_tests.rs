@@ -1637,16 +1637,7 @@ fn outer_area_bounds_decide_as_the_exact_areas() {
     let mut rng = Rng::new(47);
     let (mut decentral, mut sectors, mut settled, mut settled_by_ratio) = (0, 0, 0, 0);
     for trial in 0..40_000 {
-        let mut v = mixed_test_polygon(&mut rng, trial);
-        match trial % 7 {
-            // An edge on a great circle through the zenith, a vertex on the horizon.
-            0 => v[1] = Vec3::new(v[0].x * 2.0, v[0].y * 2.0, v[0].z * 2.0),
-            1 => v[0].z = 0.0,
-            _ => {}
-        }
-        if trial % 2 == 1 {
-            v = reversed(&v);
-        }
+        let v = hard_mixed_test_polygon(&mut rng, trial);
         for precision in [AreaPrecision::Exact, AreaPrecision::Fast] {
             let mut p = ProjectedPolygon::EMPTY;
             let (ok, _) = p.prepare_choosing_path(&v, precision, true);
@@ -1733,15 +1724,7 @@ fn the_biased_preparation_reads_no_ill_conditioned_test() {
     let mut rng = Rng::new(4747);
     let (mut decentral, mut changed) = (0, 0);
     for trial in 0..20_000 {
-        let mut v = mixed_test_polygon(&mut rng, trial);
-        match trial % 7 {
-            0 => v[1] = Vec3::new(v[0].x * 2.0, v[0].y * 2.0, v[0].z * 2.0),
-            1 => v[0].z = 0.0,
-            _ => {}
-        }
-        if trial % 2 == 1 {
-            v = reversed(&v);
-        }
+        let v = hard_mixed_test_polygon(&mut rng, trial);
         let Some(p) = ProjectedPolygon::new_fast_biased(&v) else {
             continue;
         };
@@ -1869,6 +1852,22 @@ fn ends_touch_is_the_end_shape_test() {
     }
     eprintln!("ends touching / not / left to end_shape / NaN: {counts:?}");
     assert!(counts.iter().all(|&c| c > 0), "{counts:?}");
+}
+
+/// [`mixed_test_polygon`] made harder by the trial's number: an edge on a great circle
+/// through the zenith (every seventh), a vertex on the horizon (the next), and every
+/// other polygon reversed (both windings).
+fn hard_mixed_test_polygon(rng: &mut Rng, trial: u32) -> Vec<Vec3> {
+    let mut v = mixed_test_polygon(rng, trial);
+    match trial % 7 {
+        0 => v[1] = Vec3::new(v[0].x * 2.0, v[0].y * 2.0, v[0].z * 2.0),
+        1 => v[0].z = 0.0,
+        _ => {}
+    }
+    if trial % 2 == 1 {
+        v = reversed(&v);
+    }
+    v
 }
 
 /// A polygon of 3 to 8 vertices for the decentral preparation's tests, by `trial % 3`:
