@@ -72,7 +72,13 @@ impl Ltc {
         // waiting on `table_coordinates`' square root and two divisions: the bits of
         // `table_bilinear` (see `table_bilinear_of_guess`; issue 18, stop 46).
         let guess = super::table_row_guess(wo);
-        let entry = super::table_bilinear_of_guess(&LTC_TABLE, LTC_TABLE_SIZE, x, y, guess);
+        let entry = super::table_bilinear_of_guess::<6, { super::ALONG_Y_FIRST }>(
+            &LTC_TABLE,
+            LTC_TABLE_SIZE,
+            x,
+            y,
+            guess,
+        );
         Self::from_view_frame(entry, cos_phi, sin_phi)
     }
 

@@ -149,10 +149,10 @@ fn is_finite_is_by_field() {
 /// the guess is the exact coordinate's cell for at least 99.9% of unit views.
 #[test]
 fn the_ltc_s_guessed_row_gives_the_former_lookup_s_bits() {
-    use crate::brdf::{table_bilinear, table_coordinates, table_row_guess};
+    use crate::brdf::{ALONG_Y_FIRST, table_bilinear, table_coordinates, table_row_guess};
     let former = |wo: Vec3, roughness: f32| -> Option<Ltc> {
         let (x, y, cos_phi, sin_phi) = table_coordinates(wo, roughness)?;
-        let entry = table_bilinear(&LTC_TABLE, LTC_TABLE_SIZE, x, y);
+        let entry = table_bilinear::<6, ALONG_Y_FIRST>(&LTC_TABLE, LTC_TABLE_SIZE, x, y);
         Ltc::from_view_frame(entry, cos_phi, sin_phi)
     };
     let bits = |l: Option<Ltc>| {

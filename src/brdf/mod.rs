@@ -77,39 +77,22 @@ pub(crate) fn table_row_guess(wo: Vec3) -> f32 {
     crate::math::sqrtf((1.0 - wo.z).max(0.0)) * 63.0
 }
 
+/// Interpolate a table along its row coordinate `y` first, then along `x`: the LTC
+/// table's order (a `Y_LAST` argument of [`table_bilinear`] and [`table_bilinear_of_guess`]).
+pub(crate) const ALONG_Y_FIRST: bool = false;
+
+/// Interpolate a table along `x` first and along its row coordinate `y` last (see
+/// [`table_interpolated`]): the pivot fit's order, in which `y`, the last to arrive, enters
+/// only the final interpolation.
+pub(crate) const ALONG_Y_LAST: bool = true;
+
 /// The entry of a `size × size` table (row-major, rows along `x`) at fractional cell
-/// coordinates `(x, y)` in `[0, size − 1]²`, interpolated bilinearly. (The lookups read the
-/// tables from a guessed cell, [`table_bilinear_of_guess`]: this is their tests' reference.)
-#[cfg_attr(not(test), allow(dead_code))]
+/// coordinates `(x, y)` in `[0, size − 1]²`, interpolated bilinearly in the order
+/// `Y_LAST` ([`ALONG_Y_FIRST`] or [`ALONG_Y_LAST`]). (The lookups read the tables from a
+/// guessed cell, [`table_bilinear_of_guess`]: this is their tests' reference, and the
+/// cold path of a wrong guess.)
 #[inline]
-pub(crate) fn table_bilinear<const K: usize>(
-    table: &[[f32; K]],
-    size: usize,
-    x: f32,
-    y: f32,
-) -> [f32; K] {
-    table_bilinear_in_order::<K, false>(table, size, x, y)
-}
-
-/// [`table_bilinear`] interpolated along `x` first and along `y` last (see
-/// [`table_interpolated`]): the pivot fit's order, in which the row coordinate `y`, the
-/// last to arrive, enters only the final interpolation. (The reference of the tests, as
-/// `table_bilinear`.)
-#[cfg_attr(not(test), allow(dead_code))]
-#[inline]
-pub(crate) fn table_bilinear_y_last<const K: usize>(
-    table: &[[f32; K]],
-    size: usize,
-    x: f32,
-    y: f32,
-) -> [f32; K] {
-    table_bilinear_in_order::<K, true>(table, size, x, y)
-}
-
-/// The body of [`table_bilinear`] (`Y_LAST = false`) and [`table_bilinear_y_last`]
-/// (`Y_LAST = true`).
-#[inline(always)]
-fn table_bilinear_in_order<const K: usize, const Y_LAST: bool>(
+pub(crate) fn table_bilinear<const K: usize, const Y_LAST: bool>(
     table: &[[f32; K]],
     size: usize,
     x: f32,
@@ -163,7 +146,7 @@ fn table_interpolated<const K: usize, const Y_LAST: bool>(
     out
 }
 
-/// [`table_bilinear`], bit for bit, with the cell along `y` read from a guess `y_guess`
+/// [`table_bilinear`] in the same order `Y_LAST`, bit for bit, with the cell along `y` read from a guess `y_guess`
 /// of `y` that is known earlier (fewer operations away from the inputs): the entries are
 /// loaded from the guessed cell while `y` is still being computed, and the guess is
 /// checked against `y` afterwards, by a predicted branch. The guessed cell `j` is
@@ -176,33 +159,7 @@ fn table_interpolated<const K: usize, const Y_LAST: bool>(
 /// whose row coordinate waited on a square root and two divisions before the table's
 /// loads could start, on the preparation's critical path.)
 #[inline(always)]
-pub(crate) fn table_bilinear_of_guess<const K: usize>(
-    table: &[[f32; K]],
-    size: usize,
-    x: f32,
-    y: f32,
-    y_guess: f32,
-) -> [f32; K] {
-    table_bilinear_of_guess_in_order::<K, false>(table, size, x, y, y_guess)
-}
-
-/// [`table_bilinear_y_last`], bit for bit, from a guess of `y` as
-/// [`table_bilinear_of_guess`] reads [`table_bilinear`].
-#[inline(always)]
-pub(crate) fn table_bilinear_of_guess_y_last<const K: usize>(
-    table: &[[f32; K]],
-    size: usize,
-    x: f32,
-    y: f32,
-    y_guess: f32,
-) -> [f32; K] {
-    table_bilinear_of_guess_in_order::<K, true>(table, size, x, y, y_guess)
-}
-
-/// The body of [`table_bilinear_of_guess`] (`Y_LAST = false`) and
-/// [`table_bilinear_of_guess_y_last`] (`Y_LAST = true`).
-#[inline(always)]
-fn table_bilinear_of_guess_in_order<const K: usize, const Y_LAST: bool>(
+pub(crate) fn table_bilinear_of_guess<const K: usize, const Y_LAST: bool>(
     table: &[[f32; K]],
     size: usize,
     x: f32,
@@ -218,8 +175,7 @@ fn table_bilinear_of_guess_in_order<const K: usize, const Y_LAST: bool>(
     }
 }
 
-/// [`table_bilinear`] (`Y_LAST = false`) or [`table_bilinear_y_last`] out of line and
-/// cold: [`table_bilinear_of_guess`] or [`table_bilinear_of_guess_y_last`] of a wrong guess.
+/// [`table_bilinear`] out of line and cold: [`table_bilinear_of_guess`] of a wrong guess.
 #[cold]
 #[inline(never)]
 fn table_bilinear_cold<const K: usize, const Y_LAST: bool>(
@@ -228,5 +184,5 @@ fn table_bilinear_cold<const K: usize, const Y_LAST: bool>(
     x: f32,
     y: f32,
 ) -> [f32; K] {
-    table_bilinear_in_order::<K, Y_LAST>(table, size, x, y)
+    table_bilinear::<K, Y_LAST>(table, size, x, y)
 }

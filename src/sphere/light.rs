@@ -47,7 +47,7 @@ use super::sptd::{Sptd, SptdBase, SptdInCap};
 use crate::Sample;
 use crate::brdf::Ltc;
 use crate::brdf::pivot_cartesian_table::{PIVOT_CARTESIAN_TABLE, PIVOT_CARTESIAN_TABLE_SIZE};
-use crate::brdf::{table_bilinear_of_guess_y_last, table_coordinates, table_row_guess};
+use crate::brdf::{ALONG_Y_LAST, table_bilinear_of_guess, table_coordinates, table_row_guess};
 use core::f32::consts::PI;
 use glam::Vec3;
 
@@ -95,7 +95,7 @@ impl GgxPivot {
         // and cosine of an interpolated elevation on the preparation's critical path
         // (issue 18, stop 47). The view frame's x axis has the view's azimuth, so the
         // pivot is `(x cos φ, x sin φ, z)`.
-        let [x_view, z_view, albedo] = table_bilinear_of_guess_y_last(
+        let [x_view, z_view, albedo] = table_bilinear_of_guess::<3, ALONG_Y_LAST>(
             &PIVOT_CARTESIAN_TABLE,
             PIVOT_CARTESIAN_TABLE_SIZE,
             x,

@@ -1311,81 +1311,83 @@ fn the_prepared_pivot_numerators_are_the_pivot_s() {
 }
 
 /// `table_bilinear_of_guess` (a table read from a guessed cell) gives `table_bilinear`'s
-/// bits, and `table_bilinear_of_guess_y_last` (the fit's Cartesian table) gives
-/// `table_bilinear_y_last`'s, for every guess: the right cell, a cell off by one or more on
+/// bits in both orders of interpolation (`ALONG_Y_FIRST`, the LTC's; `ALONG_Y_LAST`, the
+/// fit's Cartesian table's), for every guess: the right cell, a cell off by one or more on
 /// either side (the checked path's fallback), the last cell, NaN, negative and
 /// out-of-range guesses, at coordinates on and next to the cells' boundaries.
 #[test]
 fn the_table_s_guessed_cell_gives_table_bilinear_s_bits() {
     use crate::brdf::pivot_cartesian_table::PIVOT_CARTESIAN_TABLE;
-    use crate::brdf::pivot_table::PIVOT_TABLE_SIZE;
-    use crate::brdf::{
-        table_bilinear, table_bilinear_of_guess, table_bilinear_of_guess_y_last,
-        table_bilinear_y_last,
-    };
-    let bits = |e: [f32; 3]| e.map(f32::to_bits);
+    use crate::brdf::pivot_table::{PIVOT_TABLE, PIVOT_TABLE_SIZE};
+    use crate::brdf::{ALONG_Y_FIRST, ALONG_Y_LAST, table_bilinear, table_bilinear_of_guess};
     let last = (PIVOT_TABLE_SIZE - 1) as f32;
     let mut ys = vec![0.0f32, 1e-30, 0.5, last, last - 1.0, 62.5];
     for j in 1..PIVOT_TABLE_SIZE {
         let j = j as f32;
         ys.extend([j, j.next_down(), j.next_up(), j - 0.5]);
     }
-    let guesses = |y: f32| {
-        [
-            y,
-            y.next_down(),
-            y.next_up(),
-            y - 1.0,
-            y + 1.0,
-            y - 7.0,
-            y + 7.0,
-            -1.0,
-            100.0,
-            f32::NAN,
-            last,
-        ]
-    };
-    let mut guessed_right = 0;
-    for &y in ys.iter().filter(|y| (0.0..=last).contains(*y)) {
-        for x in [0.0, 0.25, 17.5, last] {
-            let exact = table_bilinear(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y);
-            let exact_y_last =
-                table_bilinear_y_last(&PIVOT_CARTESIAN_TABLE, PIVOT_TABLE_SIZE, x, y);
-            for guess in guesses(y) {
-                let of_guess = table_bilinear_of_guess(&PIVOT_TABLE, PIVOT_TABLE_SIZE, x, y, guess);
-                assert_eq!(bits(of_guess), bits(exact), "x {x} y {y:e} guess {guess:e}");
-                let of_guess_y_last = table_bilinear_of_guess_y_last(
-                    &PIVOT_CARTESIAN_TABLE,
-                    PIVOT_TABLE_SIZE,
-                    x,
+    let ys: Vec<f32> = ys
+        .into_iter()
+        .filter(|y| (0.0..=last).contains(y))
+        .collect();
+    /// The number of guesses in the right cell; asserts the bits of every guess.
+    fn check<const Y_LAST: bool>(table: &[[f32; 3]], ys: &[f32]) -> u32 {
+        let bits = |e: [f32; 3]| e.map(f32::to_bits);
+        let last = (PIVOT_TABLE_SIZE - 1) as f32;
+        let mut guessed_right = 0;
+        for &y in ys {
+            for x in [0.0, 0.25, 17.5, last] {
+                let exact = table_bilinear::<3, Y_LAST>(table, PIVOT_TABLE_SIZE, x, y);
+                let guesses = [
                     y,
-                    guess,
-                );
-                assert_eq!(
-                    bits(of_guess_y_last),
-                    bits(exact_y_last),
-                    "x {x} y {y:e} guess {guess:e}"
-                );
-                guessed_right += (guess as u32 == y as u32) as u32;
+                    y.next_down(),
+                    y.next_up(),
+                    y - 1.0,
+                    y + 1.0,
+                    y - 7.0,
+                    y + 7.0,
+                    -1.0,
+                    100.0,
+                    f32::NAN,
+                    last,
+                ];
+                for guess in guesses {
+                    let of_guess =
+                        table_bilinear_of_guess::<3, Y_LAST>(table, PIVOT_TABLE_SIZE, x, y, guess);
+                    assert_eq!(
+                        bits(of_guess),
+                        bits(exact),
+                        "y last {Y_LAST} x {x} y {y:e} guess {guess:e}"
+                    );
+                    guessed_right += (guess as u32 == y as u32) as u32;
+                }
             }
         }
+        guessed_right
     }
-    assert!(guessed_right > 0);
+    for table in [&PIVOT_TABLE[..], &PIVOT_CARTESIAN_TABLE[..]] {
+        assert!(check::<ALONG_Y_FIRST>(table, &ys) > 0);
+        assert!(check::<ALONG_Y_LAST>(table, &ys) > 0);
+    }
 }
 
 /// The fit's guess of the table's row coordinate (`table_row_guess`) is the exact
 /// coordinate's cell for unit views (at least 99.9% of them: the checked path's fallback
 /// is rare),
-/// and the fit is `table_bilinear_y_last`'s (the lookup at the exact cell) bit for bit for
+/// and the fit is `table_bilinear`'s along y last (the lookup at the exact cell) bit for bit for
 /// unit views and views of other lengths (whose guesses are wrong and take the fallback).
 #[test]
 fn the_fit_s_guessed_row_is_the_exact_cell_for_unit_views() {
     use crate::brdf::pivot_cartesian_table::{PIVOT_CARTESIAN_TABLE, PIVOT_CARTESIAN_TABLE_SIZE};
-    use crate::brdf::{table_bilinear_y_last, table_coordinates};
+    use crate::brdf::{ALONG_Y_LAST, table_bilinear, table_coordinates};
     let former = |wo: Vec3, roughness: f32| -> Option<GgxPivot> {
         let (x, y, cos_phi, sin_phi) = table_coordinates(wo, roughness)?;
-        let [x_view, z_view, albedo] =
-            table_bilinear_y_last(&PIVOT_CARTESIAN_TABLE, PIVOT_CARTESIAN_TABLE_SIZE, x, y);
+        let [x_view, z_view, albedo] = table_bilinear::<3, ALONG_Y_LAST>(
+            &PIVOT_CARTESIAN_TABLE,
+            PIVOT_CARTESIAN_TABLE_SIZE,
+            x,
+            y,
+        );
         let pivot = Vec3::new(x_view * cos_phi, x_view * sin_phi, z_view);
         Some(GgxPivot {
             pivot: crate::sphere::pivot::valid_pivot(pivot),
