@@ -1345,6 +1345,13 @@ fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
                     one.signed_g0[0].to_bits(),
                     "{what}"
                 );
+                // `compute_triangle` stores `G0 = |det|` itself (the loop of
+                // `prepare_or_fail` leaves a triangle's alone).
+                assert_eq!(
+                    triangle_polygon.g0[0].to_bits(),
+                    one.signed_g0[0].abs().to_bits(),
+                    "{what}"
+                );
                 assert_eq!(
                     triangle_polygon.g1_plus_g2[0].to_bits(),
                     one_polygon.g1_plus_g2[0].to_bits(),
