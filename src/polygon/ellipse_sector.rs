@@ -320,10 +320,13 @@ const GAUSS_LEGENDRE_4_NODES: [f32; 4] = [0.069_431_844, 0.330_009_48, 0.669_990
 #[allow(clippy::excessive_precision)]
 const GAUSS_LEGENDRE_4_WEIGHTS: [f32; 4] = [0.173_927_42, 0.326_072_58, 0.326_072_58, 0.173_927_42];
 
-/// `1 / √(|s|² + t²)` with `t = u · s`: the factor `λ` that puts `λ s` on the ellipse.
+/// `1 / √(1 + t²)` with `t = u · s` for a unit direction `s`, lane by lane: the factor
+/// `λ` that puts `λ s` on the ellipse (each lane rounded as the scalar
+/// `1.0 / sqrtf(1.0 + t * t)`: square root and division are correctly rounded in lanes
+/// as in scalars).
 #[inline(always)]
-fn ellipse_radius(length2: f32, t: f32) -> f32 {
-    1.0 / crate::math::sqrtf(length2 + t * t)
+fn ellipse_radius4(t: Vec4) -> Vec4 {
+    Vec4::ONE / sqrt4(Vec4::ONE + t * t)
 }
 
 /// [`EllipseSector::area_form`] of a sector with `s0 · s1 = cosine`, the dot products
@@ -634,25 +637,43 @@ impl EllipseSector {
         } else {
             0.0
         };
-        // u · b_j by linearity from the accurate u · s0, u · s1 (b = α s0 + β s1).
-        let quarter_dots = |t: [f32; 2]| {
-            let mut dots = [t[0], 0.0, 0.0, 0.0, t[1]];
-            for j in 1..4 {
-                let b = boundaries[j];
-                let alpha = (b[0] * s1[1] - b[1] * s1[0]) * inverse_basis;
-                let beta = (s0[0] * b[1] - s0[1] * b[0]) * inverse_basis;
-                // A sector of π up to denormals has an inverse basis near 1e38 and these
-                // products overflow to ∞ − ∞ (found by fuzzing): 0 then, like the other
-                // non-finite constants of a degenerate sector.
-                let dot = alpha * t[0] + beta * t[1];
-                dots[j] = if dot.is_finite() { dot } else { 0.0 };
-            }
-            dots
+        // u · b_j by linearity from the accurate u · s0, u · s1 (b = α s0 + β s1), the
+        // three quarters b_1, b_2, b_3 as lanes 0 to 2 (lane 3, b = 0, is not read), α
+        // and β once for both ellipses: each lane the same operations as one scalar
+        // quarter (issue 15: the scalar form computed α and β twice per quarter).
+        let [bx, by] = [0, 1].map(|c| Vec4::new(b1[c], b2[c], b3[c], 0.0));
+        let splat = |[x, y]: Vec2| [Vec4::splat(x), Vec4::splat(y)];
+        let ([s0x, s0y], [s1x, s1y]) = (splat(s0), splat(s1));
+        let inverse = Vec4::splat(inverse_basis);
+        let alpha = (bx * s1y - by * s1x) * inverse;
+        let beta = (s0x * by - s0y * bx) * inverse;
+        // A sector of π up to denormals has an inverse basis near 1e38 and these products
+        // overflow to ∞ − ∞ (found by fuzzing): 0 then, like the other non-finite
+        // constants of a degenerate sector.
+        let quarter_dots = |[t0, t1]: [f32; 2]| {
+            let dots = finite_or_zero4(alpha * Vec4::splat(t0) + beta * Vec4::splat(t1));
+            [t0, dots.x, dots.y, dots.z, t1]
         };
         let (inner_quarter_dots, outer_quarter_dots) =
             (quarter_dots(inner_dots), quarter_dots(outer_dots));
-        let radii = |t: [f32; 5]| t.map(|t| ellipse_radius(1.0, t));
-        let (ki, ko) = (crate::math::sqrtf(1.0 + ui2), crate::math::sqrtf(1.0 + uo2));
+        // The ten radii `1 / sqrt(1 + t²)` of the quarters' dot products in three groups
+        // of lanes (`ellipse_radius4`), the last with √|C| of both ellipses,
+        // `sqrt(1 + |u|²)`, in its lanes 2 and 3, taken before the same division: ten
+        // scalar square roots and divisions were the longest latency of a lone sector.
+        let [i, o] = [inner_quarter_dots, outer_quarter_dots];
+        let [first, second] = [
+            Vec4::new(i[0], i[1], i[2], i[3]),
+            Vec4::new(i[4], o[0], o[1], o[2]),
+        ]
+        .map(|t| ellipse_radius4(t).to_array());
+        let last_roots = sqrt4(Vec4::new(
+            1.0 + o[3] * o[3],
+            1.0 + o[4] * o[4],
+            1.0 + ui2,
+            1.0 + uo2,
+        ));
+        let (ki, ko) = (last_roots.z, last_roots.w);
+        let last = (Vec4::ONE / last_roots).to_array();
         let finite = |x: f32| if x.is_finite() { x } else { 0.0 };
         // |u_i|² - |u_o|² = -(u_o - σ u_i) · (u_o + σ u_i): the first factor is exact up to
         // one rounding per component, so the difference keeps its relative precision when
@@ -677,8 +698,8 @@ impl EllipseSector {
             quarter_det: dets.y,
             inner_quarter_dots,
             outer_quarter_dots,
-            inner_radius: radii(inner_quarter_dots),
-            outer_radius: radii(outer_quarter_dots),
+            inner_radius: [first[0], first[1], first[2], first[3], second[0]],
+            outer_radius: [second[1], second[2], second[3], last[0], last[1]],
             cosine: dot2(s0, s1),
             area_form: area_form(
                 dot2(s0, s1),
@@ -781,8 +802,7 @@ impl EllipseSector {
         store(8, [s1x, s1y, to0, to_1]);
         store(12, [to_2, to_3, to1, det]);
         store(28, [ti_1, ti_2, ti_3, ti1]);
-        // `ellipse_radius(1, t)`: 1 / sqrt(1 + t²).
-        let radius = |t: Vec4| Vec4::ONE / sqrt4(Vec4::ONE + t * t);
+        let radius = ellipse_radius4;
         store(32, [radius(ti0), radius(ti_1), radius(ti_2), radius(ti_3)]);
         store(36, [radius(ti1), radius(to0), radius(to_1), radius(to_2)]);
         let (ui2, uo2) = (dot(uix, uiy, uix, uiy), dot(uox, uoy, uox, uoy));
@@ -1852,6 +1872,83 @@ mod tests {
 
     fn whole_area(sector: &EllipseSector) -> f32 {
         sector.area(false, AreaPrecision::Exact)
+    }
+
+    /// `new`'s quarter dot products, radii and `√|C|`, computed in lanes, are bit for bit
+    /// the scalar forms they replaced (`α`, `β` of each quarter, `u · b = α t0 + β t1`, 0
+    /// where not finite, `1 / sqrtf(1 + t²)`, `sqrtf(1 + |u|²)`), on sectors of every
+    /// width up to π and beyond ellipses' limits, and `ellipse_radius4` is the scalar
+    /// radius lane by lane, NaN, infinities and extremes included.
+    #[test]
+    fn lanes_of_a_lone_sector_are_the_scalar_forms() {
+        let radius = |t: f32| 1.0 / crate::math::sqrtf(1.0 + t * t);
+        let same = |a: f32, b: f32| a.to_bits() == b.to_bits();
+        let extremes = [
+            0.0,
+            -0.0,
+            1e-30,
+            -3.5,
+            f32::MAX,
+            f32::MIN_POSITIVE,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ];
+        for t in extremes.windows(4) {
+            let lanes = ellipse_radius4(Vec4::from_slice(t)).to_array();
+            for (lane, &t) in lanes.iter().zip(t) {
+                assert!(same(*lane, radius(t)), "{t:e}");
+            }
+        }
+        let mut rng = Rng::new(48);
+        for case in 0..20_000 {
+            let (from, width) = (rng.uniform() * 6.3, rng.log_uniform(-6.0, 0.5));
+            let direction = |phi: f64| [phi.cos() as f32, phi.sin() as f32];
+            let (s0, s1) = (direction(from), direction(from + width));
+            let u = |rng: &mut Rng| {
+                [0, 1].map(|_| {
+                    rng.signed_log_uniform(-3.0, if case % 7 == 0 { 9.0 } else { 2.0 }) as f32
+                })
+            };
+            let (inner, outer) = (u(&mut rng), u(&mut rng));
+            let dots = |u: Vec2| [dot2(u, s0), dot2(u, s1)];
+            let sector =
+                EllipseSector::new(s0, s1, det2(s0, s1), inner, dots(inner), outer, dots(outer));
+            let (inverse_basis, quarters) = (sector.inverse_basis, sector.quarters);
+            for (u, quarter_dots, radii, root) in [
+                (
+                    inner,
+                    sector.inner_quarter_dots,
+                    sector.inner_radius,
+                    sector.inner_root_det,
+                ),
+                (
+                    outer,
+                    sector.outer_quarter_dots,
+                    sector.outer_radius,
+                    sector.outer_root_det,
+                ),
+            ] {
+                let t = dots(u);
+                for j in 0..5 {
+                    let expected = if j == 0 || j == 4 {
+                        t[j / 4]
+                    } else {
+                        let b = quarters[j];
+                        let alpha = (b[0] * s1[1] - b[1] * s1[0]) * inverse_basis;
+                        let beta = (s0[0] * b[1] - s0[1] * b[0]) * inverse_basis;
+                        let dot = alpha * t[0] + beta * t[1];
+                        if dot.is_finite() { dot } else { 0.0 }
+                    };
+                    assert!(same(quarter_dots[j], expected), "case {case}, quarter {j}");
+                    assert!(same(radii[j], radius(expected)), "case {case}, radius {j}");
+                }
+                assert!(
+                    same(root, crate::math::sqrtf(1.0 + dot2(u, u))),
+                    "case {case}"
+                );
+            }
+        }
     }
 
     /// Issue 16 (3): the area between two nearly coincident ellipses (`|u| > 1`, the two
