@@ -800,7 +800,18 @@ fn central_starts(polygon: &mut ProjectedPolygon, count: usize) -> f32 {
         let starts = Vec4::select(selectable_lanes[g], starts, Vec4::splat(f32::INFINITY));
         store4(starts, &mut polygon.sector_start, g * LANES);
     }
-    total
+    // Φ as the start of slot `count` where the polygon leaves one in its last group: the
+    // same sum (the lanes after it add `+0`, which changes no bit, as above), a branch on
+    // the count (predicted: a light keeps its count) rather than the adds of the `+0`
+    // lanes, which put two more additions (hexagons) on the preparation's critical path,
+    // from the areas to Φ and on to the sample, which starts from Φ.
+    match count {
+        3 => low.w,
+        5 => high.y,
+        6 => high.z,
+        7 => high.w,
+        _ => total,
+    }
 }
 
 /// What `finish` reads besides the positions: the vertex count, the extent of the
