@@ -371,9 +371,11 @@ pub fn optimal_mis_contribution(
 /// commutative). For the polygon light's heuristics (issue 18, 3).
 #[derive(Clone, Copy)]
 pub(crate) struct TwoPdfs {
-    /// `r_j` and `r_{1-j}`.
+    /// `r_j`.
     own_ratio: f32,
-    other_ratio: f32,
+    /// Whether `p_j >= p_{1-j}` (then `r_j = 1`), and the smaller pdf over the larger.
+    own_largest: bool,
+    ratio: f32,
     /// `r_0 + r_1`, at least 1.
     sum: f32,
     /// `max p`.
@@ -396,23 +398,21 @@ impl TwoPdfs {
             return None;
         }
         // `max(p_0, p_1)` as `Scale::of` finds it (no NaN here), and the other pdf's
-        // ratio to it.
+        // ratio to it. Which pdf is larger is up to the sample: no branch (one around
+        // the division was mispredicted about every other sample). The larger and the
+        // smaller pdf in the forms of `maxss` and `minss` (`a > b ? a : b`,
+        // `a < b ? a : b`; for equal pdfs, both of the same bits, either is right), the
+        // ratio `r_j` by a mask (`select_bits`).
         let own_largest = own >= other;
-        let (largest, smaller) = if own_largest {
-            (own, other)
-        } else {
-            (other, own)
-        };
+        let largest = if own > other { own } else { other };
+        let smaller = if own < other { own } else { other };
         let ratio = smaller / largest;
-        let (own_ratio, other_ratio) = if own_largest {
-            (1.0, ratio)
-        } else {
-            (ratio, 1.0)
-        };
         Some(TwoPdfs {
-            own_ratio,
-            other_ratio,
-            sum: own_ratio + other_ratio,
+            own_ratio: crate::math::select_bits(own_largest, 1.0, ratio),
+            own_largest,
+            ratio,
+            // `r_j + r_{1-j}` is `1 + ratio` in one order or the other: no selection.
+            sum: 1.0 + ratio,
             largest,
             j: j.min(1),
         })
@@ -421,10 +421,11 @@ impl TwoPdfs {
     /// `[r_0, r_1]`.
     #[inline(always)]
     fn ratios(&self) -> [f32; 2] {
+        let other_ratio = crate::math::select_bits(self.own_largest, self.ratio, 1.0);
         if self.j == 0 {
-            [self.own_ratio, self.other_ratio]
+            [self.own_ratio, other_ratio]
         } else {
-            [self.other_ratio, self.own_ratio]
+            [other_ratio, self.own_ratio]
         }
     }
 
