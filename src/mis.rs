@@ -359,6 +359,84 @@ pub fn optimal_mis_contribution(
     finite_or_zero(v * (contribution_value(contributions[j]) - mean_c) + balance)
 }
 
+/// The pdfs of two techniques as [`Scale`] reads them, for the sample of technique `j`
+/// with its own pdf `p_j` positive and finite and the other's, `p_{1-j}`, `+0` or
+/// positive and finite (every sampler's pdf; [`TwoPdfs::new`] returns `None`
+/// otherwise): the ratios `r_k = p_k / max p` and their sum, with the same bits as
+/// `Scale::ratio` and `Scale::sum` but one division instead of two. The largest pdf's
+/// own ratio `max p / max p` is exactly 1 (IEEE division is correctly rounded, and
+/// `x / x = 1` for every finite positive `x`, subnormal too), so only the other ratio
+/// is divided; `Σ r` is added as `Scale::sum` does, `(0 + r_0) + r_1`, which is
+/// `r_0 + r_1` (adding a ratio `>= 0` to 0 is exact), in either order (IEEE addition is
+/// commutative). For the polygon light's heuristics (issue 18, 3).
+#[derive(Clone, Copy)]
+pub(crate) struct TwoPdfs {
+    /// `r_j`.
+    own_ratio: f32,
+    /// Whether `p_j >= p_{1-j}` (then `r_j = 1`), and the smaller pdf over the larger.
+    own_largest: bool,
+    ratio: f32,
+    /// `r_0 + r_1`, at least 1.
+    sum: f32,
+    /// `max p`.
+    largest: f32,
+    /// The sample's technique, 0 or 1.
+    j: usize,
+}
+
+impl TwoPdfs {
+    /// The pdfs `own = p_j` and `other = p_{1-j}` of the sample of technique `j` (0 or
+    /// 1; larger counts as 1); `None` unless `0 < own < ∞` and `0 <= other < ∞` with
+    /// `other` not `-0`. Both tests on the bits, two integer comparisons (as float
+    /// comparisons, the compiler classified the bits in a dozen instructions): the
+    /// patterns of `+0` to `f32::MAX` are `0` to `0x7f7f_ffff`, and every negative
+    /// value, `-0`, the infinities and the NaNs lie above (`-0` is left to the scalar
+    /// functions, which read it as `+0`, only so that no ratio is `-0` here).
+    #[inline(always)]
+    pub(crate) fn new(own: f32, other: f32, j: usize) -> Option<Self> {
+        if !(crate::math::is_positive_finite(own) && other.to_bits() < 0x7f80_0000) {
+            return None;
+        }
+        // `max(p_0, p_1)` as `Scale::of` finds it (no NaN here), and the other pdf's
+        // ratio to it. Which pdf is larger is up to the sample: no branch (one around
+        // the division was mispredicted about every other sample). The larger and the
+        // smaller pdf in the forms of `maxss` and `minss` (`a > b ? a : b`,
+        // `a < b ? a : b`; for equal pdfs, both of the same bits, either is right), the
+        // ratio `r_j` by a mask (`select_bits`).
+        let own_largest = own >= other;
+        let largest = if own > other { own } else { other };
+        let smaller = if own < other { own } else { other };
+        let ratio = smaller / largest;
+        Some(TwoPdfs {
+            own_ratio: crate::math::select_bits(own_largest, 1.0, ratio),
+            own_largest,
+            ratio,
+            // `r_j + r_{1-j}` is `1 + ratio` in one order or the other: no selection.
+            sum: 1.0 + ratio,
+            largest,
+            j: j.min(1),
+        })
+    }
+
+    /// `[r_0, r_1]`.
+    #[inline(always)]
+    fn ratios(&self) -> [f32; 2] {
+        let other_ratio = crate::math::select_bits(self.own_largest, self.ratio, 1.0);
+        if self.j == 0 {
+            [self.own_ratio, other_ratio]
+        } else {
+            [other_ratio, self.own_ratio]
+        }
+    }
+
+    /// [`balance_heuristic`] divided by the sample's own pdf, `(r_j / Σ r) / p_j` (the
+    /// bits of `balance_heuristic(&pdfs, j) / pdfs[j]`): `f / Σ p` as a factor of `f`.
+    #[inline(always)]
+    pub(crate) fn balance_over_pdf(&self, p_j: f32) -> f32 {
+        self.own_ratio / self.sum / p_j
+    }
+}
+
 /// The weighted heuristics of two techniques for all three colour channels at once:
 /// [`weighted_balance_heuristic`], [`clamped_optimal_mis_contribution`] and
 /// [`optimal_mis_contribution`] evaluated per channel with per-channel contributions
@@ -368,8 +446,8 @@ pub fn optimal_mis_contribution(
 /// the pdfs' scaling per channel.
 ///
 /// Valid for pdfs `p_j > 0` and `p_{1-j} >= 0`, both finite (every sampler's pdf):
-/// [`TwoTechniques::new`] returns `None` otherwise, and the caller takes the scalar
-/// functions.
+/// made from a [`TwoPdfs`], whose `new` returns `None` otherwise, and the caller takes
+/// the scalar functions.
 #[derive(Clone, Copy)]
 pub(crate) struct TwoTechniques {
     /// `r_k = p_k / max p`.
@@ -406,21 +484,15 @@ fn finite_or_zero_lanes(x: Vec3A) -> Vec3A {
 }
 
 impl TwoTechniques {
-    /// The shared terms for the sample of technique `j` with densities `pdfs` and
-    /// per-channel contributions `contributions`; `None` unless `pdfs[j] > 0`,
-    /// `pdfs[1 - j] >= 0` and both are finite.
+    /// The shared terms for the sample whose two pdfs `pdfs` has read, with per-channel
+    /// contributions `contributions`.
     #[inline(always)]
-    pub(crate) fn new(pdfs: [f32; 2], contributions: [Vec3A; 2], j: usize) -> Option<Self> {
-        let j = j.min(1);
-        let (p, q) = (pdfs[j], pdfs[1 - j]);
-        if !(p > 0.0 && p < f32::INFINITY && (0.0..f32::INFINITY).contains(&q)) {
-            return None;
-        }
+    pub(crate) fn new(pdfs: TwoPdfs, contributions: [Vec3A; 2]) -> Self {
         // As `Scale`: the largest pdf and the ratios to it; their sum is at least 1.
-        let pdfs = [pdf_value(pdfs[0]), pdf_value(pdfs[1])];
-        let largest = pdfs[0].max(pdfs[1]);
-        let ratios = [pdfs[0] / largest, pdfs[1] / largest];
-        let sum = 0.0 + ratios[0] + ratios[1];
+        let ratios = pdfs.ratios();
+        let TwoPdfs {
+            sum, largest, j, ..
+        } = pdfs;
         let c = [
             contribution_values(contributions[0]),
             contribution_values(contributions[1]),
@@ -429,7 +501,7 @@ impl TwoTechniques {
         // As `weighted_share`'s sum, `0 + term_0 + term_1` (the iterator's sum starts at 0).
         let weighted_sum =
             Vec3A::ZERO + c[0] / largest_c * ratios[0] + c[1] / largest_c * ratios[1];
-        Some(TwoTechniques {
+        TwoTechniques {
             ratios,
             sum,
             inverse_sum: 1.0 / sum,
@@ -438,7 +510,7 @@ impl TwoTechniques {
             c,
             largest_c,
             weighted_sum,
-        })
+        }
     }
 
     /// Where the weighted share `c_j r_j / Σ c r` exists (`max c > 0` and `Σ > 0`).

@@ -657,11 +657,12 @@ fn the_two_technique_channels_are_the_scalar_heuristics_bit_for_bit() {
             2 => 1.5,
             _ => rng.uniform() as f32,
         };
-        let Some(two) = TwoTechniques::new(pdfs, c, j) else {
+        let Some(two) = TwoPdfs::new(pdfs[j], pdfs[1 - j], j) else {
             // Only a zero pdf of the sample's own technique is refused here.
             assert!(!(pdfs[j] > 0.0), "{pdfs:?} {j}");
             continue;
         };
+        let two = TwoTechniques::new(two, c);
         compared += 1;
         let (weighted, clamped, unoccluded) = (
             two.weighted_balance(f, pdfs[j]),
@@ -686,4 +687,57 @@ fn the_two_technique_channels_are_the_scalar_heuristics_bit_for_bit() {
         }
     }
     assert!(compared > 100_000, "{compared}");
+}
+
+#[test]
+fn the_two_pdfs_balance_is_the_scalar_balance_bit_for_bit() {
+    // `TwoPdfs` divides only the smaller pdf by the larger: the same bits as
+    // `balance_heuristic(&p, j) / p[j]` for every pair it takes, equal pdfs, zeros
+    // (of both signs), subnormals and the extremes of the range included.
+    let mut rng = Rng::new(48);
+    let specials = [
+        0.0,
+        -0.0,
+        f32::MIN_POSITIVE,
+        1e-45,
+        3e-39,
+        1.0,
+        f32::MAX,
+        f32::INFINITY,
+        f32::NAN,
+        -1.0,
+    ];
+    let mut pairs: Vec<[f32; 2]> = specials
+        .iter()
+        .flat_map(|&a| specials.iter().map(move |&b| [a, b]))
+        .collect();
+    for _ in 0..200_000 {
+        let p = random_pdfs(&mut rng, 2, true);
+        pairs.push([p[0], p[1]]);
+        pairs.push([p[0], p[0]]);
+    }
+    let mut compared = 0;
+    for pdfs in pairs {
+        for j in 0..2 {
+            let (p, q) = (pdfs[j], pdfs[1 - j]);
+            let Some(two) = TwoPdfs::new(p, q, j) else {
+                // Refused: what is not finite, a pdf of the sample below or at 0, and
+                // a negative other one (`-0` too).
+                assert!(
+                    !(p > 0.0 && p.is_finite() && q >= 0.0 && q.is_finite())
+                        || q.to_bits() == (-0.0f32).to_bits(),
+                    "{pdfs:?} {j}"
+                );
+                continue;
+            };
+            compared += 1;
+            let expected = balance_heuristic(&pdfs, j) / pdfs[j];
+            assert_eq!(
+                two.balance_over_pdf(pdfs[j]).to_bits(),
+                expected.to_bits(),
+                "{pdfs:?} {j}"
+            );
+        }
+    }
+    assert!(compared > 200_000, "{compared}");
 }

@@ -314,10 +314,15 @@ impl PolygonLight {
         // LTC's density, which both start with it (the same bits as their public forms
         // `eval` and `pdf`).
         let wi_unit = sample_unit.unwrap_or_else(|| crate::math::unit(wi));
-        let p = if j == 0 {
-            [sample.pdf, self.specular.pdf_of_unit_or_zero(wi_unit)]
+        let other = if j == 0 {
+            self.specular.pdf_of_unit_or_zero(wi_unit)
         } else {
-            [self.diffuse.pdf_inline(wi), sample.pdf]
+            self.diffuse.pdf_inline(wi)
+        };
+        let p = if j == 0 {
+            [sample.pdf, other]
+        } else {
+            [other, sample.pdf]
         };
         // The stored view is unit and above the horizon (`prepare`), which the BRDF's
         // evaluation then does not test again: `eval(self.wo, wi)` bit for bit.
@@ -329,19 +334,27 @@ impl PolygonLight {
         let f = (self.lambert + specular) * wi.z;
         let c = self.contributions;
         let v = self.visibility;
+        // Both pdfs finite (always, for the samplers' own pdfs): the ratios to the
+        // larger one with one division (`TwoPdfs`), for the balance heuristic and the
+        // three channels of the weighted ones at once, bit for bit the scalar functions.
+        let two_pdfs = mis::TwoPdfs::new(sample.pdf, other, j);
         // The sample's share of the balance heuristic, f / Σ p as a factor of f.
-        let balance = mis::balance_heuristic(&p, j) / p[j];
+        let balance = match two_pdfs {
+            Some(two) => two.balance_over_pdf(sample.pdf),
+            None => mis::balance_heuristic(&p, j) / p[j],
+        };
         match heuristic {
             MisHeuristic::Balance => out.visible = f * balance,
             MisHeuristic::Power => out.visible = f * (mis::power_heuristic(&p, j) / p[j]),
             heuristic => {
-                // The three channels at once where both pdfs are finite (always, for
-                // the samplers' own pdfs), bit for bit the per-channel loop below.
-                if let Some(two) = mis::TwoTechniques::new(p, [c[0].into(), c[1].into()], j) {
+                // Otherwise the per-channel loop below.
+                if let Some(two) =
+                    two_pdfs.map(|two| mis::TwoTechniques::new(two, [c[0].into(), c[1].into()]))
+                {
                     let f = Vec3A::from(f);
                     match heuristic {
                         MisHeuristic::WeightedBalance => {
-                            out.visible = two.weighted_balance(f, p[j]).into();
+                            out.visible = two.weighted_balance(f, sample.pdf).into();
                         }
                         MisHeuristic::ClampedOptimal => {
                             out.visible = two.clamped_optimal(f, v).into();

@@ -437,6 +437,13 @@ impl LtcPolygon {
     /// bias confined to a band of the round trip's rounding along the boundary); where
     /// even the inner direction fails (polygons that the round trip cannot resolve) the
     /// sample is dropped (`Sample::NONE`).
+    ///
+    /// Always inlined (into the C ABI's `sphera_ltc_polygon_sample`, its one caller in
+    /// the crate): out of line it returned the `Sample` through memory, stored as an
+    /// 8-byte and two 4-byte pieces, and the C ABI's function loaded its last 8 bytes
+    /// (`z` and `pdf`) in one piece, which the store buffer cannot forward (issue 18,
+    /// stop 48).
+    #[inline(always)]
     pub fn sample(&self, u: [f32; 2]) -> Sample {
         let Some(w_cosine) = self.transformed_sample(u) else {
             return Sample::NONE;
