@@ -39,8 +39,8 @@ use super::cap::Cap;
 use super::cap_intersection::cap_intersection_solid_angle;
 use super::cap_intersection_sampling::{CapIntersection, MIN_NORMALISER};
 use super::pivot::{
-    jacobian_numerator, jacobian_of_numerator, pivot_cap, pivot_cap_fast, pivot_cap_fast_by_ref,
-    pivot_cap_fast_of_valid, transform_numerator, transform_of_numerator,
+    jacobian_numerator, jacobian_of_numerator, pivot_cap, pivot_cap_by_points, pivot_cap_fast,
+    transform_numerator, transform_of_numerator,
 };
 use super::shading_fast::pivoted_intersection_fast;
 use super::sptd::{Sptd, SptdBase, SptdInCap};
@@ -250,12 +250,12 @@ fn horizon_image(pivot: &Vec3) -> Cap {
 /// The image `g(V)` of a bent cone by the pivot (made valid first).
 #[inline(always)]
 fn visible_image(visibility: &Cap, pivot: &Vec3) -> Cap {
-    pivot_cap_fast_by_ref(&visibility.sanitized(), pivot).0
+    pivot_cap_by_points(&visibility.sanitized(), pivot).0
 }
 
 /// `Ω(g(light) ∩ clip)` for a valid light cap and the pivoted clip (`g(H)` or `g(V)`): the
 /// one-pass closed form where it is well conditioned (`shading_fast`), else the image by
-/// `pivot_cap_fast` and the exact two-cap solid angle.
+/// `pivot_cap_by_points` and the exact two-cap solid angle.
 ///
 /// The pivot by reference: by value, the compiler copied it from the prepared struct to
 /// the stack as 8 + 4 bytes and read it back as 4 + 8 (a load across two stores, which
@@ -283,7 +283,7 @@ fn pivoted_intersection_of_invalid(light: &Cap, pivot: &Vec3, clip: &Cap) -> f32
 #[inline(never)]
 #[cold]
 fn pivoted_intersection_careful(light: &Cap, pivot: &Vec3, clip: &Cap) -> f32 {
-    let (image, _) = pivot_cap_fast(light, *pivot);
+    let (image, _) = pivot_cap_by_points(light, pivot);
     cap_intersection_solid_angle(&image, clip)
 }
 
@@ -511,16 +511,11 @@ impl SphereLightSampler {
         let horizon = UPPER_HEMISPHERE;
         // (A valid pivot is finite and shorter than 1.)
         let valid_pivot = VALID_PIVOT || (pivot.is_finite() && pivot.length_squared() < 1.0);
-        // (Not made valid again by the image where it is valid as it stands.)
-        let pivoted = |c: &Cap| {
-            if VALID_PIVOT {
-                pivot_cap_fast_of_valid(c, pivot)
-            } else {
-                pivot_cap_fast(c, pivot)
-            }
-        };
+        // (The closed form `reduced_image` takes the pivot as it is, or leaves it to the
+        // careful `pivot_cap`, which makes it valid.)
+        let pivoted = |c: &Cap| pivot_cap_fast(c, pivot);
         // The image of the upper hemisphere in closed form (`pivot_upper_hemisphere`: one
-        // square root and a division for `pivot_cap_fast`'s six of each, and more
+        // square root and a division for the points' form's six of each, and more
         // accurate), of the pivot made valid (as `pivot_cap_fast` makes it).
         let horizon_image = || {
             super::pivot::pivot_upper_hemisphere(if VALID_PIVOT {

@@ -932,7 +932,7 @@ fn fitted_pivots_are_valid_as_they_stand() {
     }
     let mut rng = Rng::new(2218);
     // `prepare` (the fitted pivot taken as valid: `prepare_sanitized::<true>`,
-    // `pivot_cap_fast_of_valid`) against `prepare_with_pivot` (made valid), bit for bit,
+    // `prepare_sanitized_of_valid`) against `prepare_with_pivot` (made valid), bit for bit,
     // over sphere lights as the light bench draws them (above and across the horizon).
     let (mut compared, mut clipped) = (0, 0);
     for _ in 0..20_000 {

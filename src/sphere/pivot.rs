@@ -268,23 +268,178 @@ pub fn pivot_cap(cap: &Cap, pivot: Vec3) -> Cap {
     Cap::from_axis_one_plus_cos(axis, 2.0 * s * s)
 }
 
-/// What [`pivot_cap_fast`] did: its closed form, or the careful [`pivot_cap`].
+/// What [`pivot_cap_fast`] (or [`pivot_cap_by_points`]) did: its closed form, or the
+/// careful [`pivot_cap`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum PivotPath {
     /// The closed form (well-conditioned caps).
     Fast,
-    /// [`pivot_cap`] (empty or whole-sphere caps, images near a hemisphere, images whose
-    /// side is not decided by the rounded image points: tiny images, or the pivot close
-    /// to the cap's boundary).
+    /// [`pivot_cap`] ([`pivot_cap_fast`]: empty or whole-sphere caps, pivots not valid as
+    /// they stand, `|n| < 1/16`; [`pivot_cap_by_points`]: also images near a hemisphere
+    /// and images whose side is not decided by the rounded image points, tiny images or
+    /// the pivot close to the cap's boundary).
     Careful,
 }
 
-/// `|g(ω₁) − g(ω₂)|² / 4` below which the side test of [`pivot_cap_fast`] is not trusted
-/// (see there): `1 − 1/256`, i.e. `|cos ψ'| ≥ 1/16`.
+/// `|r_p|²` up to which [`reduced_image`] takes the pivot as it is (`valid_pivot` would
+/// return it unchanged: `√x ≤ 1 − 2⁻²⁰`).
+const FAST_MAX_PIVOT_LENGTH2: f32 = 1.0 - 4.0 / 1_048_576.0;
+
+/// `|n|²` of the image's plane normal from which [`reduced_image`] answers: `|n| ≥ 1/16`,
+/// so that the rounding of `n` (below `8ε` absolute, see there) is below `1.5e-5` of it.
+const FAST_MIN_NORMAL2: f32 = 1.0 / 256.0;
+
+/// The image `g(C)` of a cap in closed form, reduced to at most a hemisphere (what Eq. 6–7
+/// give): [`reduced_image`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ReducedImage {
+    /// `n = 2δ r_p + k a`, the normal of the image's plane `n·y = c'` (not unit).
+    pub normal: Vec3,
+    /// `1/|n|`.
+    pub inverse_length: f32,
+    /// `1 − |cos ψ'|` in `[0, 1]`: `1 − cos ψ'` of the image, or its hole `1 + cos ψ'`
+    /// where it is wider than a hemisphere.
+    pub side: f32,
+    /// `c' ≥ 0`: the image is wider than a hemisphere (its complement, of axis `+n/|n|`, has
+    /// the side), else the image itself has axis `−n/|n|` and the side.
+    pub wide: bool,
+}
+
+impl ReducedImage {
+    /// The image as a [`Cap`]: axis `−n/|n|` (unit to a few ulps), `side` on the small
+    /// side (`one_minus_cos`, or `one_plus_cos` for a wide image) and `2 − side` (exact,
+    /// Sterbenz) on the other, `sin²ψ' = side (2 − side)` as `Cap::with_sides` stores it.
+    #[inline(always)]
+    pub(crate) fn cap(&self) -> Cap {
+        let side = self.side;
+        let other = 2.0 - side;
+        let (one_minus_cos, one_plus_cos) = if self.wide {
+            (other, side)
+        } else {
+            (side, other)
+        };
+        Cap {
+            axis: self.normal * -self.inverse_length,
+            one_minus_cos,
+            one_plus_cos,
+            sin2: (side * other).max(0.0).min(1.0),
+        }
+    }
+}
+
+/// The image `g(C)` of a valid cap (see [`Cap::sanitized`]) in closed form, from the plane
+/// of its boundary circle (issue 18): one square root and one division, no plane of the
+/// axis and the pivot, no image points. `None` where the careful [`pivot_cap`] must
+/// decide: an empty or whole cap (stored by its hole), a pivot not valid as it stands
+/// (`|r_p|² > 1 − 2⁻¹⁸` or not finite), or `|n|² < 1/256`.
+///
+/// `g(y) = r_p − k(y − r_p)/|y − r_p|²` with `k = 1 − |r_p|²` (Eq. 2, in the form of
+/// [`transform`]) is the inversion about `r_p` of power `−k`: `y = g(x)` ⇔
+/// `x − r_p = −k(y − r_p)/|y − r_p|²`. The cap is `C = {x : a·x ≥ cos θ}`; with
+/// `δ = a·r_p − cos θ`, `a·x − cos θ = δ − k a·(y − r_p)/|y − r_p|²`, and on the sphere
+/// `|y − r_p|² = 1 + |r_p|² − 2 r_p·y > 0`, so `x ∈ C` ⇔ `n·y ≤ c'` with
+///
+/// `n = 2δ r_p + k a`, `c' = δ(1 + |r_p|²) + k (a·r_p)`:
+///
+/// `g(C)` is the cap of axis `−n/|n|` and `cos ψ' = −c'/|n|`. With `|a| = 1` and `s = a·r_p`,
+/// `|n|² = 4δ²|r_p|² + 4δks + k²` and `c'² = δ²(1 + |r_p|²)² + 2δks(1 + |r_p|²) + k²s²`;
+/// as `(1 + |r_p|²)² − 4|r_p|² = k²` and `2 − (1 + |r_p|²) = k`,
+/// `|n|² − c'² = k²(1 − s² + 2δs − δ²) = k²(1 − (s − δ)²) = k² sin²θ`, so the smaller side
+/// `1 − |cos ψ'| = (|n|² − c'²)/(|n|(|n| + |c'|)) = k² sin²θ / (|n|(|n| + |c'|))` has no
+/// cancellation (the stored `sin²θ`: a tiny cap keeps the relative precision of its
+/// image). It is `1 − cos ψ'` of the image where `c' < 0` and its hole `1 + cos ψ'`
+/// otherwise (the image wider than a hemisphere); at `c' = 0` both are the same
+/// hemisphere, so the switch is continuous. (`|n| = |ω₁ − r_p||ω₂ − r_p|` for the boundary
+/// points `ω₁, ω₂` in the plane of `a` and `r_p`: `sin ψ' = k sin θ / |n|`, the form of
+/// [`pivot_cap_by_points`].) `1/(|n|(|n| + |c'|))` once gives both the side and, times
+/// `|n| + |c'|`, `1/|n|`.
+///
+/// Error bound (f32, an axis unit to rounding): the terms of `n` and `c'` are at most a few
+/// units and `δ` is exact where it cancels (Sterbenz), so `n` and `c'` are within `8ε`
+/// absolute of their values for the stored cap, and with `|n| ≥ 1/16` the axis is within
+/// `128ε = 1.5e-5` rad and the side within `3e-5` relative from them, plus the rounding of
+/// `k` (`ε|r_p|²/k` relative, doubled by `k²`: below `3ε (1 + ρ)/(1 − ρ)`, `ρ = |r_p|`,
+/// shared with every form of `g`). In particular a tiny cap (1e-12 sr, which the points'
+/// form sends to [`pivot_cap`], where `1 − ω'_c·g(ω₁)` keeps only a few digits) keeps its
+/// side to these bounds, and an image wider than a hemisphere its hole. Tested against the
+/// `f64` images of the boundary points (`the_reduced_image_against_f64`: caps from 1e-12 sr
+/// to nearly the sphere, pivots to `|r_p| = 0.999`, on the axis line and at the origin),
+/// which asserts these bounds and, for `|r_p| ≤ 0.95`, the points' form's 2e-5 relative in
+/// the side; measured: the side to 6e-5 relative at `|r_p|` near 0.999 (8e-7 of the
+/// magnification: the rounding of `k`), the axis to 3e-6 rad.
+///
+/// `OFF_AXIS` adds a gate that the closed form itself does not need (it has no plane of
+/// the axis and the pivot): `None` also for the pivot (nearly) on the cap's axis line, for
+/// the real-time shading (`shading_fast`), whose careful path is better there. Tested as
+/// `|r_p⊥|² = |r_p|² − (a·r_p)² > 4e-6 |r_p|²` (the pivot more than 2e-3 rad off the line),
+/// which needs only `a·r_p`: on the line `(a·r_p)² = |r_p|²|a|²`, and `|a|²` is 1 to
+/// `UNIT_TOLERANCE = 1e-6` (a valid cap), the three roundings a few 1e-7 of `|r_p|²`, so
+/// the difference is below `2e-6 |r_p|²` there. A pivot at the origin fails too
+/// (`0 > 0`); the cone of pivots that the gate adds is a few 1e-6 of the directions.
+#[inline(always)]
+pub(crate) fn reduced_image<const OFF_AXIS: bool>(cap: &Cap, pivot: Vec3) -> Option<ReducedImage> {
+    if !(cap.one_minus_cos > 0.0) || !(cap.one_plus_cos > 0.0) {
+        return None;
+    }
+    let rho2 = pivot.length_squared();
+    if !(rho2 <= FAST_MAX_PIVOT_LENGTH2) {
+        return None;
+    }
+    let axis = cap.axis;
+    let along = pivot.dot(axis);
+    if OFF_AXIS && !(rho2 - along * along > 4e-6 * rho2) {
+        return None;
+    }
+    // `k = 1 − |r_p|²` (exact for `|r_p|² ≥ 1/2`, Sterbenz), `δ = a·r_p − cos θ` (exact
+    // subtraction where it cancels, Sterbenz), the image's plane `n·y = c'`.
+    let k = 1.0 - rho2;
+    let delta = along - cap.cos();
+    let normal = pivot * (2.0 * delta) + axis * k;
+    let offset = delta * (1.0 + rho2) + k * along;
+    let n2 = normal.length_squared();
+    // Ill-conditioned (the pivot near the sphere and the cap near `r_p/|r_p|`, whose image
+    // is then nearly the whole sphere). NaN cannot occur here (finite valid inputs), but
+    // fails the test as well.
+    if !(n2 >= FAST_MIN_NORMAL2) {
+        return None;
+    }
+    let n = crate::math::sqrtf(n2);
+    let sum = n + offset.abs();
+    let reciprocal = 1.0 / (n * sum);
+    // `≤ 1` in exact arithmetic. (`min(1)` as a compare and select: the same value for
+    // every input, NaN included.)
+    let side = (k * k) * cap.sin2 * reciprocal;
+    let side = if side < 1.0 { side } else { 1.0 };
+    Some(ReducedImage {
+        normal,
+        inverse_length: reciprocal * sum,
+        side,
+        wide: offset >= 0.0,
+    })
+}
+
+/// [`pivot_cap`] by the closed form [`reduced_image`] where it is well conditioned,
+/// [`pivot_cap`] itself elsewhere (empty or whole caps, pivots not valid as they stand,
+/// `|n| < 1/16`): the sphere light sampler's image (issue 18). Same contract; the pivot
+/// need not be valid (the closed form takes only pivots that `valid_pivot` returns as they
+/// are, and `pivot_cap` makes the others valid).
+#[inline(always)]
+pub(crate) fn pivot_cap_fast(cap: &Cap, pivot: Vec3) -> (Cap, PivotPath) {
+    match reduced_image::<false>(cap, pivot) {
+        Some(image) => (image.cap(), PivotPath::Fast),
+        None => pivot_cap_careful(cap, &pivot),
+    }
+}
+
+/// `|g(ω₁) − g(ω₂)|² / 4` below which the side test of [`pivot_cap_by_points`] is not
+/// trusted (see there): `1 − 1/256`, i.e. `|cos ψ'| ≥ 1/16`.
 const FAST_MAX_SIN2: f32 = 1.0 - 1.0 / 256.0;
 
-/// [`pivot_cap`] by a closed form where it is well conditioned, [`pivot_cap`] itself
-/// elsewhere (the real-time shading's per-light image, issue 18, 1). Same contract.
+/// [`pivot_cap`] by the images of the boundary points where it is well conditioned,
+/// [`pivot_cap`] itself elsewhere: the real-time shading's images of the horizon and of
+/// bent cones, and its careful path (`light.rs`), whose bits the closed form
+/// [`pivot_cap_fast`] would move (the determinism table's `sphere_shade` rows; issue 18,
+/// 1). Same contract.
 ///
 /// In the plane of the cap's axis (x) and the pivot `p` (y ≥ 0), the boundary points
 /// are `ωᵢ = (cos θ, ∓ sin θ)` and `g(ω) = p − k (ω − p)/|ω − p|²`, `k = 1 − |p|²`
@@ -310,44 +465,23 @@ const FAST_MAX_SIN2: f32 = 1.0 - 1.0 / 256.0;
 /// image is at most a hemisphere when `q = (g(ω₁) − g(ω_c))·(g(ω₂) − g(ω_c)) < 0` and
 /// wider when `q > 0`. Each rounded image point is within `δ = 6e-7` of the exact one
 /// (a few ulps of a normalised vector), so `q` is within `δ(|a| + |b|) + δ²` of the exact
-/// value (`a, b` the two differences): the closed form is used only where
+/// value (`a, b` the two differences): the points are used only where
 /// `|q| > 4e-6 (|a| + |b|) + 1e-12`, and where `|cos ψ'| ≥ 1/16` (the axis, the
 /// direction of `g(ω₁) + g(ω₂)`, keeps its precision; near a hemisphere the careful
 /// path's arc lengths are better conditioned). Everything else takes [`pivot_cap`].
+///
+/// The pivot by reference, and its careful path out of line: the occluded shading's bent
+/// cone (`SphereLightShading::eval_occluded`) passed the prepared pivot by value, which
+/// the compiler copied to the stack as 8 + 4 bytes for the careful call and read back as
+/// 4 + 8 on the fast path (a load across two stores, which the store buffer cannot
+/// forward; see `pivoted_intersection` in `light.rs`).
 #[inline(always)]
-pub(crate) fn pivot_cap_fast(cap: &Cap, pivot: Vec3) -> (Cap, PivotPath) {
-    pivot_cap_fast_by_ref(cap, &pivot)
-}
-
-/// [`pivot_cap_fast`] with the pivot by reference, and its careful path out of line: the
-/// occluded shading's bent cone (`SphereLightShading::eval_occluded`) passed the prepared
-/// pivot by value, which the compiler copied to the stack as 8 + 4 bytes for the careful
-/// call and read back as 4 + 8 on the fast path (a load across two stores, which the store
-/// buffer cannot forward; see `pivoted_intersection` in `light.rs`).
-#[inline(always)]
-pub(crate) fn pivot_cap_fast_by_ref(cap: &Cap, pivot: &Vec3) -> (Cap, PivotPath) {
-    pivot_cap_fast_with::<false>(cap, pivot)
-}
-
-/// [`pivot_cap_fast`] of a pivot that is valid as it stands (`valid_pivot` returns it bit
-/// for bit: the sphere light sampler's fitted pivots,
-/// `light_tests::fitted_pivots_are_valid_as_they_stand`): the same value without making
-/// it valid again (a length, its square root on the way to the image, and six finiteness
-/// tests).
-#[inline(always)]
-pub(crate) fn pivot_cap_fast_of_valid(cap: &Cap, pivot: Vec3) -> (Cap, PivotPath) {
-    pivot_cap_fast_with::<true>(cap, &pivot)
-}
-
-/// The body of [`pivot_cap_fast_by_ref`] (`VALID = false`) and
-/// [`pivot_cap_fast_of_valid`] (`VALID = true`: `pivot` is valid).
-#[inline(always)]
-fn pivot_cap_fast_with<const VALID: bool>(cap: &Cap, pivot: &Vec3) -> (Cap, PivotPath) {
+pub(crate) fn pivot_cap_by_points(cap: &Cap, pivot: &Vec3) -> (Cap, PivotPath) {
     // Empty caps and whole spheres (stored by their hole) go the careful way.
     if !(cap.one_minus_cos > 0.0) || !(cap.one_plus_cos > 0.0) {
         return pivot_cap_careful(cap, pivot);
     }
-    let p3 = if VALID { *pivot } else { valid_pivot(*pivot) };
+    let p3 = valid_pivot(*pivot);
     let along = p3.dot(cap.axis);
     let perpendicular = p3 - cap.axis * along;
     let across2 = perpendicular.length_squared();
@@ -445,7 +579,8 @@ pub(crate) fn pivot_upper_hemisphere(pivot: Vec3) -> Cap {
     }
 }
 
-/// The careful path of [`pivot_cap_fast_by_ref`] (out of line: it is rare).
+/// The careful path of [`pivot_cap_fast`] and [`pivot_cap_by_points`] (out of line: it is
+/// rare).
 #[cold]
 #[inline(never)]
 fn pivot_cap_careful(cap: &Cap, pivot: &Vec3) -> (Cap, PivotPath) {
@@ -457,9 +592,8 @@ fn pivot_cap_careful(cap: &Cap, pivot: &Vec3) -> (Cap, PivotPath) {
 /// `ωᵢ = (cos θ, ∓ sin θ)` and of its center `(1, 0)`, and `sin²ψ'` of the image: with
 /// `eᵢ = ωᵢ − p` and `k = 1 − |r_p|²`, `g(ω) = p − k e / |e|²`, unit in exact arithmetic
 /// and not renormalised (the callers' side tests allow for the rounding), and
-/// `sin ψ' = k sin θ / (|e₁||e₂|)` squared (see [`pivot_cap_fast`]). (The real-time
-/// shading's one-pass image, `shading_fast::pivoted_intersection_fast`, has its own
-/// closed form without the points.)
+/// `sin ψ' = k sin θ / (|e₁||e₂|)` squared (see [`pivot_cap_by_points`]). ([`reduced_image`]
+/// is the closed form without the points.)
 #[inline(always)]
 pub(crate) fn images_in_plane(cap: &Cap, p: Vec2, rho2: f32) -> ([Vec2; 3], f32) {
     let sin = crate::math::sqrtf(cap.sin2.max(0.0).min(1.0));

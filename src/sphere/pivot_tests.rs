@@ -284,13 +284,13 @@ fn pivot_cap_f64(cap: &Cap, p: Vec3) -> (D3, f64, bool) {
     }
 }
 
-/// The closed form agrees with the f64 image to 2e-5 relative in the stored side
+/// The points' form (`pivot_cap_by_points`) agrees with the f64 image to 2e-5 relative in the stored side
 /// (`1 − cos ψ'`, or the hole), and its axis to 2e-5 rad times the magnification
 /// `(1 + ρ)/(1 − ρ)`, over caps from 1e-6 sr to nearly the sphere and pivots up to
 /// `|r_p| = 0.95`; and with the careful path to the same bounds. Caps that take the
 /// fallback return exactly what `pivot_cap` returns.
 #[test]
-fn fast_pivot_cap_agrees_with_f64_and_the_careful_path() {
+fn points_pivot_cap_agrees_with_f64_and_the_careful_path() {
     let mut rng = Rng::new(181);
     let (mut fast, mut careful) = (0, 0);
     let mut worst = 0.0f64;
@@ -303,7 +303,7 @@ fn fast_pivot_cap_agrees_with_f64_and_the_careful_path() {
         };
         let cap = Cap::from_axis_one_minus_cos(axis, t);
         let p = random_pivot(&mut rng, 0.95);
-        let (image, path) = pivot_cap_fast(&cap, p);
+        let (image, path) = pivot_cap_by_points(&cap, &p);
         let reference = pivot_cap(&cap, p);
         if path == PivotPath::Careful {
             assert_eq!(image, reference);
@@ -352,52 +352,232 @@ fn fast_pivot_cap_agrees_with_f64_and_the_careful_path() {
     assert!(careful > 10, "{fast} {careful}");
 }
 
-/// Which inputs take the closed form and which the careful path.
+/// Which inputs take the points' form (`pivot_cap_by_points`, the real-time shading's) and
+/// which the careful path.
 #[test]
-fn fast_pivot_cap_paths() {
+fn points_pivot_cap_paths() {
     let p = Vec3::new(0.3, 0.1, 0.6);
     let axis = Vec3::new(0.2, 0.3, 0.9).normalize();
     // Ordinary lights (sin θ from 0.006 to 0.5): the closed form.
     for sin in [0.006f32, 0.05, 0.2, 0.5] {
         let cap = Cap::from_axis_cos(axis, (1.0 - sin * sin).sqrt());
-        assert_eq!(pivot_cap_fast(&cap, p).1, PivotPath::Fast, "{sin}");
+        assert_eq!(pivot_cap_by_points(&cap, &p).1, PivotPath::Fast, "{sin}");
     }
     // A 1e-12 sr cap: its image's side is below the rounding of the image points.
     let tiny = Cap::from_axis_one_minus_cos(axis, 1e-12 / (2.0 * PI));
-    assert_eq!(pivot_cap_fast(&tiny, p).1, PivotPath::Careful);
+    assert_eq!(pivot_cap_by_points(&tiny, &p).1, PivotPath::Careful);
     // Empty, whole sphere, the pivot on the axis line, the pivot at the origin.
-    assert_eq!(pivot_cap_fast(&Cap::EMPTY, p).1, PivotPath::Careful);
-    assert_eq!(pivot_cap_fast(&Cap::WHOLE_SPHERE, p).1, PivotPath::Careful);
+    assert_eq!(pivot_cap_by_points(&Cap::EMPTY, &p).1, PivotPath::Careful);
+    assert_eq!(
+        pivot_cap_by_points(&Cap::WHOLE_SPHERE, &p).1,
+        PivotPath::Careful
+    );
     // (A pivot on the axis line up to rounding still defines a plane, and any plane
     // through the axis works: only an exactly zero perpendicular part goes careful.)
     let on_axis = Cap::from_axis_cos(Vec3::Z, 0.9);
     assert_eq!(
-        pivot_cap_fast(&on_axis, Vec3::new(0.0, 0.0, 0.5)).1,
+        pivot_cap_by_points(&on_axis, &Vec3::new(0.0, 0.0, 0.5)).1,
         PivotPath::Careful
     );
-    assert_eq!(pivot_cap_fast(&on_axis, Vec3::ZERO).1, PivotPath::Careful);
+    assert_eq!(
+        pivot_cap_by_points(&on_axis, &Vec3::ZERO).1,
+        PivotPath::Careful
+    );
     // An image at a hemisphere: the upper hemisphere under the pivot through its
     // boundary's plane (p·z = 0 maps the horizon to a great circle).
     let upper = Cap::from_axis_one_minus_cos(Vec3::Z, 1.0);
     assert_eq!(
-        pivot_cap_fast(&upper, Vec3::new(0.5, 0.0, 0.0)).1,
+        pivot_cap_by_points(&upper, &Vec3::new(0.5, 0.0, 0.0)).1,
         PivotPath::Careful
     );
     // The pivot right at the cap's boundary: magnified to nearly the whole sphere,
     // decided by the careful path when the side is unclear.
     let boundary = Vec3::new(0.0, 0.6, 0.8);
     let edge = Cap::from_axis_cos(Vec3::Z, 0.8);
-    let (image, _) = pivot_cap_fast(&edge, boundary * 0.999);
+    let (image, _) = pivot_cap_by_points(&edge, &(boundary * 0.999));
     assert!(image.solid_angle().is_finite());
 }
 
+/// `testing::pivot_image_f64` (Eq. 6–7 on the `f64` images of the boundary points in the
+/// plane of the axis and the pivot), with the plane's tangent made orthogonal to the axis
+/// twice: for a pivot within 1e-8 rad of the axis line (an `f32` pivot "on" it), one pass
+/// leaves the tangent 1e-8 off orthogonal (the rounding of `r_p − a (a·r_p)` over its
+/// length), the boundary points 1e-8 off the sphere, and the axis of an image near a
+/// hemisphere (`|g(ω₁) + g(ω₂)| = 2|cos ψ'|` small) 5e-6 rad off for `|cos ψ'| = 5e-4`.
+fn image_f64(cap: &Cap, pivot: Vec3) -> (D3, f64, f64) {
+    let (a, p) = (normalize(d3(cap.axis)), d3(pivot));
+    let across: D3 = core::array::from_fn(|i| p[i] - a[i] * dot(p, a));
+    let u = if dot(across, across) > 1e-24 {
+        normalize(across)
+    } else {
+        crate::testing::frame_f64(a).0
+    };
+    let u = normalize(core::array::from_fn(|i| u[i] - a[i] * dot(u, a)));
+    let t = cap.one_minus_cos as f64;
+    let (c, s) = (1.0 - t, (t * (2.0 - t)).sqrt());
+    let w1: D3 = core::array::from_fn(|i| a[i] * c - u[i] * s);
+    let w2: D3 = core::array::from_fn(|i| a[i] * c + u[i] * s);
+    let (g1, g2, gc) = (
+        pivot_transform_f64(w1, p),
+        pivot_transform_f64(w2, p),
+        pivot_transform_f64(a, p),
+    );
+    let sum: D3 = core::array::from_fn(|i| g1[i] + g2[i]);
+    let m = normalize(sum);
+    let chord: f64 = (0..3).map(|i| (g1[i] - g2[i]).powi(2)).sum();
+    let small = 0.25 * chord / (1.0 + 0.5 * dot(sum, sum).sqrt());
+    let e: D3 = core::array::from_fn(|i| gc[i] - m[i]);
+    if 0.5 * dot(e, e) <= small {
+        (m, small, 2.0 - small)
+    } else {
+        (m.map(|x| -x), 2.0 - small, small)
+    }
+}
+
+/// `reduced_image` (through `pivot_cap_fast`, the sphere light sampler's image) against
+/// the `f64` images of the boundary points (`image_f64`, Eq. 6–7 in the
+/// plane of the axis and the pivot), over caps from 1e-12 sr to nearly the whole sphere
+/// (images wider than a hemisphere among them), pivots up to `|r_p| = 0.999` in every
+/// direction, on the cap's axis line and at the origin: the error bound of its
+/// documentation, the stored side within `3e-5 + 3ε (1 + ρ)/(1 − ρ)` relative and the axis
+/// within `1.5e-5` rad (2e-5 relative in the side for `|r_p| ≤ 0.95`, as the points' form),
+/// and the same side of a hemisphere where the `f64` image is not within 1e-4 of one. The caps it leaves to the careful path get `pivot_cap`'s bits.
+#[test]
+fn the_reduced_image_against_f64() {
+    let mut rng = Rng::new(4818);
+    let (mut fast, mut careful, mut tiny, mut wide) = (0u32, 0u32, 0u32, 0u32);
+    let (mut worst_side, mut worst_side_scaled, mut worst_axis) = (0.0f64, 0.0f64, 0.0f64);
+    let mut worst_side_moderate = 0.0f64;
+    for i in 0..200_000 {
+        let axis = rng.unit_vector_f32();
+        let t = match i % 4 {
+            // 1e-12 to 1e-9 sr.
+            0 => (rng.log_uniform(-12.0, -9.0) / (2.0 * core::f64::consts::PI)) as f32,
+            1 => rng.log_uniform(-9.0, 0.0) as f32,
+            2 => (2.0 * rng.uniform()) as f32,
+            // Holes from 1e-6 to 1 (wider than a hemisphere).
+            _ => (2.0 - rng.log_uniform(-6.0, 0.0)) as f32,
+        };
+        let cap = Cap::from_axis_one_minus_cos(axis, t);
+        let p = match i % 7 {
+            0 => axis * (0.99 * (2.0 * rng.uniform_f32() - 1.0)),
+            1 if i % 49 == 1 => Vec3::ZERO,
+            2 | 3 => random_pivot(&mut rng, 0.999),
+            _ => random_pivot(&mut rng, 0.95),
+        };
+        let (image, path) = pivot_cap_fast(&cap, p);
+        if path == PivotPath::Careful {
+            assert_eq!(image, pivot_cap(&cap, p), "{cap:?} {p:?}");
+            careful += 1;
+            continue;
+        }
+        fast += 1;
+        assert_eq!(image.sanitized(), image, "{cap:?} {p:?}");
+        let (axis64, omc64, opc64) = image_f64(&cap, p);
+        let side64 = omc64.min(opc64);
+        let wider = image.one_minus_cos > 1.0;
+        if (side64 - 1.0).abs() > 1e-4 {
+            assert_eq!(wider, omc64 > 1.0, "{cap:?} {p:?}: {image:?} {omc64}");
+        }
+        let side = if wider {
+            image.one_plus_cos
+        } else {
+            image.one_minus_cos
+        } as f64;
+        let relative = (side - side64).abs() / side64;
+        let rho = p.length() as f64;
+        let magnification = (1.0 + rho) / (1.0 - rho);
+        let bound = 3e-5 + 3.0 * f32::EPSILON as f64 * magnification;
+        assert!(
+            relative <= bound,
+            "{cap:?} {p:?}: side {side:e} vs {side64:e} ({relative:e})"
+        );
+        let angle = (2.0 * one_minus_dot_f64(d3(image.axis), axis64)).sqrt();
+        assert!(angle <= 1.5e-5, "{cap:?} {p:?}: axis off by {angle:e}");
+        worst_side = worst_side.max(relative);
+        worst_side_scaled = worst_side_scaled.max(relative / magnification);
+        if rho <= 0.95 {
+            worst_side_moderate = worst_side_moderate.max(relative);
+        }
+        worst_axis = worst_axis.max(angle);
+        tiny += (cap.solid_angle() < 1e-9) as u32;
+        wide += wider as u32;
+    }
+    println!(
+        "fast {fast} (tiny caps {tiny}, wide images {wide}) careful {careful}: worst side \
+         {worst_side:.2e} relative ({worst_side_scaled:.2e} of the magnification; \
+         {worst_side_moderate:.2e} for |r_p| <= 0.95), axis {worst_axis:.2e} rad"
+    );
+    // At least the points' form's accuracy where it is fast (2e-5 relative for pivots up
+    // to 0.95, `points_pivot_cap_agrees_with_f64_and_the_careful_path`), here over every
+    // cap, the tiny ones and the images near a hemisphere included.
+    assert!(worst_side_moderate < 2e-5, "{worst_side_moderate:e}");
+    assert!(
+        fast > 190_000 && tiny > 40_000 && wide > 40_000,
+        "{fast} {tiny} {wide}"
+    );
+    assert!(careful > 0, "{careful}");
+}
+
+/// Which inputs take `pivot_cap_fast`'s closed form and which the careful path: the closed
+/// form needs neither the plane of the axis and the pivot nor well-conditioned image
+/// points (unlike `pivot_cap_by_points`, `points_pivot_cap_paths`), so tiny caps, pivots on
+/// the axis line or at the origin and images at a hemisphere are fast (and accurate,
+/// `the_reduced_image_against_f64`); empty and whole caps, pivots not valid as they stand
+/// and `|n| < 1/16` are careful.
+#[test]
+fn fast_pivot_cap_paths() {
+    let p = Vec3::new(0.3, 0.1, 0.6);
+    let axis = Vec3::new(0.2, 0.3, 0.9).normalize();
+    for sin in [0.006f32, 0.05, 0.2, 0.5] {
+        let cap = Cap::from_axis_cos(axis, (1.0 - sin * sin).sqrt());
+        assert_eq!(pivot_cap_fast(&cap, p).1, PivotPath::Fast, "{sin}");
+    }
+    // A 1e-12 sr cap: its side from the stored `sin²θ`, without cancellation.
+    let tiny = Cap::from_axis_one_minus_cos(axis, 1e-12 / (2.0 * PI));
+    assert_eq!(pivot_cap_fast(&tiny, p).1, PivotPath::Fast);
+    // The pivot on the axis line, at the origin (`n = a`: the antipodal cap), an image at a
+    // hemisphere (the upper hemisphere under a pivot in its boundary's plane, `c' = 0`).
+    let on_axis = Cap::from_axis_cos(Vec3::Z, 0.9);
+    assert_eq!(
+        pivot_cap_fast(&on_axis, Vec3::new(0.0, 0.0, 0.5)).1,
+        PivotPath::Fast
+    );
+    let (antipodal, path) = pivot_cap_fast(&on_axis, Vec3::ZERO);
+    assert_eq!(path, PivotPath::Fast);
+    assert_eq!(antipodal.axis, -Vec3::Z);
+    assert!((antipodal.one_minus_cos - on_axis.one_minus_cos).abs() <= 1e-7);
+    let upper = Cap::from_axis_one_minus_cos(Vec3::Z, 1.0);
+    let (flat, path) = pivot_cap_fast(&upper, Vec3::new(0.5, 0.0, 0.0));
+    assert_eq!(path, PivotPath::Fast);
+    assert!((flat.one_minus_cos - 1.0).abs() <= 1e-6, "{flat:?}");
+    // Empty, whole sphere, pivots not valid as they stand.
+    assert_eq!(pivot_cap_fast(&Cap::EMPTY, p).1, PivotPath::Careful);
+    assert_eq!(pivot_cap_fast(&Cap::WHOLE_SPHERE, p).1, PivotPath::Careful);
+    for bad in [Vec3::X, Vec3::new(f32::NAN, 0.0, 0.0), Vec3::Y * 1e30] {
+        assert_eq!(
+            pivot_cap_fast(&on_axis, bad).1,
+            PivotPath::Careful,
+            "{bad:?}"
+        );
+    }
+    // The pivot near the sphere and a cap near `r_p/|r_p|`: `|n| = |ω₁ − r_p||ω₂ − r_p|`
+    // about `(1 − |r_p|)² = 1e-4`, below `1/16`; a little farther, fast.
+    let near = Vec3::new(0.0, 0.6, 0.8) * 0.99;
+    for (tilt, path) in [(0.02f32, PivotPath::Careful), (0.35, PivotPath::Fast)] {
+        let cap_axis = Vec3::new(tilt.sin(), 0.6 * tilt.cos(), 0.8 * tilt.cos());
+        let cap = Cap::from_axis_cos(cap_axis, 0.9999);
+        assert_eq!(pivot_cap_fast(&cap, near).1, path, "{tilt}");
+    }
+}
+
 /// `pivot_upper_hemisphere` (the closed form of `g(H)`) against the `f64` image of the
-/// hemisphere's boundary (`pivot_cap_f64`, Eq. 6–7) and against `pivot_cap_fast` of `H`
+/// hemisphere's boundary (`pivot_cap_f64`, Eq. 6–7) and against `pivot_cap_by_points` of `H`
 /// (which the sphere light sampler took before), over pivots up to `|r_p| = 1 − 1e-5`
 /// in every direction: the same side (wider than a hemisphere or not, where the `f64`
 /// image decides it clearly), the stored side to `4 ε (1 + ρ)/(1 − ρ)` relative (the
 /// rounding of `1 − |r_p|²`, squared) and the axis to 1e-6 rad times that magnification,
-/// and worst errors within a tenth of `pivot_cap_fast`'s (whose careful path takes the
+/// and worst errors within a tenth of `pivot_cap_by_points`'s (whose careful path takes the
 /// images near a hemisphere).
 #[test]
 fn the_upper_hemisphere_s_image_in_closed_form() {
@@ -418,7 +598,7 @@ fn the_upper_hemisphere_s_image_in_closed_form() {
             continue;
         }
         let image = pivot_upper_hemisphere(p);
-        let (fast, _) = pivot_cap_fast(&horizon, p);
+        let (fast, _) = pivot_cap_by_points(&horizon, &p);
         let (axis64, side64, wider) = pivot_cap_f64(&horizon, p);
         // 1 − cos ψ' of the f64 image.
         let omc64 = if wider { 2.0 - side64 } else { side64 };
@@ -460,7 +640,7 @@ fn the_upper_hemisphere_s_image_in_closed_form() {
     }
     println!(
         "closed form: side {worst_side:.2e} ({worst_scaled:.2e} of the magnification), axis \
-         {worst_axis:.2e} (pivot_cap_fast: side {worst_side_fast:.2e}, axis {worst_axis_fast:.2e})"
+         {worst_axis:.2e} (pivot_cap_by_points: side {worst_side_fast:.2e}, axis {worst_axis_fast:.2e})"
     );
     assert!(worst_side <= 1.1 * worst_side_fast && worst_axis <= 1.1 * worst_axis_fast);
 }

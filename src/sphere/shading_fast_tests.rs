@@ -1,6 +1,6 @@
 use super::*;
 use crate::sphere::cap_intersection_solid_angle;
-use crate::sphere::pivot::{PivotPath, pivot_cap_fast};
+use crate::sphere::pivot::{PivotPath, pivot_cap_by_points};
 use crate::testing::{Rng, cap_intersection_f64, d3, pivot_image_f64};
 
 fn random_pivot(rng: &mut Rng, max: f64) -> Vec3 {
@@ -9,7 +9,7 @@ fn random_pivot(rng: &mut Rng, max: f64) -> Vec3 {
 
 /// The careful path: the image as a cap, then the exact two-cap solid angle.
 fn careful(light: &Cap, pivot: Vec3, clip: &Cap) -> f32 {
-    cap_intersection_solid_angle(&pivot_cap_fast(light, pivot).0, clip)
+    cap_intersection_solid_angle(&pivot_cap_by_points(light, &pivot).0, clip)
 }
 
 /// The f64 reference of `Ω(g(light) ∩ clip)`.
@@ -46,14 +46,14 @@ fn fast_intersection_agrees_with_f64_and_the_careful_path() {
         } else {
             Cap::from_axis_one_minus_cos(rng.unit_vector_f32(), (2.0 * rng.uniform()) as f32)
         };
-        let clip = pivot_cap_fast(&cone, pivot).0;
+        let clip = pivot_cap_by_points(&cone, &pivot).0;
         let Some(value) = pivoted_intersection_fast(&light, &pivot, &clip) else {
             slow += 1;
             continue;
         };
         fast += 1;
         let exact = reference(&light, pivot, &clip);
-        let image = pivot_cap_fast(&light, pivot).0;
+        let image = pivot_cap_by_points(&light, &pivot).0;
         let scale = (image.solid_angle().min(clip.solid_angle()) as f64).max(1e-30);
         let error_fast = (value as f64 - exact).abs() / scale;
         let error_careful = (careful(&light, pivot, &clip) as f64 - exact).abs() / scale;
@@ -80,7 +80,7 @@ fn fast_intersection_agrees_with_f64_and_the_careful_path() {
 fn fast_intersection_paths() {
     let pivot = Vec3::new(0.3, 0.1, 0.6);
     let horizon = Cap::from_axis_one_minus_cos(Vec3::Z, 1.0);
-    let clip = pivot_cap_fast(&horizon, pivot).0;
+    let clip = pivot_cap_by_points(&horizon, &pivot).0;
     let axis = Vec3::new(0.2, 0.3, 0.9).normalize();
     // Ordinary lights (sin θ from 0.006 to 0.5), above the horizon or across it: fast,
     // and as the careful path to a few ulps of the light's image.
@@ -92,7 +92,7 @@ fn fast_intersection_paths() {
             let light = Cap::from_axis_cos(axis, (1.0 - sin * sin).sqrt());
             let value = pivoted_intersection_fast(&light, &pivot, &clip).unwrap();
             let expected = careful(&light, pivot, &clip);
-            let image = pivot_cap_fast(&light, pivot).0.solid_angle();
+            let image = pivot_cap_by_points(&light, &pivot).0.solid_angle();
             assert!(
                 (value - expected).abs() <= 1e-5 * image,
                 "{sin}: {value} {expected}"
@@ -136,7 +136,7 @@ fn fast_intersection_paths() {
         assert_eq!(value.is_some(), fast, "{angle}");
         if let Some(value) = value {
             let expected = careful(&light, off, &clip);
-            let image = pivot_cap_fast(&light, off).0.solid_angle();
+            let image = pivot_cap_by_points(&light, &off).0.solid_angle();
             assert!(
                 (value - expected).abs() <= 1e-5 * image,
                 "{value} {expected}"
@@ -144,13 +144,13 @@ fn fast_intersection_paths() {
         }
     }
     // The closed form needs no well-conditioned image points: a 1e-12 sr light (whose
-    // image's side is below the rounding of the image points, where `pivot_cap_fast`
+    // image's side is below the rounding of the image points, where `pivot_cap_by_points`
     // goes careful, and 9% off) and an image at a hemisphere (the upper hemisphere under
     // a pivot in its boundary's plane, `c' = 0`) are fast, and agree with the f64
     // reference (the first; the reference has no axis for the second: `g(ω₁) + g(ω₂) = 0`)
     // and the careful path (the second).
     let tiny = Cap::from_axis_one_minus_cos(axis, 1e-12 / (2.0 * PI));
-    assert_eq!(pivot_cap_fast(&tiny, pivot).1, PivotPath::Careful);
+    assert_eq!(pivot_cap_by_points(&tiny, &pivot).1, PivotPath::Careful);
     let flat = Vec3::new(0.5, 0.0, 0.0);
     for (light, pivot) in [(tiny, pivot), (horizon, flat)] {
         let value = pivoted_intersection_fast(&light, &pivot, &clip).unwrap();
@@ -159,7 +159,7 @@ fn fast_intersection_paths() {
         } else {
             careful(&light, pivot, &clip) as f64
         };
-        let image = pivot_cap_fast(&light, pivot).0.solid_angle() as f64;
+        let image = pivot_cap_by_points(&light, &pivot).0.solid_angle() as f64;
         assert!(
             (value as f64 - expected).abs() <= 1e-5 * image,
             "{light:?}: {value} {expected}"
@@ -172,14 +172,14 @@ fn fast_intersection_paths() {
     for (tilt, fast) in [(0.02f32, false), (0.35, true)] {
         let light_axis = Vec3::new(tilt.sin(), 0.6 * tilt.cos(), 0.8 * tilt.cos());
         let light = Cap::from_axis_cos(light_axis, 0.9999);
-        let clip = pivot_cap_fast(&horizon, near).0;
+        let clip = pivot_cap_by_points(&horizon, &near).0;
         let value = pivoted_intersection_fast(&light, &near, &clip);
         assert_eq!(value.is_some(), fast, "{tilt}");
         if let Some(value) = value {
             // (Against the f64 reference: the careful path is 1e-5 off here, the closed
             // form 1.3e-6.)
             let expected = reference(&light, near, &clip);
-            let image = pivot_cap_fast(&light, near).0.solid_angle() as f64;
+            let image = pivot_cap_by_points(&light, &near).0.solid_angle() as f64;
             assert!(
                 (value as f64 - expected).abs() <= 3e-6 * image,
                 "{value} {expected}"
@@ -194,10 +194,10 @@ fn fast_intersection_paths() {
     // Clearly disjoint and clearly nested: fast, exactly 0 and the image's solid angle.
     let below = Cap::from_axis_cos(Vec3::new(0.0, 0.3, -1.0).normalize(), 0.95);
     assert_eq!(pivoted_intersection_fast(&below, &pivot, &clip), Some(0.0));
-    // (The image's side agrees with `pivot_cap_fast`'s to rounding: the closed form's
-    // `k² sin²θ / (|n|(|n| + |c'|))` against `pivot_cap_fast`'s points in the plane.)
+    // (The image's side agrees with `pivot_cap_by_points`'s to rounding: the closed form's
+    // `k² sin²θ / (|n|(|n| + |c'|))` against `pivot_cap_by_points`'s points in the plane.)
     let above = Cap::from_axis_cos(axis, 0.95);
     let nested = pivoted_intersection_fast(&above, &pivot, &clip).unwrap();
-    let image = pivot_cap_fast(&above, pivot).0.solid_angle();
+    let image = pivot_cap_by_points(&above, &pivot).0.solid_angle();
     assert!((nested - image).abs() <= 1e-6 * image, "{nested} {image}");
 }

@@ -56,7 +56,7 @@
 use super::cap::{Cap, sample_uniform_in_frame};
 use super::cap_intersection::cap_intersection_solid_angle;
 use super::cap_intersection_sampling::{MAX_ITERATIONS, MIN_NORMALISER};
-use super::pivot::{pivot_cap, pivot_cap_fast, pivot_cap_fast_of_valid, transform, valid_pivot};
+use super::pivot::{pivot_cap, pivot_cap_fast, transform, valid_pivot};
 use crate::Sample;
 use crate::math::orthonormal_basis;
 use crate::sample::{ONE_MINUS_ULP, clamp_inverted, clamp_random};
@@ -669,30 +669,31 @@ impl SptdInCap {
     /// returns `false`.
     #[inline(always)]
     fn prepare_unchecked(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
-        self.prepare_sanitized_unchecked::<false>(sptd, &cap.sanitized())
+        self.prepare_sanitized_unchecked(sptd, &cap.sanitized())
     }
 
     /// [`SptdInCap::prepare`] of a cap that is valid already (`cap.sanitized()` returns it
     /// as it is: every constructor's cap), without sanitizing it again: the same bits,
     /// for a caller that sanitized it (the sphere light sampler).
     pub(crate) fn prepare_sanitized(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
-        self.prepare_sanitized_with::<false>(sptd, cap)
+        self.prepare_sanitized_with(sptd, cap)
     }
 
-    /// [`SptdInCap::prepare_sanitized`] of an SPTD whose pivot is valid as it stands
-    /// (`valid_pivot` returns it bit for bit: the sphere light sampler's fitted pivots,
-    /// `light_tests::fitted_pivots_are_valid_as_they_stand`), which the image then does
-    /// not make valid again (`pivot_cap_fast_of_valid`): the same bits.
+    /// [`SptdInCap::prepare_sanitized`] in line, for an SPTD whose pivot is valid as it
+    /// stands (the sphere light sampler's fitted pivots,
+    /// `light_tests::fitted_pivots_are_valid_as_they_stand`): the same bits. (The image's
+    /// closed form, `pivot_cap_fast`, takes the pivot as it is and leaves any other to the
+    /// careful `pivot_cap`, which makes it valid: there is nothing left to skip.)
     #[inline(always)]
     pub(crate) fn prepare_sanitized_of_valid(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
-        self.prepare_sanitized_with::<true>(sptd, cap)
+        self.prepare_sanitized_with(sptd, cap)
     }
 
-    /// The body of [`SptdInCap::prepare_sanitized`] (`VALID = false`) and
-    /// [`SptdInCap::prepare_sanitized_of_valid`] (`VALID = true`).
+    /// The body of [`SptdInCap::prepare_sanitized`] and
+    /// [`SptdInCap::prepare_sanitized_of_valid`].
     #[inline(always)]
-    fn prepare_sanitized_with<const VALID: bool>(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
-        let prepared = self.prepare_sanitized_unchecked::<VALID>(sptd, cap);
+    fn prepare_sanitized_with(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
+        let prepared = self.prepare_sanitized_unchecked(sptd, cap);
         if !prepared {
             *self = SptdInCap::EMPTY;
         }
@@ -702,10 +703,12 @@ impl SptdInCap {
     /// [`SptdInCap::prepare_sanitized`] of the zero pivot, `Sptd::uniform_of_valid(Vec3::ZERO)`
     /// (the sphere light sampler's fallback: `g(ω) = −ω` and `J = 1`, the uniform
     /// distribution in the cap), with the image in closed form: the antipodal cap (axis
-    /// `−c`, the same sides), which `g` maps the cap onto exactly. `pivot_cap_fast` finds
-    /// the zero pivot on the axis line and takes the careful `pivot_cap` (three `atan2f`, a
+    /// `−c`, the same sides), which `g` maps the cap onto exactly. `pivot_cap_fast` found
+    /// the zero pivot on the axis line and took the careful `pivot_cap` (three `atan2f`, a
     /// `sincosf` and a `sinf`: about 550 instructions per fallback, issue 18, stop 45),
-    /// whose image is that cap to a few ulps. The sampler's fallback reads only `cap` and
+    /// whose image is that cap to a few ulps; its closed form (`reduced_image`, stop 48)
+    /// takes the zero pivot (`n = a`), with a side within a few ulps of the cap's, but this
+    /// copy is cheaper still and exact. The sampler's fallback reads only `cap` and
     /// the result (`SphereLightSampler::sample` and `pdf` sample and evaluate the cap
     /// itself), and the result is the same: with `1 − cos θ ≥ ANTIPODAL_MIN_SIDE`
     /// (1e-30) both images have a side within a few ulps of the cap's (or past a
@@ -732,13 +735,10 @@ impl SptdInCap {
     /// The body of [`SptdInCap::prepare_sanitized`], which leaves `self` partly written
     /// when it returns `false`.
     #[inline(always)]
-    fn prepare_sanitized_unchecked<const VALID: bool>(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
+    fn prepare_sanitized_unchecked(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
         let cap = *cap;
-        let image = if VALID {
-            pivot_cap_fast_of_valid(&cap, sptd.pivot).0
-        } else {
-            pivot_cap_fast(&cap, sptd.pivot).0
-        };
+        // (The closed form of the image, `reduced_image`, where it is well conditioned.)
+        let image = pivot_cap_fast(&cap, sptd.pivot).0;
         self.prepare_of_image(sptd, cap, image)
     }
 
