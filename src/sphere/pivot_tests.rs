@@ -352,19 +352,29 @@ fn points_pivot_cap_agrees_with_f64_and_the_careful_path() {
     assert!(careful > 10, "{fast} {careful}");
 }
 
+/// The caps of both path tests (`points_pivot_cap_paths`, `fast_pivot_cap_paths`): a
+/// pivot, ordinary lights (sin θ from 0.006 to 0.5) about one axis, a 1e-12 sr light about
+/// that axis, and a light about z for pivots on its axis line.
+fn path_test_caps() -> (Vec3, [Cap; 4], Cap, Cap) {
+    let p = Vec3::new(0.3, 0.1, 0.6);
+    let axis = Vec3::new(0.2, 0.3, 0.9).normalize();
+    let ordinary =
+        [0.006f32, 0.05, 0.2, 0.5].map(|sin| Cap::from_axis_cos(axis, (1.0 - sin * sin).sqrt()));
+    let tiny = Cap::from_axis_one_minus_cos(axis, 1e-12 / (2.0 * PI));
+    let on_axis = Cap::from_axis_cos(Vec3::Z, 0.9);
+    (p, ordinary, tiny, on_axis)
+}
+
 /// Which inputs take the points' form (`pivot_cap_by_points`, the real-time shading's) and
 /// which the careful path.
 #[test]
 fn points_pivot_cap_paths() {
-    let p = Vec3::new(0.3, 0.1, 0.6);
-    let axis = Vec3::new(0.2, 0.3, 0.9).normalize();
-    // Ordinary lights (sin θ from 0.006 to 0.5): the closed form.
-    for sin in [0.006f32, 0.05, 0.2, 0.5] {
-        let cap = Cap::from_axis_cos(axis, (1.0 - sin * sin).sqrt());
-        assert_eq!(pivot_cap_by_points(&cap, &p).1, PivotPath::Fast, "{sin}");
+    let (p, ordinary, tiny, on_axis) = path_test_caps();
+    // Ordinary lights: the closed form.
+    for cap in ordinary {
+        assert_eq!(pivot_cap_by_points(&cap, &p).1, PivotPath::Fast, "{cap:?}");
     }
     // A 1e-12 sr cap: its image's side is below the rounding of the image points.
-    let tiny = Cap::from_axis_one_minus_cos(axis, 1e-12 / (2.0 * PI));
     assert_eq!(pivot_cap_by_points(&tiny, &p).1, PivotPath::Careful);
     // Empty, whole sphere, the pivot on the axis line, the pivot at the origin.
     assert_eq!(pivot_cap_by_points(&Cap::EMPTY, &p).1, PivotPath::Careful);
@@ -374,7 +384,6 @@ fn points_pivot_cap_paths() {
     );
     // (A pivot on the axis line up to rounding still defines a plane, and any plane
     // through the axis works: only an exactly zero perpendicular part goes careful.)
-    let on_axis = Cap::from_axis_cos(Vec3::Z, 0.9);
     assert_eq!(
         pivot_cap_by_points(&on_axis, &Vec3::new(0.0, 0.0, 0.5)).1,
         PivotPath::Careful
@@ -527,18 +536,14 @@ fn the_reduced_image_against_f64() {
 /// and `|n| < 1/16` are careful.
 #[test]
 fn fast_pivot_cap_paths() {
-    let p = Vec3::new(0.3, 0.1, 0.6);
-    let axis = Vec3::new(0.2, 0.3, 0.9).normalize();
-    for sin in [0.006f32, 0.05, 0.2, 0.5] {
-        let cap = Cap::from_axis_cos(axis, (1.0 - sin * sin).sqrt());
-        assert_eq!(pivot_cap_fast(&cap, p).1, PivotPath::Fast, "{sin}");
+    let (p, ordinary, tiny, on_axis) = path_test_caps();
+    for cap in ordinary {
+        assert_eq!(pivot_cap_fast(&cap, p).1, PivotPath::Fast, "{cap:?}");
     }
     // A 1e-12 sr cap: its side from the stored `sin²θ`, without cancellation.
-    let tiny = Cap::from_axis_one_minus_cos(axis, 1e-12 / (2.0 * PI));
     assert_eq!(pivot_cap_fast(&tiny, p).1, PivotPath::Fast);
     // The pivot on the axis line, at the origin (`n = a`: the antipodal cap), an image at a
     // hemisphere (the upper hemisphere under a pivot in its boundary's plane, `c' = 0`).
-    let on_axis = Cap::from_axis_cos(Vec3::Z, 0.9);
     assert_eq!(
         pivot_cap_fast(&on_axis, Vec3::new(0.0, 0.0, 0.5)).1,
         PivotPath::Fast
