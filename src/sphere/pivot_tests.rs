@@ -407,44 +407,8 @@ fn points_pivot_cap_paths() {
     assert!(image.solid_angle().is_finite());
 }
 
-/// `testing::pivot_image_f64` (Eq. 6–7 on the `f64` images of the boundary points in the
-/// plane of the axis and the pivot), with the plane's tangent made orthogonal to the axis
-/// twice: for a pivot within 1e-8 rad of the axis line (an `f32` pivot "on" it), one pass
-/// leaves the tangent 1e-8 off orthogonal (the rounding of `r_p − a (a·r_p)` over its
-/// length), the boundary points 1e-8 off the sphere, and the axis of an image near a
-/// hemisphere (`|g(ω₁) + g(ω₂)| = 2|cos ψ'|` small) 5e-6 rad off for `|cos ψ'| = 5e-4`.
-fn image_f64(cap: &Cap, pivot: Vec3) -> (D3, f64, f64) {
-    let (a, p) = (normalize(d3(cap.axis)), d3(pivot));
-    let across: D3 = core::array::from_fn(|i| p[i] - a[i] * dot(p, a));
-    let u = if dot(across, across) > 1e-24 {
-        normalize(across)
-    } else {
-        crate::testing::frame_f64(a).0
-    };
-    let u = normalize(core::array::from_fn(|i| u[i] - a[i] * dot(u, a)));
-    let t = cap.one_minus_cos as f64;
-    let (c, s) = (1.0 - t, (t * (2.0 - t)).sqrt());
-    let w1: D3 = core::array::from_fn(|i| a[i] * c - u[i] * s);
-    let w2: D3 = core::array::from_fn(|i| a[i] * c + u[i] * s);
-    let (g1, g2, gc) = (
-        pivot_transform_f64(w1, p),
-        pivot_transform_f64(w2, p),
-        pivot_transform_f64(a, p),
-    );
-    let sum: D3 = core::array::from_fn(|i| g1[i] + g2[i]);
-    let m = normalize(sum);
-    let chord: f64 = (0..3).map(|i| (g1[i] - g2[i]).powi(2)).sum();
-    let small = 0.25 * chord / (1.0 + 0.5 * dot(sum, sum).sqrt());
-    let e: D3 = core::array::from_fn(|i| gc[i] - m[i]);
-    if 0.5 * dot(e, e) <= small {
-        (m, small, 2.0 - small)
-    } else {
-        (m.map(|x| -x), 2.0 - small, small)
-    }
-}
-
 /// `reduced_image` (through `pivot_cap_fast`, the sphere light sampler's image) against
-/// the `f64` images of the boundary points (`image_f64`, Eq. 6–7 in the
+/// the `f64` images of the boundary points (`testing::pivot_image_f64`, Eq. 6–7 in the
 /// plane of the axis and the pivot), over caps from 1e-12 sr to nearly the whole sphere
 /// (images wider than a hemisphere among them), pivots up to `|r_p| = 0.999` in every
 /// direction, on the cap's axis line and at the origin: the error bound of its
@@ -482,7 +446,8 @@ fn the_reduced_image_against_f64() {
         }
         fast += 1;
         assert_eq!(image.sanitized(), image, "{cap:?} {p:?}");
-        let (axis64, omc64, opc64) = image_f64(&cap, p);
+        let (axis64, omc64, opc64) =
+            crate::testing::pivot_image_f64(d3(cap.axis), cap.one_minus_cos as f64, d3(p));
         let side64 = omc64.min(opc64);
         let wider = image.one_minus_cos > 1.0;
         if (side64 - 1.0).abs() > 1e-4 {
