@@ -284,6 +284,16 @@ fn pivot_cap_f64(cap: &Cap, p: Vec3) -> (D3, f64, bool) {
     }
 }
 
+/// The side that a pivoted cap stores without cancellation: `1 − cos ψ'`, or its hole
+/// `1 + cos ψ'` for an image wider than a hemisphere.
+fn stored_side(image: &Cap) -> f64 {
+    (if image.one_minus_cos > 1.0 {
+        image.one_plus_cos
+    } else {
+        image.one_minus_cos
+    }) as f64
+}
+
 /// The points' form (`pivot_cap_by_points`) agrees with the f64 image to 2e-5 relative in the stored side
 /// (`1 − cos ψ'`, or the hole), and its axis to 2e-5 rad times the magnification
 /// `(1 + ρ)/(1 − ρ)`, over caps from 1e-6 sr to nearly the sphere and pivots up to
@@ -318,11 +328,7 @@ fn points_pivot_cap_agrees_with_f64_and_the_careful_path() {
             wider,
             "{cap:?} {p:?}: {reference:?}"
         );
-        let side = if wider {
-            image.one_plus_cos
-        } else {
-            image.one_minus_cos
-        } as f64;
+        let side = stored_side(&image);
         let relative = (side - side64).abs() / side64;
         worst = worst.max(relative);
         assert!(relative < 2e-5, "{cap:?} {p:?}: {side} vs {side64}");
@@ -335,11 +341,7 @@ fn points_pivot_cap_agrees_with_f64_and_the_careful_path() {
             angle < 2e-5 * magnification,
             "{cap:?} {p:?}: axis off by {angle}"
         );
-        let careful_side = if wider {
-            reference.one_plus_cos
-        } else {
-            reference.one_minus_cos
-        } as f64;
+        let careful_side = stored_side(&reference);
         assert!(
             (side - careful_side).abs()
                 <= 2e-5 * side64 + 4.0 * f32::EPSILON as f64 * magnification,
@@ -453,11 +455,7 @@ fn the_reduced_image_against_f64() {
         if (side64 - 1.0).abs() > 1e-4 {
             assert_eq!(wider, omc64 > 1.0, "{cap:?} {p:?}: {image:?} {omc64}");
         }
-        let side = if wider {
-            image.one_plus_cos
-        } else {
-            image.one_minus_cos
-        } as f64;
+        let side = stored_side(&image);
         let relative = (side - side64).abs() / side64;
         let rho = p.length() as f64;
         let magnification = (1.0 + rho) / (1.0 - rho);
