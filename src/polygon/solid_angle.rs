@@ -907,8 +907,8 @@ impl FanLanes {
         // `prepare_or_fail` after the solid angle: the sample reads the two adjacent
         // words by one 8-byte load, which store-to-load forwarding cannot serve from two
         // 4-byte stores; stored this early, both have reached the cache when the sample
-        // of prepare + 1 runs (see the commit). The exact test of a flagged determinant
-        // writes its zero again.
+        // of prepare + 1 runs (triangles' prepare + 1 about −1 to −2 ns, issue 15, stop
+        // 48). The exact test of a flagged determinant writes its zero again.
         polygon.g0[0] = self.signed_g0[0].abs();
         // Slots 0..4 of group 0 hold vertices 0, 1, 2, 0: `next` is (v1, v2, v0, ·) and
         // `opposite` (v2, v0, v1, ·) (lane 3 is finite and unused).
