@@ -480,7 +480,7 @@ impl SphereLightSampler {
         };
         // (`cap` is sanitized: not again.)
         let prepared = if VALID_PIVOT {
-            self.sptd.prepare_sanitized_of_valid(&sptd, cap)
+            self.sptd.prepare_sanitized_in_line(&sptd, cap)
         } else {
             self.sptd.prepare_sanitized(&sptd, cap)
         };

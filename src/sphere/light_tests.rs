@@ -932,8 +932,9 @@ fn fitted_pivots_are_valid_as_they_stand() {
     }
     let mut rng = Rng::new(2218);
     // `prepare` (the fitted pivot taken as valid: `prepare_sanitized::<true>`,
-    // `prepare_sanitized_of_valid`) against `prepare_with_pivot` (made valid), bit for bit,
-    // over sphere lights as the light bench draws them (above and across the horizon).
+    // `SptdInCap::prepare_sanitized_in_line`) against `prepare_with_pivot` (made valid),
+    // bit for bit, over sphere lights as the light bench draws them (above and across the
+    // horizon).
     let (mut compared, mut clipped) = (0, 0);
     for _ in 0..20_000 {
         let v = rng.unit_vector_f32();

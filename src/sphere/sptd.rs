@@ -676,23 +676,14 @@ impl SptdInCap {
     /// as it is: every constructor's cap), without sanitizing it again: the same bits,
     /// for a caller that sanitized it (the sphere light sampler).
     pub(crate) fn prepare_sanitized(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
-        self.prepare_sanitized_with(sptd, cap)
+        self.prepare_sanitized_in_line(sptd, cap)
     }
 
-    /// [`SptdInCap::prepare_sanitized`] in line, for an SPTD whose pivot is valid as it
-    /// stands (the sphere light sampler's fitted pivots,
-    /// `light_tests::fitted_pivots_are_valid_as_they_stand`): the same bits. (The image's
-    /// closed form, `pivot_cap_fast`, takes the pivot as it is and leaves any other to the
-    /// careful `pivot_cap`, which makes it valid: there is nothing left to skip.)
+    /// [`SptdInCap::prepare_sanitized`] always inlined: the sphere light sampler's call
+    /// for its fitted pivots, the common case (the other pivots call `prepare_sanitized`
+    /// out of line). The same bits.
     #[inline(always)]
-    pub(crate) fn prepare_sanitized_of_valid(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
-        self.prepare_sanitized_with(sptd, cap)
-    }
-
-    /// The body of [`SptdInCap::prepare_sanitized`] and
-    /// [`SptdInCap::prepare_sanitized_of_valid`].
-    #[inline(always)]
-    fn prepare_sanitized_with(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
+    pub(crate) fn prepare_sanitized_in_line(&mut self, sptd: &Sptd, cap: &Cap) -> bool {
         let prepared = self.prepare_sanitized_unchecked(sptd, cap);
         if !prepared {
             *self = SptdInCap::EMPTY;
