@@ -280,14 +280,15 @@ impl PolygonLight {
         let Some(heuristic) = MisHeuristic::from_u32(self.heuristic) else {
             return LightSample::NONE;
         };
-        // The LTC's sample comes with its direction's `unit` (from its own `pdf`).
-        let (sample, sample_unit) = match technique {
-            0 => (self.diffuse.sample(u), None),
+        // The LTC's sample comes with its direction's `unit` (from its own `pdf`) and
+        // whether that `pdf` found it strictly inside.
+        let (sample, sample_unit, ltc_inner) = match technique {
+            0 => (self.diffuse.sample(u), None, false),
             1 => {
-                let (sample, unit) = self.specular.sample_and_unit(u);
-                (sample, Some(unit))
+                let ltc = self.specular.sample_and_unit(u);
+                (ltc.sample, Some(ltc.unit), ltc.inner)
             }
-            _ => (Sample::NONE, None),
+            _ => (Sample::NONE, None, false),
         };
         if !(sample.pdf > 0.0) {
             return LightSample::NONE;
@@ -308,14 +309,33 @@ impl PolygonLight {
         // The sample's own technique has the density it was drawn with (its own `pdf`
         // at `wi`, which the LTC polygon's sample has just evaluated, and which the
         // projected sampler's `pdf` may round to 0 on the polygon's edge): only the
-        // other technique's density is evaluated.
-        // The projected density's body inlined (`pdf_inline`, the bits of `pdf`).
+        // other technique's density is evaluated, and from the sample's own state
+        // (issue 18, 3): both techniques sample the same polygon `P`, so a sample
+        // lies inside `P` and the other density needs no test of `P`'s edges.
+        // - A projected sample lies in `P` above the horizon: the LTC's density is 0
+        //   there only below the transformed horizon, `(M⁻¹ω)_z <= 0`
+        //   (`pdf_of_unit_inside`).
+        // - An LTC sample above the horizon whose transformed direction passed the LTC's
+        //   test without its slack (`inner`) lies in `P` up to the rounding of `M ω'`:
+        //   its projected density is `ω_z / Φ` (`pdf_inside`). Other LTC samples (within
+        //   the slack of the boundary, or pulled inward) take the projected `pdf`
+        //   (`pdf_inline`, the bits of `pdf`).
+        // Wherever the skipped test accepts the sample, the densities are `pdfs`' bit
+        // for bit; a sample that rounding put outside the other technique's polygon gets
+        // the other density continued past the boundary, where `pdfs` gives 0: a
+        // difference confined to a band of rounding width along the boundary
+        // (`a_sample_carries_its_own_techniques_pdf` counts and bounds it).
         // `wi` through `unit` once (the LTC's sample has done it), for the BRDF and the
         // LTC's density, which both start with it (the same bits as their public forms
         // `eval` and `pdf`).
         let wi_unit = sample_unit.unwrap_or_else(|| crate::math::unit(wi));
         let other = if j == 0 {
-            self.specular.pdf_of_unit_or_zero(wi_unit)
+            match wi_unit {
+                Some(dir) => self.specular.pdf_of_unit_inside(dir),
+                None => 0.0,
+            }
+        } else if ltc_inner {
+            self.diffuse.pdf_inside(wi)
         } else {
             self.diffuse.pdf_inline(wi)
         };

@@ -420,11 +420,14 @@ fn prepare_in_place_writes_what_the_by_value_path_built() {
 /// sampled technique's is the sample's own pdf, which its `pdf` gives at the sample's
 /// direction bit for bit (the LTC polygon's sample evaluates it), or 0 where the
 /// projected sampler's `pdf` rounds a sample on the polygon's edge outside; and the
-/// sample's contribution is what the densities of `pdfs` give with that substitution.
+/// sample's contribution is what the densities of `pdfs` give with that substitution,
+/// except for samples within rounding of the boundary that `pdfs` puts outside the other
+/// technique's polygon: the other density is taken from the sample's own state, without
+/// a test of the polygon's edges, and so continued there (rare, and asserted to be).
 #[test]
 fn a_sample_carries_its_own_techniques_pdf() {
     let mut rng = Rng::new(1833);
-    let (mut checked, mut on_edge) = (0, 0);
+    let (mut checked, mut on_edge, mut continued) = (0, 0, [0, 0]);
     for i in 0..300 {
         let center = [
             2.0 * rng.uniform() - 1.0,
@@ -449,8 +452,14 @@ fn a_sample_carries_its_own_techniques_pdf() {
         else {
             continue;
         };
-        for _ in 0..64 {
-            let u = rng.u2();
+        for k in 0..64 {
+            // Half the samples at random `u`, half with a coordinate at an end of the
+            // unit square, whose samples lie on the polygon's boundary.
+            let mut u = rng.u2();
+            let at_end = k % 2 == 1;
+            if at_end {
+                u[(k / 2) % 2] = [0.0, 1.0 - f32::EPSILON / 2.0][(k / 4) % 2];
+            }
             for technique in 0..2 {
                 let s = light.sample(technique, u);
                 if !(s.pdf > 0.0) || !(s.dir.z > 0.0) {
@@ -468,14 +477,43 @@ fn a_sample_carries_its_own_techniques_pdf() {
                 // The balance heuristic's contribution, f / Σ p.
                 let ggx = light.brdf.eval(light.wo, s.dir);
                 let f = (light.lambert + ggx) * s.dir.z;
-                let expected = f * (crate::mis::balance_heuristic(&p, j) / p[j]);
-                assert_eq!(s.visible, expected, "{i} {u:?}");
+                let balance = |p: &[f32; 2]| f * (crate::mis::balance_heuristic(p, j) / p[j]);
+                if s.visible != balance(&p) {
+                    // The other density from the sample's own state, where `pdfs` puts
+                    // the sample outside the other technique's polygon: only in
+                    // rounding of the boundary, with that density continued.
+                    let k = 1 - j;
+                    assert_eq!(p[k], 0.0, "{i} {u:?}");
+                    assert!(
+                        light.diffuse.contains_within(s.dir, 1e-5),
+                        "{i} {u:?} {:?}",
+                        s.dir
+                    );
+                    p[k] = if k == 1 {
+                        let unit = crate::math::unit(s.dir).expect("a sample");
+                        light.specular.pdf_of_unit_inside(unit)
+                    } else {
+                        light.diffuse.pdf_inside(s.dir)
+                    };
+                    assert!(p[k] > 0.0, "{i} {u:?}");
+                    assert_eq!(s.visible, balance(&p), "{i} {u:?}");
+                    continued[at_end as usize] += 1;
+                }
                 checked += 1;
             }
         }
     }
-    println!("checked {checked} samples ({on_edge} on the projected polygon's edge)");
+    println!(
+        "checked {checked} samples ({on_edge} on the projected polygon's edge; the other \
+         density continued past the boundary at {} of the random u, {} of the ends)",
+        continued[0], continued[1]
+    );
     assert!(checked > 10_000, "{checked}");
+    // Continued densities need a sample within rounding of the boundary: none at random
+    // `u` (nor in 3.3 million samples of lights 1e-6 to 1.5 across with roughness down
+    // to 0.01, measured), some at the ends of the unit square, which the test covers.
+    assert_eq!(continued[0], 0);
+    assert!(continued[1] > 0);
 }
 
 /// The view stored by `prepare` passes `is_unit`, which `sample`'s BRDF evaluation

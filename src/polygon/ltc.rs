@@ -281,6 +281,42 @@ fn unit_quotient(w: Vec3) -> (Vec3, Option<Vec3>) {
     }
 }
 
+/// Where a transformed direction lies for [`LtcPolygon::pdf`]: the three outcomes of
+/// its containment test in steps ([`LtcPolygon::containment`]).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Containment {
+    /// Strictly inside every edge's plane of the transformed polygon and above its
+    /// horizon (the test's first step, without the slack).
+    Inner,
+    /// Outside some edge's plane, but within the slack of `pdf`.
+    WithinSlack,
+    /// Beyond the slack: `pdf` is 0.
+    Outside,
+}
+
+/// A sample of [`LtcPolygon`] with what the polygon light reuses of its evaluation
+/// ([`LtcPolygon::sample_and_unit`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LtcSample {
+    /// The sample, as [`LtcPolygon::sample`] draws it.
+    pub sample: Sample,
+    /// `unit` of the sample's direction (`None` only with `Sample::NONE`).
+    pub unit: Option<Vec3>,
+    /// Whether the sample's transformed direction passed `pdf`'s containment test
+    /// without the slack ([`Containment::Inner`]): then the direction lies inside the
+    /// polygon up to the rounding of `M ω'`.
+    pub inner: bool,
+}
+
+impl LtcSample {
+    /// No sample.
+    const NONE: Self = Self {
+        sample: Sample::NONE,
+        unit: None,
+        inner: false,
+    };
+}
+
 /// An LTC restricted to a convex polygon: projected solid angle sampling of the polygon
 /// transformed by `M⁻¹`, mapped back by `M` (Peters 2021, Sec. 5).
 #[repr(C)]
@@ -371,7 +407,8 @@ impl LtcPolygon {
         .max(self.transformed.pdf_slack())
     }
 
-    /// `contains_within(w, tolerance())` of the transformed polygon, in three steps so
+    /// `contains_within(w, tolerance())` of the transformed polygon (not
+    /// [`Containment::Outside`]), in three steps so
     /// that the slack is computed only for directions within 1e-5 rad of the boundary:
     /// `contains(w)` (the test without the slack, its fast accept) implies it for every
     /// `τ >= 0`, and `contains_within(w, ROUND_TRIP_TOLERANCE)` false excludes it, as
@@ -385,13 +422,23 @@ impl LtcPolygon {
     /// `w` is finite (the caller has tested `|w|²` to lie in a finite range), so the
     /// first step is [`contains_finite`](ProjectedPolygon::contains_finite), `contains`
     /// without its test of finiteness (about 12 instructions per sample, stop 47).
+    ///
+    /// Returns where `w` lies: [`Containment::Inner`] for the first step's accept,
+    /// which the polygon light's sample uses (see
+    /// [`pdf_of_unit_and_inner`](Self::pdf_of_unit_and_inner)).
     #[inline(always)]
-    fn contains_within_tolerance(&self, w: Vec3) -> bool {
-        self.transformed.contains_finite(w) || self.within_tolerance(w.x, w.y, w.z)
+    fn containment(&self, w: Vec3) -> Containment {
+        if self.transformed.contains_finite(w) {
+            Containment::Inner
+        } else if self.within_tolerance(w.x, w.y, w.z) {
+            Containment::WithinSlack
+        } else {
+            Containment::Outside
+        }
     }
 
     /// The last two steps of
-    /// [`contains_within_tolerance`](Self::contains_within_tolerance), out of line: only
+    /// [`containment`](Self::containment), out of line: only
     /// directions outside some edge's plane of the transformed polygon (within rounding
     /// of its boundary, for the samples) take them. The direction by its coordinates,
     /// which the caller passes in registers: as a `Vec3` it went through the stack, and
@@ -467,10 +514,11 @@ impl LtcPolygon {
         }
     }
 
-    /// [`sample`](Self::sample) (the same bits) and the sample's direction as
+    /// [`sample`](Self::sample) (the same bits), the sample's direction as
     /// [`unit`](crate::math::unit) gives it, which `pdf` computes on the way (`None`
     /// only with `Sample::NONE`), for a caller that passes the direction on to functions
-    /// that start with `unit` (the polygon light's BRDF).
+    /// that start with `unit` (the polygon light's BRDF), and whether the direction passed
+    /// `pdf`'s containment test without its slack ([`LtcSample::inner`]).
     ///
     /// The rare path (the inward pulls) returns only its `Sample`, whose direction's
     /// `unit` is computed again here: the pulls' direction and its `unit` both come from
@@ -478,22 +526,34 @@ impl LtcPolygon {
     /// (`unit_quotient_is_unit`), so it is the same value. Returned with its `unit`
     /// through memory (the pulls' function is out of line), the pair made the common
     /// path store its own pair to the stack and load it back where the paths merge
-    /// (8 stores and 2 loads per polygon light sample, issue 18, stop 47).
+    /// (8 stores and 2 loads per polygon light sample, issue 18, stop 47). A pulled
+    /// sample counts as not inner: it lies within the slack of the boundary.
     #[inline(always)]
-    pub(crate) fn sample_and_unit(&self, u: [f32; 2]) -> (Sample, Option<Vec3>) {
+    pub(crate) fn sample_and_unit(&self, u: [f32; 2]) -> LtcSample {
         let Some(w_cosine) = self.transformed_sample(u) else {
-            return (Sample::NONE, None);
+            return LtcSample::NONE;
         };
         let (dir, unit) = self.through_m(w_cosine);
-        let sample = self.finish_sample((dir, unit));
-        if sample.pdf > 0.0 {
-            return (sample, unit);
+        let (pdf, inner) = match unit {
+            Some(unit) => self.pdf_of_unit_and_inner(unit),
+            None => (0.0, false),
+        };
+        if pdf > 0.0 {
+            return LtcSample {
+                sample: Sample { dir, pdf },
+                unit,
+                inner,
+            };
         }
         let pulled = self.pulled_inward(w_cosine);
-        if pulled.pdf > 0.0 {
-            (pulled, crate::math::unit(pulled.dir))
-        } else {
-            (pulled, None)
+        LtcSample {
+            sample: pulled,
+            unit: if pulled.pdf > 0.0 {
+                crate::math::unit(pulled.dir)
+            } else {
+                None
+            },
+            inner: false,
         }
     }
 
@@ -556,18 +616,61 @@ impl LtcPolygon {
     /// direction's `unit` for other uses too (the polygon light's BRDF).
     #[inline(always)]
     pub(crate) fn pdf_of_unit(&self, dir: Vec3) -> f32 {
+        self.pdf_of_unit_and_inner(dir).0
+    }
+
+    /// [`pdf_of_unit`](Self::pdf_of_unit) and whether the transformed direction passed
+    /// the containment test's first step, strictly inside every edge's plane of the
+    /// transformed polygon and above its horizon (`contains_finite`, without the
+    /// slack). Such a direction `ω = M ω'` lies inside the polygon's own edge planes
+    /// (`M` maps the planes through the origin and the edges of `M⁻¹P` to those of
+    /// `P`), up to the rounding of `M ω'`: the polygon light's sample then takes the
+    /// projected sampler's density without its containment test (issue 18, 3).
+    #[inline(always)]
+    fn pdf_of_unit_and_inner(&self, dir: Vec3) -> (f32, bool) {
+        let w = self.ltc.to_cosine_space(dir);
+        let length2 = w.length_squared();
+        if !strictly_between(length2, 1e-18, 1e18) {
+            return (self.pdf_careful(w.x, w.y, w.z), false);
+        }
+        let containment = self.containment(w);
+        if containment == Containment::Outside {
+            return (0.0, false);
+        }
+        (
+            self.density_of_transformed(w, length2),
+            containment == Containment::Inner,
+        )
+    }
+
+    /// The density at a direction `ω` inside the polygon (a sample of the polygon's
+    /// projected solid angle sampler, the other technique of the polygon light),
+    /// without the containment test: `D` is 0 only below the transformed horizon, so
+    /// of the transformed polygon's planes only `ω'_z > 0` is tested, against all its
+    /// edge planes in [`pdf_of_unit`](Self::pdf_of_unit). The same bits wherever that
+    /// test accepts `ω'`; for a sample that rounding put outside the polygon by more
+    /// than the slack (in the cosine's space) the density formula is continued there.
+    /// `dir` is a [`unit`](crate::math::unit) result, as for `pdf_of_unit`.
+    #[inline(always)]
+    pub(crate) fn pdf_of_unit_inside(&self, dir: Vec3) -> f32 {
         let w = self.ltc.to_cosine_space(dir);
         let length2 = w.length_squared();
         if !strictly_between(length2, 1e-18, 1e18) {
             return self.pdf_careful(w.x, w.y, w.z);
         }
-        if !self.contains_within_tolerance(w) {
+        if !(w.z > 0.0) {
             return 0.0;
         }
-        // `(ω'_z / |ω'|) / Φ' · |det M⁻¹| / |ω'|³` with `ω' = M⁻¹ω` as it is, not
-        // normalised: `ω'_z / |ω'|⁴` needs neither a square root nor a normalisation.
-        // `|ω'|⁴` lies in (1e-36, 1e36) by the test above (normal and finite); a pdf
-        // that still overflows (a huge density) or underflows gives 0.
+        self.density_of_transformed(w, length2)
+    }
+
+    /// `(ω'_z / |ω'|) / Φ' · |det M⁻¹| / |ω'|³` with `ω' = M⁻¹ω` as it is, not
+    /// normalised: `ω'_z / |ω'|⁴` needs neither a square root nor a normalisation.
+    /// `|ω'|⁴` lies in (1e-36, 1e36) for `length2 = |ω'|²` in (1e-18, 1e18) (normal
+    /// and finite); a pdf that still overflows (a huge density) or underflows gives 0.
+    /// 0 also for an empty polygon (`Φ'⁻¹ = 0`).
+    #[inline(always)]
+    fn density_of_transformed(&self, w: Vec3, length2: f32) -> f32 {
         let pdf =
             w.z * (self.transformed.density * self.ltc.inverse_determinant) / (length2 * length2);
         // `0 < pdf < ∞` in one comparison of the bits.
@@ -583,7 +686,7 @@ impl LtcPolygon {
     /// inlined: through `Option::map_or` the body was called out of line once the slack
     /// moved out of the prepared value (26 instructions per call, stop 46).
     #[inline(always)]
-    pub(crate) fn pdf_of_unit_or_zero(&self, unit: Option<Vec3>) -> f32 {
+    fn pdf_of_unit_or_zero(&self, unit: Option<Vec3>) -> f32 {
         match unit {
             Some(dir) => self.pdf_of_unit(dir),
             None => 0.0,

@@ -241,7 +241,11 @@ fn sample_pdf_is_the_pdf_of_the_sampled_direction() {
             // The polygon light's form: the same sample, bit for bit, and its
             // direction's `unit`, on the common path and on the inward pulls' path
             // (where the first direction through `M` has pdf 0).
-            let (with_unit, unit) = polygon.sample_and_unit(u);
+            let LtcSample {
+                sample: with_unit,
+                unit,
+                inner,
+            } = polygon.sample_and_unit(u);
             assert_eq!(
                 [with_unit.dir.to_array(), [with_unit.pdf; 3]].map(|a| a.map(f32::to_bits)),
                 [s.dir.to_array(), [s.pdf; 3]].map(|a| a.map(f32::to_bits))
@@ -249,7 +253,18 @@ fn sample_pdf_is_the_pdf_of_the_sampled_direction() {
             if s.pdf > 0.0 {
                 assert_eq!(unit, crate::math::unit(s.dir));
                 let first = polygon.transformed.sample(u);
-                pulled += (polygon.pdf(polygon.through_m(first.dir).0) == 0.0) as u32;
+                let was_pulled = polygon.pdf(polygon.through_m(first.dir).0) == 0.0;
+                pulled += was_pulled as u32;
+                // `inner`: the containment's first step at the sample's own transformed
+                // direction; never for a pulled sample.
+                let w = polygon.ltc.to_cosine_space(unit.expect("a sample"));
+                assert_eq!(
+                    inner,
+                    !was_pulled && polygon.transformed.contains(w),
+                    "{u:?} {vertices:?}"
+                );
+            } else {
+                assert!(!inner);
             }
             drawn += 1;
             if s.pdf == 0.0 {
@@ -595,7 +610,7 @@ fn largest_magnitude_is_the_max_fold() {
     }
 }
 
-/// `pdf`'s containment in three steps (`contains_within_tolerance`: the test without
+/// `pdf`'s containment in three steps (`containment`: the test without
 /// the slack, the 1e-5 rad bound, the slack computed last) decides as the transformed
 /// polygon's `contains_within` with the slack itself, on directions next to the
 /// transformed polygon's edges (inside, within the slack, beyond it), samples and
@@ -642,12 +657,18 @@ fn containment_in_steps_is_contains_within_the_slack() {
                 _ => rng.unit_vector_f32(),
             };
             let expected = polygon.transformed.contains_within(w, tolerance);
+            let containment = polygon.containment(w);
             assert_eq!(
-                polygon.contains_within_tolerance(w),
+                containment != Containment::Outside,
                 expected,
                 "{w:?} {vertices:?}"
             );
             let inside_strictly = polygon.transformed.contains(w);
+            assert_eq!(
+                containment == Containment::Inner,
+                inside_strictly,
+                "{w:?} {vertices:?}"
+            );
             // `contains_finite` (the first step's form) answers as `contains` for
             // finite directions of any length or orientation.
             for v in [w, -w, w * 1e-30, w * 1e30, w * 1e-45, Vec3::ZERO] {

@@ -1845,14 +1845,22 @@ impl ProjectedPolygon {
             return self.small_pdf_within(dir, self.pdf_slack());
         }
         if self.contains(dir) {
-            // Unit directions (every sample) as they are, so that a sample's pdf is this
-            // bit for bit; others normalised by the largest component first: a tiny
-            // `dir` (1e-45) had a length of 0 and an infinite pdf (found by the
-            // adversarial C test).
-            crate::math::unit_if_needed(dir).z * self.density
+            self.pdf_inside(dir)
         } else {
             0.0
         }
+    }
+
+    /// `ω_z / Φ`, the density of [`pdf`](Self::pdf) at a direction inside the polygon
+    /// and above the horizon, without the containment test: for `pdf` and its forms
+    /// with a slack, and for the polygon light's sample at an LTC sample that lies
+    /// inside the polygon by the LTC's own test (`LtcSample::inner`; issue 18, 3).
+    /// Unit directions (every sample) as they are, so that a sample's pdf is this bit
+    /// for bit; others normalised by the largest component first: a tiny `dir` (1e-45)
+    /// had a length of 0 and an infinite pdf (found by the adversarial C test).
+    #[inline(always)]
+    pub(crate) fn pdf_inside(&self, dir: Vec3) -> f32 {
+        crate::math::unit_if_needed(dir).z * self.density
     }
 
     /// Whether `dir` lies inside the clipped polygon or outside by at most `tolerance`
@@ -1906,7 +1914,7 @@ impl ProjectedPolygon {
             return self.small_pdf_within(dir, tolerance);
         }
         if self.contains_within(dir, tolerance) {
-            crate::math::unit_if_needed(dir).z * self.density
+            self.pdf_inside(dir)
         } else {
             0.0
         }
@@ -1923,7 +1931,7 @@ impl ProjectedPolygon {
     #[inline(always)]
     fn small_pdf_within(&self, dir: Vec3, tolerance: f32) -> f32 {
         if dir.z > 0.0 && self.small().contains_within(dir, tolerance) {
-            crate::math::unit_if_needed(dir).z * self.density
+            self.pdf_inside(dir)
         } else {
             0.0
         }
