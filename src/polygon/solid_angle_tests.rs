@@ -1279,9 +1279,17 @@ fn a_lone_fan_triangle_is_prepared_as_in_lanes() {
         let apex = groups.apex();
         let mut lanes_polygon = SolidAnglePolygon::EMPTY;
         let mut lanes = FanLanes::default();
-        lanes.compute(&mut lanes_polygon, &groups, apex, 0, triangles);
+        let mut angles: FanAngles = [0.0; 2 * LANES];
+        lanes.compute(&mut lanes_polygon, &mut angles, &groups, apex, 0, triangles);
         if triangles > LANES {
-            lanes.compute(&mut lanes_polygon, &groups, apex, LANES, triangles);
+            lanes.compute(
+                &mut lanes_polygon,
+                &mut angles,
+                &groups,
+                apex,
+                LANES,
+                triangles,
+            );
         }
         for k in 0..triangles {
             let mut one_polygon = SolidAnglePolygon::EMPTY;
