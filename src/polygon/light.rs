@@ -324,7 +324,8 @@ impl PolygonLight {
         // for bit; a sample that rounding put outside the other technique's polygon gets
         // the other density continued past the boundary, where `pdfs` gives 0: a
         // difference confined to a band of rounding width along the boundary
-        // (`a_sample_carries_its_own_techniques_pdf` counts and bounds it).
+        // (`a_sample_carries_its_own_techniques_pdf` checks it there, and
+        // finds none at random `u`).
         // `wi` through `unit` once (the LTC's sample has done it), for the BRDF and the
         // LTC's density, which both start with it (the same bits as their public forms
         // `eval` and `pdf`).

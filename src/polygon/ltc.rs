@@ -645,9 +645,9 @@ impl LtcPolygon {
 
     /// The density at a direction `ω` inside the polygon (a sample of the polygon's
     /// projected solid angle sampler, the other technique of the polygon light),
-    /// without the containment test: `D` is 0 only below the transformed horizon, so
-    /// of the transformed polygon's planes only `ω'_z > 0` is tested, against all its
-    /// edge planes in [`pdf_of_unit`](Self::pdf_of_unit). The same bits wherever that
+    /// without the containment test: `D` is 0 there only below the transformed
+    /// horizon, so only `ω'_z > 0` is tested, where [`pdf_of_unit`](Self::pdf_of_unit)
+    /// tests every edge plane of the transformed polygon. The same bits wherever that
     /// test accepts `ω'`; for a sample that rounding put outside the polygon by more
     /// than the slack (in the cosine's space) the density formula is continued there.
     /// `dir` is a [`unit`](crate::math::unit) result, as for `pdf_of_unit`.
